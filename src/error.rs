@@ -1,0 +1,91 @@
+//! The library's one error type. Every variant carries what a user needs to fix the
+//! input: the file, and the line or byte offset where parsing stopped.
+
+use std::path::PathBuf;
+
+/// Everything that can go wrong in primdecomp. Kernels never return this; only I/O,
+/// parsing, parameter validation and the driver do.
+#[derive(Debug, thiserror::Error)]
+pub enum Error {
+    /// The file could not be opened, mapped or read.
+    #[error("{path}: cannot read: {source}")]
+    Io {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+    /// A text format is malformed at a given 1-based line.
+    #[error("{path}:{line}: {msg}")]
+    ParseLine {
+        path: PathBuf,
+        line: u64,
+        msg: String,
+    },
+    /// A binary format is malformed at a given byte offset.
+    #[error("{path}: at byte {offset}: {msg}")]
+    ParseByte {
+        path: PathBuf,
+        offset: u64,
+        msg: String,
+    },
+    /// The file is not in a format we read (unknown extension, compressed data, a directory…).
+    #[error("{path}: {msg}")]
+    Format { path: PathBuf, msg: String },
+    /// The input parsed but has no polygon face to decompose.
+    #[error(
+        "{path}: the mesh has no polygon faces (faces with fewer than 3 vertices are skipped)"
+    )]
+    EmptyMesh { path: PathBuf },
+    /// The input would need more memory than the configured limit.
+    #[error("{path}: needs about {needed_mib} MiB, over the limit of {limit_mib} MiB; raise it with --max-memory-mib")]
+    TooLarge {
+        path: PathBuf,
+        needed_mib: u64,
+        limit_mib: u64,
+    },
+    /// A setting is out of range or inconsistent.
+    #[error("invalid setting: {0}")]
+    InvalidParams(String),
+    /// An output file could not be written.
+    #[error("{path}: cannot write: {source}")]
+    Write {
+        path: PathBuf,
+        #[source]
+        source: std::io::Error,
+    },
+}
+
+impl Error {
+    /// Helper for text parsers.
+    pub fn line(path: &std::path::Path, line: u64, msg: impl Into<String>) -> Self {
+        Error::ParseLine {
+            path: path.to_path_buf(),
+            line,
+            msg: msg.into(),
+        }
+    }
+    /// Helper for binary parsers.
+    pub fn byte(path: &std::path::Path, offset: u64, msg: impl Into<String>) -> Self {
+        Error::ParseByte {
+            path: path.to_path_buf(),
+            offset,
+            msg: msg.into(),
+        }
+    }
+    /// Helper for whole-file format problems.
+    pub fn format(path: &std::path::Path, msg: impl Into<String>) -> Self {
+        Error::Format {
+            path: path.to_path_buf(),
+            msg: msg.into(),
+        }
+    }
+    /// Exit code the CLI uses: 2 for bad input or settings, 1 for anything else.
+    pub fn exit_code(&self) -> i32 {
+        match self {
+            Error::Io { .. } | Error::Write { .. } => 1,
+            _ => 2,
+        }
+    }
+}
+
+pub type Result<T> = std::result::Result<T, Error>;

@@ -1,0 +1,52 @@
+//! `[f64; 3]` helpers. Plain functions keep the kernels readable and inlinable.
+
+/// A point or direction in 3D.
+pub type V3 = [f64; 3];
+
+#[inline(always)]
+pub fn add(a: V3, b: V3) -> V3 {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+#[inline(always)]
+pub fn sub(a: V3, b: V3) -> V3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+#[inline(always)]
+pub fn scale(a: V3, s: f64) -> V3 {
+    [a[0] * s, a[1] * s, a[2] * s]
+}
+#[inline(always)]
+pub fn dot(a: V3, b: V3) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+#[inline(always)]
+pub fn cross(a: V3, b: V3) -> V3 {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+#[inline(always)]
+pub fn norm2(a: V3) -> f64 {
+    dot(a, a)
+}
+#[inline(always)]
+pub fn norm(a: V3) -> f64 {
+    dot(a, a).sqrt()
+}
+/// `a + s·b`.
+#[inline(always)]
+pub fn madd(a: V3, b: V3, s: f64) -> V3 {
+    [a[0] + b[0] * s, a[1] + b[1] * s, a[2] + b[2] * s]
+}
+/// Unit vector along `a`, or `None` when `a` has no usable length.
+#[inline]
+pub fn normalize(a: V3) -> Option<V3> {
+    let n = norm(a);
+    if n > 0.0 && n.is_finite() {
+        Some(scale(a, 1.0 / n))
+    } else {
+        None
+    }
+}

@@ -1,0 +1,736 @@
+//! glTF 2.0 reader, for both `.gltf` (JSON with external or `data:` buffers) and
+//! `.glb` (binary container).
+//!
+//! The `gltf` crate parses and validates the JSON; everything that touches bytes is
+//! done here with bounds checks, so malformed or truncated input is an error, never a
+//! panic: the GLB container is split by hand, buffers are loaded by hand (external
+//! files relative to the file's directory, base64 `data:` URIs), and accessors are
+//! read by hand (any component type, byte strides, sparse substitution).
+//!
+//! The default scene (or scene 0) is walked with node transforms composed in f64;
+//! a file without scenes contributes every mesh once, untransformed. Triangle lists,
+//! strips and fans become triangles; points and lines primitives are counted in
+//! [`SkipCounts::other`](crate::mesh::SkipCounts::other).
+
+use crate::error::{Error, Result};
+use crate::mesh::MeshBuilder;
+use gltf::accessor::sparse::IndexType;
+use gltf::accessor::{DataType, Dimensions};
+use gltf::json::validation::Validate;
+use gltf::mesh::Mode;
+use gltf::scene::Transform;
+use std::borrow::Cow;
+use std::path::Path;
+
+/// Errors inside a primitive; the caller adds which mesh and primitive.
+type Res<T> = std::result::Result<T, String>;
+
+/// A 4×4 matrix, column-major like glTF: `m[column][row]`.
+type M4 = [[f64; 4]; 4];
+
+#[rustfmt::skip]
+const IDENTITY: M4 = [[1.0, 0.0, 0.0, 0.0], [0.0, 1.0, 0.0, 0.0], [0.0, 0.0, 1.0, 0.0], [0.0, 0.0, 0.0, 1.0]];
+
+/// Accessors without a bufferView (all zeros plus sparse values) may not claim more
+/// elements than this, so a lying count cannot make us allocate without bound.
+const MAX_VIEWLESS: usize = 1 << 24;
+
+/// Extensions that change how geometry is stored or instanced; we cannot honour them.
+const UNSUPPORTED: [&str; 4] = [
+    "KHR_draco_mesh_compression",
+    "EXT_meshopt_compression",
+    "KHR_meshopt_compression",
+    "EXT_mesh_gpu_instancing",
+];
+
+/// Parses a `.gltf` or `.glb` file; `path` locates external buffers.
+pub fn parse_gltf(bytes: &[u8], path: &Path) -> Result<MeshBuilder> {
+    if bytes.trim_ascii().is_empty() {
+        return Ok(MeshBuilder::new());
+    }
+    let (json, blob) = if bytes.starts_with(b"glTF") {
+        split_glb(bytes, path)?
+    } else {
+        (bytes, None)
+    };
+    let doc = document(json, path)?;
+    let mut r = Reader {
+        out: MeshBuilder::new(),
+        buffers: load_buffers(&doc, blob, path)?,
+        path,
+    };
+    match doc.default_scene().or_else(|| doc.scenes().next()) {
+        Some(scene) => r.walk_scene(&doc, &scene)?,
+        None => {
+            for mesh in doc.meshes() {
+                r.add_mesh(&mesh, &IDENTITY)?;
+            }
+        }
+    }
+    Ok(r.out)
+}
+
+/// Splits a GLB container into its JSON chunk and optional BIN chunk.
+fn split_glb<'a>(b: &'a [u8], path: &Path) -> Result<(&'a [u8], Option<&'a [u8]>)> {
+    let (Some(version), Some(length)) = (u32_at(b, 4), u32_at(b, 8)) else {
+        let msg = format!("a GLB header needs 12 bytes, the file has {}", b.len());
+        return Err(Error::byte(path, 0, msg));
+    };
+    if version != 2 {
+        let msg = format!("GLB version {version} is not supported (only glTF 2.0)");
+        return Err(Error::byte(path, 4, msg));
+    }
+    let length = length as usize;
+    if length > b.len() || length < 20 {
+        let msg = format!(
+            "the GLB header declares {length} bytes but the file has {} (truncated file?)",
+            b.len()
+        );
+        return Err(Error::byte(path, 8, msg));
+    }
+    let b = &b[..length];
+    let (ty, json, mut pos) = chunk(b, 12, path)?;
+    if &ty != b"JSON" {
+        return Err(Error::byte(path, 16, "the first GLB chunk is not JSON"));
+    }
+    let mut bin = None;
+    while pos + 8 <= b.len() {
+        let (ty, data, next) = chunk(b, pos, path)?;
+        if &ty == b"BIN\0" && bin.is_none() {
+            bin = Some(data);
+        }
+        pos = next;
+    }
+    Ok((json, bin))
+}
+
+fn u32_at(b: &[u8], at: usize) -> Option<u32> {
+    let c = b.get(at..)?.first_chunk::<4>()?;
+    Some(u32::from_le_bytes(*c))
+}
+
+/// The GLB chunk at `at`: its type, its data and the offset of the next chunk.
+fn chunk<'a>(b: &'a [u8], at: usize, path: &Path) -> Result<([u8; 4], &'a [u8], usize)> {
+    let (Some(len), Some(ty)) = (u32_at(b, at), u32_at(b, at + 4)) else {
+        let msg = "the file ends inside a GLB chunk header";
+        return Err(Error::byte(path, at as u64, msg));
+    };
+    let end = (at + 8).saturating_add(len as usize);
+    let Some(data) = b.get(at + 8..end) else {
+        let msg = format!(
+            "a GLB chunk of {len} bytes overruns the {} bytes the header declares",
+            b.len()
+        );
+        return Err(Error::byte(path, at as u64, msg));
+    };
+    Ok((ty.to_le_bytes(), data, end.saturating_add(3) & !3))
+}
+
+/// Deserializes and validates the JSON, refusing extensions we cannot honour.
+fn document(json: &[u8], path: &Path) -> Result<gltf::Document> {
+    let mut root: gltf::json::Root = gltf::json::deserialize::from_slice(json)
+        .map_err(|e| Error::format(path, format!("invalid glTF JSON: {e}")))?;
+    let required = root.extensions_required.iter();
+    let bad = required.clone().find(|e| UNSUPPORTED.contains(&e.as_str()));
+    let used = root.extensions_used.iter();
+    let instancing = used.clone().find(|e| *e == "EXT_mesh_gpu_instancing");
+    if let Some(ext) = bad.or(instancing) {
+        let msg = format!("the file uses the glTF extension {ext}, which is not supported");
+        return Err(Error::format(path, msg));
+    }
+    // Other required extensions (materials, texture transforms, mesh quantization)
+    // do not change how positions and indices are read.
+    root.extensions_required.clear();
+    check_attribute_refs(&root, path)?;
+    // The crate's validation (index references, enum values) is what makes the
+    // document API panic-free; only the POSITION min/max it insists on is optional
+    // here, as many exporters omit it and we do not use it (a primitive without
+    // POSITION is skipped and counted).
+    let mut problems = Vec::new();
+    root.validate(&root, gltf::json::Path::new, &mut |at, e| {
+        let at = at().0;
+        let optional = [".min", ".max", "[\"POSITION\"]"];
+        let bounds = optional.iter().any(|end| at.ends_with(end));
+        if !(bounds && e == gltf::json::validation::Error::Missing) {
+            problems.push(format!("{at}: {e}"));
+        }
+    });
+    if !problems.is_empty() {
+        let msg = format!("invalid glTF: {}", problems.join("; "));
+        return Err(Error::format(path, msg));
+    }
+    Ok(gltf::Document::from_json_without_validation(root))
+}
+
+/// The crate's validation indexes `accessors` with each primitive's POSITION without a
+/// bounds check, so dangling attribute references are rejected here first.
+fn check_attribute_refs(root: &gltf::json::Root, path: &Path) -> Result<()> {
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, prim) in mesh.primitives.iter().enumerate() {
+            let n = root.accessors.len();
+            if let Some(a) = prim.attributes.values().find(|a| a.value() >= n) {
+                let a = a.value();
+                let msg = format!("mesh {m} primitive {p}: attribute accessor {a} does not exist");
+                return Err(Error::format(path, msg));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Loads every buffer: the GLB BIN chunk, a `data:` URI or a file next to `path`.
+fn load_buffers<'a>(
+    doc: &gltf::Document,
+    blob: Option<&'a [u8]>,
+    path: &Path,
+) -> Result<Vec<Cow<'a, [u8]>>> {
+    let base = path.parent().unwrap_or(Path::new(""));
+    let mut out = Vec::new();
+    for buf in doc.buffers() {
+        let i = buf.index();
+        let data = match buf.source() {
+            gltf::buffer::Source::Bin => Cow::Borrowed(blob.ok_or_else(|| {
+                let msg =
+                    format!("buffer {i} refers to the GLB binary chunk, which the file lacks");
+                Error::format(path, msg)
+            })?),
+            gltf::buffer::Source::Uri(uri) => Cow::Owned(read_uri(uri, base, path, i)?),
+        };
+        if data.len() < buf.length() {
+            let msg = format!(
+                "buffer {i} declares {} bytes but holds only {}",
+                buf.length(),
+                data.len()
+            );
+            return Err(Error::format(path, msg));
+        }
+        out.push(data);
+    }
+    Ok(out)
+}
+
+fn read_uri(uri: &str, base: &Path, path: &Path, i: usize) -> Result<Vec<u8>> {
+    let fail = |msg: String| Error::format(path, format!("buffer {i}: {msg}"));
+    if let Some(rest) = uri.strip_prefix("data:") {
+        let b64 = rest.split_once(";base64,").map(|(_, d)| d);
+        return b64
+            .and_then(base64_decode)
+            .ok_or_else(|| fail("the data URI is not valid base64".into()));
+    }
+    let rel = match uri.strip_prefix("file://").or(uri.strip_prefix("file:")) {
+        Some(p) => p,
+        None if uri.contains(':') => {
+            return Err(fail(format!("the URI scheme of '{uri}' is not supported")))
+        }
+        None => uri,
+    };
+    let decoded = percent_decode(rel)
+        .ok_or_else(|| fail(format!("the URI '{uri}' is not UTF-8 once decoded")))?;
+    let file = base.join(decoded);
+    std::fs::read(&file).map_err(|e| fail(format!("cannot read {}: {e}", file.display())))
+}
+
+/// Standard or URL-safe base64, padding optional, whitespace skipped.
+fn base64_decode(s: &str) -> Option<Vec<u8>> {
+    let mut out = Vec::with_capacity(s.len() / 4 * 3 + 3);
+    let (mut acc, mut bits) = (0u32, 0u32);
+    for &c in s.as_bytes() {
+        let v = match c {
+            b'A'..=b'Z' => c - b'A',
+            b'a'..=b'z' => c - b'a' + 26,
+            b'0'..=b'9' => c - b'0' + 52,
+            b'+' | b'-' => 62,
+            b'/' | b'_' => 63,
+            b'=' => break,
+            c if c.is_ascii_whitespace() => continue,
+            _ => return None,
+        };
+        acc = (acc << 6) | u32::from(v);
+        bits += 6;
+        if bits >= 8 {
+            bits -= 8;
+            out.push((acc >> bits) as u8);
+            acc &= (1 << bits) - 1;
+        }
+    }
+    Some(out)
+}
+
+/// `%XX` escapes decoded; `None` if the result is not UTF-8.
+fn percent_decode(s: &str) -> Option<String> {
+    let hex = |c: u8| (c as char).to_digit(16);
+    let b = s.as_bytes();
+    let mut out = Vec::with_capacity(b.len());
+    let mut i = 0;
+    while i < b.len() {
+        let h = b.get(i + 1).and_then(|&c| hex(c));
+        let l = b.get(i + 2).and_then(|&c| hex(c));
+        match (b[i], h, l) {
+            (b'%', Some(h), Some(l)) => {
+                out.push((h * 16 + l) as u8);
+                i += 3;
+            }
+            (c, _, _) => {
+                out.push(c);
+                i += 1;
+            }
+        }
+    }
+    String::from_utf8(out).ok()
+}
+
+/// Output and the loaded buffers.
+struct Reader<'a, 'p> {
+    out: MeshBuilder,
+    buffers: Vec<Cow<'a, [u8]>>,
+    path: &'p Path,
+}
+
+impl Reader<'_, '_> {
+    fn err(&self, msg: String) -> Error {
+        Error::format(self.path, msg)
+    }
+
+    /// Depth-first over the scene's node trees (explicit stack: deep trees are fine).
+    fn walk_scene(&mut self, doc: &gltf::Document, scene: &gltf::Scene) -> Result<()> {
+        let mut visited = vec![false; doc.nodes().len()];
+        let mut stack: Vec<(gltf::Node, M4)> = scene.nodes().map(|n| (n, IDENTITY)).collect();
+        stack.reverse();
+        while let Some((node, parent)) = stack.pop() {
+            let i = node.index();
+            match visited.get_mut(i) {
+                Some(v) if !*v => *v = true,
+                _ => {
+                    let msg =
+                        format!("node {i} is reached twice; the node hierarchy must be a tree");
+                    return Err(self.err(msg));
+                }
+            }
+            let m = mul(&parent, &local(node.transform()));
+            if let Some(mesh) = node.mesh() {
+                self.add_mesh(&mesh, &m)?;
+            }
+            let children: Vec<_> = node.children().collect();
+            stack.extend(children.into_iter().rev().map(|c| (c, m)));
+        }
+        Ok(())
+    }
+
+    fn add_mesh(&mut self, mesh: &gltf::Mesh, m: &M4) -> Result<()> {
+        for prim in mesh.primitives() {
+            let what = format!("mesh {} primitive {}", mesh.index(), prim.index());
+            self.add_primitive(&prim, m)
+                .map_err(|msg| self.err(format!("{what}: {msg}")))?;
+        }
+        Ok(())
+    }
+
+    fn add_primitive(&mut self, prim: &gltf::Primitive, m: &M4) -> Res<()> {
+        let mode = prim.mode();
+        let tris = matches!(
+            mode,
+            Mode::Triangles | Mode::TriangleStrip | Mode::TriangleFan
+        );
+        let (true, Some(pos)) = (tris, prim.get(&gltf::Semantic::Positions)) else {
+            self.out.skipped.other += 1;
+            return Ok(());
+        };
+        if pos.dimensions() != Dimensions::Vec3 {
+            return Err("POSITION is not a VEC3 accessor".into());
+        }
+        let values = read_accessor(&pos, &self.buffers)?;
+        let n = pos.count();
+        let base = self.out.positions.len();
+        if base + n > u32::MAX as usize {
+            return Err("more than 4294967295 vertices in total".into());
+        }
+        for p in values.chunks_exact(3) {
+            let w = apply(m, [p[0], p[1], p[2]]);
+            if !w.iter().all(|c| c.is_finite()) {
+                return Err(format!(
+                    "vertex {w:?} is not finite (POSITION or transform)"
+                ));
+            }
+            self.out.positions.push(w);
+        }
+        let idx = match prim.indices() {
+            Some(acc) => read_indices(&acc, &self.buffers, n)?,
+            None => (0..n as u32).collect(),
+        };
+        push_triangles(&mut self.out, mode, &idx, base as u32);
+        Ok(())
+    }
+}
+
+/// Appends the triangles of a list, strip or fan; indices are relative to `base`.
+fn push_triangles(out: &mut MeshBuilder, mode: Mode, idx: &[u32], base: u32) {
+    let mut tri = |a: u32, b: u32, c: u32| out.push_face(&[base + a, base + b, base + c]);
+    match mode {
+        Mode::TriangleStrip => {
+            for (i, w) in idx.windows(3).enumerate() {
+                if i % 2 == 0 {
+                    tri(w[0], w[1], w[2]);
+                } else {
+                    tri(w[0], w[2], w[1]);
+                }
+            }
+        }
+        Mode::TriangleFan => {
+            if let Some((&first, rest)) = idx.split_first() {
+                for w in rest.windows(2) {
+                    tri(first, w[0], w[1]);
+                }
+            }
+        }
+        _ => {
+            for t in idx.chunks_exact(3) {
+                tri(t[0], t[1], t[2]);
+            }
+            if idx.len() % 3 != 0 {
+                out.skipped.short_faces += 1;
+            }
+        }
+    }
+}
+
+fn read_indices(acc: &gltf::Accessor, bufs: &[Cow<[u8]>], n: usize) -> Res<Vec<u32>> {
+    let int = matches!(
+        acc.data_type(),
+        DataType::U8 | DataType::U16 | DataType::U32
+    );
+    if acc.dimensions() != Dimensions::Scalar || !int {
+        return Err("indices must be a SCALAR accessor of unsigned bytes, shorts or ints".into());
+    }
+    let values = read_accessor(acc, bufs)?;
+    let mut out = Vec::with_capacity(values.len());
+    for v in values {
+        if v >= n as f64 {
+            return Err(format!(
+                "index {v} is out of range (POSITION has {n} vertices)"
+            ));
+        }
+        out.push(v as u32);
+    }
+    Ok(out)
+}
+
+/// The bytes of a bufferView, checked against its buffer.
+fn view_bytes<'b>(view: &gltf::buffer::View, bufs: &'b [Cow<[u8]>]) -> Res<&'b [u8]> {
+    let (b, start) = (view.buffer().index(), view.offset());
+    let end = start.checked_add(view.length());
+    let data = bufs.get(b).zip(end).and_then(|(buf, e)| buf.get(start..e));
+    data.ok_or_else(|| format!("bufferView {} overruns buffer {b}", view.index()))
+}
+
+/// All components of an accessor as f64 (normalized integers mapped per the spec),
+/// with sparse substitutions applied.
+fn read_accessor(acc: &gltf::Accessor, bufs: &[Cow<[u8]>]) -> Res<Vec<f64>> {
+    let (a, dt, norm) = (acc.index(), acc.data_type(), acc.normalized());
+    let (dims, count, elem) = (acc.dimensions().multiplicity(), acc.count(), acc.size());
+    let mut vals = match acc.view() {
+        Some(view) => {
+            let data = view_bytes(&view, bufs)?;
+            let stride = view.stride().unwrap_or(elem);
+            let need = count.checked_sub(1).map_or(Some(0), |last| {
+                last.checked_mul(stride)?
+                    .checked_add(acc.offset())?
+                    .checked_add(elem)
+            });
+            if stride < elem || need.is_none_or(|need| need > data.len()) {
+                let v = view.index();
+                return Err(format!(
+                    "accessor {a} ({count} elements) overruns bufferView {v}"
+                ));
+            }
+            let mut v = Vec::with_capacity(count * dims);
+            for i in 0..count {
+                let at = acc.offset() + i * stride;
+                for k in 0..dims {
+                    v.push(component(data, at + k * dt.size(), dt, norm));
+                }
+            }
+            v
+        }
+        None if count <= MAX_VIEWLESS => vec![0.0; count * dims],
+        None => {
+            return Err(format!(
+                "accessor {a} has {count} elements and no bufferView"
+            ))
+        }
+    };
+    if let Some(sparse) = acc.sparse() {
+        apply_sparse(&sparse, &mut vals, acc, bufs)?;
+    }
+    Ok(vals)
+}
+
+fn apply_sparse(
+    sp: &gltf::accessor::sparse::Sparse,
+    vals: &mut [f64],
+    acc: &gltf::Accessor,
+    bufs: &[Cow<[u8]>],
+) -> Res<()> {
+    let (a, dt, norm) = (acc.index(), acc.data_type(), acc.normalized());
+    let (dims, n, elem) = (acc.dimensions().multiplicity(), sp.count(), acc.size());
+    let (ind, val) = (sp.indices(), sp.values());
+    let ity = match ind.index_type() {
+        IndexType::U8 => DataType::U8,
+        IndexType::U16 => DataType::U16,
+        IndexType::U32 => DataType::U32,
+    };
+    let idata = view_bytes(&ind.view(), bufs)?;
+    let vdata = view_bytes(&val.view(), bufs)?;
+    let fits = |off: usize, size: usize, len: usize| {
+        n.checked_mul(size)
+            .and_then(|s| s.checked_add(off))
+            .is_some_and(|e| e <= len)
+    };
+    if !fits(ind.offset(), ity.size(), idata.len()) || !fits(val.offset(), elem, vdata.len()) {
+        return Err(format!(
+            "sparse data of accessor {a} overruns its bufferView"
+        ));
+    }
+    for j in 0..n {
+        let target = component(idata, ind.offset() + j * ity.size(), ity, false) as usize;
+        for k in 0..dims {
+            let v = component(vdata, val.offset() + j * elem + k * dt.size(), dt, norm);
+            let slot = vals.get_mut(target * dims + k);
+            let slot = slot
+                .ok_or_else(|| format!("sparse index {target} of accessor {a} is out of range"))?;
+            *slot = v;
+        }
+    }
+    Ok(())
+}
+
+/// One component at byte `at` (NaN if out of bounds, which the callers rule out).
+fn component(data: &[u8], at: usize, dt: DataType, norm: bool) -> f64 {
+    let Some(b) = data.get(at..at.saturating_add(dt.size())) else {
+        return f64::NAN;
+    };
+    let b4 = |b: &[u8]| [b[0], b[1], b[2], b[3]];
+    let (x, scale) = match dt {
+        DataType::I8 => (f64::from(b[0] as i8), 127.0),
+        DataType::U8 => (f64::from(b[0]), 255.0),
+        DataType::I16 => (f64::from(i16::from_le_bytes([b[0], b[1]])), 32767.0),
+        DataType::U16 => (f64::from(u16::from_le_bytes([b[0], b[1]])), 65535.0),
+        DataType::U32 => (f64::from(u32::from_le_bytes(b4(b))), 1.0),
+        DataType::F32 => return f64::from(f32::from_le_bytes(b4(b))),
+    };
+    if norm {
+        (x / scale).max(-1.0)
+    } else {
+        x
+    }
+}
+
+/// The node's local transform in f64 (TRS: translation × rotation × scale).
+#[rustfmt::skip]
+fn local(t: Transform) -> M4 {
+    let (t, r, s) = match t {
+        Transform::Matrix { matrix } => return matrix.map(|c| c.map(f64::from)),
+        Transform::Decomposed { translation, rotation, scale } => (translation, rotation, scale),
+    };
+    let [x, y, z, w] = r.map(f64::from);
+    let len = (x * x + y * y + z * z + w * w).sqrt();
+    let [x, y, z, w] = if len > 0.0 { [x / len, y / len, z / len, w / len] } else { [0.0, 0.0, 0.0, 1.0] };
+    let [sx, sy, sz] = s.map(f64::from);
+    [
+        [sx * (1.0 - 2.0 * (y * y + z * z)), sx * 2.0 * (x * y + z * w), sx * 2.0 * (x * z - y * w), 0.0],
+        [sy * 2.0 * (x * y - z * w), sy * (1.0 - 2.0 * (x * x + z * z)), sy * 2.0 * (y * z + x * w), 0.0],
+        [sz * 2.0 * (x * z + y * w), sz * 2.0 * (y * z - x * w), sz * (1.0 - 2.0 * (x * x + y * y)), 0.0],
+        [f64::from(t[0]), f64::from(t[1]), f64::from(t[2]), 1.0],
+    ]
+}
+
+fn mul(a: &M4, b: &M4) -> M4 {
+    let mut m = [[0.0; 4]; 4];
+    for (c, col) in m.iter_mut().enumerate() {
+        for (r, v) in col.iter_mut().enumerate() {
+            *v = (0..4).map(|k| a[k][r] * b[c][k]).sum();
+        }
+    }
+    m
+}
+
+fn apply(m: &M4, p: [f64; 3]) -> [f64; 3] {
+    let row = |r: usize| m[0][r] * p[0] + m[1][r] * p[1] + m[2][r] * p[2] + m[3][r];
+    [row(0), row(1), row(2)]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// 4 vertices (f32 xyz) then 6 u16 indices (two triangles).
+    fn bin() -> Vec<u8> {
+        let pos = [0f32, 0., 0., 1., 0., 0., 1., 1., 0., 0., 1., 0.];
+        let mut v: Vec<u8> = pos.iter().flat_map(|c| c.to_le_bytes()).collect();
+        v.extend([0u16, 1, 2, 0, 2, 3].iter().flat_map(|i| i.to_le_bytes()));
+        v
+    }
+
+    /// base64 of `bin()`, as a buffer `uri` member.
+    const DATA_URI: &str = r#""uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAACAPwAAgD8AAAAAAAAAAAAAgD8AAAAAAAABAAIAAAACAAMA","#;
+    const SCENE: &str = r#""scenes":[{"nodes":[0]}],"#;
+
+    /// A document over `bin()`: node 0 translates, node 1 scales and holds the mesh
+    /// (indexed triangles, points, strip, fan). `uri` is empty for GLB.
+    fn json(uri: &str, extra_nodes: &str, scene: &str) -> String {
+        format!(
+            r#"{{"asset":{{"version":"2.0"}},{scene}
+            "nodes":[{{"translation":[10,0,0],"children":[1]}},{{"scale":[2,2,2],"mesh":0}}{extra_nodes}],
+            "meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}},"indices":1}},
+                {{"attributes":{{"POSITION":0}},"mode":0}},
+                {{"attributes":{{"POSITION":0}},"mode":5}},
+                {{"attributes":{{"POSITION":0}},"mode":6}}]}}],
+            "buffers":[{{{uri}"byteLength":60}}],
+            "bufferViews":[{{"buffer":0,"byteLength":48}},{{"buffer":0,"byteOffset":48,"byteLength":12}}],
+            "accessors":[{{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3"}},
+                {{"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"}}]}}"#
+        )
+    }
+
+    fn glb(json: &str, bin: &[u8]) -> Vec<u8> {
+        let mut j = json.as_bytes().to_vec();
+        j.resize(j.len().div_ceil(4) * 4, b' ');
+        let total = (28 + j.len() + bin.len()) as u32;
+        let mut v = b"glTF".to_vec();
+        for part in [
+            &2u32.to_le_bytes(),
+            &total.to_le_bytes(),
+            &(j.len() as u32).to_le_bytes(),
+        ] {
+            v.extend_from_slice(part);
+        }
+        v.extend(
+            b"JSON"
+                .iter()
+                .chain(&j)
+                .chain(&(bin.len() as u32).to_le_bytes()),
+        );
+        v.extend(b"BIN\0".iter().chain(bin));
+        v
+    }
+
+    fn parse(b: &[u8]) -> Result<MeshBuilder> {
+        parse_gltf(b, Path::new("dir/t.gltf"))
+    }
+
+    fn err(b: &[u8]) -> String {
+        parse(b).unwrap_err().to_string()
+    }
+
+    fn check_scene(b: &MeshBuilder) {
+        // 3 triangle primitives × 4 vertices; the points primitive is skipped.
+        assert_eq!((b.skipped.other, b.positions.len()), (1, 12));
+        assert_eq!(b.positions[2], [12.0, 2.0, 0.0]);
+        // 2 indexed triangles + 2 strip + 2 fan.
+        let want = [0, 1, 2, 0, 2, 3, 4, 5, 6, 5, 7, 6, 8, 9, 10, 8, 10, 11];
+        assert_eq!(b.face_indices, want);
+    }
+
+    #[test]
+    fn gltf_with_data_uri_and_transforms() {
+        let j = json(DATA_URI, "", r#""scene":0,"scenes":[{"nodes":[0]}],"#);
+        check_scene(&parse(j.as_bytes()).unwrap());
+    }
+
+    #[test]
+    fn glb_and_its_corruptions() {
+        let g = glb(&json("", "", SCENE), &bin());
+        check_scene(&parse(&g).unwrap());
+        for cut in [1, 3, 11, 12, 19, 20, 40, g.len() - 1] {
+            assert!(parse(&g[..cut]).is_err(), "cut {cut}");
+        }
+        let mut x: u32 = 7;
+        for n in 0..3000 {
+            let mut v = g.clone();
+            x = x.wrapping_mul(1_103_515_245).wrapping_add(12345);
+            let i = (x as usize >> 3) % v.len();
+            v[i] = (x >> 23) as u8;
+            if n % 3 == 0 {
+                v[(x as usize >> 11) % 20] = (x >> 5) as u8;
+            }
+            let _ = parse(&v);
+        }
+    }
+
+    #[test]
+    fn out_of_range_index_errors() {
+        let mut b = bin();
+        b[48 + 10] = 4;
+        let e = err(&glb(&json("", "", ""), &b));
+        assert!(
+            e.contains("mesh 0 primitive 0: index 4 is out of range"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn no_scene_adds_each_mesh_once() {
+        let b = parse(json(DATA_URI, "", "").as_bytes()).unwrap();
+        assert_eq!((b.positions[2], b.face_count()), ([1.0, 1.0, 0.0], 6));
+    }
+
+    #[test]
+    fn cycles_and_shared_nodes_error() {
+        let cyc = json(
+            DATA_URI,
+            r#",{"children":[2]}"#,
+            r#""scenes":[{"nodes":[0,2]}],"#,
+        );
+        assert!(err(cyc.as_bytes()).contains("node 2 is reached twice"));
+        let shared = json(DATA_URI, "", r#""scenes":[{"nodes":[0,1]}],"#);
+        assert!(err(shared.as_bytes()).contains("node 1"));
+    }
+
+    #[test]
+    fn external_buffer_relative_to_file() {
+        let dir = std::env::temp_dir().join(format!("primdecomp-gltf-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        std::fs::write(dir.join("my data.bin"), bin()).unwrap();
+        let j = json(r#""uri":"my%20data.bin","#, "", SCENE);
+        let b = parse_gltf(j.as_bytes(), &dir.join("t.gltf"));
+        std::fs::remove_dir_all(&dir).unwrap();
+        check_scene(&b.unwrap());
+        assert!(err(j.as_bytes()).contains("dir/my data.bin"));
+    }
+
+    #[test]
+    fn sparse_and_short_buffers() {
+        // Sparse: vertex 2 becomes (5,5,5); index view holds u16 2, value view 3 f32.
+        let mut b = bin();
+        b.extend(
+            [2u8, 0, 0, 0]
+                .iter()
+                .chain(&[5f32; 3].map(f32::to_le_bytes).concat()),
+        );
+        let j = json("", "", "")
+            .replace(r#""byteLength":60}]"#, r#""byteLength":76}]"#)
+            .replace(r#""byteLength":12}]"#, r#""byteLength":12},{"buffer":0,"byteOffset":60,"byteLength":2},{"buffer":0,"byteOffset":64,"byteLength":12}]"#)
+            .replace(r#""count":4,"type":"VEC3"}"#, r#""count":4,"type":"VEC3","sparse":{"count":1,"indices":{"bufferView":2,"componentType":5123},"values":{"bufferView":3}}}"#);
+        assert_eq!(parse(&glb(&j, &b)).unwrap().positions[2], [5.0, 5.0, 5.0]);
+        let e = err(&glb(&json("", "", ""), &b[..40]));
+        assert!(e.contains("buffer 0 declares 60 bytes"), "{e}");
+    }
+
+    #[test]
+    fn empty_and_invalid() {
+        assert_eq!(parse(b"").unwrap().face_count(), 0);
+        assert!(err(b"{not json").contains("invalid glTF JSON"));
+        assert_eq!(
+            parse(br#"{"asset":{"version":"2.0"}}"#)
+                .unwrap()
+                .face_count(),
+            0
+        );
+        let base = json(DATA_URI, "", "");
+        let f32_idx = base.replace(r#""componentType":5123"#, r#""componentType":5126"#);
+        assert!(err(f32_idx.as_bytes()).contains("indices must be"));
+        let ext = r#""extensionsRequired":["KHR_draco_mesh_compression"],"asset""#;
+        assert!(err(base.replace("\"asset\"", ext).as_bytes()).contains("draco"));
+        let dangling = base.replace(r#"{"POSITION":0},"mode":6"#, r#"{"POSITION":9},"mode":6"#);
+        assert!(err(dangling.as_bytes()).contains("accessor 9 does not exist"));
+    }
+}

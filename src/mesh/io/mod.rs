@@ -1,0 +1,326 @@
+//! Mesh readers, one file per format. Binary formats are memory-mapped; every reader
+//! returns a [`MeshBuilder`] of f64 world coordinates and polygons, or an [`Error`]
+//! naming the file and the line or byte offset.
+
+mod gltf;
+mod obj;
+mod off;
+mod ply;
+mod stl;
+
+use crate::error::{Error, Result};
+use crate::mesh::{Mesh, MeshBuilder};
+use std::path::Path;
+
+pub use self::gltf::parse_gltf;
+pub use obj::parse_obj;
+pub use off::parse_off;
+pub use ply::parse_ply;
+pub use stl::parse_stl;
+
+/// The formats we read.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    Obj,
+    Ply,
+    Stl,
+    Off,
+    Gltf,
+    Glb,
+}
+
+impl Format {
+    /// Format from the file extension (case-insensitive).
+    pub fn from_path(path: &Path) -> Option<Format> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        Some(match ext.as_str() {
+            "obj" => Format::Obj,
+            "ply" => Format::Ply,
+            "stl" => Format::Stl,
+            "off" => Format::Off,
+            "gltf" => Format::Gltf,
+            "glb" => Format::Glb,
+            _ => return None,
+        })
+    }
+}
+
+/// Parses bytes already in memory as `format`; `path` is used for messages (and, for
+/// `.gltf`, to resolve external buffers).
+pub fn parse_bytes(bytes: &[u8], format: Format, path: &Path) -> Result<MeshBuilder> {
+    if bytes.starts_with(&[0x1f, 0x8b]) {
+        return Err(Error::format(
+            path,
+            "the file is gzip-compressed; decompress it first",
+        ));
+    }
+    match format {
+        Format::Obj => parse_obj(bytes, path),
+        Format::Ply => parse_ply(bytes, path),
+        Format::Stl => parse_stl(bytes, path),
+        Format::Off => parse_off(bytes, path),
+        Format::Gltf | Format::Glb => parse_gltf(bytes, path),
+    }
+}
+
+/// Small byte-level helpers shared by the text readers (OBJ, OFF, ASCII STL, ASCII PLY).
+/// Everything works on `&[u8]`: files need not be UTF-8.
+pub(crate) mod text {
+    /// Lines of a byte slice with 1-based numbers. `\n`, `\r\n` and a lone `\r` all end
+    /// a line, so CRLF, LF and old-Mac files (and mixtures) number lines the same way.
+    pub(crate) struct Lines<'a> {
+        bytes: &'a [u8],
+        pos: usize,
+        line: u64,
+    }
+
+    impl<'a> Lines<'a> {
+        pub(crate) fn new(bytes: &'a [u8]) -> Self {
+            Lines {
+                bytes,
+                pos: 0,
+                line: 0,
+            }
+        }
+        /// Byte offset of the first byte not yet returned (the start of the next line).
+        pub(crate) fn offset(&self) -> usize {
+            self.pos
+        }
+    }
+
+    impl<'a> Iterator for Lines<'a> {
+        type Item = (u64, &'a [u8]);
+        fn next(&mut self) -> Option<Self::Item> {
+            let rest = self.bytes.get(self.pos..).filter(|r| !r.is_empty())?;
+            let end = rest
+                .iter()
+                .position(|&b| b == b'\n' || b == b'\r')
+                .unwrap_or(rest.len());
+            let mut next = end;
+            if end < rest.len() {
+                next += 1;
+                if rest[end] == b'\r' && rest.get(end + 1) == Some(&b'\n') {
+                    next += 1;
+                }
+            }
+            self.pos += next;
+            self.line += 1;
+            Some((self.line, &rest[..end]))
+        }
+    }
+
+    /// Whitespace-separated tokens of one line.
+    pub(crate) fn tokens(line: &[u8]) -> impl Iterator<Item = &[u8]> {
+        line.split(|b| b.is_ascii_whitespace())
+            .filter(|t| !t.is_empty())
+    }
+
+    /// The part of `line` before the first `#`.
+    pub(crate) fn strip_comment(line: &[u8]) -> &[u8] {
+        match line.iter().position(|&b| b == b'#') {
+            Some(i) => &line[..i],
+            None => line,
+        }
+    }
+
+    /// A decimal float (`1`, `-2.5`, `.5`, `1e-3`, …). `None` if the token is not a
+    /// number; `nan`/`inf` parse, so callers check [`f64::is_finite`] themselves.
+    /// Results are correctly rounded, exactly as `str::parse::<f64>` gives them.
+    #[inline]
+    pub(crate) fn parse_f64(tok: &[u8]) -> Option<f64> {
+        fast_f64(tok).or_else(|| std::str::from_utf8(tok).ok()?.parse::<f64>().ok())
+    }
+
+    /// Clinger's fast path: a mantissa of at most 19 digits below 2^53 and a decimal
+    /// exponent within ±22 give a correctly rounded result in one IEEE operation.
+    /// `None` means "use the general parser", not "invalid".
+    #[inline]
+    fn fast_f64(tok: &[u8]) -> Option<f64> {
+        const POW10: [f64; 23] = [
+            1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+            1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+        ];
+        let (neg, s) = match tok.first()? {
+            b'-' => (true, &tok[1..]),
+            b'+' => (false, &tok[1..]),
+            _ => (false, tok),
+        };
+        let (mut m, mut digits, mut exp) = (0u64, 0u32, 0i32);
+        let mut i = 0;
+        while let Some(d) = s.get(i).filter(|c| c.is_ascii_digit()) {
+            m = m.wrapping_mul(10).wrapping_add(u64::from(d - b'0'));
+            (digits, i) = (digits + 1, i + 1);
+        }
+        if s.get(i) == Some(&b'.') {
+            i += 1;
+            while let Some(d) = s.get(i).filter(|c| c.is_ascii_digit()) {
+                m = m.wrapping_mul(10).wrapping_add(u64::from(d - b'0'));
+                (digits, i, exp) = (digits + 1, i + 1, exp - 1);
+            }
+        }
+        if digits == 0 || digits > 19 || m > 1 << 53 {
+            return None;
+        }
+        if matches!(s.get(i), Some(b'e' | b'E')) {
+            let e = s.get(i + 1..).filter(|e| e.len() <= 4)?;
+            exp += i32::try_from(parse_i64(e)?).ok()?;
+        } else if i != s.len() {
+            return None;
+        }
+        let v = m as f64;
+        let v = match exp {
+            0 => v,
+            1..=22 => v * POW10[exp as usize],
+            -22..=-1 => v / POW10[(-exp) as usize],
+            _ => return None,
+        };
+        Some(if neg { -v } else { v })
+    }
+
+    /// A decimal integer with optional sign; `None` on anything else or on overflow.
+    #[inline]
+    pub(crate) fn parse_i64(tok: &[u8]) -> Option<i64> {
+        let (neg, digits) = match tok.first()? {
+            b'-' => (true, &tok[1..]),
+            b'+' => (false, &tok[1..]),
+            _ => (false, tok),
+        };
+        if digits.is_empty() {
+            return None;
+        }
+        let mut v: i64 = 0;
+        for &d in digits {
+            if !d.is_ascii_digit() {
+                return None;
+            }
+            v = v.checked_mul(10)?.checked_sub(i64::from(d - b'0'))?;
+        }
+        if neg {
+            Some(v)
+        } else {
+            v.checked_neg()
+        }
+    }
+
+    /// A token for an error message: lossy UTF-8, cut to 40 characters.
+    pub(crate) fn show(tok: &[u8]) -> String {
+        let s = String::from_utf8_lossy(tok);
+        if s.chars().count() > 40 {
+            let cut: String = s.chars().take(40).collect();
+            format!("{cut}…")
+        } else {
+            s.into_owned()
+        }
+    }
+
+    #[cfg(test)]
+    mod tests {
+        use super::*;
+
+        #[test]
+        fn floats_match_std() {
+            let fixed = [
+                "0",
+                "-0",
+                "1",
+                "-1.5",
+                ".5",
+                "5.",
+                "+2.25",
+                "1e5",
+                "1E-5",
+                "1e+05",
+                "-0.0503644",
+                "0.1",
+                "3.4028235e38",
+                "1e38",
+                "1e-38",
+                "9007199254740993",
+                "123456789012345678901",
+                "0.30000000000000004",
+                "1e23",
+                "1e-23",
+                "4.9e-324",
+                "1e400",
+                "inf",
+                "-NaN",
+                "1e",
+                "e5",
+                ".",
+                "-",
+                "",
+                "1.2.3",
+                "0x10",
+                "1e99999",
+                "00000000000000000001.5",
+            ];
+            let mut x: u64 = 99;
+            let mut cases: Vec<String> = fixed.iter().map(|s| s.to_string()).collect();
+            for _ in 0..20_000 {
+                x = x
+                    .wrapping_mul(6364136223846793005)
+                    .wrapping_add(1442695040888963407);
+                let v = f64::from_bits(x >> 2) * if x & 1 == 0 { 1.0 } else { -1.0 };
+                cases.push(format!("{v}"));
+                cases.push(format!("{v:e}"));
+                cases.push(format!("{:.6}", (x >> 40) as f64 / 1e5));
+            }
+            for c in &cases {
+                let want = c.parse::<f64>().ok();
+                let got = parse_f64(c.as_bytes());
+                let same = match (want, got) {
+                    (Some(a), Some(b)) => a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan()),
+                    (None, None) => true,
+                    _ => false,
+                };
+                assert!(same, "{c}: std {want:?}, ours {got:?}");
+            }
+        }
+
+        #[test]
+        fn integers_and_lines() {
+            assert_eq!(parse_i64(b"-9223372036854775808"), Some(i64::MIN));
+            assert_eq!(parse_i64(b"9223372036854775808"), None);
+            assert_eq!(parse_i64(b"+7"), Some(7));
+            assert_eq!(parse_i64(b"7a"), None);
+            let lines: Vec<_> = Lines::new(b"a\r\nb\rc\n\nd").collect();
+            let want: Vec<(u64, &[u8])> =
+                vec![(1, b"a"), (2, b"b"), (3, b"c"), (4, b""), (5, b"d")];
+            assert_eq!(lines, want);
+        }
+    }
+}
+
+/// Memory-maps and parses `path`, then re-centres it into a [`Mesh`].
+pub fn load(path: &Path) -> Result<Mesh> {
+    let io_err = |source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    let format = Format::from_path(path).ok_or_else(|| {
+        Error::format(
+            path,
+            "unknown extension: expected .obj, .ply, .stl, .off, .gltf or .glb",
+        )
+    })?;
+    let meta = std::fs::metadata(path).map_err(io_err)?;
+    if meta.is_dir() {
+        return Err(Error::format(path, "is a directory, not a mesh file"));
+    }
+    let file = std::fs::File::open(path).map_err(io_err)?;
+    let builder = if meta.len() == 0 {
+        parse_bytes(&[], format, path)?
+    } else {
+        // SAFETY: the map is read-only and lives only for this call; we accept that a
+        // concurrent writer truncating the file could fault, as every mmap reader does.
+        let map = unsafe { memmap2::Mmap::map(&file) }.map_err(io_err)?;
+        parse_bytes(&map, format, path)?
+    };
+    let mesh = Mesh::from_builder(builder);
+    if mesh.face_count() == 0 {
+        return Err(Error::EmptyMesh {
+            path: path.to_path_buf(),
+        });
+    }
+    Ok(mesh)
+}

@@ -1,0 +1,165 @@
+//! The mesh as the algorithm needs it (§3: V and polygon faces F, |F_i| ≥ 3):
+//! struct-of-arrays positions, re-centred in f64, and polygons in CSR form.
+//! Nothing else from the file is kept.
+
+pub mod adjacency;
+pub mod dedup;
+pub mod io;
+
+use crate::math::V3;
+
+/// `u32` index of an input face.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
+pub struct FaceId(pub u32);
+
+/// What a parser skipped, so the CLI can say it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SkipCounts {
+    /// `l` elements, 2-vertex "faces" and other faces with fewer than 3 distinct indices.
+    pub short_faces: u64,
+    /// Non-triangle glTF primitives (points, lines) and similar unsupported elements.
+    pub other: u64,
+}
+
+/// What a parser produces: world coordinates in f64 and CSR polygons.
+#[derive(Clone, Debug, Default)]
+pub struct MeshBuilder {
+    pub positions: Vec<[f64; 3]>,
+    /// `face_offsets[f]..face_offsets[f+1]` indexes `face_indices`; starts with 0.
+    pub face_offsets: Vec<u32>,
+    pub face_indices: Vec<u32>,
+    pub skipped: SkipCounts,
+}
+
+impl MeshBuilder {
+    pub fn new() -> Self {
+        MeshBuilder {
+            face_offsets: vec![0],
+            ..Default::default()
+        }
+    }
+    /// Appends a polygon; polygons with fewer than 3 vertices are counted and skipped.
+    /// Indices must already be validated against `positions.len()` by the parser.
+    pub fn push_face(&mut self, idx: &[u32]) {
+        if idx.len() < 3 {
+            self.skipped.short_faces += 1;
+            return;
+        }
+        self.face_indices.extend_from_slice(idx);
+        self.face_offsets.push(self.face_indices.len() as u32);
+    }
+    pub fn face_count(&self) -> usize {
+        self.face_offsets.len() - 1
+    }
+}
+
+/// A polygon mesh in struct-of-arrays form. Positions are re-centred: the world
+/// coordinate of vertex `v` is `[x[v], y[v], z[v]] + offset`.
+#[derive(Clone, Debug, Default)]
+pub struct Mesh {
+    pub x: Vec<f64>,
+    pub y: Vec<f64>,
+    pub z: Vec<f64>,
+    /// Subtracted from every input coordinate (the centre of the input's AABB).
+    pub offset: V3,
+    pub face_offsets: Vec<u32>,
+    pub face_indices: Vec<u32>,
+    pub skipped: SkipCounts,
+}
+
+impl Mesh {
+    /// Re-centres the builder's f64 coordinates on their AABB centre, so that a scan
+    /// at a 10^6 offset keeps its detail in every later computation.
+    pub fn from_builder(b: MeshBuilder) -> Mesh {
+        let (lo, hi) = aabb_of(b.positions.iter().copied());
+        let offset = if b.positions.is_empty() {
+            [0.0; 3]
+        } else {
+            [
+                0.5 * (lo[0] + hi[0]),
+                0.5 * (lo[1] + hi[1]),
+                0.5 * (lo[2] + hi[2]),
+            ]
+        };
+        let n = b.positions.len();
+        let (mut x, mut y, mut z) = (
+            Vec::with_capacity(n),
+            Vec::with_capacity(n),
+            Vec::with_capacity(n),
+        );
+        for p in &b.positions {
+            x.push(p[0] - offset[0]);
+            y.push(p[1] - offset[1]);
+            z.push(p[2] - offset[2]);
+        }
+        Mesh {
+            x,
+            y,
+            z,
+            offset,
+            face_offsets: b.face_offsets,
+            face_indices: b.face_indices,
+            skipped: b.skipped,
+        }
+    }
+
+    /// Builds a mesh from world-space vertices and polygons (tests, demo, library users).
+    pub fn from_polygons(positions: &[[f64; 3]], faces: &[Vec<u32>]) -> Mesh {
+        let mut b = MeshBuilder::new();
+        b.positions.extend_from_slice(positions);
+        for f in faces {
+            b.push_face(f);
+        }
+        Mesh::from_builder(b)
+    }
+
+    #[inline]
+    pub fn face_count(&self) -> usize {
+        self.face_offsets.len().saturating_sub(1)
+    }
+    #[inline]
+    pub fn vertex_count(&self) -> usize {
+        self.x.len()
+    }
+    /// Vertex indices of face `f`.
+    #[inline]
+    pub fn face(&self, f: usize) -> &[u32] {
+        &self.face_indices[self.face_offsets[f] as usize..self.face_offsets[f + 1] as usize]
+    }
+    /// Re-centred position of vertex `v`.
+    #[inline]
+    pub fn pos(&self, v: u32) -> V3 {
+        let v = v as usize;
+        [self.x[v], self.y[v], self.z[v]]
+    }
+    /// World position of vertex `v`.
+    #[inline]
+    pub fn world_pos(&self, v: u32) -> V3 {
+        crate::math::add(self.pos(v), self.offset)
+    }
+    /// AABB of the re-centred positions of vertices used by faces (min, max).
+    pub fn aabb(&self) -> (V3, V3) {
+        aabb_of(self.face_indices.iter().map(|&v| self.pos(v)))
+    }
+    /// Length of the AABB diagonal of the used vertices.
+    pub fn diagonal(&self) -> f64 {
+        let (lo, hi) = self.aabb();
+        crate::math::norm(crate::math::sub(hi, lo))
+    }
+}
+
+/// Min/max corners of a point stream; `([0;3],[0;3])` for an empty stream.
+pub fn aabb_of(points: impl Iterator<Item = V3>) -> (V3, V3) {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in points {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    if lo[0] > hi[0] {
+        return ([0.0; 3], [0.0; 3]);
+    }
+    (lo, hi)
+}

@@ -1,0 +1,127 @@
+//! Collapse cost (§3.3, Eq. 1 with the per-kind weights): for clusters p0, p1,
+//! C = k(kind)·V(merge(p0, p1)) − (V(p0) + V(p1)), where merge fits every enabled kind
+//! to the union of their points around the eigen-frame of Q0 + Q1.
+
+use super::cluster::Clusters;
+use super::heap::Candidate;
+use crate::math::Sym3;
+use crate::mesh::Mesh;
+use crate::primitive::fit::{Fit, FitConfig};
+use crate::primitive::{fit_best, Cloud, FitScratch};
+
+/// Per-thread reusable buffers: the gathered points and the fit's scratch.
+#[derive(Debug, Default)]
+pub struct Workspace {
+    x: Vec<f64>,
+    y: Vec<f64>,
+    z: Vec<f64>,
+    fit: FitScratch,
+}
+
+impl Workspace {
+    fn clear(&mut self) {
+        self.x.clear();
+        self.y.clear();
+        self.z.clear();
+    }
+}
+
+/// Everything needed to price a merge: positions, welded faces and fit settings.
+#[derive(Clone, Copy, Debug)]
+pub struct Evaluator<'a> {
+    pub mesh: &'a Mesh,
+    /// Welded face indices (same CSR offsets as the mesh).
+    pub welded: &'a [u32],
+    pub cfg: FitConfig,
+    /// Largest excess volume one merge may add (absolute); `INFINITY` = no limit.
+    pub max_excess: f64,
+    /// Costs are rounded to multiples of this volume (a fixed fraction of the input's
+    /// diagonal cubed), so that round-off from units or position cannot reorder merges
+    /// whose exact costs tie — coplanar merges cost exactly 0, and there are many.
+    pub cost_unit: f64,
+}
+
+impl<'a> Evaluator<'a> {
+    /// Distinct vertices of cluster `c` (a single face's own indices until it merges).
+    pub fn verts<'b>(&'b self, cl: &'b Clusters, c: u32) -> &'b [u32] {
+        let v = &cl.verts[c as usize];
+        if v.is_empty() {
+            self.face(c)
+        } else {
+            v
+        }
+    }
+
+    /// Welded vertex indices of face `f`.
+    fn face(&self, f: u32) -> &'a [u32] {
+        let o = &self.mesh.face_offsets;
+        &self.welded[o[f as usize] as usize..o[f as usize + 1] as usize]
+    }
+
+    fn push_points(&self, vs: &[u32], ws: &mut Workspace) {
+        let m = self.mesh;
+        for &v in vs {
+            let v = v as usize;
+            ws.x.push(m.x[v]);
+            ws.y.push(m.y[v]);
+            ws.z.push(m.z[v]);
+        }
+    }
+
+    fn gather(&self, cl: &Clusters, cs: &[u32], ws: &mut Workspace) {
+        ws.clear();
+        for &c in cs {
+            self.push_points(self.verts(cl, c), ws);
+        }
+    }
+
+    fn fit_points(&self, q: &Sym3, ws: &mut Workspace) -> Fit {
+        let cloud = Cloud {
+            x: &ws.x,
+            y: &ws.y,
+            z: &ws.z,
+        };
+        fit_best(&cloud, q, &self.cfg, &mut ws.fit)
+    }
+
+    /// The primitive of face `f` alone, with its operator `q` (before any merge).
+    pub fn fit_face(&self, f: u32, q: &Sym3, ws: &mut Workspace) -> Fit {
+        ws.clear();
+        self.push_points(self.face(f), ws);
+        self.fit_points(q, ws)
+    }
+
+    /// The primitive of one cluster as it stands.
+    pub fn fit_cluster(&self, cl: &Clusters, c: u32, ws: &mut Workspace) -> Fit {
+        self.gather(cl, &[c], ws);
+        self.fit_points(&cl.q[c as usize], ws)
+    }
+
+    /// The merge of roots `a` and `b` as a queue entry with its fit, or `None` when it
+    /// would add more excess volume than allowed (§3.3 "Excess Volume Thresholding").
+    pub fn candidate(
+        &self,
+        cl: &Clusters,
+        a: u32,
+        b: u32,
+        ws: &mut Workspace,
+    ) -> Option<(Candidate, Fit)> {
+        let (a, b) = (a.min(b), a.max(b));
+        // Points shared by both clusters are streamed twice; max/min fits don't care.
+        self.gather(cl, &[a, b], ws);
+        let q = cl.q[a as usize].add(&cl.q[b as usize]);
+        let fit = self.fit_points(&q, ws);
+        let before = cl.volume[a as usize] + cl.volume[b as usize];
+        if fit.volume - before > self.max_excess {
+            return None;
+        }
+        let c = Candidate {
+            cost: ((fit.cost - before) / self.cost_unit).round(),
+            a,
+            b,
+            ver_a: cl.version[a as usize],
+            ver_b: cl.version[b as usize],
+        };
+        Some((c, fit))
+    }
+}

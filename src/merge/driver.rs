@@ -1,0 +1,231 @@
+//! The merge loop of Alg. 1: seed the queue with every adjacent pair, pop the cheapest
+//! valid merge, apply it, re-price the merged cluster's neighbours; record a snapshot at
+//! every requested target on the way down (one bottom-up pass serves all targets). When
+//! adjacency runs out above the target, bridge components (§3.4 "Pairwise Component
+//! Merging") by linking each cluster to its nearest clusters in sorted orders along
+//! x, y and z, O(C log C) instead of the paper's O(C²) all pairs.
+
+use super::cluster::Clusters;
+use super::cost::{Evaluator, Workspace};
+use super::heap::{Candidate, CandidateHeap};
+use crate::primitive::Primitive;
+use rayon::prelude::*;
+
+/// Pairs priced per parallel task.
+const CHUNK: usize = 1024;
+/// Below this many points in a re-pricing batch, stay on one thread.
+const PAR_POINTS: usize = 1 << 15;
+/// Each cluster is bridged to this many successors in each axis order.
+const BRIDGE_SPAN: usize = 2;
+
+/// The clusters alive when a target was reached (or when merging stopped above it).
+#[derive(Clone, Debug, Default)]
+pub struct Snapshot {
+    pub target: usize,
+    pub prims: Vec<Primitive>,
+    pub faces: Vec<u32>,
+    /// Distinct vertices of each primitive's faces (for post-processing).
+    pub verts: Vec<Vec<u32>>,
+}
+
+#[derive(Clone, Debug, Default)]
+pub struct MergeOutput {
+    /// One per target, in decreasing target order.
+    pub snapshots: Vec<Snapshot>,
+    pub merges: usize,
+    pub bridge_edges: usize,
+}
+
+/// Visited-marks for deduplicating vertex unions without clearing a whole array.
+struct Stamps {
+    mark: Vec<u32>,
+    epoch: u32,
+}
+
+impl Stamps {
+    fn next(&mut self) {
+        if self.epoch == u32::MAX {
+            self.mark.iter_mut().for_each(|m| *m = 0);
+            self.epoch = 0;
+        }
+        self.epoch += 1;
+    }
+    /// True the first time `v` is seen in this epoch.
+    fn first(&mut self, v: u32) -> bool {
+        let m = &mut self.mark[v as usize];
+        let fresh = *m != self.epoch;
+        *m = self.epoch;
+        fresh
+    }
+}
+
+/// Prices pairs in parallel chunks; the output order equals the input order.
+fn price(ev: &Evaluator, cl: &Clusters, pairs: &[(u32, u32)]) -> Vec<Candidate> {
+    pairs
+        .par_chunks(CHUNK)
+        .map(|chunk| {
+            let mut ws = Workspace::default();
+            chunk
+                .iter()
+                .filter_map(|&(a, b)| ev.candidate(cl, a, b, &mut ws).map(|c| c.0))
+                .collect::<Vec<_>>()
+        })
+        .collect::<Vec<_>>()
+        .concat()
+}
+
+/// Runs the merge loop down to the smallest target; `targets` sorted decreasing.
+pub fn run(
+    ev: &Evaluator,
+    mut cl: Clusters,
+    pairs: &[(u32, u32)],
+    targets: &[usize],
+    progress: &(dyn Fn(f64) + Sync),
+) -> MergeOutput {
+    let mut out = MergeOutput::default();
+    let mut heap = CandidateHeap::from_vec(price(ev, &cl, pairs));
+    let mut stamps = Stamps {
+        mark: vec![0; ev.mesh.vertex_count()],
+        epoch: 0,
+    };
+    let mut ws = Workspace::default();
+    let start = cl.live;
+    let last = *targets.last().expect("at least one target");
+    let mut next = 0;
+    loop {
+        while next < targets.len() && cl.live <= targets[next] {
+            out.snapshots.push(snapshot(ev, &cl, targets[next]));
+            next += 1;
+        }
+        if next == targets.len() {
+            break;
+        }
+        let Some(c) = heap.pop() else {
+            let bridged = bridge(ev, &mut cl);
+            out.bridge_edges += bridged.len();
+            let fresh = price(ev, &cl, &bridged);
+            if fresh.is_empty() {
+                break;
+            }
+            fresh.into_iter().for_each(|c| heap.push(c));
+            continue;
+        };
+        if !valid(&cl, &c) {
+            continue;
+        }
+        let Some((_, fit)) = ev.candidate(&cl, c.a, c.b, &mut ws) else {
+            continue;
+        };
+        let verts = union_verts(ev, &cl, c.a, c.b, &mut stamps);
+        let root = cl.merge(c.a, c.b, verts, fit.volume);
+        out.merges += 1;
+        reprice_neighbors(ev, &mut cl, root, &mut heap, &mut ws);
+        if out.merges % 4096 == 0 {
+            progress((start - cl.live) as f64 / (start - last.min(start)).max(1) as f64);
+        }
+    }
+    while next < targets.len() {
+        out.snapshots.push(snapshot(ev, &cl, targets[next]));
+        next += 1;
+    }
+    out
+}
+
+fn valid(cl: &Clusters, c: &Candidate) -> bool {
+    cl.is_root(c.a)
+        && cl.is_root(c.b)
+        && cl.version[c.a as usize] == c.ver_a
+        && cl.version[c.b as usize] == c.ver_b
+}
+
+/// Distinct vertices of the union of two clusters.
+fn union_verts(ev: &Evaluator, cl: &Clusters, a: u32, b: u32, st: &mut Stamps) -> Vec<u32> {
+    st.next();
+    let (va, vb) = (ev.verts(cl, a), ev.verts(cl, b));
+    let mut out = Vec::with_capacity(va.len() + vb.len());
+    out.extend(va.iter().chain(vb).copied().filter(|&v| st.first(v)));
+    out
+}
+
+/// Re-prices every merge of the new cluster with its neighbours, in parallel when the
+/// batch is large (results are pushed in neighbour order either way).
+fn reprice_neighbors(
+    ev: &Evaluator,
+    cl: &mut Clusters,
+    root: u32,
+    heap: &mut CandidateHeap,
+    ws: &mut Workspace,
+) {
+    let nbrs = cl.resolved_neighbors(root);
+    let cl = &*cl;
+    let own = ev.verts(cl, root).len();
+    let points: usize = nbrs.iter().map(|&n| own + ev.verts(cl, n).len()).sum();
+    if points < PAR_POINTS {
+        for &n in &nbrs {
+            if let Some((c, _)) = ev.candidate(cl, root, n, ws) {
+                heap.push(c);
+            }
+        }
+    } else {
+        let found: Vec<Option<Candidate>> = nbrs
+            .par_iter()
+            .map_init(Workspace::default, |ws, &n| {
+                ev.candidate(cl, root, n, ws).map(|c| c.0)
+            })
+            .collect();
+        found.into_iter().flatten().for_each(|c| heap.push(c));
+    }
+}
+
+/// Links every live cluster to its nearest successors by centroid along each axis.
+fn bridge(ev: &Evaluator, cl: &mut Clusters) -> Vec<(u32, u32)> {
+    let roots = cl.roots();
+    let centroids: Vec<[f64; 3]> = roots.iter().map(|&r| centroid(ev, cl, r)).collect();
+    let mut pairs = Vec::new();
+    for axis in 0..3 {
+        let mut order: Vec<usize> = (0..roots.len()).collect();
+        order.sort_by(|&i, &j| {
+            centroids[i][axis]
+                .total_cmp(&centroids[j][axis])
+                .then(i.cmp(&j))
+        });
+        for (k, &i) in order.iter().enumerate() {
+            for &j in order.iter().skip(k + 1).take(BRIDGE_SPAN) {
+                let (a, b) = (roots[i], roots[j]);
+                pairs.push((a.min(b), a.max(b)));
+            }
+        }
+    }
+    pairs.sort_unstable();
+    pairs.dedup();
+    for &(a, b) in &pairs {
+        cl.neighbors[a as usize].push(b);
+        cl.neighbors[b as usize].push(a);
+    }
+    pairs
+}
+
+fn centroid(ev: &Evaluator, cl: &Clusters, c: u32) -> [f64; 3] {
+    let vs = ev.verts(cl, c);
+    let mut s = [0.0; 3];
+    for &v in vs {
+        let p = ev.mesh.pos(v);
+        (0..3).for_each(|k| s[k] += p[k]);
+    }
+    s.map(|x| x / vs.len().max(1) as f64)
+}
+
+/// Fits every live cluster (in root order) for output.
+fn snapshot(ev: &Evaluator, cl: &Clusters, target: usize) -> Snapshot {
+    let roots = cl.roots();
+    let prims: Vec<Primitive> = roots
+        .par_iter()
+        .map_init(Workspace::default, |ws, &r| ev.fit_cluster(cl, r, ws).prim)
+        .collect();
+    Snapshot {
+        target,
+        prims,
+        faces: roots.iter().map(|&r| cl.face_count[r as usize]).collect(),
+        verts: roots.iter().map(|&r| ev.verts(cl, r).to_vec()).collect(),
+    }
+}

@@ -1,0 +1,12 @@
+//! Greedy bottom-up merging (§3.3, Alg. 1; §3.4 "Collapsible Primitive Data
+//! Structure", "Pairwise Component Merging"): clusters of faces, their candidate
+//! merges in a priority queue with lazy deletion, and the loop that drives them.
+
+pub mod cluster;
+pub mod cost;
+pub mod driver;
+pub mod heap;
+
+pub use cluster::{ClusterId, Clusters};
+pub use cost::{Evaluator, Workspace};
+pub use driver::{run, MergeOutput, Snapshot};

@@ -1,0 +1,128 @@
+//! Settings of a decomposition. `Params::default()` equals the paper's settings
+//! (§3.3 weights, §3.4 deduplication and tangent term), except where the paper's
+//! choice made results depend on units (the minimum extent, here relative).
+//!
+//! | setting | default | raising it | lowering it |
+//! |---|---|---|---|
+//! | `targets` | `[32]` | more, smaller primitives: tighter fit, more bytes | coarser colliders |
+//! | `max_excess_volume` | none | (when set) allows costlier merges; `None` = unlimited | stops merging earlier, may leave more than N primitives |
+//! | `weights[kind]` | box/sphere/capsule 1.0, cylinder 1.05, frustum 2.1, prism 1.4 | that kind is chosen less often | that kind is chosen more often |
+//! | `kinds` | all six | — | a disabled kind is never fitted (faster) |
+//! | `tangent_eps` | 0.01 | primitives align more with quad edge directions | at 0, orientation of flat clusters depends on round-off (§3.4) |
+//! | `dedup` | exact | `Tolerance(d)` also welds vertices closer than d (fuses parts) | `Off` keeps duplicate vertices: fewer merges across seams |
+//! | `min_extent_rel` | 5e-4 | flat clusters cost more: fewer coplanar "free" merges | flatter primitives; 0 is refused |
+//! | `remove_contained` | true | — | keeps nested primitives |
+//! | `remove_thin_boxes` | None | (when set) drops boxes thinner than this fraction of the diagonal if still covered | — |
+
+use crate::error::{Error, Result};
+use crate::primitive::Kind;
+use serde::Serialize;
+
+/// How vertices at (nearly) the same position are merged before building adjacency (§3.4).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Dedup {
+    /// No merging: topology exactly as in the file.
+    Off,
+    /// Merge vertices with bit-identical coordinates (the paper's default).
+    Exact,
+    /// Merge vertices closer than this distance (world units).
+    Tolerance(f64),
+}
+
+/// All settings of a run.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Params {
+    /// Target primitive counts; one result per target from a single bottom-up pass.
+    pub targets: Vec<usize>,
+    /// Optional cap on one merge's excess volume, as a fraction of the input's AABB volume (§3.3).
+    pub max_excess_volume: Option<f64>,
+    /// Cost weight k(kind) per kind, indexed by `Kind as usize` (§3.3).
+    pub weights: [f64; 6],
+    /// Which kinds may be fitted, indexed by `Kind as usize`.
+    pub kinds: [bool; 6],
+    /// ε of the tangent term in Q = area·(nnᵀ + ε·ttᵀ) (§3.4); 0 disables it.
+    pub tangent_eps: f64,
+    /// Vertex deduplication (§3.4).
+    pub dedup: Dedup,
+    /// Minimum half-extent of any primitive as a fraction of the input's AABB diagonal
+    /// (the paper's absolute 1e-3, made relative so results do not depend on units).
+    pub min_extent_rel: f64,
+    /// Remove primitives whose points lie inside another primitive (§3.4).
+    pub remove_contained: bool,
+    /// Remove boxes whose smallest half-extent is below this fraction of the diagonal,
+    /// when every one of their points lies in another primitive (the Bistro figure's rule).
+    pub remove_thin_boxes: Option<f64>,
+}
+
+impl Default for Params {
+    fn default() -> Self {
+        Params {
+            targets: vec![32],
+            max_excess_volume: None,
+            weights: [1.0, 1.0, 1.0, 1.05, 2.1, 1.4],
+            kinds: [true; 6],
+            tangent_eps: 0.01,
+            dedup: Dedup::Exact,
+            min_extent_rel: 5e-4,
+            remove_contained: true,
+            remove_thin_boxes: None,
+        }
+    }
+}
+
+impl Params {
+    pub fn weight(&self, k: Kind) -> f64 {
+        self.weights[k as usize]
+    }
+    pub fn enabled(&self, k: Kind) -> bool {
+        self.kinds[k as usize]
+    }
+    /// Checks every setting; the driver calls this before any work.
+    pub fn validate(&self) -> Result<()> {
+        let bad = |m: String| Err(Error::InvalidParams(m));
+        if self.targets.is_empty() || self.targets.contains(&0) {
+            return bad("targets must be one or more positive counts".into());
+        }
+        if !self.kinds.iter().any(|&k| k) {
+            return bad("at least one primitive kind must be enabled".into());
+        }
+        for k in Kind::ALL {
+            let w = self.weight(k);
+            if !(w.is_finite() && w > 0.0) {
+                return bad(format!(
+                    "weight of {} must be a positive number, got {w}",
+                    k.name()
+                ));
+            }
+        }
+        if !(self.tangent_eps.is_finite() && self.tangent_eps >= 0.0) {
+            return bad(format!("tangent-eps must be ≥ 0, got {}", self.tangent_eps));
+        }
+        if !(self.min_extent_rel.is_finite()
+            && self.min_extent_rel > 0.0
+            && self.min_extent_rel < 1.0)
+        {
+            return bad(format!(
+                "min-extent must be in (0, 1), got {}",
+                self.min_extent_rel
+            ));
+        }
+        if let Some(m) = self.max_excess_volume {
+            if !(m.is_finite() && m >= 0.0) {
+                return bad(format!("max-excess-volume must be ≥ 0, got {m}"));
+            }
+        }
+        if let Dedup::Tolerance(t) = self.dedup {
+            if !(t.is_finite() && t >= 0.0) {
+                return bad(format!("dedup tolerance must be ≥ 0, got {t}"));
+            }
+        }
+        if let Some(t) = self.remove_thin_boxes {
+            if !(t.is_finite() && t >= 0.0) {
+                return bad(format!("thin-box threshold must be ≥ 0, got {t}"));
+            }
+        }
+        Ok(())
+    }
+}

@@ -1,0 +1,137 @@
+//! Post-processing (§3.4 "Removing Redundant Primitives"): drop primitives whose
+//! subsumed points all lie inside another primitive, and optionally thin boxes (the
+//! Bistro figure's rule) — never losing coverage. A primitive that hosts a removed
+//! one is pinned (never removed itself), so two identical primitives cannot delete
+//! each other and no point is left uncovered by a chain of removals.
+
+use crate::math::V3;
+use crate::mesh::Mesh;
+use crate::primitive::Primitive;
+use rayon::prelude::*;
+
+/// Containment slack, relative to the input diagonal: far below any test tolerance.
+const TOL_REL: f64 = 1e-9;
+
+/// What to remove.
+#[derive(Clone, Copy, Debug)]
+pub struct Cleanup {
+    pub remove_contained: bool,
+    /// Boxes whose smallest half-extent is below this (absolute) are removed when
+    /// every one of their points lies in some other kept primitive.
+    pub thin_box_half: Option<f64>,
+}
+
+/// Indices of the primitives to keep, in increasing order.
+pub fn keep_mask(
+    mesh: &Mesh,
+    prims: &[Primitive],
+    verts: &[Vec<u32>],
+    cleanup: Cleanup,
+) -> Vec<bool> {
+    let n = prims.len();
+    let mut keep = vec![true; n];
+    if n < 2 {
+        return keep;
+    }
+    let tol = TOL_REL * mesh.diagonal().max(f64::MIN_POSITIVE);
+    let boxes: Vec<(V3, V3)> = prims.iter().map(|p| inflate(p.aabb(), tol)).collect();
+    let mut pinned = vec![false; n];
+    let mut order: Vec<usize> = (0..n).collect();
+    order.sort_by(|&i, &j| {
+        prims[i]
+            .volume()
+            .total_cmp(&prims[j].volume())
+            .then(i.cmp(&j))
+    });
+    if cleanup.remove_contained {
+        // Hosts are independent of what gets removed, so find them all in parallel.
+        let hosts: Vec<Vec<usize>> = (0..n)
+            .into_par_iter()
+            .map(|i| hosts_of(mesh, prims, &boxes, &verts[i], i, tol))
+            .collect();
+        for &i in &order {
+            if pinned[i] {
+                continue;
+            }
+            if let Some(&h) = hosts[i].iter().find(|&&h| keep[h]) {
+                keep[i] = false;
+                pinned[h] = true;
+            }
+        }
+    }
+    if let Some(t) = cleanup.thin_box_half {
+        for &i in &order {
+            if keep[i] && !pinned[i] && is_thin_box(&prims[i], t) {
+                remove_if_covered(
+                    mesh,
+                    prims,
+                    &boxes,
+                    &verts[i],
+                    i,
+                    tol,
+                    &mut keep,
+                    &mut pinned,
+                );
+            }
+        }
+    }
+    keep
+}
+
+fn is_thin_box(p: &Primitive, t: f64) -> bool {
+    matches!(p, Primitive::Box(b) if b.half.iter().cloned().fold(f64::INFINITY, f64::min) < t)
+}
+
+/// Removes `i` when each of its points lies in some other kept primitive; pins those.
+#[allow(clippy::too_many_arguments)]
+fn remove_if_covered(
+    mesh: &Mesh,
+    prims: &[Primitive],
+    boxes: &[(V3, V3)],
+    verts: &[u32],
+    i: usize,
+    tol: f64,
+    keep: &mut [bool],
+    pinned: &mut [bool],
+) {
+    let mut used = Vec::new();
+    for &v in verts {
+        let p = mesh.pos(v);
+        let host = (0..prims.len())
+            .find(|&j| j != i && keep[j] && in_box(boxes[j], p) && prims[j].contains(p, tol));
+        match host {
+            Some(j) => used.push(j),
+            None => return,
+        }
+    }
+    keep[i] = false;
+    used.into_iter().for_each(|j| pinned[j] = true);
+}
+
+/// Every other primitive holding all of `verts`, in index order.
+fn hosts_of(
+    mesh: &Mesh,
+    prims: &[Primitive],
+    boxes: &[(V3, V3)],
+    verts: &[u32],
+    i: usize,
+    tol: f64,
+) -> Vec<usize> {
+    let own = crate::mesh::aabb_of(verts.iter().map(|&v| mesh.pos(v)));
+    (0..prims.len())
+        .filter(|&j| {
+            j != i
+                && in_box(boxes[j], own.0)
+                && in_box(boxes[j], own.1)
+                && verts.iter().all(|&v| prims[j].contains(mesh.pos(v), tol))
+        })
+        .collect()
+}
+
+fn inflate((lo, hi): (V3, V3), t: f64) -> (V3, V3) {
+    (lo.map(|x| x - t), hi.map(|x| x + t))
+}
+
+fn in_box((lo, hi): (V3, V3), p: V3) -> bool {
+    (0..3).all(|k| p[k] >= lo[k] && p[k] <= hi[k])
+}

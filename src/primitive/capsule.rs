@@ -1,0 +1,42 @@
+//! Capsule (§3.2 "Capsules"): a segment swept by a ball, one per eigen-axis.
+
+use crate::math::{dot, norm2, sub, V3};
+
+/// Capsule: segment `p0`–`p1` swept by a ball of `radius`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Capsule {
+    pub p0: V3,
+    pub p1: V3,
+    pub radius: f64,
+}
+
+impl Capsule {
+    /// π·r²·L + 4/3·π·r³.
+    pub fn volume(&self) -> f64 {
+        let r = self.radius;
+        let l = norm2(sub(self.p1, self.p0)).sqrt();
+        std::f64::consts::PI * r * r * (l + 4.0 / 3.0 * r)
+    }
+    pub fn contains(&self, p: V3, tol: f64) -> bool {
+        let ab = sub(self.p1, self.p0);
+        let l2 = norm2(ab);
+        let d = sub(p, self.p0);
+        let t = if l2 > 0.0 {
+            (dot(d, ab) / l2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let q = [d[0] - ab[0] * t, d[1] - ab[1] * t, d[2] - ab[2] * t];
+        norm2(q).sqrt() <= self.radius + tol
+    }
+    pub fn aabb(&self) -> (V3, V3) {
+        let r = self.radius;
+        let mut lo = [0.0; 3];
+        let mut hi = [0.0; 3];
+        for k in 0..3 {
+            lo[k] = self.p0[k].min(self.p1[k]) - r;
+            hi[k] = self.p0[k].max(self.p1[k]) + r;
+        }
+        (lo, hi)
+    }
+}

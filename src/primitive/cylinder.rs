@@ -1,0 +1,40 @@
+//! Capped cylinder (§3.2 "Capped Cylinders"): one per eigen-axis, through the OBB
+//! centre; radius the farthest radial distance, height the axial extent.
+
+use super::{aabb_union, disc_aabb};
+use crate::math::{dot, norm2, normalize, sub, V3};
+
+/// Cylinder between cap centres `p0` and `p1`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Cylinder {
+    pub p0: V3,
+    pub p1: V3,
+    pub radius: f64,
+}
+
+impl Cylinder {
+    /// §3.2: π·r²·h.
+    pub fn volume(&self) -> f64 {
+        std::f64::consts::PI * self.radius * self.radius * norm2(sub(self.p1, self.p0)).sqrt()
+    }
+    pub fn contains(&self, p: V3, tol: f64) -> bool {
+        let axis = sub(self.p1, self.p0);
+        let len = norm2(axis).sqrt();
+        let Some(a) = normalize(axis) else {
+            return norm2(sub(p, self.p0)).sqrt() <= tol && self.radius >= 0.0;
+        };
+        let d = sub(p, self.p0);
+        let t = dot(d, a);
+        if t < -tol || t > len + tol {
+            return false;
+        }
+        (norm2(d) - t * t).max(0.0).sqrt() <= self.radius + tol
+    }
+    pub fn aabb(&self) -> (V3, V3) {
+        let a = normalize(sub(self.p1, self.p0)).unwrap_or([0.0, 0.0, 1.0]);
+        aabb_union(
+            disc_aabb(self.p0, a, self.radius),
+            disc_aabb(self.p1, a, self.radius),
+        )
+    }
+}

@@ -1,0 +1,425 @@
+//! Primitive construction from the linear operator (§3.2): the eigenvectors of Q give
+//! the axes; each kind's remaining parameters grow to enclose the subsumed points.
+//! Every fit streams the points without allocating: one projection pass into the
+//! reusable [`FitScratch`], then passes over the local coordinates.
+
+use super::profile::{fit_profile, Objective};
+use super::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
+use crate::math::{eigen_sym3, madd, scale, Sym3, V3};
+
+/// Points as struct-of-arrays slices.
+#[derive(Clone, Copy, Debug)]
+pub struct Cloud<'a> {
+    pub x: &'a [f64],
+    pub y: &'a [f64],
+    pub z: &'a [f64],
+}
+
+impl<'a> Cloud<'a> {
+    #[inline]
+    pub fn len(&self) -> usize {
+        self.x.len()
+    }
+    #[inline]
+    pub fn is_empty(&self) -> bool {
+        self.x.is_empty()
+    }
+    #[inline]
+    pub fn get(&self, i: usize) -> V3 {
+        [self.x[i], self.y[i], self.z[i]]
+    }
+}
+
+/// Orthonormal right-handed axes (largest eigenvalue first) and the points' bounds along them.
+#[derive(Clone, Copy, Debug)]
+pub struct Frame {
+    pub origin: V3,
+    pub axes: [V3; 3],
+    pub lo: V3,
+    pub hi: V3,
+}
+
+/// What the fit may build and how it weighs each kind (§3.3).
+#[derive(Clone, Copy, Debug)]
+pub struct FitConfig {
+    pub weights: [f64; 6],
+    pub enabled: [bool; 6],
+    /// Smallest half-extent/radius of any primitive (absolute units).
+    pub min_half: f64,
+}
+
+/// Reusable buffers: the points' coordinates in the OBB frame (centred on the OBB).
+#[derive(Clone, Debug, Default)]
+pub struct FitScratch {
+    u: [Vec<f64>; 3],
+}
+
+/// The chosen primitive, its volume and its weighted cost k(kind)·V.
+#[derive(Clone, Copy, Debug)]
+pub struct Fit {
+    pub prim: Primitive,
+    pub volume: f64,
+    pub cost: f64,
+}
+
+/// Fits every enabled kind around the eigen-frame of `q` and keeps the cheapest k·V.
+pub fn fit_best(cloud: &Cloud, q: &Sym3, cfg: &FitConfig, s: &mut FitScratch) -> Fit {
+    let axes = eigen_sym3(q).vectors;
+    let frame = project(cloud, axes, s);
+    let obb = Obb::from_frame(&frame, cfg.min_half);
+    // Local coordinates relative to the OBB centre (§3.2: other primitives start there).
+    let mid = [0, 1, 2].map(|k| 0.5 * (frame.lo[k] + frame.hi[k]));
+    for k in 0..3 {
+        s.u[k].iter_mut().for_each(|v| *v -= mid[k]);
+    }
+    let mut best = Candidate::new(cfg);
+    best.offer(Kind::Box, Primitive::Box(obb), obb.volume());
+    if cfg.enabled[Kind::Sphere as usize] {
+        let sph = fit_sphere(s, obb.center, cfg.min_half);
+        best.offer(Kind::Sphere, Primitive::Sphere(sph), sph.volume());
+    }
+    let radial = radial_extents(s);
+    let cyls = [0, 1, 2].map(|k| fit_cylinder(&obb, &radial, k, cfg.min_half));
+    let best_cyl = (0..3)
+        .min_by(|&a, &b| cyls[a].volume().total_cmp(&cyls[b].volume()))
+        .unwrap_or(0);
+    if cfg.enabled[Kind::Cylinder as usize] {
+        best.offer(
+            Kind::Cylinder,
+            Primitive::Cylinder(cyls[best_cyl]),
+            cyls[best_cyl].volume(),
+        );
+    }
+    if cfg.enabled[Kind::Capsule as usize] {
+        for k in 0..3 {
+            let c = fit_capsule(s, &obb, radial[k], k, cfg.min_half);
+            best.offer(Kind::Capsule, Primitive::Capsule(c), c.volume());
+        }
+    }
+    if cfg.enabled[Kind::Frustum as usize] {
+        let f = fit_frustum(s, &obb, best_cyl, cfg.min_half);
+        best.offer(Kind::Frustum, Primitive::Frustum(f), f.volume());
+    }
+    if cfg.enabled[Kind::Prism as usize] {
+        for order in ORDERINGS {
+            let p = fit_prism(s, &obb, order, cfg.min_half);
+            best.offer(Kind::Prism, Primitive::Prism(p), p.volume());
+        }
+    }
+    best.fit.expect("at least one kind is enabled")
+}
+
+/// Keeps the lowest weighted cost among the offers of enabled kinds; ties keep the first.
+struct Candidate<'a> {
+    cfg: &'a FitConfig,
+    fit: Option<Fit>,
+}
+
+impl<'a> Candidate<'a> {
+    fn new(cfg: &'a FitConfig) -> Self {
+        Candidate { cfg, fit: None }
+    }
+    fn offer(&mut self, kind: Kind, prim: Primitive, volume: f64) {
+        if !self.cfg.enabled[kind as usize] {
+            return;
+        }
+        let cost = self.cfg.weights[kind as usize] * volume;
+        if self.fit.is_none_or(|f| cost < f.cost) {
+            self.fit = Some(Fit { prim, volume, cost });
+        }
+    }
+}
+
+/// One pass: coordinates along the axes into the scratch, with their bounds.
+fn project(cloud: &Cloud, axes: [V3; 3], s: &mut FitScratch) -> Frame {
+    let n = cloud.len();
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for k in 0..3 {
+        let a = axes[k];
+        let u = &mut s.u[k];
+        u.clear();
+        u.extend((0..n).map(|i| a[0] * cloud.x[i] + a[1] * cloud.y[i] + a[2] * cloud.z[i]));
+        for &v in u.iter() {
+            lo[k] = lo[k].min(v);
+            hi[k] = hi[k].max(v);
+        }
+        if n == 0 {
+            (lo[k], hi[k]) = (0.0, 0.0);
+        }
+    }
+    Frame {
+        origin: [0.0; 3],
+        axes,
+        lo,
+        hi,
+    }
+}
+
+fn fit_sphere(s: &FitScratch, center: V3, min_half: f64) -> Sphere {
+    let [u0, u1, u2] = &s.u;
+    let mut r2: f64 = 0.0;
+    for i in 0..u0.len() {
+        r2 = r2.max(u0[i] * u0[i] + u1[i] * u1[i] + u2[i] * u2[i]);
+    }
+    Sphere {
+        center,
+        radius: r2.sqrt().max(min_half),
+    }
+}
+
+/// Largest distance from each axis through the OBB centre (squared), one pass.
+fn radial_extents(s: &FitScratch) -> [f64; 3] {
+    let [u0, u1, u2] = &s.u;
+    let mut r = [0.0f64; 3];
+    for i in 0..u0.len() {
+        let (a, b, c) = (u0[i] * u0[i], u1[i] * u1[i], u2[i] * u2[i]);
+        r[0] = r[0].max(b + c);
+        r[1] = r[1].max(a + c);
+        r[2] = r[2].max(a + b);
+    }
+    r.map(f64::sqrt)
+}
+
+/// Axis `k` of the frame, signed so that its largest component is positive: the
+/// p0→p1 direction of a round primitive must not depend on which way round-off turned
+/// a degenerate eigenvector (for a pipe, the two in-plane eigenvalues tie).
+fn canonical_axis(obb: &Obb, k: usize) -> (V3, f64) {
+    let a = obb.axes[k];
+    let big = (0..3).fold(0, |m, i| if a[i].abs() > a[m].abs() { i } else { m });
+    if a[big] < 0.0 {
+        (scale(a, -1.0), -1.0)
+    } else {
+        (a, 1.0)
+    }
+}
+
+/// §3.2 "Capped Cylinders" along axis `k`: the points' axial extent is the OBB's.
+fn fit_cylinder(obb: &Obb, radial: &[f64; 3], k: usize, min_half: f64) -> Cylinder {
+    let (a, _) = canonical_axis(obb, k);
+    let h = obb.half[k];
+    Cylinder {
+        p0: madd(obb.center, a, -h),
+        p1: madd(obb.center, a, h),
+        radius: radial[k].max(min_half),
+    }
+}
+
+/// §3.2 "Capsules" along axis `k`: radius as the cylinder's; each point bounds the
+/// segment's ends by how far its ball section reaches along the axis.
+fn fit_capsule(s: &FitScratch, obb: &Obb, radial: f64, k: usize, min_half: f64) -> Capsule {
+    let r = radial.max(min_half);
+    let r2 = r * r;
+    let (ua, ub, uc) = (&s.u[k], &s.u[(k + 1) % 3], &s.u[(k + 2) % 3]);
+    let (mut top, mut bottom) = (f64::NEG_INFINITY, f64::INFINITY);
+    for i in 0..ua.len() {
+        let reach = (r2 - ub[i] * ub[i] - uc[i] * uc[i]).max(0.0).sqrt();
+        top = top.max(ua[i] - reach);
+        bottom = bottom.min(ua[i] + reach);
+    }
+    if ua.is_empty() {
+        (top, bottom) = (0.0, 0.0);
+    }
+    if bottom > top {
+        // Every point fits in one ball: a zero-length segment at the middle.
+        let mid = 0.5 * (top + bottom);
+        (top, bottom) = (mid, mid);
+    }
+    let (a, sign) = canonical_axis(obb, k);
+    Capsule {
+        p0: madd(obb.center, a, sign * bottom),
+        p1: madd(obb.center, a, sign * top),
+        radius: r,
+    }
+}
+
+/// §3.2 "Frustum" on the best cylinder's axis `k`: exact profile fit (see `profile`).
+fn fit_frustum(s: &FitScratch, obb: &Obb, k: usize, min_half: f64) -> Frustum {
+    let h = obb.half[k];
+    let (ua, ub, uc) = (&s.u[k], &s.u[(k + 1) % 3], &s.u[(k + 2) % 3]);
+    let pt = |i: usize| {
+        let sa = ((ua[i] + h) / (2.0 * h)).clamp(0.0, 1.0);
+        (sa, (ub[i] * ub[i] + uc[i] * uc[i]).sqrt())
+    };
+    let (r0, r1) = fit_profile(ua.len(), pt, Objective::Cone);
+    let (a, sign) = canonical_axis(obb, k);
+    let (r0, r1) = if sign > 0.0 { (r0, r1) } else { (r1, r0) };
+    Frustum {
+        p0: madd(obb.center, a, -h),
+        p1: madd(obb.center, a, h),
+        r0: r0.max(min_half),
+        r1: r1.max(min_half),
+    }
+}
+
+/// The 6 orderings (x = extrusion, y = trapezoid height, z = trapezoid width) of Alg. 3.
+const ORDERINGS: [[usize; 3]; 6] = [
+    [0, 1, 2],
+    [0, 2, 1],
+    [1, 0, 2],
+    [1, 2, 0],
+    [2, 0, 1],
+    [2, 1, 0],
+];
+
+/// §3.2 "Isosceles Trapezoidal Prisms" for one axis ordering.
+fn fit_prism(s: &FitScratch, obb: &Obb, [x, y, z]: [usize; 3], min_half: f64) -> Prism {
+    let hy = obb.half[y];
+    let (uy, uz) = (&s.u[y], &s.u[z]);
+    let pt = |i: usize| (((uy[i] + hy) / (2.0 * hy)).clamp(0.0, 1.0), uz[i].abs());
+    let (b, a) = fit_profile(uy.len(), pt, Objective::Sum);
+    // Odd permutations flip handedness; z enters only through |z|, so flip it back.
+    let even = matches!([x, y, z], [0, 1, 2] | [1, 2, 0] | [2, 0, 1]);
+    let az = if even {
+        obb.axes[z]
+    } else {
+        scale(obb.axes[z], -1.0)
+    };
+    Prism {
+        center: obb.center,
+        axes: [obb.axes[x], obb.axes[y], az],
+        hx: obb.half[x],
+        hy,
+        hz_top: a.max(min_half),
+        hz_bottom: b.max(min_half),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::Sym3;
+    use proptest::prelude::*;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    fn only(kind: Kind) -> FitConfig {
+        let mut enabled = [false; 6];
+        enabled[kind as usize] = true;
+        FitConfig {
+            weights: [1.0; 6],
+            enabled,
+            min_half: 1e-6,
+        }
+    }
+
+    /// Random PSD operator: a few area-weighted normal outer products.
+    fn random_q(rng: &mut ChaCha8Rng) -> Sym3 {
+        let mut q = Sym3::ZERO;
+        for _ in 0..rng.gen_range(0..5) {
+            let n: V3 = [
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(-1.0..1.0),
+                rng.gen_range(-1.0..1.0),
+            ];
+            q = q.add(&Sym3::outer(n, rng.gen_range(0.0..2.0)));
+        }
+        q
+    }
+
+    fn cloud_of(pts: &[V3]) -> (Vec<f64>, Vec<f64>, Vec<f64>) {
+        (
+            pts.iter().map(|p| p[0]).collect(),
+            pts.iter().map(|p| p[1]).collect(),
+            pts.iter().map(|p| p[2]).collect(),
+        )
+    }
+
+    fn fit_kind(pts: &[V3], q: &Sym3, kind: Kind) -> Fit {
+        let (x, y, z) = cloud_of(pts);
+        let cloud = Cloud {
+            x: &x,
+            y: &y,
+            z: &z,
+        };
+        fit_best(&cloud, q, &only(kind), &mut FitScratch::default())
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(400))]
+        /// Every kind, fitted alone, encloses every point it was given.
+        #[test]
+        fn each_kind_encloses_its_points(seed in any::<u64>(), n in 1usize..40, scale_exp in -4i32..5, flat in 0usize..4) {
+            let mut rng = ChaCha8Rng::seed_from_u64(seed);
+            let s = 10f64.powi(scale_exp);
+            let off: V3 = [rng.gen_range(-5.0..5.0) * s, rng.gen_range(-5.0..5.0) * s, 0.0];
+            let pts: Vec<V3> = (0..n).map(|_| {
+                let mut p = [rng.gen_range(-1.0..1.0), rng.gen_range(-1.0..1.0), rng.gen_range(-1.0..1.0)];
+                if flat < 3 && n > 3 { p[flat] = 0.0; } // coplanar clouds too
+                [off[0] + p[0] * s, off[1] + p[1] * s, off[2] + p[2] * s]
+            }).collect();
+            let q = random_q(&mut rng);
+            for kind in Kind::ALL {
+                let f = fit_kind(&pts, &q, kind);
+                prop_assert_eq!(f.prim.kind(), kind);
+                prop_assert!(f.volume.is_finite() && f.volume > 0.0);
+                for p in &pts {
+                    prop_assert!(f.prim.contains(*p, 1e-9 * s), "{:?} misses {:?}", f.prim, p);
+                }
+            }
+        }
+    }
+
+    /// Each kind's volume formula against a Monte-Carlo estimate over its AABB.
+    #[test]
+    fn volumes_match_monte_carlo() {
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
+        for trial in 0..4 {
+            let pts: Vec<V3> = (0..30)
+                .map(|_| {
+                    [
+                        rng.gen_range(-1.0..1.0),
+                        rng.gen_range(-0.6..0.6),
+                        rng.gen_range(-0.3..0.3),
+                    ]
+                })
+                .collect();
+            let q = random_q(&mut rng);
+            for kind in Kind::ALL {
+                let f = fit_kind(&pts, &q, kind);
+                let (lo, hi) = f.prim.aabb();
+                let box_v: f64 = (0..3).map(|k| hi[k] - lo[k]).product();
+                let n = 200_000;
+                let inside = (0..n)
+                    .filter(|_| {
+                        let p = [0, 1, 2].map(|k| rng.gen_range(lo[k]..hi[k]));
+                        f.prim.contains(p, 0.0)
+                    })
+                    .count();
+                let est = box_v * inside as f64 / n as f64;
+                let frac = inside as f64 / n as f64;
+                let sigma = box_v * (frac * (1.0 - frac) / n as f64).sqrt();
+                assert!(
+                    (est - f.volume).abs() < 5.0 * sigma + 1e-9,
+                    "trial {trial} {kind:?}: formula {} vs Monte-Carlo {est} ± {sigma}",
+                    f.volume
+                );
+            }
+        }
+    }
+
+    /// A prism is never larger than the box of the same frame (a box is a prism with
+    /// equal half-widths), and the frustum never larger than its cylinder.
+    #[test]
+    fn prism_and_frustum_are_no_worse_than_box_and_cylinder() {
+        let mut rng = ChaCha8Rng::seed_from_u64(11);
+        for _ in 0..200 {
+            let pts: Vec<V3> = (0..20)
+                .map(|_| {
+                    [
+                        rng.gen_range(-1.0..1.0),
+                        rng.gen_range(-1.0..1.0),
+                        rng.gen_range(-1.0..1.0),
+                    ]
+                })
+                .collect();
+            let q = random_q(&mut rng);
+            let b = fit_kind(&pts, &q, Kind::Box).volume;
+            let p = fit_kind(&pts, &q, Kind::Prism).volume;
+            assert!(p <= b * (1.0 + 1e-9), "prism {p} > box {b}");
+            let c = fit_kind(&pts, &q, Kind::Cylinder).volume;
+            let fr = fit_kind(&pts, &q, Kind::Frustum).volume;
+            assert!(fr <= c * (1.0 + 1e-9), "frustum {fr} > cylinder {c}");
+        }
+    }
+}

@@ -1,0 +1,48 @@
+//! Oriented bounding box (§3.2 "Oriented Bounding Boxes"): the foundation of every
+//! other fit, since its centre seeds them.
+
+use super::fit::Frame;
+use crate::math::{dot, madd, sub, V3};
+
+/// Box with orthonormal right-handed `axes` and `half` extents along them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Obb {
+    pub center: V3,
+    pub axes: [V3; 3],
+    pub half: V3,
+}
+
+impl Obb {
+    /// §3.2: volume 8·Πh_i.
+    pub fn volume(&self) -> f64 {
+        8.0 * self.half[0] * self.half[1] * self.half[2]
+    }
+    pub fn contains(&self, p: V3, tol: f64) -> bool {
+        let d = sub(p, self.center);
+        (0..3).all(|k| dot(d, self.axes[k]).abs() <= self.half[k] + tol)
+    }
+    pub fn aabb(&self) -> (V3, V3) {
+        let mut lo = self.center;
+        let mut hi = self.center;
+        for k in 0..3 {
+            let e: f64 = (0..3).map(|j| (self.axes[j][k] * self.half[j]).abs()).sum();
+            lo[k] -= e;
+            hi[k] += e;
+        }
+        (lo, hi)
+    }
+    /// The box of a frame: centre of the projected bounds, half-extents clamped to `min_half`.
+    pub fn from_frame(f: &Frame, min_half: f64) -> Obb {
+        let mut center = f.origin;
+        let mut half = [0.0; 3];
+        for k in 0..3 {
+            center = madd(center, f.axes[k], 0.5 * (f.lo[k] + f.hi[k]));
+            half[k] = (0.5 * (f.hi[k] - f.lo[k])).max(min_half);
+        }
+        Obb {
+            center,
+            axes: f.axes,
+            half,
+        }
+    }
+}

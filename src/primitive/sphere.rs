@@ -1,0 +1,27 @@
+//! Sphere (§3.2 "Spheres"): centred on the OBB centre, radius the farthest point.
+
+use crate::math::{norm2, sub, V3};
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sphere {
+    pub center: V3,
+    pub radius: f64,
+}
+
+impl Sphere {
+    /// §3.2: 4/3·π·r³.
+    pub fn volume(&self) -> f64 {
+        4.0 / 3.0 * std::f64::consts::PI * self.radius.powi(3)
+    }
+    pub fn contains(&self, p: V3, tol: f64) -> bool {
+        norm2(sub(p, self.center)).sqrt() <= self.radius + tol
+    }
+    pub fn aabb(&self) -> (V3, V3) {
+        let r = self.radius;
+        let c = self.center;
+        (
+            [c[0] - r, c[1] - r, c[2] - r],
+            [c[0] + r, c[1] + r, c[2] + r],
+        )
+    }
+}

@@ -1,0 +1,291 @@
+//! Command-line interface: argument parsing (clap), the one-screen summary, progress
+//! bar and exit codes (0 ok, 2 bad input or settings, 1 anything else).
+
+use anyhow::{anyhow, bail};
+use clap::{Args, Parser, Subcommand};
+use primdecomp::export::{self, output_path_for, write_atomic};
+use primdecomp::{Decomposition, Dedup, Kind, Params};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "primdecomp",
+    version,
+    about = "Decompose a mesh into tight convex primitives for collision detection"
+)]
+struct Cli {
+    #[command(subcommand)]
+    cmd: Cmd,
+}
+
+#[derive(Subcommand, Debug)]
+enum Cmd {
+    /// Decompose INPUT (OBJ, PLY, STL, OFF, glTF/GLB) into boxes, spheres, capsules,
+    /// cylinders, frustums and trapezoidal prisms that enclose every face.
+    Decompose(Box<DecomposeArgs>),
+    /// Write the built-in demo scene (stairs, table, pipes, house, ring) as OBJ.
+    DemoScene {
+        /// Output file.
+        #[arg(short, long, default_value = "datasets/demo_scene.obj")]
+        out: PathBuf,
+    },
+}
+
+#[derive(Args, Debug)]
+struct DecomposeArgs {
+    /// Input mesh.
+    input: PathBuf,
+    /// Target primitive counts, comma-separated; one result per target from one pass.
+    #[arg(
+        short = 'n',
+        long = "targets",
+        value_delimiter = ',',
+        default_value = "64"
+    )]
+    targets: Vec<usize>,
+    /// Refuse merges adding more than this fraction of the input's AABB volume.
+    #[arg(long)]
+    max_excess_volume: Option<f64>,
+    /// Cost weights per kind, e.g. box=1,sphere=1,capsule=1,cylinder=1.05,frustum=2.1,prism=1.4.
+    #[arg(long, value_delimiter = ',')]
+    weights: Vec<String>,
+    /// Kinds allowed, e.g. box,sphere,capsule (default: all six).
+    #[arg(long, value_delimiter = ',')]
+    kinds: Vec<String>,
+    /// Weight ε of the tangent term in Q = area·(nnᵀ + ε·ttᵀ); 0 disables it.
+    #[arg(long, default_value_t = 0.01)]
+    tangent_eps: f64,
+    /// Vertex deduplication: exact, off, or a distance tolerance in input units.
+    #[arg(long, default_value = "exact")]
+    dedup: String,
+    /// Minimum half-extent of a primitive, as a fraction of the input's AABB diagonal.
+    #[arg(long, default_value_t = 5e-4)]
+    min_extent: f64,
+    /// Keep primitives whose points lie inside another primitive.
+    #[arg(long)]
+    keep_contained: bool,
+    /// Remove boxes thinner than this fraction of the diagonal when others cover them.
+    #[arg(long)]
+    remove_thin_boxes: Option<f64>,
+    /// JSON output (default: INPUT's stem + .primdecomp.json in the current directory).
+    #[arg(short, long)]
+    out: Option<PathBuf>,
+    /// Also write the primitives as a conservative OBJ tessellation.
+    #[arg(long)]
+    obj: Option<PathBuf>,
+    /// Segments around circles in the OBJ tessellation.
+    #[arg(long, default_value_t = 16)]
+    obj_detail: usize,
+    /// Worker threads (default: all cores); results do not depend on it.
+    #[arg(long)]
+    threads: Option<usize>,
+    /// Print nothing but errors.
+    #[arg(short, long)]
+    quiet: bool,
+}
+
+/// Runs the command line; returns the process exit code.
+pub fn main() -> i32 {
+    let cli = match Cli::try_parse() {
+        Ok(c) => c,
+        Err(e) => {
+            let _ = e.print();
+            return if e.use_stderr() { 2 } else { 0 };
+        }
+    };
+    let result = match cli.cmd {
+        Cmd::Decompose(a) => decompose(*a),
+        Cmd::DemoScene { out } => write_atomic(&out, primdecomp::demo::demo_scene_obj().as_bytes())
+            .map_err(anyhow::Error::from)
+            .map(|_| println!("wrote {}", out.display())),
+    };
+    match result {
+        Ok(()) => 0,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            match e.downcast_ref::<primdecomp::Error>() {
+                Some(pe) => pe.exit_code(),
+                None if e.downcast_ref::<BadArgs>().is_some() => 2,
+                None => 1,
+            }
+        }
+    }
+}
+
+/// A settings error found by the CLI itself (exit code 2).
+#[derive(Debug, thiserror::Error)]
+#[error("{0}")]
+struct BadArgs(String);
+
+fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
+    let mut p = Params {
+        targets: a.targets.clone(),
+        max_excess_volume: a.max_excess_volume,
+        tangent_eps: a.tangent_eps,
+        min_extent_rel: a.min_extent,
+        remove_contained: !a.keep_contained,
+        remove_thin_boxes: a.remove_thin_boxes,
+        ..Default::default()
+    };
+    for w in &a.weights {
+        let (k, v) = w
+            .split_once('=')
+            .ok_or_else(|| BadArgs(format!("--weights: expected kind=value, got '{w}'")))?;
+        let kind = parse_kind(k)?;
+        p.weights[kind as usize] = v
+            .trim()
+            .parse()
+            .map_err(|_| BadArgs(format!("--weights: '{v}' is not a number")))?;
+    }
+    if !a.kinds.is_empty() {
+        p.kinds = [false; 6];
+        for k in &a.kinds {
+            p.kinds[parse_kind(k)? as usize] = true;
+        }
+    }
+    p.dedup = match a.dedup.as_str() {
+        "exact" => Dedup::Exact,
+        "off" => Dedup::Off,
+        t => Dedup::Tolerance(t.parse().map_err(|_| {
+            BadArgs(format!(
+                "--dedup: expected exact, off or a distance, got '{t}'"
+            ))
+        })?),
+    };
+    p.validate().map_err(|e| BadArgs(e.to_string()))?;
+    Ok(p)
+}
+
+fn parse_kind(k: &str) -> anyhow::Result<Kind> {
+    Kind::from_name(k.trim()).ok_or_else(|| {
+        BadArgs(format!("unknown primitive kind '{k}': expected box, sphere, capsule, cylinder, frustum or prism")).into()
+    })
+}
+
+fn decompose(a: DecomposeArgs) -> anyhow::Result<()> {
+    let params = params_from(&a)?;
+    if let Some(t) = a.threads {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(t.max(1))
+            .build_global()
+            .map_err(|e| anyhow!("cannot start {t} threads: {e}"))?;
+    }
+    let out = a.out.clone().unwrap_or_else(|| default_out(&a.input));
+    let now = Instant::now();
+    let mesh = primdecomp::mesh::io::load(&a.input)?;
+    let load_s = now.elapsed().as_secs_f64();
+    let bar = progress_bar(mesh.face_count(), a.quiet);
+    let mut dec = primdecomp::decompose::decompose_with_progress(&mesh, &params, &|f| {
+        if let Some(b) = &bar {
+            b.set_position((f * 1000.0) as u64);
+        }
+    })?;
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    dec.input.path = Some(a.input.display().to_string());
+    dec.timings.stages.insert(0, ("load".into(), load_s));
+    let now = Instant::now();
+    let written = write_outputs(&dec, &params, &out, a.obj.as_deref(), a.obj_detail)?;
+    if !a.quiet {
+        print_summary(&dec, &mesh, &written, now.elapsed().as_secs_f64());
+    }
+    Ok(())
+}
+
+fn default_out(input: &Path) -> PathBuf {
+    let stem = input
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "out".into());
+    PathBuf::from(format!("{stem}.primdecomp.json"))
+}
+
+fn progress_bar(faces: usize, quiet: bool) -> Option<indicatif::ProgressBar> {
+    if quiet || faces < 100_000 {
+        return None;
+    }
+    let b = indicatif::ProgressBar::new(1000);
+    b.set_style(
+        indicatif::ProgressStyle::with_template("merging {bar:40} {percent:>3}% {elapsed_precise}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    Some(b)
+}
+
+/// Writes JSON (and OBJ) per level atomically; returns the paths written. The JSON's
+/// stage timings stop before writing (the file cannot time its own write).
+fn write_outputs(
+    dec: &Decomposition,
+    params: &Params,
+    out: &Path,
+    obj: Option<&Path>,
+    detail: usize,
+) -> anyhow::Result<Vec<PathBuf>> {
+    if detail < 3 {
+        bail!(BadArgs(format!(
+            "--obj-detail must be at least 3, got {detail}"
+        )));
+    }
+    let n = dec.levels.len();
+    let mut written = Vec::new();
+    for (i, level) in dec.levels.iter().enumerate() {
+        let path = output_path_for(out, level.target, n);
+        write_atomic(&path, export::json::to_json(dec, i, params).as_bytes())?;
+        written.push(path);
+        if let Some(o) = obj {
+            let path = output_path_for(o, level.target, n);
+            write_atomic(&path, export::obj::to_obj(level, detail).as_bytes())?;
+            written.push(path);
+        }
+    }
+    Ok(written)
+}
+
+fn print_summary(dec: &Decomposition, mesh: &primdecomp::Mesh, written: &[PathBuf], write_s: f64) {
+    let i = &dec.input;
+    println!(
+        "input     {}: {} faces, {} vertices ({} after dedup), {} adjacent pairs",
+        i.path.as_deref().unwrap_or("-"),
+        i.faces,
+        i.vertices,
+        dec.welded_vertices,
+        dec.adjacency_edges
+    );
+    if mesh.skipped.short_faces + mesh.skipped.other > 0 {
+        println!(
+            "skipped   {} faces with fewer than 3 vertices or lines, {} other elements",
+            mesh.skipped.short_faces, mesh.skipped.other
+        );
+    }
+    for l in &dec.levels {
+        let c = l.counts();
+        let kinds: Vec<String> = Kind::ALL
+            .iter()
+            .filter(|k| c[**k as usize] > 0)
+            .map(|k| format!("{} {}", c[*k as usize], k.name()))
+            .collect();
+        println!(
+            "target {:>5} → {} primitives ({}), {} bytes",
+            l.target,
+            l.primitives.len(),
+            kinds.join(", "),
+            l.bytes()
+        );
+    }
+    let stages: Vec<String> = dec
+        .timings
+        .stages
+        .iter()
+        .map(|(s, t)| format!("{s} {t:.3}"))
+        .collect();
+    println!(
+        "seconds   {}, write {write_s:.3} | total {:.3}",
+        stages.join(", "),
+        dec.timings.total() + write_s
+    );
+    for w in written {
+        println!("wrote     {}", w.display());
+    }
+}

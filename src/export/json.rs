@@ -1,0 +1,692 @@
+//! The JSON result contract: one document per target level with the input's
+//! description, every effective setting, statistics (timings only under
+//! `stats.seconds`, so the rest is byte-identical across runs) and the primitives,
+//! rotations as scalar-last unit quaternions. Also the reverse direction
+//! ([`read_primitives`]) and the quaternion conversions the eval tools share.
+
+use crate::decompose::{Decomposition, Timings};
+use crate::math::V3;
+use crate::params::Params;
+use crate::primitive::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
+use serde::ser::{SerializeMap, Serializer};
+use serde::{Deserialize, Serialize};
+
+/// One primitive as it appears in the `primitives` array.
+#[derive(Serialize, Deserialize)]
+#[serde(tag = "kind", rename_all = "lowercase")]
+enum PrimJson {
+    Box {
+        center: V3,
+        rotation: [f64; 4],
+        half_extents: V3,
+        #[serde(default)]
+        faces: u32,
+    },
+    Sphere {
+        center: V3,
+        radius: f64,
+        #[serde(default)]
+        faces: u32,
+    },
+    Capsule {
+        p0: V3,
+        p1: V3,
+        radius: f64,
+        #[serde(default)]
+        faces: u32,
+    },
+    Cylinder {
+        p0: V3,
+        p1: V3,
+        radius: f64,
+        #[serde(default)]
+        faces: u32,
+    },
+    Frustum {
+        p0: V3,
+        p1: V3,
+        radius0: f64,
+        radius1: f64,
+        #[serde(default)]
+        faces: u32,
+    },
+    Prism {
+        center: V3,
+        rotation: [f64; 4],
+        half_x: f64,
+        half_y: f64,
+        half_z_top: f64,
+        half_z_bottom: f64,
+        #[serde(default)]
+        faces: u32,
+    },
+}
+
+impl PrimJson {
+    fn new(p: &Primitive, faces: u32) -> PrimJson {
+        match *p {
+            Primitive::Box(b) => PrimJson::Box {
+                center: b.center,
+                rotation: quat_from_axes(&b.axes),
+                half_extents: b.half,
+                faces,
+            },
+            Primitive::Sphere(s) => PrimJson::Sphere {
+                center: s.center,
+                radius: s.radius,
+                faces,
+            },
+            Primitive::Capsule(c) => PrimJson::Capsule {
+                p0: c.p0,
+                p1: c.p1,
+                radius: c.radius,
+                faces,
+            },
+            Primitive::Cylinder(c) => PrimJson::Cylinder {
+                p0: c.p0,
+                p1: c.p1,
+                radius: c.radius,
+                faces,
+            },
+            Primitive::Frustum(f) => PrimJson::Frustum {
+                p0: f.p0,
+                p1: f.p1,
+                radius0: f.r0,
+                radius1: f.r1,
+                faces,
+            },
+            Primitive::Prism(p) => PrimJson::Prism {
+                center: p.center,
+                rotation: quat_from_axes(&p.axes),
+                half_x: p.hx,
+                half_y: p.hy,
+                half_z_top: p.hz_top,
+                half_z_bottom: p.hz_bottom,
+                faces,
+            },
+        }
+    }
+
+    fn into_primitive(self) -> Result<Primitive, String> {
+        let p = match self {
+            PrimJson::Box {
+                center,
+                rotation,
+                half_extents,
+                ..
+            } => Primitive::Box(Obb {
+                center,
+                axes: rotation_axes(rotation)?,
+                half: half_extents,
+            }),
+            PrimJson::Sphere { center, radius, .. } => Primitive::Sphere(Sphere { center, radius }),
+            PrimJson::Capsule { p0, p1, radius, .. } => {
+                Primitive::Capsule(Capsule { p0, p1, radius })
+            }
+            PrimJson::Cylinder { p0, p1, radius, .. } => {
+                Primitive::Cylinder(Cylinder { p0, p1, radius })
+            }
+            PrimJson::Frustum {
+                p0,
+                p1,
+                radius0,
+                radius1,
+                ..
+            } => Primitive::Frustum(Frustum {
+                p0,
+                p1,
+                r0: radius0,
+                r1: radius1,
+            }),
+            PrimJson::Prism {
+                center,
+                rotation,
+                half_x,
+                half_y,
+                half_z_top,
+                half_z_bottom,
+                ..
+            } => Primitive::Prism(Prism {
+                center,
+                axes: rotation_axes(rotation)?,
+                hx: half_x,
+                hy: half_y,
+                hz_top: half_z_top,
+                hz_bottom: half_z_bottom,
+            }),
+        };
+        if sizes(&p).iter().any(|&x| x < 0.0) {
+            return Err("a radius or half-extent is negative".into());
+        }
+        Ok(p)
+    }
+}
+
+/// Axes of a stored rotation; refuses quaternions too short to be unit ones.
+fn rotation_axes(q: [f64; 4]) -> Result<[V3; 3], String> {
+    let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
+    if n.is_finite() && n > 1e-6 {
+        Ok(axes_from_quat(q))
+    } else {
+        Err(format!("rotation {q:?} is not a unit quaternion"))
+    }
+}
+
+/// Radii and half-extents of a primitive.
+fn sizes(p: &Primitive) -> Vec<f64> {
+    match *p {
+        Primitive::Box(b) => b.half.to_vec(),
+        Primitive::Sphere(Sphere { radius, .. })
+        | Primitive::Capsule(Capsule { radius, .. })
+        | Primitive::Cylinder(Cylinder { radius, .. }) => vec![radius],
+        Primitive::Frustum(f) => vec![f.r0, f.r1],
+        Primitive::Prism(q) => vec![q.hx, q.hy, q.hz_top, q.hz_bottom],
+    }
+}
+
+/// Primitive counts keyed by kind name, in [`Kind::ALL`] order.
+struct Counts([usize; 6]);
+
+impl Serialize for Counts {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut m = s.serialize_map(Some(6))?;
+        for k in Kind::ALL {
+            m.serialize_entry(k.name(), &self.0[k as usize])?;
+        }
+        m.end()
+    }
+}
+
+/// Stage timings in run order, then `"total"`.
+struct Seconds<'a>(&'a Timings);
+
+impl Serialize for Seconds<'_> {
+    fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
+        let mut m = s.serialize_map(Some(self.0.stages.len() + 1))?;
+        for (stage, secs) in &self.0.stages {
+            m.serialize_entry(stage, secs)?;
+        }
+        m.serialize_entry("total", &self.0.total())?;
+        m.end()
+    }
+}
+
+#[derive(Serialize)]
+struct Settings<'a> {
+    #[serde(flatten)]
+    params: &'a Params,
+    target: usize,
+}
+
+#[derive(Serialize)]
+struct Stats<'a> {
+    counts: Counts,
+    primitives: usize,
+    bytes: usize,
+    seconds: Seconds<'a>,
+}
+
+#[derive(Serialize)]
+struct Document<'a> {
+    format: &'static str,
+    version: u32,
+    input: &'a crate::decompose::InputInfo,
+    settings: Settings<'a>,
+    stats: Stats<'a>,
+    primitives: Vec<PrimJson>,
+}
+
+#[derive(Deserialize)]
+struct DocumentIn {
+    primitives: Vec<PrimJson>,
+}
+
+/// The JSON document of `dec.levels[level]` (panics if `level` is out of range):
+/// pretty-printed, 2-space indent, arrays of plain numbers on one line, ending in a
+/// newline. Everything except `stats.seconds` depends only on the inputs.
+pub fn to_json(dec: &Decomposition, level: usize, params: &Params) -> String {
+    let lv = &dec.levels[level];
+    debug_assert_eq!(
+        lv.faces.len(),
+        lv.primitives.len(),
+        "one face count per primitive"
+    );
+    let primitives: Vec<PrimJson> = lv
+        .primitives
+        .iter()
+        .enumerate()
+        .map(|(i, p)| PrimJson::new(p, lv.faces.get(i).copied().unwrap_or(0)))
+        .collect();
+    // serde_json writes non-finite floats as `null`, which no primitive field holds.
+    debug_assert!(
+        !serde_json::to_string(&primitives)
+            .unwrap_or_default()
+            .contains("null"),
+        "non-finite number in a primitive"
+    );
+    debug_assert!(
+        dec.input
+            .aabb_min
+            .iter()
+            .chain(&dec.input.aabb_max)
+            .all(|x| x.is_finite()),
+        "non-finite input bounds"
+    );
+    let doc = Document {
+        format: "primdecomp",
+        version: 1,
+        input: &dec.input,
+        settings: Settings {
+            params,
+            target: lv.target,
+        },
+        stats: Stats {
+            counts: Counts(lv.counts()),
+            primitives: lv.primitives.len(),
+            bytes: lv.bytes(),
+            seconds: Seconds(&dec.timings),
+        },
+        primitives,
+    };
+    let pretty = serde_json::to_string_pretty(&doc).expect("serializing plain data cannot fail");
+    let mut out = inline_scalar_arrays(&pretty);
+    out.push('\n');
+    out
+}
+
+/// Joins arrays whose elements are all scalars onto their opening line. In
+/// serde_json's pretty output a line ending in `[` always opens an array (string
+/// values end in `"`), and a container element's line ends in `{` or `[`.
+fn inline_scalar_arrays(pretty: &str) -> String {
+    let lines: Vec<&str> = pretty.lines().collect();
+    let mut out = String::with_capacity(pretty.len());
+    let mut i = 0;
+    while i < lines.len() {
+        let line = lines[i];
+        i += 1;
+        if line.ends_with('[') {
+            let close = (i..lines.len()).find(|&j| matches!(lines[j].trim(), "]" | "],"));
+            let scalars = |end: usize| {
+                lines[i..end]
+                    .iter()
+                    .all(|l| !l.ends_with('[') && !l.ends_with('{'))
+            };
+            if let Some(end) = close.filter(|&end| scalars(end)) {
+                out.push_str(line);
+                let items: Vec<&str> = lines[i..end].iter().map(|l| l.trim()).collect();
+                out.push_str(&items.join(" "));
+                out.push_str(lines[end].trim());
+                out.push('\n');
+                i = end + 1;
+                continue;
+            }
+        }
+        out.push_str(line);
+        out.push('\n');
+    }
+    out.pop();
+    out
+}
+
+/// Parses the `primitives` array of a primdecomp JSON document back into
+/// primitives (other keys are ignored; `faces` is optional). Errors name the
+/// offending primitive or the JSON position.
+pub fn read_primitives(json: &str) -> Result<Vec<Primitive>, String> {
+    let doc: DocumentIn =
+        serde_json::from_str(json).map_err(|e| format!("invalid primdecomp JSON: {e}"))?;
+    doc.primitives
+        .into_iter()
+        .enumerate()
+        .map(|(i, p)| {
+            p.into_primitive()
+                .map_err(|e| format!("primitive {i}: {e}"))
+        })
+        .collect()
+}
+
+/// Unit quaternion `[qx, qy, qz, qw]` of the rotation whose matrix has columns
+/// `axes[0], axes[1], axes[2]` (orthonormal, right-handed), by Shepperd's method
+/// (the branch with the largest diagonal term), normalized, with a canonical sign:
+/// `qw > 0`, or if `qw == 0` the first nonzero component positive.
+pub fn quat_from_axes(axes: &[[f64; 3]; 3]) -> [f64; 4] {
+    // m[i][j] = row i, column j; column j is axes[j].
+    let m = |i: usize, j: usize| axes[j][i];
+    debug_assert!(
+        crate::math::dot(crate::math::cross(axes[0], axes[1]), axes[2]) > 0.0,
+        "axes must be right-handed"
+    );
+    let (m00, m11, m22) = (m(0, 0), m(1, 1), m(2, 2));
+    let trace = m00 + m11 + m22;
+    let q = if trace >= m00 && trace >= m11 && trace >= m22 {
+        let s = 2.0 * (1.0 + trace).sqrt(); // 4·qw
+        [
+            (m(2, 1) - m(1, 2)) / s,
+            (m(0, 2) - m(2, 0)) / s,
+            (m(1, 0) - m(0, 1)) / s,
+            0.25 * s,
+        ]
+    } else if m00 >= m11 && m00 >= m22 {
+        let s = 2.0 * (1.0 + m00 - m11 - m22).sqrt(); // 4·qx
+        [
+            0.25 * s,
+            (m(0, 1) + m(1, 0)) / s,
+            (m(0, 2) + m(2, 0)) / s,
+            (m(2, 1) - m(1, 2)) / s,
+        ]
+    } else if m11 >= m22 {
+        let s = 2.0 * (1.0 + m11 - m00 - m22).sqrt(); // 4·qy
+        [
+            (m(0, 1) + m(1, 0)) / s,
+            0.25 * s,
+            (m(1, 2) + m(2, 1)) / s,
+            (m(0, 2) - m(2, 0)) / s,
+        ]
+    } else {
+        let s = 2.0 * (1.0 + m22 - m00 - m11).sqrt(); // 4·qz
+        [
+            (m(0, 2) + m(2, 0)) / s,
+            (m(1, 2) + m(2, 1)) / s,
+            0.25 * s,
+            (m(1, 0) - m(0, 1)) / s,
+        ]
+    };
+    canonical(q)
+}
+
+/// Normalizes `q` and fixes its sign as documented on [`quat_from_axes`].
+fn canonical(q: [f64; 4]) -> [f64; 4] {
+    let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let mut q = q.map(|x| x / n);
+    let lead = if q[3] != 0.0 {
+        q[3]
+    } else {
+        q.iter().copied().find(|&x| x != 0.0).unwrap_or(1.0)
+    };
+    if lead < 0.0 {
+        q = q.map(|x| -x);
+    }
+    q.map(|x| x + 0.0) // no negative zeros in the output
+}
+
+/// The axes (columns of the rotation matrix) of quaternion `[qx, qy, qz, qw]`;
+/// `q` is normalized first, so slightly non-unit input is fine.
+pub fn axes_from_quat(q: [f64; 4]) -> [[f64; 3]; 3] {
+    let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
+    let [x, y, z, w] = q.map(|c| c / n);
+    [
+        [
+            1.0 - 2.0 * (y * y + z * z),
+            2.0 * (x * y + z * w),
+            2.0 * (x * z - y * w),
+        ],
+        [
+            2.0 * (x * y - z * w),
+            1.0 - 2.0 * (x * x + z * z),
+            2.0 * (y * z + x * w),
+        ],
+        [
+            2.0 * (x * z + y * w),
+            2.0 * (y * z - x * w),
+            1.0 - 2.0 * (x * x + y * y),
+        ],
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::decompose::{InputInfo, Level};
+    use crate::math::{cross, dot};
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    fn random_quat(rng: &mut ChaCha8Rng) -> [f64; 4] {
+        loop {
+            let q: [f64; 4] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+            let n2: f64 = q.iter().map(|x| x * x).sum();
+            if n2 > 1e-4 && n2 <= 1.0 {
+                return canonical(q);
+            }
+        }
+    }
+
+    fn close(a: &[f64], b: &[f64], tol: f64) -> bool {
+        a.iter().zip(b).all(|(x, y)| (x - y).abs() <= tol)
+    }
+
+    #[test]
+    fn quaternion_round_trip_random() {
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
+        for _ in 0..10_000 {
+            let q = random_quat(&mut rng);
+            let axes = axes_from_quat(q);
+            for a in axes {
+                assert!((dot(a, a) - 1.0).abs() < 1e-12);
+            }
+            assert!(close(&cross(axes[0], axes[1]), &axes[2], 1e-12));
+            let back = quat_from_axes(&axes);
+            assert!(close(&back, &q, 1e-12), "{q:?} -> {back:?}");
+            let axes2 = axes_from_quat(back);
+            for k in 0..3 {
+                assert!(close(&axes2[k], &axes[k], 1e-12));
+            }
+        }
+    }
+
+    #[test]
+    fn quaternion_special_cases_and_sign() {
+        let id = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        assert_eq!(quat_from_axes(&id), [0.0, 0.0, 0.0, 1.0]);
+        // 180° about x: qw = 0, first nonzero positive.
+        let rx = [[1.0, 0.0, 0.0], [0.0, -1.0, 0.0], [0.0, 0.0, -1.0]];
+        assert_eq!(quat_from_axes(&rx), [1.0, 0.0, 0.0, 0.0]);
+        // 180° about (0, 1, -1)/√2.
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        let q = [0.0, h, -h, 0.0];
+        let got = quat_from_axes(&axes_from_quat([0.0, -h, h, 0.0]));
+        assert!(close(&got, &q, 1e-15) && got[1] > 0.0, "{got:?}");
+        // 90° about z: local x maps to world y.
+        let rz = [[0.0, 1.0, 0.0], [-1.0, 0.0, 0.0], [0.0, 0.0, 1.0]];
+        assert!(close(&quat_from_axes(&rz), &[0.0, 0.0, h, h], 1e-15));
+    }
+
+    fn random_axes(rng: &mut ChaCha8Rng) -> [V3; 3] {
+        axes_from_quat(random_quat(rng))
+    }
+
+    fn sample_primitives() -> Vec<Primitive> {
+        let mut rng = ChaCha8Rng::seed_from_u64(3);
+        let mut v = || -> V3 { std::array::from_fn(|_| rng.gen_range(-5.0..5.0)) };
+        let (c0, c1, c2, c3, c4, c5, c6, c7) = (v(), v(), v(), v(), v(), v(), v(), v());
+        let mut rng = ChaCha8Rng::seed_from_u64(4);
+        vec![
+            Primitive::Box(Obb {
+                center: c0,
+                axes: random_axes(&mut rng),
+                half: [0.5, 1.25, 0.1],
+            }),
+            Primitive::Sphere(Sphere {
+                center: c1,
+                radius: 0.3,
+            }),
+            Primitive::Capsule(Capsule {
+                p0: c2,
+                p1: c3,
+                radius: 0.2,
+            }),
+            Primitive::Cylinder(Cylinder {
+                p0: c4,
+                p1: c5,
+                radius: 0.7,
+            }),
+            Primitive::Frustum(Frustum {
+                p0: c6,
+                p1: c7,
+                r0: 0.4,
+                r1: 0.1,
+            }),
+            Primitive::Prism(Prism {
+                center: c0,
+                axes: random_axes(&mut rng),
+                hx: 1.0,
+                hy: 0.5,
+                hz_top: 0.01,
+                hz_bottom: 0.75,
+            }),
+            Primitive::Box(Obb {
+                center: c1,
+                axes: random_axes(&mut rng),
+                half: [1.0, 1.0, 1.0],
+            }),
+        ]
+    }
+
+    fn sample_decomposition() -> Decomposition {
+        let primitives = sample_primitives();
+        let level = Level {
+            target: 7,
+            faces: (1..=7).collect(),
+            primitives,
+        };
+        Decomposition {
+            input: InputInfo {
+                path: Some("scene \"1\".obj".into()),
+                faces: 28,
+                vertices: 30,
+                aabb_min: [-5.0, -5.0, -5.0],
+                aabb_max: [5.0, 5.0, 5.0],
+            },
+            levels: vec![level],
+            timings: Timings {
+                stages: vec![("load".into(), 0.25), ("merge".into(), 1.5)],
+            },
+            ..Default::default()
+        }
+    }
+
+    #[test]
+    fn document_contract() {
+        let dec = sample_decomposition();
+        let text = to_json(&dec, 0, &Params::default());
+        assert!(text.ends_with("}\n"));
+        let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+        assert_eq!(v["format"], "primdecomp");
+        assert_eq!(v["version"], 1);
+        assert_eq!(v["input"]["path"], "scene \"1\".obj");
+        assert_eq!(v["input"]["faces"], 28);
+        assert_eq!(v["settings"]["target"], 7);
+        assert_eq!(v["settings"]["targets"], serde_json::json!([32]));
+        assert_eq!(v["settings"]["dedup"], "exact");
+        assert_eq!(v["settings"]["weights"][5], 1.4);
+        let counts =
+            serde_json::json!({"box":2,"sphere":1,"capsule":1,"cylinder":1,"frustum":1,"prism":1});
+        assert_eq!(v["stats"]["counts"], counts);
+        assert_eq!(v["stats"]["primitives"], 7);
+        assert_eq!(v["stats"]["bytes"], 4 * (10 * 2 + 4 + 7 + 7 + 8 + 11));
+        assert_eq!(v["stats"]["seconds"]["merge"], 1.5);
+        assert_eq!(v["stats"]["seconds"]["total"], 1.75);
+        let prims = v["primitives"].as_array().unwrap();
+        assert_eq!(prims[4]["kind"], "frustum");
+        assert_eq!(prims[4]["radius1"], 0.1);
+        assert_eq!(prims[6]["faces"], 7);
+        assert!(
+            text.contains("\"half_extents\": [0.5, 1.25, 0.1],"),
+            "{text}"
+        );
+    }
+
+    #[test]
+    fn key_order() {
+        let text = to_json(&sample_decomposition(), 0, &Params::default());
+        // Within each group, every pattern must occur after the previous one.
+        let groups = [
+            r#""format"|"version"|"input"|"settings"|"stats"|"primitives": ["#,
+            r#""path"|"aabb_min"|"aabb_max"|"tangent_eps"|"remove_thin_boxes"|"target""#,
+            r#""counts"|"box":|"prism":|"bytes"|"seconds"|"load"|"merge"|"total""#,
+            r#""kind": "prism"|"center"|"rotation"|"half_x"|"half_y"|"half_z_top"|"half_z_bottom""#,
+        ];
+        for g in groups {
+            let mut at = 0;
+            for p in g.split('|') {
+                let found = text[at..].find(p);
+                assert!(found.is_some(), "{p} missing or out of order in {g}");
+                at += found.unwrap_or(0) + p.len();
+            }
+        }
+    }
+
+    #[test]
+    fn deterministic_except_seconds() {
+        let mut dec = sample_decomposition();
+        let a = to_json(&dec, 0, &Params::default());
+        assert_eq!(a, to_json(&dec, 0, &Params::default()));
+        dec.timings.stages[0].1 = 123.0;
+        let b = to_json(&dec, 0, &Params::default());
+        let strip = |s: &str| {
+            let mut v: serde_json::Value = serde_json::from_str(s).unwrap();
+            v["stats"]["seconds"] = serde_json::Value::Null;
+            v.to_string()
+        };
+        assert_ne!(a, b);
+        assert_eq!(strip(&a), strip(&b));
+    }
+
+    /// Every number of a primitive's JSON form.
+    fn flat(p: &Primitive) -> Vec<f64> {
+        let v = serde_json::to_value(PrimJson::new(p, 0)).unwrap();
+        let mut out = Vec::new();
+        for x in v.as_object().unwrap().values() {
+            match x {
+                serde_json::Value::Array(a) => out.extend(a.iter().map(|n| n.as_f64().unwrap())),
+                serde_json::Value::Number(n) => out.push(n.as_f64().unwrap()),
+                _ => {}
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn read_back_round_trip() {
+        let dec = sample_decomposition();
+        let text = to_json(&dec, 0, &Params::default());
+        let back = read_primitives(&text).unwrap();
+        let orig = &dec.levels[0].primitives;
+        assert_eq!(back.len(), orig.len());
+        // serde_json's default float parser may be 1 ulp off (its `float_roundtrip`
+        // feature makes it exact), hence the tolerance.
+        for (a, b) in orig.iter().zip(&back) {
+            assert_eq!(a.kind(), b.kind());
+            let (na, nb) = (flat(a), flat(b));
+            assert!(close(&na, &nb, 1e-12), "{a:?} vs {b:?}");
+        }
+    }
+
+    #[test]
+    fn read_rejects_bad_input() {
+        assert!(read_primitives("not json").is_err());
+        assert!(read_primitives(r#"{"primitives":[{"kind":"cone"}]}"#).is_err());
+        let neg = r#"{"primitives":[{"kind":"sphere","center":[0,0,0],"radius":-1}]}"#;
+        assert!(read_primitives(neg).unwrap_err().contains("primitive 0"));
+        let zero_q = r#"{"primitives":[{"kind":"box","center":[0,0,0],"rotation":[0,0,0,0],"half_extents":[1,1,1]}]}"#;
+        assert!(read_primitives(zero_q).is_err());
+        let ok = r#"{"primitives":[{"kind":"sphere","center":[1,2,3],"radius":0.5}]}"#;
+        let p = read_primitives(ok).unwrap();
+        assert_eq!(
+            p,
+            vec![Primitive::Sphere(Sphere {
+                center: [1.0, 2.0, 3.0],
+                radius: 0.5
+            })]
+        );
+    }
+
+    #[test]
+    fn inlines_only_scalar_arrays() {
+        let v = serde_json::json!({"a": [1, 2], "b": [{"c": [3]}], "d": [], "e": ["x[", "]"]});
+        let s = inline_scalar_arrays(&serde_json::to_string_pretty(&v).unwrap());
+        assert!(s.contains("\"a\": [1, 2],"), "{s}");
+        assert!(s.contains("\"c\": [3]"), "{s}");
+        assert!(s.contains("\"e\": [\"x[\", \"]\"]"), "{s}");
+        assert_eq!(serde_json::from_str::<serde_json::Value>(&s).unwrap(), v);
+    }
+}

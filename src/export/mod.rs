@@ -1,0 +1,11 @@
+//! Output writers: the JSON result contract ([`json`]), a conservative OBJ
+//! tessellation of the primitives for viewing and physics engines ([`obj`]), and
+//! crash-safe file replacement shared by both ([`atomic`]).
+
+pub mod atomic;
+pub mod json;
+pub mod obj;
+
+pub use atomic::{output_path_for, write_atomic};
+pub use json::{axes_from_quat, quat_from_axes, read_primitives, to_json};
+pub use obj::{tessellate, to_obj, Tess, DEFAULT_DETAIL};

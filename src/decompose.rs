@@ -188,6 +188,7 @@ fn evaluator<'a>(mesh: &'a Mesh, welded: &'a [u32], params: &Params) -> Evaluato
             .max_excess_volume
             .map_or(f64::INFINITY, |m| m * aabb_volume),
         cost_unit: COST_GRID * diag.max(min_half).powi(3),
+        hull_eps: 1e-12 * diag.max(min_half),
     }
 }
 

@@ -39,10 +39,13 @@ pub struct Evaluator<'a> {
     /// diagonal cubed), so that round-off from units or position cannot reorder merges
     /// whose exact costs tie — coplanar merges cost exactly 0, and there are many.
     pub cost_unit: f64,
+    /// Distance below which a point counts as on a hull face (point reduction only).
+    pub hull_eps: f64,
 }
 
 impl<'a> Evaluator<'a> {
-    /// Distinct vertices of cluster `c` (a single face's own indices until it merges).
+    /// The points priced for cluster `c`: a single face's own indices until it merges,
+    /// then the hull vertices of its faces (`merge::driver` keeps them reduced).
     pub fn verts<'b>(&'b self, cl: &'b Clusters, c: u32) -> &'b [u32] {
         let v = &cl.verts[c as usize];
         if v.is_empty() {
@@ -91,10 +94,25 @@ impl<'a> Evaluator<'a> {
         self.fit_points(q, ws)
     }
 
-    /// The primitive of one cluster as it stands.
-    pub fn fit_cluster(&self, cl: &Clusters, c: u32, ws: &mut Workspace) -> Fit {
-        self.gather(cl, &[c], ws);
+    /// The primitive of one cluster fitted on every vertex of its faces (walking the
+    /// cyclic face list), independent of any point reduction: this is what we output.
+    pub fn fit_cluster_exact(&self, cl: &Clusters, c: u32, ws: &mut Workspace) -> Fit {
+        ws.clear();
+        for f in cl.faces(c) {
+            self.push_points(self.face(f), ws);
+        }
         self.fit_points(&cl.q[c as usize], ws)
+    }
+
+    /// Distinct vertices of every face of cluster `c`, sorted.
+    pub fn all_verts(&self, cl: &Clusters, c: u32) -> Vec<u32> {
+        let mut v: Vec<u32> = cl
+            .faces(c)
+            .flat_map(|f| self.face(f).iter().copied())
+            .collect();
+        v.sort_unstable();
+        v.dedup();
+        v
     }
 
     /// The merge of roots `a` and `b` as a queue entry with its fit, or `None` when it

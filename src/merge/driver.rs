@@ -8,6 +8,7 @@
 use super::cluster::Clusters;
 use super::cost::{Evaluator, Workspace};
 use super::heap::{Candidate, CandidateHeap};
+use crate::math::hull::{hull_vertices, HullWorkspace};
 use crate::primitive::Primitive;
 use rayon::prelude::*;
 
@@ -15,6 +16,8 @@ use rayon::prelude::*;
 const CHUNK: usize = 1024;
 /// Below this many points in a re-pricing batch, stay on one thread.
 const PAR_POINTS: usize = 1 << 15;
+/// Point lists up to this size are not worth reducing to their hull.
+const HULL_MIN: usize = 12;
 /// Each cluster is bridged to this many successors in each axis order.
 const BRIDGE_SPAN: usize = 2;
 
@@ -89,6 +92,7 @@ pub fn run(
         epoch: 0,
     };
     let mut ws = Workspace::default();
+    let mut reducer = Reducer::default();
     let start = cl.live;
     let last = *targets.last().expect("at least one target");
     let mut next = 0;
@@ -116,7 +120,7 @@ pub fn run(
         let Some((_, fit)) = ev.candidate(&cl, c.a, c.b, &mut ws) else {
             continue;
         };
-        let verts = union_verts(ev, &cl, c.a, c.b, &mut stamps);
+        let verts = merged_points(ev, &cl, c.a, c.b, &mut stamps, &mut reducer);
         let root = cl.merge(c.a, c.b, verts, fit.volume);
         out.merges += 1;
         reprice_neighbors(ev, &mut cl, root, &mut heap, &mut ws);
@@ -138,13 +142,46 @@ fn valid(cl: &Clusters, c: &Candidate) -> bool {
         && cl.version[c.b as usize] == c.ver_b
 }
 
-/// Distinct vertices of the union of two clusters.
-fn union_verts(ev: &Evaluator, cl: &Clusters, a: u32, b: u32, st: &mut Stamps) -> Vec<u32> {
+/// Buffers for reducing a merged cluster's points to its hull vertices.
+#[derive(Default)]
+struct Reducer {
+    x: Vec<f64>,
+    y: Vec<f64>,
+    z: Vec<f64>,
+    keep: Vec<u32>,
+    hull: HullWorkspace,
+}
+
+/// The points to price a merged cluster by: the distinct vertices of both clusters'
+/// point lists, reduced to the vertices of their convex hull. Every fit maximises a
+/// convex function (or minimises a concave one) over the points, so the hull vertices
+/// give the same primitive as all points (ARCHITECTURE.md, "Exact point reduction").
+fn merged_points(
+    ev: &Evaluator,
+    cl: &Clusters,
+    a: u32,
+    b: u32,
+    st: &mut Stamps,
+    r: &mut Reducer,
+) -> Vec<u32> {
     st.next();
     let (va, vb) = (ev.verts(cl, a), ev.verts(cl, b));
     let mut out = Vec::with_capacity(va.len() + vb.len());
     out.extend(va.iter().chain(vb).copied().filter(|&v| st.first(v)));
-    out
+    if out.len() <= HULL_MIN {
+        return out;
+    }
+    r.x.clear();
+    r.y.clear();
+    r.z.clear();
+    for &v in &out {
+        let p = ev.mesh.pos(v);
+        r.x.push(p[0]);
+        r.y.push(p[1]);
+        r.z.push(p[2]);
+    }
+    hull_vertices(&r.x, &r.y, &r.z, ev.hull_eps, &mut r.hull, &mut r.keep);
+    r.keep.iter().map(|&i| out[i as usize]).collect()
 }
 
 /// Re-prices every merge of the new cluster with its neighbours, in parallel when the
@@ -215,17 +252,19 @@ fn centroid(ev: &Evaluator, cl: &Clusters, c: u32) -> [f64; 3] {
     s.map(|x| x / vs.len().max(1) as f64)
 }
 
-/// Fits every live cluster (in root order) for output.
+/// Fits every live cluster (in root order) on all of its faces' vertices, for output.
 fn snapshot(ev: &Evaluator, cl: &Clusters, target: usize) -> Snapshot {
     let roots = cl.roots();
     let prims: Vec<Primitive> = roots
         .par_iter()
-        .map_init(Workspace::default, |ws, &r| ev.fit_cluster(cl, r, ws).prim)
+        .map_init(Workspace::default, |ws, &r| {
+            ev.fit_cluster_exact(cl, r, ws).prim
+        })
         .collect();
     Snapshot {
         target,
         prims,
         faces: roots.iter().map(|&r| cl.face_count[r as usize]).collect(),
-        verts: roots.iter().map(|&r| ev.verts(cl, r).to_vec()).collect(),
+        verts: roots.par_iter().map(|&r| ev.all_verts(cl, r)).collect(),
     }
 }

@@ -34,16 +34,21 @@ enum Cmd {
 
 #[derive(Args, Debug)]
 struct DecomposeArgs {
-    /// Input mesh.
-    input: PathBuf,
-    /// Target primitive counts, comma-separated; one result per target from one pass.
+    /// Input meshes; with several, -o names a directory and a table can be printed.
+    #[arg(required = true)]
+    inputs: Vec<PathBuf>,
+    /// Target primitive counts, comma-separated (a count, or a percentage of the input's
+    /// faces such as 1%); one result per target from one bottom-up pass.
     #[arg(
         short = 'n',
         long = "targets",
         value_delimiter = ',',
         default_value = "64"
     )]
-    targets: Vec<usize>,
+    targets: Vec<String>,
+    /// With several inputs: print a markdown table of all results at the end.
+    #[arg(long)]
+    table: bool,
     /// Refuse merges adding more than this fraction of the input's AABB volume.
     #[arg(long)]
     max_excess_volume: Option<f64>,
@@ -68,7 +73,8 @@ struct DecomposeArgs {
     /// Remove boxes thinner than this fraction of the diagonal when others cover them.
     #[arg(long)]
     remove_thin_boxes: Option<f64>,
-    /// JSON output (default: INPUT's stem + .primdecomp.json in the current directory).
+    /// JSON output file; with several inputs, an output directory (default: INPUT's
+    /// stem + .primdecomp.json in the current directory).
     #[arg(short, long)]
     out: Option<PathBuf>,
     /// Also write the primitives as a conservative OBJ tessellation.
@@ -120,7 +126,7 @@ struct BadArgs(String);
 
 fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
     let mut p = Params {
-        targets: a.targets.clone(),
+        targets: vec![1],
         max_excess_volume: a.max_excess_volume,
         tangent_eps: a.tangent_eps,
         min_extent_rel: a.min_extent,
@@ -163,18 +169,102 @@ fn parse_kind(k: &str) -> anyhow::Result<Kind> {
     })
 }
 
+/// A target as given: a count, or a percentage of the input's faces.
+#[derive(Clone, Copy, Debug)]
+enum Target {
+    Count(usize),
+    Percent(f64),
+}
+
+fn parse_targets(raw: &[String]) -> anyhow::Result<Vec<Target>> {
+    raw.iter()
+        .map(|t| {
+            let t = t.trim();
+            let bad = || {
+                BadArgs(format!(
+                    "-n: expected a positive count or a percentage like 1%, got '{t}'"
+                ))
+            };
+            match t.strip_suffix('%') {
+                Some(p) => match p.trim().parse::<f64>() {
+                    Ok(v) if v > 0.0 && v <= 100.0 => Ok(Target::Percent(v)),
+                    _ => Err(bad().into()),
+                },
+                None => match t.parse::<usize>() {
+                    Ok(v) if v > 0 => Ok(Target::Count(v)),
+                    _ => Err(bad().into()),
+                },
+            }
+        })
+        .collect()
+}
+
+fn resolve_targets(targets: &[Target], faces: usize) -> Vec<usize> {
+    targets
+        .iter()
+        .map(|t| match *t {
+            Target::Count(n) => n,
+            Target::Percent(p) => ((faces as f64 * p / 100.0).round() as usize).max(1),
+        })
+        .collect()
+}
+
 fn decompose(a: DecomposeArgs) -> anyhow::Result<()> {
-    let params = params_from(&a)?;
+    let base = params_from(&a)?;
+    let targets = parse_targets(&a.targets)?;
     if let Some(t) = a.threads {
         rayon::ThreadPoolBuilder::new()
             .num_threads(t.max(1))
             .build_global()
             .map_err(|e| anyhow!("cannot start {t} threads: {e}"))?;
     }
-    let out = a.out.clone().unwrap_or_else(|| default_out(&a.input));
+    if a.inputs.len() == 1 {
+        let out = a.out.clone().unwrap_or_else(|| default_out(&a.inputs[0]));
+        return run_one(&a, &a.inputs[0], &base, &targets, &out).map(|_| ());
+    }
+    let dir = a.out.clone().unwrap_or_else(|| PathBuf::from("."));
+    std::fs::create_dir_all(&dir)
+        .map_err(|e| anyhow!("cannot create output directory {}: {e}", dir.display()))?;
+    let mut rows = Vec::new();
+    let mut worst: Option<anyhow::Error> = None;
+    for input in &a.inputs {
+        let out = dir.join(default_out(input));
+        match run_one(&a, input, &base, &targets, &out) {
+            Ok(dec) => rows.push(dec),
+            Err(e) => {
+                eprintln!("error: {e:#}");
+                worst = Some(e);
+            }
+        }
+    }
+    if a.table {
+        print_table(&rows);
+    }
+    match worst {
+        Some(e) => Err(e.context(format!(
+            "{} of {} inputs failed",
+            a.inputs.len() - rows.len(),
+            a.inputs.len()
+        ))),
+        None => Ok(()),
+    }
+}
+
+/// Loads, decomposes and writes one input.
+fn run_one(
+    a: &DecomposeArgs,
+    input: &Path,
+    base: &Params,
+    targets: &[Target],
+    out: &Path,
+) -> anyhow::Result<Decomposition> {
     let now = Instant::now();
-    let mesh = primdecomp::mesh::io::load(&a.input)?;
+    let mesh = primdecomp::mesh::io::load(input)?;
     let load_s = now.elapsed().as_secs_f64();
+    let params = Params {
+        targets: resolve_targets(targets, mesh.face_count()),
+        ..base.clone()
+    };
     let bar = progress_bar(mesh.face_count(), a.quiet);
     let mut dec = primdecomp::decompose::decompose_with_progress(&mesh, &params, &|f| {
         if let Some(b) = &bar {
@@ -184,14 +274,45 @@ fn decompose(a: DecomposeArgs) -> anyhow::Result<()> {
     if let Some(b) = bar {
         b.finish_and_clear();
     }
-    dec.input.path = Some(a.input.display().to_string());
+    dec.input.path = Some(input.display().to_string());
     dec.timings.stages.insert(0, ("load".into(), load_s));
     let now = Instant::now();
-    let written = write_outputs(&dec, &params, &out, a.obj.as_deref(), a.obj_detail)?;
+    let written = write_outputs(&dec, &params, out, a.obj.as_deref(), a.obj_detail)?;
     if !a.quiet {
         print_summary(&dec, &mesh, &written, now.elapsed().as_secs_f64());
     }
-    Ok(())
+    Ok(dec)
+}
+
+/// One markdown row per input and target.
+fn print_table(rows: &[Decomposition]) {
+    println!("\n| mesh | faces | N | primitives | box | sphere | capsule | cylinder | frustum | prism | bytes | seconds |");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    for d in rows {
+        let name = d
+            .input
+            .path
+            .as_deref()
+            .and_then(|p| Path::new(p).file_name()?.to_str())
+            .unwrap_or("-");
+        for l in &d.levels {
+            let c = l.counts();
+            println!(
+                "| {name} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.3} |",
+                d.input.faces,
+                l.target,
+                l.primitives.len(),
+                c[0],
+                c[1],
+                c[2],
+                c[3],
+                c[4],
+                c[5],
+                l.bytes(),
+                d.timings.total()
+            );
+        }
+    }
 }
 
 fn default_out(input: &Path) -> PathBuf {

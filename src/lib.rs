@@ -16,7 +16,6 @@
 pub mod decompose;
 pub mod demo;
 pub mod error;
-pub mod eval;
 pub mod export;
 pub mod math;
 pub mod merge;

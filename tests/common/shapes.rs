@@ -1,0 +1,196 @@
+//! Small meshes built in code for the engine's tests: each is closed and outward-facing
+//! unless its name says otherwise.
+
+#![allow(dead_code)]
+
+use primdecomp::Mesh;
+use std::f64::consts::PI;
+
+pub type Polys = (Vec<[f64; 3]>, Vec<Vec<u32>>);
+
+/// Axis-aligned box from `lo` to `hi` as 6 quads.
+pub fn cuboid(lo: [f64; 3], hi: [f64; 3]) -> Polys {
+    let v: Vec<[f64; 3]> = (0..8)
+        .map(|i| {
+            [
+                if i & 1 == 0 { lo[0] } else { hi[0] },
+                if i & 2 == 0 { lo[1] } else { hi[1] },
+                if i & 4 == 0 { lo[2] } else { hi[2] },
+            ]
+        })
+        .collect();
+    let f = vec![
+        vec![0, 2, 3, 1],
+        vec![4, 5, 7, 6],
+        vec![0, 1, 5, 4],
+        vec![2, 6, 7, 3],
+        vec![0, 4, 6, 2],
+        vec![1, 3, 7, 5],
+    ];
+    (v, f)
+}
+
+/// Concatenates meshes.
+pub fn join(parts: &[Polys]) -> Polys {
+    let mut v = Vec::new();
+    let mut f = Vec::new();
+    for (pv, pf) in parts {
+        let base = v.len() as u32;
+        v.extend_from_slice(pv);
+        f.extend(
+            pf.iter()
+                .map(|face| face.iter().map(|i| i + base).collect::<Vec<u32>>()),
+        );
+    }
+    (v, f)
+}
+
+pub fn mesh(p: &Polys) -> Mesh {
+    Mesh::from_polygons(&p.0, &p.1)
+}
+
+/// Closed cylinder along z: `n` side quads and two n-gon caps.
+pub fn cylinder(radius: f64, height: f64, n: usize) -> Polys {
+    let mut v = Vec::new();
+    for z in [0.0, height] {
+        for i in 0..n {
+            let a = 2.0 * PI * i as f64 / n as f64;
+            v.push([radius * a.cos(), radius * a.sin(), z]);
+        }
+    }
+    let n32 = n as u32;
+    let mut f: Vec<Vec<u32>> = (0..n32)
+        .map(|i| vec![i, (i + 1) % n32, n32 + (i + 1) % n32, n32 + i])
+        .collect();
+    f.push((0..n32).rev().collect());
+    f.push((n32..2 * n32).collect());
+    (v, f)
+}
+
+/// UV sphere: `rings` latitude bands, `segs` longitude segments, triangles at the poles.
+pub fn uv_sphere(radius: f64, rings: usize, segs: usize) -> Polys {
+    let mut v = vec![[0.0, 0.0, radius]];
+    for r in 1..rings {
+        let t = PI * r as f64 / rings as f64;
+        for s in 0..segs {
+            let p = 2.0 * PI * s as f64 / segs as f64;
+            v.push([
+                radius * t.sin() * p.cos(),
+                radius * t.sin() * p.sin(),
+                radius * t.cos(),
+            ]);
+        }
+    }
+    v.push([0.0, 0.0, -radius]);
+    let south = (v.len() - 1) as u32;
+    let idx = |r: usize, s: usize| (1 + (r - 1) * segs + s % segs) as u32;
+    let mut f = Vec::new();
+    for s in 0..segs {
+        f.push(vec![0, idx(1, s), idx(1, s + 1)]);
+        f.push(vec![south, idx(rings - 1, s + 1), idx(rings - 1, s)]);
+    }
+    for r in 1..rings - 1 {
+        for s in 0..segs {
+            f.push(vec![
+                idx(r, s),
+                idx(r + 1, s),
+                idx(r + 1, s + 1),
+                idx(r, s + 1),
+            ]);
+        }
+    }
+    (v, f)
+}
+
+/// Gable roof: a triangular prism along x, base width `w` (y), height `h` (z), length `l`.
+pub fn gable_roof(l: f64, w: f64, h: f64) -> Polys {
+    let v = vec![
+        [0.0, -w / 2.0, 0.0],
+        [0.0, w / 2.0, 0.0],
+        [0.0, 0.0, h],
+        [l, -w / 2.0, 0.0],
+        [l, w / 2.0, 0.0],
+        [l, 0.0, h],
+    ];
+    let f = vec![
+        vec![0, 2, 1],
+        vec![3, 4, 5],
+        vec![0, 1, 4, 3],
+        vec![0, 3, 5, 2],
+        vec![1, 2, 5, 4],
+    ];
+    (v, f)
+}
+
+/// Square plate `size`² of thickness `t` in the z = 0 plane, cut into `n`×`n` cells,
+/// with the middle `hole`×`hole` cells removed (a square hole through it).
+pub fn plate_with_hole(size: f64, t: f64, n: usize, hole: usize) -> Polys {
+    let lo = (n - hole) / 2;
+    let solid = |i: usize, j: usize| {
+        i < n && j < n && !(i >= lo && i < lo + hole && j >= lo && j < lo + hole)
+    };
+    let mut v = Vec::new();
+    let mut f = Vec::new();
+    let c = size / n as f64;
+    let id = |i: usize, j: usize, k: usize| ((k * (n + 1) + j) * (n + 1) + i) as u32;
+    for k in 0..2 {
+        for j in 0..=n {
+            for i in 0..=n {
+                v.push([i as f64 * c, j as f64 * c, k as f64 * t]);
+            }
+        }
+    }
+    for j in 0..n {
+        for i in 0..n {
+            if !solid(i, j) {
+                continue;
+            }
+            f.push(vec![
+                id(i, j, 0),
+                id(i, j + 1, 0),
+                id(i + 1, j + 1, 0),
+                id(i + 1, j, 0),
+            ]);
+            f.push(vec![
+                id(i, j, 1),
+                id(i + 1, j, 1),
+                id(i + 1, j + 1, 1),
+                id(i, j + 1, 1),
+            ]);
+            // Side walls where the neighbour cell is empty.
+            if i == 0 || !solid(i - 1, j) {
+                f.push(vec![
+                    id(i, j, 0),
+                    id(i, j, 1),
+                    id(i, j + 1, 1),
+                    id(i, j + 1, 0),
+                ]);
+            }
+            if !solid(i + 1, j) {
+                f.push(vec![
+                    id(i + 1, j, 0),
+                    id(i + 1, j + 1, 0),
+                    id(i + 1, j + 1, 1),
+                    id(i + 1, j, 1),
+                ]);
+            }
+            if j == 0 || !solid(i, j - 1) {
+                f.push(vec![
+                    id(i, j, 0),
+                    id(i + 1, j, 0),
+                    id(i + 1, j, 1),
+                    id(i, j, 1),
+                ]);
+            }
+            if !solid(i, j + 1) {
+                f.push(vec![
+                    id(i, j + 1, 0),
+                    id(i, j + 1, 1),
+                    id(i + 1, j + 1, 1),
+                    id(i + 1, j + 1, 0),
+                ]);
+            }
+        }
+    }
+    (v, f)
+}

@@ -1,0 +1,125 @@
+//! Same shape, same answer: the result must not depend on the thread count, the
+//! input's units or its position (georeferenced scans sit at 10^6 offsets).
+
+use primdecomp::export::json::to_json;
+use primdecomp::{decompose, demo, Decomposition, Kind, Mesh, Params, Primitive};
+
+fn demo_mesh(scale: f64, offset: [f64; 3]) -> Mesh {
+    let mut b = demo::demo_scene();
+    for p in &mut b.positions {
+        *p = [0, 1, 2].map(|k| p[k] * scale + offset[k]);
+    }
+    Mesh::from_builder(b)
+}
+
+fn params() -> Params {
+    Params {
+        targets: vec![120, 40],
+        ..Default::default()
+    }
+}
+
+/// The JSON minus timings (the only part allowed to differ between runs).
+fn stable_json(d: &Decomposition, level: usize) -> String {
+    let mut v: serde_json::Value = serde_json::from_str(&to_json(d, level, &params())).unwrap();
+    v["stats"]["seconds"] = serde_json::Value::Null;
+    v.to_string()
+}
+
+#[test]
+fn identical_for_1_2_and_8_threads() {
+    let mesh = demo_mesh(1.0, [0.0; 3]);
+    let runs: Vec<Decomposition> = [1, 2, 8]
+        .iter()
+        .map(|&t| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(t)
+                .build()
+                .unwrap();
+            pool.install(|| decompose(&mesh, &params()).unwrap())
+        })
+        .collect();
+    for level in 0..2 {
+        let a = stable_json(&runs[0], level);
+        assert_eq!(
+            a,
+            stable_json(&runs[1], level),
+            "1 vs 2 threads, level {level}"
+        );
+        assert_eq!(
+            a,
+            stable_json(&runs[2], level),
+            "1 vs 8 threads, level {level}"
+        );
+    }
+}
+
+/// Parameters of a primitive as numbers, for relative comparison.
+fn numbers(p: &Primitive) -> Vec<f64> {
+    match p {
+        Primitive::Box(b) => {
+            // Equal eigenvalues (a cube) leave the axis order to round-off: compare the
+            // box, not its axis labels.
+            let mut h = b.half.to_vec();
+            h.sort_by(f64::total_cmp);
+            [b.center.to_vec(), h].concat()
+        }
+        Primitive::Sphere(s) => [s.center.to_vec(), vec![s.radius]].concat(),
+        Primitive::Capsule(c) => [c.p0.to_vec(), c.p1.to_vec(), vec![c.radius]].concat(),
+        Primitive::Cylinder(c) => [c.p0.to_vec(), c.p1.to_vec(), vec![c.radius]].concat(),
+        Primitive::Frustum(f) => [f.p0.to_vec(), f.p1.to_vec(), vec![f.r0, f.r1]].concat(),
+        Primitive::Prism(p) => {
+            [p.center.to_vec(), vec![p.hx, p.hy, p.hz_top, p.hz_bottom]].concat()
+        }
+    }
+}
+
+fn assert_same_up_to(
+    a: &Decomposition,
+    b: &Decomposition,
+    scale: f64,
+    offset: [f64; 3],
+    what: &str,
+) {
+    for (la, lb) in a.levels.iter().zip(&b.levels) {
+        assert_eq!(la.counts(), lb.counts(), "{what}: kinds and counts differ");
+        let size = a
+            .input
+            .aabb_max
+            .iter()
+            .zip(&a.input.aabb_min)
+            .map(|(h, l)| h - l)
+            .fold(0.0, f64::max);
+        for (pa, pb) in la.primitives.iter().zip(&lb.primitives) {
+            let na = numbers(&pa.translated([0.0; 3]));
+            let nb = numbers(pb);
+            let positional = matches!(pa.kind(), Kind::Box | Kind::Sphere | Kind::Prism);
+            for (i, (x, y)) in na.iter().zip(&nb).enumerate() {
+                let is_point = if positional { i < 3 } else { i < 6 };
+                let want = x * scale + if is_point { offset[i % 3] } else { 0.0 };
+                let err = (want - y).abs() / (size * scale);
+                assert!(
+                    err < 1e-4,
+                    "{what}: {pa:?} vs {pb:?} (component {i}, rel. err {err})"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn same_decomposition_at_every_scale() {
+    let base = decompose(&demo_mesh(1.0, [0.0; 3]), &params()).unwrap();
+    for s in [1e-6, 1e-3, 1e3, 1e6] {
+        let d = decompose(&demo_mesh(s, [0.0; 3]), &params()).unwrap();
+        assert_same_up_to(&base, &d, s, [0.0; 3], &format!("scale {s}"));
+    }
+}
+
+#[test]
+fn same_decomposition_at_a_georeferenced_offset() {
+    let base = decompose(&demo_mesh(1.0, [0.0; 3]), &params()).unwrap();
+    let off = [1e6, -2e6, 5e5];
+    let d = decompose(&demo_mesh(1.0, off), &params()).unwrap();
+    assert_same_up_to(&base, &d, 1.0, off, "offset 1e6");
+}

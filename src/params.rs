@@ -38,8 +38,10 @@ pub struct Params {
     /// Optional cap on one merge's excess volume, as a fraction of the input's AABB volume (§3.3).
     pub max_excess_volume: Option<f64>,
     /// Cost weight k(kind) per kind, indexed by `Kind as usize` (§3.3).
+    #[serde(serialize_with = "by_kind")]
     pub weights: [f64; 6],
     /// Which kinds may be fitted, indexed by `Kind as usize`.
+    #[serde(serialize_with = "by_kind")]
     pub kinds: [bool; 6],
     /// ε of the tangent term in Q = area·(nnᵀ + ε·ttᵀ) (§3.4); 0 disables it.
     pub tangent_eps: f64,
@@ -53,6 +55,16 @@ pub struct Params {
     /// Remove boxes whose smallest half-extent is below this fraction of the diagonal,
     /// when every one of their points lies in another primitive (the Bistro figure's rule).
     pub remove_thin_boxes: Option<f64>,
+}
+
+/// Serializes a per-kind array as `{"box": …, "sphere": …, …}`.
+fn by_kind<T: Serialize, S: serde::Serializer>(v: &[T; 6], s: S) -> std::result::Result<S::Ok, S::Error> {
+    use serde::ser::SerializeMap;
+    let mut m = s.serialize_map(Some(6))?;
+    for k in Kind::ALL {
+        m.serialize_entry(k.name(), &v[k as usize])?;
+    }
+    m.end()
 }
 
 impl Default for Params {

@@ -58,7 +58,10 @@ pub struct Params {
 }
 
 /// Serializes a per-kind array as `{"box": …, "sphere": …, …}`.
-fn by_kind<T: Serialize, S: serde::Serializer>(v: &[T; 6], s: S) -> std::result::Result<S::Ok, S::Error> {
+fn by_kind<T: Serialize, S: serde::Serializer>(
+    v: &[T; 6],
+    s: S,
+) -> std::result::Result<S::Ok, S::Error> {
     use serde::ser::SerializeMap;
     let mut m = s.serialize_map(Some(6))?;
     for k in Kind::ALL {

@@ -577,7 +577,8 @@ mod tests {
         assert_eq!(v["settings"]["target"], 7);
         assert_eq!(v["settings"]["targets"], serde_json::json!([32]));
         assert_eq!(v["settings"]["dedup"], "exact");
-        assert_eq!(v["settings"]["weights"][5], 1.4);
+        assert_eq!(v["settings"]["weights"]["prism"], 1.4);
+        assert_eq!(v["settings"]["kinds"]["frustum"], true);
         let counts =
             serde_json::json!({"box":2,"sphere":1,"capsule":1,"cylinder":1,"frustum":1,"prism":1});
         assert_eq!(v["stats"]["counts"], counts);

@@ -3,7 +3,7 @@
 //! Every fit streams the points without allocating: one projection pass into the
 //! reusable [`FitScratch`], then passes over the local coordinates.
 
-use super::profile::{fit_profile, Objective};
+use super::profile::{fit_profile, Objective, ProfileScratch};
 use super::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
 use crate::math::{eigen_sym3, madd, scale, Sym3, V3};
 
@@ -52,6 +52,7 @@ pub struct FitConfig {
 #[derive(Clone, Debug, Default)]
 pub struct FitScratch {
     u: [Vec<f64>; 3],
+    profile: ProfileScratch,
 }
 
 /// The chosen primitive, its volume and its weighted cost k(kind)·V.
@@ -234,14 +235,14 @@ fn fit_capsule(s: &FitScratch, obb: &Obb, radial: f64, k: usize, min_half: f64) 
 }
 
 /// §3.2 "Frustum" on the best cylinder's axis `k`: exact profile fit (see `profile`).
-fn fit_frustum(s: &FitScratch, obb: &Obb, k: usize, min_half: f64) -> Frustum {
+fn fit_frustum(s: &mut FitScratch, obb: &Obb, k: usize, min_half: f64) -> Frustum {
     let h = obb.half[k];
     let (ua, ub, uc) = (&s.u[k], &s.u[(k + 1) % 3], &s.u[(k + 2) % 3]);
     let pt = |i: usize| {
         let sa = ((ua[i] + h) / (2.0 * h)).clamp(0.0, 1.0);
         (sa, (ub[i] * ub[i] + uc[i] * uc[i]).sqrt())
     };
-    let (r0, r1) = fit_profile(ua.len(), pt, Objective::Cone);
+    let (r0, r1) = fit_profile(ua.len(), pt, Objective::Cone, &mut s.profile);
     let (a, sign) = canonical_axis(obb, k);
     let (r0, r1) = if sign > 0.0 { (r0, r1) } else { (r1, r0) };
     Frustum {
@@ -263,11 +264,11 @@ const ORDERINGS: [[usize; 3]; 6] = [
 ];
 
 /// §3.2 "Isosceles Trapezoidal Prisms" for one axis ordering.
-fn fit_prism(s: &FitScratch, obb: &Obb, [x, y, z]: [usize; 3], min_half: f64) -> Prism {
+fn fit_prism(s: &mut FitScratch, obb: &Obb, [x, y, z]: [usize; 3], min_half: f64) -> Prism {
     let hy = obb.half[y];
     let (uy, uz) = (&s.u[y], &s.u[z]);
     let pt = |i: usize| (((uy[i] + hy) / (2.0 * hy)).clamp(0.0, 1.0), uz[i].abs());
-    let (b, a) = fit_profile(uy.len(), pt, Objective::Sum);
+    let (b, a) = fit_profile(uy.len(), pt, Objective::Sum, &mut s.profile);
     // Odd permutations flip handedness; z enters only through |z|, so flip it back.
     let even = matches!([x, y, z], [0, 1, 2] | [1, 2, 0] | [2, 0, 1]);
     let az = if even {

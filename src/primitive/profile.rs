@@ -1,15 +1,15 @@
-//! Exact, allocation-free fit of a linear radius profile over a 2D point stream,
-//! shared by the frustum (Alg. 2) and the trapezoidal prism (Alg. 3).
+//! Exact fit of a linear radius profile over a 2D point set, shared by the frustum
+//! (Alg. 2) and the trapezoidal prism (Alg. 3).
 //!
 //! Points are `(s, z)` with `s ∈ [0, 1]` along the primitive's axis and `z ≥ 0` the
 //! distance that must be covered at `s`. We look for the line `l(s) = l0 + (l1 − l0)·s`
 //! lying on or above every point, with `l0, l1 ≥ 0`, that minimises a convex objective
-//! of `(l0, l1)`. The optimum is a supporting line of the upper convex hull of the
-//! points, so we start on the highest point and walk along the hull (one streaming pass
-//! per hull vertex) in the direction that lowers the objective. The paper's Alg. 2/3
+//! of `(l0, l1)`. Every such line supports the points' upper convex hull at one of its
+//! vertices, with a slope between the slopes of the two hull edges there; so we build
+//! the upper hull (sort + monotone chain in a reusable buffer) and, at each vertex, take
+//! the objective's best slope clamped to that vertex's range. The paper's Alg. 2/3
 //! estimate the two half-widths with a streaming heuristic and then "FixSide"; this
-//! walk reaches the optimum the heuristic approximates (see ARCHITECTURE.md), and every
-//! intermediate line is already enclosing, so the iteration cap only costs tightness.
+//! reaches the optimum that heuristic approximates (ARCHITECTURE.md).
 
 /// What the line minimises.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -20,122 +20,113 @@ pub enum Objective {
     Cone,
 }
 
-/// Hull steps before we stop walking (the line is valid at every step).
-const MAX_STEPS: usize = 48;
-
 impl Objective {
-    /// Unconstrained best slope of a line through pivot `(ps, pz)`; `cur` when indifferent.
-    fn best_slope(self, ps: f64, pz: f64, cur: f64) -> f64 {
-        match self {
-            Objective::Sum => {
-                // d(l0 + l1)/dm = 1 − 2·ps.
-                if ps < 0.5 {
-                    f64::NEG_INFINITY
-                } else if ps > 0.5 {
-                    f64::INFINITY
-                } else {
-                    cur
-                }
-            }
+    /// Best slope of a line through pivot `(ps, pz)` within `[lo, hi]`.
+    fn best_slope(self, ps: f64, pz: f64, lo: f64, hi: f64) -> f64 {
+        let want = match self {
+            // d(l0 + l1)/dm = 1 − 2·ps: go to whichever end lowers it.
+            Objective::Sum if ps < 0.5 => f64::NEG_INFINITY,
+            Objective::Sum if ps > 0.5 => f64::INFINITY,
+            Objective::Sum => 0.0,
             Objective::Cone => {
                 // l0 = pz + m·u, l1 = pz + m·v with u = −ps, v = 1 − ps; zero of the derivative.
                 let (u, v) = (-ps, 1.0 - ps);
                 -3.0 * pz * (u + v) / (2.0 * (u * u + u * v + v * v))
             }
+        };
+        want.clamp(lo, hi)
+    }
+    fn value(self, l0: f64, l1: f64) -> f64 {
+        match self {
+            Objective::Sum => l0 + l1,
+            Objective::Cone => l0 * l0 + l0 * l1 + l1 * l1,
         }
     }
 }
 
-/// Feasible slope interval of lines through the pivot, and the hull points bounding it.
-struct Bounds {
-    lo: f64,
-    lo_pt: Option<(f64, f64)>,
-    hi: f64,
-    hi_pt: Option<(f64, f64)>,
+/// Reusable buffer of the 2D points and their hull.
+#[derive(Clone, Debug, Default)]
+pub struct ProfileScratch {
+    pts: Vec<(f64, f64)>,
+    hull: Vec<(f64, f64)>,
 }
 
-fn slope_bounds(n: usize, pt: &impl Fn(usize) -> (f64, f64), ps: f64, pz: f64) -> Bounds {
-    let mut b = Bounds {
-        lo: f64::NEG_INFINITY,
-        lo_pt: None,
-        hi: f64::INFINITY,
-        hi_pt: None,
-    };
-    for i in 0..n {
-        let (s, z) = pt(i);
-        let ds = s - ps;
-        if ds > 0.0 {
-            let m = (z - pz) / ds;
-            // Among collinear points take the farthest, so the walk always advances.
-            if m > b.lo || (m == b.lo && b.lo_pt.is_some_and(|q| s > q.0)) {
-                b.lo = m;
-                b.lo_pt = Some((s, z));
-            }
-        } else if ds < 0.0 {
-            let m = (z - pz) / ds;
-            if m < b.hi || (m == b.hi && b.hi_pt.is_some_and(|q| s < q.0)) {
-                b.hi = m;
-                b.hi_pt = Some((s, z));
+/// Upper convex hull, left to right, of `pts` (sorted by s, then z descending).
+fn upper_hull(pts: &[(f64, f64)], hull: &mut Vec<(f64, f64)>) {
+    hull.clear();
+    for &p in pts {
+        if hull.last().is_some_and(|q| q.0 == p.0) {
+            continue; // same s, lower z: never on the upper hull
+        }
+        while hull.len() >= 2 {
+            let (a, b) = (hull[hull.len() - 2], hull[hull.len() - 1]);
+            // Drop b when it is on or below the segment a→p.
+            if (b.0 - a.0) * (p.1 - a.1) - (b.1 - a.1) * (p.0 - a.0) >= 0.0 {
+                hull.pop();
+            } else {
+                break;
             }
         }
+        hull.push(p);
     }
-    // l1 ≥ 0 and l0 ≥ 0 are constraints too.
-    if ps < 1.0 && -pz / (1.0 - ps) > b.lo {
-        b.lo = -pz / (1.0 - ps);
-        b.lo_pt = None;
-    }
-    if ps > 0.0 && pz / ps < b.hi {
-        b.hi = pz / ps;
-        b.hi_pt = None;
-    }
-    b
 }
 
 /// Lowest-objective enclosing line `(l0, l1)` over the `n` points `pt(i) = (s, z)`.
-pub fn fit_profile(n: usize, pt: impl Fn(usize) -> (f64, f64), obj: Objective) -> (f64, f64) {
+pub fn fit_profile(
+    n: usize,
+    pt: impl Fn(usize) -> (f64, f64),
+    obj: Objective,
+    sc: &mut ProfileScratch,
+) -> (f64, f64) {
     if n == 0 {
         return (0.0, 0.0);
     }
-    // Start on the highest point (ties: nearest the middle) with a flat line.
-    let (mut ps, mut pz) = pt(0);
-    for i in 1..n {
-        let (s, z) = pt(i);
-        if z > pz || (z == pz && (s - 0.5).abs() < (ps - 0.5).abs()) {
-            (ps, pz) = (s, z);
-        }
-    }
-    let mut m = 0.0;
-    let mut dir = 0i8;
-    for _ in 0..MAX_STEPS {
-        let b = slope_bounds(n, &pt, ps, pz);
-        if b.lo > b.hi {
-            break; // round-off on a degenerate hull: keep the current (valid) line
-        }
-        let want = obj.best_slope(ps, pz, m);
-        if want < b.lo {
-            m = b.lo;
-            match b.lo_pt {
-                Some(q) if dir >= 0 => (ps, pz, dir) = (q.0, q.1, 1),
-                _ => break,
-            }
-        } else if want > b.hi {
-            m = b.hi;
-            match b.hi_pt {
-                Some(q) if dir <= 0 => (ps, pz, dir) = (q.0, q.1, -1),
-                _ => break,
-            }
+    sc.pts.clear();
+    sc.pts.extend((0..n).map(&pt));
+    sc.pts
+        .sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(b.1.total_cmp(&a.1)));
+    upper_hull(&sc.pts, &mut sc.hull);
+    let h = &sc.hull;
+    let zmax = h.iter().fold(0.0f64, |m, p| m.max(p.1));
+    let mut best = (zmax, zmax);
+    let mut best_v = obj.value(zmax, zmax);
+    for k in 0..h.len() {
+        let (ps, pz) = h[k];
+        let slope = |a: (f64, f64), b: (f64, f64)| (b.1 - a.1) / (b.0 - a.0);
+        // Supporting slopes at this vertex lie between its two edges' slopes…
+        let mut hi = if k > 0 {
+            slope(h[k - 1], h[k])
         } else {
-            m = want;
-            break;
+            f64::INFINITY
+        };
+        let mut lo = if k + 1 < h.len() {
+            slope(h[k], h[k + 1])
+        } else {
+            f64::NEG_INFINITY
+        };
+        // …and keep both ends non-negative.
+        if ps > 0.0 {
+            hi = hi.min(pz / ps);
+        }
+        if ps < 1.0 {
+            lo = lo.max(-pz / (1.0 - ps));
+        }
+        if lo > hi {
+            continue;
+        }
+        let m = obj.best_slope(ps, pz, lo, hi);
+        let (l0, l1) = (pz - m * ps, pz + m * (1.0 - ps));
+        let v = obj.value(l0, l1);
+        if v < best_v {
+            (best, best_v) = ((l0, l1), v);
         }
     }
-    let (mut l0, mut l1) = (pz - m * ps, pz + m * (1.0 - ps));
     // Guarantee enclosure whatever round-off did: lift by the worst violation.
-    let mut worst: f64 = 0.0;
-    for i in 0..n {
-        let (s, z) = pt(i);
-        worst = worst.max(z - (l0 + (l1 - l0) * s));
-    }
+    let (mut l0, mut l1) = best;
+    let worst = sc
+        .pts
+        .iter()
+        .fold(0.0f64, |w, &(s, z)| w.max(z - (l0 + (l1 - l0) * s)));
     l0 += worst;
     l1 += worst;
     (l0.max(0.0), l1.max(0.0))
@@ -176,7 +167,12 @@ mod tests {
         let pts: Vec<(f64, f64)> = (0..=10)
             .map(|i| (i as f64 / 10.0, 1.0 - i as f64 / 10.0))
             .collect();
-        let (l0, l1) = fit_profile(pts.len(), |i| pts[i], Objective::Sum);
+        let (l0, l1) = fit_profile(
+            pts.len(),
+            |i| pts[i],
+            Objective::Sum,
+            &mut ProfileScratch::default(),
+        );
         assert!((l0 - 1.0).abs() < 1e-12 && l1.abs() < 1e-12, "{l0} {l1}");
     }
 
@@ -193,7 +189,7 @@ mod tests {
             let n = 1 + (rnd() * 30.0) as usize;
             let pts: Vec<(f64, f64)> = (0..n).map(|_| (rnd(), rnd())).collect();
             for obj in [Objective::Sum, Objective::Cone] {
-                let l = fit_profile(n, |i| pts[i], obj);
+                let l = fit_profile(n, |i| pts[i], obj, &mut ProfileScratch::default());
                 assert!(covers(&pts, l));
                 let f = |c: (f64, f64)| match obj {
                     Objective::Sum => c.0 + c.1,
@@ -213,10 +209,14 @@ mod tests {
 
     #[test]
     fn degenerate_inputs() {
-        assert_eq!(fit_profile(0, |_| (0.0, 0.0), Objective::Sum), (0.0, 0.0));
-        let l = fit_profile(3, |_| (0.5, 2.0), Objective::Cone);
+        let sc = &mut ProfileScratch::default();
+        assert_eq!(
+            fit_profile(0, |_| (0.0, 0.0), Objective::Sum, sc),
+            (0.0, 0.0)
+        );
+        let l = fit_profile(3, |_| (0.5, 2.0), Objective::Cone, sc);
         assert!((l.0 - 2.0).abs() < 1e-12 && (l.1 - 2.0).abs() < 1e-12);
         let pts = [(0.0, 0.0), (1.0, 0.0), (0.3, 0.0)];
-        assert_eq!(fit_profile(3, |i| pts[i], Objective::Sum), (0.0, 0.0));
+        assert_eq!(fit_profile(3, |i| pts[i], Objective::Sum, sc), (0.0, 0.0));
     }
 }

@@ -74,21 +74,19 @@ fn tolerance_remap(mesh: &Mesh, tol: f64) -> Vec<u32> {
     let cells: Vec<[i64; 3]> = order.iter().map(|&i| cell(i as usize)).collect();
     let mut parent: Vec<u32> = (0..n as u32).collect();
     let tol2 = tol * tol;
+    let offsets = (0..27).map(|k| [k % 3 - 1, k / 3 % 3 - 1, k / 9 - 1]);
+    let offsets: Vec<[i64; 3]> = offsets.collect();
     for (pos, &i) in order.iter().enumerate() {
         let c = cells[pos];
-        for dx in -1..=1 {
-            for dy in -1..=1 {
-                for dz in -1..=1 {
-                    let target = [c[0] + dx, c[1] + dy, c[2] + dz];
-                    let mut k = cells.partition_point(|x| *x < target);
-                    while k < n && cells[k] == target {
-                        let j = order[k];
-                        if j < i && dist2(mesh, i, j) <= tol2 {
-                            union(&mut parent, i, j);
-                        }
-                        k += 1;
-                    }
+        for d in &offsets {
+            let target = [c[0] + d[0], c[1] + d[1], c[2] + d[2]];
+            let mut k = cells.partition_point(|x| *x < target);
+            while k < n && cells[k] == target {
+                let j = order[k];
+                if j < i && dist2(mesh, i, j) <= tol2 {
+                    union(&mut parent, i, j);
                 }
+                k += 1;
             }
         }
     }

@@ -297,16 +297,16 @@ pub fn load(path: &Path) -> Result<Mesh> {
         path: path.to_path_buf(),
         source,
     };
+    let meta = std::fs::metadata(path).map_err(io_err)?;
+    if meta.is_dir() {
+        return Err(Error::format(path, "is a directory, not a mesh file"));
+    }
     let format = Format::from_path(path).ok_or_else(|| {
         Error::format(
             path,
             "unknown extension: expected .obj, .ply, .stl, .off, .gltf or .glb",
         )
     })?;
-    let meta = std::fs::metadata(path).map_err(io_err)?;
-    if meta.is_dir() {
-        return Err(Error::format(path, "is a directory, not a mesh file"));
-    }
     let file = std::fs::File::open(path).map_err(io_err)?;
     let builder = if meta.len() == 0 {
         parse_bytes(&[], format, path)?

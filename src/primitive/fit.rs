@@ -3,7 +3,7 @@
 //! Every fit streams the points without allocating: one projection pass into the
 //! reusable [`FitScratch`], then passes over the local coordinates.
 
-use super::profile::{fit_profile, Objective, ProfileScratch};
+use super::profile::{fit_profile_sorted, Objective, ProfileScratch};
 use super::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
 use crate::math::{eigen_sym3, madd, scale, Sym3, V3};
 
@@ -52,7 +52,23 @@ pub struct FitConfig {
 #[derive(Clone, Debug, Default)]
 pub struct FitScratch {
     u: [Vec<f64>; 3],
+    /// Point indices sorted along each axis, shared by the frustum and the prisms.
+    order: [Vec<u32>; 3],
     profile: ProfileScratch,
+}
+
+impl FitScratch {
+    /// Sorts the point indices along each axis the profile fits will need.
+    fn sort_axes(&mut self, axes: [bool; 3]) {
+        for k in 0..3 {
+            let (u, o) = (&self.u[k], &mut self.order[k]);
+            o.clear();
+            if axes[k] {
+                o.extend(0..u.len() as u32);
+                o.sort_unstable_by(|&a, &b| u[a as usize].total_cmp(&u[b as usize]));
+            }
+        }
+    }
 }
 
 /// The chosen primitive, its volume and its weighted cost k(kind)·V.
@@ -97,11 +113,16 @@ pub fn fit_best(cloud: &Cloud, q: &Sym3, cfg: &FitConfig, s: &mut FitScratch) ->
             best.offer(Kind::Capsule, Primitive::Capsule(c), c.volume());
         }
     }
-    if cfg.enabled[Kind::Frustum as usize] {
+    let (want_frustum, want_prism) = (
+        cfg.enabled[Kind::Frustum as usize],
+        cfg.enabled[Kind::Prism as usize],
+    );
+    s.sort_axes([0, 1, 2].map(|k| want_prism || (want_frustum && k == best_cyl)));
+    if want_frustum {
         let f = fit_frustum(s, &obb, best_cyl, cfg.min_half);
         best.offer(Kind::Frustum, Primitive::Frustum(f), f.volume());
     }
-    if cfg.enabled[Kind::Prism as usize] {
+    if want_prism {
         for order in ORDERINGS {
             let p = fit_prism(s, &obb, order, cfg.min_half);
             best.offer(Kind::Prism, Primitive::Prism(p), p.volume());
@@ -242,7 +263,7 @@ fn fit_frustum(s: &mut FitScratch, obb: &Obb, k: usize, min_half: f64) -> Frustu
         let sa = ((ua[i] + h) / (2.0 * h)).clamp(0.0, 1.0);
         (sa, (ub[i] * ub[i] + uc[i] * uc[i]).sqrt())
     };
-    let (r0, r1) = fit_profile(ua.len(), pt, Objective::Cone, &mut s.profile);
+    let (r0, r1) = fit_profile_sorted(&s.order[k], pt, Objective::Cone, &mut s.profile);
     let (a, sign) = canonical_axis(obb, k);
     let (r0, r1) = if sign > 0.0 { (r0, r1) } else { (r1, r0) };
     Frustum {
@@ -268,7 +289,7 @@ fn fit_prism(s: &mut FitScratch, obb: &Obb, [x, y, z]: [usize; 3], min_half: f64
     let hy = obb.half[y];
     let (uy, uz) = (&s.u[y], &s.u[z]);
     let pt = |i: usize| (((uy[i] + hy) / (2.0 * hy)).clamp(0.0, 1.0), uz[i].abs());
-    let (b, a) = fit_profile(uy.len(), pt, Objective::Sum, &mut s.profile);
+    let (b, a) = fit_profile_sorted(&s.order[y], pt, Objective::Sum, &mut s.profile);
     // Odd permutations flip handedness; z enters only through |z|, so flip it back.
     let even = matches!([x, y, z], [0, 1, 2] | [1, 2, 0] | [2, 0, 1]);
     let az = if even {

@@ -44,19 +44,25 @@ impl Objective {
     }
 }
 
-/// Reusable buffer of the 2D points and their hull.
+/// Reusable buffer of the hull.
 #[derive(Clone, Debug, Default)]
 pub struct ProfileScratch {
-    pts: Vec<(f64, f64)>,
     hull: Vec<(f64, f64)>,
+    order: Vec<u32>,
 }
 
-/// Upper convex hull, left to right, of `pts` (sorted by s, then z descending).
-fn upper_hull(pts: &[(f64, f64)], hull: &mut Vec<(f64, f64)>) {
+/// Upper convex hull, left to right, of the points `pt(i)` visited in increasing `s`.
+fn upper_hull(order: &[u32], pt: &impl Fn(usize) -> (f64, f64), hull: &mut Vec<(f64, f64)>) {
     hull.clear();
-    for &p in pts {
-        if hull.last().is_some_and(|q| q.0 == p.0) {
-            continue; // same s, lower z: never on the upper hull
+    for &i in order {
+        let p = pt(i as usize);
+        if let Some(q) = hull.last() {
+            if q.0 == p.0 {
+                if q.1 >= p.1 {
+                    continue; // same s, not higher: never on the upper hull
+                }
+                hull.pop();
+            }
         }
         while hull.len() >= 2 {
             let (a, b) = (hull[hull.len() - 2], hull[hull.len() - 1]);
@@ -78,22 +84,45 @@ pub fn fit_profile(
     obj: Objective,
     sc: &mut ProfileScratch,
 ) -> (f64, f64) {
-    if n == 0 {
+    let mut order = std::mem::take(&mut sc.order);
+    order.clear();
+    order.extend(0..n as u32);
+    order.sort_unstable_by(|&a, &b| pt(a as usize).0.total_cmp(&pt(b as usize).0));
+    let l = fit_profile_sorted(&order, pt, obj, sc);
+    sc.order = order;
+    l
+}
+
+/// [`fit_profile`] for points already ordered by increasing `s` (`order` lists them),
+/// so that several profiles over the same axis share one sort.
+pub fn fit_profile_sorted(
+    order: &[u32],
+    pt: impl Fn(usize) -> (f64, f64),
+    obj: Objective,
+    sc: &mut ProfileScratch,
+) -> (f64, f64) {
+    if order.is_empty() {
         return (0.0, 0.0);
     }
-    sc.pts.clear();
-    sc.pts.extend((0..n).map(&pt));
-    sc.pts
-        .sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(b.1.total_cmp(&a.1)));
-    upper_hull(&sc.pts, &mut sc.hull);
-    let h = &sc.hull;
+    upper_hull(order, &pt, &mut sc.hull);
+    let (l0, l1) = best_support(&sc.hull, obj);
+    // Guarantee enclosure whatever round-off did: lift by the worst violation.
+    let worst = order.iter().fold(0.0f64, |w, &i| {
+        let (s, z) = pt(i as usize);
+        w.max(z - (l0 + (l1 - l0) * s))
+    });
+    ((l0 + worst).max(0.0), (l1 + worst).max(0.0))
+}
+
+/// The best supporting line of an upper hull: at each vertex, the objective's best slope
+/// within the slopes of its two edges and the non-negativity of both ends.
+fn best_support(h: &[(f64, f64)], obj: Objective) -> (f64, f64) {
     let zmax = h.iter().fold(0.0f64, |m, p| m.max(p.1));
     let mut best = (zmax, zmax);
     let mut best_v = obj.value(zmax, zmax);
+    let slope = |a: (f64, f64), b: (f64, f64)| (b.1 - a.1) / (b.0 - a.0);
     for k in 0..h.len() {
         let (ps, pz) = h[k];
-        let slope = |a: (f64, f64), b: (f64, f64)| (b.1 - a.1) / (b.0 - a.0);
-        // Supporting slopes at this vertex lie between its two edges' slopes…
         let mut hi = if k > 0 {
             slope(h[k - 1], h[k])
         } else {
@@ -104,7 +133,6 @@ pub fn fit_profile(
         } else {
             f64::NEG_INFINITY
         };
-        // …and keep both ends non-negative.
         if ps > 0.0 {
             hi = hi.min(pz / ps);
         }
@@ -121,15 +149,7 @@ pub fn fit_profile(
             (best, best_v) = ((l0, l1), v);
         }
     }
-    // Guarantee enclosure whatever round-off did: lift by the worst violation.
-    let (mut l0, mut l1) = best;
-    let worst = sc
-        .pts
-        .iter()
-        .fold(0.0f64, |w, &(s, z)| w.max(z - (l0 + (l1 - l0) * s)));
-    l0 += worst;
-    l1 += worst;
-    (l0.max(0.0), l1.max(0.0))
+    best
 }
 
 #[cfg(test)]

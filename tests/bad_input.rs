@@ -91,7 +91,7 @@ fn binary_ply(declared_faces: u32, faces: u32) -> Vec<u8> {
         v.iter().for_each(|c| b.extend_from_slice(&c.to_le_bytes()));
     }
     for _ in 0..faces {
-        b.push(3);
+        b.extend_from_slice(&[3u8]); // list length
         [0i32, 1, 2]
             .iter()
             .for_each(|i| b.extend_from_slice(&i.to_le_bytes()));

@@ -164,7 +164,7 @@ fn input_info(mesh: &Mesh) -> InputInfo {
 const COST_GRID: f64 = 1.0 / (1u64 << 40) as f64;
 
 /// Fit settings with the minimum extent and excess cap made absolute for this input.
-fn evaluator<'a>(mesh: &'a Mesh, welded: &'a [u32], params: &Params) -> Evaluator<'a> {
+pub fn evaluator<'a>(mesh: &'a Mesh, welded: &'a [u32], params: &Params) -> Evaluator<'a> {
     let diag = mesh.diagonal();
     // A mesh collapsed to one point still needs positive volumes to rank merges.
     let min_half = if diag > 0.0 {
@@ -193,7 +193,7 @@ fn evaluator<'a>(mesh: &'a Mesh, welded: &'a [u32], params: &Params) -> Evaluato
 }
 
 /// Volume of each face's own primitive, in parallel.
-fn seed_volumes(ev: &Evaluator, q: &[crate::math::Sym3]) -> Vec<f64> {
+pub fn seed_volumes(ev: &Evaluator, q: &[crate::math::Sym3]) -> Vec<f64> {
     (0..q.len())
         .into_par_iter()
         .with_min_len(1024)

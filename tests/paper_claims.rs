@@ -134,3 +134,44 @@ fn demo_scene_keeps_ring_holes_open() {
         assert!(hit.is_empty(), "{what} hole filled by {hit:?}");
     }
 }
+
+/// The excess-volume cap (§3.3) refuses merges that add more than its share of the
+/// input's AABB volume, even when that leaves more primitives than N.
+#[test]
+fn excess_volume_cap_stops_costly_merges() {
+    let two = join(&[
+        cuboid([0.0, 0.0, 0.0], [1.0, 1.0, 1.0]),
+        cuboid([9.0, 0.0, 0.0], [10.0, 1.0, 1.0]),
+    ]);
+    let mut params = with_target(1);
+    params.max_excess_volume = Some(0.5);
+    let p = run(&two, &params);
+    assert_eq!(
+        p.len(),
+        2,
+        "each box closes (adds ≤ 1 of the AABB's 10 units) but bridging adds 8: refused"
+    );
+    params.max_excess_volume = None;
+    assert_eq!(run(&two, &params).len(), 1);
+}
+
+/// A disabled kind is never produced: the cylinder becomes boxes or capsules instead.
+#[test]
+fn disabled_kinds_are_never_fitted() {
+    let mut params = with_target(1);
+    params.kinds[Kind::Cylinder as usize] = false;
+    params.kinds[Kind::Frustum as usize] = false;
+    params.kinds[Kind::Prism as usize] = false;
+    let p = run(&cylinder(0.5, 2.0, 48), &params);
+    assert_eq!(p.len(), 1);
+    assert!(
+        matches!(p[0].kind(), Kind::Box | Kind::Capsule | Kind::Sphere),
+        "{p:?}"
+    );
+    params.kinds = [false; 6];
+    params.kinds[Kind::Sphere as usize] = true;
+    assert_eq!(
+        run(&cylinder(0.5, 2.0, 48), &params)[0].kind(),
+        Kind::Sphere
+    );
+}

@@ -6,6 +6,7 @@ pub mod atomic;
 pub mod json;
 pub mod obj;
 
+pub use crate::math::quat::{axes_from_quat, quat_from_axes};
 pub use atomic::{output_path_for, write_atomic};
-pub use json::{axes_from_quat, quat_from_axes, read_primitives, to_json};
+pub use json::{read_primitives, to_json};
 pub use obj::{tessellate, to_obj, Tess, DEFAULT_DETAIL};

@@ -272,7 +272,7 @@ pub fn to_obj(level: &Level, detail: usize) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::export::json::axes_from_quat;
+    use crate::math::quat::axes_from_quat;
     use crate::math::{norm, norm2};
     use crate::primitive::{Capsule, Cylinder, Frustum, Kind, Obb, Prism, Sphere};
     use rand::{Rng, SeedableRng};

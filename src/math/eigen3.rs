@@ -246,33 +246,10 @@ mod tests {
         (values, vectors)
     }
 
-    /// Rotation matrix of a uniformly random unit quaternion.
+    /// Rotation matrix of a uniformly random unit quaternion (rows: the transpose of
+    /// a random rotation is a random rotation).
     fn random_rotation(rng: &mut ChaCha8Rng) -> M3 {
-        let q = loop {
-            let q: [f64; 4] = [0; 4].map(|_| rng.gen_range(-1.0..1.0));
-            let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
-            if n > 0.1 && n <= 1.0 {
-                break q.map(|x| x / n);
-            }
-        };
-        let [x, y, z, w] = q;
-        [
-            [
-                1.0 - 2.0 * (y * y + z * z),
-                2.0 * (x * y - z * w),
-                2.0 * (x * z + y * w),
-            ],
-            [
-                2.0 * (x * y + z * w),
-                1.0 - 2.0 * (x * x + z * z),
-                2.0 * (y * z - x * w),
-            ],
-            [
-                2.0 * (x * z - y * w),
-                2.0 * (y * z + x * w),
-                1.0 - 2.0 * (x * x + y * y),
-            ],
-        ]
+        crate::math::quat::random_axes(rng)
     }
 
     /// `R diag(l) Rᵀ`.

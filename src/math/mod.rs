@@ -3,6 +3,7 @@
 
 pub mod eigen3;
 pub mod hull;
+pub mod quat;
 pub mod sym3;
 pub mod vec3;
 

@@ -87,7 +87,7 @@ fn stages(c: &mut Criterion) {
         g.bench_function("quadrics", |b| {
             b.iter(|| quadric::face_quadrics(m, p.tangent_eps, &mut q_bench))
         });
-        let ev = evaluator(m, &welded, &p);
+        let ev = evaluator(m, &welded, &p, m.aabb());
         g.bench_function("seed", |b| b.iter(|| seed_volumes(&ev, &q)));
         let vols = seed_volumes(&ev, &q);
         g.bench_function("merge", |b| {
@@ -106,6 +106,7 @@ fn stages(c: &mut Criterion) {
         );
         let snap = &merged.snapshots[0];
         let cleanup = Cleanup {
+            diagonal: m.diagonal(),
             remove_contained: true,
             thin_box_half: None,
         };

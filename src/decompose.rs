@@ -97,8 +97,11 @@ pub fn decompose_with_progress(
             path: "<mesh>".into(),
         });
     }
+    // One pass over the used vertices gives every size-relative setting its scale.
+    let bounds = mesh.aabb();
+    let diag = crate::math::norm(crate::math::sub(bounds.1, bounds.0));
     let mut dec = Decomposition {
-        input: input_info(mesh),
+        input: input_info(mesh, bounds),
         ..Default::default()
     };
     let t = &mut dec.timings;
@@ -119,7 +122,7 @@ pub fn decompose_with_progress(
     t.push("quadrics", now);
     // One primitive per face seeds the volumes (Alg. 1, line 2).
     let now = Instant::now();
-    let ev = evaluator(mesh, &welded, params);
+    let ev = evaluator(mesh, &welded, params, bounds);
     let volumes = seed_volumes(&ev, &q);
     let clusters = Clusters::new(q, volumes, &pairs);
     t.push("seed", now);
@@ -142,15 +145,14 @@ pub fn decompose_with_progress(
                 .iter()
                 .find(|s| s.target == n)
                 .expect("snapshot per target");
-            finish_level(mesh, snap, params)
+            finish_level(mesh, snap, params, diag)
         })
         .collect();
     dec.timings.push("postprocess", now);
     Ok(dec)
 }
 
-fn input_info(mesh: &Mesh) -> InputInfo {
-    let (lo, hi) = mesh.aabb();
+fn input_info(mesh: &Mesh, (lo, hi): (V3, V3)) -> InputInfo {
     InputInfo {
         path: None,
         faces: mesh.face_count(),
@@ -163,16 +165,22 @@ fn input_info(mesh: &Mesh) -> InputInfo {
 /// Merge costs are compared on a grid of this fraction of the diagonal cubed (2^-40).
 const COST_GRID: f64 = 1.0 / (1u64 << 40) as f64;
 
-/// Fit settings with the minimum extent and excess cap made absolute for this input.
-pub fn evaluator<'a>(mesh: &'a Mesh, welded: &'a [u32], params: &Params) -> Evaluator<'a> {
-    let diag = mesh.diagonal();
+/// Fit settings with the minimum extent and excess cap made absolute for this input,
+/// whose used vertices span `bounds` (re-centred, from [`Mesh::aabb`]).
+pub fn evaluator<'a>(
+    mesh: &'a Mesh,
+    welded: &'a [u32],
+    params: &Params,
+    bounds: (V3, V3),
+) -> Evaluator<'a> {
+    let (lo, hi) = bounds;
+    let diag = crate::math::norm(crate::math::sub(hi, lo));
     // A mesh collapsed to one point still needs positive volumes to rank merges.
     let min_half = if diag > 0.0 {
         params.min_extent_rel * diag
     } else {
         f64::MIN_POSITIVE.sqrt()
     };
-    let (lo, hi) = mesh.aabb();
     let aabb_volume: f64 = (0..3)
         .map(|k| (hi[k] - lo[k]).max(2.0 * min_half))
         .product();
@@ -204,9 +212,9 @@ pub fn seed_volumes(ev: &Evaluator, q: &[crate::math::Sym3]) -> Vec<f64> {
 }
 
 /// Post-processes one snapshot and moves it to world coordinates.
-fn finish_level(mesh: &Mesh, snap: &crate::merge::Snapshot, params: &Params) -> Level {
-    let diag = mesh.diagonal();
+fn finish_level(mesh: &Mesh, snap: &crate::merge::Snapshot, params: &Params, diag: f64) -> Level {
     let cleanup = Cleanup {
+        diagonal: diag,
         remove_contained: params.remove_contained,
         thin_box_half: params.remove_thin_boxes.map(|t| t * diag),
     };

@@ -15,6 +15,8 @@ const TOL_REL: f64 = 1e-9;
 /// What to remove.
 #[derive(Clone, Copy, Debug)]
 pub struct Cleanup {
+    /// The input's AABB diagonal (scales the containment slack).
+    pub diagonal: f64,
     pub remove_contained: bool,
     /// Boxes whose smallest half-extent is below this (absolute) are removed when
     /// every one of their points lies in some other kept primitive.
@@ -33,7 +35,7 @@ pub fn keep_mask(
     if n < 2 {
         return keep;
     }
-    let tol = TOL_REL * mesh.diagonal().max(f64::MIN_POSITIVE);
+    let tol = TOL_REL * cleanup.diagonal.max(f64::MIN_POSITIVE);
     let boxes: Vec<(V3, V3)> = prims.iter().map(|p| inflate(p.aabb(), tol)).collect();
     let mut pinned = vec![false; n];
     let mut order: Vec<usize> = (0..n).collect();
@@ -97,8 +99,7 @@ fn remove_if_covered(
     let mut used = Vec::new();
     for &v in verts {
         let p = mesh.pos(v);
-        let host = (0..prims.len())
-            .find(|&j| j != i && keep[j] && in_box(boxes[j], p) && prims[j].contains(p, tol));
+        let host = (0..prims.len()).find(|&j| j != i && keep[j] && holds(prims, boxes, j, p, tol));
         match host {
             Some(j) => used.push(j),
             None => return,
@@ -126,6 +127,11 @@ fn hosts_of(
                 && verts.iter().all(|&v| prims[j].contains(mesh.pos(v), tol))
         })
         .collect()
+}
+
+/// Whether primitive `j` contains `p` (its inflated AABB rejects most misses cheaply).
+fn holds(prims: &[Primitive], boxes: &[(V3, V3)], j: usize, p: V3, tol: f64) -> bool {
+    in_box(boxes[j], p) && prims[j].contains(p, tol)
 }
 
 fn inflate((lo, hi): (V3, V3), t: f64) -> (V3, V3) {

@@ -36,13 +36,6 @@ pub enum Error {
         "{path}: the mesh has no polygon faces (faces with fewer than 3 vertices are skipped)"
     )]
     EmptyMesh { path: PathBuf },
-    /// The input would need more memory than the configured limit.
-    #[error("{path}: needs about {needed_mib} MiB, over the limit of {limit_mib} MiB; raise it with --max-memory-mib")]
-    TooLarge {
-        path: PathBuf,
-        needed_mib: u64,
-        limit_mib: u64,
-    },
     /// A setting is out of range or inconsistent.
     #[error("invalid setting: {0}")]
     InvalidParams(String),

@@ -382,20 +382,19 @@ mod tests {
         }
     }
 
+    /// `n` points uniform in the box `[-h, h]`.
+    fn random_cloud(rng: &mut ChaCha8Rng, n: usize, h: V3) -> Vec<V3> {
+        (0..n)
+            .map(|_| [0, 1, 2].map(|k| rng.gen_range(-h[k]..h[k])))
+            .collect()
+    }
+
     /// Each kind's volume formula against a Monte-Carlo estimate over its AABB.
     #[test]
     fn volumes_match_monte_carlo() {
         let mut rng = ChaCha8Rng::seed_from_u64(7);
         for trial in 0..4 {
-            let pts: Vec<V3> = (0..30)
-                .map(|_| {
-                    [
-                        rng.gen_range(-1.0..1.0),
-                        rng.gen_range(-0.6..0.6),
-                        rng.gen_range(-0.3..0.3),
-                    ]
-                })
-                .collect();
+            let pts = random_cloud(&mut rng, 30, [1.0, 0.6, 0.3]);
             let q = random_q(&mut rng);
             for kind in Kind::ALL {
                 let f = fit_kind(&pts, &q, kind);
@@ -426,15 +425,7 @@ mod tests {
     fn prism_and_frustum_are_no_worse_than_box_and_cylinder() {
         let mut rng = ChaCha8Rng::seed_from_u64(11);
         for _ in 0..200 {
-            let pts: Vec<V3> = (0..20)
-                .map(|_| {
-                    [
-                        rng.gen_range(-1.0..1.0),
-                        rng.gen_range(-1.0..1.0),
-                        rng.gen_range(-1.0..1.0),
-                    ]
-                })
-                .collect();
+            let pts = random_cloud(&mut rng, 20, [1.0; 3]);
             let q = random_q(&mut rng);
             let b = fit_kind(&pts, &q, Kind::Box).volume;
             let p = fit_kind(&pts, &q, Kind::Prism).volume;

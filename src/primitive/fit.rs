@@ -54,20 +54,22 @@ pub struct FitScratch {
     u: [Vec<f64>; 3],
     /// Point indices sorted along each axis, shared by the frustum and the prisms.
     order: [Vec<u32>; 3],
+    /// Whether `order[k]` is sorted for the current points.
+    sorted: [bool; 3],
     profile: ProfileScratch,
 }
 
 impl FitScratch {
-    /// Sorts the point indices along each axis the profile fits will need.
-    fn sort_axes(&mut self, axes: [bool; 3]) {
-        for k in 0..3 {
-            let (u, o) = (&self.u[k], &mut self.order[k]);
-            o.clear();
-            if axes[k] {
-                o.extend(0..u.len() as u32);
-                o.sort_unstable_by(|&a, &b| u[a as usize].total_cmp(&u[b as usize]));
-            }
+    /// Sorts the point indices along axis `k` once per fit, for the profile fits.
+    fn sort_axis(&mut self, k: usize) {
+        if self.sorted[k] {
+            return;
         }
+        let (u, o) = (&self.u[k], &mut self.order[k]);
+        o.clear();
+        o.extend(0..u.len() as u32);
+        o.sort_unstable_by(|&a, &b| u[a as usize].total_cmp(&u[b as usize]));
+        self.sorted[k] = true;
     }
 }
 
@@ -80,6 +82,11 @@ pub struct Fit {
 }
 
 /// Fits every enabled kind around the eigen-frame of `q` and keeps the cheapest k·V.
+///
+/// Kinds whose cheap lower bound on k·V already loses to the best offer so far are
+/// skipped without being fitted (capsules, frustum, prisms): the result is the same
+/// as fitting all of them, since a skipped fit could not have won (see `lower bounds`
+/// below and ARCHITECTURE.md, "Pruned fits").
 pub fn fit_best(cloud: &Cloud, q: &Sym3, cfg: &FitConfig, s: &mut FitScratch) -> Fit {
     let axes = eigen_sym3(q).vectors;
     let frame = project(cloud, axes, s);
@@ -89,6 +96,7 @@ pub fn fit_best(cloud: &Cloud, q: &Sym3, cfg: &FitConfig, s: &mut FitScratch) ->
     for k in 0..3 {
         s.u[k].iter_mut().for_each(|v| *v -= mid[k]);
     }
+    s.sorted = [false; 3];
     let mut best = Candidate::new(cfg);
     best.offer(Kind::Box, Primitive::Box(obb), obb.volume());
     if cfg.enabled[Kind::Sphere as usize] {
@@ -109,26 +117,80 @@ pub fn fit_best(cloud: &Cloud, q: &Sym3, cfg: &FitConfig, s: &mut FitScratch) ->
     }
     if cfg.enabled[Kind::Capsule as usize] {
         for k in 0..3 {
+            let extent = frame.hi[k] - frame.lo[k];
+            if best.beats(
+                Kind::Capsule,
+                capsule_bound(radial[k], extent, cfg.min_half),
+            ) {
+                continue;
+            }
             let c = fit_capsule(s, &obb, radial[k], k, cfg.min_half);
             best.offer(Kind::Capsule, Primitive::Capsule(c), c.volume());
         }
     }
-    let (want_frustum, want_prism) = (
-        cfg.enabled[Kind::Frustum as usize],
-        cfg.enabled[Kind::Prism as usize],
-    );
-    s.sort_axes([0, 1, 2].map(|k| want_prism || (want_frustum && k == best_cyl)));
-    if want_frustum {
-        let f = fit_frustum(s, &obb, best_cyl, cfg.min_half);
+    offer_profiles(s, &obb, best_cyl, &mut best);
+    best.fit.expect("at least one kind is enabled")
+}
+
+/// The frustum on the best cylinder's axis and the prisms of the 6 orderings, each
+/// fitted only when its lower bound does not already lose.
+fn offer_profiles(s: &mut FitScratch, obb: &Obb, best_cyl: usize, best: &mut Candidate) {
+    let cfg = best.cfg;
+    if cfg.enabled[Kind::Frustum as usize]
+        && !best.beats(Kind::Frustum, frustum_bound(s, obb, best_cyl))
+    {
+        s.sort_axis(best_cyl);
+        let f = fit_frustum(s, obb, best_cyl, cfg.min_half);
         best.offer(Kind::Frustum, Primitive::Frustum(f), f.volume());
     }
-    if want_prism {
+    if cfg.enabled[Kind::Prism as usize] {
         for order in ORDERINGS {
-            let p = fit_prism(s, &obb, order, cfg.min_half);
+            if best.beats(Kind::Prism, prism_bound(s, obb, order)) {
+                continue;
+            }
+            s.sort_axis(order[1]);
+            let p = fit_prism(s, obb, order, cfg.min_half);
             best.offer(Kind::Prism, Primitive::Prism(p), p.volume());
         }
     }
-    best.fit.expect("at least one kind is enabled")
+}
+
+/// Lower bound on a capsule's volume around an axis: radius `r` (as fitted), and a
+/// segment at least as long as the points' extent minus the two end caps.
+fn capsule_bound(radial: f64, extent: f64, min_half: f64) -> f64 {
+    let r = radial.max(min_half);
+    std::f64::consts::PI * r * r * ((extent - 2.0 * r).max(0.0) + 4.0 / 3.0 * r)
+}
+
+/// Lower bound on the volume of any enclosing linear profile over the points
+/// `(s_i, z_i)`: each point forces `l0·(1−s) + l1·s ≥ z`, hence
+/// `l0 + l1 ≥ max_i z_i / max(s_i, 1−s_i)`. Returns that maximum.
+fn profile_sum_bound(n: usize, pt: impl Fn(usize) -> (f64, f64)) -> f64 {
+    (0..n).fold(0.0f64, |m, i| {
+        let (s, z) = pt(i);
+        m.max(z / s.max(1.0 - s))
+    })
+}
+
+/// Frustum: `l0² + l0·l1 + l1² ≥ ¾(l0 + l1)²`, so V ≥ π·h·m²/2 with m the sum bound.
+fn frustum_bound(s: &FitScratch, obb: &Obb, k: usize) -> f64 {
+    let h = obb.half[k];
+    let (ua, ub, uc) = (&s.u[k], &s.u[(k + 1) % 3], &s.u[(k + 2) % 3]);
+    let m = profile_sum_bound(ua.len(), |i| {
+        let sa = ((ua[i] + h) / (2.0 * h)).clamp(0.0, 1.0);
+        (sa, (ub[i] * ub[i] + uc[i] * uc[i]).sqrt())
+    });
+    0.5 * std::f64::consts::PI * h * m * m
+}
+
+/// Prism of one ordering: V = 4·hx·hy·(a + b) ≥ 4·hx·hy·m.
+fn prism_bound(s: &FitScratch, obb: &Obb, [x, y, z]: [usize; 3]) -> f64 {
+    let hy = obb.half[y];
+    let (uy, uz) = (&s.u[y], &s.u[z]);
+    let m = profile_sum_bound(uy.len(), |i| {
+        (((uy[i] + hy) / (2.0 * hy)).clamp(0.0, 1.0), uz[i].abs())
+    });
+    4.0 * obb.half[x] * hy * m
 }
 
 /// Keeps the lowest weighted cost among the offers of enabled kinds; ties keep the first.
@@ -140,6 +202,12 @@ struct Candidate<'a> {
 impl<'a> Candidate<'a> {
     fn new(cfg: &'a FitConfig) -> Self {
         Candidate { cfg, fit: None }
+    }
+    /// True when a primitive of `kind` with volume at least `bound` cannot win: the
+    /// bound, shrunk by a margin far above round-off, still costs more than the best.
+    fn beats(&self, kind: Kind, bound: f64) -> bool {
+        let w = self.cfg.weights[kind as usize];
+        self.fit.is_some_and(|f| w * bound * (1.0 - 1e-9) > f.cost)
     }
     fn offer(&mut self, kind: Kind, prim: Primitive, volume: f64) {
         if !self.cfg.enabled[kind as usize] {

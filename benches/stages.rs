@@ -8,7 +8,7 @@
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion};
 use primdecomp::decompose::{evaluator, seed_volumes};
-use primdecomp::merge::Clusters;
+use primdecomp::merge::{run_with, Clusters, StdHeap};
 use primdecomp::mesh::{adjacency, dedup, io};
 use primdecomp::postprocess::{keep_mask, Cleanup};
 use primdecomp::{decompose, demo, quadric, Mesh, Params};
@@ -90,20 +90,23 @@ fn stages(c: &mut Criterion) {
         let ev = evaluator(m, &welded, &p, m.aabb());
         g.bench_function("seed", |b| b.iter(|| seed_volumes(&ev, &q)));
         let vols = seed_volumes(&ev, &q);
+        let fresh = || Clusters::new(q.clone(), vols.clone(), &pairs);
         g.bench_function("merge", |b| {
             b.iter_batched(
-                || Clusters::new(q.clone(), vols.clone(), &pairs),
-                |cl| primdecomp::merge::run(&ev, cl, &pairs, &p.targets, &|_| {}),
+                fresh,
+                |cl| primdecomp::merge::run(&ev, cl, &p.targets, &|_| {}),
                 BatchSize::LargeInput,
             )
         });
-        let merged = primdecomp::merge::run(
-            &ev,
-            Clusters::new(q.clone(), vols.clone(), &pairs),
-            &pairs,
-            &p.targets,
-            &|_| {},
-        );
+        // The same merge loop driven by std's BinaryHeap: the radix heap's reference.
+        g.bench_function("merge_binary_heap", |b| {
+            b.iter_batched(
+                fresh,
+                |cl| run_with::<StdHeap>(&ev, cl, &p.targets, &|_| {}),
+                BatchSize::LargeInput,
+            )
+        });
+        let merged = primdecomp::merge::run(&ev, fresh(), &p.targets, &|_| {});
         let snap = &merged.snapshots[0];
         let cleanup = Cleanup {
             diagonal: m.diagonal(),

@@ -125,13 +125,14 @@ pub fn decompose_with_progress(
     let ev = evaluator(mesh, &welded, params, bounds);
     let volumes = seed_volumes(&ev, &q);
     let clusters = Clusters::new(q, volumes, &pairs);
+    drop(pairs); // the clusters hold the adjacency now
     t.push("seed", now);
     // Greedy merging down through every target in one pass (Alg. 1 loop).
     let now = Instant::now();
     let mut targets = params.targets.clone();
     targets.sort_unstable_by(|a, b| b.cmp(a));
     targets.dedup();
-    let merged = crate::merge::run(&ev, clusters, &pairs, &targets, progress);
+    let merged = crate::merge::run(&ev, clusters, &targets, progress);
     dec.bridge_edges = merged.bridge_edges;
     t.push("merge", now);
     // Remove nested primitives (§3.4), then return to world coordinates.

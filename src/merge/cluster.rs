@@ -9,7 +9,23 @@ use crate::math::Sym3;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub struct ClusterId(pub u32);
 
+/// Lists owned by a cluster once it stops being a single face.
+#[derive(Debug, Default)]
+struct Lists {
+    /// Distinct (hull-reduced) vertices; empty = the single face's own vertices.
+    verts: Vec<u32>,
+    /// Neighbouring clusters (may name merged-away ids; resolve with `find`).
+    neighbors: Vec<u32>,
+}
+
+/// No lists: the cluster is still one face, its neighbours those of the input graph.
+const NO_LISTS: u32 = u32::MAX;
+
 /// Struct-of-arrays cluster state, indexed by face id (valid at roots).
+///
+/// Per face it stores only fixed-size fields (~76 bytes); vertex and neighbour lists
+/// live in a slab and exist only for clusters that merged or were bridged, so a
+/// million-face input does not pay for a million small allocations.
 #[derive(Debug, Default)]
 pub struct Clusters {
     pub parent: Vec<u32>,
@@ -19,10 +35,13 @@ pub struct Clusters {
     /// Cyclic list: the next face of the same cluster.
     pub next_face: Vec<u32>,
     pub face_count: Vec<u32>,
-    /// Distinct vertices of a merged cluster; empty = the single face's own vertices.
-    pub verts: Vec<Vec<u32>>,
-    /// Neighbouring clusters (may name merged-away ids; resolve with `find`).
-    pub neighbors: Vec<Vec<u32>>,
+    /// The input's face adjacency as CSR (neighbours of never-merged faces).
+    adj_offsets: Vec<u32>,
+    adj: Vec<u32>,
+    /// Index into `slab`, or [`NO_LISTS`].
+    slot: Vec<u32>,
+    slab: Vec<Lists>,
+    free: Vec<u32>,
     /// Number of live clusters.
     pub live: usize,
 }
@@ -31,18 +50,21 @@ impl Clusters {
     /// One cluster per face, with the given per-face operators and volumes.
     pub fn new(q: Vec<Sym3>, volume: Vec<f64>, pairs: &[(u32, u32)]) -> Clusters {
         let n = q.len();
-        let mut degree = vec![0u32; n];
+        let mut adj_offsets = vec![0u32; n + 1];
         for &(a, b) in pairs {
-            degree[a as usize] += 1;
-            degree[b as usize] += 1;
+            adj_offsets[a as usize + 1] += 1;
+            adj_offsets[b as usize + 1] += 1;
         }
-        let mut neighbors: Vec<Vec<u32>> = degree
-            .iter()
-            .map(|&d| Vec::with_capacity(d as usize))
-            .collect();
+        for i in 0..n {
+            adj_offsets[i + 1] += adj_offsets[i];
+        }
+        let mut fill = adj_offsets.clone();
+        let mut adj = vec![0u32; 2 * pairs.len()];
         for &(a, b) in pairs {
-            neighbors[a as usize].push(b);
-            neighbors[b as usize].push(a);
+            adj[fill[a as usize] as usize] = b;
+            fill[a as usize] += 1;
+            adj[fill[b as usize] as usize] = a;
+            fill[b as usize] += 1;
         }
         Clusters {
             parent: (0..n as u32).collect(),
@@ -51,8 +73,11 @@ impl Clusters {
             version: vec![0; n],
             next_face: (0..n as u32).collect(),
             face_count: vec![1; n],
-            verts: vec![Vec::new(); n],
-            neighbors,
+            adj_offsets,
+            adj,
+            slot: vec![NO_LISTS; n],
+            slab: Vec::new(),
+            free: Vec::new(),
             live: n,
         }
     }
@@ -93,17 +118,70 @@ impl Clusters {
         })
     }
 
+    /// Neighbours of face `f` in the input's adjacency graph, increasing.
+    pub fn input_neighbors(&self, f: u32) -> &[u32] {
+        let (lo, hi) = (
+            self.adj_offsets[f as usize] as usize,
+            self.adj_offsets[f as usize + 1] as usize,
+        );
+        &self.adj[lo..hi]
+    }
+
+    /// The reduced vertex list of cluster `c`; empty while it is a single face.
+    pub fn verts(&self, c: u32) -> &[u32] {
+        match self.slot[c as usize] {
+            NO_LISTS => &[],
+            s => &self.slab[s as usize].verts,
+        }
+    }
+
+    /// The lists of `c`, created (neighbours copied from the input graph) if needed.
+    fn lists_mut(&mut self, c: u32) -> &mut Lists {
+        if self.slot[c as usize] == NO_LISTS {
+            let lists = Lists {
+                verts: Vec::new(),
+                neighbors: self.input_neighbors(c).to_vec(),
+            };
+            let s = match self.free.pop() {
+                Some(s) => {
+                    self.slab[s as usize] = lists;
+                    s
+                }
+                None => {
+                    self.slab.push(lists);
+                    (self.slab.len() - 1) as u32
+                }
+            };
+            self.slot[c as usize] = s;
+        }
+        &mut self.slab[self.slot[c as usize] as usize]
+    }
+
+    /// Takes `c`'s lists out of the slab (freeing its slot).
+    fn take_lists(&mut self, c: u32) -> Lists {
+        let lists = std::mem::take(self.lists_mut(c));
+        self.free.push(self.slot[c as usize]);
+        self.slot[c as usize] = NO_LISTS;
+        lists
+    }
+
+    /// Records that `a` and `b` are neighbours (component bridging).
+    pub fn link(&mut self, a: u32, b: u32) {
+        self.lists_mut(a).neighbors.push(b);
+        self.lists_mut(b).neighbors.push(a);
+    }
+
     /// Neighbours of root `c` resolved to live roots, sorted, without `c` itself;
     /// also stores the resolved list back.
     pub fn resolved_neighbors(&mut self, c: u32) -> Vec<u32> {
-        let mut n = std::mem::take(&mut self.neighbors[c as usize]);
+        let mut n = std::mem::take(&mut self.lists_mut(c).neighbors);
         for v in n.iter_mut() {
             *v = self.find(*v);
         }
         n.sort_unstable();
         n.dedup();
         n.retain(|&v| v != c);
-        self.neighbors[c as usize] = n.clone();
+        self.lists_mut(c).neighbors = n.clone();
         n
     }
 
@@ -119,10 +197,10 @@ impl Clusters {
         self.version[o] += 1;
         self.next_face.swap(r, o);
         self.face_count[r] += self.face_count[o];
-        self.verts[r] = verts;
-        self.verts[o] = Vec::new();
-        let moved = std::mem::take(&mut self.neighbors[o]);
-        self.neighbors[r].extend(moved);
+        let moved = self.take_lists(other);
+        let lists = self.lists_mut(root);
+        lists.verts = verts;
+        lists.neighbors.extend(moved.neighbors);
         self.live -= 1;
         root
     }

@@ -47,7 +47,7 @@ impl<'a> Evaluator<'a> {
     /// The points priced for cluster `c`: a single face's own indices until it merges,
     /// then the hull vertices of its faces (`merge::driver` keeps them reduced).
     pub fn verts<'b>(&'b self, cl: &'b Clusters, c: u32) -> &'b [u32] {
-        let v = &cl.verts[c as usize];
+        let v = cl.verts(c);
         if v.is_empty() {
             self.face(c)
         } else {
@@ -135,6 +135,7 @@ impl<'a> Evaluator<'a> {
         }
         let c = Candidate {
             cost: ((fit.cost - before) / self.cost_unit).round(),
+            volume: fit.volume,
             a,
             b,
             ver_a: cl.version[a as usize],

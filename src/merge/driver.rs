@@ -7,7 +7,7 @@
 
 use super::cluster::Clusters;
 use super::cost::{Evaluator, Workspace};
-use super::heap::{Candidate, CandidateHeap};
+use super::heap::{Candidate, Queue, RadixHeap};
 use crate::math::hull::{hull_vertices, HullWorkspace};
 use crate::primitive::Primitive;
 use rayon::prelude::*;
@@ -18,6 +18,11 @@ const CHUNK: usize = 1024;
 const PAR_POINTS: usize = 1 << 15;
 /// Point lists up to this size are not worth reducing to their hull.
 const HULL_MIN: usize = 12;
+/// Pairs priced per block when seeding the queue.
+const PRICE_BLOCK: usize = 1 << 16;
+/// The queue is purged of stale entries when it grows by a quarter, but never below
+/// this size (a purge is one sequential pass; the stale entries would cost memory).
+const PURGE_MIN: usize = 1 << 16;
 /// Each cluster is bridged to this many successors in each axis order.
 const BRIDGE_SPAN: usize = 2;
 
@@ -62,31 +67,68 @@ impl Stamps {
     }
 }
 
-/// Prices pairs in parallel chunks; the output order equals the input order.
+/// Prices pairs in parallel chunks, in place; the output order equals the input order.
 fn price(ev: &Evaluator, cl: &Clusters, pairs: &[(u32, u32)]) -> Vec<Candidate> {
-    pairs
-        .par_chunks(CHUNK)
-        .map(|chunk| {
-            let mut ws = Workspace::default();
-            chunk
-                .iter()
-                .filter_map(|&(a, b)| ev.candidate(cl, a, b, &mut ws).map(|c| c.0))
-                .collect::<Vec<_>>()
-        })
-        .collect::<Vec<_>>()
-        .concat()
+    let none = Candidate {
+        cost: f64::NAN,
+        volume: 0.0,
+        a: 0,
+        b: 0,
+        ver_a: 0,
+        ver_b: 0,
+    };
+    let mut out = vec![none; pairs.len()];
+    out.par_chunks_mut(CHUNK)
+        .zip(pairs.par_chunks(CHUNK))
+        .for_each_init(Workspace::default, |ws, (slots, chunk)| {
+            for (slot, &(a, b)) in slots.iter_mut().zip(chunk) {
+                if let Some((c, _)) = ev.candidate(cl, a, b, ws) {
+                    *slot = c;
+                }
+            }
+        });
+    // Merges over the excess-volume cap were left as NaN placeholders.
+    out.retain(|c| !c.cost.is_nan());
+    out
 }
 
 /// Runs the merge loop down to the smallest target; `targets` sorted decreasing.
 pub fn run(
     ev: &Evaluator,
+    cl: Clusters,
+    targets: &[usize],
+    progress: &(dyn Fn(f64) + Sync),
+) -> MergeOutput {
+    run_with::<RadixHeap>(ev, cl, targets, progress)
+}
+
+/// [`run`] with a chosen queue (the benchmarks compare them; the order is the same).
+pub fn run_with<Q: Queue>(
+    ev: &Evaluator,
     mut cl: Clusters,
-    pairs: &[(u32, u32)],
     targets: &[usize],
     progress: &(dyn Fn(f64) + Sync),
 ) -> MergeOutput {
     let mut out = MergeOutput::default();
-    let mut heap = CandidateHeap::from_vec(price(ev, &cl, pairs));
+    let mut heap = Q::default();
+    // Price the input's adjacent pairs in blocks, so that only one block of pairs and
+    // candidates exists outside the queue.
+    let mut block = Vec::with_capacity(PRICE_BLOCK);
+    for a in 0..cl.parent.len() as u32 {
+        block.extend(
+            cl.input_neighbors(a)
+                .iter()
+                .filter(|&&b| b > a)
+                .map(|&b| (a, b)),
+        );
+        if block.len() >= PRICE_BLOCK || a + 1 == cl.parent.len() as u32 {
+            price(ev, &cl, &block)
+                .into_iter()
+                .for_each(|c| heap.push(c));
+            block.clear();
+        }
+    }
+    let mut purge_at = (heap.len() + heap.len() / 4).max(PURGE_MIN);
     let mut stamps = Stamps {
         mark: vec![0; ev.mesh.vertex_count()],
         epoch: 0,
@@ -117,11 +159,14 @@ pub fn run(
         if !valid(&cl, &c) {
             continue;
         }
-        let Some((_, fit)) = ev.candidate(&cl, c.a, c.b, &mut ws) else {
-            continue;
-        };
+        if heap.len() > purge_at {
+            // Lazy deletion's stale entries would otherwise outnumber the live pairs
+            // many times over (memory); dropping them keeps the order unchanged.
+            heap.retain(|c| valid(&cl, c));
+            purge_at = (heap.len() + heap.len() / 4).max(PURGE_MIN);
+        }
         let verts = merged_points(ev, &cl, c.a, c.b, &mut stamps, &mut reducer);
-        let root = cl.merge(c.a, c.b, verts, fit.volume);
+        let root = cl.merge(c.a, c.b, verts, c.volume);
         out.merges += 1;
         reprice_neighbors(ev, &mut cl, root, &mut heap, &mut ws);
         if out.merges % 4096 == 0 {
@@ -186,11 +231,11 @@ fn merged_points(
 
 /// Re-prices every merge of the new cluster with its neighbours, in parallel when the
 /// batch is large (results are pushed in neighbour order either way).
-fn reprice_neighbors(
+fn reprice_neighbors<Q: Queue>(
     ev: &Evaluator,
     cl: &mut Clusters,
     root: u32,
-    heap: &mut CandidateHeap,
+    heap: &mut Q,
     ws: &mut Workspace,
 ) {
     let nbrs = cl.resolved_neighbors(root);
@@ -236,8 +281,7 @@ fn bridge(ev: &Evaluator, cl: &mut Clusters) -> Vec<(u32, u32)> {
     pairs.sort_unstable();
     pairs.dedup();
     for &(a, b) in &pairs {
-        cl.neighbors[a as usize].push(b);
-        cl.neighbors[b as usize].push(a);
+        cl.link(a, b);
     }
     pairs
 }
@@ -266,5 +310,36 @@ fn snapshot(ev: &Evaluator, cl: &Clusters, target: usize) -> Snapshot {
         prims,
         faces: roots.iter().map(|&r| cl.face_count[r as usize]).collect(),
         verts: roots.par_iter().map(|&r| ev.all_verts(cl, r)).collect(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::decompose::{evaluator, seed_volumes};
+    use crate::mesh::{adjacency, dedup};
+    use crate::{quadric, Params};
+
+    /// The radix heap and std's binary heap drive the same merges: identical
+    /// primitives at every target on the demo scene (many cost ties: coplanar faces).
+    #[test]
+    fn radix_heap_and_binary_heap_merge_identically() {
+        let mesh = crate::Mesh::from_builder(crate::demo::demo_scene());
+        let p = Params::default();
+        let (welded, _) = dedup::weld(&mesh, p.dedup);
+        let pairs = adjacency::face_pairs(&mesh.face_offsets, &welded);
+        let mut q = Vec::new();
+        quadric::face_quadrics(&mesh, p.tangent_eps, &mut q);
+        let ev = evaluator(&mesh, &welded, &p, mesh.aabb());
+        let vols = seed_volumes(&ev, &q);
+        let fresh = || Clusters::new(q.clone(), vols.clone(), &pairs);
+        let targets = [400, 150, 40, 1];
+        let a = run_with::<RadixHeap>(&ev, fresh(), &targets, &|_| {});
+        let b = run_with::<crate::merge::StdHeap>(&ev, fresh(), &targets, &|_| {});
+        assert_eq!(a.merges, b.merges);
+        for (x, y) in a.snapshots.iter().zip(&b.snapshots) {
+            assert_eq!(x.faces, y.faces);
+            assert_eq!(format!("{:?}", x.prims), format!("{:?}", y.prims));
+        }
     }
 }

@@ -9,4 +9,5 @@ pub mod heap;
 
 pub use cluster::{ClusterId, Clusters};
 pub use cost::{Evaluator, Workspace};
-pub use driver::{run, MergeOutput, Snapshot};
+pub use driver::{run, run_with, MergeOutput, Snapshot};
+pub use heap::{Queue, RadixHeap, StdHeap};

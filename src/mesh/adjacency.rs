@@ -10,21 +10,47 @@ const ALL_PAIRS_UP_TO: usize = 4;
 
 /// Sorted, unique pairs `(a, b)` with `a < b` of faces sharing an edge. `offsets` and
 /// `indices` are the CSR polygons (indices already welded).
+///
+/// One (edge, face) record per polygon side, written in place at the side's CSR slot
+/// (no intermediate lists: the records are the stage's only large buffer).
 pub fn face_pairs(offsets: &[u32], indices: &[u32]) -> Vec<(u32, u32)> {
+    let mut records = vec![(u64::MAX, u32::MAX); indices.len()];
     let faces = offsets.len().saturating_sub(1);
-    let mut records: Vec<(u64, u32)> = (0..faces)
-        .into_par_iter()
-        .with_min_len(4096)
-        .flat_map_iter(|f| {
-            let idx = &indices[offsets[f] as usize..offsets[f + 1] as usize];
-            (0..idx.len()).filter_map(move |i| {
+    debug_assert!(
+        offsets.first().is_none_or(|&o| o == 0),
+        "CSR offsets start at 0"
+    );
+    // Split the record buffer at face boundaries so each task owns whole faces.
+    let mut slices = Vec::new();
+    let mut rest = &mut records[..];
+    let mut f0 = 0;
+    while f0 < faces {
+        let f1 = (f0 + 4096).min(faces);
+        let len = (offsets[f1] - offsets[f0]) as usize;
+        let (head, tail) = rest.split_at_mut(len);
+        slices.push((f0, f1, head));
+        rest = tail;
+        f0 = f1;
+    }
+    slices.into_par_iter().for_each(|(f0, f1, out)| {
+        let start = offsets[f0] as usize;
+        for f in f0..f1 {
+            let (lo, hi) = (offsets[f] as usize, offsets[f + 1] as usize);
+            let idx = &indices[lo..hi];
+            for i in 0..idx.len() {
                 let (a, b) = (idx[i], idx[(i + 1) % idx.len()]);
-                (a != b).then(|| (((a.min(b) as u64) << 32) | a.max(b) as u64, f as u32))
-            })
-        })
-        .collect();
+                if a != b {
+                    let key = ((a.min(b) as u64) << 32) | a.max(b) as u64;
+                    out[lo - start + i] = (key, f as u32);
+                }
+            }
+        }
+    });
     records.par_sort_unstable();
-    let mut pairs = Vec::with_capacity(records.len());
+    // Degenerate sides kept the sentinel key and sorted last.
+    let used = records.partition_point(|r| r.0 != u64::MAX);
+    let records = &records[..used];
+    let mut pairs = Vec::new();
     let mut start = 0;
     while start < records.len() {
         let mut end = start + 1;
@@ -36,21 +62,30 @@ pub fn face_pairs(offsets: &[u32], indices: &[u32]) -> Vec<(u32, u32)> {
     }
     pairs.par_sort_unstable();
     pairs.dedup();
+    pairs.shrink_to_fit();
     pairs
 }
 
-/// Pairs of the distinct faces around one edge (records are sorted by face).
+/// Pairs of the distinct faces around one edge (records are sorted by face): all of
+/// them for up to [`ALL_PAIRS_UP_TO`] faces, a chain beyond. No allocation.
 fn push_edge_pairs(run: &[(u64, u32)], pairs: &mut Vec<(u32, u32)>) {
-    let mut fs: Vec<u32> = run.iter().map(|r| r.1).collect();
-    fs.dedup();
-    if fs.len() <= ALL_PAIRS_UP_TO {
-        for i in 0..fs.len() {
-            for j in i + 1..fs.len() {
-                pairs.push((fs[i], fs[j]));
-            }
+    let steps = || run.windows(2).filter(|w| w[0].1 != w[1].1);
+    if 1 + steps().count() > ALL_PAIRS_UP_TO {
+        pairs.extend(steps().map(|w| (w[0].1, w[1].1)));
+        return;
+    }
+    let mut fs = [0u32; ALL_PAIRS_UP_TO];
+    let mut n = 0;
+    for &(_, f) in run {
+        if n == 0 || fs[n - 1] != f {
+            fs[n] = f;
+            n += 1;
         }
-    } else {
-        pairs.extend(fs.windows(2).map(|w| (w[0], w[1])));
+    }
+    for i in 0..n {
+        for j in i + 1..n {
+            pairs.push((fs[i], fs[j]));
+        }
     }
 }
 

@@ -8,7 +8,10 @@
 //! `(ch, sh) ∝ (2(a_pp − a_qq), a_pq)`, replaced by `(cos π/8, sin π/8)` when
 //! `γ·sh² ≥ ch²` with `γ = √8 + 3` (see `GAMMA` on why not `(√8 + 3)²`).
 //! The choice is made with 0/1-weighted blends (no data-dependent control
-//! flow), so every input costs exactly [`SWEEPS`] × 3 rotations.  One small
+//! flow inside a sweep); at most [`SWEEPS`] × 3 rotations, and one test per sweep
+//! ends the loop once the off-diagonal part is below 1e−20 of the matrix (on the
+//! armadillo at a 1% target this cut the whole run's time by ~10%, with the same
+//! primitive counts by kind).  One small
 //! addition to the paper: an exactly zero coupling `a_pq == 0` selects the
 //! identity rotation, so already-diagonal input (including multiples of the
 //! identity) comes back unrotated.
@@ -114,9 +117,20 @@ fn jacobi(mut a: [[f64; 3]; 3], sweeps: usize) -> ([[f64; 3]; 3], [[f64; 3]; 3])
         rotate::<0, 1, 2>(&mut a, &mut v);
         rotate::<0, 2, 1>(&mut a, &mut v);
         rotate::<1, 2, 0>(&mut a, &mut v);
+        // One test per sweep (not per rotation): stop once the off-diagonal part is
+        // below DONE² of the (unit-scaled) matrix; further sweeps change nothing
+        // representable in the eigenvectors.
+        let off = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
+        if off <= DONE2 {
+            break;
+        }
     }
     (a, v)
 }
+
+/// Squared off-diagonal norm at which a sweep loop may stop early (1e-20 of the
+/// largest entry, which the scaling makes 1).
+const DONE2: f64 = 1e-40;
 
 /// The paper's approximate Givens quaternion `(ch, sh)` (cos and sin of half
 /// the rotation angle) for the 2×2 block `[[app, apq], [apq, aqq]]`.

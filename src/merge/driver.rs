@@ -242,21 +242,35 @@ fn reprice_neighbors<Q: Queue>(
     let cl = &*cl;
     let own = ev.verts(cl, root).len();
     let points: usize = nbrs.iter().map(|&n| own + ev.verts(cl, n).len()).sum();
-    if points < PAR_POINTS {
+    if points < par_points() || nbrs.len() < 2 || rayon::current_num_threads() < 2 {
         for &n in &nbrs {
             if let Some((c, _)) = ev.candidate(cl, root, n, ws) {
                 heap.push(c);
             }
         }
-    } else {
-        let found: Vec<Option<Candidate>> = nbrs
-            .par_iter()
-            .map_init(Workspace::default, |ws, &n| {
-                ev.candidate(cl, root, n, ws).map(|c| c.0)
-            })
-            .collect();
-        found.into_iter().flatten().for_each(|c| heap.push(c));
+        return;
     }
+    // Two halves on two threads (each with its thread's own workspace), pushed in
+    // neighbour order: the queue sees the same sequence as the serial loop.
+    let (lo, hi) = nbrs.split_at(nbrs.len() / 2);
+    let half = |part: &[u32]| -> Vec<Candidate> {
+        LOCAL_WS.with_borrow_mut(|ws| {
+            part.iter()
+                .filter_map(|&n| ev.candidate(cl, root, n, ws).map(|c| c.0))
+                .collect()
+        })
+    };
+    let (a, b) = rayon::join(|| half(lo), || half(hi));
+    a.into_iter().chain(b).for_each(|c| heap.push(c));
+}
+
+thread_local! {
+    /// Per-thread fit buffers for parallel re-pricing (kept across merges).
+    static LOCAL_WS: std::cell::RefCell<Workspace> = std::cell::RefCell::new(Workspace::default());
+}
+
+fn par_points() -> usize {
+    std::env::var("PD_PAR_POINTS").ok().and_then(|v| v.parse().ok()).unwrap_or(PAR_POINTS)
 }
 
 /// Links every live cluster to its nearest successors by centroid along each axis.

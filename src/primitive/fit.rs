@@ -99,11 +99,15 @@ pub fn fit_best(cloud: &Cloud, q: &Sym3, cfg: &FitConfig, s: &mut FitScratch) ->
     s.sorted = [false; 3];
     let mut best = Candidate::new(cfg);
     best.offer(Kind::Box, Primitive::Box(obb), obb.volume());
+    let ext = Extents::of(s);
     if cfg.enabled[Kind::Sphere as usize] {
-        let sph = fit_sphere(s, obb.center, cfg.min_half);
+        let sph = Sphere {
+            center: obb.center,
+            radius: ext.r2.sqrt().max(cfg.min_half),
+        };
         best.offer(Kind::Sphere, Primitive::Sphere(sph), sph.volume());
     }
-    let radial = radial_extents(s);
+    let radial = ext.radial2.map(f64::sqrt);
     let cyls = [0, 1, 2].map(|k| fit_cylinder(&obb, &radial, k, cfg.min_half));
     let best_cyl = (0..3)
         .min_by(|&a, &b| cyls[a].volume().total_cmp(&cyls[b].volume()))
@@ -128,16 +132,22 @@ pub fn fit_best(cloud: &Cloud, q: &Sym3, cfg: &FitConfig, s: &mut FitScratch) ->
             best.offer(Kind::Capsule, Primitive::Capsule(c), c.volume());
         }
     }
-    offer_profiles(s, &obb, best_cyl, &mut best);
+    offer_profiles(s, &obb, &ext, best_cyl, &mut best);
     best.fit.expect("at least one kind is enabled")
 }
 
 /// The frustum on the best cylinder's axis and the prisms of the 6 orderings, each
 /// fitted only when its lower bound does not already lose.
-fn offer_profiles(s: &mut FitScratch, obb: &Obb, best_cyl: usize, best: &mut Candidate) {
+fn offer_profiles(
+    s: &mut FitScratch,
+    obb: &Obb,
+    ext: &Extents,
+    best_cyl: usize,
+    best: &mut Candidate,
+) {
     let cfg = best.cfg;
     if cfg.enabled[Kind::Frustum as usize]
-        && !best.beats(Kind::Frustum, frustum_bound(s, obb, best_cyl))
+        && !best.beats(Kind::Frustum, ext.frustum_bound(obb, best_cyl))
     {
         s.sort_axis(best_cyl);
         let f = fit_frustum(s, obb, best_cyl, cfg.min_half);
@@ -145,7 +155,7 @@ fn offer_profiles(s: &mut FitScratch, obb: &Obb, best_cyl: usize, best: &mut Can
     }
     if cfg.enabled[Kind::Prism as usize] {
         for order in ORDERINGS {
-            if best.beats(Kind::Prism, prism_bound(s, obb, order)) {
+            if best.beats(Kind::Prism, ext.prism_bound(obb, order)) {
                 continue;
             }
             s.sort_axis(order[1]);
@@ -162,35 +172,64 @@ fn capsule_bound(radial: f64, extent: f64, min_half: f64) -> f64 {
     std::f64::consts::PI * r * r * ((extent - 2.0 * r).max(0.0) + 4.0 / 3.0 * r)
 }
 
-/// Lower bound on the volume of any enclosing linear profile over the points
-/// `(s_i, z_i)`: each point forces `l0·(1−s) + l1·s ≥ z`, hence
-/// `l0 + l1 ≥ max_i z_i / max(s_i, 1−s_i)`. Returns that maximum.
-fn profile_sum_bound(n: usize, pt: impl Fn(usize) -> (f64, f64)) -> f64 {
-    (0..n).fold(0.0f64, |m, i| {
-        let (s, z) = pt(i);
-        m.max(z / s.max(1.0 - s))
-    })
+/// Squared extents of the centred points gathered in one pass: the sphere's and each
+/// axis' radial reach, and for the profile bounds, per axis `y` and side of `y = 0`
+/// (0: `u_y ≥ 0`, 1: `u_y < 0`), the largest `u_z²` for each axis `z` and the
+/// largest radial reach around `y`.
+struct Extents {
+    r2: f64,
+    radial2: [f64; 3],
+    side: [[[f64; 2]; 3]; 3],
+    side_radial2: [[f64; 2]; 3],
 }
 
-/// Frustum: `l0² + l0·l1 + l1² ≥ ¾(l0 + l1)²`, so V ≥ π·h·m²/2 with m the sum bound.
-fn frustum_bound(s: &FitScratch, obb: &Obb, k: usize) -> f64 {
-    let h = obb.half[k];
-    let (ua, ub, uc) = (&s.u[k], &s.u[(k + 1) % 3], &s.u[(k + 2) % 3]);
-    let m = profile_sum_bound(ua.len(), |i| {
-        let sa = ((ua[i] + h) / (2.0 * h)).clamp(0.0, 1.0);
-        (sa, (ub[i] * ub[i] + uc[i] * uc[i]).sqrt())
-    });
-    0.5 * std::f64::consts::PI * h * m * m
+impl Extents {
+    fn of(s: &FitScratch) -> Extents {
+        let [u0, u1, u2] = &s.u;
+        let mut e = Extents {
+            r2: 0.0,
+            radial2: [0.0; 3],
+            side: [[[0.0; 2]; 3]; 3],
+            side_radial2: [[0.0; 2]; 3],
+        };
+        for i in 0..u0.len() {
+            let u = [u0[i], u1[i], u2[i]];
+            let sq = [u[0] * u[0], u[1] * u[1], u[2] * u[2]];
+            e.r2 = e.r2.max(sq[0] + sq[1] + sq[2]);
+            let radial = [sq[1] + sq[2], sq[0] + sq[2], sq[0] + sq[1]];
+            for y in 0..3 {
+                e.radial2[y] = e.radial2[y].max(radial[y]);
+                let side = usize::from(u[y] < 0.0);
+                e.side_radial2[y][side] = e.side_radial2[y][side].max(radial[y]);
+                for z in 0..3 {
+                    e.side[y][z][side] = e.side[y][z][side].max(sq[z]);
+                }
+            }
+        }
+        e
+    }
+
+    /// Frustum on axis `k`: `l0² + l0·l1 + l1² ≥ ¾(l0 + l1)²`, so V ≥ π·h·m²/2 with
+    /// `m` the bound on `l0 + l1` (see [`sum_bound`]).
+    fn frustum_bound(&self, obb: &Obb, k: usize) -> f64 {
+        let m = sum_bound(self.side_radial2[k]);
+        0.5 * std::f64::consts::PI * obb.half[k] * m * m
+    }
+
+    /// Prism of one ordering: V = 4·hx·hy·(a + b) ≥ 4·hx·hy·m.
+    fn prism_bound(&self, obb: &Obb, [x, y, z]: [usize; 3]) -> f64 {
+        4.0 * obb.half[x] * obb.half[y] * sum_bound(self.side[y][z])
+    }
 }
 
-/// Prism of one ordering: V = 4·hx·hy·(a + b) ≥ 4·hx·hy·m.
-fn prism_bound(s: &FitScratch, obb: &Obb, [x, y, z]: [usize; 3]) -> f64 {
-    let hy = obb.half[y];
-    let (uy, uz) = (&s.u[y], &s.u[z]);
-    let m = profile_sum_bound(uy.len(), |i| {
-        (((uy[i] + hy) / (2.0 * hy)).clamp(0.0, 1.0), uz[i].abs())
-    });
-    4.0 * obb.half[x] * hy * m
+/// Lower bound on `l0 + l1` for any enclosing linear profile `l(s)` over points whose
+/// largest squared heights are `sq[0]` for `s ≥ ½` and `sq[1]` for `s < ½`. A line
+/// over a point of height `z` has `l0 + l1 ≥ z` (both ends non-negative), and
+/// `l0 + l1 = 2·l(½)`, where a line above a point on each side of `½` passes above
+/// the lower of the two.
+fn sum_bound(sq: [f64; 2]) -> f64 {
+    let (r, l) = (sq[0].sqrt(), sq[1].sqrt());
+    r.max(l).max(2.0 * r.min(l))
 }
 
 /// Keeps the lowest weighted cost among the offers of enabled kinds; ties keep the first.
@@ -244,31 +283,6 @@ fn project(cloud: &Cloud, axes: [V3; 3], s: &mut FitScratch) -> Frame {
         lo,
         hi,
     }
-}
-
-fn fit_sphere(s: &FitScratch, center: V3, min_half: f64) -> Sphere {
-    let [u0, u1, u2] = &s.u;
-    let mut r2: f64 = 0.0;
-    for i in 0..u0.len() {
-        r2 = r2.max(u0[i] * u0[i] + u1[i] * u1[i] + u2[i] * u2[i]);
-    }
-    Sphere {
-        center,
-        radius: r2.sqrt().max(min_half),
-    }
-}
-
-/// Largest distance from each axis through the OBB centre (squared), one pass.
-fn radial_extents(s: &FitScratch) -> [f64; 3] {
-    let [u0, u1, u2] = &s.u;
-    let mut r = [0.0f64; 3];
-    for i in 0..u0.len() {
-        let (a, b, c) = (u0[i] * u0[i], u1[i] * u1[i], u2[i] * u2[i]);
-        r[0] = r[0].max(b + c);
-        r[1] = r[1].max(a + c);
-        r[2] = r[2].max(a + b);
-    }
-    r.map(f64::sqrt)
 }
 
 /// Axis `k` of the frame, signed so that its largest component is positive: the

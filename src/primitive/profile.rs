@@ -52,6 +52,7 @@ pub struct ProfileScratch {
 }
 
 /// Upper convex hull, left to right, of the points `pt(i)` visited in increasing `s`.
+#[inline(never)]
 fn upper_hull(order: &[u32], pt: &impl Fn(usize) -> (f64, f64), hull: &mut Vec<(f64, f64)>) {
     hull.clear();
     for &i in order {
@@ -95,6 +96,7 @@ pub fn fit_profile(
 
 /// [`fit_profile`] for points already ordered by increasing `s` (`order` lists them),
 /// so that several profiles over the same axis share one sort.
+#[inline(never)]
 pub fn fit_profile_sorted(
     order: &[u32],
     pt: impl Fn(usize) -> (f64, f64),
@@ -116,6 +118,7 @@ pub fn fit_profile_sorted(
 
 /// The best supporting line of an upper hull: at each vertex, the objective's best slope
 /// within the slopes of its two edges and the non-negativity of both ends.
+#[inline(never)]
 fn best_support(h: &[(f64, f64)], obj: Objective) -> (f64, f64) {
     let zmax = h.iter().fold(0.0f64, |m, p| m.max(p.1));
     let mut best = (zmax, zmax);

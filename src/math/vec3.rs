@@ -50,3 +50,24 @@ pub fn normalize(a: V3) -> Option<V3> {
         None
     }
 }
+
+/// `max` for hot loops over finite values: one `maxsd`, where `f64::max` also
+/// handles NaN with extra compares and blends. With a NaN argument it returns `a`.
+#[inline(always)]
+pub fn fmax(a: f64, b: f64) -> f64 {
+    if b > a {
+        b
+    } else {
+        a
+    }
+}
+
+/// `min` counterpart of [`fmax`].
+#[inline(always)]
+pub fn fmin(a: f64, b: f64) -> f64 {
+    if b < a {
+        b
+    } else {
+        a
+    }
+}

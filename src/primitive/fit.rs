@@ -5,7 +5,7 @@
 
 use super::profile::{fit_profile_sorted, Objective, ProfileScratch};
 use super::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
-use crate::math::{eigen_sym3, madd, scale, Sym3, V3};
+use crate::math::{eigen_sym3, fmax, fmin, madd, scale, Sym3, V3};
 
 /// Points as struct-of-arrays slices.
 #[derive(Clone, Copy, Debug)]
@@ -195,14 +195,14 @@ impl Extents {
         for i in 0..u0.len() {
             let u = [u0[i], u1[i], u2[i]];
             let sq = [u[0] * u[0], u[1] * u[1], u[2] * u[2]];
-            e.r2 = e.r2.max(sq[0] + sq[1] + sq[2]);
+            e.r2 = fmax(e.r2, sq[0] + sq[1] + sq[2]);
             let radial = [sq[1] + sq[2], sq[0] + sq[2], sq[0] + sq[1]];
             for y in 0..3 {
-                e.radial2[y] = e.radial2[y].max(radial[y]);
+                e.radial2[y] = fmax(e.radial2[y], radial[y]);
                 let side = usize::from(u[y] < 0.0);
-                e.side_radial2[y][side] = e.side_radial2[y][side].max(radial[y]);
+                e.side_radial2[y][side] = fmax(e.side_radial2[y][side], radial[y]);
                 for z in 0..3 {
-                    e.side[y][z][side] = e.side[y][z][side].max(sq[z]);
+                    e.side[y][z][side] = fmax(e.side[y][z][side], sq[z]);
                 }
             }
         }
@@ -270,8 +270,8 @@ fn project(cloud: &Cloud, axes: [V3; 3], s: &mut FitScratch) -> Frame {
         u.clear();
         u.extend((0..n).map(|i| a[0] * cloud.x[i] + a[1] * cloud.y[i] + a[2] * cloud.z[i]));
         for &v in u.iter() {
-            lo[k] = lo[k].min(v);
-            hi[k] = hi[k].max(v);
+            lo[k] = fmin(lo[k], v);
+            hi[k] = fmax(hi[k], v);
         }
         if n == 0 {
             (lo[k], hi[k]) = (0.0, 0.0);
@@ -317,9 +317,9 @@ fn fit_capsule(s: &FitScratch, obb: &Obb, radial: f64, k: usize, min_half: f64) 
     let (ua, ub, uc) = (&s.u[k], &s.u[(k + 1) % 3], &s.u[(k + 2) % 3]);
     let (mut top, mut bottom) = (f64::NEG_INFINITY, f64::INFINITY);
     for i in 0..ua.len() {
-        let reach = (r2 - ub[i] * ub[i] - uc[i] * uc[i]).max(0.0).sqrt();
-        top = top.max(ua[i] - reach);
-        bottom = bottom.min(ua[i] + reach);
+        let reach = fmax(r2 - ub[i] * ub[i] - uc[i] * uc[i], 0.0).sqrt();
+        top = fmax(top, ua[i] - reach);
+        bottom = fmin(bottom, ua[i] + reach);
     }
     if ua.is_empty() {
         (top, bottom) = (0.0, 0.0);

@@ -111,7 +111,7 @@ pub fn fit_profile_sorted(
     // Guarantee enclosure whatever round-off did: lift by the worst violation.
     let worst = order.iter().fold(0.0f64, |w, &i| {
         let (s, z) = pt(i as usize);
-        w.max(z - (l0 + (l1 - l0) * s))
+        crate::math::fmax(w, z - (l0 + (l1 - l0) * s))
     });
     ((l0 + worst).max(0.0), (l1 + worst).max(0.0))
 }

@@ -1,0 +1,121 @@
+//! The fit kernels allocate nothing per candidate (issue 5): once a `Workspace` has
+//! grown to the largest point set it has seen, pricing merges — gathering points,
+//! the eigen-solve, every kind's fit, the sorts and profile hulls — makes no heap
+//! allocation. A counting global allocator proves it; it counts this thread only, so
+//! the test harness's other threads cannot disturb the count.
+
+use primdecomp::decompose::{evaluator, seed_volumes};
+use primdecomp::merge::{Clusters, Workspace};
+use primdecomp::mesh::{adjacency, dedup};
+use primdecomp::{demo, quadric, Mesh, Params};
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+
+struct Counting;
+
+thread_local! {
+    static ALLOCS: Cell<u64> = const { Cell::new(0) };
+}
+
+// SAFETY: every call forwards to `System` with the caller's own arguments; the
+// counter is a thread-local `Cell` with a const initialiser, which never allocates.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, l: Layout) -> *mut u8 {
+        ALLOCS.with(|c| c.set(c.get() + 1));
+        // SAFETY: same contract as our caller's.
+        unsafe { System.alloc(l) }
+    }
+    unsafe fn dealloc(&self, p: *mut u8, l: Layout) {
+        // SAFETY: same contract as our caller's.
+        unsafe { System.dealloc(p, l) }
+    }
+    unsafe fn realloc(&self, p: *mut u8, l: Layout, n: usize) -> *mut u8 {
+        ALLOCS.with(|c| c.set(c.get() + 1));
+        // SAFETY: same contract as our caller's.
+        unsafe { System.realloc(p, l, n) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+fn allocations() -> u64 {
+    ALLOCS.with(|c| c.get())
+}
+
+#[test]
+fn pricing_merges_allocates_nothing_once_warm() {
+    let mesh = Mesh::from_builder(demo::demo_scene());
+    let p = Params::default();
+    let (welded, _) = dedup::weld(&mesh, p.dedup);
+    let pairs = adjacency::face_pairs(&mesh.face_offsets, &welded);
+    let mut q = Vec::new();
+    quadric::face_quadrics(&mesh, p.tangent_eps, &mut q);
+    let ev = evaluator(&mesh, &welded, &p, mesh.aabb());
+    let vols = seed_volumes(&ev, &q);
+    let mut cl = Clusters::new(q, vols, &pairs);
+    // Grow some clusters first, so candidates span multi-face point lists too.
+    for &(a, b) in pairs.iter().take(1500) {
+        let (ra, rb) = (cl.find(a), cl.find(b));
+        if ra != rb {
+            let mut verts = ev.all_verts(&cl, ra);
+            verts.extend(ev.all_verts(&cl, rb));
+            verts.sort_unstable();
+            verts.dedup();
+            cl.merge(ra, rb, verts, 1.0);
+        }
+    }
+    let live: Vec<(u32, u32)> = pairs
+        .iter()
+        .map(|&(a, b)| (cl.find(a), cl.find(b)))
+        .filter(|(a, b)| a != b)
+        .collect();
+    assert!(
+        cl.live + 500 < mesh.face_count(),
+        "{} live of {}",
+        cl.live,
+        mesh.face_count()
+    );
+    let pairs = live;
+    let mut ws = Workspace::default();
+    // Warm-up: the workspace grows to the largest candidate.
+    let priced = pairs
+        .iter()
+        .filter(|&&(a, b)| ev.candidate(&cl, a, b, &mut ws).is_some())
+        .count();
+    assert!(priced > 1000, "only {priced} pairs priced");
+    let before = allocations();
+    let mut cost = 0.0;
+    for &(a, b) in &pairs {
+        if let Some((c, _)) = ev.candidate(&cl, a, b, &mut ws) {
+            cost += c.cost;
+        }
+    }
+    let after = allocations();
+    assert!(cost.is_finite());
+    assert_eq!(
+        after - before,
+        0,
+        "{} allocations in {priced} candidates",
+        after - before
+    );
+}
+
+/// The counter works: a fresh workspace does allocate on its first candidate.
+#[test]
+fn counter_sees_a_cold_workspace_allocate() {
+    let mesh = Mesh::from_builder(demo::demo_scene());
+    let p = Params::default();
+    let (welded, _) = dedup::weld(&mesh, p.dedup);
+    let pairs = adjacency::face_pairs(&mesh.face_offsets, &welded);
+    let mut q = Vec::new();
+    quadric::face_quadrics(&mesh, p.tangent_eps, &mut q);
+    let ev = evaluator(&mesh, &welded, &p, mesh.aabb());
+    let vols = seed_volumes(&ev, &q);
+    let cl = Clusters::new(q, vols, &pairs);
+    let before = allocations();
+    let mut ws = Workspace::default();
+    let (a, b) = pairs[0];
+    let _ = ev.candidate(&cl, a, b, &mut ws);
+    assert!(allocations() > before);
+}

@@ -89,6 +89,9 @@ struct DecomposeArgs {
     /// Print nothing but errors.
     #[arg(short, long)]
     quiet: bool,
+    /// Print the per-stage seconds and the peak memory even with --quiet.
+    #[arg(long)]
+    timings: bool,
 }
 
 /// Runs the command line; returns the process exit code.
@@ -278,8 +281,12 @@ fn run_one(
     dec.timings.stages.insert(0, ("load".into(), load_s));
     let now = Instant::now();
     let written = write_outputs(&dec, &params, out, a.obj.as_deref(), a.obj_detail)?;
+    let write_s = now.elapsed().as_secs_f64();
     if !a.quiet {
-        print_summary(&dec, &mesh, &written, now.elapsed().as_secs_f64());
+        print_summary(&dec, &mesh, &written);
+    }
+    if !a.quiet || a.timings {
+        print_timings(&dec, write_s);
     }
     Ok(dec)
 }
@@ -364,7 +371,7 @@ fn write_outputs(
     Ok(written)
 }
 
-fn print_summary(dec: &Decomposition, mesh: &primdecomp::Mesh, written: &[PathBuf], write_s: f64) {
+fn print_summary(dec: &Decomposition, mesh: &primdecomp::Mesh, written: &[PathBuf]) {
     let i = &dec.input;
     println!(
         "input     {}: {} faces, {} vertices ({} after dedup), {} adjacent pairs",
@@ -395,6 +402,13 @@ fn print_summary(dec: &Decomposition, mesh: &primdecomp::Mesh, written: &[PathBu
             l.bytes()
         );
     }
+    for w in written {
+        println!("wrote     {}", w.display());
+    }
+}
+
+/// The stage breakdown (load through write) and the process's peak resident memory.
+fn print_timings(dec: &Decomposition, write_s: f64) {
     let stages: Vec<String> = dec
         .timings
         .stages
@@ -406,7 +420,14 @@ fn print_summary(dec: &Decomposition, mesh: &primdecomp::Mesh, written: &[PathBu
         stages.join(", "),
         dec.timings.total() + write_s
     );
-    for w in written {
-        println!("wrote     {}", w.display());
+    if let Some(kib) = peak_rss_kib() {
+        println!("memory    peak resident {:.1} MiB", kib as f64 / 1024.0);
     }
+}
+
+/// Peak resident set size of this process so far (Linux `VmHWM`), if known.
+fn peak_rss_kib() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    line.split_whitespace().nth(1)?.parse().ok()
 }

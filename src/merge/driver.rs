@@ -270,7 +270,10 @@ thread_local! {
 }
 
 fn par_points() -> usize {
-    std::env::var("PD_PAR_POINTS").ok().and_then(|v| v.parse().ok()).unwrap_or(PAR_POINTS)
+    std::env::var("PD_PAR_POINTS")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(PAR_POINTS)
 }
 
 /// Links every live cluster to its nearest successors by centroid along each axis.

@@ -1,9 +1,10 @@
 //! The `primdecomp` command: a thin shell over the library (see `cli.rs`).
 
-use mimalloc::MiMalloc;
-
+/// mimalloc unless built with `--features system-alloc` (kept to measure the
+/// difference: ARCHITECTURE.md, "Allocator").
+#[cfg(not(feature = "system-alloc"))]
 #[global_allocator]
-static GLOBAL: MiMalloc = MiMalloc;
+static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 mod cli;
 

@@ -17,6 +17,7 @@ pub mod collider;
 pub mod decompose;
 pub mod demo;
 pub mod error;
+pub mod eval;
 pub mod export;
 pub mod math;
 pub mod merge;

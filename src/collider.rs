@@ -10,8 +10,8 @@
 
 use crate::error::{Error, Result};
 use crate::math::V3;
-use crate::mesh::io::obj::{coordinate, resolve_corner};
-use crate::mesh::io::text::{strip_comment, tokens, Lines};
+use crate::mesh::io::obj::{for_each_statement, position, resolve_corner};
+use crate::mesh::io::text::tokens;
 use crate::primitive::{Kind, Primitive};
 use std::collections::HashMap;
 use std::path::Path;
@@ -116,29 +116,7 @@ pub fn parse_hulls_obj(bytes: &[u8], path: &Path) -> Result<Vec<Hull>> {
         current: HullBuilder::default(),
         corners: Vec::new(),
     };
-    let mut joined: Vec<u8> = Vec::new();
-    let mut joined_line = 0;
-    for (no, raw) in Lines::new(bytes) {
-        let line = strip_comment(raw);
-        if let Some(body) = line.trim_ascii_end().strip_suffix(b"\\") {
-            if joined.is_empty() {
-                joined_line = no;
-            }
-            joined.extend_from_slice(body);
-            joined.push(b' ');
-            continue;
-        }
-        if joined.is_empty() {
-            st.statement(line, no)?;
-        } else {
-            joined.extend_from_slice(line);
-            st.statement(&joined, joined_line)?;
-            joined.clear();
-        }
-    }
-    if !joined.is_empty() {
-        st.statement(&joined, joined_line)?;
-    }
+    for_each_statement(bytes, |line, no| st.statement(line, no))?;
     st.finish_hull();
     if st.hulls.is_empty() {
         return Err(Error::format(
@@ -169,17 +147,7 @@ impl HullReader<'_> {
         let mut toks = tokens(line);
         match toks.next() {
             Some(b"v") => {
-                let mut p = [0.0; 3];
-                for (k, slot) in p.iter_mut().enumerate() {
-                    let tok = toks.next().ok_or_else(|| {
-                        Error::line(
-                            self.path,
-                            no,
-                            format!("vertex has {k} coordinates; x, y and z are needed"),
-                        )
-                    })?;
-                    *slot = coordinate(tok, self.path, no)?;
-                }
+                let p = position(toks, self.path, no)?;
                 self.positions.push(p);
                 Ok(())
             }

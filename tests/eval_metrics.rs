@@ -5,37 +5,33 @@
 //! numbers on one and on several threads.
 
 use primdecomp::collider::{self, Collider};
+use primdecomp::eval::shape::box_triangles;
 use primdecomp::eval::{evaluate, Input, Metrics};
 use primdecomp::primitive::{Obb, Sphere};
 use primdecomp::{Mesh, Primitive};
 
 const I3: [[f64; 3]; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 
-/// The cube [−h, h]³ as six quads, offset by `c`.
-fn cube_mesh(h: f64, c: [f64; 3]) -> Mesh {
-    let v: Vec<[f64; 3]> = (0..8)
-        .map(|i| {
-            let s = |b: usize, k: usize| c[k] + if i & b != 0 { h } else { -h };
-            [s(4, 0), s(2, 1), s(1, 2)]
-        })
-        .collect();
-    let faces = [
-        [0, 1, 3, 2],
-        [4, 6, 7, 5],
-        [0, 4, 5, 1],
-        [2, 3, 7, 6],
-        [0, 2, 6, 4],
-        [1, 5, 7, 3],
-    ];
-    Mesh::from_polygons(&v, &faces.map(|f| f.to_vec()))
-}
-
-fn cube_box(h: f64, c: [f64; 3]) -> Collider {
-    Collider::Primitives(vec![Primitive::Box(Obb {
+fn cube_prim(h: f64, c: [f64; 3]) -> Primitive {
+    Primitive::Box(Obb {
         center: c,
         axes: I3,
         half: [h; 3],
-    })])
+    })
+}
+
+/// The surface of the cube [−h, h]³ + c as 12 triangles.
+fn cube_mesh(h: f64, c: [f64; 3]) -> Mesh {
+    let Primitive::Box(b) = cube_prim(h, c) else {
+        unreachable!()
+    };
+    let v: Vec<[f64; 3]> = box_triangles(&b).into_iter().flatten().collect();
+    let f: Vec<Vec<u32>> = (0..12).map(|i| vec![3 * i, 3 * i + 1, 3 * i + 2]).collect();
+    Mesh::from_polygons(&v, &f)
+}
+
+fn cube_box(h: f64, c: [f64; 3]) -> Collider {
+    Collider::Primitives(vec![cube_prim(h, c)])
 }
 
 fn diag(h: f64) -> f64 {

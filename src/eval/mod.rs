@@ -290,22 +290,14 @@ mod tests {
     use super::*;
     use crate::primitive::{Obb, Sphere};
 
-    fn unit_cube_mesh(h: f64) -> Mesh {
-        let v: Vec<V3> = (0..8)
-            .map(|i| {
-                let s = |b: usize| if i & b != 0 { h } else { -h };
-                [s(4), s(2), s(1)]
-            })
-            .collect();
-        let faces = [
-            [0, 1, 3, 2],
-            [4, 6, 7, 5],
-            [0, 4, 5, 1],
-            [2, 3, 7, 6],
-            [0, 2, 6, 4],
-            [1, 5, 7, 3],
-        ];
-        Mesh::from_polygons(&v, &faces.map(|f| f.to_vec()))
+    /// The box's surface as a triangle mesh.
+    pub(crate) fn box_mesh(b: &Primitive) -> Mesh {
+        let Primitive::Box(b) = b else {
+            panic!("not a box")
+        };
+        let v: Vec<V3> = shape::box_triangles(b).into_iter().flatten().collect();
+        let f: Vec<Vec<u32>> = (0..12).map(|i| vec![3 * i, 3 * i + 1, 3 * i + 2]).collect();
+        Mesh::from_polygons(&v, &f)
     }
 
     fn cube(h: f64) -> Primitive {
@@ -320,7 +312,7 @@ mod tests {
     fn buried_samples_are_dropped() {
         // A small sphere wholly inside the box: its surface counts in the *_all
         // metrics only.
-        let input = Input::new(&unit_cube_mesh(1.0));
+        let input = Input::new(&box_mesh(&cube(1.0)));
         let inner = Primitive::Sphere(Sphere {
             center: [0.0; 3],
             radius: 0.5,

@@ -157,7 +157,8 @@ fn hexahedron(c: &[V3; 8]) -> [[V3; 3]; 12] {
     })
 }
 
-fn box_tris(b: &Obb) -> [[V3; 3]; 12] {
+/// The 12 triangles of a box's surface.
+pub fn box_triangles(b: &Obb) -> [[V3; 3]; 12] {
     hexahedron(&corners(
         b.center,
         &b.axes,
@@ -204,7 +205,7 @@ fn frustum_pieces(p0: V3, p1: V3, r0: f64, r1: f64, out: &mut Vec<Piece>) {
 /// Appends the surface pieces of `prim` to `out`.
 pub fn pieces(prim: &Primitive, out: &mut Vec<Piece>) {
     match prim {
-        Primitive::Box(b) => out.extend(box_tris(b).map(Piece::Tri)),
+        Primitive::Box(b) => out.extend(box_triangles(b).map(Piece::Tri)),
         Primitive::Prism(p) => out.extend(prism_tris(p).map(Piece::Tri)),
         Primitive::Sphere(s) => out.push(Piece::Sphere {
             c: s.center,
@@ -270,7 +271,7 @@ pub fn surface_dist2(prim: &Primitive, p: V3) -> f64 {
             .fold(f64::INFINITY, f64::min)
     };
     match prim {
-        Primitive::Box(b) => tris(box_tris(b)),
+        Primitive::Box(b) => tris(box_triangles(b)),
         Primitive::Prism(q) => tris(prism_tris(q)),
         Primitive::Sphere(s) => (norm(sub(p, s.center)) - s.radius).powi(2),
         Primitive::Capsule(c) => (point_segment_dist2(p, c.p0, c.p1).sqrt() - c.radius).powi(2),

@@ -98,15 +98,22 @@ def per_mesh_tables(records, methods):
 
 def failures(records, methods):
     lines = ["## Failures, timeouts and meshes not run", ""]
-    n = 0
+    not_run = {}
     for r in records:
         for m in ["ours"] + [m for m in methods if m != "ours"]:
             s = slot(r, m)
-            if s.get("status", "not run") != "ok":
-                lines.append(f"- {r['mesh']}, {label(m)}: {s.get('status', 'not run')} — {s.get('reason', '')}")
-                n += 1
-    if n == 0:
-        lines.append("None.")
+            status = s.get("status", "not run")
+            if status == "not run":
+                not_run.setdefault(m, []).append(r["mesh"])
+            elif status != "ok":
+                lines.append(f"- {r['mesh']}, {label(m)}: {status} — {s.get('reason', '')}")
+    if len(lines) == 2:
+        lines.append("No failure or timeout.")
+    for m, meshes in not_run.items():
+        lines.append(
+            f"- {label(m)} not run on {len(meshes)} meshes (no cached result; `benches/compare` without "
+            f"`--cached-only` runs them): {', '.join(meshes)}"
+        )
     return lines + [""]
 
 

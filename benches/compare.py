@@ -32,6 +32,7 @@ def parse_args(argv):
     ap.add_argument("--sweep", action="store_true", help="the speed/accuracy sweep of our engine -> docs/results/tradeoff.md")
     ap.add_argument("--out", default=str(ROOT / "docs" / "results"), help="report directory (default: %(default)s)")
     ap.add_argument("--sim", default=None, help="optional directory of simulation results, SIM/<mesh file name>.json = {method: {metric: value}}, shown as a table")
+    ap.add_argument("--cache", default=str(CACHE), help="peer cache and work directory (default: %(default)s)")
     ap.add_argument("--bin", default=str(ROOT / "target" / "release" / "primdecomp"), help="primdecomp binary (default: %(default)s)")
     return ap.parse_args(argv)
 
@@ -40,7 +41,7 @@ def fill_peer_cache(a, meshes, methods):
     python = sys.executable
     for m in meshes:
         for method in methods:
-            peers.run_peer(python, m, method, CACHE, a.timeout, a.threads)
+            peers.run_peer(python, m, method, Path(a.cache), a.timeout, a.threads)
 
 
 def main(argv):
@@ -61,7 +62,7 @@ def main(argv):
         return sweep.main(a, meshes)
     from compare_lib import report
 
-    return report.main(a, meshes, methods, CACHE)
+    return report.main(a, meshes, methods, Path(a.cache))
 
 
 if __name__ == "__main__":

@@ -24,7 +24,7 @@ def summary_table(records, methods):
     common, rows = summary_rows(records, methods)
     lines = [
         f"Over the {len(common)} meshes where {', '.join(label(m) for m in methods)} all have results "
-        "(distances over the input's AABB diagonal; wins count ties for every method tied):",
+        "(distances over the input's AABB diagonal; wins count ties, within 1e-9, for every method tied):",
         "",
         "| method | Hausdorff wins | Chamfer wins | mean Hausdorff | median Hausdorff | mean Chamfer | median Chamfer | mean bytes | median bytes | mean s | median s | min enclosure |",
         "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",

@@ -166,10 +166,18 @@ def summary_rows(records, methods):
         b = [slot(r, m)["bytes"] for r in common]
         s = [slot(r, m)["seconds"] for r in common]
         e = [metrics_of(r, m)["enclosure"] for r in common]
-        wins_h = sum(1 for r in common if metrics_of(r, m)["hausdorff"] <= min(metrics_of(r, x)["hausdorff"] for x in methods))
-        wins_c = sum(1 for r in common if metrics_of(r, m)["chamfer"] <= min(metrics_of(r, x)["chamfer"] for x in methods))
+        wins_h = sum(1 for r in common if wins(r, m, methods, "hausdorff"))
+        wins_c = sum(1 for r in common if wins(r, m, methods, "chamfer"))
         rows.append(dict(method=m, n=len(common), wins_h=wins_h, wins_c=wins_c, h=h, c=c, b=b, s=s, e=e))
     return common, rows
+
+
+# Distances (over the diagonal) closer than this are ties: round-off on exact colliders.
+TIE = 1e-9
+
+
+def wins(r, m, methods, key):
+    return metrics_of(r, m)[key] <= min(metrics_of(r, x)[key] for x in methods) + TIE
 
 
 def slot(r, m):

@@ -102,7 +102,7 @@ def main(a, meshes):
         meshes = corpus.mesh_list(DEFAULT_MESHES)
     out = Path(a.out)
     out.mkdir(parents=True, exist_ok=True)
-    work = Path(__file__).resolve().parent.parent / ".cache" / "sweep"
+    work = Path(a.cache) / "sweep"
     t0 = time.time()
     results = {}
     for mesh in meshes:

@@ -24,6 +24,8 @@ enum Cmd {
     /// Decompose INPUT (OBJ, PLY, STL, OFF, glTF/GLB) into boxes, spheres, capsules,
     /// cylinders, frustums and trapezoidal prisms that enclose every face.
     Decompose(Box<DecomposeArgs>),
+    /// Measure colliders against their input mesh: distances, enclosure, bytes.
+    Eval(EvalArgs),
     /// Write the built-in demo scene (stairs, table, pipes, house, ring) as OBJ.
     DemoScene {
         /// Output file.
@@ -31,6 +33,33 @@ enum Cmd {
         out: PathBuf,
     },
 }
+
+/// `primdecomp eval`. The sampling-error figures in the help come from
+/// `benches/eval_spread.sh` (see docs/results/eval_sampling.md).
+#[derive(Args, Debug)]
+#[command(after_help = EVAL_HELP)]
+struct EvalArgs {
+    /// The input mesh the colliders were made for (OBJ, PLY, STL, OFF, glTF/GLB).
+    #[arg(long)]
+    input: PathBuf,
+    /// Colliders: primdecomp JSON, or OBJ convex hulls (one `o`/`g` per hull).
+    #[arg(required = true)]
+    colliders: Vec<PathBuf>,
+    /// Area-uniform samples per surface (collider surface, input surface).
+    #[arg(long, default_value_t = primdecomp::eval::DEFAULT_SAMPLES)]
+    samples: usize,
+    /// Seed of the samples; results are the same for a seed on any thread count.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Also write the metrics as JSON here (atomically).
+    #[arg(long)]
+    json: Option<PathBuf>,
+    /// Worker threads (default: all cores); results do not depend on it.
+    #[arg(long)]
+    threads: Option<usize>,
+}
+
+const EVAL_HELP: &str = include_str!("eval_help.txt");
 
 #[derive(Args, Debug)]
 struct DecomposeArgs {
@@ -105,6 +134,7 @@ pub fn main() -> i32 {
     };
     let result = match cli.cmd {
         Cmd::Decompose(a) => decompose(*a),
+        Cmd::Eval(a) => eval(a),
         Cmd::DemoScene { out } => write_atomic(&out, primdecomp::demo::demo_scene_obj().as_bytes())
             .map_err(anyhow::Error::from)
             .map(|_| println!("wrote {}", out.display())),
@@ -212,15 +242,52 @@ fn resolve_targets(targets: &[Target], faces: usize) -> Vec<usize> {
         .collect()
 }
 
-fn decompose(a: DecomposeArgs) -> anyhow::Result<()> {
-    let base = params_from(&a)?;
-    let targets = parse_targets(&a.targets)?;
-    if let Some(t) = a.threads {
+fn set_threads(threads: Option<usize>) -> anyhow::Result<()> {
+    if let Some(t) = threads {
         rayon::ThreadPoolBuilder::new()
             .num_threads(t.max(1))
             .build_global()
             .map_err(|e| anyhow!("cannot start {t} threads: {e}"))?;
     }
+    Ok(())
+}
+
+/// Loads the input and every collider first (a bad file fails the run before any
+/// work), then evaluates them in order.
+fn eval(a: EvalArgs) -> anyhow::Result<()> {
+    if a.samples == 0 {
+        bail!(BadArgs("--samples must be at least 1".into()));
+    }
+    set_threads(a.threads)?;
+    let mesh = primdecomp::mesh::io::load(&a.input)?;
+    let colliders = a
+        .colliders
+        .iter()
+        .map(|p| primdecomp::collider::load(p))
+        .collect::<primdecomp::Result<Vec<_>>>()?;
+    let input = primdecomp::eval::Input::new(&mesh);
+    let rows: Vec<(String, primdecomp::eval::Metrics)> = a
+        .colliders
+        .iter()
+        .zip(&colliders)
+        .map(|(p, c)| {
+            let m = primdecomp::eval::evaluate(&input, c, a.samples, a.seed);
+            (p.display().to_string(), m)
+        })
+        .collect();
+    print!("{}", primdecomp::eval::report::table(&rows));
+    if let Some(out) = &a.json {
+        let doc = primdecomp::eval::report::to_json(&a.input.display().to_string(), &rows);
+        write_atomic(out, doc.as_bytes())?;
+        println!("wrote {}", out.display());
+    }
+    Ok(())
+}
+
+fn decompose(a: DecomposeArgs) -> anyhow::Result<()> {
+    let base = params_from(&a)?;
+    let targets = parse_targets(&a.targets)?;
+    set_threads(a.threads)?;
     if a.inputs.len() == 1 {
         let out = a.out.clone().unwrap_or_else(|| default_out(&a.inputs[0]));
         return run_one(&a, &a.inputs[0], &base, &targets, &out).map(|_| ());

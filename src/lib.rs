@@ -13,9 +13,11 @@
 // Loops over the three axes index several parallel arrays; iterators obscure them.
 #![allow(clippy::needless_range_loop)]
 
+pub mod collider;
 pub mod decompose;
 pub mod demo;
 pub mod error;
+pub mod eval;
 pub mod export;
 pub mod math;
 pub mod merge;

@@ -23,6 +23,16 @@ pub fn parse_obj(bytes: &[u8], path: &Path) -> Result<MeshBuilder> {
     };
     // A rough upper bound keeps the first growth steps cheap on big files.
     st.out.positions.reserve(bytes.len() / 64);
+    for_each_statement(bytes, |line, no| st.statement(line, no))?;
+    Ok(st.out)
+}
+
+/// Calls `f(statement, line number)` for each statement of an OBJ text: comments
+/// stripped, and a line ending in `\` joined with the next (numbered by its first line).
+pub(crate) fn for_each_statement(
+    bytes: &[u8],
+    mut f: impl FnMut(&[u8], u64) -> Result<()>,
+) -> Result<()> {
     let mut joined: Vec<u8> = Vec::new();
     let mut joined_line = 0;
     for (no, raw) in Lines::new(bytes) {
@@ -36,17 +46,17 @@ pub fn parse_obj(bytes: &[u8], path: &Path) -> Result<MeshBuilder> {
             continue;
         }
         if joined.is_empty() {
-            st.statement(line, no)?;
+            f(line, no)?;
         } else {
             joined.extend_from_slice(line);
-            st.statement(&joined, joined_line)?;
+            f(&joined, joined_line)?;
             joined.clear();
         }
     }
     if !joined.is_empty() {
-        st.statement(&joined, joined_line)?;
+        f(&joined, joined_line)?;
     }
-    Ok(st.out)
+    Ok(())
 }
 
 struct ObjState<'p> {
@@ -70,18 +80,8 @@ impl ObjState<'_> {
         }
     }
 
-    fn vertex<'a>(&mut self, mut toks: impl Iterator<Item = &'a [u8]>, no: u64) -> Result<()> {
-        let mut p = [0.0f64; 3];
-        for (k, slot) in p.iter_mut().enumerate() {
-            let tok = toks.next().ok_or_else(|| {
-                Error::line(
-                    self.path,
-                    no,
-                    format!("vertex has {k} coordinates; x, y and z are needed"),
-                )
-            })?;
-            *slot = coordinate(tok, self.path, no)?;
-        }
+    fn vertex<'a>(&mut self, toks: impl Iterator<Item = &'a [u8]>, no: u64) -> Result<()> {
+        let p = position(toks, self.path, no)?;
         if self.out.positions.len() >= u32::MAX as usize {
             return Err(Error::line(
                 self.path,
@@ -105,6 +105,26 @@ impl ObjState<'_> {
     }
 }
 
+/// The x, y and z of a `v` statement's tokens (a w or colour after them is ignored).
+pub(crate) fn position<'a>(
+    mut toks: impl Iterator<Item = &'a [u8]>,
+    path: &Path,
+    no: u64,
+) -> Result<[f64; 3]> {
+    let mut p = [0.0f64; 3];
+    for (k, slot) in p.iter_mut().enumerate() {
+        let tok = toks.next().ok_or_else(|| {
+            Error::line(
+                path,
+                no,
+                format!("vertex has {k} coordinates; x, y and z are needed"),
+            )
+        })?;
+        *slot = coordinate(tok, path, no)?;
+    }
+    Ok(p)
+}
+
 /// One finite coordinate.
 fn coordinate(tok: &[u8], path: &Path, no: u64) -> Result<f64> {
     match parse_f64(tok) {
@@ -124,7 +144,7 @@ fn coordinate(tok: &[u8], path: &Path, no: u64) -> Result<f64> {
 
 /// The 0-based vertex index of a face corner `v`, `v/vt`, `v//vn` or `v/vt/vn`, given
 /// `n` vertices defined so far.
-fn resolve_corner(tok: &[u8], n: usize) -> std::result::Result<u32, String> {
+pub(crate) fn resolve_corner(tok: &[u8], n: usize) -> std::result::Result<u32, String> {
     let v = tok.split(|&b| b == b'/').next().unwrap_or(tok);
     let Some(i) = parse_i64(v) else {
         return Err(format!(

@@ -1,0 +1,168 @@
+"""The text of docs/results/compare.md."""
+
+import datetime
+
+from . import peers
+from .report import RULE, machine, mean, median, metrics_of, slot, summary_rows
+
+KIND_LETTER = [("box", "b"), ("sphere", "s"), ("capsule", "c"), ("cylinder", "y"), ("frustum", "f"), ("prism", "p")]
+
+
+def label(m):
+    return "ours" if m == "ours" else peers.LABEL[m]
+
+
+def fmt(x, spec):
+    return "–" if x is None else format(x, spec)
+
+
+def kinds(counts):
+    return " ".join(f"{counts[k]}{c}" for k, c in KIND_LETTER if counts.get(k))
+
+
+def summary_table(records, methods):
+    common, rows = summary_rows(records, methods)
+    lines = [
+        f"Over the {len(common)} meshes where {', '.join(label(m) for m in methods)} all have results "
+        "(distances over the input's AABB diagonal; wins count ties, within 1e-9, for every method tied):",
+        "",
+        "| method | Hausdorff wins | Chamfer wins | mean Hausdorff | median Hausdorff | mean Chamfer | median Chamfer | mean bytes | median bytes | mean s | median s | min enclosure |",
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+    ]
+    for r in rows:
+        lines.append(
+            f"| {label(r['method'])} | {r['wins_h']} | {r['wins_c']} | {mean(r['h']):.4f} | {median(r['h']):.4f} | "
+            f"{mean(r['c']):.3e} | {median(r['c']):.3e} | {mean(r['b']):,.0f} | {median(r['b']):,.0f} | "
+            f"{mean(r['s']):.2f} | {median(r['s']):.2f} | {min(r['e'], default=float('nan')):.6f} |"
+        )
+    return common, rows, lines
+
+
+def targets_check(records, rows, methods):
+    """The issue's targets for the engine, met or not, with the numbers."""
+    by = {r["method"]: r for r in rows}
+    o = by.get("ours")
+    out = ["## The engine against the issue's targets", ""]
+    if not o or not o["h"]:
+        return out + ["No mesh has results for every method yet.", ""]
+    for m in [m for m in methods if m != "ours"]:
+        p = by[m]
+        for key, name in (("h", "Hausdorff"), ("c", "Chamfer")):
+            for fn, fname in ((mean, "mean"), (median, "median")):
+                ok = fn(o[key]) < fn(p[key])
+                out.append(f"- {fname} {name} below {label(m)}'s: {'met' if ok else '**NOT met**'} ({fn(o[key]):.4g} vs {fn(p[key]):.4g})")
+    if "coacd" in by:
+        mb, cb = median(o["b"]), median(by["coacd"]["b"])
+        out.append(f"- median bytes at most 1/3 of CoACD's: {'met' if mb <= cb / 3 else '**NOT met**'} ({mb:,.0f} vs {cb / 3:,.0f})")
+    all_ours = [r for r in records if metrics_of(r, "ours")]
+    short = [f"{r['mesh']} ({metrics_of(r, 'ours')['enclosure']:.6f})" for r in all_ours if metrics_of(r, "ours")["enclosure"] < 1.0]
+    out.append(
+        f"- enclosure 1.0 on every mesh: {'met' if not short else '**NOT met**'} "
+        f"({len(all_ours) - len(short)} of {len(all_ours)} evaluated meshes at 1.0"
+        + (f"; below: {', '.join(short)}" if short else "")
+        + ")"
+    )
+    return out + [""]
+
+
+def per_mesh_tables(records, methods):
+    peers_ = [m for m in methods if m != "ours"]
+    head = "| mesh | faces | ours N | ours primitives | ours bytes | ours s |" + "".join(f" {label(m)} hulls | bytes | s |" for m in peers_)
+    lines = ["### Size and time", "", head, "|---|---:|---:|---|---:|---:|" + "---:|---:|---:|" * len(peers_)]
+    for r in records:
+        o = r["ours"]
+        cells = [r["mesh"], fmt(r.get("faces"), "d")]
+        if o.get("primitives") is not None:
+            cells += [str(o["target"]), f"{o['primitives']} ({kinds(o['counts'])})", fmt(o.get("bytes"), ",d"), f"{o['seconds']:.2f}"]
+        else:
+            cells += ["–", o.get("status", "–"), "–", "–"]
+        for m in peers_:
+            p = r["peers"].get(m, {})
+            if p.get("status") == "ok" or p.get("hulls"):
+                cells += [str(p["hulls"]), fmt(p.get("bytes"), ",d"), f"{p['seconds']:.1f}"]
+            else:
+                cells += [p.get("status", "–"), "–", "–"]
+        lines.append("| " + " | ".join(cells) + " |")
+    allm = ["ours"] + peers_
+    lines += ["", "### Distance and enclosure", "", "Hausdorff / Chamfer over the diagonal; enclosure = fraction of input samples inside.", ""]
+    lines.append("| mesh |" + "".join(f" {label(m)} H | C | E |" for m in allm))
+    lines.append("|---|" + "---:|---:|---:|" * len(allm))
+    for r in records:
+        cells = [r["mesh"]]
+        for m in allm:
+            x = metrics_of(r, m)
+            cells += [f"{x['hausdorff']:.4f}", f"{x['chamfer']:.2e}", f"{x['enclosure']:.4f}"] if x else ["–", "–", "–"]
+        lines.append("| " + " | ".join(cells) + " |")
+    return lines + [""]
+
+
+def failures(records, methods):
+    lines = ["## Failures, timeouts and meshes not run", ""]
+    not_run = {}
+    for r in records:
+        for m in ["ours"] + [m for m in methods if m != "ours"]:
+            s = slot(r, m)
+            status = s.get("status", "not run")
+            if status == "not run":
+                not_run.setdefault(m, []).append(r["mesh"])
+            elif status != "ok":
+                lines.append(f"- {r['mesh']}, {label(m)}: {status} — {s.get('reason', '')}")
+    if len(lines) == 2:
+        lines.append("No failure or timeout.")
+    for m, meshes in not_run.items():
+        lines.append(
+            f"- {label(m)} not run on {len(meshes)} meshes (no cached result; `benches/compare` without "
+            f"`--cached-only` runs them): {', '.join(meshes)}"
+        )
+    return lines + [""]
+
+
+def sim_table(records):
+    rows = [r for r in records if r.get("sim")]
+    if not rows:
+        return []
+    keys = sorted({k for r in rows for v in r["sim"].values() if isinstance(v, dict) for k in v})
+    lines = ["## Simulation", "", "| mesh | method | " + " | ".join(keys) + " |", "|---|---|" + "---:|" * len(keys)]
+    for r in rows:
+        for m, v in r["sim"].items():
+            if isinstance(v, dict):
+                lines.append(f"| {r['mesh']} | {m} | " + " | ".join(str(v.get(k, "–")) for k in keys) + " |")
+    return lines + [""]
+
+
+def render(records, methods, a, cmd, commit, seconds):
+    main3 = ["ours"] + [m for m in ("coacd", "vhacd") if m in methods]
+    _, rows, table = summary_table(records, main3)
+    text = [
+        "# primdecomp vs CoACD and V-HACD",
+        "",
+        f"Generated by `{cmd}` at commit `{commit}` on {datetime.date.today()} ({machine()}), "
+        f"in {seconds / 60:.1f} min. Regenerate with the same command (peer results are cached in "
+        "`benches/.cache` by mesh sha256 + settings; `--cached-only` never starts a peer).",
+        "",
+        f"- Rule: {RULE}.",
+        "- Our engine: the release binary, default settings, `--threads 1`; seconds are the whole multi-target "
+        "pass (load to post-processing), so a single-target run is faster.",
+        f"- Peers (versions pinned in `benches/peers/requirements.txt`), one thread each (OMP_NUM_THREADS={a.threads}), "
+        f"timeout {a.timeout:.0f} s per run: CoACD with defaults; CoACD with the paper author's settings (threshold 0.08, "
+        "resolution 5000, preprocess_resolution 50, decimate on, merge off); V-HACD 4 (vhacdx) with defaults. "
+        "Seconds are the decomposition call's wall time.",
+        f"- Metrics: `primdecomp eval` with {a.samples or 'its default'} samples per surface (see "
+        "`primdecomp eval --help` for definitions and sampling error). Bytes by the paper's Table 2.",
+        "",
+        "## Summary (as the paper's Table 3)",
+        "",
+        *table,
+        "",
+    ]
+    if "coacd-paper" in methods:
+        common2, _, t2 = summary_table(records, ["ours", "coacd-paper"])
+        text += ["Against CoACD with the paper author's settings:", ""]
+        text += [*t2, ""] if common2 else ["No mesh has a CoACD (paper settings) result yet.", ""]
+    text += targets_check(records, rows, main3)
+    text += ["## Plots", "", "![distance per mesh](compare_distance.png)", "", "![bytes per mesh](compare_bytes.png)", "", "![seconds vs faces](compare_seconds.png)", ""]
+    text += ["## Per mesh (as the paper's appendix)", "", "Primitive letters: b box, s sphere, c capsule, y cylinder, f frustum, p prism.", ""]
+    text += per_mesh_tables(records, ["ours"] + methods)
+    text += failures(records, methods)
+    text += sim_table(records)
+    return "\n".join(text)

@@ -1,0 +1,196 @@
+"""docs/results/compare.md: run (or read cached) peers, run our engine with the
+stated target rule, evaluate everything with `primdecomp eval`, and write the
+per-mesh tables, the Table-3-style summary, the failures and the plots."""
+
+import json
+import os
+import platform
+import statistics as st
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+from . import ours, peers, plots
+
+RULE = (
+    "our target per mesh: from one multi-target pass over targets from the most primitives "
+    "that could fit the budget down to 1 (steps of about 7%), the level with the most primitives "
+    "whose bytes stay at or below one third of CoACD's (default settings) on that mesh; "
+    "where CoACD has no result, the 1% target (faces/100, at least 1)"
+)
+
+
+def git_commit(root):
+    try:
+        out = subprocess.run(["git", "-C", str(root), "rev-parse", "--short", "HEAD"], capture_output=True, text=True)
+        dirty = subprocess.run(["git", "-C", str(root), "status", "--porcelain", "--untracked-files=no"], capture_output=True, text=True)
+        return out.stdout.strip() + ("-dirty" if dirty.stdout.strip() else "")
+    except OSError:
+        return "unknown"
+
+
+def peer_record(a, mesh, method, cache):
+    """The peer's cache status, running it unless --cached-only."""
+    if a.cached_only:
+        d = peers.entry_dir(cache, peers.sha256_file(mesh), method, a.threads)
+        st_ = peers.read_status(d)
+        if st_ is None:
+            return {"status": "not run", "reason": "no cached result (--cached-only)"}, d
+        return st_, d
+    return peers.run_peer(sys.executable, mesh, method, cache, a.timeout, a.threads)
+
+
+def run_mesh(a, mesh, methods, cache, work):
+    rec = {"mesh": mesh.name, "peers": {}, "ours": {}}
+    colliders = {}
+    for m in methods:
+        st_, d = peer_record(a, mesh, m, cache)
+        r = {"status": st_["status"], "reason": st_.get("reason", "")}
+        if st_["status"] == "ok":
+            meta = json.loads((d / "meta.json").read_text())
+            r.update(
+                hulls=meta["hulls"],
+                hull_vertices=meta["hull_vertices"],
+                hull_triangles=meta["hull_triangles"],
+                seconds=meta["seconds"],
+                peak_rss_mib=meta["peak_rss_mib"],
+            )
+            colliders[m] = d / "hulls.obj"
+        rec["peers"][m] = r
+    mdir = work / mesh.name
+    budget = None
+    if "coacd" in colliders:
+        # Table 2 bytes of CoACD's hulls: 12 per vertex, 6 per triangle.
+        c = rec["peers"]["coacd"]
+        budget = (12 * c["hull_vertices"] + 6 * c["hull_triangles"]) / 3.0
+    faces = count_faces(mesh)
+    targets = ours.candidate_targets(budget, faces or 100)
+    run = ours.decompose(a.bin, mesh, targets, mdir / "ours", a.timeout)
+    rec["ours"] = {"status": run["status"], "reason": run["reason"]}
+    if run["status"] == "ok":
+        pick = ours.choose(run["levels"], budget)
+        if pick is None:
+            rec["ours"] = {"status": "failed", "reason": "no level within one third of CoACD's bytes"}
+        else:
+            s = pick["stats"]
+            rec["faces"] = pick["input"]["faces"]
+            rec["ours"].update(
+                target=pick["settings"]["target"],
+                primitives=s["primitives"],
+                counts=s["counts"],
+                seconds=s["seconds"]["total"],
+                levels=len(run["levels"]),
+            )
+            colliders["ours"] = Path(pick["_path"])
+    rec["budget_bytes"] = budget
+    rec.setdefault("faces", faces)
+    evaluate_all(a, mesh, rec, colliders, mdir)
+    return rec
+
+
+def count_faces(mesh):
+    from . import corpus
+
+    return corpus.faces(mesh)
+
+
+def evaluate_all(a, mesh, rec, colliders, mdir):
+    if not colliders:
+        return
+    paths = list(colliders.values())
+    res, errs = ours.evaluate(a.bin, mesh, paths, mdir / "eval.json", a.samples, a.timeout)
+    for name, path in colliders.items():
+        slot = rec["ours"] if name == "ours" else rec["peers"][name]
+        m = res.get(str(path))
+        if m is None:
+            slot["status"] = "eval failed"
+            slot["reason"] = errs.get(str(path), "no metrics")
+            continue
+        slot["metrics"] = {k: m[k] for k in m if k not in ("collider", "counts")}
+        slot["bytes"] = m["bytes"]
+
+
+def load_sim(sim_dir, mesh_name):
+    """Optional simulation results: SIM_DIR/<mesh file name>.json, an object
+    {method: {metric: number}} (methods: ours, coacd, coacd-paper, vhacd)."""
+    if not sim_dir:
+        return None
+    p = Path(sim_dir) / f"{mesh_name}.json"
+    try:
+        return json.loads(p.read_text())
+    except (OSError, ValueError):
+        return None
+
+
+def main(a, meshes, methods, cache):
+    out = Path(a.out)
+    out.mkdir(parents=True, exist_ok=True)
+    work = cache / "work"
+    t0 = time.time()
+    records = []
+    for mesh in meshes:
+        print(f"[compare] {mesh.name}", file=sys.stderr, flush=True)
+        rec = run_mesh(a, mesh, methods, cache, work)
+        rec["sim"] = load_sim(getattr(a, "sim", None), mesh.name)
+        records.append(rec)
+    data = {"methods": ["ours"] + methods, "records": records, "rule": RULE}
+    (out / "compare.json").write_text(json.dumps(data, indent=1) + "\n")
+    plots.compare_plots(records, ["ours"] + methods, out)
+    from . import markdown
+
+    text = markdown.render(records, methods, a, argv_line(), git_commit(Path(__file__).resolve().parents[2]), time.time() - t0)
+    tmp = out / f".compare.md.tmp.{os.getpid()}"
+    tmp.write_text(text)
+    os.replace(tmp, out / "compare.md")
+    print(f"wrote {out / 'compare.md'}", file=sys.stderr)
+    return 0
+
+
+def argv_line():
+    return "benches/compare " + " ".join(sys.argv[1:])
+
+
+def machine():
+    return f"{platform.machine()}, {os.cpu_count()} cores, Python {platform.python_version()}"
+
+
+def summary_rows(records, methods):
+    """Per method: meshes, wins, mean/median distances, bytes and seconds over the
+    meshes where every method in `methods` has metrics."""
+    common = [r for r in records if all(metrics_of(r, m) for m in methods)]
+    rows = []
+    for m in methods:
+        h = [metrics_of(r, m)["hausdorff"] for r in common]
+        c = [metrics_of(r, m)["chamfer"] for r in common]
+        b = [slot(r, m)["bytes"] for r in common]
+        s = [slot(r, m)["seconds"] for r in common]
+        e = [metrics_of(r, m)["enclosure"] for r in common]
+        wins_h = sum(1 for r in common if wins(r, m, methods, "hausdorff"))
+        wins_c = sum(1 for r in common if wins(r, m, methods, "chamfer"))
+        rows.append(dict(method=m, n=len(common), wins_h=wins_h, wins_c=wins_c, h=h, c=c, b=b, s=s, e=e))
+    return common, rows
+
+
+# Distances (over the diagonal) closer than this are ties: round-off on exact colliders.
+TIE = 1e-9
+
+
+def wins(r, m, methods, key):
+    return metrics_of(r, m)[key] <= min(metrics_of(r, x)[key] for x in methods) + TIE
+
+
+def slot(r, m):
+    return r["ours"] if m == "ours" else r["peers"].get(m, {})
+
+
+def metrics_of(r, m):
+    return slot(r, m).get("metrics")
+
+
+def mean(v):
+    return st.mean(v) if v else float("nan")
+
+
+def median(v):
+    return st.median(v) if v else float("nan")

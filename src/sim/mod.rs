@@ -1,0 +1,379 @@
+//! `primdecomp sim`: the paper's rigid-body benchmark (§4.1 "Efficiency of Collision
+//! Objects"): drop balls on each collider in Rapier, time every frame's physics step,
+//! and compare where the balls end with where they end on the input mesh itself.
+//!
+//! # Scene
+//! - **Frame.** Coordinates are re-centred on the input's AABB centre and scaled so
+//!   the AABB diagonal D is [`scene::SCENE_DIAGONAL`] = 10 m, whatever the file's
+//!   units; gravity 9.81 m/s² along −up (`up` = y by default, z for Z-up files); fixed
+//!   step 1/60 s; Rapier's defaults otherwise (friction 0.5, no restitution).
+//! - **Balls.** Radius r = 0.01·D (0.1 m in the scene). Release grid over the AABB's
+//!   footprint (its two horizontal axes): columns 3r apart (⌊W/3r⌋ per axis, at least
+//!   one, cells centred), layers 3r apart starting 3r above the AABB's top, filled
+//!   layer by layer. Each centre is jittered uniformly by up to r/2 per axis from a
+//!   SplitMix64 stream seeded with `seed`, so no two balls overlap; they start at
+//!   rest, with CCD on. Every collider sees exactly the same balls.
+//! - **Colliders.** The input mesh as one triangle mesh (the reference, always the
+//!   first entry), our primitives ([`shapes::primitive`]) and convex hulls, all fixed.
+//!
+//! # Timing
+//! All colliders' worlds live in one process and advance frame by frame, each frame
+//! stepping every world once in an order rotated by the frame number, so machine
+//! noise hits all colliders alike and their ratios hold. Only the `step` call is
+//! timed. `threads` sizes the rayon pool that runs Rapier's parallel parts (default
+//! 1: one core, the most repeatable).
+//!
+//! # Behaviour (after the last frame, against the reference run)
+//! - `similarity`: fraction of balls whose centre ends within one ball diameter (2r)
+//!   of where the same ball ends on the input mesh. Piles are chaotic, so even a
+//!   faithful collider scores below 1 on a busy scene; compare colliders, not 1.
+//! - `on_object`: fraction of balls whose centre ends inside the input's AABB grown
+//!   by 2r on every side (no upper bound, piles may stand above it), i.e. that did
+//!   not fall off or through; `resting`: of all balls, the fraction on the object and
+//!   slower than r per second; `on_object_agreement`: fraction whose on-object state
+//!   matches the reference's.
+//! - `mean_displacement`: mean distance between a ball's end and its end on the
+//!   mesh, in the input's units (`mean_displacement_rel`: over D).
+
+pub mod metrics;
+pub mod plot;
+pub mod report;
+pub mod scene;
+pub mod shapes;
+
+use crate::error::{Error, Result};
+use crate::math::V3;
+use crate::mesh::Mesh;
+use crate::primitive::Primitive;
+use metrics::{Behaviour, FrameStats};
+use scene::{Scene, World};
+use shapes::Placed;
+use std::sync::Arc;
+
+/// Run settings. `Default` is the paper's 5,000 balls and 1,000 frames.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Settings {
+    pub balls: usize,
+    pub frames: usize,
+    pub seed: u64,
+    /// Threads for Rapier's parallel parts (≥ 1).
+    pub threads: usize,
+    /// Up axis: 0 = x, 1 = y, 2 = z.
+    pub up: usize,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            balls: 5000,
+            frames: 1000,
+            seed: 0,
+            threads: 1,
+            up: 1,
+        }
+    }
+}
+
+/// What a collider is made of (world coordinates).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Geometry {
+    /// The input mesh as a triangle mesh: the reference.
+    Reference,
+    Primitives(Vec<Primitive>),
+    /// Convex hulls, each given by its points.
+    Hulls(Vec<Vec<V3>>),
+}
+
+impl Geometry {
+    /// Name of the kind in the report.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Geometry::Reference => "mesh",
+            Geometry::Primitives(_) => "primitives",
+            Geometry::Hulls(_) => "hulls",
+        }
+    }
+}
+
+/// A collider to simulate and its label (the file it came from).
+#[derive(Clone, Debug)]
+pub struct Entry {
+    pub label: String,
+    pub geometry: Geometry,
+}
+
+/// One collider's run.
+#[derive(Clone, Debug)]
+pub struct Outcome {
+    pub label: String,
+    pub kind: &'static str,
+    /// Shapes given to Rapier.
+    pub shapes: usize,
+    /// Parts dropped because they span no volume (flat hulls).
+    pub skipped: usize,
+    /// Physics-step wall time per frame, ms.
+    pub frame_ms: Vec<f64>,
+    pub stats: FrameStats,
+    pub behaviour: Behaviour,
+    /// Final ball centres (simulation frame) and speeds.
+    pub end: Vec<V3>,
+    pub speed: Vec<f64>,
+}
+
+/// A whole run: the scene and one outcome per collider, the reference first.
+#[derive(Clone, Debug)]
+pub struct Run {
+    pub scene: Scene,
+    pub settings: Settings,
+    pub outcomes: Vec<Outcome>,
+}
+
+/// Rapier shapes of one collider; the count of parts that had no volume.
+fn placed(geometry: &Geometry, mesh: &Mesh, scene: &Scene) -> Result<(Vec<Placed>, usize)> {
+    let f = &scene.frame;
+    let all: Vec<Option<Placed>> = match geometry {
+        Geometry::Reference => vec![shapes::trimesh(mesh, f)],
+        Geometry::Primitives(p) => p.iter().map(|p| shapes::primitive(p, f)).collect(),
+        Geometry::Hulls(h) => h
+            .iter()
+            .map(|h| shapes::hull(&h.iter().map(|&p| f.point(p)).collect::<Vec<_>>()))
+            .collect(),
+    };
+    let n = all.len();
+    let kept: Vec<Placed> = all.into_iter().flatten().collect();
+    if kept.is_empty() && n > 0 {
+        return Err(Error::InvalidParams(format!(
+            "{} collider has no part with volume",
+            geometry.kind()
+        )));
+    }
+    let skipped = n - kept.len();
+    Ok((kept, skipped))
+}
+
+/// Simulates the reference (`mesh` as a triangle mesh, labelled `input`) and every
+/// collider, interleaved frame by frame; the reference is the run's first outcome.
+/// Calls `progress` with the number of frames done after each frame.
+pub fn run(
+    mesh: &Mesh,
+    input: &str,
+    colliders: &[Entry],
+    settings: &Settings,
+    progress: &dyn Fn(usize),
+) -> Result<Run> {
+    if settings.balls == 0 || settings.frames == 0 || settings.threads == 0 || settings.up > 2 {
+        return Err(Error::InvalidParams(format!(
+            "sim needs at least one ball, frame and thread and an up axis of x, y or z (got {settings:?})"
+        )));
+    }
+    let scene = Scene::new(mesh, settings);
+    let reference = Entry {
+        label: input.to_string(),
+        geometry: Geometry::Reference,
+    };
+    let entries: Vec<&Entry> = std::iter::once(&reference).chain(colliders).collect();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(settings.threads)
+        .thread_name(|i| format!("sim-{i}"))
+        .build()
+        .map_err(|e| {
+            Error::InvalidParams(format!("cannot start {} threads: {e}", settings.threads))
+        })?;
+    let pool = Arc::new(pool);
+    let mut worlds = Vec::with_capacity(entries.len());
+    let mut parts = Vec::with_capacity(entries.len());
+    for e in &entries {
+        let (shapes, skipped) = placed(&e.geometry, mesh, &scene).map_err(|err| match err {
+            Error::InvalidParams(m) => Error::InvalidParams(format!("{}: {m}", e.label)),
+            other => other,
+        })?;
+        parts.push((shapes.len(), skipped));
+        worlds.push(World::new(&scene, &shapes, Some(pool.clone())));
+    }
+    let mut frame_ms = vec![Vec::with_capacity(settings.frames); worlds.len()];
+    for frame in 0..settings.frames {
+        for k in 0..worlds.len() {
+            let w = (frame + k) % worlds.len();
+            frame_ms[w].push(worlds[w].step_timed());
+        }
+        progress(frame + 1);
+    }
+    let ends: Vec<(Vec<V3>, Vec<f64>)> = worlds.iter().map(World::balls).collect();
+    let reference = &ends[0].0;
+    let outcomes = entries
+        .iter()
+        .zip(frame_ms)
+        .zip(ends.iter().zip(parts))
+        .map(|((e, ms), ((end, speed), (shapes, skipped)))| Outcome {
+            label: e.label.clone(),
+            kind: e.geometry.kind(),
+            shapes,
+            skipped,
+            stats: FrameStats::of(&ms),
+            frame_ms: ms,
+            behaviour: Behaviour::of(&scene, end, speed, reference),
+            end: end.clone(),
+            speed: speed.clone(),
+        })
+        .collect();
+    Ok(Run {
+        scene,
+        settings: settings.clone(),
+        outcomes,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::primitive::Obb;
+
+    /// A 2 × 1 × 2 box (world units) from (10, 0, 10): mesh and matching primitive.
+    fn box_mesh() -> (Mesh, Primitive) {
+        let (lo, hi) = ([10.0, 0.0, 10.0], [12.0, 1.0, 12.0]);
+        let c = |i: usize| {
+            [
+                [lo[0], hi[0]][i & 1],
+                [lo[1], hi[1]][i >> 1 & 1],
+                [lo[2], hi[2]][i >> 2 & 1],
+            ]
+        };
+        let corners: Vec<V3> = (0..8).map(c).collect();
+        let faces = vec![
+            vec![0, 4, 6, 2],
+            vec![1, 3, 7, 5],
+            vec![0, 1, 5, 4],
+            vec![2, 6, 7, 3],
+            vec![0, 2, 3, 1],
+            vec![4, 5, 7, 6],
+        ];
+        let prim = Primitive::Box(Obb {
+            center: [11.0, 0.5, 11.0],
+            axes: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            half: [1.0, 0.5, 1.0],
+        });
+        (Mesh::from_polygons(&corners, &faces), prim)
+    }
+
+    fn settings(balls: usize, frames: usize) -> Settings {
+        Settings {
+            balls,
+            frames,
+            ..Default::default()
+        }
+    }
+
+    /// Ball centres' heights (simulation frame) at the end of `outcome`.
+    fn heights(o: &Outcome) -> Vec<f64> {
+        o.end.iter().map(|p| p[1]).collect()
+    }
+
+    /// A ball dropped on a box comes to rest on its top face: centre height = top +
+    /// radius (within Rapier's contact tolerance, 1% of the radius here), speed 0,
+    /// and the behaviour measures call it resting on the object.
+    #[test]
+    fn ball_rests_on_top_of_a_box() {
+        let (mesh, prim) = box_mesh();
+        let e = [Entry {
+            label: "box".into(),
+            geometry: Geometry::Primitives(vec![prim]),
+        }];
+        let run = run(&mesh, "mesh", &e, &settings(4, 150), &|_| {}).unwrap();
+        let top = run.scene.aabb.1[1] + run.scene.radius;
+        for o in &run.outcomes {
+            for (h, v) in heights(o).iter().zip(&o.speed) {
+                assert!(
+                    (h - top).abs() < 0.01 * run.scene.radius,
+                    "{}: height {h}, expected {top}",
+                    o.label
+                );
+                assert!(*v < 1e-3, "{}: still moving at {v} m/s", o.label);
+            }
+            assert_eq!((o.behaviour.on_object, o.behaviour.resting), (1.0, 1.0));
+        }
+        // The box's run matches the mesh's ball for ball.
+        assert_eq!(run.outcomes[1].behaviour.similarity, 1.0);
+    }
+
+    /// The same box given as a primdecomp JSON document and as a convex hull of its
+    /// corners gives the same resting heights (to f32 round-off of the two shapes).
+    #[test]
+    fn json_box_and_hull_box_rest_alike() {
+        let (mesh, _) = box_mesh();
+        let json = r#"{"primitives":[{"kind":"box","center":[11,0.5,11],"rotation":[0,0,0,1],"half_extents":[1,0.5,1]}]}"#;
+        let prims = crate::export::read_primitives(json).unwrap();
+        let corners: Vec<V3> = (0..8)
+            .map(|i| {
+                [
+                    [10.0, 12.0][i & 1],
+                    [0.0, 1.0][i >> 1 & 1],
+                    [10.0, 12.0][i >> 2 & 1],
+                ]
+            })
+            .collect();
+        let e = [
+            Entry {
+                label: "json".into(),
+                geometry: Geometry::Primitives(prims),
+            },
+            Entry {
+                label: "hull".into(),
+                geometry: Geometry::Hulls(vec![corners]),
+            },
+        ];
+        let run = run(&mesh, "mesh", &e, &settings(9, 150), &|_| {}).unwrap();
+        let (a, b) = (heights(&run.outcomes[1]), heights(&run.outcomes[2]));
+        for (x, y) in a.iter().zip(&b) {
+            assert!(
+                (x - y).abs() < 1e-3 * run.scene.radius,
+                "json {x} vs hull {y}"
+            );
+        }
+    }
+
+    /// Same seed, same result to the bit (positions, speeds, measures); another seed
+    /// moves the release points.
+    #[test]
+    fn fixed_seed_is_repeatable() {
+        let (mesh, prim) = box_mesh();
+        let e = [Entry {
+            label: "box".into(),
+            geometry: Geometry::Primitives(vec![prim]),
+        }];
+        let go = |seed| {
+            let s = Settings {
+                seed,
+                ..settings(40, 60)
+            };
+            run(&mesh, "mesh", &e, &s, &|_| {}).unwrap()
+        };
+        let (a, b, c) = (go(7), go(7), go(8));
+        for (x, y) in a.outcomes.iter().zip(&b.outcomes) {
+            assert_eq!(
+                (&x.end, &x.speed, x.behaviour),
+                (&y.end, &y.speed, y.behaviour)
+            );
+        }
+        assert_eq!(a.scene.release, b.scene.release);
+        assert_ne!(a.scene.release, c.scene.release);
+    }
+
+    /// Bad settings are refused with a message, not a panic or a hang.
+    #[test]
+    fn bad_settings_are_refused() {
+        let (mesh, _) = box_mesh();
+        for s in [
+            settings(0, 10),
+            settings(10, 0),
+            Settings {
+                up: 3,
+                ..settings(1, 1)
+            },
+        ] {
+            assert!(matches!(
+                run(&mesh, "m", &[], &s, &|_| {}),
+                Err(Error::InvalidParams(_))
+            ));
+        }
+    }
+}

@@ -3,7 +3,7 @@
 //! naming the file and the line or byte offset.
 
 mod gltf;
-mod obj;
+pub(crate) mod obj;
 mod off;
 mod ply;
 mod stl;

@@ -106,7 +106,7 @@ impl ObjState<'_> {
 }
 
 /// One finite coordinate.
-fn coordinate(tok: &[u8], path: &Path, no: u64) -> Result<f64> {
+pub(crate) fn coordinate(tok: &[u8], path: &Path, no: u64) -> Result<f64> {
     match parse_f64(tok) {
         Some(x) if x.is_finite() => Ok(x),
         Some(_) => Err(Error::line(
@@ -124,7 +124,7 @@ fn coordinate(tok: &[u8], path: &Path, no: u64) -> Result<f64> {
 
 /// The 0-based vertex index of a face corner `v`, `v/vt`, `v//vn` or `v/vt/vn`, given
 /// `n` vertices defined so far.
-fn resolve_corner(tok: &[u8], n: usize) -> std::result::Result<u32, String> {
+pub(crate) fn resolve_corner(tok: &[u8], n: usize) -> std::result::Result<u32, String> {
     let v = tok.split(|&b| b == b'/').next().unwrap_or(tok);
     let Some(i) = parse_i64(v) else {
         return Err(format!(

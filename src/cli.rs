@@ -452,34 +452,15 @@ fn print_summary(dec: &Decomposition, mesh: &primdecomp::Mesh, written: &[PathBu
     }
 }
 
-/// A collider file as simulation geometry.
-fn load_geometry(path: &Path) -> anyhow::Result<Geometry> {
-    let is_json = path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("json"));
-    if !is_json {
-        bail!(BadArgs(format!(
-            "{}: expected a primdecomp .json collider",
-            path.display()
-        )));
-    }
-    let text = std::fs::read_to_string(path).map_err(|source| primdecomp::Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
-    let prims = export::read_primitives(&text).map_err(|m| primdecomp::Error::format(path, m))?;
-    Ok(Geometry::Primitives(prims))
-}
-
 fn sim(a: SimArgs) -> anyhow::Result<()> {
     let mesh = primdecomp::mesh::io::load(&a.input)?;
     let entries = a
         .colliders
         .iter()
-        .map(|p| {
+        .map(|p| -> anyhow::Result<Entry> {
             Ok(Entry {
                 label: p.display().to_string(),
-                geometry: load_geometry(p)?,
+                geometry: Geometry::Collider(primdecomp::collider::load(p)?),
             })
         })
         .collect::<anyhow::Result<Vec<_>>>()?;

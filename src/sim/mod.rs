@@ -41,10 +41,10 @@ pub mod report;
 pub mod scene;
 pub mod shapes;
 
+use crate::collider::Collider;
 use crate::error::{Error, Result};
 use crate::math::V3;
 use crate::mesh::Mesh;
-use crate::primitive::Primitive;
 use metrics::{Behaviour, FrameStats};
 use scene::{Scene, World};
 use shapes::Placed;
@@ -74,14 +74,13 @@ impl Default for Settings {
     }
 }
 
-/// What a collider is made of (world coordinates).
+/// What a simulated collider is made of (world coordinates).
 #[derive(Clone, Debug, PartialEq)]
 pub enum Geometry {
     /// The input mesh as a triangle mesh: the reference.
     Reference,
-    Primitives(Vec<Primitive>),
-    /// Convex hulls, each given by its points.
-    Hulls(Vec<Vec<V3>>),
+    /// Primitives or convex hulls ([`crate::collider::load`]).
+    Collider(Collider),
 }
 
 impl Geometry {
@@ -89,8 +88,8 @@ impl Geometry {
     pub fn kind(&self) -> &'static str {
         match self {
             Geometry::Reference => "mesh",
-            Geometry::Primitives(_) => "primitives",
-            Geometry::Hulls(_) => "hulls",
+            Geometry::Collider(Collider::Primitives(_)) => "primitives",
+            Geometry::Collider(Collider::Hulls(_)) => "hulls",
         }
     }
 }
@@ -133,10 +132,12 @@ fn placed(geometry: &Geometry, mesh: &Mesh, scene: &Scene) -> Result<(Vec<Placed
     let f = &scene.frame;
     let all: Vec<Option<Placed>> = match geometry {
         Geometry::Reference => vec![shapes::trimesh(mesh, f)],
-        Geometry::Primitives(p) => p.iter().map(|p| shapes::primitive(p, f)).collect(),
-        Geometry::Hulls(h) => h
+        Geometry::Collider(Collider::Primitives(p)) => {
+            p.iter().map(|p| shapes::primitive(p, f)).collect()
+        }
+        Geometry::Collider(Collider::Hulls(h)) => h
             .iter()
-            .map(|h| shapes::hull(&h.iter().map(|&p| f.point(p)).collect::<Vec<_>>()))
+            .map(|h| shapes::hull(&h.positions.iter().map(|&p| f.point(p)).collect::<Vec<_>>()))
             .collect(),
     };
     let n = all.len();
@@ -226,7 +227,9 @@ pub fn run(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::primitive::Obb;
+    use crate::collider::{parse_hulls_obj, parse_json};
+    use crate::primitive::{Obb, Primitive};
+    use std::path::Path;
 
     /// A 2 × 1 × 2 box (world units) from (10, 0, 10): mesh and matching primitive.
     fn box_mesh() -> (Mesh, Primitive) {
@@ -276,7 +279,7 @@ mod tests {
         let (mesh, prim) = box_mesh();
         let e = [Entry {
             label: "box".into(),
-            geometry: Geometry::Primitives(vec![prim]),
+            geometry: Geometry::Collider(Collider::Primitives(vec![prim])),
         }];
         let run = run(&mesh, "mesh", &e, &settings(4, 150), &|_| {}).unwrap();
         let top = run.scene.aabb.1[1] + run.scene.radius;
@@ -295,38 +298,40 @@ mod tests {
         assert_eq!(run.outcomes[1].behaviour.similarity, 1.0);
     }
 
-    /// The same box given as a primdecomp JSON document and as a convex hull of its
-    /// corners gives the same resting heights (to f32 round-off of the two shapes).
+    /// The same box read from a primdecomp JSON document and from an OBJ file of
+    /// convex hulls (the two collider paths of `primdecomp sim`) gives the same resting
+    /// heights, to f32 round-off of the two shapes.
     #[test]
-    fn json_box_and_hull_box_rest_alike() {
+    fn json_box_and_obj_hull_box_rest_alike() {
         let (mesh, _) = box_mesh();
-        let json = r#"{"primitives":[{"kind":"box","center":[11,0.5,11],"rotation":[0,0,0,1],"half_extents":[1,0.5,1]}]}"#;
-        let prims = crate::export::read_primitives(json).unwrap();
-        let corners: Vec<V3> = (0..8)
-            .map(|i| {
-                [
-                    [10.0, 12.0][i & 1],
-                    [0.0, 1.0][i >> 1 & 1],
-                    [10.0, 12.0][i >> 2 & 1],
-                ]
-            })
-            .collect();
+        let json = br#"{"primitives":[{"kind":"box","center":[11,0.5,11],
+            "rotation":[0,0,0,1],"half_extents":[1,0.5,1]}]}"#;
+        let obj = b"o hull_0\nv 10 0 10\nv 12 0 10\nv 10 1 10\nv 12 1 10\nv 10 0 12\n\
+            v 12 0 12\nv 10 1 12\nv 12 1 12\nf 1 5 7 3\nf 2 4 8 6\nf 1 2 6 5\nf 3 7 8 4\n\
+            f 1 3 4 2\nf 5 6 8 7\n";
         let e = [
             Entry {
                 label: "json".into(),
-                geometry: Geometry::Primitives(prims),
+                geometry: Geometry::Collider(parse_json(json, Path::new("box.json")).unwrap()),
             },
             Entry {
-                label: "hull".into(),
-                geometry: Geometry::Hulls(vec![corners]),
+                label: "obj".into(),
+                geometry: Geometry::Collider(Collider::Hulls(
+                    parse_hulls_obj(obj, Path::new("box.obj")).unwrap(),
+                )),
             },
         ];
         let run = run(&mesh, "mesh", &e, &settings(9, 150), &|_| {}).unwrap();
+        let top = run.scene.aabb.1[1] + run.scene.radius;
         let (a, b) = (heights(&run.outcomes[1]), heights(&run.outcomes[2]));
         for (x, y) in a.iter().zip(&b) {
             assert!(
                 (x - y).abs() < 1e-3 * run.scene.radius,
-                "json {x} vs hull {y}"
+                "json {x} vs obj {y}"
+            );
+            assert!(
+                (x - top).abs() < 0.01 * run.scene.radius,
+                "json {x} vs top {top}"
             );
         }
     }
@@ -338,7 +343,7 @@ mod tests {
         let (mesh, prim) = box_mesh();
         let e = [Entry {
             label: "box".into(),
-            geometry: Geometry::Primitives(vec![prim]),
+            geometry: Geometry::Collider(Collider::Primitives(vec![prim])),
         }];
         let go = |seed| {
             let s = Settings {

@@ -528,12 +528,12 @@ fn write_sim_outputs(a: &SimArgs, run: &SimRun, input: &str, faces: usize) -> an
 }
 
 fn print_sim_table(run: &SimRun) {
-    println!("| collider | kind | shapes | median ms | mean ms | p95 ms | total ms | similarity | on object | resting |");
-    println!("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("| collider | kind | shapes | median ms | mean ms | p95 ms | total ms | similarity | set similarity | on object | resting |");
+    println!("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for o in &run.outcomes {
         let (s, b) = (&o.stats, &o.behaviour);
         println!(
-            "| {} | {} | {} | {:.3} | {:.3} | {:.3} | {:.1} | {:.3} | {:.3} | {:.3} |",
+            "| {} | {} | {} | {:.3} | {:.3} | {:.3} | {:.1} | {:.3} | {:.3} | {:.3} | {:.3} |",
             o.label,
             o.kind,
             o.shapes,
@@ -542,6 +542,7 @@ fn print_sim_table(run: &SimRun) {
             s.p95,
             s.total,
             b.similarity,
+            b.similarity_set,
             b.on_object,
             b.resting
         );

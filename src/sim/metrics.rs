@@ -4,6 +4,7 @@
 use super::scene::Scene;
 use crate::math::{norm, sub, V3};
 use serde::Serialize;
+use std::collections::HashMap;
 
 /// Frame-time statistics, milliseconds.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
@@ -45,6 +46,9 @@ impl FrameStats {
 pub struct Behaviour {
     /// Fraction of balls ending within one ball diameter of their end on the mesh.
     pub similarity: f64,
+    /// Chaos-robust variant: fraction of end points within one diameter of some end
+    /// point of the other run, averaged over both directions.
+    pub similarity_set: f64,
     /// Fraction of balls ending on the object (not fallen off or through).
     pub on_object: f64,
     /// Fraction of balls on the object and at rest.
@@ -80,6 +84,9 @@ impl Behaviour {
         let diameter = 2.0 * scene.radius;
         Behaviour {
             similarity: frac(&|i| dist(i) <= diameter),
+            similarity_set: 0.5
+                * (near_fraction(pos, reference, diameter)
+                    + near_fraction(reference, pos, diameter)),
             on_object: frac(&|i| on_object(scene, pos[i])),
             resting: frac(&|i| on_object(scene, pos[i]) && at_rest(scene, speed[i])),
             on_object_agreement: frac(&|i| {
@@ -89,6 +96,28 @@ impl Behaviour {
             mean_displacement_rel: mean / super::scene::SCENE_DIAGONAL,
         }
     }
+}
+
+/// Fraction of points of `a` within `d` of some point of `b`, through a hash grid
+/// of cell `d` over `b` (each query looks at its 27 neighbour cells).
+pub fn near_fraction(a: &[V3], b: &[V3], d: f64) -> f64 {
+    if a.is_empty() {
+        return 0.0;
+    }
+    let cell = |p: V3| p.map(|x| (x / d).floor() as i64);
+    let mut grid: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
+    for (i, &p) in b.iter().enumerate() {
+        grid.entry(cell(p)).or_default().push(i);
+    }
+    let near = |p: V3| {
+        let c = cell(p);
+        (0..27).any(|k| {
+            let key = [c[0] + k % 3 - 1, c[1] + k / 3 % 3 - 1, c[2] + k / 9 - 1];
+            grid.get(&key)
+                .is_some_and(|v| v.iter().any(|&j| norm(sub(p, b[j])) <= d))
+        })
+    };
+    a.iter().filter(|&&p| near(p)).count() as f64 / a.len() as f64
 }
 
 #[cfg(test)]
@@ -104,5 +133,27 @@ mod tests {
         let s = FrameStats::of(&v);
         assert_eq!((s.median, s.p95, s.total), (50.5, 95.0, 5050.0));
         assert_eq!(FrameStats::of(&[]), FrameStats::default());
+    }
+
+    /// Set similarity ignores which ball is where: a shuffled copy matches fully,
+    /// points just inside / outside the distance count / do not, also across cells.
+    #[test]
+    fn near_fraction_matches_brute_force() {
+        let a: Vec<V3> = (0..50)
+            .map(|i| [i as f64 * 0.37, (i % 7) as f64 * 0.5, -1.3])
+            .collect();
+        let mut b = a.clone();
+        b.reverse();
+        assert_eq!(near_fraction(&a, &b, 0.2), 1.0);
+        let b: Vec<V3> = a.iter().map(|p| [p[0] + 0.199, p[1], p[2]]).collect();
+        assert_eq!(near_fraction(&a, &b, 0.2), 1.0);
+        let c: Vec<V3> = a.iter().map(|p| [p[0], p[1] - 0.201, p[2] + 0.0]).collect();
+        let brute = a
+            .iter()
+            .filter(|p| c.iter().any(|q| norm(sub(**p, *q)) <= 0.2))
+            .count() as f64
+            / a.len() as f64;
+        assert_eq!(near_fraction(&a, &c, 0.2), brute);
+        assert_eq!(near_fraction(&[], &c, 0.2), 0.0);
     }
 }

@@ -27,6 +27,9 @@
 //! - `similarity`: fraction of balls whose centre ends within one ball diameter (2r)
 //!   of where the same ball ends on the input mesh. Piles are chaotic, so even a
 //!   faithful collider scores below 1 on a busy scene; compare colliders, not 1.
+//! - `similarity_set`: the same test without ball identity, robust to that chaos:
+//!   the fraction of end points lying within 2r of *some* end point of the other
+//!   run, averaged over both directions (collider → reference, reference → collider).
 //! - `on_object`: fraction of balls whose centre ends inside the input's AABB grown
 //!   by 2r on every side (no upper bound, piles may stand above it), i.e. that did
 //!   not fall off or through; `resting`: of all balls, the fraction on the object and

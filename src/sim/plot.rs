@@ -22,7 +22,7 @@ pub const FONT_PATHS: [&str; 5] = [
     "C:\\Windows\\Fonts\\arial.ttf",
 ];
 
-const SIZE: (u32, u32) = (1200, 700);
+const SIZE: (u32, u32) = (1000, 560);
 
 /// Registers the font once per process as "sans-serif"; the error says what to
 /// install.
@@ -111,6 +111,7 @@ pub fn to_png(run: &Run, title: &str) -> std::result::Result<Vec<u8>, String> {
     let mut enc = png::Encoder::new(&mut out, w, h);
     enc.set_color(png::ColorType::Rgb);
     enc.set_depth(png::BitDepth::Eight);
+    enc.set_compression(png::Compression::Best);
     let mut writer = enc.write_header().map_err(|e| e.to_string())?;
     writer.write_image_data(&rgb).map_err(|e| e.to_string())?;
     writer.finish().map_err(|e| e.to_string())?;
@@ -124,4 +125,36 @@ pub fn write_png(run: &Run, title: &str, path: &Path) -> Result<()> {
         msg,
     })?;
     crate::export::write_atomic(path, &bytes)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A small run plots to a PNG of the documented size. Needs a font: without one
+    /// the test says FONT ABSENT and skips (CI installs fonts-dejavu-core).
+    #[test]
+    fn plot_is_a_png_of_the_documented_size() {
+        if let Err(e) = register_font() {
+            eprintln!("FONT ABSENT: skipping the plot test: {e}");
+            return;
+        }
+        let mesh = crate::mesh::Mesh::from_polygons(
+            &[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]],
+            &[vec![0, 1, 2]],
+        );
+        let settings = crate::sim::Settings {
+            balls: 3,
+            frames: 5,
+            ..Default::default()
+        };
+        let run = crate::sim::run(&mesh, "tri", &[], &settings, &|_| {}).unwrap();
+        let png = to_png(&run, "test").unwrap();
+        assert_eq!(&png[..8], b"\x89PNG\r\n\x1a\n");
+        let dims: Vec<u32> = [16, 20]
+            .iter()
+            .map(|&o| u32::from_be_bytes(png[o..o + 4].try_into().unwrap()))
+            .collect();
+        assert_eq!(dims, [SIZE.0, SIZE.1]);
+    }
 }

@@ -227,6 +227,15 @@ pub fn run(
     })
 }
 
+/// The closed axis-aligned box `lo`–`hi` as six outward quads (tests).
+#[cfg(test)]
+pub(crate) fn cuboid_mesh(lo: V3, hi: V3) -> Mesh {
+    let corner = |i: usize| std::array::from_fn(|k| if i >> k & 1 == 1 { hi[k] } else { lo[k] });
+    let corners: Vec<V3> = (0..8).map(corner).collect();
+    let faces = crate::demo::BOX_FACES.map(|f| f.map(|i| i as u32).to_vec());
+    Mesh::from_polygons(&corners, &faces)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -236,29 +245,12 @@ mod tests {
 
     /// A 2 × 1 × 2 box (world units) from (10, 0, 10): mesh and matching primitive.
     fn box_mesh() -> (Mesh, Primitive) {
-        let (lo, hi) = ([10.0, 0.0, 10.0], [12.0, 1.0, 12.0]);
-        let c = |i: usize| {
-            [
-                [lo[0], hi[0]][i & 1],
-                [lo[1], hi[1]][i >> 1 & 1],
-                [lo[2], hi[2]][i >> 2 & 1],
-            ]
-        };
-        let corners: Vec<V3> = (0..8).map(c).collect();
-        let faces = vec![
-            vec![0, 4, 6, 2],
-            vec![1, 3, 7, 5],
-            vec![0, 1, 5, 4],
-            vec![2, 6, 7, 3],
-            vec![0, 2, 3, 1],
-            vec![4, 5, 7, 6],
-        ];
         let prim = Primitive::Box(Obb {
             center: [11.0, 0.5, 11.0],
             axes: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
             half: [1.0, 0.5, 1.0],
         });
-        (Mesh::from_polygons(&corners, &faces), prim)
+        (cuboid_mesh([10.0, 0.0, 10.0], [12.0, 1.0, 12.0]), prim)
     }
 
     fn settings(balls: usize, frames: usize) -> Settings {

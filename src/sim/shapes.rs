@@ -251,26 +251,7 @@ mod tests {
     /// spans [−1, 1]³ around the AABB centre.
     #[test]
     fn trimesh_is_recentred_and_scaled() {
-        let mesh = crate::mesh::Mesh::from_polygons(
-            &[
-                [10.0, 0.0, 0.0],
-                [11.0, 0.0, 0.0],
-                [11.0, 1.0, 0.0],
-                [10.0, 1.0, 0.0],
-                [10.0, 0.0, 1.0],
-                [11.0, 0.0, 1.0],
-                [11.0, 1.0, 1.0],
-                [10.0, 1.0, 1.0],
-            ],
-            &[
-                vec![0, 3, 2, 1],
-                vec![4, 5, 6, 7],
-                vec![0, 1, 5, 4],
-                vec![2, 3, 7, 6],
-                vec![1, 2, 6, 5],
-                vec![0, 4, 7, 3],
-            ],
-        );
+        let mesh = crate::sim::cuboid_mesh([10.0, 0.0, 0.0], [11.0, 1.0, 1.0]);
         let frame = Frame {
             offset: mesh.offset,
             scale: 2.0,

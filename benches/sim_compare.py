@@ -37,13 +37,16 @@ DEFAULT_MESHES = [
     "kenney_wall_high.glb",
     "kenney_building_small_a.glb",
     "kenney_building_small_c.glb",
-    "gothic_chair.obj",
-    "chess_table.obj",
     "cesium_milk_truck.glb",
     "truck_shrec.obj",
     "parry_stairs.obj",
     "tiny_wallhole.obj",
     "vhacd_wall.obj",
+    "cube_no_bottom.obj",
+    "vhacd_box_thick.obj",
+    "tiny_not_convex.obj",
+    "parry_poly_cylinder.obj",
+    "tiny_7_8ths_cube.stl",
 ]
 
 
@@ -56,16 +59,19 @@ def sha256(path):
 
 
 def peer_obj(caches, sha, method):
-    """The first cached successful run of `method` on the mesh, or None."""
+    """(hulls.obj of the first cached successful run of `method` on the mesh, None)
+    or (None, what the caches say instead: a failure's status and reason, or "not run")."""
+    seen = []
     for c in caches:
         for d in sorted(Path(c).glob(f"{sha[:16]}-{method}-*")):
             try:
-                ok = json.loads((d / "status.json").read_text()).get("status") == "ok"
+                st = json.loads((d / "status.json").read_text())
             except (OSError, ValueError):
-                ok = False
-            if ok and (d / "hulls.obj").is_file():
-                return d / "hulls.obj"
-    return None
+                st = {"status": "running or interrupted"}
+            if st.get("status") == "ok" and (d / "hulls.obj").is_file():
+                return d / "hulls.obj", None
+            seen.append(" ".join(str(st.get(k, "")) for k in ["status", "reason"]).strip())
+    return None, "; ".join(seen) or "not run"
 
 
 def faces_of(mesh, binary, work):
@@ -170,7 +176,7 @@ def main(argv):
     ap.add_argument("--out", default=str(ROOT / "docs" / "results" / "sim.md"))
     ap.add_argument("--rerun", action="store_true", help="simulate again even when a report is cached")
     a = ap.parse_args(argv)
-    rows = []
+    rows, missing = [], []
     for name in a.meshes:
         mesh = CORPUS / name if not Path(name).is_file() else Path(name)
         if not mesh.is_file():
@@ -178,9 +184,11 @@ def main(argv):
             continue
         sha = sha256(mesh)
         mine, work = ours(mesh, sha, a.bin)
-        order = {"ours": mine} | {p: peer_obj(a.peer_cache, sha, p) for p in PEERS}
+        found = {p: peer_obj(a.peer_cache, sha, p) for p in PEERS}
+        order = {"ours": mine} | {p: f[0] for p, f in found.items()}
         rep = simulate(mesh, [p for p in order.values() if p], work, a)
         rows.append(row(mesh.name, rep, order))
+        missing += [f"- {mesh.name}: no {LABEL[p]} hulls ({f[1]})" for p, f in found.items() if f[0] is None]
     cmd = "python3 benches/sim_compare.py " + " ".join(sys.argv[1:])
     text = [
         "# Rigid-body simulation: frame time and behaviour (paper §4.1)",
@@ -198,6 +206,7 @@ def main(argv):
         "",
         *summary(rows),
         "",
+        *(["Peers missing (the peer caches' status):", "", *missing, ""] if missing else []),
     ]
     Path(a.out).parent.mkdir(parents=True, exist_ok=True)
     tmp = Path(a.out).with_suffix(".md.tmp")

@@ -10,7 +10,6 @@ use rapier3d::dynamics::{RigidBodyBuilder, RigidBodyHandle};
 use rapier3d::geometry::ColliderBuilder;
 use rapier3d::math::Vector;
 use rapier3d::pipeline::PhysicsWorld;
-use std::sync::Arc;
 use std::time::Instant;
 
 /// The input's AABB diagonal in the simulation, in metres.
@@ -117,6 +116,28 @@ fn release_grid(aabb: (V3, V3), r: f64, settings: &Settings) -> Vec<V3> {
         .collect()
 }
 
+/// CPU time of the whole process, ms (all threads): unlike wall time it does not
+/// count the time the machine gave to other processes. NaN where unsupported.
+#[cfg(unix)]
+pub fn process_cpu_ms() -> f64 {
+    let mut ts = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: `ts` is a valid, writable timespec; the clock id is a constant.
+    let rc = unsafe { libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut ts) };
+    if rc != 0 {
+        return f64::NAN;
+    }
+    ts.tv_sec as f64 * 1e3 + ts.tv_nsec as f64 * 1e-6
+}
+
+/// CPU time of the whole process, ms: not available here.
+#[cfg(not(unix))]
+pub fn process_cpu_ms() -> f64 {
+    f64::NAN
+}
+
 /// One collider's Rapier world: the static shapes and the scene's balls.
 pub struct World {
     world: PhysicsWorld,
@@ -126,14 +147,13 @@ pub struct World {
 impl World {
     /// Static `shapes` plus one dynamic ball per release position, with CCD (fast
     /// balls would otherwise tunnel through the reference's zero-thickness
-    /// triangles). `pool` runs Rapier's parallel parts.
-    pub fn new(scene: &Scene, shapes: &[Placed], pool: Option<Arc<rayon::ThreadPool>>) -> World {
+    /// triangles). Rapier's parallel parts run on the rayon pool the caller is in.
+    pub fn new(scene: &Scene, shapes: &[Placed]) -> World {
         let mut world = PhysicsWorld::new();
         let mut g = [0.0f32; 3];
         g[scene.up] = -GRAVITY as f32;
         world.gravity = Vector::from_array(g);
         world.integration_parameters.dt = DT as f32;
-        world.set_thread_pool(pool);
         for (shape, pose) in shapes {
             world.insert_collider(ColliderBuilder::new(shape.clone()).position(*pose), None);
         }
@@ -151,11 +171,12 @@ impl World {
         World { world, balls }
     }
 
-    /// Advances one fixed step; returns the wall time of the step alone, in ms.
-    pub fn step_timed(&mut self) -> f64 {
-        let t = Instant::now();
+    /// Advances one fixed step; returns the wall time and the process CPU time of
+    /// the step alone, in ms.
+    pub fn step_timed(&mut self) -> (f64, f64) {
+        let (t, c) = (Instant::now(), process_cpu_ms());
         self.world.step();
-        t.elapsed().as_secs_f64() * 1e3
+        (t.elapsed().as_secs_f64() * 1e3, process_cpu_ms() - c)
     }
 
     /// Ball centres (simulation frame) and speeds (m/s), in release order.

@@ -267,6 +267,16 @@ mod tests {
         (cuboid_mesh([10.0, 0.0, 10.0], [12.0, 1.0, 12.0]), prim)
     }
 
+    /// The box mesh and its primitive as the one collider.
+    fn box_scene() -> (Mesh, [Entry; 1]) {
+        let (mesh, prim) = box_mesh();
+        let e = Entry {
+            label: "box".into(),
+            geometry: Geometry::Collider(Collider::Primitives(vec![prim])),
+        };
+        (mesh, [e])
+    }
+
     fn settings(balls: usize, frames: usize) -> Settings {
         Settings {
             balls,
@@ -285,11 +295,7 @@ mod tests {
     /// and the behaviour measures call it resting on the object.
     #[test]
     fn ball_rests_on_top_of_a_box() {
-        let (mesh, prim) = box_mesh();
-        let e = [Entry {
-            label: "box".into(),
-            geometry: Geometry::Collider(Collider::Primitives(vec![prim])),
-        }];
+        let (mesh, e) = box_scene();
         let run = run(&mesh, "mesh", &e, &settings(4, 150), &|_| {}).unwrap();
         let top = run.scene.aabb.1[1] + run.scene.radius;
         for o in &run.outcomes {
@@ -349,11 +355,7 @@ mod tests {
     /// moves the release points.
     #[test]
     fn fixed_seed_is_repeatable() {
-        let (mesh, prim) = box_mesh();
-        let e = [Entry {
-            label: "box".into(),
-            geometry: Geometry::Collider(Collider::Primitives(vec![prim])),
-        }];
+        let (mesh, e) = box_scene();
         let go = |seed| {
             let s = Settings {
                 seed,

@@ -4,6 +4,7 @@
 use anyhow::{anyhow, bail};
 use clap::{Args, Parser, Subcommand};
 use primdecomp::export::{self, output_path_for, write_atomic};
+use primdecomp::sim::{Entry, Geometry, Run as SimRun, Settings as SimSettings};
 use primdecomp::{Decomposition, Dedup, Kind, Params};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -26,6 +27,9 @@ enum Cmd {
     Decompose(Box<DecomposeArgs>),
     /// Measure colliders against their input mesh: distances, enclosure, bytes.
     Eval(EvalArgs),
+    /// Drop balls on the input mesh and on each collider in Rapier, time every frame's
+    /// physics step and compare where the balls end (the paper's §4.1 benchmark).
+    Sim(SimArgs),
     /// Write the built-in demo scene (stairs, table, pipes, house, ring) as OBJ.
     DemoScene {
         /// Output file.
@@ -123,6 +127,42 @@ struct DecomposeArgs {
     timings: bool,
 }
 
+#[derive(Args, Debug)]
+struct SimArgs {
+    /// The input mesh (the reference, simulated as a triangle mesh).
+    #[arg(long)]
+    input: PathBuf,
+    /// Colliders: primdecomp JSON results, or OBJ files of convex hulls (one per o/g).
+    colliders: Vec<PathBuf>,
+    /// Balls dropped on each collider.
+    #[arg(long, default_value_t = 5000)]
+    balls: usize,
+    /// Frames simulated (1/60 s each).
+    #[arg(long, default_value_t = 1000)]
+    frames: usize,
+    /// Seed of the release-position jitter.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Threads for Rapier's parallel step (1 is the most repeatable).
+    #[arg(long, default_value_t = 1)]
+    threads: usize,
+    /// Up axis of the input: gravity points along its negative direction.
+    #[arg(long, default_value = "y", value_parser = ["x", "y", "z"])]
+    up: String,
+    /// Write the report (per collider: frame times, similarity, …) as JSON.
+    #[arg(long)]
+    json: Option<PathBuf>,
+    /// Write per-frame physics-step times as CSV into this directory.
+    #[arg(long)]
+    csv: Option<PathBuf>,
+    /// Write a PNG plot of frame time against frame number.
+    #[arg(long)]
+    plot: Option<PathBuf>,
+    /// Print nothing but errors.
+    #[arg(short, long)]
+    quiet: bool,
+}
+
 /// Runs the command line; returns the process exit code.
 pub fn main() -> i32 {
     let cli = match Cli::try_parse() {
@@ -135,6 +175,7 @@ pub fn main() -> i32 {
     let result = match cli.cmd {
         Cmd::Decompose(a) => decompose(*a),
         Cmd::Eval(a) => eval(a),
+        Cmd::Sim(a) => sim(a),
         Cmd::DemoScene { out } => write_atomic(&out, primdecomp::demo::demo_scene_obj().as_bytes())
             .map_err(anyhow::Error::from)
             .map(|_| println!("wrote {}", out.display())),
@@ -497,4 +538,101 @@ fn peak_rss_kib() -> Option<u64> {
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
     let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
     line.split_whitespace().nth(1)?.parse().ok()
+}
+
+fn sim(a: SimArgs) -> anyhow::Result<()> {
+    let mesh = primdecomp::mesh::io::load(&a.input)?;
+    let entries = a
+        .colliders
+        .iter()
+        .map(|p| -> anyhow::Result<Entry> {
+            Ok(Entry {
+                label: p.display().to_string(),
+                geometry: Geometry::Collider(primdecomp::collider::load(p)?),
+            })
+        })
+        .collect::<anyhow::Result<Vec<_>>>()?;
+    let settings = SimSettings {
+        balls: a.balls,
+        frames: a.frames,
+        seed: a.seed,
+        threads: a.threads,
+        up: ["x", "y", "z"].iter().position(|u| *u == a.up).unwrap_or(1),
+    };
+    let bar = (!a.quiet).then(|| {
+        let b = indicatif::ProgressBar::new(a.frames as u64);
+        b.set_style(
+            indicatif::ProgressStyle::with_template(
+                "simulating {bar:40} {pos}/{len} frames {elapsed_precise} (eta {eta})",
+            )
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+        );
+        b
+    });
+    let input = a.input.display().to_string();
+    let run = primdecomp::sim::run(&mesh, &input, &entries, &settings, &|f| {
+        if let Some(b) = &bar {
+            b.set_position(f as u64);
+        }
+    })
+    .map_err(|e| match e {
+        primdecomp::Error::InvalidParams(m) => BadArgs(m).into(),
+        e => anyhow::Error::from(e),
+    })?;
+    if let Some(b) = bar {
+        b.finish_and_clear();
+    }
+    write_sim_outputs(&a, &run, &input, mesh.face_count())?;
+    if !a.quiet {
+        print_sim_table(&run);
+    }
+    Ok(())
+}
+
+/// JSON, CSV and plot, in that order (the plot needs a font and fails last).
+fn write_sim_outputs(a: &SimArgs, run: &SimRun, input: &str, faces: usize) -> anyhow::Result<()> {
+    use primdecomp::sim::{plot, report};
+    if let Some(p) = &a.json {
+        write_atomic(p, report::to_json(run, input, faces).as_bytes())?;
+    }
+    if let Some(dir) = &a.csv {
+        std::fs::create_dir_all(dir)
+            .map_err(|e| anyhow!("cannot create CSV directory {}: {e}", dir.display()))?;
+        let stem = a.input.file_stem().unwrap_or_default().to_string_lossy();
+        write_atomic(
+            &dir.join(format!("{stem}_frame_ms.csv")),
+            report::frame_csv(run).as_bytes(),
+        )?;
+    }
+    if let Some(p) = &a.plot {
+        let name = a.input.file_name().unwrap_or_default().to_string_lossy();
+        let title = format!(
+            "{name}: {} balls, physics step per frame",
+            run.settings.balls
+        );
+        plot::write_png(run, &title, p)?;
+    }
+    Ok(())
+}
+
+fn print_sim_table(run: &SimRun) {
+    println!("| collider | kind | shapes | median ms | mean ms | p95 ms | total ms | similarity | set similarity | on object | resting |");
+    println!("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    for o in &run.outcomes {
+        let (s, b) = (&o.stats, &o.behaviour);
+        println!(
+            "| {} | {} | {} | {:.3} | {:.3} | {:.3} | {:.1} | {:.3} | {:.3} | {:.3} | {:.3} |",
+            o.label,
+            o.kind,
+            o.shapes,
+            s.median,
+            s.mean,
+            s.p95,
+            s.total,
+            b.similarity,
+            b.similarity_set,
+            b.on_object,
+            b.resting
+        );
+    }
 }

@@ -22,7 +22,7 @@ const TORUS_MAJOR: usize = 48;
 const TORUS_MINOR: usize = 24;
 
 /// Box quads for corner `i` = (bit 0 → x, bit 1 → y, bit 2 → z; set = max side).
-const BOX_FACES: [[usize; 4]; 6] = [
+pub(crate) const BOX_FACES: [[usize; 4]; 6] = [
     [0, 4, 6, 2],
     [1, 3, 7, 5],
     [0, 1, 5, 4],

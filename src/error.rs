@@ -39,6 +39,9 @@ pub enum Error {
     /// A setting is out of range or inconsistent.
     #[error("invalid setting: {0}")]
     InvalidParams(String),
+    /// A plot could not be drawn (no usable font, drawing failed).
+    #[error("{path}: cannot draw the plot: {msg}")]
+    Plot { path: PathBuf, msg: String },
     /// An output file could not be written.
     #[error("{path}: cannot write: {source}")]
     Write {
@@ -75,7 +78,7 @@ impl Error {
     /// Exit code the CLI uses: 2 for bad input or settings, 1 for anything else.
     pub fn exit_code(&self) -> i32 {
         match self {
-            Error::Io { .. } | Error::Write { .. } => 1,
+            Error::Io { .. } | Error::Write { .. } | Error::Plot { .. } => 1,
             _ => 2,
         }
     }

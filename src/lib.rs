@@ -26,6 +26,7 @@ pub mod params;
 pub mod postprocess;
 pub mod primitive;
 pub mod quadric;
+pub mod sim;
 
 pub use decompose::{decompose, Decomposition, InputInfo, Level, Timings};
 pub use error::{Error, Result};

@@ -126,7 +126,7 @@ pub(crate) fn position<'a>(
 }
 
 /// One finite coordinate.
-fn coordinate(tok: &[u8], path: &Path, no: u64) -> Result<f64> {
+pub(crate) fn coordinate(tok: &[u8], path: &Path, no: u64) -> Result<f64> {
     match parse_f64(tok) {
         Some(x) if x.is_finite() => Ok(x),
         Some(_) => Err(Error::line(

@@ -1,0 +1,395 @@
+//! `primdecomp sim`: the paper's rigid-body benchmark (§4.1 "Efficiency of Collision
+//! Objects"): drop balls on each collider in Rapier, time every frame's physics step,
+//! and compare where the balls end with where they end on the input mesh itself.
+//!
+//! # Scene
+//! - **Frame.** Coordinates are re-centred on the input's AABB centre and scaled so
+//!   the AABB diagonal D is [`scene::SCENE_DIAGONAL`] = 10 m, whatever the file's
+//!   units; gravity 9.81 m/s² along −up (`up` = y by default, z for Z-up files); fixed
+//!   step 1/60 s; Rapier's defaults otherwise (friction 0.5, no restitution).
+//! - **Balls.** Radius r = 0.01·D (0.1 m in the scene). Release grid over the AABB's
+//!   footprint (its two horizontal axes): columns 3r apart (⌊W/3r⌋ per axis, at least
+//!   one, cells centred), layers 3r apart starting 3r above the AABB's top, filled
+//!   layer by layer. Each centre is jittered uniformly by up to r/2 per axis from a
+//!   SplitMix64 stream seeded with `seed`, so no two balls overlap; they start at
+//!   rest, with CCD on. Every collider sees exactly the same balls.
+//! - **Colliders.** The input mesh as one triangle mesh (the reference, always the
+//!   first entry), our primitives ([`shapes::primitive`]) and convex hulls, all fixed.
+//!
+//! # Timing
+//! All colliders' worlds live in one process and advance frame by frame, each frame
+//! stepping every world once in an order rotated by the frame number, so machine
+//! noise hits all colliders alike and their ratios hold. Only the `step` call is
+//! timed, by wall clock (`frame_ms_*`) and by the process's CPU clock (`cpu_ms_*`:
+//! on a loaded machine wall times are stretched by preemption, in multiples of the
+//! scheduler's tick, while CPU time counts only this process's work). `threads` sizes the rayon pool that runs Rapier's parallel parts (default
+//! 1: one core, the most repeatable).
+//!
+//! # Behaviour (after the last frame, against the reference run)
+//! - `similarity`: fraction of balls whose centre ends within one ball diameter (2r)
+//!   of where the same ball ends on the input mesh. Piles are chaotic, so even a
+//!   faithful collider scores below 1 on a busy scene; compare colliders, not 1.
+//! - `similarity_set`: the same test without ball identity, robust to that chaos:
+//!   the fraction of end points lying within 2r of *some* end point of the other
+//!   run, averaged over both directions (collider → reference, reference → collider).
+//! - `on_object`: fraction of balls whose centre ends inside the input's AABB grown
+//!   by 2r on every side (no upper bound, piles may stand above it), i.e. that did
+//!   not fall off or through; `resting`: of all balls, the fraction on the object and
+//!   slower than r per second; `on_object_agreement`: fraction whose on-object state
+//!   matches the reference's.
+//! - `mean_displacement`: mean distance between a ball's end and its end on the
+//!   mesh, in the input's units (`mean_displacement_rel`: over D).
+
+pub mod metrics;
+pub mod plot;
+pub mod report;
+pub mod scene;
+pub mod shapes;
+
+use crate::collider::Collider;
+use crate::error::{Error, Result};
+use crate::math::V3;
+use crate::mesh::Mesh;
+use metrics::{Behaviour, FrameStats};
+use scene::{Scene, World};
+use shapes::Placed;
+
+/// Run settings. `Default` is the paper's 5,000 balls and 1,000 frames.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Settings {
+    pub balls: usize,
+    pub frames: usize,
+    pub seed: u64,
+    /// Threads for Rapier's parallel parts (≥ 1).
+    pub threads: usize,
+    /// Up axis: 0 = x, 1 = y, 2 = z.
+    pub up: usize,
+}
+
+impl Default for Settings {
+    fn default() -> Self {
+        Settings {
+            balls: 5000,
+            frames: 1000,
+            seed: 0,
+            threads: 1,
+            up: 1,
+        }
+    }
+}
+
+/// What a simulated collider is made of (world coordinates).
+#[derive(Clone, Debug, PartialEq)]
+pub enum Geometry {
+    /// The input mesh as a triangle mesh: the reference.
+    Reference,
+    /// Primitives or convex hulls ([`crate::collider::load`]).
+    Collider(Collider),
+}
+
+impl Geometry {
+    /// Name of the kind in the report.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Geometry::Reference => "mesh",
+            Geometry::Collider(Collider::Primitives(_)) => "primitives",
+            Geometry::Collider(Collider::Hulls(_)) => "hulls",
+        }
+    }
+}
+
+/// A collider to simulate and its label (the file it came from).
+#[derive(Clone, Debug)]
+pub struct Entry {
+    pub label: String,
+    pub geometry: Geometry,
+}
+
+/// One collider's run.
+#[derive(Clone, Debug)]
+pub struct Outcome {
+    pub label: String,
+    pub kind: &'static str,
+    /// Shapes given to Rapier.
+    pub shapes: usize,
+    /// Parts dropped because they span no volume (flat hulls).
+    pub skipped: usize,
+    /// Physics-step wall time per frame, ms.
+    pub frame_ms: Vec<f64>,
+    pub stats: FrameStats,
+    /// Physics-step process CPU time per frame, ms (NaN where unsupported).
+    pub cpu_ms: Vec<f64>,
+    pub cpu_stats: FrameStats,
+    pub behaviour: Behaviour,
+    /// Final ball centres (simulation frame) and speeds.
+    pub end: Vec<V3>,
+    pub speed: Vec<f64>,
+}
+
+/// A whole run: the scene and one outcome per collider, the reference first.
+#[derive(Clone, Debug)]
+pub struct Run {
+    pub scene: Scene,
+    pub settings: Settings,
+    pub outcomes: Vec<Outcome>,
+}
+
+/// Rapier shapes of one collider; the count of parts that had no volume.
+fn placed(geometry: &Geometry, mesh: &Mesh, scene: &Scene) -> Result<(Vec<Placed>, usize)> {
+    let f = &scene.frame;
+    let all: Vec<Option<Placed>> = match geometry {
+        Geometry::Reference => vec![shapes::trimesh(mesh, f)],
+        Geometry::Collider(Collider::Primitives(p)) => {
+            p.iter().map(|p| shapes::primitive(p, f)).collect()
+        }
+        Geometry::Collider(Collider::Hulls(h)) => h
+            .iter()
+            .map(|h| shapes::hull(&h.positions.iter().map(|&p| f.point(p)).collect::<Vec<_>>()))
+            .collect(),
+    };
+    let n = all.len();
+    let kept: Vec<Placed> = all.into_iter().flatten().collect();
+    if kept.is_empty() && n > 0 {
+        return Err(Error::InvalidParams(format!(
+            "{} collider has no part with volume",
+            geometry.kind()
+        )));
+    }
+    let skipped = n - kept.len();
+    Ok((kept, skipped))
+}
+
+/// Simulates the reference (`mesh` as a triangle mesh, labelled `input`) and every
+/// collider, interleaved frame by frame; the reference is the run's first outcome.
+/// Calls `progress` with the number of frames done after each frame.
+pub fn run(
+    mesh: &Mesh,
+    input: &str,
+    colliders: &[Entry],
+    settings: &Settings,
+    progress: &(dyn Fn(usize) + Sync),
+) -> Result<Run> {
+    if settings.balls == 0 || settings.frames == 0 || settings.threads == 0 || settings.up > 2 {
+        return Err(Error::InvalidParams(format!(
+            "sim needs at least one ball, frame and thread and an up axis of x, y or z (got {settings:?})"
+        )));
+    }
+    let scene = Scene::new(mesh, settings);
+    let reference = Entry {
+        label: input.to_string(),
+        geometry: Geometry::Reference,
+    };
+    let entries: Vec<&Entry> = std::iter::once(&reference).chain(colliders).collect();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(settings.threads)
+        .thread_name(|i| format!("sim-{i}"))
+        .build()
+        .map_err(|e| {
+            Error::InvalidParams(format!("cannot start {} threads: {e}", settings.threads))
+        })?;
+    let mut worlds = Vec::with_capacity(entries.len());
+    let mut parts = Vec::with_capacity(entries.len());
+    for e in &entries {
+        let (shapes, skipped) = placed(&e.geometry, mesh, &scene).map_err(|err| match err {
+            Error::InvalidParams(m) => Error::InvalidParams(format!("{}: {m}", e.label)),
+            other => other,
+        })?;
+        parts.push((shapes.len(), skipped));
+        worlds.push(World::new(&scene, &shapes));
+    }
+    let mut frame_ms = vec![Vec::with_capacity(settings.frames); worlds.len()];
+    let mut cpu_ms = frame_ms.clone();
+    // The whole loop runs on one of the pool's workers, so no step hands work over
+    // to another thread first, and Rapier's parallel parts use this pool.
+    pool.install(|| {
+        for frame in 0..settings.frames {
+            for k in 0..worlds.len() {
+                let w = (frame + k) % worlds.len();
+                let (wall, cpu) = worlds[w].step_timed();
+                frame_ms[w].push(wall);
+                cpu_ms[w].push(cpu);
+            }
+            progress(frame + 1);
+        }
+    });
+    let ends: Vec<(Vec<V3>, Vec<f64>)> = worlds.iter().map(World::balls).collect();
+    let reference = &ends[0].0;
+    let outcomes = entries
+        .iter()
+        .zip(frame_ms.into_iter().zip(cpu_ms))
+        .zip(ends.iter().zip(parts))
+        .map(
+            |((e, (ms, cpu)), ((end, speed), (shapes, skipped)))| Outcome {
+                label: e.label.clone(),
+                kind: e.geometry.kind(),
+                shapes,
+                skipped,
+                stats: FrameStats::of(&ms),
+                frame_ms: ms,
+                cpu_stats: FrameStats::of(&cpu),
+                cpu_ms: cpu,
+                behaviour: Behaviour::of(&scene, end, speed, reference),
+                end: end.clone(),
+                speed: speed.clone(),
+            },
+        )
+        .collect();
+    Ok(Run {
+        scene,
+        settings: settings.clone(),
+        outcomes,
+    })
+}
+
+/// The closed axis-aligned box `lo`–`hi` as six outward quads (tests).
+#[cfg(test)]
+pub(crate) fn cuboid_mesh(lo: V3, hi: V3) -> Mesh {
+    let corner = |i: usize| std::array::from_fn(|k| if i >> k & 1 == 1 { hi[k] } else { lo[k] });
+    let corners: Vec<V3> = (0..8).map(corner).collect();
+    let faces = crate::demo::BOX_FACES.map(|f| f.map(|i| i as u32).to_vec());
+    Mesh::from_polygons(&corners, &faces)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::collider::{parse_hulls_obj, parse_json};
+    use crate::primitive::{Obb, Primitive};
+    use std::path::Path;
+
+    /// A 2 × 1 × 2 box (world units) from (10, 0, 10): mesh and matching primitive.
+    fn box_mesh() -> (Mesh, Primitive) {
+        let prim = Primitive::Box(Obb {
+            center: [11.0, 0.5, 11.0],
+            axes: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            half: [1.0, 0.5, 1.0],
+        });
+        (cuboid_mesh([10.0, 0.0, 10.0], [12.0, 1.0, 12.0]), prim)
+    }
+
+    /// The box mesh and its primitive as the one collider.
+    fn box_scene() -> (Mesh, [Entry; 1]) {
+        let (mesh, prim) = box_mesh();
+        let e = Entry {
+            label: "box".into(),
+            geometry: Geometry::Collider(Collider::Primitives(vec![prim])),
+        };
+        (mesh, [e])
+    }
+
+    fn settings(balls: usize, frames: usize) -> Settings {
+        Settings {
+            balls,
+            frames,
+            ..Default::default()
+        }
+    }
+
+    /// Ball centres' heights (simulation frame) at the end of `outcome`.
+    fn heights(o: &Outcome) -> Vec<f64> {
+        o.end.iter().map(|p| p[1]).collect()
+    }
+
+    /// A ball dropped on a box comes to rest on its top face: centre height = top +
+    /// radius (within Rapier's contact tolerance, 1% of the radius here), speed 0,
+    /// and the behaviour measures call it resting on the object.
+    #[test]
+    fn ball_rests_on_top_of_a_box() {
+        let (mesh, e) = box_scene();
+        let run = run(&mesh, "mesh", &e, &settings(4, 150), &|_| {}).unwrap();
+        let top = run.scene.aabb.1[1] + run.scene.radius;
+        for o in &run.outcomes {
+            for (h, v) in heights(o).iter().zip(&o.speed) {
+                assert!(
+                    (h - top).abs() < 0.01 * run.scene.radius,
+                    "{}: height {h}, expected {top}",
+                    o.label
+                );
+                assert!(*v < 1e-3, "{}: still moving at {v} m/s", o.label);
+            }
+            assert_eq!((o.behaviour.on_object, o.behaviour.resting), (1.0, 1.0));
+        }
+        // The box's run matches the mesh's ball for ball.
+        assert_eq!(run.outcomes[1].behaviour.similarity, 1.0);
+    }
+
+    /// The same box read from a primdecomp JSON document and from an OBJ file of
+    /// convex hulls (the two collider paths of `primdecomp sim`) gives the same resting
+    /// heights, to f32 round-off of the two shapes.
+    #[test]
+    fn json_box_and_obj_hull_box_rest_alike() {
+        let (mesh, _) = box_mesh();
+        let json = br#"{"primitives":[{"kind":"box","center":[11,0.5,11],
+            "rotation":[0,0,0,1],"half_extents":[1,0.5,1]}]}"#;
+        let obj = b"o hull_0\nv 10 0 10\nv 12 0 10\nv 10 1 10\nv 12 1 10\nv 10 0 12\n\
+            v 12 0 12\nv 10 1 12\nv 12 1 12\nf 1 5 7 3\nf 2 4 8 6\nf 1 2 6 5\nf 3 7 8 4\n\
+            f 1 3 4 2\nf 5 6 8 7\n";
+        let e = [
+            Entry {
+                label: "json".into(),
+                geometry: Geometry::Collider(parse_json(json, Path::new("box.json")).unwrap()),
+            },
+            Entry {
+                label: "obj".into(),
+                geometry: Geometry::Collider(Collider::Hulls(
+                    parse_hulls_obj(obj, Path::new("box.obj")).unwrap(),
+                )),
+            },
+        ];
+        let run = run(&mesh, "mesh", &e, &settings(9, 150), &|_| {}).unwrap();
+        let top = run.scene.aabb.1[1] + run.scene.radius;
+        let (a, b) = (heights(&run.outcomes[1]), heights(&run.outcomes[2]));
+        for (x, y) in a.iter().zip(&b) {
+            assert!(
+                (x - y).abs() < 1e-3 * run.scene.radius,
+                "json {x} vs obj {y}"
+            );
+            assert!(
+                (x - top).abs() < 0.01 * run.scene.radius,
+                "json {x} vs top {top}"
+            );
+        }
+    }
+
+    /// Same seed, same result to the bit (positions, speeds, measures); another seed
+    /// moves the release points.
+    #[test]
+    fn fixed_seed_is_repeatable() {
+        let (mesh, e) = box_scene();
+        let go = |seed| {
+            let s = Settings {
+                seed,
+                ..settings(40, 60)
+            };
+            run(&mesh, "mesh", &e, &s, &|_| {}).unwrap()
+        };
+        let (a, b, c) = (go(7), go(7), go(8));
+        for (x, y) in a.outcomes.iter().zip(&b.outcomes) {
+            assert_eq!(
+                (&x.end, &x.speed, x.behaviour),
+                (&y.end, &y.speed, y.behaviour)
+            );
+        }
+        assert_eq!(a.scene.release, b.scene.release);
+        assert_ne!(a.scene.release, c.scene.release);
+    }
+
+    /// Bad settings are refused with a message, not a panic or a hang.
+    #[test]
+    fn bad_settings_are_refused() {
+        let (mesh, _) = box_mesh();
+        for s in [
+            settings(0, 10),
+            settings(10, 0),
+            Settings {
+                up: 3,
+                ..settings(1, 1)
+            },
+        ] {
+            assert!(matches!(
+                run(&mesh, "m", &[], &s, &|_| {}),
+                Err(Error::InvalidParams(_))
+            ));
+        }
+    }
+}

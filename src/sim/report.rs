@@ -1,0 +1,153 @@
+//! The simulation's outputs as text: the JSON report (issue 4's keys, one entry
+//! per collider with the reference first) and the per-frame CSV.
+
+use super::scene::{BALL_RADIUS_REL, DT, GRAVITY, SCENE_DIAGONAL};
+use super::Run;
+use crate::math::V3;
+use serde::Serialize;
+use std::fmt::Write;
+
+#[derive(Serialize)]
+struct InputJson<'a> {
+    path: &'a str,
+    faces: usize,
+    aabb_min: V3,
+    aabb_max: V3,
+}
+
+#[derive(Serialize)]
+struct SceneJson {
+    ball_radius: f64,
+    ball_radius_rel: f64,
+    scene_diagonal_m: f64,
+    gravity: f64,
+    dt: f64,
+    up: &'static str,
+    seed: u64,
+    threads: usize,
+}
+
+#[derive(Serialize)]
+struct ColliderJson<'a> {
+    collider: &'a str,
+    kind: &'a str,
+    shapes: usize,
+    skipped_parts: usize,
+    frame_ms_mean: f64,
+    frame_ms_median: f64,
+    frame_ms_p95: f64,
+    frame_ms_total: f64,
+    cpu_ms_mean: f64,
+    cpu_ms_median: f64,
+    cpu_ms_p95: f64,
+    cpu_ms_total: f64,
+    similarity: f64,
+    similarity_set: f64,
+    on_object: f64,
+    resting: f64,
+    on_object_agreement: f64,
+    mean_displacement: f64,
+    mean_displacement_rel: f64,
+}
+
+#[derive(Serialize)]
+struct ReportJson<'a> {
+    format: &'static str,
+    version: u32,
+    input: InputJson<'a>,
+    balls: usize,
+    frames: usize,
+    scene: SceneJson,
+    colliders: Vec<ColliderJson<'a>>,
+}
+
+/// The JSON report of `run` on the input at `path` with `faces` faces.
+pub fn to_json(run: &Run, path: &str, faces: usize) -> String {
+    let sc = &run.scene;
+    let world = |p: V3| sc.frame.to_world(p);
+    let colliders = run
+        .outcomes
+        .iter()
+        .map(|o| ColliderJson {
+            collider: &o.label,
+            kind: o.kind,
+            shapes: o.shapes,
+            skipped_parts: o.skipped,
+            frame_ms_mean: o.stats.mean,
+            frame_ms_median: o.stats.median,
+            frame_ms_p95: o.stats.p95,
+            frame_ms_total: o.stats.total,
+            cpu_ms_mean: o.cpu_stats.mean,
+            cpu_ms_median: o.cpu_stats.median,
+            cpu_ms_p95: o.cpu_stats.p95,
+            cpu_ms_total: o.cpu_stats.total,
+            similarity: o.behaviour.similarity,
+            similarity_set: o.behaviour.similarity_set,
+            on_object: o.behaviour.on_object,
+            resting: o.behaviour.resting,
+            on_object_agreement: o.behaviour.on_object_agreement,
+            mean_displacement: o.behaviour.mean_displacement,
+            mean_displacement_rel: o.behaviour.mean_displacement_rel,
+        })
+        .collect();
+    let doc = ReportJson {
+        format: "primdecomp-sim",
+        version: 1,
+        input: InputJson {
+            path,
+            faces,
+            aabb_min: world(sc.aabb.0),
+            aabb_max: world(sc.aabb.1),
+        },
+        balls: run.settings.balls,
+        frames: run.settings.frames,
+        scene: SceneJson {
+            ball_radius: sc.radius_world(),
+            ball_radius_rel: BALL_RADIUS_REL,
+            scene_diagonal_m: SCENE_DIAGONAL,
+            gravity: GRAVITY,
+            dt: DT,
+            up: ["x", "y", "z"][sc.up],
+            seed: run.settings.seed,
+            threads: run.settings.threads,
+        },
+        colliders,
+    };
+    let mut s = serde_json::to_string_pretty(&doc).unwrap_or_default();
+    s.push('\n');
+    s
+}
+
+/// Column names: collider labels, made unique with `#k` suffixes where repeated.
+pub fn column_names(run: &Run) -> Vec<String> {
+    let labels: Vec<&str> = run.outcomes.iter().map(|o| o.label.as_str()).collect();
+    labels
+        .iter()
+        .enumerate()
+        .map(|(i, l)| {
+            if labels.iter().filter(|m| *m == l).count() > 1 {
+                format!("{l}#{i}")
+            } else {
+                l.to_string()
+            }
+        })
+        .collect()
+}
+
+/// CSV of physics-step times: `frame` then one column per collider, ms.
+pub fn frame_csv(run: &Run) -> String {
+    let mut s = String::from("frame");
+    for c in column_names(run) {
+        let c = c.replace('"', "\"\"");
+        let _ = write!(s, ",\"{c}\"");
+    }
+    s.push('\n');
+    for f in 0..run.settings.frames {
+        let _ = write!(s, "{f}");
+        for o in &run.outcomes {
+            let _ = write!(s, ",{:.6}", o.frame_ms[f]);
+        }
+        s.push('\n');
+    }
+    s
+}

@@ -242,7 +242,7 @@ fn reprice_neighbors<Q: Queue>(
     let cl = &*cl;
     let own = ev.verts(cl, root).len();
     let points: usize = nbrs.iter().map(|&n| own + ev.verts(cl, n).len()).sum();
-    if points < par_points() || nbrs.len() < 2 || rayon::current_num_threads() < 2 {
+    if points < PAR_POINTS || nbrs.len() < 2 || rayon::current_num_threads() < 2 {
         for &n in &nbrs {
             if let Some((c, _)) = ev.candidate(cl, root, n, ws) {
                 heap.push(c);
@@ -269,12 +269,6 @@ thread_local! {
     static LOCAL_WS: std::cell::RefCell<Workspace> = std::cell::RefCell::new(Workspace::default());
 }
 
-fn par_points() -> usize {
-    std::env::var("PD_PAR_POINTS")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(PAR_POINTS)
-}
 
 /// Links every live cluster to its nearest successors by centroid along each axis.
 fn bridge(ev: &Evaluator, cl: &mut Clusters) -> Vec<(u32, u32)> {

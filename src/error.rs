@@ -36,6 +36,19 @@ pub enum Error {
         "{path}: the mesh has no polygon faces (faces with fewer than 3 vertices are skipped)"
     )]
     EmptyMesh { path: PathBuf },
+    /// A vertex lies so far from the others that volumes (cubes of lengths) and the
+    /// eigen-solver's squared entries would overflow f64.
+    #[error(
+        "{path}: vertex {vertex} lies {distance:e} from the centre of the mesh's bounding box; \
+         every vertex must lie within {limit:e} of it (rescale the mesh)"
+    )]
+    Extent {
+        path: PathBuf,
+        /// 1-based, in the order the file lists vertices.
+        vertex: u64,
+        distance: f64,
+        limit: f64,
+    },
     /// A setting is out of range or inconsistent.
     #[error("invalid setting: {0}")]
     InvalidParams(String),

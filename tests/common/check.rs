@@ -22,7 +22,10 @@ pub fn shapes(dec: &Decomposition, level: usize, params: &Params) -> Vec<Shape> 
     let prims = json["primitives"].as_array().expect("primitives");
     // serde_json writes NaN and infinities as null.
     let body = serde_json::to_string(prims).unwrap();
-    assert!(!body.contains("null"), "non-finite number in the JSON:\n{text}");
+    assert!(
+        !body.contains("null"),
+        "non-finite number in the JSON:\n{text}"
+    );
     prims.iter().map(parse_primitive).collect()
 }
 
@@ -30,8 +33,7 @@ pub fn shapes(dec: &Decomposition, level: usize, params: &Params) -> Vec<Shape> 
 /// coordinates of the mesh's magnitude (a 10^6 offset carries 10^-10 of noise).
 pub fn tolerance(mesh: &Mesh) -> f64 {
     let mag = (0..mesh.vertex_count() as u32)
-        .map(|v| mesh.world_pos(v))
-        .flatten()
+        .flat_map(|v| mesh.world_pos(v))
         .fold(0.0f64, |m, c| m.max(c.abs()));
     1e-6 * mesh.diagonal() + 64.0 * f64::EPSILON * mag
 }

@@ -322,5 +322,6 @@ pub fn load(path: &Path) -> Result<Mesh> {
             path: path.to_path_buf(),
         });
     }
+    mesh.check_extent(path)?;
     Ok(mesh)
 }

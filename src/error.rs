@@ -49,6 +49,23 @@ pub enum Error {
         distance: f64,
         limit: f64,
     },
+    /// Decomposing the input would need more memory than allowed (checked before
+    /// parsing from the counts the file declares, and after parsing).
+    #[error(
+        "{path}: decomposing this mesh ({faces} faces, {vertices} vertices) needs about {}, \
+         more than the memory limit of {} (default: the memory available now); raise the \
+         limit with --max-memory SIZE, e.g. --max-memory 64G (in the library: the \
+         max_memory of mesh::io::load_limited)",
+        crate::memory::show_bytes(*needed),
+        crate::memory::show_bytes(*limit)
+    )]
+    TooLarge {
+        path: PathBuf,
+        faces: u64,
+        vertices: u64,
+        needed: u64,
+        limit: u64,
+    },
     /// A setting is out of range or inconsistent.
     #[error("invalid setting: {0}")]
     InvalidParams(String),

@@ -18,6 +18,7 @@ pub mod demo;
 pub mod error;
 pub mod export;
 pub mod math;
+pub mod memory;
 pub mod merge;
 pub mod mesh;
 pub mod params;

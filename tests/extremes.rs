@@ -9,6 +9,7 @@
 mod common;
 
 use common::check::assert_valid;
+use common::shapes::cuboid;
 use primdecomp::export::obj::tessellate;
 use primdecomp::{decompose, demo, Error, Mesh, Params, Primitive};
 use rand::{Rng, SeedableRng};
@@ -119,32 +120,19 @@ fn all_faces_identical() {
     assert_eq!(valid(&v, &f, &[10, 1]), vec![1, 1]);
 }
 
-/// A box of 1e-6 × 1 × 1 (and its transposes), closed and open at once: an ultra-thin
-/// slab, whose thickness is far below the minimum extent (5e-4 of the diagonal).
+/// A slab of 1e-6 × 1 × 1 and a needle of 1e-6 × 1e-6 × 1 (each along every axis):
+/// thinner than the minimum extent (5e-4 of the diagonal) by orders of magnitude.
 #[test]
 fn needle_of_aspect_1e_minus_6() {
     for axis in 0..3 {
-        let mut size = [1.0; 3];
-        size[axis] = 1e-6;
-        let v: Vec<[f64; 3]> = (0..8)
-            .map(|i| [0, 1, 2].map(|k| if i >> k & 1 == 1 { size[k] } else { 0.0 }))
-            .collect();
-        let f = vec![
-            vec![0, 2, 3, 1],
-            vec![4, 5, 7, 6],
-            vec![0, 1, 5, 4],
-            vec![2, 6, 7, 3],
-            vec![0, 4, 6, 2],
-            vec![1, 3, 7, 5],
-        ];
-        assert_eq!(valid(&v, &f, &[6, 1])[1], 1);
-        // And the true needle: 1e-6 × 1e-6 × 1.
-        let mut size = [1e-6; 3];
-        size[axis] = 1.0;
-        let v: Vec<[f64; 3]> = (0..8)
-            .map(|i| [0, 1, 2].map(|k| if i >> k & 1 == 1 { size[k] } else { 0.0 }))
-            .collect();
-        assert_eq!(valid(&v, &f, &[6, 1])[1], 1);
+        let mut slab = [1.0; 3];
+        slab[axis] = 1e-6;
+        let mut needle = [1e-6; 3];
+        needle[axis] = 1.0;
+        for size in [slab, needle] {
+            let (v, f) = cuboid([0.0; 3], size);
+            assert_eq!(valid(&v, &f, &[6, 1])[1], 1, "{size:?}");
+        }
     }
 }
 

@@ -116,6 +116,11 @@ struct DecomposeArgs {
     /// Segments around circles in the OBJ tessellation.
     #[arg(long, default_value_t = 16)]
     obj_detail: usize,
+    /// Refuse inputs whose decomposition is estimated to need more memory than this:
+    /// a size such as 512M, 8G or 1.5T, "available" (the memory available at start,
+    /// from /proc/meminfo) or "none".
+    #[arg(long, default_value = "available", value_name = "SIZE")]
+    max_memory: String,
     /// Worker threads (default: all cores); results do not depend on it.
     #[arg(long)]
     threads: Option<usize>,
@@ -235,6 +240,19 @@ fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
     };
     p.validate().map_err(|e| BadArgs(e.to_string()))?;
     Ok(p)
+}
+
+/// The memory limit in bytes from `--max-memory`; `None` for no limit.
+fn max_memory(a: &DecomposeArgs) -> anyhow::Result<Option<u64>> {
+    Ok(match a.max_memory.trim() {
+        "none" => None,
+        "available" => primdecomp::memory::available(),
+        s => Some(primdecomp::memory::parse_size(s).ok_or_else(|| {
+            BadArgs(format!(
+                "--max-memory: expected a size like 8G, 'available' or 'none', got '{s}'"
+            ))
+        })?),
+    })
 }
 
 fn parse_kind(k: &str) -> anyhow::Result<Kind> {
@@ -370,7 +388,7 @@ fn run_one(
     out: &Path,
 ) -> anyhow::Result<Decomposition> {
     let now = Instant::now();
-    let mesh = primdecomp::mesh::io::load(input)?;
+    let mesh = primdecomp::mesh::io::load_limited(input, max_memory(a)?)?;
     let load_s = now.elapsed().as_secs_f64();
     let params = Params {
         targets: resolve_targets(targets, mesh.face_count()),

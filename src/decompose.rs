@@ -97,6 +97,8 @@ pub fn decompose_with_progress(
             path: "<mesh>".into(),
         });
     }
+    // Far-flung vertices would overflow volumes to inf and NaN (issue 6).
+    mesh.check_extent("<mesh>".as_ref())?;
     // One pass over the used vertices gives every size-relative setting its scale.
     let bounds = mesh.aabb();
     let diag = crate::math::norm(crate::math::sub(bounds.1, bounds.0));

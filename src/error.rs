@@ -36,6 +36,36 @@ pub enum Error {
         "{path}: the mesh has no polygon faces (faces with fewer than 3 vertices are skipped)"
     )]
     EmptyMesh { path: PathBuf },
+    /// A vertex lies so far from the others that volumes (cubes of lengths) and the
+    /// eigen-solver's squared entries would overflow f64.
+    #[error(
+        "{path}: vertex {vertex} lies {distance:e} from the centre of the mesh's bounding box; \
+         every vertex must lie within {limit:e} of it (rescale the mesh)"
+    )]
+    Extent {
+        path: PathBuf,
+        /// 1-based, in the order the file lists vertices.
+        vertex: u64,
+        distance: f64,
+        limit: f64,
+    },
+    /// Decomposing the input would need more memory than allowed (checked before
+    /// parsing from the counts the file declares, and after parsing).
+    #[error(
+        "{path}: decomposing this mesh ({faces} faces, {vertices} vertices) needs about {}, \
+         more than the memory limit of {} (default: the memory available now); raise the \
+         limit with --max-memory SIZE, e.g. --max-memory 64G (in the library: the \
+         max_memory of mesh::io::load_limited)",
+        crate::memory::show_bytes(*needed),
+        crate::memory::show_bytes(*limit)
+    )]
+    TooLarge {
+        path: PathBuf,
+        faces: u64,
+        vertices: u64,
+        needed: u64,
+        limit: u64,
+    },
     /// A setting is out of range or inconsistent.
     #[error("invalid setting: {0}")]
     InvalidParams(String),

@@ -20,6 +20,7 @@ pub mod error;
 pub mod eval;
 pub mod export;
 pub mod math;
+pub mod memory;
 pub mod merge;
 pub mod mesh;
 pub mod params;

@@ -96,19 +96,22 @@ impl<'a> Evaluator<'a> {
 
     /// The primitive of one cluster fitted on every vertex of its faces (walking the
     /// cyclic face list), independent of any point reduction: this is what we output.
+    /// It uses the faces' own vertices, not the welded ones: a tolerance weld moves a
+    /// corner onto its group's first vertex (transitively, so arbitrarily far), and the
+    /// output must enclose the faces as given.
     pub fn fit_cluster_exact(&self, cl: &Clusters, c: u32, ws: &mut Workspace) -> Fit {
         ws.clear();
         for f in cl.faces(c) {
-            self.push_points(self.face(f), ws);
+            self.push_points(self.mesh.face(f as usize), ws);
         }
         self.fit_points(&cl.q[c as usize], ws)
     }
 
-    /// Distinct vertices of every face of cluster `c`, sorted.
+    /// Distinct vertices of every face of cluster `c` (the faces' own, not welded), sorted.
     pub fn all_verts(&self, cl: &Clusters, c: u32) -> Vec<u32> {
         let mut v: Vec<u32> = cl
             .faces(c)
-            .flat_map(|f| self.face(f).iter().copied())
+            .flat_map(|f| self.mesh.face(f as usize).iter().copied())
             .collect();
         v.sort_unstable();
         v.dedup();

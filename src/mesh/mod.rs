@@ -8,6 +8,12 @@ pub mod io;
 
 use crate::math::V3;
 
+/// Largest distance of any vertex from the centre of the mesh's bounding box that the
+/// engine accepts. Fits take cubes (volumes) and fourth powers (squared quadric entries
+/// in the eigen-solver) of lengths; 1e60 keeps both far below f64's 1.8e308 even with
+/// large kind weights. Coordinates of 1e300 crashed the frustum fit before this limit.
+pub const MAX_EXTENT: f64 = 1e60;
+
 /// `u32` index of an input face.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
 pub struct FaceId(pub u32);
@@ -136,6 +142,28 @@ impl Mesh {
     #[inline]
     pub fn world_pos(&self, v: u32) -> V3 {
         crate::math::add(self.pos(v), self.offset)
+    }
+    /// The first vertex (0-based) farther than [`MAX_EXTENT`] from the re-centring
+    /// origin on some axis (or not finite), with that distance.
+    pub fn vertex_out_of_range(&self) -> Option<(usize, f64)> {
+        let far = |i: usize| {
+            let d = self.x[i].abs().max(self.y[i].abs()).max(self.z[i].abs());
+            // A NaN distance (from an infinite offset) counts as out of range.
+            (d.is_nan() || d > MAX_EXTENT).then_some((i, d))
+        };
+        (0..self.vertex_count()).find_map(far)
+    }
+    /// [`Mesh::vertex_out_of_range`] as the error for `path`.
+    pub fn check_extent(&self, path: &std::path::Path) -> crate::Result<()> {
+        match self.vertex_out_of_range() {
+            None => Ok(()),
+            Some((i, d)) => Err(crate::Error::Extent {
+                path: path.to_path_buf(),
+                vertex: i as u64 + 1,
+                distance: d,
+                limit: MAX_EXTENT,
+            }),
+        }
     }
     /// AABB of the re-centred positions of vertices used by faces (min, max).
     pub fn aabb(&self) -> (V3, V3) {

@@ -1,4 +1,5 @@
 //! Shared test helpers.
 #![allow(dead_code)]
+pub mod check;
 pub mod contain;
 pub mod shapes;

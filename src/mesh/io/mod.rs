@@ -14,7 +14,9 @@ use std::path::Path;
 
 pub use self::gltf::parse_gltf;
 pub use obj::parse_obj;
+pub(crate) use off::declared_counts as off_declared;
 pub use off::parse_off;
+pub(crate) use ply::declared_counts as ply_declared;
 pub use ply::parse_ply;
 pub use stl::parse_stl;
 
@@ -291,8 +293,17 @@ pub(crate) mod text {
     }
 }
 
-/// Memory-maps and parses `path`, then re-centres it into a [`Mesh`].
+/// Memory-maps and parses `path`, then re-centres it into a [`Mesh`]. No memory limit:
+/// see [`load_limited`].
 pub fn load(path: &Path) -> Result<Mesh> {
+    load_limited(path, None)
+}
+
+/// [`load`], refusing with [`Error::TooLarge`] an input whose decomposition would need
+/// more than `max_memory` bytes by [`crate::memory::estimate`]: once from the counts
+/// the file declares, before parsing, and once from the parsed mesh, before anything
+/// else is allocated for it.
+pub fn load_limited(path: &Path, max_memory: Option<u64>) -> Result<Mesh> {
     let io_err = |source| Error::Io {
         path: path.to_path_buf(),
         source,
@@ -314,13 +325,26 @@ pub fn load(path: &Path) -> Result<Mesh> {
         // SAFETY: the map is read-only and lives only for this call; we accept that a
         // concurrent writer truncating the file could fault, as every mmap reader does.
         let map = unsafe { memmap2::Mmap::map(&file) }.map_err(io_err)?;
+        let declared = crate::memory::declared_counts(&map, format);
+        if let (Some(limit), Some(counts)) = (max_memory, declared) {
+            crate::memory::check(path, counts, limit)?;
+        }
         parse_bytes(&map, format, path)?
     };
+    if let Some(limit) = max_memory {
+        let counts = crate::memory::Counts {
+            vertices: builder.positions.len() as u64,
+            faces: builder.face_count() as u64,
+            corners: builder.face_indices.len() as u64,
+        };
+        crate::memory::check(path, counts, limit)?;
+    }
     let mesh = Mesh::from_builder(builder);
     if mesh.face_count() == 0 {
         return Err(Error::EmptyMesh {
             path: path.to_path_buf(),
         });
     }
+    mesh.check_extent(path)?;
     Ok(mesh)
 }

@@ -40,6 +40,17 @@ pub fn parse_off(bytes: &[u8], path: &Path) -> Result<MeshBuilder> {
     Ok(out)
 }
 
+/// Declared vertex and face counts of an OFF header (for the memory check before
+/// parsing); `None` if the header does not parse.
+pub(crate) fn declared_counts(bytes: &[u8]) -> Option<(u64, u64)> {
+    let mut lines = Content {
+        lines: Lines::new(bytes),
+        last: 0,
+    };
+    let (v, f) = read_counts(&mut lines, Path::new("")).ok()??;
+    Some((v as u64, f as u64))
+}
+
 /// Non-blank lines with comments removed; remembers the last line number for errors.
 struct Content<'a> {
     lines: Lines<'a>,

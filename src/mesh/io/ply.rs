@@ -45,6 +45,19 @@ pub fn parse_ply(bytes: &[u8], path: &Path) -> Result<MeshBuilder> {
     Ok(out)
 }
 
+/// Declared vertex and face counts of a PLY header (for the memory check before
+/// parsing); `None` if the header does not parse.
+pub(crate) fn declared_counts(bytes: &[u8]) -> Option<(u64, u64)> {
+    let h = parse_header(bytes, Path::new("")).ok()?;
+    let count = |r: ElRole| {
+        h.elements
+            .iter()
+            .filter(move |e| e.role == r)
+            .map(|e| e.count)
+    };
+    Some((count(ElRole::Vertex).sum(), count(ElRole::Face).sum()))
+}
+
 /// A PLY scalar type.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Ty {

@@ -1,0 +1,138 @@
+//! Decomposes small arbitrary meshes with arbitrary settings. Invariants:
+//! - no panic; an error only for settings `Params::validate` refuses;
+//! - every level has at most its target's primitives when no excess cap is set
+//!   (bridging across components makes every target reachable);
+//! - the JSON has no NaN or infinity (the oracle panics on a non-finite number);
+//! - every input face lies inside one output primitive, checked by the independent
+//!   oracle of the tests (`tests/common/contain.rs`, compiled here as is), with a
+//!   tolerance of 1e-6 × the diagonal plus the round-off of the coordinates' magnitude.
+#![no_main]
+
+#[allow(dead_code)]
+#[path = "../../tests/common/contain.rs"]
+mod contain;
+
+use arbitrary::{Result, Unstructured};
+use primdecomp::export::json::to_json;
+use primdecomp::{decompose, Dedup, Error, Mesh, Params};
+
+/// A number that is usually one of `typical` and sometimes any f64 at all.
+fn pick(u: &mut Unstructured, typical: &[f64]) -> Result<f64> {
+    let i: u8 = u.arbitrary()?;
+    Ok(match typical.get(i as usize) {
+        Some(&v) => v,
+        None if i >= 250 => u.arbitrary()?,
+        None => typical[i as usize % typical.len()],
+    })
+}
+
+fn params(u: &mut Unstructured) -> Result<Params> {
+    let mut p = Params::default();
+    let n = u.int_in_range(1..=3)?;
+    p.targets = (0..n)
+        .map(|_| u.int_in_range(0..=40))
+        .collect::<Result<_>>()?;
+    for w in &mut p.weights {
+        *w = pick(u, &[1.0, 1.05, 2.1, 1.4, 1e-9, 1e9])?;
+    }
+    let mask: u8 = u.arbitrary()?;
+    for (k, on) in p.kinds.iter_mut().enumerate() {
+        *on = mask == 0 || mask & (1 << k) != 0;
+    }
+    p.tangent_eps = pick(u, &[0.01, 0.0, 1.0, 1e3])?;
+    p.min_extent_rel = pick(u, &[5e-4, 1e-12, 0.5, 0.999])?;
+    p.max_excess_volume = match u.int_in_range(0..=3)? {
+        0 => Some(pick(u, &[0.0, 1e-3, 1.0])?),
+        _ => None,
+    };
+    p.dedup = match u.int_in_range(0..=3)? {
+        0 => Dedup::Off,
+        1 => Dedup::Tolerance(pick(u, &[0.0, 1e-3, 0.5, 10.0])?),
+        _ => Dedup::Exact,
+    };
+    p.remove_contained = u.arbitrary()?;
+    p.remove_thin_boxes = match u.arbitrary::<bool>()? {
+        true => Some(pick(u, &[0.0, 1e-3, 0.1])?),
+        false => None,
+    };
+    Ok(p)
+}
+
+/// Up to 32 vertices on a small integer grid (many coincide, are collinear or
+/// coplanar), scaled by 10^-30..10^30 and offset by up to 10^9; or, sometimes, any
+/// finite coordinates at all. Up to 24 polygons of 1 to 8 corners.
+fn mesh(u: &mut Unstructured) -> Result<(Vec<[f64; 3]>, Vec<Vec<u32>>)> {
+    let nv = u.int_in_range(1..=32)?;
+    let raw = u.ratio(1, 16)?;
+    let scale = 10f64.powi(u.int_in_range(-30..=30)?);
+    let off: [i8; 3] = u.arbitrary()?;
+    let off_scale = 10f64.powi(u.int_in_range(0..=9)?);
+    let mut verts = Vec::with_capacity(nv);
+    for _ in 0..nv {
+        let v = if raw {
+            let c: [f64; 3] = u.arbitrary()?;
+            c.map(|x| if x.is_finite() { x } else { 0.0 })
+        } else {
+            let c: [i8; 3] = u.arbitrary()?;
+            [0, 1, 2].map(|k| f64::from(c[k] % 8) * scale + f64::from(off[k]) * off_scale)
+        };
+        verts.push(v);
+    }
+    let nf = u.int_in_range(1..=24)?;
+    let mut faces = Vec::with_capacity(nf);
+    for _ in 0..nf {
+        let k = u.int_in_range(1..=8)?;
+        let f = (0..k)
+            .map(|_| Ok(u.int_in_range(0..=nv as u32 - 1)?))
+            .collect::<Result<Vec<u32>>>()?;
+        faces.push(f);
+    }
+    Ok((verts, faces))
+}
+
+fn run(data: &[u8]) -> Result<()> {
+    let mut u = Unstructured::new(data);
+    let params = params(&mut u)?;
+    let (verts, faces) = mesh(&mut u)?;
+    let mesh = Mesh::from_polygons(&verts, &faces);
+    let dec = match decompose(&mesh, &params) {
+        Ok(d) => d,
+        Err(Error::InvalidParams(_)) if params.validate().is_err() => return Ok(()),
+        Err(Error::EmptyMesh { .. }) if mesh.face_count() == 0 => return Ok(()),
+        Err(e) => panic!("unexpected error: {e}"),
+    };
+    assert!(params.validate().is_ok(), "invalid settings accepted");
+    let polys: Vec<Vec<[f64; 3]>> = (0..mesh.face_count())
+        .map(|f| mesh.face(f).iter().map(|&v| mesh.world_pos(v)).collect())
+        .collect();
+    let mag = verts.iter().flatten().fold(0.0f64, |m, c| m.max(c.abs()));
+    let tol = 1e-6 * mesh.diagonal() + 64.0 * f64::EPSILON * mag;
+    for (i, level) in dec.levels.iter().enumerate() {
+        if params.max_excess_volume.is_none() {
+            assert!(
+                level.primitives.len() <= level.target,
+                "{} primitives for target {}",
+                level.primitives.len(),
+                level.target
+            );
+        }
+        let text = to_json(&dec, i, &params);
+        assert!(!text.contains("NaN") && !text.contains("inf"), "{text}");
+        let json: serde_json::Value = serde_json::from_str(&text).expect("valid JSON");
+        let shapes: Vec<_> = json["primitives"]
+            .as_array()
+            .expect("primitives array")
+            .iter()
+            .map(contain::parse_primitive)
+            .collect();
+        let inside = contain::faces_enclosed(&shapes, &polys, tol);
+        if let Some(f) = inside.iter().position(|&b| !b) {
+            panic!("face {f} {:?} not enclosed at level {i}: {text}", polys[f]);
+        }
+    }
+    Ok(())
+}
+
+libfuzzer_sys::fuzz_target!(|data: &[u8]| {
+    let _ = run(data);
+});

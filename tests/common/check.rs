@@ -1,0 +1,59 @@
+//! One validity check for a decomposition, shared by the extreme-input and regression
+//! tests: every level's JSON has no NaN or infinity (serde_json writes them as `null`;
+//! the oracle refuses non-finite numbers), and every input face lies inside one output
+//! primitive according to the independent oracle in `contain.rs`.
+#![allow(dead_code)]
+
+use super::contain::{faces_enclosed, parse_primitive, Shape};
+use primdecomp::export::json::to_json;
+use primdecomp::{Decomposition, Mesh, Params};
+
+/// World-space corners of every face of `mesh`.
+pub fn polygons(mesh: &Mesh) -> Vec<Vec<[f64; 3]>> {
+    (0..mesh.face_count())
+        .map(|f| mesh.face(f).iter().map(|&v| mesh.world_pos(v)).collect())
+        .collect()
+}
+
+/// The oracle's shapes of level `level`, from the JSON we write.
+pub fn shapes(dec: &Decomposition, level: usize, params: &Params) -> Vec<Shape> {
+    let text = to_json(dec, level, params);
+    let json: serde_json::Value = serde_json::from_str(&text).expect("valid JSON");
+    let prims = json["primitives"].as_array().expect("primitives");
+    // serde_json writes NaN and infinities as null.
+    let body = serde_json::to_string(prims).unwrap();
+    assert!(
+        !body.contains("null"),
+        "non-finite number in the JSON:\n{text}"
+    );
+    prims.iter().map(parse_primitive).collect()
+}
+
+/// Tolerance of the enclosure check: 1e-6 of the diagonal plus the round-off of
+/// coordinates of the mesh's magnitude (a 10^6 offset carries 10^-10 of noise).
+pub fn tolerance(mesh: &Mesh) -> f64 {
+    let mag = (0..mesh.vertex_count() as u32)
+        .flat_map(|v| mesh.world_pos(v))
+        .fold(0.0f64, |m, c| m.max(c.abs()));
+    1e-6 * mesh.diagonal() + 64.0 * f64::EPSILON * mag
+}
+
+/// Panics unless every level is finite and encloses every face of `mesh`.
+pub fn assert_valid(mesh: &Mesh, dec: &Decomposition, params: &Params) {
+    let polys = polygons(mesh);
+    let tol = tolerance(mesh);
+    for (i, level) in dec.levels.iter().enumerate() {
+        let shapes = shapes(dec, i, params);
+        let inside = faces_enclosed(&shapes, &polys, tol);
+        let missing: Vec<usize> = (0..inside.len()).filter(|&f| !inside[f]).collect();
+        assert!(
+            missing.is_empty(),
+            "target {}: {} of {} faces not enclosed (first: face {} {:?})",
+            level.target,
+            missing.len(),
+            polys.len(),
+            missing[0],
+            polys[missing[0]]
+        );
+    }
+}

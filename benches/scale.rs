@@ -35,7 +35,9 @@ fn main() {
     let big_path = std::env::temp_dir().join("primdecomp_dragon_x4.ply");
     let big = subdivide(&mesh);
     write_ply(&big, &big_path);
-    println!("| input | faces | primdecomp s (median of {RUNS}) | peak RSS MiB | meshopt s | ratio |");
+    println!(
+        "| input | faces | primdecomp s (median of {RUNS}) | peak RSS MiB | meshopt s | ratio |"
+    );
     println!("|---|---:|---:|---:|---:|---:|");
     let mut times = Vec::new();
     for (name, path, m) in [
@@ -51,10 +53,7 @@ fn main() {
         );
         times.push(t);
     }
-    println!(
-        "\ntime(3.5M) / time(871k) = {:.2}",
-        times[1] / times[0]
-    );
+    println!("\ntime(3.5M) / time(871k) = {:.2}", times[1] / times[0]);
     let _ = std::fs::remove_file(&big_path);
 }
 
@@ -66,7 +65,14 @@ fn cli_runs(bin: &Path, input: &Path) -> (f64, f64) {
     for _ in 0..RUNS {
         let start = Instant::now();
         let o = Command::new(bin)
-            .args(["decompose", "-n", &TARGET.to_string(), "--quiet", "--timings", "-o"])
+            .args([
+                "decompose",
+                "-n",
+                &TARGET.to_string(),
+                "--quiet",
+                "--timings",
+                "-o",
+            ])
             .arg(&out)
             .arg(input)
             .output()
@@ -90,7 +96,9 @@ fn meshopt_runs(m: &Mesh) -> f64 {
     let pos: Vec<[f32; 3]> = (0..m.vertex_count() as u32)
         .map(|v| m.pos(v).map(|c| c as f32))
         .collect();
-    let idx: Vec<u32> = (0..m.face_count()).flat_map(|f| m.face(f).to_vec()).collect();
+    let idx: Vec<u32> = (0..m.face_count())
+        .flat_map(|f| m.face(f).to_vec())
+        .collect();
     let t = (0..RUNS)
         .map(|_| {
             let start = Instant::now();
@@ -130,7 +138,12 @@ fn subdivide(m: &Mesh) -> Mesh {
             })
         };
         let (ab, bc, ca) = (m_of(a, b), m_of(b, c), m_of(c, a));
-        faces.extend([vec![a, ab, ca], vec![ab, b, bc], vec![ca, bc, c], vec![ab, bc, ca]]);
+        faces.extend([
+            vec![a, ab, ca],
+            vec![ab, b, bc],
+            vec![ca, bc, c],
+            vec![ab, bc, ca],
+        ]);
     }
     Mesh::from_polygons(&pos, &faces)
 }

@@ -269,7 +269,6 @@ thread_local! {
     static LOCAL_WS: std::cell::RefCell<Workspace> = std::cell::RefCell::new(Workspace::default());
 }
 
-
 /// Links every live cluster to its nearest successors by centroid along each axis.
 fn bridge(ev: &Evaluator, cl: &mut Clusters) -> Vec<(u32, u32)> {
     let roots = cl.roots();

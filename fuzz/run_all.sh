@@ -7,11 +7,23 @@ secs=${1:-600}
 shift || true
 targets=${*:-decompose parse_obj parse_ply parse_stl parse_off parse_gltf}
 mkdir -p logs
+# Corpus meshes seed the parsers too; they are read from ../shared, never committed.
+shared=../../shared/datasets/corpus
+[ -d "$shared" ] || echo "CORPUS ABSENT: $shared not found; fuzzing from the committed seeds only" >&2
+for f in tiny_joined_tetrahedra.obj tiny_jacked.obj parry_stairs.obj:obj \
+  tiny_2triangles.off:off tiny_plane_quad.ply:ply tiny_7_8ths_cube.stl:stl \
+  tiny_shared_edge.STL:stl kenney_pavement_fountain.glb:gltf; do
+  name=${f%%:*}; dir=${f##*:}; [ "$dir" = "$f" ] && dir=obj
+  mkdir -p "corpus_seeds/$dir"
+  [ -f "$shared/$name" ] && cp "$shared/$name" "corpus_seeds/$dir/"
+done
 for t in $targets; do
   case $t in
-    parse_obj) seeds=seeds/obj ;; parse_ply) seeds=seeds/ply ;; parse_stl) seeds=seeds/stl ;;
-    parse_off) seeds=seeds/off ;; parse_gltf) seeds=seeds/gltf ;; *) seeds= ;;
+    parse_obj) f=obj ;; parse_ply) f=ply ;; parse_stl) f=stl ;;
+    parse_off) f=off ;; parse_gltf) f=gltf ;; *) f= ;;
   esac
+  seeds=
+  [ -n "$f" ] && seeds="seeds/$f corpus_seeds/$f"
   mkdir -p corpus/$t
   echo "== $t $(date -u +%FT%TZ)" >> logs/runs.txt
   RAYON_NUM_THREADS=1 cargo +nightly fuzz run "$t" "corpus/$t" $seeds -- \

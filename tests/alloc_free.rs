@@ -5,7 +5,7 @@
 //! the test harness's other threads cannot disturb the count.
 
 use primdecomp::decompose::{evaluator, seed_volumes};
-use primdecomp::merge::{Clusters, Workspace};
+use primdecomp::merge::{Clusters, Evaluator, Workspace};
 use primdecomp::mesh::{adjacency, dedup};
 use primdecomp::{demo, quadric, Mesh, Params};
 use std::alloc::{GlobalAlloc, Layout, System};
@@ -43,67 +43,8 @@ fn allocations() -> u64 {
     ALLOCS.with(|c| c.get())
 }
 
-#[test]
-fn pricing_merges_allocates_nothing_once_warm() {
-    let mesh = Mesh::from_builder(demo::demo_scene());
-    let p = Params::default();
-    let (welded, _) = dedup::weld(&mesh, p.dedup);
-    let pairs = adjacency::face_pairs(&mesh.face_offsets, &welded);
-    let mut q = Vec::new();
-    quadric::face_quadrics(&mesh, p.tangent_eps, &mut q);
-    let ev = evaluator(&mesh, &welded, &p, mesh.aabb());
-    let vols = seed_volumes(&ev, &q);
-    let mut cl = Clusters::new(q, vols, &pairs);
-    // Grow some clusters first, so candidates span multi-face point lists too.
-    for &(a, b) in pairs.iter().take(1500) {
-        let (ra, rb) = (cl.find(a), cl.find(b));
-        if ra != rb {
-            let mut verts = ev.all_verts(&cl, ra);
-            verts.extend(ev.all_verts(&cl, rb));
-            verts.sort_unstable();
-            verts.dedup();
-            cl.merge(ra, rb, verts, 1.0);
-        }
-    }
-    let live: Vec<(u32, u32)> = pairs
-        .iter()
-        .map(|&(a, b)| (cl.find(a), cl.find(b)))
-        .filter(|(a, b)| a != b)
-        .collect();
-    assert!(
-        cl.live + 500 < mesh.face_count(),
-        "{} live of {}",
-        cl.live,
-        mesh.face_count()
-    );
-    let pairs = live;
-    let mut ws = Workspace::default();
-    // Warm-up: the workspace grows to the largest candidate.
-    let priced = pairs
-        .iter()
-        .filter(|&&(a, b)| ev.candidate(&cl, a, b, &mut ws).is_some())
-        .count();
-    assert!(priced > 1000, "only {priced} pairs priced");
-    let before = allocations();
-    let mut cost = 0.0;
-    for &(a, b) in &pairs {
-        if let Some((c, _)) = ev.candidate(&cl, a, b, &mut ws) {
-            cost += c.cost;
-        }
-    }
-    let after = allocations();
-    assert!(cost.is_finite());
-    assert_eq!(
-        after - before,
-        0,
-        "{} allocations in {priced} candidates",
-        after - before
-    );
-}
-
-/// The counter works: a fresh workspace does allocate on its first candidate.
-#[test]
-fn counter_sees_a_cold_workspace_allocate() {
+/// Runs `f` on the demo scene's evaluator, its single-face clusters and adjacent pairs.
+fn with_demo<R>(f: impl FnOnce(&Evaluator, Clusters, Vec<(u32, u32)>) -> R) -> R {
     let mesh = Mesh::from_builder(demo::demo_scene());
     let p = Params::default();
     let (welded, _) = dedup::weld(&mesh, p.dedup);
@@ -113,9 +54,68 @@ fn counter_sees_a_cold_workspace_allocate() {
     let ev = evaluator(&mesh, &welded, &p, mesh.aabb());
     let vols = seed_volumes(&ev, &q);
     let cl = Clusters::new(q, vols, &pairs);
-    let before = allocations();
-    let mut ws = Workspace::default();
-    let (a, b) = pairs[0];
-    let _ = ev.candidate(&cl, a, b, &mut ws);
-    assert!(allocations() > before);
+    f(&ev, cl, pairs)
+}
+
+#[test]
+fn pricing_merges_allocates_nothing_once_warm() {
+    with_demo(|ev, mut cl, pairs| {
+        // Grow some clusters first, so candidates span multi-face point lists too.
+        for &(a, b) in pairs.iter().take(1500) {
+            let (ra, rb) = (cl.find(a), cl.find(b));
+            if ra != rb {
+                let mut verts = ev.all_verts(&cl, ra);
+                verts.extend(ev.all_verts(&cl, rb));
+                verts.sort_unstable();
+                verts.dedup();
+                cl.merge(ra, rb, verts, 1.0);
+            }
+        }
+        let live: Vec<(u32, u32)> = pairs
+            .iter()
+            .map(|&(a, b)| (cl.find(a), cl.find(b)))
+            .filter(|(a, b)| a != b)
+            .collect();
+        assert!(
+            cl.live + 500 < cl.parent.len(),
+            "{} live of {}",
+            cl.live,
+            cl.parent.len()
+        );
+        let pairs = live;
+        let mut ws = Workspace::default();
+        // Warm-up: the workspace grows to the largest candidate.
+        let priced = pairs
+            .iter()
+            .filter(|&&(a, b)| ev.candidate(&cl, a, b, &mut ws).is_some())
+            .count();
+        assert!(priced > 1000, "only {priced} pairs priced");
+        let before = allocations();
+        let mut cost = 0.0;
+        for &(a, b) in &pairs {
+            if let Some((c, _)) = ev.candidate(&cl, a, b, &mut ws) {
+                cost += c.cost;
+            }
+        }
+        let after = allocations();
+        assert!(cost.is_finite());
+        assert_eq!(
+            after - before,
+            0,
+            "{} allocations in {priced} candidates",
+            after - before
+        );
+    });
+}
+
+/// The counter works: a fresh workspace does allocate on its first candidate.
+#[test]
+fn counter_sees_a_cold_workspace_allocate() {
+    with_demo(|ev, cl, pairs| {
+        let before = allocations();
+        let mut ws = Workspace::default();
+        let (a, b) = pairs[0];
+        let _ = ev.candidate(&cl, a, b, &mut ws);
+        assert!(allocations() > before);
+    });
 }

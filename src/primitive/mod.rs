@@ -5,6 +5,7 @@
 pub mod capsule;
 pub mod cylinder;
 pub mod fit;
+pub mod frame;
 pub mod frustum;
 pub mod obb;
 pub mod prism;

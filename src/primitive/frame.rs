@@ -30,7 +30,7 @@ pub struct PlaneScratch {
 /// pair (the top axis stays as the solver gave it).
 pub fn tied_plane(values: &[f64; 3]) -> Option<(usize, usize)> {
     let top = values[0].abs();
-    if !(top > 0.0) {
+    if top.is_nan() || top <= 0.0 {
         // Zero (or non-finite) Q: nothing to go on but the points; treat every
         // in-plane direction of the first two axes' complement as free.
         return Some((1, 2));

@@ -194,6 +194,7 @@ pub fn evaluator<'a>(
             weights: params.weights,
             enabled: params.kinds,
             min_half,
+            edge_frames: true,
         },
         max_excess: params
             .max_excess_volume

@@ -291,8 +291,8 @@ fn tightness(prims: &[Primitive], mesh_tris: &[[[f64; 3]; 3]]) -> f64 {
 /// count stays within 10% of the unrotated run's and the tightness (a one-way mean
 /// surface distance, see [`tightness`]) within 10% — issue 6's bounds. Measured with
 /// `cargo test --release --test extremes random -- --nocapture`: counts identical (120
-/// and 39); tightness 0.01186 → 0.01267, 0.01148, 0.01133, 0.01176 at N = 120 and
-/// 0.02352 → 0.02385, 0.02362, 0.02369, 0.02354 at N = 40 (−4.5% … +6.8%). Before the
+/// and 39); tightness 0.01797 → 0.01861, 0.01750, 0.01793, 0.01864 at N = 120 and
+/// 0.02352 → 0.02385, 0.02362, 0.02369, 0.02354 at N = 40 (−2.6% … +3.7%). Before the
 /// degenerate-frame fit (`primitive::frame`: coplanar clusters' in-plane axes were
 /// whatever round-off made of the tangent term) it moved by −38% … +52%.
 #[test]

@@ -87,11 +87,24 @@ impl<'a> Evaluator<'a> {
         fit_best(&cloud, q, &self.cfg, &mut ws.fit)
     }
 
-    /// The primitive of face `f` alone, with its operator `q` (before any merge).
+    /// The primitive of face `f` alone, with its operator `q` (before any merge), in
+    /// the eigen-frame only: it prices merges (its volume is subtracted from theirs),
+    /// and the hull-edge frames there changed the order of a scan's merges for worse
+    /// Hausdorff distances (ARCHITECTURE.md, "Degenerate frames"); a face that ends up
+    /// alone in the output is refitted by [`Self::fit_cluster_exact`] with them.
     pub fn fit_face(&self, f: u32, q: &Sym3, ws: &mut Workspace) -> Fit {
         ws.clear();
         self.push_points(self.face(f), ws);
-        self.fit_points(q, ws)
+        let cloud = Cloud {
+            x: &ws.x,
+            y: &ws.y,
+            z: &ws.z,
+        };
+        let cfg = FitConfig {
+            edge_frames: false,
+            ..self.cfg
+        };
+        fit_best(&cloud, q, &cfg, &mut ws.fit)
     }
 
     /// The primitive of one cluster fitted on every vertex of its faces (walking the

@@ -47,6 +47,9 @@ pub struct FitConfig {
     pub enabled: [bool; 6],
     /// Smallest half-extent/radius of any primitive (absolute units).
     pub min_half: f64,
+    /// Whether clusters with a degenerate eigen-frame also try hull-edge frames
+    /// ([`frame`]); off, every fit uses the eigen-frame alone, as §3.2.
+    pub edge_frames: bool,
 }
 
 /// Reusable buffers: the points' coordinates in the OBB frame (centred on the OBB).
@@ -95,6 +98,9 @@ pub fn fit_best(cloud: &Cloud, q: &Sym3, cfg: &FitConfig, s: &mut FitScratch) ->
     let eig = eigen_sym3(q);
     let axes = eig.vectors;
     let mut best = fit_in_frame(cloud, axes, cfg, s, None);
+    if !cfg.edge_frames {
+        return best;
+    }
     let flat = || frame::flat(&s.u[0], &s.u[1], &s.u[2]).then_some((1, 2));
     let Some(plane) = frame::tied_plane(&eig.values).or_else(flat) else {
         return best;
@@ -109,7 +115,10 @@ pub fn fit_best(cloud: &Cloud, q: &Sym3, cfg: &FitConfig, s: &mut FitScratch) ->
 }
 
 /// Every enabled kind in the frame `axes`; `bar` (the best fit of another frame, if
-/// any) is kept unless something here costs less.
+/// any) is kept unless something here costs less by more than [`frame::MARGIN`]:
+/// equal costs keep the earlier frame — the eigen-frame, the paper's — rather than
+/// letting round-off choose (two boxes of equal area around a triangle, one along its
+/// legs and one along its hypotenuse, stick out of a wall's footprint very differently).
 fn fit_in_frame(
     cloud: &Cloud,
     axes: [V3; 3],
@@ -127,7 +136,7 @@ fn fit_in_frame(
     }
     s.sorted = [false; 3];
     let mut best = Candidate::new(cfg);
-    best.fit = bar;
+    best.bar = bar.map_or(f64::INFINITY, |b| b.cost * (1.0 - frame::MARGIN));
     best.offer(Kind::Box, Primitive::Box(obb), obb.volume());
     let ext = Extents::of(s);
     if cfg.enabled[Kind::Sphere as usize] {
@@ -163,7 +172,10 @@ fn fit_in_frame(
         }
     }
     offer_profiles(s, &obb, &ext, best_cyl, &mut best);
-    best.fit.expect("at least one kind is enabled")
+    match (best.fit, bar) {
+        (Some(f), Some(b)) if f.cost >= best.bar => b,
+        (f, b) => f.or(b).expect("at least one kind is enabled"),
+    }
 }
 
 /// The frustum on the best cylinder's axis and the prisms of the 6 orderings, each
@@ -263,20 +275,28 @@ fn sum_bound(sq: [f64; 2]) -> f64 {
 }
 
 /// Keeps the lowest weighted cost among the offers of enabled kinds; ties keep the first.
+/// `bar` is the cost another frame's fit already reached (less the margin): kinds whose
+/// lower bound cannot beat it are not fitted.
 struct Candidate<'a> {
     cfg: &'a FitConfig,
     fit: Option<Fit>,
+    bar: f64,
 }
 
 impl<'a> Candidate<'a> {
     fn new(cfg: &'a FitConfig) -> Self {
-        Candidate { cfg, fit: None }
+        Candidate {
+            cfg,
+            fit: None,
+            bar: f64::INFINITY,
+        }
     }
     /// True when a primitive of `kind` with volume at least `bound` cannot win: the
     /// bound, shrunk by a margin far above round-off, still costs more than the best.
     fn beats(&self, kind: Kind, bound: f64) -> bool {
         let w = self.cfg.weights[kind as usize];
-        self.fit.is_some_and(|f| w * bound * (1.0 - 1e-9) > f.cost)
+        let best = self.fit.map_or(f64::INFINITY, |f| f.cost).min(self.bar);
+        w * bound * (1.0 - 1e-9) > best
     }
     fn offer(&mut self, kind: Kind, prim: Primitive, volume: f64) {
         if !self.cfg.enabled[kind as usize] {
@@ -434,6 +454,7 @@ mod tests {
             weights: [1.0; 6],
             enabled,
             min_half: 1e-6,
+            edge_frames: true,
         }
     }
 

@@ -13,6 +13,10 @@ use crate::math::{madd, scale, V3};
 /// Two eigenvalues closer than this fraction of the largest count as tied.
 pub const TIE: f64 = 1e-6;
 
+/// Another frame replaces the eigen-frame's fit only when it costs less by more than
+/// this fraction: equal costs keep the paper's frame instead of round-off's choice.
+pub const MARGIN: f64 = 1e-6;
+
 /// At most this many edge directions are tried (the longest hull edges first).
 pub const MAX_DIRS: usize = 6;
 

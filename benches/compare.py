@@ -31,7 +31,7 @@ def parse_args(argv):
     ap.add_argument("--samples", type=int, default=None, help="samples per surface for primdecomp eval (default: eval's own)")
     ap.add_argument("--sweep", action="store_true", help="the speed/accuracy sweep of our engine -> docs/results/tradeoff.md")
     ap.add_argument("--out", default=str(ROOT / "docs" / "results"), help="report directory (default: %(default)s)")
-    ap.add_argument("--sim", default=None, help="optional directory of simulation results, SIM/<mesh file name>.json = {method: {metric: value}}, shown as a table")
+    ap.add_argument("--sim", default=str(CACHE / "sim" / "summary"), help="directory of simulation results, SIM/<mesh file name>.json = {method: {metric: value}}, as benches/sim_compare.py writes them (default: %(default)s)")
     ap.add_argument("--cache", default=str(CACHE), help="peer cache and work directory (default: %(default)s)")
     ap.add_argument("--bin", default=str(ROOT / "target" / "release" / "primdecomp"), help="primdecomp binary (default: %(default)s)")
     return ap.parse_args(argv)

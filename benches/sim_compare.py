@@ -3,14 +3,16 @@
 primdecomp against CoACD and V-HACD -> docs/results/sim.md.
 
 For each mesh: our collider is `primdecomp decompose MESH -n N` with
-N = max(32, 1% of the faces) (cached under benches/.cache/sim by the mesh's
-sha256 and N); the peers' hulls come from peer caches laid out as
+N = max(32, 1% of the faces) (decomposed on every run; the simulation report is
+cached under benches/.cache/sim by the mesh's sha256, the settings and a hash of our
+primitives, so an engine change re-simulates); the peers' hulls come from peer caches laid out as
 benches/compare writes them, PEER_CACHE/<sha256[:16]>-<method>-<key>/hulls.obj
 (with status.json saying "ok"), methods `coacd` and `vhacd`; a peer missing from
 every cache is listed as "-". Then one `primdecomp sim` run per mesh simulates
 the mesh itself (the reference) and all colliders interleaved frame by frame,
-and its JSON report and frame-time plot are kept in the cache. Standard library
-only.
+and its JSON report and frame-time plot are kept in the cache, with a per-mesh
+summary in benches/.cache/sim/summary/<mesh>.json that `benches/compare` folds into
+docs/results/compare.md. Standard library only.
 
 Usage:
   python3 benches/sim_compare.py [--meshes NAME ...] [--balls 5000] [--frames 1000]
@@ -82,17 +84,19 @@ def faces_of(mesh, binary, work):
 
 
 def ours(mesh, sha, binary):
+    """Our collider for the mesh, decomposed afresh (the engine may have changed since
+    the last run), and a short hash of its primitives that keys the simulation report."""
     work = CACHE / "sim" / sha[:16]
     work.mkdir(parents=True, exist_ok=True)
     n = max(32, round(faces_of(mesh, binary, work) / 100))
     out = work / f"ours_n{n}.json"
-    if not out.is_file():
-        subprocess.run([binary, "decompose", str(mesh), "-n", str(n), "-o", str(out), "--quiet"], check=True)
-    return out, work
+    subprocess.run([binary, "decompose", str(mesh), "-n", str(n), "-o", str(out), "--quiet"], check=True)
+    prims = json.dumps(json.loads(out.read_text())["primitives"], sort_keys=True)
+    return out, work, hashlib.sha256(prims.encode()).hexdigest()[:12]
 
 
-def simulate(mesh, colliders, work, a):
-    report = work / f"sim_b{a.balls}_f{a.frames}_s{a.seed}.json"
+def simulate(mesh, colliders, work, key, a):
+    report = work / f"sim_b{a.balls}_f{a.frames}_s{a.seed}_{key}.json"
     if not report.is_file() or a.rerun:
         cmd = [a.bin, "sim", "--input", str(mesh), *map(str, colliders), "--balls", str(a.balls),
                "--frames", str(a.frames), "--seed", str(a.seed), "--json", str(report),
@@ -100,6 +104,22 @@ def simulate(mesh, colliders, work, a):
         print("+", " ".join(cmd), file=sys.stderr, flush=True)
         subprocess.run(cmd, check=True)
     return json.loads(report.read_text())
+
+
+SUMMARY_KEYS = ["frame_ms_median", "cpu_ms_median", "similarity", "similarity_set", "on_object"]
+
+
+def write_summary(r, a):
+    """CACHE/sim/summary/<mesh>.json = {method: {metric: value}} for benches/compare's
+    simulation columns (methods: mesh, ours, coacd, vhacd)."""
+    d = CACHE / "sim" / "summary"
+    d.mkdir(parents=True, exist_ok=True)
+    out = {role: {k: r[role][k] for k in SUMMARY_KEYS} for role in ["mesh", "ours", *PEERS] if r.get(role)}
+    out["settings"] = {"balls": a.balls, "frames": a.frames, "seed": a.seed,
+                       "ours_n": "max(32, 1% of faces)", "ours_primitives": r["ours"]["shapes"]}
+    tmp = d / f"{r['name']}.json.tmp"
+    tmp.write_text(json.dumps(out, indent=1))
+    tmp.replace(d / f"{r['name']}.json")
 
 
 def row(name, rep, order):
@@ -191,11 +211,12 @@ def main(argv):
             print(f"CORPUS ABSENT or no such mesh: {mesh}", file=sys.stderr)
             continue
         sha = sha256(mesh)
-        mine, work = ours(mesh, sha, a.bin)
+        mine, work, key = ours(mesh, sha, a.bin)
         found = {p: peer_obj(a.peer_cache, sha, p) for p in PEERS}
         order = {"ours": mine} | {p: f[0] for p, f in found.items()}
-        rep = simulate(mesh, [p for p in order.values() if p], work, a)
+        rep = simulate(mesh, [p for p in order.values() if p], work, key, a)
         rows.append(row(mesh.name, rep, order))
+        write_summary(rows[-1], a)
         missing += [f"- {mesh.name}: no {LABEL[p]} hulls ({f[1]})" for p, f in found.items() if f[0] is None]
     cmd = "python3 benches/sim_compare.py " + " ".join(sys.argv[1:])
     text = [

@@ -2,8 +2,9 @@
 """benches/sim_compare: the paper's §4.1 rigid-body benchmark on several meshes,
 primdecomp against CoACD and V-HACD -> docs/results/sim.md.
 
-For each mesh: our collider is `primdecomp decompose MESH -n N` with
-N = max(32, 1% of the faces) (decomposed on every run; the simulation report is
+For each mesh: our collider is `primdecomp decompose MESH -n N` with N as
+docs/results/compare.json chose it for the mesh (the byte-budget rule of
+benches/compare), else max(32, 1% of the faces) (decomposed on every run; the simulation report is
 cached under benches/.cache/sim by the mesh's sha256, the settings and a hash of our
 primitives, so an engine change re-simulates); the peers' hulls come from peer caches laid out as
 benches/compare writes them, PEER_CACHE/<sha256[:16]>-<method>-<key>/hulls.obj
@@ -83,16 +84,36 @@ def faces_of(mesh, binary, work):
     return json.loads(out.read_text())["input"]["faces"]
 
 
+COMPARE_JSON = ROOT / "docs" / "results" / "compare.json"
+
+
+def compare_target(mesh_name):
+    """Our target N for the mesh in docs/results/compare.json (the byte-budget rule of
+    benches/compare), or None when the report has no result for it."""
+    try:
+        recs = json.loads(COMPARE_JSON.read_text())["records"]
+    except (OSError, ValueError, KeyError):
+        return None
+    for r in recs:
+        if r.get("mesh") == mesh_name and (r.get("ours") or {}).get("status") == "ok":
+            return r["ours"].get("target")
+    return None
+
+
 def ours(mesh, sha, binary):
     """Our collider for the mesh, decomposed afresh (the engine may have changed since
-    the last run), and a short hash of its primitives that keys the simulation report."""
+    the last run), its target N and rule, and a short hash of its primitives that keys
+    the simulation report. N: the comparison report's choice (the most primitives whose
+    bytes stay within a third of CoACD's), else max(32, 1% of the faces)."""
     work = CACHE / "sim" / sha[:16]
     work.mkdir(parents=True, exist_ok=True)
-    n = max(32, round(faces_of(mesh, binary, work) / 100))
+    n, rule = compare_target(mesh.name), "compare.json"
+    if n is None:
+        n, rule = max(32, round(faces_of(mesh, binary, work) / 100)), "max(32, 1% of faces)"
     out = work / f"ours_n{n}.json"
     subprocess.run([binary, "decompose", str(mesh), "-n", str(n), "-o", str(out), "--quiet"], check=True)
     prims = json.dumps(json.loads(out.read_text())["primitives"], sort_keys=True)
-    return out, work, hashlib.sha256(prims.encode()).hexdigest()[:12]
+    return out, work, rule, hashlib.sha256(prims.encode()).hexdigest()[:12]
 
 
 def simulate(mesh, colliders, work, key, a):
@@ -109,14 +130,14 @@ def simulate(mesh, colliders, work, key, a):
 SUMMARY_KEYS = ["frame_ms_median", "cpu_ms_median", "similarity", "similarity_set", "on_object"]
 
 
-def write_summary(r, a):
+def write_summary(r, a, rule):
     """CACHE/sim/summary/<mesh>.json = {method: {metric: value}} for benches/compare's
     simulation columns (methods: mesh, ours, coacd, vhacd)."""
     d = CACHE / "sim" / "summary"
     d.mkdir(parents=True, exist_ok=True)
     out = {role: {k: r[role][k] for k in SUMMARY_KEYS} for role in ["mesh", "ours", *PEERS] if r.get(role)}
     out["settings"] = {"balls": a.balls, "frames": a.frames, "seed": a.seed,
-                       "ours_n": "max(32, 1% of faces)", "ours_primitives": r["ours"]["shapes"]}
+                       "ours_n": rule, "ours_primitives": r["ours"]["shapes"]}
     tmp = d / f"{r['name']}.json.tmp"
     tmp.write_text(json.dumps(out, indent=1))
     tmp.replace(d / f"{r['name']}.json")
@@ -211,19 +232,21 @@ def main(argv):
             print(f"CORPUS ABSENT or no such mesh: {mesh}", file=sys.stderr)
             continue
         sha = sha256(mesh)
-        mine, work, key = ours(mesh, sha, a.bin)
+        mine, work, rule, key = ours(mesh, sha, a.bin)
         found = {p: peer_obj(a.peer_cache, sha, p) for p in PEERS}
         order = {"ours": mine} | {p: f[0] for p, f in found.items()}
         rep = simulate(mesh, [p for p in order.values() if p], work, key, a)
         rows.append(row(mesh.name, rep, order))
-        write_summary(rows[-1], a)
+        write_summary(rows[-1], a, rule)
         missing += [f"- {mesh.name}: no {LABEL[p]} hulls ({f[1]})" for p, f in found.items() if f[0] is None]
     cmd = "python3 benches/sim_compare.py " + " ".join(sys.argv[1:])
     text = [
         "# Rigid-body simulation: frame time and behaviour (paper §4.1)",
         "",
         f"{a.balls} balls, {a.frames} frames at 1/60 s, seed {a.seed}, Rapier single-threaded, all colliders of a "
-        "mesh interleaved frame by frame in one process (`primdecomp sim`). Ours: N = max(32, 1% of faces). "
+        "mesh interleaved frame by frame in one process (`primdecomp sim`). Ours: N as chosen in "
+        "`docs/results/compare.json` (the most primitives whose bytes stay within a third of CoACD's), "
+        "else max(32, 1% of faces). "
         "Regenerate with:",
         "",
         "```sh",

@@ -109,14 +109,15 @@ pub fn fit_best(cloud: &Cloud, q: &Sym3, cfg: &FitConfig, s: &mut FitScratch) ->
     }
     let radial = ext.radial2.map(f64::sqrt);
     let cyls = [0, 1, 2].map(|k| fit_cylinder(&obb, &radial, k, cfg.min_half));
+    let cyl_volumes = cyls.map(|c| c.volume());
     let best_cyl = (0..3)
-        .min_by(|&a, &b| cyls[a].volume().total_cmp(&cyls[b].volume()))
+        .min_by(|&a, &b| cyl_volumes[a].total_cmp(&cyl_volumes[b]))
         .unwrap_or(0);
     if cfg.enabled[Kind::Cylinder as usize] {
         best.offer(
             Kind::Cylinder,
             Primitive::Cylinder(cyls[best_cyl]),
-            cyls[best_cyl].volume(),
+            cyl_volumes[best_cyl],
         );
     }
     if cfg.enabled[Kind::Capsule as usize] {
@@ -150,9 +151,10 @@ fn offer_profiles(
     let cfg = best.cfg;
     let k = best_cyl;
     let frustum = |m: f64| frustum_volume_bound(obb.half[k], m, cfg.min_half);
+    let loses = |m: f64| best.beats(Kind::Frustum, frustum(m));
     if cfg.enabled[Kind::Frustum as usize]
-        && !best.beats(Kind::Frustum, frustum(ext.frustum_sum(k)))
-        && !best.beats(Kind::Frustum, frustum(frustum_sum_tight(s, obb, k)))
+        && !loses(ext.frustum_sum(k))
+        && !loses(frustum_sum_tight(s, obb, k, loses))
     {
         s.sort_axis(k);
         let f = fit_frustum(s, obb, k, cfg.min_half);
@@ -162,9 +164,8 @@ fn offer_profiles(
         for order in ORDERINGS {
             let [x, y, z] = order;
             let prism = |m: f64| prism_volume_bound(obb.half[x], obb.half[y], m, cfg.min_half);
-            if best.beats(Kind::Prism, prism(sum_bound(ext.side[y][z])))
-                || best.beats(Kind::Prism, prism(prism_sum_tight(s, obb, y, z)))
-            {
+            let loses = |m: f64| best.beats(Kind::Prism, prism(m));
+            if loses(sum_bound(ext.side[y][z])) || loses(prism_sum_tight(s, obb, y, z, loses)) {
                 continue;
             }
             s.sort_axis(y);
@@ -240,17 +241,23 @@ impl Extents {
 
 /// The least `l0 + l1` of any line over the radial profile on axis `k` (up to
 /// round-off; [`sum_lower_bound`]), a lower bound on the fitted frustum's.
-fn frustum_sum_tight(s: &FitScratch, obb: &Obb, k: usize) -> f64 {
+fn frustum_sum_tight(s: &FitScratch, obb: &Obb, k: usize, enough: impl Fn(f64) -> bool) -> f64 {
     let (ub, uc) = (&s.u[(k + 1) % 3], &s.u[(k + 2) % 3]);
     let radial = |i: usize| (ub[i] * ub[i] + uc[i] * uc[i]).sqrt();
-    sum_lower_bound(&s.u[k], radial, obb.half[k])
+    sum_lower_bound(&s.u[k], radial, obb.half[k], enough)
 }
 
 /// Exact (up to round-off) `hz_top + hz_bottom` of the prism with trapezoid height
 /// axis `y` and width axis `z`, before the clamp ([`sum_lower_bound`]).
-fn prism_sum_tight(s: &FitScratch, obb: &Obb, y: usize, z: usize) -> f64 {
+fn prism_sum_tight(
+    s: &FitScratch,
+    obb: &Obb,
+    y: usize,
+    z: usize,
+    enough: impl Fn(f64) -> bool,
+) -> f64 {
     let uz = &s.u[z];
-    sum_lower_bound(&s.u[y], |i| uz[i].abs(), obb.half[y])
+    sum_lower_bound(&s.u[y], |i| uz[i].abs(), obb.half[y], enough)
 }
 
 /// Lower bound on `l0 + l1` for any enclosing linear profile `l(s)` over points whose
@@ -303,7 +310,8 @@ fn project(cloud: &Cloud, axes: [V3; 3], s: &mut FitScratch) -> Frame {
         let a = axes[k];
         let u = &mut s.u[k];
         u.clear();
-        u.extend((0..n).map(|i| a[0] * cloud.x[i] + a[1] * cloud.y[i] + a[2] * cloud.z[i]));
+        let xyz = cloud.x.iter().zip(cloud.y).zip(cloud.z);
+        u.extend(xyz.map(|((x, y), z)| a[0] * x + a[1] * y + a[2] * z));
         for &v in u.iter() {
             lo[k] = fmin(lo[k], v);
             hi[k] = fmax(hi[k], v);

@@ -175,7 +175,15 @@ const BRIDGE_ROUNDS: usize = 3;
 /// rescaling `s = (u + h)/2h` (round-off of order 1e-16 relative: the optimum moves
 /// by at most the line's slope times the points' displacement, and feasible slopes
 /// are bounded by `l0 + l1`). Callers prune with a margin far above that.
-pub fn sum_lower_bound(u: &[f64], z: impl Fn(usize) -> f64, h: f64) -> f64 {
+///
+/// `enough(m)` says when a bound `m` already suffices (the caller prunes with it): the
+/// search stops there, since only the starting pair may be needed.
+pub fn sum_lower_bound(
+    u: &[f64],
+    z: impl Fn(usize) -> f64,
+    h: f64,
+    enough: impl Fn(f64) -> bool,
+) -> f64 {
     if !(h > 0.0 && h.is_finite()) {
         return 0.0;
     }
@@ -190,7 +198,12 @@ pub fn sum_lower_bound(u: &[f64], z: impl Fn(usize) -> f64, h: f64) -> f64 {
             b = (ui, zi);
         }
     }
+    // a.0 < 0 ≤ b.0: a positive width, and both terms of the numerator are ≥ 0.
+    let height = |a: (f64, f64), b: (f64, f64)| 2.0 * (a.1 * b.0 - b.1 * a.0) / (b.0 - a.0);
     for _ in 0..BRIDGE_ROUNDS {
+        if enough(height(a, b)) {
+            break;
+        }
         let b_next = best_partner(u, &z, a, (h, 0.0), |ui| ui >= 0.0);
         let a_next = best_partner(u, &z, b_next, (-h, 0.0), |ui| ui < 0.0);
         let settled = a_next == a && b_next == b;
@@ -199,8 +212,7 @@ pub fn sum_lower_bound(u: &[f64], z: impl Fn(usize) -> f64, h: f64) -> f64 {
             break;
         }
     }
-    // a.0 < 0 ≤ b.0: a positive width, and both terms of the numerator are ≥ 0.
-    2.0 * (a.1 * b.0 - b.1 * a.0) / (b.0 - a.0)
+    height(a, b)
 }
 
 /// Among the side's end and the points on that side (`side(u)`), the one whose
@@ -323,7 +335,7 @@ mod tests {
             let z: Vec<f64> = (0..n).map(|_| rnd()).collect();
             let pt = |i: usize| (((u[i] + h) / (2.0 * h)).clamp(0.0, 1.0), z[i]);
             let (l0, l1) = fit_profile(n, pt, Objective::Sum, &mut ProfileScratch::default());
-            let b = sum_lower_bound(&u, |i| z[i], h);
+            let b = sum_lower_bound(&u, |i| z[i], h, |_| false);
             assert!(
                 b <= (l0 + l1) * (1.0 + 1e-12),
                 "bound {b} above optimum {}",

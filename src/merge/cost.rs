@@ -61,14 +61,13 @@ impl<'a> Evaluator<'a> {
         &self.welded[o[f as usize] as usize..o[f as usize + 1] as usize]
     }
 
+    /// Appends the positions of vertices `vs`: one exact-size `extend` per coordinate
+    /// (a capacity check per call, not per point).
     fn push_points(&self, vs: &[u32], ws: &mut Workspace) {
         let m = self.mesh;
-        for &v in vs {
-            let v = v as usize;
-            ws.x.push(m.x[v]);
-            ws.y.push(m.y[v]);
-            ws.z.push(m.z[v]);
-        }
+        ws.x.extend(vs.iter().map(|&v| m.x[v as usize]));
+        ws.y.extend(vs.iter().map(|&v| m.y[v as usize]));
+        ws.z.extend(vs.iter().map(|&v| m.z[v as usize]));
     }
 
     fn gather(&self, cl: &Clusters, cs: &[u32], ws: &mut Workspace) {

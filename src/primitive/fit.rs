@@ -4,7 +4,7 @@
 //! reusable [`FitScratch`], then passes over the local coordinates.
 
 use super::frame::{self, PlaneScratch};
-use super::profile::{fit_profile_sorted, Objective, ProfileScratch};
+use super::profile::{fit_profile_sorted, sum_lower_bound, Objective, ProfileScratch};
 use super::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
 use crate::math::{eigen_sym3, fmax, fmin, madd, scale, Sym3, V3};
 
@@ -148,14 +148,15 @@ fn fit_in_frame(
     }
     let radial = ext.radial2.map(f64::sqrt);
     let cyls = [0, 1, 2].map(|k| fit_cylinder(&obb, &radial, k, cfg.min_half));
+    let cyl_volumes = cyls.map(|c| c.volume());
     let best_cyl = (0..3)
-        .min_by(|&a, &b| cyls[a].volume().total_cmp(&cyls[b].volume()))
+        .min_by(|&a, &b| cyl_volumes[a].total_cmp(&cyl_volumes[b]))
         .unwrap_or(0);
     if cfg.enabled[Kind::Cylinder as usize] {
         best.offer(
             Kind::Cylinder,
             Primitive::Cylinder(cyls[best_cyl]),
-            cyls[best_cyl].volume(),
+            cyl_volumes[best_cyl],
         );
     }
     if cfg.enabled[Kind::Capsule as usize] {
@@ -179,7 +180,9 @@ fn fit_in_frame(
 }
 
 /// The frustum on the best cylinder's axis and the prisms of the 6 orderings, each
-/// fitted only when its lower bound does not already lose.
+/// fitted only when its lower bound does not already lose: first the bound from the
+/// [`Extents`], then the tight one ([`sum_lower_bound`], a few linear passes), and
+/// only then the sort and hull of the exact fit.
 fn offer_profiles(
     s: &mut FitScratch,
     obb: &Obb,
@@ -188,23 +191,44 @@ fn offer_profiles(
     best: &mut Candidate,
 ) {
     let cfg = best.cfg;
+    let k = best_cyl;
+    let frustum = |m: f64| frustum_volume_bound(obb.half[k], m, cfg.min_half);
+    let loses = |m: f64| best.beats(Kind::Frustum, frustum(m));
     if cfg.enabled[Kind::Frustum as usize]
-        && !best.beats(Kind::Frustum, ext.frustum_bound(obb, best_cyl))
+        && !loses(ext.frustum_sum(k))
+        && !loses(frustum_sum_tight(s, obb, k, loses))
     {
-        s.sort_axis(best_cyl);
-        let f = fit_frustum(s, obb, best_cyl, cfg.min_half);
+        s.sort_axis(k);
+        let f = fit_frustum(s, obb, k, cfg.min_half);
         best.offer(Kind::Frustum, Primitive::Frustum(f), f.volume());
     }
     if cfg.enabled[Kind::Prism as usize] {
         for order in ORDERINGS {
-            if best.beats(Kind::Prism, ext.prism_bound(obb, order)) {
+            let [x, y, z] = order;
+            let prism = |m: f64| prism_volume_bound(obb.half[x], obb.half[y], m, cfg.min_half);
+            let loses = |m: f64| best.beats(Kind::Prism, prism(m));
+            if loses(sum_bound(ext.side[y][z])) || loses(prism_sum_tight(s, obb, y, z, loses)) {
                 continue;
             }
-            s.sort_axis(order[1]);
+            s.sort_axis(y);
             let p = fit_prism(s, obb, order, cfg.min_half);
             best.offer(Kind::Prism, Primitive::Prism(p), p.volume());
         }
     }
+}
+
+/// Frustum of half-length `h` whose profile has `l0 + l1 ≥ m` before both ends are
+/// clamped up to `min_half`: the clamped ends sum to at least `M = max(m, 2·min_half)`
+/// and `l0² + l0·l1 + l1² ≥ ¾(l0 + l1)²`, so V = ⅔π·h·(…) ≥ π·h·M²/2.
+fn frustum_volume_bound(h: f64, m: f64, min_half: f64) -> f64 {
+    let m = m.max(2.0 * min_half);
+    0.5 * std::f64::consts::PI * h * m * m
+}
+
+/// Prism with half-extents `hx`, `hy` whose half-widths (before the clamp to
+/// `min_half`) sum to at least `m`: V = 4·hx·hy·(a + b) ≥ 4·hx·hy·max(m, 2·min_half).
+fn prism_volume_bound(hx: f64, hy: f64, m: f64, min_half: f64) -> f64 {
+    4.0 * hx * hy * m.max(2.0 * min_half)
 }
 
 /// Lower bound on a capsule's volume around an axis: radius `r` (as fitted), and a
@@ -251,17 +275,31 @@ impl Extents {
         e
     }
 
-    /// Frustum on axis `k`: `l0² + l0·l1 + l1² ≥ ¾(l0 + l1)²`, so V ≥ π·h·m²/2 with
-    /// `m` the bound on `l0 + l1` (see [`sum_bound`]).
-    fn frustum_bound(&self, obb: &Obb, k: usize) -> f64 {
-        let m = sum_bound(self.side_radial2[k]);
-        0.5 * std::f64::consts::PI * obb.half[k] * m * m
+    /// Lower bound on the `l0 + l1` of the frustum on axis `k` (see [`sum_bound`]).
+    fn frustum_sum(&self, k: usize) -> f64 {
+        sum_bound(self.side_radial2[k])
     }
+}
 
-    /// Prism of one ordering: V = 4·hx·hy·(a + b) ≥ 4·hx·hy·m.
-    fn prism_bound(&self, obb: &Obb, [x, y, z]: [usize; 3]) -> f64 {
-        4.0 * obb.half[x] * obb.half[y] * sum_bound(self.side[y][z])
-    }
+/// The least `l0 + l1` of any line over the radial profile on axis `k` (up to
+/// round-off; [`sum_lower_bound`]), a lower bound on the fitted frustum's.
+fn frustum_sum_tight(s: &FitScratch, obb: &Obb, k: usize, enough: impl Fn(f64) -> bool) -> f64 {
+    let (ub, uc) = (&s.u[(k + 1) % 3], &s.u[(k + 2) % 3]);
+    let radial = |i: usize| (ub[i] * ub[i] + uc[i] * uc[i]).sqrt();
+    sum_lower_bound(&s.u[k], radial, obb.half[k], enough)
+}
+
+/// Exact (up to round-off) `hz_top + hz_bottom` of the prism with trapezoid height
+/// axis `y` and width axis `z`, before the clamp ([`sum_lower_bound`]).
+fn prism_sum_tight(
+    s: &FitScratch,
+    obb: &Obb,
+    y: usize,
+    z: usize,
+    enough: impl Fn(f64) -> bool,
+) -> f64 {
+    let uz = &s.u[z];
+    sum_lower_bound(&s.u[y], |i| uz[i].abs(), obb.half[y], enough)
 }
 
 /// Lower bound on `l0 + l1` for any enclosing linear profile `l(s)` over points whose
@@ -294,6 +332,10 @@ impl<'a> Candidate<'a> {
     /// True when a primitive of `kind` with volume at least `bound` cannot win: the
     /// bound, shrunk by a margin far above round-off, still costs more than the best.
     fn beats(&self, kind: Kind, bound: f64) -> bool {
+        #[cfg(test)]
+        if tests::NO_PRUNING.get() {
+            return false;
+        }
         let w = self.cfg.weights[kind as usize];
         let best = self.fit.map_or(f64::INFINITY, |f| f.cost).min(self.bar);
         w * bound * (1.0 - 1e-9) > best
@@ -318,7 +360,8 @@ fn project(cloud: &Cloud, axes: [V3; 3], s: &mut FitScratch) -> Frame {
         let a = axes[k];
         let u = &mut s.u[k];
         u.clear();
-        u.extend((0..n).map(|i| a[0] * cloud.x[i] + a[1] * cloud.y[i] + a[2] * cloud.z[i]));
+        let xyz = cloud.x.iter().zip(cloud.y).zip(cloud.z);
+        u.extend(xyz.map(|((x, y), z)| a[0] * x + a[1] * y + a[2] * z));
         for &v in u.iter() {
             lo[k] = fmin(lo[k], v);
             hi[k] = fmax(hi[k], v);
@@ -528,6 +571,87 @@ mod tests {
         (0..n)
             .map(|_| [0, 1, 2].map(|k| rng.gen_range(-h[k]..h[k])))
             .collect()
+    }
+
+    thread_local! {
+        /// Set by tests to fit every kind and ordering, as if no bound pruned any.
+        pub(super) static NO_PRUNING: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+    }
+
+    /// Cones, wedges, flat and random clouds at several scales, with the default weights.
+    fn pruning_cloud(rng: &mut ChaCha8Rng, shape: usize) -> Vec<V3> {
+        let n = rng.gen_range(3..60);
+        let s = 10f64.powi(rng.gen_range(-3..4));
+        let thick = rng.gen_range(0.05..1.0);
+        let mut pts = random_cloud(rng, n, [1.0, 1.0, thick]);
+        for p in &mut pts {
+            let t = 0.5 * (p[1] + 1.0); // 0..1 along y
+            match shape {
+                0 => {}
+                1 => {
+                    // A cone along y: a ring of radius ∝ t.
+                    let a = std::f64::consts::PI * p[0];
+                    (p[0], p[2]) = (t * a.cos(), t * a.sin());
+                }
+                2 => p[2] *= t,  // wedge
+                _ => p[2] = 0.0, // flat
+            }
+            *p = p.map(|c| c * s);
+        }
+        pts
+    }
+
+    /// Pruning never changes the result: the fit with every bound active equals the fit
+    /// of all kinds and orderings, primitive for primitive (bit for bit).
+    #[test]
+    fn pruned_fit_equals_full_fit() {
+        let mut rng = ChaCha8Rng::seed_from_u64(5);
+        let cfg = FitConfig {
+            weights: [1.0, 1.0, 1.0, 1.05, 2.1, 1.4],
+            enabled: [true; 6],
+            min_half: 1e-6,
+            edge_frames: true,
+        };
+        let mut kinds = [0usize; 6];
+        for trial in 0..4000 {
+            let pts = pruning_cloud(&mut rng, trial % 4);
+            // Half the time an axis-aligned operator, so cones meet their own axis.
+            let q = if trial % 8 < 4 {
+                random_q(&mut rng)
+            } else {
+                let d = [1.0, 2.0, 3.0].map(|w: f64| w * rng.gen_range(0.5..1.5));
+                Sym3 {
+                    xx: d[0],
+                    yy: d[1],
+                    zz: d[2],
+                    ..Sym3::ZERO
+                }
+            };
+            let (x, y, z) = cloud_of(&pts);
+            let cloud = Cloud {
+                x: &x,
+                y: &y,
+                z: &z,
+            };
+            let pruned = fit_best(&cloud, &q, &cfg, &mut FitScratch::default());
+            NO_PRUNING.set(true);
+            let full = fit_best(&cloud, &q, &cfg, &mut FitScratch::default());
+            NO_PRUNING.set(false);
+            assert_eq!(format!("{pruned:?}"), format!("{full:?}"), "trial {trial}");
+            kinds[full.prim.kind() as usize] += 1;
+        }
+        // The clouds must make every kind but the sphere win sometimes, or the test
+        // would not exercise the frustum's and the prisms' bounds.
+        eprintln!("winners by kind: {kinds:?}");
+        for k in [
+            Kind::Box,
+            Kind::Capsule,
+            Kind::Cylinder,
+            Kind::Frustum,
+            Kind::Prism,
+        ] {
+            assert!(kinds[k as usize] > 0, "{k:?} never won: {kinds:?}");
+        }
     }
 
     /// Each kind's volume formula against a Monte-Carlo estimate over its AABB.

@@ -113,7 +113,8 @@ def ours(mesh, sha, binary):
     out = work / f"ours_n{n}.json"
     subprocess.run([binary, "decompose", str(mesh), "-n", str(n), "-o", str(out), "--quiet"], check=True)
     prims = json.dumps(json.loads(out.read_text())["primitives"], sort_keys=True)
-    return out, work, rule, hashlib.sha256(prims.encode()).hexdigest()[:12]
+    # The report names our collider by its path (ours_n<N>.json), so N is in the key.
+    return out, work, rule, f"n{n}_" + hashlib.sha256(prims.encode()).hexdigest()[:12]
 
 
 def simulate(mesh, colliders, work, key, a):

@@ -62,6 +62,8 @@ pub struct FitScratch {
     sorted: [bool; 3],
     profile: ProfileScratch,
     plane: PlaneScratch,
+    /// The points' extent along each axis of the last frame fitted.
+    span: [f64; 3],
 }
 
 impl FitScratch {
@@ -101,7 +103,7 @@ pub fn fit_best(cloud: &Cloud, q: &Sym3, cfg: &FitConfig, s: &mut FitScratch) ->
     if !cfg.edge_frames {
         return best;
     }
-    let flat = || frame::flat(&s.u[0], &s.u[1], &s.u[2]).then_some((1, 2));
+    let flat = || frame::flat(s.span).then_some((1, 2));
     let Some(plane) = frame::tied_plane(&eig.values).or_else(flat) else {
         return best;
     };
@@ -127,6 +129,7 @@ fn fit_in_frame(
     bar: Option<Fit>,
 ) -> Fit {
     let frame = project(cloud, axes, s);
+    s.span = [0, 1, 2].map(|k| frame.hi[k] - frame.lo[k]);
     let obb = Obb::from_frame(&frame, cfg.min_half);
 
     // Local coordinates relative to the OBB centre (§3.2: other primitives start there).

@@ -49,22 +49,13 @@ pub fn tied_plane(values: &[f64; 3]) -> Option<(usize, usize)> {
     }
 }
 
-/// True when the points, in local coordinates along the eigen-frame, lie in the plane
-/// of axes 1 and 2 up to round-off (a coplanar cluster): the tangent term of §3.4 then
+/// True when the points, whose extents along the eigen-frame's axes are `span`, lie in
+/// the plane of axes 1 and 2 up to round-off (a coplanar cluster): the tangent term of §3.4 then
 /// makes Q's in-plane eigenvalues differ, but it aligns the frame with one edge of one
 /// face, which may not be the cheapest (a lone right triangle gets a box twice its area
 /// where the frame along its hypotenuse fits a prism exactly).
-pub fn flat(u0: &[f64], u1: &[f64], u2: &[f64]) -> bool {
-    let span = |u: &[f64]| {
-        let (lo, hi) = u
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), &v| {
-                (l.min(v), h.max(v))
-            });
-        hi - lo
-    };
-    let thick = span(u0);
-    thick <= TIE * span(u1).max(span(u2))
+pub fn flat(span: [f64; 3]) -> bool {
+    span[0] <= TIE * span[1].max(span[2])
 }
 
 /// Fills `s` with up to [`MAX_DIRS`] distinct directions (modulo quarter turns, since

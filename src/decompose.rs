@@ -228,7 +228,7 @@ fn finish_level(mesh: &Mesh, snap: &crate::merge::Snapshot, params: &Params, dia
     };
     for (i, p) in snap.prims.iter().enumerate() {
         if keep[i] {
-            level.primitives.push(p.translated(mesh.offset));
+            level.primitives.push(p.to_world(mesh.offset));
             level.faces.push(snap.faces[i]);
         }
     }

@@ -4,7 +4,7 @@
 mod common;
 
 use common::check::assert_valid;
-use primdecomp::{decompose, Dedup, Mesh, Params};
+use primdecomp::{decompose, Dedup, Kind, Mesh, Params};
 
 /// `fuzz/fuzz_targets/decompose.rs`, first run: one triangle at a 1e-30 scale welded
 /// with a tolerance of 10 collapsed to one point, and the output sphere was fitted
@@ -44,6 +44,90 @@ fn transitive_tolerance_weld_keeps_every_face_enclosed() {
             dedup: Dedup::Tolerance(0.6),
             ..Default::default()
         };
+        assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
+    }
+}
+
+/// `fuzz/fuzz_targets/decompose.rs`, second run (finding 3): one hexagon-shaped face
+/// 5e-6 across at an offset of 8.5e6 (where f64 spacing is 1.9e-9) became one frustum
+/// whose axis was about one ulp of the offset long. Moving it back to world
+/// coordinates rounded each end point by up to half an ulp, tilting the axis so far
+/// that the face's far corners fell outside the end caps. The world primitive must
+/// still enclose the face.
+#[test]
+fn thin_frustum_far_from_the_origin_keeps_its_face() {
+    // The fuzzer's grid: corner c × 1e-6 + 85 × 1e5 on every axis.
+    let at = |c: [f64; 3]| c.map(|k| k * 1e-6 + 85.0 * 1e5);
+    let v = [
+        at([0.0, 2.0, 0.0]),
+        at([5.0, 0.0, 0.0]),
+        at([5.0, 0.0, 5.0]),
+    ];
+    let mesh = Mesh::from_polygons(&v, &[vec![0, 1, 2, 2, 2, 2]]);
+    let params = Params {
+        targets: vec![18],
+        weights: [1.0, 1.4, 2.1, 1.05, 1e-9, 1.0],
+        tangent_eps: 1000.0,
+        dedup: Dedup::Off,
+        ..Default::default()
+    };
+    let dec = decompose(&mesh, &params).unwrap();
+    assert_eq!(dec.levels[0].counts()[Kind::Frustum as usize], 1);
+    assert_valid(&mesh, &dec, &params);
+}
+
+/// A regular 64-gon of radius 0.5, tilted off every axis, `n` of them side by side
+/// `gap` apart, moved by `offset`.
+fn tilted_discs(n: usize, gap: f64, offset: f64) -> Mesh {
+    let (u, w) = ([0.6, 0.8, 0.0], [-0.48, 0.36, 0.8]);
+    let mut v = Vec::new();
+    let mut f = Vec::new();
+    for d in 0..n {
+        let first = v.len() as u32;
+        for i in 0..64 {
+            let t = i as f64 / 64.0 * std::f64::consts::TAU;
+            let (c, s) = (0.5 * t.cos(), 0.5 * t.sin());
+            v.push([0, 1, 2].map(|k| offset + gap * d as f64 + c * u[k] + s * w[k]));
+        }
+        f.push((first..first + 64).collect());
+    }
+    Mesh::from_polygons(&v, &f)
+}
+
+fn round_only(kind: Kind, targets: Vec<usize>, min_extent_rel: f64) -> Params {
+    let mut kinds = [false; 6];
+    kinds[kind as usize] = true;
+    Params {
+        targets,
+        kinds,
+        min_extent_rel,
+        ..Default::default()
+    }
+}
+
+/// The same loss of the axis at ordinary sizes: a flat disc 1 across at 8.5e6 with a
+/// minimum extent of 1e-6 of the diagonal gets cylinders and frustums about 3e-6 long,
+/// under 2,000 ulps of their position, and rounding tilts the axis by up to 1e-3: the
+/// rim, 0.5 from the axis, would move 5e-4 along it, far beyond the 1.5e-6 tolerance.
+/// The error grows with radius over length, so no minimum length alone removes it.
+#[test]
+fn flat_discs_far_from_the_origin_stay_enclosed() {
+    let mesh = tilted_discs(1, 0.0, 8.5e6);
+    for kind in [Kind::Cylinder, Kind::Frustum] {
+        let params = round_only(kind, vec![1], 1e-6);
+        assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
+    }
+}
+
+/// Without any offset the local frame rounds too: two discs 100 apart are re-centred
+/// to ±50, and with a minimum extent of 1e-14 of the diagonal each disc's primitive is
+/// about 2e-12 long against end points of magnitude 50 (ulp 7e-15). Both must stay
+/// enclosed.
+#[test]
+fn near_zero_length_axes_stay_enclosed_at_the_origin() {
+    let mesh = tilted_discs(2, 100.0, 0.0);
+    for kind in [Kind::Cylinder, Kind::Frustum] {
+        let params = round_only(kind, vec![2], 1e-14);
         assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
     }
 }

@@ -178,11 +178,12 @@ pub fn evaluator<'a>(
 ) -> Evaluator<'a> {
     let (lo, hi) = bounds;
     let diag = crate::math::norm(crate::math::sub(hi, lo));
-    // A mesh collapsed to one point still needs positive volumes to rank merges.
+    // A mesh collapsed to one point still needs positive volumes to rank merges: a
+    // length whose cube (a volume) is a normal number.
     let min_half = if diag > 0.0 {
         params.min_extent_rel * diag
     } else {
-        f64::MIN_POSITIVE.sqrt()
+        1e-100
     };
     let aabb_volume: f64 = (0..3)
         .map(|k| (hi[k] - lo[k]).max(2.0 * min_half))
@@ -198,7 +199,9 @@ pub fn evaluator<'a>(
         max_excess: params
             .max_excess_volume
             .map_or(f64::INFINITY, |m| m * aabb_volume),
-        cost_unit: COST_GRID * diag.max(min_half).powi(3),
+        // Below ~1e-100 the cube underflows; a zero grid would price every merge
+        // 0/0 = NaN, which the merge loop drops like a merge over the excess cap.
+        cost_unit: (COST_GRID * diag.max(min_half).powi(3)).max(f64::MIN_POSITIVE),
         hull_eps: 1e-12 * diag.max(min_half),
     }
 }

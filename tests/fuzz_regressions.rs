@@ -131,3 +131,55 @@ fn near_zero_length_axes_stay_enclosed_at_the_origin() {
         assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
     }
 }
+
+/// `fuzz/fuzz_targets/decompose.rs`, third run: two 8-corner faces on one vertex
+/// (dedup off, so no shared edge) gave 2 primitives for a target of 1. With a zero
+/// diagonal every volume and the cost grid (2^-40 of the diagonal cubed) underflowed
+/// to 0, every merge cost 0/0 = NaN, and NaN-priced merges are dropped like those over
+/// the excess cap, so nothing could merge (post-processing hid it when it removed the
+/// duplicate, so that is off here). Every target must be reached by merging.
+#[test]
+fn faces_on_one_point_still_merge() {
+    let v = [[1e-30, -1e-30, -1e-30]];
+    let mut f = vec![vec![0; 8], vec![0; 8]];
+    f.extend(std::iter::repeat_n(vec![0], 14)); // skipped: fewer than 3 corners
+    let mesh = Mesh::from_polygons(&v, &f);
+    let mut kinds = [false; 6];
+    kinds[Kind::Box as usize] = true;
+    kinds[Kind::Prism as usize] = true;
+    let params = Params {
+        targets: vec![1, 3],
+        weights: [1e-9, 2.1, 1e-9, 1.0, 1.0, 1.0],
+        kinds,
+        dedup: Dedup::Off,
+        remove_contained: false,
+        ..Default::default()
+    };
+    let dec = decompose(&mesh, &params).unwrap();
+    assert_eq!(dec.levels[0].primitives.len(), 1);
+    assert_valid(&mesh, &dec, &params);
+}
+
+/// The same underflow with a positive diagonal: two triangles 1e-200 across (a cube
+/// of 1e-600 is 0 in f64) in separate components must still merge down to one.
+#[test]
+fn meshes_1e_minus_200_across_still_merge() {
+    let s = 1e-200;
+    let v = [
+        [0.0, 0.0, 0.0],
+        [s, 0.0, 0.0],
+        [0.0, s, 0.0],
+        [3.0 * s, 0.0, s],
+        [4.0 * s, 0.0, s],
+        [3.0 * s, s, 2.0 * s],
+    ];
+    let mesh = Mesh::from_polygons(&v, &[vec![0, 1, 2], vec![3, 4, 5]]);
+    let params = Params {
+        targets: vec![1],
+        remove_contained: false,
+        ..Default::default()
+    };
+    let dec = decompose(&mesh, &params).unwrap();
+    assert_eq!(dec.levels[0].primitives.len(), 1);
+    assert_valid(&mesh, &dec, &params);
+}

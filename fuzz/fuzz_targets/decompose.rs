@@ -94,6 +94,10 @@ fn run(data: &[u8]) -> Result<()> {
     let mut u = Unstructured::new(data);
     let params = params(&mut u)?;
     let (verts, faces) = mesh(&mut u)?;
+    if std::env::var_os("PD_FUZZ_PRINT").is_some() {
+        // Reproducing a finding as a test: the decoded case, exact to the bit.
+        eprintln!("{params:?}\nverts {verts:?}\nfaces {faces:?}");
+    }
     let mesh = Mesh::from_polygons(&verts, &faces);
     let dec = match decompose(&mesh, &params) {
         Ok(d) => d,

@@ -4,7 +4,7 @@
 mod common;
 
 use common::check::assert_valid;
-use primdecomp::{decompose, Dedup, Kind, Mesh, Params};
+use primdecomp::{decompose, Dedup, Error, Kind, Mesh, Params};
 
 /// `fuzz/fuzz_targets/decompose.rs`, first run: one triangle at a 1e-30 scale welded
 /// with a tolerance of 10 collapsed to one point, and the output sphere was fitted
@@ -182,4 +182,43 @@ fn meshes_1e_minus_200_across_still_merge() {
     let dec = decompose(&mesh, &params).unwrap();
     assert_eq!(dec.levels[0].primitives.len(), 1);
     assert_valid(&mesh, &dec, &params);
+}
+
+/// `fuzz/fuzz_targets/decompose.rs`, fourth run: one face on a single vertex at
+/// z = -4.3e304 became a frustum whose padded ends (so that rounding cannot tilt its
+/// axis, `primitive::world`) were computed with a square that overflowed: the JSON got
+/// an infinite coordinate. Pads of ~1e-13 × coordinates that large are themselves
+/// lengths whose squares overflow, so such inputs are refused (`Error::Position`,
+/// beyond ±1e70), and inputs just inside the limit give finite, enclosing output.
+#[test]
+fn coordinates_near_the_top_of_f64_are_refused() {
+    let v = [[5.391989341715902e68, 0.0, -4.294604791590196e304]];
+    let mesh = Mesh::from_polygons(&v, &[vec![0; 8]]);
+    let params = Params {
+        targets: vec![37],
+        weights: [1.0, 1.0, 1.0, 1.0, 1e-9, 1e9],
+        kinds: [false, true, true, false, true, true],
+        tangent_eps: 0.0,
+        ..Default::default()
+    };
+    match decompose(&mesh, &params) {
+        Err(Error::Position {
+            vertex,
+            coordinate,
+            limit,
+            ..
+        }) => assert_eq!(
+            (vertex, coordinate, limit),
+            (1, -4.294604791590196e304, 1e70)
+        ),
+        other => panic!("expected Error::Position, got {other:?}"),
+    }
+    for z in [1e70, -1e70, 9.9e69] {
+        let v = [[0.0, 0.0, z], [0.0, 1e55, z], [0.0, 0.0, z]];
+        let mesh = Mesh::from_polygons(&v, &[vec![0, 1, 2], vec![0, 0, 0]]);
+        for kind in [Kind::Frustum, Kind::Cylinder] {
+            let params = round_only(kind, vec![1], 5e-4);
+            assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
+        }
+    }
 }

@@ -50,26 +50,40 @@ impl Primitive {
     /// moved by `offset`, and for cylinders and frustums grown so that rounding cannot
     /// tilt the axis out of the fitted solid (see the module doc).
     pub fn to_world(&self, offset: V3) -> Primitive {
+        let round = match *self {
+            Primitive::Cylinder(c) => world_round(c.p0, c.p1, c.radius, c.radius, offset),
+            Primitive::Frustum(f) => world_round(f.p0, f.p1, f.r0, f.r1, offset),
+            _ => return self.translated(offset),
+        };
+        // The pads are ~1e-13 of the coordinates' magnitude: `decompose` refuses
+        // coordinates beyond `mesh::MAX_POSITION` (1e70), so they never overflow there;
+        // a direct caller with coordinates near f64::MAX gets the plain translation.
+        let Some(r) = round.filter(Round::is_finite) else {
+            return self.translated(offset);
+        };
         match *self {
-            Primitive::Cylinder(c) => {
-                let r = world_round(c.p0, c.p1, c.radius, c.radius, offset);
-                Primitive::Cylinder(Cylinder {
-                    p0: r.p0,
-                    p1: r.p1,
-                    radius: r.r0.max(r.r1),
-                })
-            }
-            Primitive::Frustum(f) => {
-                let r = world_round(f.p0, f.p1, f.r0, f.r1, offset);
-                Primitive::Frustum(Frustum {
-                    p0: r.p0,
-                    p1: r.p1,
-                    r0: r.r0,
-                    r1: r.r1,
-                })
-            }
-            _ => self.translated(offset),
+            Primitive::Cylinder(_) => Primitive::Cylinder(Cylinder {
+                p0: r.p0,
+                p1: r.p1,
+                radius: r.r0.max(r.r1),
+            }),
+            _ => Primitive::Frustum(Frustum {
+                p0: r.p0,
+                p1: r.p1,
+                r0: r.r0,
+                r1: r.r1,
+            }),
         }
+    }
+}
+
+impl Round {
+    fn is_finite(&self) -> bool {
+        [self.r0, self.r1]
+            .iter()
+            .chain(&self.p0)
+            .chain(&self.p1)
+            .all(|v| v.is_finite())
     }
 }
 
@@ -78,16 +92,18 @@ fn max_abs(v: V3) -> f64 {
 }
 
 /// The world solid of revolution around local ends `p0`, `p1` with radii `r0`, `r1`.
-fn world_round(p0: V3, p1: V3, r0: f64, r1: f64, d: V3) -> Round {
+fn world_round(p0: V3, p1: V3, r0: f64, r1: f64, d: V3) -> Option<Round> {
     let eps = f64::EPSILON;
     let len = norm(sub(p1, p0));
-    let m_local = max_abs(p0).max(max_abs(p1)) + len;
+    // The radius is not rounded with the ends, but counting it keeps r/η and L/η below
+    // 1/(16ε), so the quadratic in `extension` cannot overflow.
+    let m_local = max_abs(p0).max(max_abs(p1)) + len + r0.max(r1);
     let m_off = max_abs(d);
     // Tilt of the stored local axis: both ends within 4ε·m_local of the fitted ones.
     let tilt = 4.0 * (4.0 * eps * m_local) / len + 4.0 * eps;
     let axis = normalize(sub(p1, p0));
     let (Some(a), true) = (axis, tilt <= MAX_LOCAL_TILT) else {
-        return around_ball(p0, p1, r0.max(r1), m_local, d);
+        return Some(around_ball(p0, p1, r0.max(r1), m_local, d));
     };
     // η = eta0 + c1·e, with twice the ε-multiples the roundings need.
     let eta0 = 16.0 * eps * (m_local + m_off);
@@ -109,28 +125,30 @@ fn world_round(p0: V3, p1: V3, r0: f64, r1: f64, d: V3) -> Round {
     } else {
         (cyl, cyl)
     };
-    Round {
+    Some(Round {
         p0: q0,
         p1: q1,
         r0,
         r1,
-    }
+    })
 }
 
 /// The smallest `e` (up to the simplifications in the comments) with
 /// `e(1 − δ²/2) ≥ r̂δ + 3η` and `L + 2e ≥ 40η`, where `η = eta0 + c1·e` and
-/// `δ = 4η/(L + 2e)`; requires `c1 ≤ 0.01`.
+/// `δ = 4η/(L + 2e)`; requires `c1 ≤ 0.01` and `eta0 > 0`.
 fn extension(len: f64, r: f64, eta0: f64, c1: f64) -> f64 {
     // With δ ≤ 0.1, 1 − δ²/2 ≥ 0.995; 4r̂·c1·e/(L + 2e) ≤ 2r̂·c1. So it suffices that
     // s·e ≥ 4r̂·eta0/(L + 2e) + k, with s = 0.995 − 3c1 and k = 3·eta0 + 2r̂·c1:
     // a quadratic in e whose positive root is the bound.
+    // Solved in units of eta0 (≥ 16ε·(L + r̂)), so that no square overflows.
+    let (len, r) = (len / eta0, r / eta0);
     let s = 0.995 - 3.0 * c1;
-    let k = 3.0 * eta0 + 2.0 * r * c1;
-    let (qa, qb, qc) = (2.0 * s, s * len - 2.0 * k, 4.0 * r * eta0 + k * len);
+    let k = 3.0 + 2.0 * r * c1;
+    let (qa, qb, qc) = (2.0 * s, s * len - 2.0 * k, 4.0 * r + k * len);
     let root = (-qb + (qb * qb + 4.0 * qa * qc).sqrt()) / (2.0 * qa);
     // L + 2e ≥ 40(eta0 + c1·e).
-    let long = (40.0 * eta0 - len) / (2.0 - 40.0 * c1);
-    root.max(long).max(0.0)
+    let long = (40.0 - len) / (2.0 - 40.0 * c1);
+    eta0 * root.max(long).max(0.0)
 }
 
 /// A cylinder holding the ball around the ends' midpoint that contains the whole

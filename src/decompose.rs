@@ -178,13 +178,11 @@ pub fn evaluator<'a>(
 ) -> Evaluator<'a> {
     let (lo, hi) = bounds;
     let diag = crate::math::norm(crate::math::sub(hi, lo));
-    // A mesh collapsed to one point still needs positive volumes to rank merges: a
-    // length whose cube (a volume) is a normal number.
-    let min_half = if diag > 0.0 {
-        params.min_extent_rel * diag
-    } else {
-        1e-100
-    };
+    // Every fit divides by its half-extents, which start at this minimum: it must be
+    // positive even when the diagonal is 0 (a mesh collapsed to one point) or the
+    // product underflows (a 6e-22 mesh with a minimum extent of 7e-304 made it 0, and
+    // the frustum fit divided 0 by 0).
+    let min_half = (params.min_extent_rel * diag).max(f64::MIN_POSITIVE);
     let aabb_volume: f64 = (0..3)
         .map(|k| (hi[k] - lo[k]).max(2.0 * min_half))
         .product();

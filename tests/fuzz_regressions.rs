@@ -222,3 +222,27 @@ fn coordinates_near_the_top_of_f64_are_refused() {
         }
     }
 }
+
+/// `fuzz/fuzz_targets/decompose.rs`, fifth run: two vertices 6e-22 apart with a minimum
+/// extent of 6.8e-304 of the diagonal: the minimum half-extent underflowed to 0, a
+/// degenerate axis got half-length 0, and the frustum fit computed 0/0 and panicked in
+/// `clamp`. Every fit needs a positive minimum half-extent, however small the mesh and
+/// the setting.
+#[test]
+fn minimum_extent_that_underflows_stays_positive() {
+    let v = [[-1.2e9, 2e9, 0.0], [-1.2e9, 2e9, 6e-22]];
+    let f = vec![vec![1, 1, 1, 0, 1, 1, 0, 1], vec![0; 5], vec![0; 8]];
+    let mesh = Mesh::from_polygons(&v, &f);
+    let params = Params {
+        targets: vec![15],
+        weights: [1.0, 1e-9, 1.0, 1.0, 1.0, 1.0],
+        dedup: Dedup::Off,
+        min_extent_rel: 6.833639853623446e-304,
+        ..Default::default()
+    };
+    assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
+    for kind in Kind::ALL {
+        let params = round_only(kind, vec![1], 6.833639853623446e-304);
+        assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
+    }
+}

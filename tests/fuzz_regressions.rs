@@ -134,8 +134,9 @@ fn near_zero_length_axes_stay_enclosed_at_the_origin() {
 
 /// `fuzz/fuzz_targets/decompose.rs`, third run: two 8-corner faces on one vertex
 /// (dedup off, so no shared edge) gave 2 primitives for a target of 1. With a zero
-/// diagonal every volume and the cost grid (2^-40 of the diagonal cubed) underflowed
-/// to 0, every merge cost 0/0 = NaN, and NaN-priced merges are dropped like those over
+/// diagonal every volume and the cost grid (2^-40 of the diagonal cubed, with the
+/// minimum half-extent of a point mesh then 1.5e-154) underflowed to 0, every merge
+/// cost 0/0 = NaN, and NaN-priced merges are dropped like those over
 /// the excess cap, so nothing could merge (post-processing hid it when it removed the
 /// duplicate, so that is off here). Every target must be reached by merging.
 #[test]
@@ -245,4 +246,25 @@ fn minimum_extent_that_underflows_stays_positive() {
         let params = round_only(kind, vec![1], 6.833639853623446e-304);
         assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
     }
+}
+
+/// `fuzz/fuzz_targets/decompose.rs`, sixth run: one zero-area face on a vertex at the
+/// origin (diagonal 0, coordinates 0, so the enclosure tolerance is 0) became a box of
+/// half-extent 2.2e-308 (the previous floor, the smallest normal number). The box was
+/// right, but the oracle's grid took the reciprocal of a subnormal extent, got
+/// infinity and found no candidate. The floor is now 1e-90, whose cube and reciprocal
+/// square are normal, so downstream arithmetic on the primitives stays finite.
+#[test]
+fn a_face_on_the_origin_gets_a_normal_sized_primitive() {
+    let mesh = Mesh::from_polygons(&[[0.0; 3]], &[vec![0, 0, 0]]);
+    let params = Params {
+        targets: vec![39],
+        max_excess_volume: Some(0.0),
+        weights: [1.05, 1.0, 1.05, 1.4, 1e-9, 1.4],
+        kinds: [true, true, true, true, false, true],
+        dedup: Dedup::Off,
+        min_extent_rel: 0.5,
+        ..Default::default()
+    };
+    assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
 }

@@ -229,7 +229,7 @@ fn finish_level(mesh: &Mesh, snap: &crate::merge::Snapshot, params: &Params, dia
         remove_contained: params.remove_contained,
         thin_box_half: params.remove_thin_boxes.map(|t| t * diag),
     };
-    let keep = keep_mask(mesh, &snap.prims, &snap.verts, cleanup);
+    let keep = keep_mask(mesh, &snap.prims, &snap.verts, &snap.members, cleanup);
     let mut level = Level {
         target: snap.target,
         ..Default::default()

@@ -268,3 +268,46 @@ fn a_face_on_the_origin_gets_a_normal_sized_primitive() {
     };
     assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
 }
+
+/// `fuzz/fuzz_targets/decompose.rs`, seventh run: with `--remove-thin-boxes`, a thin
+/// box was removed because each of its corners lay in some other primitive, but one
+/// of its faces had corners in two different primitives and lay in neither: 3 faces,
+/// 2 primitives, one face outside. A removed box's faces must each lie in one kept
+/// primitive.
+#[test]
+fn thin_box_removal_keeps_every_face_in_one_primitive() {
+    let v = [
+        [6.000000000000001e17, 6.000000000000001e17, 70.0],
+        [6.000000000000001e17, 70.0, 70.0],
+        [70.0, 1.0000000000000006e17, 3.0000000000000006e17],
+        [
+            5.0000000000000006e17,
+            6.000000000000001e17,
+            4.0000000000000006e17,
+        ],
+        [5.0000000000000006e17, 6.000000000000001e17, 70.0],
+        [70.0, 4.0000000000000006e17, 70.0],
+        [
+            3.0000000000000006e17,
+            3.0000000000000006e17,
+            3.0000000000000006e17,
+        ],
+    ];
+    let f = vec![
+        vec![3, 3, 3, 1, 1, 1, 2, 2],
+        vec![3, 3, 3, 3, 3, 3, 2, 0],
+        vec![0; 8],
+    ];
+    let mesh = Mesh::from_polygons(&v, &f);
+    let params = Params {
+        targets: vec![27],
+        weights: [1.0, 1e-9, 1e-9, 1.05, 1.05, 1.05],
+        kinds: [true, false, true, false, true, false],
+        dedup: Dedup::Off,
+        min_extent_rel: 1e-12,
+        remove_contained: false,
+        remove_thin_boxes: Some(0.001),
+        ..Default::default()
+    };
+    assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
+}

@@ -34,6 +34,8 @@ pub struct Snapshot {
     pub faces: Vec<u32>,
     /// Distinct vertices of each primitive's faces (for post-processing).
     pub verts: Vec<Vec<u32>>,
+    /// The faces of each primitive (post-processing checks coverage face by face).
+    pub members: Vec<Vec<u32>>,
 }
 
 #[derive(Clone, Debug, Default)]
@@ -320,6 +322,7 @@ fn snapshot(ev: &Evaluator, cl: &Clusters, target: usize) -> Snapshot {
         prims,
         faces: roots.iter().map(|&r| cl.face_count[r as usize]).collect(),
         verts: roots.par_iter().map(|&r| ev.all_verts(cl, r)).collect(),
+        members: roots.par_iter().map(|&r| cl.faces(r).collect()).collect(),
     }
 }
 

@@ -5,7 +5,7 @@ set -u
 cd "$(dirname "$0")"
 secs=${1:-600}
 shift || true
-targets=${*:-decompose parse_obj parse_ply parse_stl parse_off parse_gltf}
+targets=${*:-decompose parse_obj parse_ply parse_stl parse_off parse_gltf load_mmap}
 mkdir -p logs
 # Corpus meshes seed the parsers too; they are read from ../shared, never committed.
 shared=../../shared/datasets/corpus
@@ -24,6 +24,7 @@ for t in $targets; do
   esac
   seeds=
   [ -n "$f" ] && seeds="seeds/$f corpus_seeds/$f"
+  [ "$t" = load_mmap ] && for f in obj ply stl off; do seeds="$seeds seeds/$f corpus_seeds/$f"; done
   mkdir -p corpus/$t
   echo "== $t $(date -u +%FT%TZ)" >> logs/runs.txt
   RAYON_NUM_THREADS=1 cargo +nightly fuzz run "$t" "corpus/$t" $seeds -- \

@@ -165,6 +165,17 @@ fn input_info(mesh: &Mesh, (lo, hi): (V3, V3)) -> InputInfo {
     }
 }
 
+/// Smallest half-extent or radius of any primitive, whatever the mesh and settings.
+/// Every fit divides by half-extents, and volumes are their cubes: with a zero diagonal
+/// (a mesh collapsed to one point) or a product `min_extent_rel × diagonal` that
+/// underflows (a mesh 6e-22 across with a minimum extent of 7e-304 made it 0, and the
+/// frustum fit divided 0 by 0), lengths must still be positive, and their cubes (and the
+/// reciprocals of their squares, in the tests' oracle) normal numbers. Together with
+/// `mesh::MAX_EXTENT` this keeps every length the engine fits within [1e-90, 1e60].
+/// Only meshes under ~1e-87 across are affected: their primitives are at least 2e-90
+/// across.
+pub const MIN_HALF: f64 = 1e-90;
+
 /// Merge costs are compared on a grid of this fraction of the diagonal cubed (2^-40).
 const COST_GRID: f64 = 1.0 / (1u64 << 40) as f64;
 
@@ -178,12 +189,7 @@ pub fn evaluator<'a>(
 ) -> Evaluator<'a> {
     let (lo, hi) = bounds;
     let diag = crate::math::norm(crate::math::sub(hi, lo));
-    // A mesh collapsed to one point still needs positive volumes to rank merges.
-    let min_half = if diag > 0.0 {
-        params.min_extent_rel * diag
-    } else {
-        f64::MIN_POSITIVE.sqrt()
-    };
+    let min_half = (params.min_extent_rel * diag).max(MIN_HALF);
     let aabb_volume: f64 = (0..3)
         .map(|k| (hi[k] - lo[k]).max(2.0 * min_half))
         .product();
@@ -199,6 +205,8 @@ pub fn evaluator<'a>(
         max_excess: params
             .max_excess_volume
             .map_or(f64::INFINITY, |m| m * aabb_volume),
+        // Never 0 (at least 2^-40 × MIN_HALF³ ≈ 1e-282): a zero grid priced every merge
+        // 0/0 = NaN, which the merge loop drops like a merge over the excess cap.
         cost_unit: COST_GRID * diag.max(min_half).powi(3),
         hull_eps: 1e-12 * diag.max(min_half),
     }
@@ -222,14 +230,14 @@ fn finish_level(mesh: &Mesh, snap: &crate::merge::Snapshot, params: &Params, dia
         remove_contained: params.remove_contained,
         thin_box_half: params.remove_thin_boxes.map(|t| t * diag),
     };
-    let keep = keep_mask(mesh, &snap.prims, &snap.verts, cleanup);
+    let keep = keep_mask(mesh, &snap.prims, &snap.verts, &snap.members, cleanup);
     let mut level = Level {
         target: snap.target,
         ..Default::default()
     };
     for (i, p) in snap.prims.iter().enumerate() {
         if keep[i] {
-            level.primitives.push(p.translated(mesh.offset));
+            level.primitives.push(p.to_world(mesh.offset));
             level.faces.push(snap.faces[i]);
         }
     }

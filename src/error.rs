@@ -49,6 +49,19 @@ pub enum Error {
         distance: f64,
         limit: f64,
     },
+    /// A vertex lies so far from the origin that the written cylinders and frustums
+    /// could not keep their axes within f64's range of lengths (`mesh::MAX_POSITION`).
+    #[error(
+        "{path}: vertex {vertex} has a coordinate of {coordinate:e}; every coordinate must \
+         lie within ±{limit:e} (move the mesh nearer the origin)"
+    )]
+    Position {
+        path: PathBuf,
+        /// 1-based, in the order the file lists vertices.
+        vertex: u64,
+        coordinate: f64,
+        limit: f64,
+    },
     /// Decomposing the input would need more memory than allowed (checked before
     /// parsing from the counts the file declares, and after parsing).
     #[error(

@@ -2,7 +2,9 @@
 //! subsumed points all lie inside another primitive, and optionally thin boxes (the
 //! Bistro figure's rule) — never losing coverage. A primitive that hosts a removed
 //! one is pinned (never removed itself), so two identical primitives cannot delete
-//! each other and no point is left uncovered by a chain of removals.
+//! each other and no face is left uncovered by a chain of removals. Coverage is checked
+//! face by face: every face of a removed primitive lies in one kept primitive (the
+//! enclosure guarantee), not merely each of its corners in some primitive.
 
 use crate::math::V3;
 use crate::mesh::Mesh;
@@ -19,15 +21,17 @@ pub struct Cleanup {
     pub diagonal: f64,
     pub remove_contained: bool,
     /// Boxes whose smallest half-extent is below this (absolute) are removed when
-    /// every one of their points lies in some other kept primitive.
+    /// every one of their faces lies in some other kept primitive.
     pub thin_box_half: Option<f64>,
 }
 
-/// Indices of the primitives to keep, in increasing order.
+/// Which primitives to keep; `verts[i]` are the distinct vertices and `members[i]` the
+/// faces of primitive `i`.
 pub fn keep_mask(
     mesh: &Mesh,
     prims: &[Primitive],
     verts: &[Vec<u32>],
+    members: &[Vec<u32>],
     cleanup: Cleanup,
 ) -> Vec<bool> {
     let n = prims.len();
@@ -68,7 +72,7 @@ pub fn keep_mask(
                     mesh,
                     prims,
                     &boxes,
-                    &verts[i],
+                    &members[i],
                     i,
                     tol,
                     &mut keep,
@@ -84,22 +88,30 @@ fn is_thin_box(p: &Primitive, t: f64) -> bool {
     matches!(p, Primitive::Box(b) if b.half.iter().cloned().fold(f64::INFINITY, f64::min) < t)
 }
 
-/// Removes `i` when each of its points lies in some other kept primitive; pins those.
+/// Removes `i` when each of its faces lies in one other kept primitive; pins those.
+/// (Corner by corner would not do: a face whose corners lie in two different
+/// primitives need not lie in either, and the fuzzer found one.)
 #[allow(clippy::too_many_arguments)]
 fn remove_if_covered(
     mesh: &Mesh,
     prims: &[Primitive],
     boxes: &[(V3, V3)],
-    verts: &[u32],
+    faces: &[u32],
     i: usize,
     tol: f64,
     keep: &mut [bool],
     pinned: &mut [bool],
 ) {
     let mut used = Vec::new();
-    for &v in verts {
-        let p = mesh.pos(v);
-        let host = (0..prims.len()).find(|&j| j != i && keep[j] && holds(prims, boxes, j, p, tol));
+    for &f in faces {
+        let corners = mesh.face(f as usize);
+        let host = (0..prims.len()).find(|&j| {
+            j != i
+                && keep[j]
+                && corners
+                    .iter()
+                    .all(|&v| holds(prims, boxes, j, mesh.pos(v), tol))
+        });
         match host {
             Some(j) => used.push(j),
             None => return,

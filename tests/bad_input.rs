@@ -215,6 +215,7 @@ fn cases() -> Vec<Case> {
         case("huge_1e38.obj", "coordinates of 1e38", "v 0 0 0\nv 1e38 0 0\nv 0 1e38 0\nf 1 2 3\n", Want::Ok),
         case("huge_3e38.stl", "binary STL at f32's largest values", binary_stl(1, 1, 3.4e38), Want::Ok),
         case("huge_1e300.obj", "coordinates of 1e300", "v 0 0 0\nv 1e300 0 0\nv 0 1e300 1e300\nf 1 2 3\n", e(&["vertex 1", "1e60", "rescale"])),
+        case("far_1e100.obj", "a unit triangle at 1e100 from the origin", "v 1e100 0 0\nv 1e100 1 0\nv 1e100 0 1\nf 1 2 3\n", e(&["vertex 1", "1e100", "1e70", "nearer the origin"])),
         case("gzip.obj", "gzip data behind .obj", vec![0x1f, 0x8b, 8, 0, 0, 0, 0, 0], e(&["gzip"])),
         case("mesh.xyz", "unknown extension", TRI, e(&["unknown extension"])),
         case("no_extension", "no extension", TRI, e(&["unknown extension"])),

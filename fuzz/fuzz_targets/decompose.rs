@@ -1,5 +1,6 @@
 //! Decomposes small arbitrary meshes with arbitrary settings. Invariants:
-//! - no panic; an error only for settings `Params::validate` refuses;
+//! - no panic; an error only for settings `Params::validate` refuses, a mesh without
+//!   faces, or vertices beyond the documented extent and position limits;
 //! - every level has at most its target's primitives when no excess cap is set
 //!   (bridging across components makes every target reachable);
 //! - the JSON has no NaN or infinity (the oracle panics on a non-finite number);
@@ -94,11 +95,20 @@ fn run(data: &[u8]) -> Result<()> {
     let mut u = Unstructured::new(data);
     let params = params(&mut u)?;
     let (verts, faces) = mesh(&mut u)?;
+    if std::env::var_os("PD_FUZZ_PRINT").is_some() {
+        // Reproducing a finding as a test: the decoded case, exact to the bit.
+        eprintln!("{params:?}\nverts {verts:?}\nfaces {faces:?}");
+    }
     let mesh = Mesh::from_polygons(&verts, &faces);
     let dec = match decompose(&mesh, &params) {
         Ok(d) => d,
         Err(Error::InvalidParams(_)) if params.validate().is_err() => return Ok(()),
         Err(Error::EmptyMesh { .. }) if mesh.face_count() == 0 => return Ok(()),
+        // Documented refusals: beyond 1e60 of the centre or ±1e70 of the origin.
+        Err(Error::Extent { .. }) if mesh.vertex_out_of_range().is_some() => return Ok(()),
+        Err(Error::Position { .. }) if mesh.vertex_beyond_position_limit().is_some() => {
+            return Ok(())
+        }
         Err(e) => panic!("unexpected error: {e}"),
     };
     assert!(params.validate().is_ok(), "invalid settings accepted");

@@ -2,9 +2,10 @@
 //! valid merge, apply it, re-price the merged cluster's neighbours; record a snapshot at
 //! every requested target on the way down (one bottom-up pass serves all targets). When
 //! adjacency runs out above the target, bridge components (§3.4 "Pairwise Component
-//! Merging") by linking each cluster to its nearest clusters in sorted orders along
-//! x, y and z, O(C log C) instead of the paper's O(C²) all pairs.
+//! Merging") by linking each cluster to its nearest clusters (`bridge.rs`), O(C log C)
+//! instead of the paper's O(C²) all pairs.
 
+use super::bridge::{nearest_pairs, BRIDGE_K};
 use super::cluster::Clusters;
 use super::cost::{Evaluator, Workspace};
 use super::heap::{Candidate, Queue, RadixHeap};
@@ -23,8 +24,6 @@ const PRICE_BLOCK: usize = 1 << 16;
 /// The queue is purged of stale entries when it grows by a quarter, but never below
 /// this size (a purge is one sequential pass; the stale entries would cost memory).
 const PURGE_MIN: usize = 1 << 16;
-/// Each cluster is bridged to this many successors in each axis order.
-const BRIDGE_SPAN: usize = 2;
 
 /// The clusters alive when a target was reached (or when merging stopped above it).
 #[derive(Clone, Debug, Default)]
@@ -34,6 +33,8 @@ pub struct Snapshot {
     pub faces: Vec<u32>,
     /// Distinct vertices of each primitive's faces (for post-processing).
     pub verts: Vec<Vec<u32>>,
+    /// The faces of each primitive (post-processing checks coverage face by face).
+    pub members: Vec<Vec<u32>>,
 }
 
 #[derive(Clone, Debug, Default)]
@@ -269,27 +270,16 @@ thread_local! {
     static LOCAL_WS: std::cell::RefCell<Workspace> = std::cell::RefCell::new(Workspace::default());
 }
 
-/// Links every live cluster to its nearest successors by centroid along each axis.
+/// Links every live cluster to its nearest clusters by centroid (`bridge.rs`).
 fn bridge(ev: &Evaluator, cl: &mut Clusters) -> Vec<(u32, u32)> {
     let roots = cl.roots();
     let centroids: Vec<[f64; 3]> = roots.iter().map(|&r| centroid(ev, cl, r)).collect();
-    let mut pairs = Vec::new();
-    for axis in 0..3 {
-        let mut order: Vec<usize> = (0..roots.len()).collect();
-        order.sort_by(|&i, &j| {
-            centroids[i][axis]
-                .total_cmp(&centroids[j][axis])
-                .then(i.cmp(&j))
-        });
-        for (k, &i) in order.iter().enumerate() {
-            for &j in order.iter().skip(k + 1).take(BRIDGE_SPAN) {
-                let (a, b) = (roots[i], roots[j]);
-                pairs.push((a.min(b), a.max(b)));
-            }
-        }
-    }
-    pairs.sort_unstable();
-    pairs.dedup();
+    let pairs: Vec<(u32, u32)> = nearest_pairs(&centroids, BRIDGE_K)
+        .into_iter()
+        .map(|(i, j)| (roots[i as usize], roots[j as usize]))
+        .collect();
+    // Roots increase with their index, so the pairs stay sorted and distinct.
+    debug_assert!(pairs.windows(2).all(|w| w[0] < w[1]));
     for &(a, b) in &pairs {
         cl.link(a, b);
     }
@@ -320,6 +310,7 @@ fn snapshot(ev: &Evaluator, cl: &Clusters, target: usize) -> Snapshot {
         prims,
         faces: roots.iter().map(|&r| cl.face_count[r as usize]).collect(),
         verts: roots.par_iter().map(|&r| ev.all_verts(cl, r)).collect(),
+        members: roots.par_iter().map(|&r| cl.faces(r).collect()).collect(),
     }
 }
 

@@ -14,6 +14,14 @@ use crate::math::V3;
 /// large kind weights. Coordinates of 1e300 crashed the frustum fit before this limit.
 pub const MAX_EXTENT: f64 = 1e60;
 
+/// Largest magnitude of any world coordinate the engine accepts. Cylinders and
+/// frustums are written with their ends pushed out by up to about 320 ε × the
+/// coordinates' magnitude (`primitive::world`), so that rounding cannot tilt their axes
+/// out of the fitted solid; below 1e70 that stays under 1e-13 × 1e70 ≈ 1e57, inside the
+/// engine's range of lengths ([`MAX_EXTENT`]). Beyond it, the written lengths would
+/// exceed 1e154 at the top of the f64 range, and squaring them overflows.
+pub const MAX_POSITION: f64 = 1e70;
+
 /// `u32` index of an input face.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
 pub struct FaceId(pub u32);
@@ -153,15 +161,35 @@ impl Mesh {
         };
         (0..self.vertex_count()).find_map(far)
     }
-    /// [`Mesh::vertex_out_of_range`] as the error for `path`.
+    /// The first vertex (0-based) with a world coordinate beyond ±[`MAX_POSITION`],
+    /// with that coordinate.
+    pub fn vertex_beyond_position_limit(&self) -> Option<(usize, f64)> {
+        (0..self.vertex_count()).find_map(|i| {
+            let p = self.world_pos(i as u32);
+            let c = p
+                .into_iter()
+                .fold(0.0f64, |m, c| if c.abs() > m.abs() { c } else { m });
+            (c.abs() > MAX_POSITION).then_some((i, c))
+        })
+    }
+    /// [`Mesh::vertex_out_of_range`] and [`Mesh::vertex_beyond_position_limit`] as the
+    /// errors for `path`.
     pub fn check_extent(&self, path: &std::path::Path) -> crate::Result<()> {
-        match self.vertex_out_of_range() {
-            None => Ok(()),
-            Some((i, d)) => Err(crate::Error::Extent {
+        if let Some((i, d)) = self.vertex_out_of_range() {
+            return Err(crate::Error::Extent {
                 path: path.to_path_buf(),
                 vertex: i as u64 + 1,
                 distance: d,
                 limit: MAX_EXTENT,
+            });
+        }
+        match self.vertex_beyond_position_limit() {
+            None => Ok(()),
+            Some((i, c)) => Err(crate::Error::Position {
+                path: path.to_path_buf(),
+                vertex: i as u64 + 1,
+                coordinate: c,
+                limit: MAX_POSITION,
             }),
         }
     }

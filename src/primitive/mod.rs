@@ -11,6 +11,7 @@ pub mod obb;
 pub mod prism;
 pub mod profile;
 pub mod sphere;
+pub mod world;
 
 pub use capsule::Capsule;
 pub use cylinder::Cylinder;
@@ -117,7 +118,8 @@ impl Primitive {
             Primitive::Prism(s) => s.contains(p, tol),
         }
     }
-    /// The same primitive moved by `d`.
+    /// The same primitive moved by `d` (exactly as stored; to move a fitted primitive
+    /// to world coordinates use [`Primitive::to_world`], which keeps it enclosing).
     pub fn translated(&self, d: V3) -> Primitive {
         use crate::math::add;
         match *self {

@@ -114,7 +114,7 @@ fn stages(c: &mut Criterion) {
             thin_box_half: None,
         };
         g.bench_function("postprocess", |b| {
-            b.iter(|| keep_mask(m, &snap.prims, &snap.verts, cleanup))
+            b.iter(|| keep_mask(m, &snap.prims, &snap.verts, &snap.members, cleanup))
         });
         let dec = decompose(m, &p).unwrap();
         g.bench_function("output_json", |b| {

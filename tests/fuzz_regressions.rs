@@ -112,11 +112,7 @@ fn round_only(kind: Kind, targets: Vec<usize>, min_extent_rel: f64) -> Params {
 /// The error grows with radius over length, so no minimum length alone removes it.
 #[test]
 fn flat_discs_far_from_the_origin_stay_enclosed() {
-    let mesh = tilted_discs(1, 0.0, 8.5e6);
-    for kind in [Kind::Cylinder, Kind::Frustum] {
-        let params = round_only(kind, vec![1], 1e-6);
-        assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
-    }
+    cylinders_and_frustums_enclose(&tilted_discs(1, 0.0, 8.5e6), 1, 1e-6);
 }
 
 /// Without any offset the local frame rounds too: two discs 100 apart are re-centred
@@ -125,10 +121,14 @@ fn flat_discs_far_from_the_origin_stay_enclosed() {
 /// enclosed.
 #[test]
 fn near_zero_length_axes_stay_enclosed_at_the_origin() {
-    let mesh = tilted_discs(2, 100.0, 0.0);
+    cylinders_and_frustums_enclose(&tilted_discs(2, 100.0, 0.0), 2, 1e-14);
+}
+
+/// Decomposes `mesh` to `n` with only cylinders, then only frustums, and checks both.
+fn cylinders_and_frustums_enclose(mesh: &Mesh, n: usize, min_extent_rel: f64) {
     for kind in [Kind::Cylinder, Kind::Frustum] {
-        let params = round_only(kind, vec![2], 1e-14);
-        assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
+        let params = round_only(kind, vec![n], min_extent_rel);
+        assert_valid(mesh, &decompose(mesh, &params).unwrap(), &params);
     }
 }
 

@@ -8,7 +8,7 @@
 //! isosceles trapezoid with a base on the polygon both have a side on a hull edge) and
 //! keeps the cheapest. ARCHITECTURE.md, "Degenerate frames", has the measurements.
 
-use crate::math::{madd, scale, V3};
+use crate::math::{dot, madd, scale, V3};
 
 /// Two eigenvalues closer than this fraction of the largest count as tied.
 pub const TIE: f64 = 1e-6;
@@ -124,10 +124,6 @@ pub fn turn(axes: [V3; 3], (i, j): (usize, usize), [c, s]: [f64; 2]) -> [V3; 3] 
     out[i] = madd(scale(axes[i], c), axes[j], s);
     out[j] = madd(scale(axes[j], c), axes[i], -s);
     out
-}
-
-fn dot(a: V3, b: V3) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// The representative of `d` under quarter turns with `d.0 > 0, d.1 ≥ 0`.

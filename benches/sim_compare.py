@@ -27,6 +27,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+from compare_lib.peers import sha256_file  # the peer cache's own key (standard library only)
+
 ROOT = Path(__file__).resolve().parent.parent
 CORPUS = ROOT.parent / "shared" / "datasets" / "corpus"
 CACHE = ROOT / "benches" / ".cache"
@@ -51,14 +53,6 @@ DEFAULT_MESHES = [
     "parry_poly_cylinder.obj",
     "tiny_7_8ths_cube.stl",
 ]
-
-
-def sha256(path):
-    h = hashlib.sha256()
-    with open(path, "rb") as f:
-        for block in iter(lambda: f.read(1 << 20), b""):
-            h.update(block)
-    return h.hexdigest()
 
 
 def peer_obj(caches, sha, method):
@@ -232,7 +226,7 @@ def main(argv):
         if not mesh.is_file():
             print(f"CORPUS ABSENT or no such mesh: {mesh}", file=sys.stderr)
             continue
-        sha = sha256(mesh)
+        sha = sha256_file(mesh)
         mine, work, rule, key = ours(mesh, sha, a.bin)
         found = {p: peer_obj(a.peer_cache, sha, p) for p in PEERS}
         order = {"ours": mine} | {p: f[0] for p, f in found.items()}

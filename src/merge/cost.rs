@@ -77,13 +77,14 @@ impl<'a> Evaluator<'a> {
         }
     }
 
-    fn fit_points(&self, q: &Sym3, ws: &mut Workspace) -> Fit {
+    /// The gathered points' best fit under `cfg`.
+    fn fit_points(&self, q: &Sym3, cfg: &FitConfig, ws: &mut Workspace) -> Fit {
         let cloud = Cloud {
             x: &ws.x,
             y: &ws.y,
             z: &ws.z,
         };
-        fit_best(&cloud, q, &self.cfg, &mut ws.fit)
+        fit_best(&cloud, q, cfg, &mut ws.fit)
     }
 
     /// The primitive of face `f` alone, with its operator `q` (before any merge), in
@@ -94,16 +95,11 @@ impl<'a> Evaluator<'a> {
     pub fn fit_face(&self, f: u32, q: &Sym3, ws: &mut Workspace) -> Fit {
         ws.clear();
         self.push_points(self.face(f), ws);
-        let cloud = Cloud {
-            x: &ws.x,
-            y: &ws.y,
-            z: &ws.z,
-        };
         let cfg = FitConfig {
             edge_frames: false,
             ..self.cfg
         };
-        fit_best(&cloud, q, &cfg, &mut ws.fit)
+        self.fit_points(q, &cfg, ws)
     }
 
     /// The primitive of one cluster fitted on every vertex of its faces (walking the
@@ -116,7 +112,7 @@ impl<'a> Evaluator<'a> {
         for f in cl.faces(c) {
             self.push_points(self.mesh.face(f as usize), ws);
         }
-        self.fit_points(&cl.q[c as usize], ws)
+        self.fit_points(&cl.q[c as usize], &self.cfg, ws)
     }
 
     /// Distinct vertices of every face of cluster `c` (the faces' own, not welded), sorted.
@@ -143,7 +139,7 @@ impl<'a> Evaluator<'a> {
         // Points shared by both clusters are streamed twice; max/min fits don't care.
         self.gather(cl, &[a, b], ws);
         let q = cl.q[a as usize].add(&cl.q[b as usize]);
-        let fit = self.fit_points(&q, ws);
+        let fit = self.fit_points(&q, &self.cfg, ws);
         let before = cl.volume[a as usize] + cl.volume[b as usize];
         if fit.volume - before > self.max_excess {
             return None;

@@ -7,7 +7,7 @@ use crate::merge::{Clusters, Evaluator, Workspace};
 use crate::mesh::{adjacency, dedup, Mesh};
 use crate::params::Params;
 use crate::postprocess::{keep_mask, Cleanup};
-use crate::primitive::fit::FitConfig;
+use crate::primitive::fit::{FitConfig, FrameSearch};
 use crate::primitive::Primitive;
 use crate::quadric;
 use rayon::prelude::*;
@@ -200,7 +200,7 @@ pub fn evaluator<'a>(
             weights: params.weights,
             enabled: params.kinds,
             min_half,
-            edge_frames: true,
+            frames: FrameSearch::Degenerate,
         },
         max_excess: params
             .max_excess_volume

@@ -6,7 +6,7 @@ use super::cluster::Clusters;
 use super::heap::Candidate;
 use crate::math::Sym3;
 use crate::mesh::Mesh;
-use crate::primitive::fit::{Fit, FitConfig};
+use crate::primitive::fit::{Fit, FitConfig, FrameSearch};
 use crate::primitive::{fit_best, Cloud, FitScratch};
 
 /// Per-thread reusable buffers: the gathered points and the fit's scratch.
@@ -96,7 +96,7 @@ impl<'a> Evaluator<'a> {
         ws.clear();
         self.push_points(self.face(f), ws);
         let cfg = FitConfig {
-            edge_frames: false,
+            frames: FrameSearch::Eigen,
             ..self.cfg
         };
         self.fit_points(q, &cfg, ws)
@@ -112,7 +112,13 @@ impl<'a> Evaluator<'a> {
         for f in cl.faces(c) {
             self.push_points(self.mesh.face(f as usize), ws);
         }
-        self.fit_points(&cl.q[c as usize], &self.cfg, ws)
+        // Output only: every cluster also tries the frames turned about its normal
+        // (ARCHITECTURE.md, deviation 14); merges stay priced as before.
+        let cfg = FitConfig {
+            frames: FrameSearch::Always,
+            ..self.cfg
+        };
+        self.fit_points(&cl.q[c as usize], &cfg, ws)
     }
 
     /// Distinct vertices of every face of cluster `c` (the faces' own, not welded), sorted.

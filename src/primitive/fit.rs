@@ -47,9 +47,23 @@ pub struct FitConfig {
     pub enabled: [bool; 6],
     /// Smallest half-extent/radius of any primitive (absolute units).
     pub min_half: f64,
-    /// Whether clusters with a degenerate eigen-frame also try hull-edge frames
-    /// ([`frame`]); off, every fit uses the eigen-frame alone, as §3.2.
-    pub edge_frames: bool,
+    /// Which frames besides Q's eigen-frame a fit tries ([`FrameSearch`]).
+    pub frames: FrameSearch,
+}
+
+/// Which frames a fit tries besides the eigen-frame of §3.2 (ARCHITECTURE.md,
+/// deviations 13 and 14).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FrameSearch {
+    /// The eigen-frame alone, as §3.2 (single faces when they price merges).
+    Eigen,
+    /// Also the hull-edge frames ([`frame`]) where the eigen-frame is degenerate: two
+    /// eigenvalues tie or the cluster is coplanar (merge pricing).
+    Degenerate,
+    /// Also the hull-edge frames turned about the normal axis (the largest eigenvalue's)
+    /// for every cluster: the output fits, where a nearly flat cluster's in-plane axes
+    /// would otherwise come from the tangent term alone.
+    Always,
 }
 
 /// Reusable buffers: the points' coordinates in the OBB frame (centred on the OBB).
@@ -100,11 +114,13 @@ pub fn fit_best(cloud: &Cloud, q: &Sym3, cfg: &FitConfig, s: &mut FitScratch) ->
     let eig = eigen_sym3(q);
     let axes = eig.vectors;
     let mut best = fit_in_frame(cloud, axes, cfg, s, None);
-    if !cfg.edge_frames {
-        return best;
-    }
-    let flat = || frame::flat(s.span).then_some((1, 2));
-    let Some(plane) = frame::tied_plane(&eig.values).or_else(flat) else {
+    let tied = frame::tied_plane(&eig.values);
+    let plane = match cfg.frames {
+        FrameSearch::Eigen => None,
+        FrameSearch::Degenerate => tied.or_else(|| frame::flat(s.span).then_some((1, 2))),
+        FrameSearch::Always => tied.or(Some((1, 2))),
+    };
+    let Some(plane) = plane else {
         return best;
     };
     let (e0, e1) = (axes[plane.0], axes[plane.1]);
@@ -500,7 +516,17 @@ mod tests {
             weights: [1.0; 6],
             enabled,
             min_half: 1e-6,
-            edge_frames: true,
+            frames: FrameSearch::Degenerate,
+        }
+    }
+
+    /// Every kind with the paper's weights, as the engine prices merges.
+    fn all_kinds() -> FitConfig {
+        FitConfig {
+            weights: [1.0, 1.0, 1.0, 1.05, 2.1, 1.4],
+            enabled: [true; 6],
+            min_half: 1e-6,
+            frames: FrameSearch::Degenerate,
         }
     }
 
@@ -609,12 +635,7 @@ mod tests {
     #[test]
     fn pruned_fit_equals_full_fit() {
         let mut rng = ChaCha8Rng::seed_from_u64(5);
-        let cfg = FitConfig {
-            weights: [1.0, 1.0, 1.0, 1.05, 2.1, 1.4],
-            enabled: [true; 6],
-            min_half: 1e-6,
-            edge_frames: true,
-        };
+        let cfg = all_kinds();
         let mut kinds = [0usize; 6];
         for trial in 0..4000 {
             let pts = pruning_cloud(&mut rng, trial % 4);
@@ -701,6 +722,57 @@ mod tests {
             let c = fit_kind(&pts, &q, Kind::Cylinder).volume;
             let fr = fit_kind(&pts, &q, Kind::Frustum).volume;
             assert!(fr <= c * (1.0 + 1e-9), "frustum {fr} > cylinder {c}");
+        }
+    }
+
+    /// A nearly flat 4 × 1 plate (not coplanar within the 1e-6 of `frame::flat`) whose
+    /// operator's in-plane axes are turned by 30° (as a tangent term can turn them):
+    /// `Degenerate` keeps the turned box, `Always` finds the plate's own rectangle
+    /// (deviation 14), and over random clouds `Always` is never costlier.
+    #[test]
+    fn always_turns_nearly_flat_clusters_onto_their_edges() {
+        let mut pts = Vec::new();
+        for (i, (x, y)) in [(-2.0, -0.5), (2.0, -0.5), (2.0, 0.5), (-2.0, 0.5)]
+            .into_iter()
+            .enumerate()
+        {
+            pts.push([x, y, 1e-3 * (i % 2) as f64]);
+        }
+        let (c, s) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
+        let q = Sym3::outer([0.0, 0.0, 1.0], 1.0)
+            .add(&Sym3::outer([c, s, 0.0], 0.02))
+            .add(&Sym3::outer([-s, c, 0.0], 0.01));
+        let with = |frames| FitConfig {
+            frames,
+            ..only(Kind::Box)
+        };
+        let turned = fit_with(&pts, &q, &with(FrameSearch::Degenerate)).volume;
+        let along = fit_with(&pts, &q, &with(FrameSearch::Always)).volume;
+        let plate = 4.0 * 1.0 * 1e-3;
+        assert!(
+            (along - plate).abs() <= 1e-9,
+            "Always: {along} vs plate {plate}"
+        );
+        assert!(
+            turned > 1.5 * plate,
+            "Degenerate kept the turned frame: {turned}"
+        );
+        let mut rng = ChaCha8Rng::seed_from_u64(14);
+        let all = all_kinds();
+        for _ in 0..300 {
+            let pts = random_cloud(&mut rng, 12, [1.0, 1.0, 0.01]);
+            let q = random_q(&mut rng);
+            let d = fit_with(&pts, &q, &all).cost;
+            let a = fit_with(
+                &pts,
+                &q,
+                &FitConfig {
+                    frames: FrameSearch::Always,
+                    ..all
+                },
+            )
+            .cost;
+            assert!(a <= d, "Always {a} > Degenerate {d}");
         }
     }
 }

@@ -4,7 +4,8 @@ primdecomp against CoACD and V-HACD -> docs/results/sim.md.
 
 For each mesh: our collider is `primdecomp decompose MESH -n N` with N as
 docs/results/compare.json chose it for the mesh (the byte-budget rule of
-benches/compare), else max(32, 1% of the faces) (decomposed on every run; the simulation report is
+benches/compare), else max(32, 1% of the faces), plus one at each peer's own hull
+count (the same number of colliders) (decomposed on every run; the simulation report is
 cached under benches/.cache/sim by the mesh's sha256, the settings and a hash of our
 primitives, so an engine change re-simulates); the peers' hulls come from peer caches laid out as
 benches/compare writes them, PEER_CACHE/<sha256[:16]>-<method>-<key>/hulls.obj
@@ -94,14 +95,17 @@ def compare_target(mesh_name):
     return None
 
 
-def ours(mesh, sha, binary):
+def ours(mesh, sha, binary, n=None):
     """Our collider for the mesh, decomposed afresh (the engine may have changed since
     the last run), its target N and rule, and a short hash of its primitives that keys
-    the simulation report. N: the comparison report's choice (the most primitives whose
-    bytes stay within a third of CoACD's), else max(32, 1% of the faces)."""
+    the simulation report. N: `n` when given (a peer's hull count), else the comparison
+    report's choice (the most primitives whose bytes stay within a third of CoACD's),
+    else max(32, 1% of the faces)."""
     work = CACHE / "sim" / sha[:16]
     work.mkdir(parents=True, exist_ok=True)
-    n, rule = compare_target(mesh.name), "compare.json"
+    rule = "a peer's hull count"
+    if n is None:
+        n, rule = compare_target(mesh.name), "compare.json"
     if n is None:
         n, rule = max(32, round(faces_of(mesh, binary, work) / 100)), "max(32, 1% of faces)"
     out = work / f"ours_n{n}.json"
@@ -109,6 +113,12 @@ def ours(mesh, sha, binary):
     prims = json.dumps(json.loads(out.read_text())["primitives"], sort_keys=True)
     # The report names our collider by its path (ours_n<N>.json), so N is in the key.
     return out, work, rule, f"n{n}_" + hashlib.sha256(prims.encode()).hexdigest()[:12]
+
+
+def hull_count(obj):
+    """Hulls in a peer's OBJ: one per `o`/`g` line (as `primdecomp sim` reads them)."""
+    with open(obj, errors="replace") as f:
+        return sum(1 for line in f if line.startswith(("o ", "g ")))
 
 
 def simulate(mesh, colliders, work, key, a):
@@ -130,7 +140,8 @@ def write_summary(r, a, rule):
     simulation columns (methods: mesh, ours, coacd, vhacd)."""
     d = CACHE / "sim" / "summary"
     d.mkdir(parents=True, exist_ok=True)
-    out = {role: {k: r[role][k] for k in SUMMARY_KEYS} for role in ["mesh", "ours", *PEERS] if r.get(role)}
+    roles = ["mesh", "ours", *PEERS, *(f"ours_at_{p}" for p in PEERS)]
+    out = {role: {k: r[role][k] for k in SUMMARY_KEYS + ["shapes"]} for role in roles if r.get(role)}
     out["settings"] = {"balls": a.balls, "frames": a.frames, "seed": a.seed,
                        "ours_n": rule, "ours_primitives": r["ours"]["shapes"]}
     tmp = d / f"{r['name']}.json.tmp"
@@ -190,21 +201,44 @@ def tables(rows, a):
         st = [fmt(g(r, k, "similarity_set"), ".3f") for k in ["ours", *PEERS]]
         on = [fmt(g(r, k, "on_object"), ".3f") for k in ["mesh", "ours", *PEERS]]
         lines.append(f"| {r['name']} | " + " | ".join(sim + st + on) + " |")
+    lines += [
+        "",
+        "### Ours at each peer's own shape count",
+        "",
+        "The same simulation, with ours decomposed to N = the peer's hull count (`-n N`; nested "
+        "primitives removed afterwards can leave fewer): the same number of colliders in the scene.",
+        "",
+        "| mesh | peer | peer hulls | our prims | ours/peer step wall | CPU | similarity ours | peer "
+        "| set ours | peer | on object ours | peer |",
+        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+    ]
+    for r in rows:
+        for p in PEERS:
+            at = f"ours_at_{p}"
+            if not (r.get(at) and r.get(p)):
+                continue
+            cells = [r["name"], LABEL[p], fmt(g(r, p, "shapes"), "d"), fmt(g(r, at, "shapes"), "d"),
+                     fmt(ratio(g(r, at, "frame_ms_median"), g(r, p, "frame_ms_median")), ".2f"),
+                     fmt(ratio(g(r, at, "cpu_ms_median"), g(r, p, "cpu_ms_median")), ".2f")]
+            cells += [fmt(g(r, m, k), ".3f") for k in ["similarity", "similarity_set", "on_object"] for m in [at, p]]
+            lines.append("| " + " | ".join(cells) + " |")
     return lines
 
 
 def summary(rows):
     out = []
     for peer in PEERS:
-        both = [r for r in rows if r.get("ours") and r.get(peer)]
-        if not both:
-            continue
-        faster = sum(r["ours"]["frame_ms_median"] <= r[peer]["frame_ms_median"] for r in both)
-        cheaper = sum(r["ours"]["cpu_ms_median"] <= r[peer]["cpu_ms_median"] for r in both)
-        closer = sum(r["ours"]["similarity"] >= r[peer]["similarity"] for r in both)
-        closer_set = sum(r["ours"]["similarity_set"] >= r[peer]["similarity_set"] for r in both)
-        out.append(f"- vs {LABEL[peer]} on {len(both)} meshes: our median step ≤ theirs on {faster} by wall clock, "
-                   f"{cheaper} by CPU time; our similarity ≥ theirs on {closer}, set similarity on {closer_set}.")
+        for mine, how in (("ours", "byte rule"), (f"ours_at_{peer}", "same shape count")):
+            both = [r for r in rows if r.get(mine) and r.get(peer)]
+            if not both:
+                continue
+            faster = sum(r[mine]["frame_ms_median"] <= r[peer]["frame_ms_median"] for r in both)
+            cheaper = sum(r[mine]["cpu_ms_median"] <= r[peer]["cpu_ms_median"] for r in both)
+            closer = sum(r[mine]["similarity"] >= r[peer]["similarity"] for r in both)
+            closer_set = sum(r[mine]["similarity_set"] >= r[peer]["similarity_set"] for r in both)
+            out.append(f"- vs {LABEL[peer]} on {len(both)} meshes, ours at the {how}: our median step ≤ theirs "
+                       f"on {faster} by wall clock, {cheaper} by CPU time; our similarity ≥ theirs on {closer}, "
+                       f"set similarity on {closer_set}.")
     return out
 
 
@@ -230,7 +264,15 @@ def main(argv):
         mine, work, rule, key = ours(mesh, sha, a.bin)
         found = {p: peer_obj(a.peer_cache, sha, p) for p in PEERS}
         order = {"ours": mine} | {p: f[0] for p, f in found.items()}
-        rep = simulate(mesh, [p for p in order.values() if p], work, key, a)
+        keys = [key]
+        for p, (obj, _) in found.items():
+            if obj is not None:
+                # Ours at the peer's own shape count: the same number of colliders.
+                at, _, _, k = ours(mesh, sha, a.bin, hull_count(obj))
+                order[f"ours_at_{p}"] = at
+                keys.append(k)
+        colliders = list(dict.fromkeys(str(p) for p in order.values() if p))
+        rep = simulate(mesh, colliders, work, "_".join(sorted(set(keys))), a)
         rows.append(row(mesh.name, rep, order))
         write_summary(rows[-1], a, rule)
         missing += [f"- {mesh.name}: no {LABEL[p]} hulls ({f[1]})" for p, f in found.items() if f[0] is None]
@@ -241,7 +283,7 @@ def main(argv):
         f"{a.balls} balls, {a.frames} frames at 1/60 s, seed {a.seed}, Rapier single-threaded, all colliders of a "
         "mesh interleaved frame by frame in one process (`primdecomp sim`). Ours: N as chosen in "
         "`docs/results/compare.json` (the most primitives whose bytes stay within a third of CoACD's), "
-        "else max(32, 1% of faces). "
+        "else max(32, 1% of faces); and, in the last table, at each peer's own hull count. "
         "Regenerate with:",
         "",
         "```sh",

@@ -127,8 +127,8 @@ def sim_table(records):
     st = next(r["sim"].get("settings", {}) for r in rows)
     g = lambda r, m, k: (r["sim"].get(m) or {}).get(k)  # noqa: E731
 
-    def ratio(r, peer, k):
-        a, b = g(r, "ours", k), g(r, peer, k)
+    def ratio(r, peer, k, mine="ours"):
+        a, b = g(r, mine, k), g(r, peer, k)
         return "–" if a is None or b in (None, 0) else f"{a / b:.2f}"
 
     def num(x):
@@ -144,27 +144,37 @@ def sim_table(records):
         "step in brackets); similarity = fraction of balls ending within one diameter of where the same ball "
         "ends on the mesh itself (`src/sim/mod.rs`).",
         "",
-        "| mesh | our prims | ours/CoACD step | ours/V-HACD step | similarity ours | CoACD | V-HACD |",
-        "|---|---:|---:|---:|---:|---:|---:|",
+        "The last four columns repeat the comparison with ours decomposed to each peer's own hull "
+        "count (the same number of colliders in the scene).",
+        "",
+        "| mesh | our prims | ours/CoACD step | ours/V-HACD step | similarity ours | CoACD | V-HACD "
+        "| at CoACD's count: step ratio | similarity | at V-HACD's count: step ratio | similarity |",
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
     ]
     for r in rows:
         cells = [r["mesh"], str(r["sim"].get("settings", {}).get("ours_primitives", "–"))]
         for peer in ("coacd", "vhacd"):
             cells.append(f"{ratio(r, peer, 'frame_ms_median')} ({ratio(r, peer, 'cpu_ms_median')})")
         cells += [num(g(r, m, "similarity")) for m in ("ours", "coacd", "vhacd")]
+        for peer in ("coacd", "vhacd"):
+            at = f"ours_at_{peer}"
+            cells.append(f"{ratio(r, peer, 'frame_ms_median', at)} ({ratio(r, peer, 'cpu_ms_median', at)})")
+            cells.append(num(g(r, at, "similarity")))
         lines.append("| " + " | ".join(cells) + " |")
     lines.append("")
     for peer, label in (("coacd", "CoACD"), ("vhacd", "V-HACD")):
-        both = [r for r in rows if g(r, peer, "frame_ms_median") is not None]
-        if not both:
-            continue
-        fast = sum(g(r, "ours", "frame_ms_median") <= g(r, peer, "frame_ms_median") for r in both)
-        cpu = sum(g(r, "ours", "cpu_ms_median") <= g(r, peer, "cpu_ms_median") for r in both)
-        sim = sum(g(r, "ours", "similarity") >= g(r, peer, "similarity") for r in both)
-        ok = "met" if fast == len(both) and sim == len(both) else "**NOT met**"
-        lines.append(f"- Goal (frame time ≤ {label}'s and similarity ≥ {label}'s on every mesh): {ok} — "
-                     f"step ≤ on {fast} of {len(both)} meshes by wall clock, {cpu} by CPU time; "
-                     f"similarity ≥ on {sim} of {len(both)}.")
+        for mine, how in (("ours", "at the byte rule"), (f"ours_at_{peer}", f"at {label}'s hull count")):
+            both = [r for r in rows if g(r, peer, "frame_ms_median") is not None
+                    and g(r, mine, "frame_ms_median") is not None]
+            if not both:
+                continue
+            fast = sum(g(r, mine, "frame_ms_median") <= g(r, peer, "frame_ms_median") for r in both)
+            cpu = sum(g(r, mine, "cpu_ms_median") <= g(r, peer, "cpu_ms_median") for r in both)
+            sim = sum(g(r, mine, "similarity") >= g(r, peer, "similarity") for r in both)
+            ok = "met" if fast == len(both) and sim == len(both) else "**NOT met**"
+            lines.append(f"- Goal (frame time ≤ {label}'s and similarity ≥ {label}'s on every mesh), ours {how}: "
+                         f"{ok} — step ≤ on {fast} of {len(both)} meshes by wall clock, {cpu} by CPU time; "
+                         f"similarity ≥ on {sim} of {len(both)}.")
     return lines + [""]
 
 

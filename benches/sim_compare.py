@@ -19,6 +19,7 @@ docs/results/compare.md. Standard library only.
 Usage:
   python3 benches/sim_compare.py [--meshes NAME ...] [--balls 5000] [--frames 1000]
       [--peer-cache DIR ...] [--bin target/release/primdecomp] [--out docs/results/sim.md]
+      [--decompose-args='--merge-min-extent 0.002' --no-summary]
 """
 
 import argparse
@@ -95,7 +96,7 @@ def compare_target(mesh_name):
     return None
 
 
-def ours(mesh, sha, binary, n=None):
+def ours(mesh, sha, binary, n=None, extra=()):
     """Our collider for the mesh, decomposed afresh (the engine may have changed since
     the last run), its target N and rule, and a short hash of its primitives that keys
     the simulation report. N: `n` when given (a peer's hull count), else the comparison
@@ -108,11 +109,12 @@ def ours(mesh, sha, binary, n=None):
         n, rule = compare_target(mesh.name), "compare.json"
     if n is None:
         n, rule = max(32, round(faces_of(mesh, binary, work) / 100)), "max(32, 1% of faces)"
-    out = work / f"ours_n{n}.json"
-    subprocess.run([binary, "decompose", str(mesh), "-n", str(n), "-o", str(out), "--quiet"], check=True)
+    tag = hashlib.sha256(" ".join(extra).encode()).hexdigest()[:8] if extra else ""
+    out = work / f"ours_n{n}{'_' + tag if tag else ''}.json"
+    subprocess.run([binary, "decompose", str(mesh), "-n", str(n), "-o", str(out), "--quiet", *extra], check=True)
     prims = json.dumps(json.loads(out.read_text())["primitives"], sort_keys=True)
     # The report names our collider by its path (ours_n<N>.json), so N is in the key.
-    return out, work, rule, f"n{n}_" + hashlib.sha256(prims.encode()).hexdigest()[:12]
+    return out, work, rule, f"n{n}{tag}_" + hashlib.sha256(prims.encode()).hexdigest()[:12]
 
 
 def hull_count(obj):
@@ -253,6 +255,12 @@ def main(argv):
     ap.add_argument("--bin", default=str(ROOT / "target" / "release" / "primdecomp"))
     ap.add_argument("--out", default=str(ROOT / "docs" / "results" / "sim.md"))
     ap.add_argument("--rerun", action="store_true", help="simulate again even when a report is cached")
+    ap.add_argument("--decompose-args", default="", type=str.split,
+                    help="extra arguments for our `primdecomp decompose` runs, one string "
+                         "(e.g. --decompose-args='--merge-min-extent 0.002'); "
+                         "use with --out and --no-summary to keep the default report")
+    ap.add_argument("--no-summary", action="store_true",
+                    help="do not write benches/.cache/sim/summary (the columns of docs/results/compare.md)")
     a = ap.parse_args(argv)
     rows, missing = [], []
     for name in a.meshes:
@@ -261,20 +269,21 @@ def main(argv):
             print(f"CORPUS ABSENT or no such mesh: {mesh}", file=sys.stderr)
             continue
         sha = sha256_file(mesh)
-        mine, work, rule, key = ours(mesh, sha, a.bin)
+        mine, work, rule, key = ours(mesh, sha, a.bin, extra=a.decompose_args)
         found = {p: peer_obj(a.peer_cache, sha, p) for p in PEERS}
         order = {"ours": mine} | {p: f[0] for p, f in found.items()}
         keys = [key]
         for p, (obj, _) in found.items():
             if obj is not None:
                 # Ours at the peer's own shape count: the same number of colliders.
-                at, _, _, k = ours(mesh, sha, a.bin, hull_count(obj))
+                at, _, _, k = ours(mesh, sha, a.bin, hull_count(obj), a.decompose_args)
                 order[f"ours_at_{p}"] = at
                 keys.append(k)
         colliders = list(dict.fromkeys(str(p) for p in order.values() if p))
         rep = simulate(mesh, colliders, work, "_".join(sorted(set(keys))), a)
         rows.append(row(mesh.name, rep, order))
-        write_summary(rows[-1], a, rule)
+        if not a.no_summary:
+            write_summary(rows[-1], a, rule)
         missing += [f"- {mesh.name}: no {LABEL[p]} hulls ({f[1]})" for p, f in found.items() if f[0] is None]
     cmd = "python3 benches/sim_compare.py " + " ".join(sys.argv[1:])
     text = [

@@ -100,6 +100,11 @@ struct DecomposeArgs {
     /// Minimum half-extent of a primitive, as a fraction of the input's AABB diagonal.
     #[arg(long, default_value_t = 5e-4)]
     min_extent: f64,
+    /// Price merges as if every primitive were at least this thick (half-extent, as a
+    /// fraction of the diagonal): coplanar merges across gaps and holes cost more;
+    /// output primitives keep --min-extent. Default: the same as --min-extent.
+    #[arg(long)]
+    merge_min_extent: Option<f64>,
     /// Keep primitives whose points lie inside another primitive.
     #[arg(long)]
     keep_contained: bool,
@@ -209,6 +214,7 @@ fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
         max_excess_volume: a.max_excess_volume,
         tangent_eps: a.tangent_eps,
         min_extent_rel: a.min_extent,
+        merge_min_extent_rel: a.merge_min_extent,
         remove_contained: !a.keep_contained,
         remove_thin_boxes: a.remove_thin_boxes,
         ..Default::default()

@@ -190,6 +190,8 @@ pub fn evaluator<'a>(
     let (lo, hi) = bounds;
     let diag = crate::math::norm(crate::math::sub(hi, lo));
     let min_half = (params.min_extent_rel * diag).max(MIN_HALF);
+    // Merges may be priced with a thicker floor than the output's (Params docs).
+    let price_half = (params.merge_min_extent_rel.unwrap_or(0.0) * diag).max(min_half);
     let aabb_volume: f64 = (0..3)
         .map(|k| (hi[k] - lo[k]).max(2.0 * min_half))
         .product();
@@ -199,9 +201,10 @@ pub fn evaluator<'a>(
         cfg: FitConfig {
             weights: params.weights,
             enabled: params.kinds,
-            min_half,
+            min_half: price_half,
             frames: FrameSearch::Degenerate,
         },
+        output_min_half: min_half,
         max_excess: params
             .max_excess_volume
             .map_or(f64::INFINITY, |m| m * aabb_volume),

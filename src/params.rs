@@ -11,6 +11,7 @@
 //! | `tangent_eps` | 0.01 | primitives align more with quad edge directions | at 0, orientation of flat clusters depends on round-off (§3.4) |
 //! | `dedup` | exact | `Tolerance(d)` also welds vertices closer than d (fuses parts) | `Off` keeps duplicate vertices: fewer merges across seams |
 //! | `min_extent_rel` | 5e-4 | flat clusters cost more: fewer coplanar "free" merges | flatter primitives; 0 is refused |
+//! | `merge_min_extent_rel` | none (= `min_extent_rel`) | merges are priced as if primitives were at least this thick: coplanar merges across gaps and holes (a roof's rim into a lid) cost more; output thickness unchanged | — (below `min_extent_rel` it has no effect) |
 //! | `remove_contained` | true | — | keeps nested primitives |
 //! | `remove_thin_boxes` | None | (when set) drops boxes thinner than this fraction of the diagonal if still covered | — |
 
@@ -50,6 +51,11 @@ pub struct Params {
     /// Minimum half-extent of any primitive as a fraction of the input's AABB diagonal
     /// (the paper's absolute 1e-3, made relative so results do not depend on units).
     pub min_extent_rel: f64,
+    /// Minimum half-extent when *pricing* merges, as a fraction of the diagonal (the
+    /// larger of this and `min_extent_rel` applies); output primitives keep
+    /// `min_extent_rel`. `None`: the same as `min_extent_rel` (the paper's single floor).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub merge_min_extent_rel: Option<f64>,
     /// Remove primitives whose points lie inside another primitive (§3.4).
     pub remove_contained: bool,
     /// Remove boxes whose smallest half-extent is below this fraction of the diagonal,
@@ -80,6 +86,7 @@ impl Default for Params {
             tangent_eps: 0.01,
             dedup: Dedup::Exact,
             min_extent_rel: 5e-4,
+            merge_min_extent_rel: None,
             remove_contained: true,
             remove_thin_boxes: None,
         }
@@ -122,6 +129,11 @@ impl Params {
                 "min-extent must be in (0, 1), got {}",
                 self.min_extent_rel
             ));
+        }
+        if let Some(m) = self.merge_min_extent_rel {
+            if !(m.is_finite() && (0.0..1.0).contains(&m)) {
+                return bad(format!("merge-min-extent must be in [0, 1), got {m}"));
+            }
         }
         if let Some(m) = self.max_excess_volume {
             if !(m.is_finite() && m >= 0.0) {

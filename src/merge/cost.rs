@@ -33,6 +33,9 @@ pub struct Evaluator<'a> {
     /// Welded face indices (same CSR offsets as the mesh).
     pub welded: &'a [u32],
     pub cfg: FitConfig,
+    /// The output primitives' minimum half-extent (`cfg.min_half` prices merges and
+    /// may be larger: `Params::merge_min_extent_rel`).
+    pub output_min_half: f64,
     /// Largest excess volume one merge may add (absolute); `INFINITY` = no limit.
     pub max_excess: f64,
     /// Costs are rounded to multiples of this volume (a fixed fraction of the input's
@@ -116,6 +119,7 @@ impl<'a> Evaluator<'a> {
         // (ARCHITECTURE.md, deviation 14); merges stay priced as before.
         let cfg = FitConfig {
             frames: FrameSearch::Always,
+            min_half: self.output_min_half,
             ..self.cfg
         };
         self.fit_points(&cl.q[c as usize], &cfg, ws)

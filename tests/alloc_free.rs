@@ -4,10 +4,10 @@
 //! allocation. A counting global allocator proves it; it counts this thread only, so
 //! the test harness's other threads cannot disturb the count.
 
-use primdecomp::decompose::{evaluator, seed_volumes};
-use primdecomp::merge::{Clusters, Evaluator, Workspace};
-use primdecomp::mesh::{adjacency, dedup};
-use primdecomp::{demo, quadric, Mesh, Params};
+mod common;
+
+use common::demo::{grow, with_demo};
+use primdecomp::merge::Workspace;
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
@@ -43,34 +43,10 @@ fn allocations() -> u64 {
     ALLOCS.with(|c| c.get())
 }
 
-/// Runs `f` on the demo scene's evaluator, its single-face clusters and adjacent pairs.
-fn with_demo<R>(f: impl FnOnce(&Evaluator, Clusters, Vec<(u32, u32)>) -> R) -> R {
-    let mesh = Mesh::from_builder(demo::demo_scene());
-    let p = Params::default();
-    let (welded, _) = dedup::weld(&mesh, p.dedup);
-    let pairs = adjacency::face_pairs(&mesh.face_offsets, &welded);
-    let mut q = Vec::new();
-    quadric::face_quadrics(&mesh, p.tangent_eps, &mut q);
-    let ev = evaluator(&mesh, &welded, &p, mesh.aabb());
-    let vols = seed_volumes(&ev, &q);
-    let cl = Clusters::new(q, vols, &pairs);
-    f(&ev, cl, pairs)
-}
-
 #[test]
 fn pricing_merges_allocates_nothing_once_warm() {
     with_demo(|ev, mut cl, pairs| {
-        // Grow some clusters first, so candidates span multi-face point lists too.
-        for &(a, b) in pairs.iter().take(1500) {
-            let (ra, rb) = (cl.find(a), cl.find(b));
-            if ra != rb {
-                let mut verts = ev.all_verts(&cl, ra);
-                verts.extend(ev.all_verts(&cl, rb));
-                verts.sort_unstable();
-                verts.dedup();
-                cl.merge(ra, rb, verts, 1.0);
-            }
-        }
+        grow(ev, &mut cl, &pairs, 1500);
         let live: Vec<(u32, u32)> = pairs
             .iter()
             .map(|&(a, b)| (cl.find(a), cl.find(b)))

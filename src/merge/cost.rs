@@ -26,6 +26,17 @@ impl Workspace {
     }
 }
 
+/// What pricing a merge needs of one cluster: its root id, points, operator, volume
+/// and version. A copy of these (`merge::worker`) prices like the cluster itself.
+#[derive(Clone, Copy, Debug)]
+pub struct Side<'s> {
+    pub id: u32,
+    pub verts: &'s [u32],
+    pub q: Sym3,
+    pub volume: f64,
+    pub version: u32,
+}
+
 /// Everything needed to price a merge: positions, welded faces and fit settings.
 #[derive(Clone, Copy, Debug)]
 pub struct Evaluator<'a> {
@@ -71,13 +82,6 @@ impl<'a> Evaluator<'a> {
         ws.x.extend(vs.iter().map(|&v| m.x[v as usize]));
         ws.y.extend(vs.iter().map(|&v| m.y[v as usize]));
         ws.z.extend(vs.iter().map(|&v| m.z[v as usize]));
-    }
-
-    fn gather(&self, cl: &Clusters, cs: &[u32], ws: &mut Workspace) {
-        ws.clear();
-        for &c in cs {
-            self.push_points(self.verts(cl, c), ws);
-        }
     }
 
     /// The gathered points' best fit under `cfg`.
@@ -136,6 +140,17 @@ impl<'a> Evaluator<'a> {
         v
     }
 
+    /// What pricing a merge needs of root `c` (see [`Side`]).
+    pub fn side<'b>(&'b self, cl: &'b Clusters, c: u32) -> Side<'b> {
+        Side {
+            id: c,
+            verts: self.verts(cl, c),
+            q: cl.q[c as usize],
+            volume: cl.volume[c as usize],
+            version: cl.version[c as usize],
+        }
+    }
+
     /// The merge of roots `a` and `b` as a queue entry with its fit, or `None` when it
     /// would add more excess volume than allowed (§3.3 "Excess Volume Thresholding").
     pub fn candidate(
@@ -145,22 +160,30 @@ impl<'a> Evaluator<'a> {
         b: u32,
         ws: &mut Workspace,
     ) -> Option<(Candidate, Fit)> {
-        let (a, b) = (a.min(b), a.max(b));
+        self.candidate_of(self.side(cl, a), self.side(cl, b), ws)
+    }
+
+    /// [`Self::candidate`] from the two clusters' snapshots: the same arithmetic in the
+    /// same order, so a copy of the sides prices bit for bit like the clusters.
+    pub fn candidate_of(&self, a: Side, b: Side, ws: &mut Workspace) -> Option<(Candidate, Fit)> {
+        let (a, b) = if a.id <= b.id { (a, b) } else { (b, a) };
         // Points shared by both clusters are streamed twice; max/min fits don't care.
-        self.gather(cl, &[a, b], ws);
-        let q = cl.q[a as usize].add(&cl.q[b as usize]);
+        ws.clear();
+        self.push_points(a.verts, ws);
+        self.push_points(b.verts, ws);
+        let q = a.q.add(&b.q);
         let fit = self.fit_points(&q, &self.cfg, ws);
-        let before = cl.volume[a as usize] + cl.volume[b as usize];
+        let before = a.volume + b.volume;
         if fit.volume - before > self.max_excess {
             return None;
         }
         let c = Candidate {
             cost: ((fit.cost - before) / self.cost_unit).round(),
             volume: fit.volume,
-            a,
-            b,
-            ver_a: cl.version[a as usize],
-            ver_b: cl.version[b as usize],
+            a: a.id,
+            b: b.id,
+            ver_a: a.version,
+            ver_b: b.version,
         };
         Some((c, fit))
     }

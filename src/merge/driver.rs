@@ -9,14 +9,13 @@ use super::bridge::{nearest_pairs, BRIDGE_K};
 use super::cluster::Clusters;
 use super::cost::{Evaluator, Workspace};
 use super::heap::{Candidate, Queue, RadixHeap};
+use super::worker::{with_pricer, Pricer, Stats};
 use crate::math::hull::{hull_vertices, HullWorkspace};
 use crate::primitive::Primitive;
 use rayon::prelude::*;
 
 /// Pairs priced per parallel task.
 const CHUNK: usize = 1024;
-/// Below this many points in a re-pricing batch, stay on one thread.
-const PAR_POINTS: usize = 1 << 15;
 /// Point lists up to this size are not worth reducing to their hull.
 const HULL_MIN: usize = 12;
 /// Pairs priced per block when seeding the queue.
@@ -106,9 +105,34 @@ pub fn run(
 /// [`run`] with a chosen queue (the benchmarks compare them; the order is the same).
 pub fn run_with<Q: Queue>(
     ev: &Evaluator,
+    cl: Clusters,
+    targets: &[usize],
+    progress: &(dyn Fn(f64) + Sync),
+) -> MergeOutput {
+    run_counted::<Q>(ev, cl, targets, progress).0
+}
+
+/// [`run_with`], sharing re-pricing batches with a worker thread (`merge::worker`) when
+/// rayon's pool has two threads or more; also returns the pricer's counters.
+fn run_counted<Q: Queue>(
+    ev: &Evaluator,
+    cl: Clusters,
+    targets: &[usize],
+    progress: &(dyn Fn(f64) + Sync),
+) -> (MergeOutput, Stats) {
+    with_pricer(ev, |p| {
+        let out = merge_loop::<Q>(ev, cl, targets, progress, p);
+        (out, p.stats)
+    })
+}
+
+/// The loop of [`run_with`]; `pricer` re-prices each merged cluster's neighbours.
+fn merge_loop<Q: Queue>(
+    ev: &Evaluator,
     mut cl: Clusters,
     targets: &[usize],
     progress: &(dyn Fn(f64) + Sync),
+    pricer: &mut Pricer,
 ) -> MergeOutput {
     let mut out = MergeOutput::default();
     let mut heap = Q::default();
@@ -134,7 +158,6 @@ pub fn run_with<Q: Queue>(
         mark: vec![0; ev.mesh.vertex_count()],
         epoch: 0,
     };
-    let mut ws = Workspace::default();
     let mut reducer = Reducer::default();
     let start = cl.live;
     let last = *targets.last().expect("at least one target");
@@ -169,7 +192,7 @@ pub fn run_with<Q: Queue>(
         let verts = merged_points(ev, &cl, c.a, c.b, &mut stamps, &mut reducer);
         let root = cl.merge(c.a, c.b, verts, c.volume);
         out.merges += 1;
-        reprice_neighbors(ev, &mut cl, root, &mut heap, &mut ws);
+        reprice_neighbors(&mut cl, root, &mut heap, pricer);
         if out.merges % 4096 == 0 {
             progress((start - cl.live) as f64 / (start - last.min(start)).max(1) as f64);
         }
@@ -230,44 +253,11 @@ fn merged_points(
     r.keep.iter().map(|&i| out[i as usize]).collect()
 }
 
-/// Re-prices every merge of the new cluster with its neighbours, in parallel when the
-/// batch is large (results are pushed in neighbour order either way).
-fn reprice_neighbors<Q: Queue>(
-    ev: &Evaluator,
-    cl: &mut Clusters,
-    root: u32,
-    heap: &mut Q,
-    ws: &mut Workspace,
-) {
+/// Re-prices every merge of the new cluster with its neighbours (on two threads when
+/// the pricer has a worker; candidates are pushed in neighbour order either way).
+fn reprice_neighbors<Q: Queue>(cl: &mut Clusters, root: u32, heap: &mut Q, pricer: &mut Pricer) {
     let nbrs = cl.resolved_neighbors(root);
-    let cl = &*cl;
-    let own = ev.verts(cl, root).len();
-    let points: usize = nbrs.iter().map(|&n| own + ev.verts(cl, n).len()).sum();
-    if points < PAR_POINTS || nbrs.len() < 2 || rayon::current_num_threads() < 2 {
-        for &n in &nbrs {
-            if let Some((c, _)) = ev.candidate(cl, root, n, ws) {
-                heap.push(c);
-            }
-        }
-        return;
-    }
-    // Two halves on two threads (each with its thread's own workspace), pushed in
-    // neighbour order: the queue sees the same sequence as the serial loop.
-    let (lo, hi) = nbrs.split_at(nbrs.len() / 2);
-    let half = |part: &[u32]| -> Vec<Candidate> {
-        LOCAL_WS.with_borrow_mut(|ws| {
-            part.iter()
-                .filter_map(|&n| ev.candidate(cl, root, n, ws).map(|c| c.0))
-                .collect()
-        })
-    };
-    let (a, b) = rayon::join(|| half(lo), || half(hi));
-    a.into_iter().chain(b).for_each(|c| heap.push(c));
-}
-
-thread_local! {
-    /// Per-thread fit buffers for parallel re-pricing (kept across merges).
-    static LOCAL_WS: std::cell::RefCell<Workspace> = std::cell::RefCell::new(Workspace::default());
+    pricer.price(cl, root, &nbrs, |c| heap.push(c));
 }
 
 /// Links every live cluster to its nearest clusters by centroid (`bridge.rs`).
@@ -315,16 +305,16 @@ fn snapshot(ev: &Evaluator, cl: &Clusters, target: usize) -> Snapshot {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::decompose::{evaluator, seed_volumes};
     use crate::mesh::{adjacency, dedup};
     use crate::{quadric, Params};
 
-    /// The radix heap and std's binary heap drive the same merges: identical
-    /// primitives at every target on the demo scene (many cost ties: coplanar faces).
-    #[test]
-    fn radix_heap_and_binary_heap_merge_identically() {
+    /// Runs `f` on the demo scene's evaluator and a maker of its single-face clusters.
+    pub(in crate::merge) fn with_demo<R>(
+        f: impl FnOnce(&Evaluator, &(dyn Fn() -> Clusters + Sync)) -> R,
+    ) -> R {
         let mesh = crate::Mesh::from_builder(crate::demo::demo_scene());
         let p = Params::default();
         let (welded, _) = dedup::weld(&mesh, p.dedup);
@@ -333,14 +323,64 @@ mod tests {
         quadric::face_quadrics(&mesh, p.tangent_eps, &mut q);
         let ev = evaluator(&mesh, &welded, &p, mesh.aabb());
         let vols = seed_volumes(&ev, &q);
-        let fresh = || Clusters::new(q.clone(), vols.clone(), &pairs);
-        let targets = [400, 150, 40, 1];
-        let a = run_with::<RadixHeap>(&ev, fresh(), &targets, &|_| {});
-        let b = run_with::<crate::merge::StdHeap>(&ev, fresh(), &targets, &|_| {});
+        f(&ev, &|| Clusters::new(q.clone(), vols.clone(), &pairs))
+    }
+
+    /// Runs `f` in a rayon pool of `threads` threads.
+    pub(in crate::merge) fn in_pool<R: Send>(threads: usize, f: impl FnOnce() -> R + Send) -> R {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("thread pool")
+            .install(f)
+    }
+
+    fn assert_same(a: &MergeOutput, b: &MergeOutput) {
         assert_eq!(a.merges, b.merges);
+        assert_eq!(a.snapshots.len(), b.snapshots.len());
         for (x, y) in a.snapshots.iter().zip(&b.snapshots) {
             assert_eq!(x.faces, y.faces);
             assert_eq!(format!("{:?}", x.prims), format!("{:?}", y.prims));
         }
+    }
+
+    /// The radix heap and std's binary heap drive the same merges: identical
+    /// primitives at every target on the demo scene (many cost ties: coplanar faces).
+    #[test]
+    fn radix_heap_and_binary_heap_merge_identically() {
+        with_demo(|ev, fresh| {
+            let targets = [400, 150, 40, 1];
+            let a = run_with::<RadixHeap>(ev, fresh(), &targets, &|_| {});
+            let b = run_with::<crate::merge::StdHeap>(ev, fresh(), &targets, &|_| {});
+            assert_same(&a, &b);
+        });
+    }
+
+    /// Re-pricing shared with the worker thread merges
+    /// exactly as one thread does: same merges, same primitives at every target. The
+    /// worker's share of a batch depends on timing, so the two-thread run is repeated
+    /// until the worker has priced some neighbours whose results were used.
+    #[test]
+    fn worker_sharing_merges_as_one_thread_does() {
+        with_demo(|ev, fresh| {
+            let targets = [400, 150, 40, 1];
+            let (one, s1) = in_pool(1, || {
+                run_counted::<RadixHeap>(ev, fresh(), &targets, &|_| {})
+            });
+            assert_eq!(s1, Stats::default(), "one thread must not start a worker");
+            let mut used = 0;
+            for _ in 0..10 {
+                let (two, s2) = in_pool(2, || {
+                    run_counted::<RadixHeap>(ev, fresh(), &targets, &|_| {})
+                });
+                assert_same(&one, &two);
+                assert!(s2.shared > 0, "{s2:?}");
+                used += s2.by_worker;
+                if used > 0 {
+                    break;
+                }
+            }
+            assert!(used > 0, "the worker never priced a neighbour");
+        });
     }
 }

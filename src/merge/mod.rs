@@ -7,6 +7,7 @@ pub mod cluster;
 pub mod cost;
 pub mod driver;
 pub mod heap;
+pub mod worker;
 
 pub use cluster::{ClusterId, Clusters};
 pub use cost::{Evaluator, Workspace};

@@ -2,4 +2,5 @@
 #![allow(dead_code)]
 pub mod check;
 pub mod contain;
+pub mod demo;
 pub mod shapes;

@@ -41,6 +41,9 @@ pub struct Evaluator<'a> {
     pub cost_unit: f64,
     /// Distance below which a point counts as on a hull face (point reduction only).
     pub hull_eps: f64,
+    /// Merges whose clusters' neighbour lists hold at least this many entries are
+    /// re-priced lazily (`Params::reprice`); `u32::MAX` = always at once (exact).
+    pub defer_degree: u32,
 }
 
 impl<'a> Evaluator<'a> {
@@ -149,8 +152,7 @@ impl<'a> Evaluator<'a> {
             volume: fit.volume,
             a,
             b,
-            ver_a: cl.version[a as usize],
-            ver_b: cl.version[b as usize],
+            t: cl.clock,
         };
         Some((c, fit))
     }

@@ -1,5 +1,7 @@
 //! The merge loop of Alg. 1: seed the queue with every adjacent pair, pop the cheapest
-//! valid merge, apply it, re-price the merged cluster's neighbours; record a snapshot at
+//! valid merge, apply it, re-price the merged cluster's neighbours (or, for a deferred
+//! merge under `Params::reprice`, leave its pairs' old entries as keys and re-price
+//! each when popped: lazy greedy, `lazy.rs`); record a snapshot at
 //! every requested target on the way down (one bottom-up pass serves all targets). When
 //! adjacency runs out above the target, bridge components (§3.4 "Pairwise Component
 //! Merging") by linking each cluster to its nearest clusters (`bridge.rs`), O(C log C)
@@ -9,6 +11,7 @@ use super::bridge::{nearest_pairs, BRIDGE_K};
 use super::cluster::Clusters;
 use super::cost::{Evaluator, Workspace};
 use super::heap::{Candidate, Queue, RadixHeap};
+use super::lazy::{valid, Lazy, Pop};
 use crate::math::hull::{hull_vertices, HullWorkspace};
 use crate::primitive::Primitive;
 use rayon::prelude::*;
@@ -43,6 +46,18 @@ pub struct MergeOutput {
     pub snapshots: Vec<Snapshot>,
     pub merges: usize,
     pub bridge_edges: usize,
+    pub fits: FitCounts,
+}
+
+/// Candidate merges priced by the merge loop, by occasion.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FitCounts {
+    /// Pairs priced when seeding the queue and when bridging.
+    pub seed: usize,
+    /// Pairs re-priced right after a merge.
+    pub eager: usize,
+    /// Stale entries re-priced when popped (deferred merges).
+    pub lazy: usize,
 }
 
 /// Visited-marks for deduplicating vertex unions without clearing a whole array.
@@ -75,8 +90,7 @@ fn price(ev: &Evaluator, cl: &Clusters, pairs: &[(u32, u32)]) -> Vec<Candidate> 
         volume: 0.0,
         a: 0,
         b: 0,
-        ver_a: 0,
-        ver_b: 0,
+        t: 0,
     };
     let mut out = vec![none; pairs.len()];
     out.par_chunks_mut(CHUNK)
@@ -123,6 +137,7 @@ pub fn run_with<Q: Queue>(
                 .map(|&b| (a, b)),
         );
         if block.len() >= PRICE_BLOCK || a + 1 == cl.parent.len() as u32 {
+            out.fits.seed += block.len();
             price(ev, &cl, &block)
                 .into_iter()
                 .for_each(|c| heap.push(c));
@@ -136,6 +151,7 @@ pub fn run_with<Q: Queue>(
     };
     let mut ws = Workspace::default();
     let mut reducer = Reducer::default();
+    let mut lazy = Lazy::default();
     let start = cl.live;
     let last = *targets.last().expect("at least one target");
     let mut next = 0;
@@ -150,6 +166,7 @@ pub fn run_with<Q: Queue>(
         let Some(c) = heap.pop() else {
             let bridged = bridge(ev, &mut cl);
             out.bridge_edges += bridged.len();
+            out.fits.seed += bridged.len();
             let fresh = price(ev, &cl, &bridged);
             if fresh.is_empty() {
                 break;
@@ -157,19 +174,36 @@ pub fn run_with<Q: Queue>(
             fresh.into_iter().for_each(|c| heap.push(c));
             continue;
         };
-        if !valid(&cl, &c) {
-            continue;
+        match lazy.classify(&mut cl, &c) {
+            Pop::Fresh => {}
+            Pop::Drop => continue,
+            Pop::Reprice(a, b) => {
+                out.fits.lazy += 1;
+                if let Some((fresh, _)) = ev.candidate(&cl, a, b, &mut ws) {
+                    heap.push(fresh);
+                }
+                continue;
+            }
         }
         if heap.len() > purge_at {
             // Lazy deletion's stale entries would otherwise outnumber the live pairs
             // many times over (memory); dropping them keeps the order unchanged.
-            heap.retain(|c| valid(&cl, c));
+            // Deferred pairs' entries are kept: they are the pairs' only keys.
+            if ev.defer_degree == u32::MAX {
+                heap.retain(|c| valid(&cl, c));
+            } else {
+                heap.retain(|c| lazy.keep(&cl, c));
+                lazy.prune(&cl);
+            }
             purge_at = (heap.len() + heap.len() / 4).max(PURGE_MIN);
         }
         let verts = merged_points(ev, &cl, c.a, c.b, &mut stamps, &mut reducer);
         let root = cl.merge(c.a, c.b, verts, c.volume);
         out.merges += 1;
-        reprice_neighbors(ev, &mut cl, root, &mut heap, &mut ws);
+        if !defer(ev, &mut cl, root) {
+            out.fits.eager += reprice_neighbors(ev, &mut cl, root, &mut heap, &mut ws);
+            cl.repriced[root as usize] = cl.clock;
+        }
         if out.merges % 4096 == 0 {
             progress((start - cl.live) as f64 / (start - last.min(start)).max(1) as f64);
         }
@@ -181,11 +215,16 @@ pub fn run_with<Q: Queue>(
     out
 }
 
-fn valid(cl: &Clusters, c: &Candidate) -> bool {
-    cl.is_root(c.a)
-        && cl.is_root(c.b)
-        && cl.version[c.a as usize] == c.ver_a
-        && cl.version[c.b as usize] == c.ver_b
+/// Whether the merge that made `root` leaves its pairs to [`Lazy`] instead of
+/// re-pricing them at once: its neighbour list (resolved once it doubles) reaches
+/// `ev.defer_degree`.
+fn defer(ev: &Evaluator, cl: &mut Clusters, root: u32) -> bool {
+    let limit = ev.defer_degree as usize;
+    if cl.neighbor_len(root) < limit {
+        return false;
+    }
+    cl.compact_neighbors(root);
+    cl.neighbor_len(root) >= limit
 }
 
 /// Buffers for reducing a merged cluster's points to its hull vertices.
@@ -231,14 +270,14 @@ fn merged_points(
 }
 
 /// Re-prices every merge of the new cluster with its neighbours, in parallel when the
-/// batch is large (results are pushed in neighbour order either way).
+/// batch is large (results are pushed in neighbour order either way); returns how many.
 fn reprice_neighbors<Q: Queue>(
     ev: &Evaluator,
     cl: &mut Clusters,
     root: u32,
     heap: &mut Q,
     ws: &mut Workspace,
-) {
+) -> usize {
     let nbrs = cl.resolved_neighbors(root);
     let cl = &*cl;
     let own = ev.verts(cl, root).len();
@@ -249,7 +288,7 @@ fn reprice_neighbors<Q: Queue>(
                 heap.push(c);
             }
         }
-        return;
+        return nbrs.len();
     }
     // Two halves on two threads (each with its thread's own workspace), pushed in
     // neighbour order: the queue sees the same sequence as the serial loop.
@@ -263,6 +302,7 @@ fn reprice_neighbors<Q: Queue>(
     };
     let (a, b) = rayon::join(|| half(lo), || half(hi));
     a.into_iter().chain(b).for_each(|c| heap.push(c));
+    nbrs.len()
 }
 
 thread_local! {
@@ -319,14 +359,24 @@ mod tests {
     use super::*;
     use crate::decompose::{evaluator, seed_volumes};
     use crate::mesh::{adjacency, dedup};
-    use crate::{quadric, Params};
+    use crate::{quadric, Params, Reprice};
 
     /// The radix heap and std's binary heap drive the same merges: identical
-    /// primitives at every target on the demo scene (many cost ties: coplanar faces).
+    /// primitives at every target on the demo scene (many cost ties: coplanar faces),
+    /// with exact and with deferred re-pricing (re-priced entries pushed back).
     #[test]
     fn radix_heap_and_binary_heap_merge_identically() {
+        for reprice in [Reprice::Exact, Reprice::Deferred { min_degree: 0 }] {
+            same_merges_with_both_heaps(reprice);
+        }
+    }
+
+    fn same_merges_with_both_heaps(reprice: Reprice) {
         let mesh = crate::Mesh::from_builder(crate::demo::demo_scene());
-        let p = Params::default();
+        let p = Params {
+            reprice,
+            ..Params::default()
+        };
         let (welded, _) = dedup::weld(&mesh, p.dedup);
         let pairs = adjacency::face_pairs(&mesh.face_offsets, &welded);
         let mut q = Vec::new();

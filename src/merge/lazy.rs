@@ -21,7 +21,7 @@ pub(super) enum Pop {
     Fresh,
     /// A merge inside one cluster, or a pair with a fresher entry: skip it.
     Drop,
-    /// The only key left of live roots `a < b`: re-price it.
+    /// A stale key of live roots `a < b` that nobody re-priced since: re-price it.
     Reprice(u32, u32),
 }
 

@@ -5,7 +5,7 @@ use anyhow::{anyhow, bail};
 use clap::{Args, Parser, Subcommand};
 use primdecomp::export::{self, output_path_for, write_atomic};
 use primdecomp::sim::{Entry, Geometry, Run as SimRun, Settings as SimSettings};
-use primdecomp::{Decomposition, Dedup, Kind, Params};
+use primdecomp::{Decomposition, Dedup, Kind, Params, Reprice};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -105,6 +105,11 @@ struct DecomposeArgs {
     /// output primitives keep --min-extent. Default: the same as --min-extent.
     #[arg(long)]
     merge_min_extent: Option<f64>,
+    /// When merged clusters' pairs are re-priced: exact (at once, the paper's greedy
+    /// order), deferred (each when popped: faster, approximate order), or a neighbour
+    /// count N: merges of clusters with N or more neighbours are deferred, others exact.
+    #[arg(long, default_value = "64")]
+    reprice: String,
     /// Keep primitives whose points lie inside another primitive.
     #[arg(long)]
     keep_contained: bool,
@@ -243,6 +248,17 @@ fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
                 "--dedup: expected exact, off or a distance, got '{t}'"
             ))
         })?),
+    };
+    p.reprice = match a.reprice.as_str() {
+        "exact" => Reprice::Exact,
+        "deferred" => Reprice::Deferred { min_degree: 0 },
+        t => Reprice::Deferred {
+            min_degree: t.parse().map_err(|_| {
+                BadArgs(format!(
+                    "--reprice: expected exact, deferred or a neighbour count, got '{t}'"
+                ))
+            })?,
+        },
     };
     p.validate().map_err(|e| BadArgs(e.to_string()))?;
     Ok(p)
@@ -551,6 +567,15 @@ fn print_timings(dec: &Decomposition, write_s: f64) {
         "seconds   {}, write {write_s:.3} | total {:.3}",
         stages.join(", "),
         dec.timings.total() + write_s
+    );
+    let f = dec.fits;
+    println!(
+        "fits      {} merges; {} seeding, {} re-priced at once, {} when popped ({:.2} per merge)",
+        dec.merges,
+        f.seed,
+        f.eager,
+        f.lazy,
+        (f.eager + f.lazy) as f64 / dec.merges.max(1) as f64
     );
     if let Some(kib) = peak_rss_kib() {
         println!("memory    peak resident {:.1} MiB", kib as f64 / 1024.0);

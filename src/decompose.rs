@@ -5,7 +5,7 @@ use crate::error::{Error, Result};
 use crate::math::V3;
 use crate::merge::{Clusters, Evaluator, Workspace};
 use crate::mesh::{adjacency, dedup, Mesh};
-use crate::params::Params;
+use crate::params::{Params, Reprice};
 use crate::postprocess::{keep_mask, Cleanup};
 use crate::primitive::fit::{FitConfig, FrameSearch};
 use crate::primitive::Primitive;
@@ -78,6 +78,9 @@ pub struct Decomposition {
     pub adjacency_edges: usize,
     /// Merges done across components (edges added when adjacency ran out).
     pub bridge_edges: usize,
+    /// Merges done and candidate merges priced by the merge loop.
+    pub merges: usize,
+    pub fits: crate::merge::FitCounts,
 }
 
 /// Decomposes `mesh` into primitives, one [`Level`] per target in `params.targets`.
@@ -136,6 +139,8 @@ pub fn decompose_with_progress(
     targets.dedup();
     let merged = crate::merge::run(&ev, clusters, &targets, progress);
     dec.bridge_edges = merged.bridge_edges;
+    dec.merges = merged.merges;
+    dec.fits = merged.fits;
     t.push("merge", now);
     // Remove nested primitives (§3.4), then return to world coordinates.
     let now = Instant::now();
@@ -208,6 +213,12 @@ pub fn evaluator<'a>(
         max_excess: params
             .max_excess_volume
             .map_or(f64::INFINITY, |m| m * aabb_volume),
+        // A pair over the cap has no queue entry to stand for it until re-priced, so
+        // a cap keeps every merge exact.
+        defer_degree: match (params.reprice, params.max_excess_volume) {
+            (Reprice::Deferred { min_degree }, None) => min_degree,
+            _ => u32::MAX,
+        },
         // Never 0 (at least 2^-40 × MIN_HALF³ ≈ 1e-282): a zero grid priced every merge
         // 0/0 = NaN, which the merge loop drops like a merge over the excess cap.
         cost_unit: COST_GRID * diag.max(min_half).powi(3),

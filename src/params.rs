@@ -1,6 +1,8 @@
 //! Settings of a decomposition. `Params::default()` equals the paper's settings
 //! (§3.3 weights, §3.4 deduplication and tangent term), except where the paper's
-//! choice made results depend on units (the minimum extent, here relative).
+//! choice made results depend on units (the minimum extent, here relative) and in
+//! deferring the re-pricing of clusters with 64 or more neighbours (ARCHITECTURE.md,
+//! "Where we deviate", 14: the flat-grid limit; the corpus at 1% is unchanged).
 //!
 //! | setting | default | raising it | lowering it |
 //! |---|---|---|---|
@@ -13,6 +15,7 @@
 //! | `min_extent_rel` | 5e-4 | flat clusters cost more: fewer coplanar "free" merges | flatter primitives; 0 is refused |
 //! | `merge_min_extent_rel` | none (= `min_extent_rel`) | merges are priced as if primitives were at least this thick: coplanar merges across gaps and holes (a roof's rim into a lid) cost more; output thickness unchanged | — (below `min_extent_rel` it has no effect) |
 //! | `remove_contained` | true | — | keeps nested primitives |
+//! | `reprice` | `Deferred { min_degree: 64 }` | merges of clusters with at least `min_degree` neighbours leave their pairs' old queue entries as keys and re-price each when popped; a higher `min_degree` defers fewer merges (`Exact`: none, the paper's order, F^1.5 on large flat regions) | defers more merges: fewer fits, faster, the order drifts from exact greedy; `min_degree: 0` defers all (about 0.8× the time on the corpus, quality mixed: docs/results/reprice.md) |
 //! | `remove_thin_boxes` | None | (when set) drops boxes thinner than this fraction of the diagonal if still covered | — |
 
 use crate::error::{Error, Result};
@@ -29,6 +32,20 @@ pub enum Dedup {
     Exact,
     /// Merge vertices closer than this distance (world units).
     Tolerance(f64),
+}
+
+/// When a merged cluster's merges with its neighbours are re-priced (§3.3, Alg. 1).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Reprice {
+    /// Right after every merge: each pop is the cheapest merge at that moment.
+    Exact,
+    /// Lazy greedy for merges whose clusters' neighbour lists hold at least `min_degree`
+    /// entries (about their degree; 0 = every merge): the pairs' old queue entries stay
+    /// as their keys, and each is re-priced when popped and pushed back with its fresh
+    /// cost. Smaller merges are re-priced at once. Ignored (exact) when
+    /// `max_excess_volume` is set: a pair over the cap has no entry to defer.
+    Deferred { min_degree: u32 },
 }
 
 /// All settings of a run.
@@ -61,6 +78,8 @@ pub struct Params {
     /// Remove boxes whose smallest half-extent is below this fraction of the diagonal,
     /// when every one of their points lies in another primitive (the Bistro figure's rule).
     pub remove_thin_boxes: Option<f64>,
+    /// When merged clusters' pairs are re-priced (exact greedy order or lazy).
+    pub reprice: Reprice,
 }
 
 /// Serializes a per-kind array as `{"box": …, "sphere": …, …}`.
@@ -89,6 +108,7 @@ impl Default for Params {
             merge_min_extent_rel: None,
             remove_contained: true,
             remove_thin_boxes: None,
+            reprice: Reprice::Deferred { min_degree: 64 },
         }
     }
 }

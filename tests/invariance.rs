@@ -1,6 +1,8 @@
 //! Same shape, same answer: the result must not depend on the thread count, the
 //! input's units or its position (georeferenced scans sit at 10^6 offsets).
 
+mod common;
+
 use primdecomp::export::json::to_json;
 use primdecomp::{decompose, demo, Decomposition, Kind, Mesh, Params, Primitive};
 
@@ -31,13 +33,7 @@ fn identical_for_1_2_and_8_threads() {
     let mesh = demo_mesh(1.0, [0.0; 3]);
     let runs: Vec<Decomposition> = [1, 2, 8]
         .iter()
-        .map(|&t| {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(t)
-                .build()
-                .unwrap();
-            pool.install(|| decompose(&mesh, &params()).unwrap())
-        })
+        .map(|&t| common::on_threads(t, || decompose(&mesh, &params()).unwrap()))
         .collect();
     for level in 0..2 {
         let a = stable_json(&runs[0], level);

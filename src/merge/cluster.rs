@@ -1,7 +1,7 @@
 //! Clusters of faces (§3.4 "Collapsible Primitive Data Structure"): a disjoint-set
 //! forest over faces, a cyclic linked list of each cluster's faces (O(1) splice), and
-//! per-cluster operator Q, volume, version (for lazy deletion), distinct vertices and
-//! neighbours. A cluster is named by its root face.
+//! per-cluster operator Q, volume, the merge-clock time it last changed (for lazy
+//! deletion), distinct vertices and neighbours. A cluster is named by its root face.
 
 use crate::math::Sym3;
 
@@ -16,6 +16,8 @@ struct Lists {
     verts: Vec<u32>,
     /// Neighbouring clusters (may name merged-away ids; resolve with `find`).
     neighbors: Vec<u32>,
+    /// Length of `neighbors` when it was last resolved.
+    resolved: u32,
 }
 
 /// No lists: the cluster is still one face, its neighbours those of the input graph.
@@ -31,7 +33,14 @@ pub struct Clusters {
     pub parent: Vec<u32>,
     pub q: Vec<Sym3>,
     pub volume: Vec<f64>,
-    pub version: Vec<u32>,
+    /// The merge clock when the cluster last changed (0: never merged).
+    pub changed: Vec<u32>,
+    /// Merges done so far; a queue entry priced at `t` is stale once either cluster's
+    /// `changed` exceeds `t`.
+    pub clock: u32,
+    /// The merge clock when all the cluster's pairs were last priced (≤ `changed`;
+    /// equal unless its last merge was deferred, `Params::reprice`).
+    pub repriced: Vec<u32>,
     /// Cyclic list: the next face of the same cluster.
     pub next_face: Vec<u32>,
     pub face_count: Vec<u32>,
@@ -70,7 +79,9 @@ impl Clusters {
             parent: (0..n as u32).collect(),
             q,
             volume,
-            version: vec![0; n],
+            changed: vec![0; n],
+            clock: 0,
+            repriced: vec![0; n],
             next_face: (0..n as u32).collect(),
             face_count: vec![1; n],
             adj_offsets,
@@ -84,6 +95,14 @@ impl Clusters {
 
     pub fn is_root(&self, c: u32) -> bool {
         self.parent[c as usize] == c
+    }
+
+    /// Root of `c`'s cluster, without shortening the path (for shared borrows).
+    pub fn root(&self, mut c: u32) -> u32 {
+        while self.parent[c as usize] != c {
+            c = self.parent[c as usize];
+        }
+        c
     }
 
     /// Root of `c`'s cluster, with path halving.
@@ -138,9 +157,11 @@ impl Clusters {
     /// The lists of `c`, created (neighbours copied from the input graph) if needed.
     fn lists_mut(&mut self, c: u32) -> &mut Lists {
         if self.slot[c as usize] == NO_LISTS {
+            let neighbors = self.input_neighbors(c).to_vec();
             let lists = Lists {
                 verts: Vec::new(),
-                neighbors: self.input_neighbors(c).to_vec(),
+                resolved: neighbors.len() as u32,
+                neighbors,
             };
             let s = match self.free.pop() {
                 Some(s) => {
@@ -174,6 +195,11 @@ impl Clusters {
     /// Neighbours of root `c` resolved to live roots, sorted, without `c` itself;
     /// also stores the resolved list back.
     pub fn resolved_neighbors(&mut self, c: u32) -> Vec<u32> {
+        self.resolve_neighbors(c);
+        self.lists_mut(c).neighbors.clone()
+    }
+
+    fn resolve_neighbors(&mut self, c: u32) {
         let mut n = std::mem::take(&mut self.lists_mut(c).neighbors);
         for v in n.iter_mut() {
             *v = self.find(*v);
@@ -181,8 +207,28 @@ impl Clusters {
         n.sort_unstable();
         n.dedup();
         n.retain(|&v| v != c);
-        self.lists_mut(c).neighbors = n.clone();
-        n
+        let lists = self.lists_mut(c);
+        lists.resolved = n.len() as u32;
+        lists.neighbors = n;
+    }
+
+    /// Length of root `c`'s neighbour list: its degree when just resolved, else an
+    /// upper bound (merged-away ids and duplicates count until the next resolve).
+    pub fn neighbor_len(&self, c: u32) -> usize {
+        match self.slot[c as usize] {
+            NO_LISTS => self.input_neighbors(c).len(),
+            s => self.slab[s as usize].neighbors.len(),
+        }
+    }
+
+    /// Resolves root `c`'s neighbour list once it has grown past twice its length at
+    /// the last resolve (amortised O(1) per entry; keeps `neighbor_len` within about
+    /// twice the degree while merges skip resolving it).
+    pub fn compact_neighbors(&mut self, c: u32) {
+        let l = self.lists_mut(c);
+        if l.neighbors.len() > 2 * l.resolved as usize + 8 {
+            self.resolve_neighbors(c);
+        }
     }
 
     /// Merges roots `a` and `b` (the lower id stays root); `verts` is the merged
@@ -193,8 +239,8 @@ impl Clusters {
         self.parent[o] = root;
         self.q[r] = self.q[r].add(&self.q[o]);
         self.volume[r] = volume;
-        self.version[r] += 1;
-        self.version[o] += 1;
+        self.clock += 1;
+        self.changed[r] = self.clock;
         self.next_face.swap(r, o);
         self.face_count[r] += self.face_count[o];
         let moved = self.take_lists(other);

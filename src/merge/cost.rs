@@ -27,14 +27,15 @@ impl Workspace {
 }
 
 /// What pricing a merge needs of one cluster: its root id, points, operator, volume
-/// and version. A copy of these (`merge::worker`) prices like the cluster itself.
+/// and the merge clock. A copy of these (`merge::worker`) prices like the cluster itself.
 #[derive(Clone, Copy, Debug)]
 pub struct Side<'s> {
     pub id: u32,
     pub verts: &'s [u32],
     pub q: Sym3,
     pub volume: f64,
-    pub version: u32,
+    /// The merge clock when the snapshot was taken (the candidate's time stamp).
+    pub t: u32,
 }
 
 /// Everything needed to price a merge: positions, welded faces and fit settings.
@@ -55,6 +56,9 @@ pub struct Evaluator<'a> {
     pub cost_unit: f64,
     /// Distance below which a point counts as on a hull face (point reduction only).
     pub hull_eps: f64,
+    /// Merges whose clusters' neighbour lists hold at least this many entries are
+    /// re-priced lazily (`Params::reprice`); `u32::MAX` = always at once (exact).
+    pub defer_degree: u32,
 }
 
 impl<'a> Evaluator<'a> {
@@ -147,7 +151,7 @@ impl<'a> Evaluator<'a> {
             verts: self.verts(cl, c),
             q: cl.q[c as usize],
             volume: cl.volume[c as usize],
-            version: cl.version[c as usize],
+            t: cl.clock,
         }
     }
 
@@ -182,8 +186,7 @@ impl<'a> Evaluator<'a> {
             volume: fit.volume,
             a: a.id,
             b: b.id,
-            ver_a: a.version,
-            ver_b: b.version,
+            t: a.t.max(b.t),
         };
         Some((c, fit))
     }

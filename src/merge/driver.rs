@@ -1,5 +1,7 @@
 //! The merge loop of Alg. 1: seed the queue with every adjacent pair, pop the cheapest
-//! valid merge, apply it, re-price the merged cluster's neighbours; record a snapshot at
+//! valid merge, apply it, re-price the merged cluster's neighbours (or, for a deferred
+//! merge under `Params::reprice`, leave its pairs' old entries as keys and re-price
+//! each when popped: lazy greedy, `lazy.rs`); record a snapshot at
 //! every requested target on the way down (one bottom-up pass serves all targets). When
 //! adjacency runs out above the target, bridge components (§3.4 "Pairwise Component
 //! Merging") by linking each cluster to its nearest clusters (`bridge.rs`), O(C log C)
@@ -9,6 +11,7 @@ use super::bridge::{nearest_pairs, BRIDGE_K};
 use super::cluster::Clusters;
 use super::cost::{Evaluator, Workspace};
 use super::heap::{Candidate, Queue, RadixHeap};
+use super::lazy::{valid, Lazy, Pop};
 use super::worker::{with_pricer, Pricer, Stats};
 use crate::math::hull::{hull_vertices, HullWorkspace};
 use crate::primitive::Primitive;
@@ -42,6 +45,18 @@ pub struct MergeOutput {
     pub snapshots: Vec<Snapshot>,
     pub merges: usize,
     pub bridge_edges: usize,
+    pub fits: FitCounts,
+}
+
+/// Candidate merges priced by the merge loop, by occasion.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct FitCounts {
+    /// Pairs priced when seeding the queue and when bridging.
+    pub seed: usize,
+    /// Pairs re-priced right after a merge.
+    pub eager: usize,
+    /// Stale entries re-priced when popped (deferred merges).
+    pub lazy: usize,
 }
 
 /// Visited-marks for deduplicating vertex unions without clearing a whole array.
@@ -74,8 +89,7 @@ fn price(ev: &Evaluator, cl: &Clusters, pairs: &[(u32, u32)]) -> Vec<Candidate> 
         volume: 0.0,
         a: 0,
         b: 0,
-        ver_a: 0,
-        ver_b: 0,
+        t: 0,
     };
     let mut out = vec![none; pairs.len()];
     out.par_chunks_mut(CHUNK)
@@ -147,6 +161,7 @@ fn merge_loop<Q: Queue>(
                 .map(|&b| (a, b)),
         );
         if block.len() >= PRICE_BLOCK || a + 1 == cl.parent.len() as u32 {
+            out.fits.seed += block.len();
             price(ev, &cl, &block)
                 .into_iter()
                 .for_each(|c| heap.push(c));
@@ -159,6 +174,9 @@ fn merge_loop<Q: Queue>(
         epoch: 0,
     };
     let mut reducer = Reducer::default();
+    let mut lazy = Lazy::default();
+    // Entries re-priced when popped are priced one at a time, here.
+    let mut ws = Workspace::default();
     let start = cl.live;
     let last = *targets.last().expect("at least one target");
     let mut next = 0;
@@ -173,6 +191,7 @@ fn merge_loop<Q: Queue>(
         let Some(c) = heap.pop() else {
             let bridged = bridge(ev, &mut cl);
             out.bridge_edges += bridged.len();
+            out.fits.seed += bridged.len();
             let fresh = price(ev, &cl, &bridged);
             if fresh.is_empty() {
                 break;
@@ -180,19 +199,36 @@ fn merge_loop<Q: Queue>(
             fresh.into_iter().for_each(|c| heap.push(c));
             continue;
         };
-        if !valid(&cl, &c) {
-            continue;
+        match lazy.classify(&mut cl, &c) {
+            Pop::Fresh => {}
+            Pop::Drop => continue,
+            Pop::Reprice(a, b) => {
+                out.fits.lazy += 1;
+                if let Some((fresh, _)) = ev.candidate(&cl, a, b, &mut ws) {
+                    heap.push(fresh);
+                }
+                continue;
+            }
         }
         if heap.len() > purge_at {
             // Lazy deletion's stale entries would otherwise outnumber the live pairs
             // many times over (memory); dropping them keeps the order unchanged.
-            heap.retain(|c| valid(&cl, c));
+            // Deferred pairs' entries are kept: they are the pairs' only keys.
+            if ev.defer_degree == u32::MAX {
+                heap.retain(|c| valid(&cl, c));
+            } else {
+                heap.retain(|c| lazy.keep(&cl, c));
+                lazy.prune(&cl);
+            }
             purge_at = (heap.len() + heap.len() / 4).max(PURGE_MIN);
         }
         let verts = merged_points(ev, &cl, c.a, c.b, &mut stamps, &mut reducer);
         let root = cl.merge(c.a, c.b, verts, c.volume);
         out.merges += 1;
-        reprice_neighbors(&mut cl, root, &mut heap, pricer);
+        if !defer(ev, &mut cl, root) {
+            out.fits.eager += reprice_neighbors(&mut cl, root, &mut heap, pricer);
+            cl.repriced[root as usize] = cl.clock;
+        }
         if out.merges % 4096 == 0 {
             progress((start - cl.live) as f64 / (start - last.min(start)).max(1) as f64);
         }
@@ -204,11 +240,16 @@ fn merge_loop<Q: Queue>(
     out
 }
 
-fn valid(cl: &Clusters, c: &Candidate) -> bool {
-    cl.is_root(c.a)
-        && cl.is_root(c.b)
-        && cl.version[c.a as usize] == c.ver_a
-        && cl.version[c.b as usize] == c.ver_b
+/// Whether the merge that made `root` leaves its pairs to [`Lazy`] instead of
+/// re-pricing them at once: its neighbour list (resolved once it doubles) reaches
+/// `ev.defer_degree`.
+fn defer(ev: &Evaluator, cl: &mut Clusters, root: u32) -> bool {
+    let limit = ev.defer_degree as usize;
+    if cl.neighbor_len(root) < limit {
+        return false;
+    }
+    cl.compact_neighbors(root);
+    cl.neighbor_len(root) >= limit
 }
 
 /// Buffers for reducing a merged cluster's points to its hull vertices.
@@ -254,10 +295,17 @@ fn merged_points(
 }
 
 /// Re-prices every merge of the new cluster with its neighbours (on two threads when
-/// the pricer has a worker; candidates are pushed in neighbour order either way).
-fn reprice_neighbors<Q: Queue>(cl: &mut Clusters, root: u32, heap: &mut Q, pricer: &mut Pricer) {
+/// the pricer has a worker; candidates are pushed in neighbour order either way);
+/// returns how many.
+fn reprice_neighbors<Q: Queue>(
+    cl: &mut Clusters,
+    root: u32,
+    heap: &mut Q,
+    pricer: &mut Pricer,
+) -> usize {
     let nbrs = cl.resolved_neighbors(root);
     pricer.price(cl, root, &nbrs, |c| heap.push(c));
+    nbrs.len()
 }
 
 /// Links every live cluster to its nearest clusters by centroid (`bridge.rs`).
@@ -309,14 +357,21 @@ pub(super) mod tests {
     use super::*;
     use crate::decompose::{evaluator, seed_volumes};
     use crate::mesh::{adjacency, dedup};
-    use crate::{quadric, Params};
+    use crate::{quadric, Params, Reprice};
 
     /// Runs `f` on the demo scene's evaluator and a maker of its single-face clusters.
     pub(in crate::merge) fn with_demo<R>(
         f: impl FnOnce(&Evaluator, &(dyn Fn() -> Clusters + Sync)) -> R,
     ) -> R {
+        with_demo_using(Params::default(), f)
+    }
+
+    /// [`with_demo`] under the settings `p`.
+    fn with_demo_using<R>(
+        p: Params,
+        f: impl FnOnce(&Evaluator, &(dyn Fn() -> Clusters + Sync)) -> R,
+    ) -> R {
         let mesh = crate::Mesh::from_builder(crate::demo::demo_scene());
-        let p = Params::default();
         let (welded, _) = dedup::weld(&mesh, p.dedup);
         let pairs = adjacency::face_pairs(&mesh.face_offsets, &welded);
         let mut q = Vec::new();
@@ -345,15 +400,22 @@ pub(super) mod tests {
     }
 
     /// The radix heap and std's binary heap drive the same merges: identical
-    /// primitives at every target on the demo scene (many cost ties: coplanar faces).
+    /// primitives at every target on the demo scene (many cost ties: coplanar faces),
+    /// with exact and with deferred re-pricing (re-priced entries pushed back).
     #[test]
     fn radix_heap_and_binary_heap_merge_identically() {
-        with_demo(|ev, fresh| {
-            let targets = [400, 150, 40, 1];
-            let a = run_with::<RadixHeap>(ev, fresh(), &targets, &|_| {});
-            let b = run_with::<crate::merge::StdHeap>(ev, fresh(), &targets, &|_| {});
-            assert_same(&a, &b);
-        });
+        for reprice in [Reprice::Exact, Reprice::Deferred { min_degree: 0 }] {
+            let p = Params {
+                reprice,
+                ..Params::default()
+            };
+            with_demo_using(p, |ev, fresh| {
+                let targets = [400, 150, 40, 1];
+                let a = run_with::<RadixHeap>(ev, fresh(), &targets, &|_| {});
+                let b = run_with::<crate::merge::StdHeap>(ev, fresh(), &targets, &|_| {});
+                assert_same(&a, &b);
+            });
+        }
     }
 
     /// Re-pricing shared with the worker thread merges

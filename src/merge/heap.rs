@@ -1,5 +1,5 @@
 //! Priority queues of candidate merges with lazy deletion (§3.3): stale entries stay in
-//! the queue and are skipped when popped (their cluster versions no longer match).
+//! the queue and are skipped when popped (a cluster changed after they were priced).
 //! Ties are broken by cluster ids, so the merge order is fully deterministic.
 //!
 //! [`RadixHeap`] drives the merges: a radix heap (buckets indexed by the highest bit in
@@ -14,7 +14,8 @@
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
-/// A candidate merge of clusters `a < b`, valid while both versions are unchanged.
+/// A candidate merge of clusters `a < b`, priced at merge clock `t`: fresh while neither
+/// cluster has changed since (`Clusters::changed`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Candidate {
     pub cost: f64,
@@ -22,21 +23,21 @@ pub struct Candidate {
     pub volume: f64,
     pub a: u32,
     pub b: u32,
-    pub ver_a: u32,
-    pub ver_b: u32,
+    /// The merge clock (`Clusters::clock`) when the pair was priced.
+    pub t: u32,
 }
 
 impl Eq for Candidate {}
 
 impl Ord for Candidate {
-    /// Reversed so that `BinaryHeap` pops the cheapest, then the lowest ids.
+    /// Reversed so that `BinaryHeap` pops the cheapest, then the lowest ids, then the
+    /// newest pricing of the same pair (a fresh entry before its stale copies).
     fn cmp(&self, o: &Self) -> Ordering {
         o.cost
             .total_cmp(&self.cost)
             .then(o.a.cmp(&self.a))
             .then(o.b.cmp(&self.b))
-            .then(o.ver_a.cmp(&self.ver_a))
-            .then(o.ver_b.cmp(&self.ver_b))
+            .then(self.t.cmp(&o.t))
     }
 }
 
@@ -46,7 +47,7 @@ impl PartialOrd for Candidate {
     }
 }
 
-/// A min-queue of candidates, cheapest first, then by `(a, b, ver_a, ver_b)`.
+/// A min-queue of candidates, cheapest first, then by `(a, b)`, then newest `t` first.
 pub trait Queue: Default {
     /// Builds the queue from an initial batch.
     fn from_vec(v: Vec<Candidate>) -> Self;
@@ -218,8 +219,7 @@ mod tests {
             volume: 0.0,
             a,
             b,
-            ver_a: 0,
-            ver_b: 0,
+            t: 0,
         }
     }
 

@@ -7,9 +7,10 @@ pub mod cluster;
 pub mod cost;
 pub mod driver;
 pub mod heap;
+mod lazy;
 pub mod worker;
 
 pub use cluster::{ClusterId, Clusters};
 pub use cost::{Evaluator, Workspace};
-pub use driver::{run, run_with, MergeOutput, Snapshot};
+pub use driver::{run, run_with, FitCounts, MergeOutput, Snapshot};
 pub use heap::{Queue, RadixHeap, StdHeap};

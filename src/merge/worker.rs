@@ -5,7 +5,7 @@
 //! and shares each batch with the main thread through atomics:
 //!
 //! - the main thread copies what pricing needs of the root and of each neighbour (a
-//!   [`Side`] snapshot: ids, vertex ids, operator, volume, version) into the batch's
+//!   [`Side`] snapshot: ids, vertex ids, operator, volume, clock) into the batch's
 //!   job (two jobs, alternating by epoch, each behind a mutex), then publishes the
 //!   batch by resetting the claim counter to `epoch << 32`;
 //! - both threads claim neighbours one at a time from that counter, so a worker that
@@ -49,7 +49,7 @@ struct Slot {
     end: u32,
     q: Sym3,
     volume: f64,
-    version: u32,
+    t: u32,
 }
 
 /// A published batch: the root's and the neighbours' snapshots; the worker's results.
@@ -71,7 +71,7 @@ impl Job {
             verts: &self.verts[s.start as usize..s.end as usize],
             q: s.q,
             volume: s.volume,
-            version: s.version,
+            t: s.t,
         }
     }
 
@@ -84,7 +84,7 @@ impl Job {
             end: self.verts.len() as u32,
             q: s.q,
             volume: s.volume,
-            version: s.version,
+            t: s.t,
         });
     }
 }

@@ -102,6 +102,21 @@ pub fn uv_sphere(radius: f64, rings: usize, segs: usize) -> Polys {
     (v, f)
 }
 
+/// `n` × `n` unit quads in the plane z = 0 (open, one-sided): every merge of
+/// neighbours is coplanar and costs zero.
+pub fn flat_grid(n: u32) -> Polys {
+    let v: Vec<[f64; 3]> = (0..=n)
+        .flat_map(|j| (0..=n).map(move |i| [f64::from(i), f64::from(j), 0.0]))
+        .collect();
+    let at = move |i: u32, j: u32| j * (n + 1) + i;
+    let f: Vec<Vec<u32>> = (0..n)
+        .flat_map(|j| {
+            (0..n).map(move |i| vec![at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)])
+        })
+        .collect();
+    (v, f)
+}
+
 /// Gable roof: a triangular prism along x, base width `w` (y), height `h` (z), length `l`.
 pub fn gable_roof(l: f64, w: f64, h: f64) -> Polys {
     let v = vec![

@@ -15,7 +15,7 @@ mod contain;
 
 use arbitrary::{Result, Unstructured};
 use primdecomp::export::json::to_json;
-use primdecomp::{decompose, Dedup, Error, Mesh, Params};
+use primdecomp::{decompose, Dedup, Error, Mesh, Params, Reprice};
 
 /// A number that is usually one of `typical` and sometimes any f64 at all.
 fn pick(u: &mut Unstructured, typical: &[f64]) -> Result<f64> {
@@ -55,6 +55,18 @@ fn params(u: &mut Unstructured) -> Result<Params> {
     p.remove_thin_boxes = match u.arbitrary::<bool>()? {
         true => Some(pick(u, &[0.0, 1e-3, 0.1])?),
         false => None,
+    };
+    // Read last, so that corpus entries grown before these settings decode as before.
+    // The meshes are small: low degrees are what make deferred re-pricing happen.
+    p.reprice = match u.int_in_range(0..=5)? {
+        0 => Reprice::Exact,
+        d => Reprice::Deferred {
+            min_degree: [64, 0, 1, 2, 4][d as usize - 1],
+        },
+    };
+    p.merge_min_extent_rel = match u.int_in_range(0..=3)? {
+        0 => Some(pick(u, &[2e-3, 0.0, 0.5, 0.999])?),
+        _ => None,
     };
     Ok(p)
 }

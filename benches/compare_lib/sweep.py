@@ -28,6 +28,9 @@ CONFIGS = [
     ("excess 0.001", ["--max-excess-volume", "0.001"]),
     ("boxes only", ["--kinds", "box"]),
     ("box+sphere+capsule", ["--kinds", "box,sphere,capsule"]),
+    ("reprice exact", ["--reprice", "exact"]),
+    ("reprice deferred", ["--reprice", "deferred"]),
+    ("merge floor 0.002", ["--merge-min-extent", "0.002"]),
 ]
 SAMPLES = 50_000
 

@@ -132,6 +132,13 @@ fn cylinders_and_frustums_enclose(mesh: &Mesh, n: usize, min_extent_rel: f64) {
     }
 }
 
+/// Decomposes `mesh` and checks that its first target is reached as one valid primitive.
+fn merges_to_one(mesh: &Mesh, params: &Params) {
+    let dec = decompose(mesh, params).unwrap();
+    assert_eq!(dec.levels[0].primitives.len(), 1);
+    assert_valid(mesh, &dec, params);
+}
+
 /// `fuzz/fuzz_targets/decompose.rs`, third run: two 8-corner faces on one vertex
 /// (dedup off, so no shared edge) gave 2 primitives for a target of 1. With a zero
 /// diagonal every volume and the cost grid (2^-40 of the diagonal cubed, with the
@@ -156,9 +163,7 @@ fn faces_on_one_point_still_merge() {
         remove_contained: false,
         ..Default::default()
     };
-    let dec = decompose(&mesh, &params).unwrap();
-    assert_eq!(dec.levels[0].primitives.len(), 1);
-    assert_valid(&mesh, &dec, &params);
+    merges_to_one(&mesh, &params);
 }
 
 /// The same underflow with a positive diagonal: two triangles 1e-200 across (a cube
@@ -180,9 +185,7 @@ fn meshes_1e_minus_200_across_still_merge() {
         remove_contained: false,
         ..Default::default()
     };
-    let dec = decompose(&mesh, &params).unwrap();
-    assert_eq!(dec.levels[0].primitives.len(), 1);
-    assert_valid(&mesh, &dec, &params);
+    merges_to_one(&mesh, &params);
 }
 
 /// `fuzz/fuzz_targets/decompose.rs`, fourth run: one face on a single vertex at

@@ -150,24 +150,7 @@ fn merge_loop<Q: Queue>(
 ) -> MergeOutput {
     let mut out = MergeOutput::default();
     let mut heap = Q::default();
-    // Price the input's adjacent pairs in blocks, so that only one block of pairs and
-    // candidates exists outside the queue.
-    let mut block = Vec::with_capacity(PRICE_BLOCK);
-    for a in 0..cl.parent.len() as u32 {
-        block.extend(
-            cl.input_neighbors(a)
-                .iter()
-                .filter(|&&b| b > a)
-                .map(|&b| (a, b)),
-        );
-        if block.len() >= PRICE_BLOCK || a + 1 == cl.parent.len() as u32 {
-            out.fits.seed += block.len();
-            price(ev, &cl, &block)
-                .into_iter()
-                .for_each(|c| heap.push(c));
-            block.clear();
-        }
-    }
+    out.fits.seed += seed_queue(ev, &cl, &mut heap);
     let mut purge_at = (heap.len() + heap.len() / 4).max(PURGE_MIN);
     let mut stamps = Stamps {
         mark: vec![0; ev.mesh.vertex_count()],
@@ -211,15 +194,7 @@ fn merge_loop<Q: Queue>(
             }
         }
         if heap.len() > purge_at {
-            // Lazy deletion's stale entries would otherwise outnumber the live pairs
-            // many times over (memory); dropping them keeps the order unchanged.
-            // Deferred pairs' entries are kept: they are the pairs' only keys.
-            if ev.defer_degree == u32::MAX {
-                heap.retain(|c| valid(&cl, c));
-            } else {
-                heap.retain(|c| lazy.keep(&cl, c));
-                lazy.prune(&cl);
-            }
+            purge(ev, &cl, &mut lazy, &mut heap);
             purge_at = (heap.len() + heap.len() / 4).max(PURGE_MIN);
         }
         let verts = merged_points(ev, &cl, c.a, c.b, &mut stamps, &mut reducer);
@@ -238,6 +213,39 @@ fn merge_loop<Q: Queue>(
         next += 1;
     }
     out
+}
+
+/// Prices the input's adjacent pairs into `heap` in blocks, so that only one block of
+/// pairs and candidates exists outside the queue; returns how many were priced.
+fn seed_queue<Q: Queue>(ev: &Evaluator, cl: &Clusters, heap: &mut Q) -> usize {
+    let (n, mut priced) = (cl.parent.len() as u32, 0);
+    let mut block = Vec::with_capacity(PRICE_BLOCK);
+    for a in 0..n {
+        block.extend(
+            cl.input_neighbors(a)
+                .iter()
+                .filter(|&&b| b > a)
+                .map(|&b| (a, b)),
+        );
+        if block.len() >= PRICE_BLOCK || a + 1 == n {
+            priced += block.len();
+            price(ev, cl, &block).into_iter().for_each(|c| heap.push(c));
+            block.clear();
+        }
+    }
+    priced
+}
+
+/// Drops stale entries: lazy deletion's would otherwise outnumber the live pairs many
+/// times over (memory); dropping them keeps the order unchanged. Deferred pairs'
+/// entries are kept: they are the pairs' only keys.
+fn purge<Q: Queue>(ev: &Evaluator, cl: &Clusters, lazy: &mut Lazy, heap: &mut Q) {
+    if ev.defer_degree == u32::MAX {
+        heap.retain(|c| valid(cl, c));
+    } else {
+        heap.retain(|c| lazy.keep(cl, c));
+        lazy.prune(cl);
+    }
 }
 
 /// Whether the merge that made `root` leaves its pairs to [`Lazy`] instead of

@@ -570,12 +570,13 @@ fn print_timings(dec: &Decomposition, write_s: f64) {
     );
     let f = dec.fits;
     println!(
-        "fits      {} merges; {} seeding, {} re-priced at once, {} when popped ({:.2} per merge)",
+        "fits      {} merges; {} seeding, {} re-priced at once, {} when popped ({:.2} per merge); {} merges' points reduced ahead",
         dec.merges,
         f.seed,
         f.eager,
         f.lazy,
-        (f.eager + f.lazy) as f64 / dec.merges.max(1) as f64
+        (f.eager + f.lazy) as f64 / dec.merges.max(1) as f64,
+        dec.merges_ahead
     );
     if let Some(kib) = peak_rss_kib() {
         println!("memory    peak resident {:.1} MiB", kib as f64 / 1024.0);

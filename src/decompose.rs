@@ -81,6 +81,8 @@ pub struct Decomposition {
     /// Merges done and candidate merges priced by the merge loop.
     pub merges: usize,
     pub fits: crate::merge::FitCounts,
+    /// Merges whose points were reduced while the batch before them was priced.
+    pub merges_ahead: usize,
 }
 
 /// Decomposes `mesh` into primitives, one [`Level`] per target in `params.targets`.
@@ -141,6 +143,7 @@ pub fn decompose_with_progress(
     dec.bridge_edges = merged.bridge_edges;
     dec.merges = merged.merges;
     dec.fits = merged.fits;
+    dec.merges_ahead = merged.ahead;
     t.push("merge", now);
     // Remove nested primitives (§3.4), then return to world coordinates.
     let now = Instant::now();

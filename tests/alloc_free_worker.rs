@@ -71,7 +71,7 @@ fn priced_cleanly(ev: &Evaluator, mut cl: Clusters) {
             for _ in 0..50 {
                 let (allocs, worker) = (ALLOCS.load(Relaxed), pricer.stats.by_worker);
                 for (r, ns) in &batches {
-                    pricer.price(&cl, *r, ns, |c| cost += c.cost);
+                    pricer.price(&cl, *r, ns, || {}, |c| cost += c.cost);
                 }
                 if ALLOCS.load(Relaxed) == allocs && pricer.stats.by_worker > worker {
                     return Some(pricer.stats);

@@ -21,6 +21,8 @@ use rayon::prelude::*;
 const CHUNK: usize = 1024;
 /// Point lists up to this size are not worth reducing to their hull.
 const HULL_MIN: usize = 12;
+/// Stale entries [`look_ahead`] pops past to find a fresh one.
+const LOOK_PAST: usize = 8;
 /// Pairs priced per block when seeding the queue.
 const PRICE_BLOCK: usize = 1 << 16;
 /// The queue is purged of stale entries when it grows by a quarter, but never below
@@ -46,6 +48,8 @@ pub struct MergeOutput {
     pub merges: usize,
     pub bridge_edges: usize,
     pub fits: FitCounts,
+    /// Merges whose points [`look_ahead`] had reduced (while a batch was priced).
+    pub ahead: usize,
 }
 
 /// Candidate merges priced by the merge loop, by occasion.
@@ -160,6 +164,9 @@ fn merge_loop<Q: Queue>(
     let mut lazy = Lazy::default();
     // Entries re-priced when popped are priced one at a time, here.
     let mut ws = Workspace::default();
+    // The points of a merge reduced ahead of its turn ([`look_ahead`]); batch buffer.
+    let mut ahead: Option<Ahead> = None;
+    let mut batch = Vec::new();
     let start = cl.live;
     let last = *targets.last().expect("at least one target");
     let mut next = 0;
@@ -197,12 +204,31 @@ fn merge_loop<Q: Queue>(
             purge(ev, &cl, &mut lazy, &mut heap);
             purge_at = (heap.len() + heap.len() / 4).max(PURGE_MIN);
         }
-        let verts = merged_points(ev, &cl, c.a, c.b, &mut stamps, &mut reducer);
+        // Fresh, so neither cluster changed since it was priced: a look-ahead's points hold.
+        let verts = match ahead.take_if(|k| k.c == c) {
+            Some(k) => {
+                out.ahead += 1;
+                k.verts
+            }
+            None => merged_points(ev, &cl, c.a, c.b, &mut stamps, &mut reducer),
+        };
         let root = cl.merge(c.a, c.b, verts, c.volume);
         out.merges += 1;
         if !defer(ev, &mut cl, root) {
-            out.fits.eager += reprice_neighbors(&mut cl, root, &mut heap, pricer);
+            let nbrs = cl.resolved_neighbors(root);
+            // While the batch is priced (by the worker, if any), reduce the points of
+            // the likely next merge: the serial part of the next step.
+            let meanwhile = || {
+                #[cfg(test)]
+                if tests::NO_LOOK_AHEAD.get() {
+                    return;
+                }
+                look_ahead(ev, &cl, &mut heap, &mut ahead, &mut stamps, &mut reducer)
+            };
+            pricer.price(&cl, root, &nbrs, meanwhile, |c| batch.push(c));
+            out.fits.eager += nbrs.len();
             cl.repriced[root as usize] = cl.clock;
+            batch.drain(..).for_each(|c| heap.push(c));
         }
         if out.merges % 4096 == 0 {
             progress((start - cl.live) as f64 / (start - last.min(start)).max(1) as f64);
@@ -302,18 +328,45 @@ fn merged_points(
     r.keep.iter().map(|&i| out[i as usize]).collect()
 }
 
-/// Re-prices every merge of the new cluster with its neighbours (on two threads when
-/// the pricer has a worker; candidates are pushed in neighbour order either way);
-/// returns how many.
-fn reprice_neighbors<Q: Queue>(
-    cl: &mut Clusters,
-    root: u32,
+/// A fresh queue entry and its merged point list, reduced before its turn.
+struct Ahead {
+    c: Candidate,
+    verts: Vec<u32>,
+}
+
+/// Reduces the merged points of the queue's first fresh entry into `ahead` (kept if
+/// it already holds that entry) while a re-pricing batch is out: the serial part of
+/// the next merge, done while the worker prices. Entries are only looked at: every one
+/// popped here goes back, so the queue, and with it the merge order, stays exactly as
+/// without the look-ahead. The entry is often the next merge (~2/3 of the dragon's);
+/// otherwise its points wait until it is popped still fresh (neither cluster changed
+/// since it was priced, so the same points) or another entry takes its place.
+fn look_ahead<Q: Queue>(
+    ev: &Evaluator,
+    cl: &Clusters,
     heap: &mut Q,
-    pricer: &mut Pricer,
-) -> usize {
-    let nbrs = cl.resolved_neighbors(root);
-    pricer.price(cl, root, &nbrs, |c| heap.push(c));
-    nbrs.len()
+    ahead: &mut Option<Ahead>,
+    st: &mut Stamps,
+    r: &mut Reducer,
+) {
+    // Stale entries on top (often the merged cluster's old pairs) are passed over.
+    let mut seen = [None; LOOK_PAST];
+    let mut found = None;
+    for slot in &mut seen {
+        let Some(c) = heap.pop() else { break };
+        *slot = Some(c);
+        if valid(cl, &c) {
+            found = Some(c);
+            break;
+        }
+    }
+    seen.into_iter().flatten().for_each(|c| heap.push(c));
+    let Some(c) = found else { return };
+    if ahead.as_ref().is_some_and(|k| k.c == c) {
+        return;
+    }
+    let verts = merged_points(ev, cl, c.a, c.b, st, r);
+    *ahead = Some(Ahead { c, verts });
 }
 
 /// Links every live cluster to its nearest clusters by centroid (`bridge.rs`).
@@ -387,6 +440,51 @@ pub(super) mod tests {
         let ev = evaluator(&mesh, &welded, &p, mesh.aabb());
         let vols = seed_volumes(&ev, &q);
         f(&ev, &|| Clusters::new(q.clone(), vols.clone(), &pairs))
+    }
+
+    thread_local! {
+        /// Set by tests to merge without [`look_ahead`].
+        pub(super) static NO_LOOK_AHEAD: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+    }
+
+    /// Reducing the next merge's points ahead of its turn changes nothing: the same
+    /// merges and primitives at every target as without it, under exact, deferred and
+    /// the default re-pricing (the look-ahead puts back every entry it looks at; a
+    /// stale entry it passed over may be re-priced or dropped when popped, as before).
+    #[test]
+    fn look_ahead_keeps_the_serial_order() {
+        let modes = [
+            Reprice::Exact,
+            Reprice::Deferred { min_degree: 0 },
+            Params::default().reprice,
+        ];
+        for reprice in modes {
+            let p = Params {
+                reprice,
+                ..Params::default()
+            };
+            with_demo_using(p, |ev, fresh| {
+                let targets = [400, 150, 40, 1];
+                let with = in_pool(1, || run_with::<RadixHeap>(ev, fresh(), &targets, &|_| {}));
+                let without = in_pool(1, || {
+                    // The merge loop runs on the pool's thread: set the flag there.
+                    NO_LOOK_AHEAD.set(true);
+                    let out = run_with::<RadixHeap>(ev, fresh(), &targets, &|_| {});
+                    NO_LOOK_AHEAD.set(false);
+                    out
+                });
+                assert_same(&with, &without);
+                assert_eq!(without.ahead, 0);
+                if reprice == Reprice::Exact {
+                    assert!(
+                        with.ahead > with.merges / 4,
+                        "{} of {}",
+                        with.ahead,
+                        with.merges
+                    );
+                }
+            });
+        }
     }
 
     /// Runs `f` in a rayon pool of `threads` threads.

@@ -183,12 +183,14 @@ impl<'p> Pricer<'p> {
 
     /// Prices the merges of `root` with each of `nbrs` and hands the candidates to
     /// `push` in neighbour order (merges over the excess cap are skipped), exactly as
-    /// a serial loop over `nbrs` would.
+    /// a serial loop over `nbrs` would. `meanwhile` runs once, on this thread, while
+    /// the worker starts on the batch (before pricing when there is no worker).
     pub fn price(
         &mut self,
         cl: &Clusters,
         root: u32,
         nbrs: &[u32],
+        meanwhile: impl FnOnce(),
         mut push: impl FnMut(Candidate),
     ) {
         let shared = match self.link {
@@ -198,6 +200,7 @@ impl<'p> Pricer<'p> {
             _ => None,
         };
         let ev = self.ev;
+        meanwhile();
         let Some(sh) = shared else {
             for &n in nbrs {
                 if let Some((c, _)) = ev.candidate(cl, root, n, &mut self.ws) {
@@ -422,7 +425,7 @@ mod tests {
                 with_pricer(ev, |p| {
                     let mut out = Vec::new();
                     for (r, ns) in &batches {
-                        p.price(&cl, *r, ns, |c| out.push(c));
+                        p.price(&cl, *r, ns, || {}, |c| out.push(c));
                     }
                     (out, p.stats)
                 })
@@ -442,7 +445,7 @@ mod tests {
                 in_pool(2, || {
                     with_pricer(ev, |p| {
                         let (r, ns) = &batches[0];
-                        p.price(&cl, *r, ns, |_| {});
+                        p.price(&cl, *r, ns, || {}, |_| {});
                         panic!("the loop fails");
                     })
                 })

@@ -137,7 +137,9 @@ struct DecomposeArgs {
     /// Print nothing but errors.
     #[arg(short, long)]
     quiet: bool,
-    /// Print the per-stage seconds and the peak memory even with --quiet.
+    /// Print the per-stage seconds and the peak memory even with --quiet, and write the
+    /// seconds into the JSON (`stats.seconds`; without this flag the JSON is
+    /// byte-identical across runs).
     #[arg(long)]
     timings: bool,
 }
@@ -428,7 +430,14 @@ fn run_one(
     dec.input.path = Some(input.display().to_string());
     dec.timings.stages.insert(0, ("load".into(), load_s));
     let now = Instant::now();
-    let written = write_outputs(&dec, &params, out, a.obj.as_deref(), a.obj_detail)?;
+    let written = write_outputs(
+        &dec,
+        &params,
+        out,
+        a.obj.as_deref(),
+        a.obj_detail,
+        a.timings,
+    )?;
     let write_s = now.elapsed().as_secs_f64();
     if !a.quiet {
         print_summary(&dec, &mesh, &written);
@@ -490,14 +499,16 @@ fn progress_bar(faces: usize, quiet: bool) -> Option<indicatif::ProgressBar> {
     Some(b)
 }
 
-/// Writes JSON (and OBJ) per level atomically; returns the paths written. The JSON's
-/// stage timings stop before writing (the file cannot time its own write).
+/// Writes JSON (and OBJ) per level atomically; returns the paths written. With
+/// `timed` (`--timings`) the JSON holds the stage timings, which stop before writing
+/// (the file cannot time its own write); without, it is byte-identical across runs.
 fn write_outputs(
     dec: &Decomposition,
     params: &Params,
     out: &Path,
     obj: Option<&Path>,
     detail: usize,
+    timed: bool,
 ) -> anyhow::Result<Vec<PathBuf>> {
     if detail < 3 {
         bail!(BadArgs(format!(
@@ -508,7 +519,12 @@ fn write_outputs(
     let mut written = Vec::new();
     for (i, level) in dec.levels.iter().enumerate() {
         let path = output_path_for(out, level.target, n);
-        write_atomic(&path, export::json::to_json(dec, i, params).as_bytes())?;
+        let json = if timed {
+            export::json::to_json_timed(dec, i, params)
+        } else {
+            export::json::to_json(dec, i, params)
+        };
+        write_atomic(&path, json.as_bytes())?;
         written.push(path);
         if let Some(o) = obj {
             let path = output_path_for(o, level.target, n);

@@ -21,11 +21,9 @@ fn params() -> Params {
     }
 }
 
-/// The JSON minus timings (the only part allowed to differ between runs).
+/// The JSON document as written without `--timings`: compared byte for byte.
 fn stable_json(d: &Decomposition, level: usize) -> String {
-    let mut v: serde_json::Value = serde_json::from_str(&to_json(d, level, &params())).unwrap();
-    v["stats"]["seconds"] = serde_json::Value::Null;
-    v.to_string()
+    to_json(d, level, &params())
 }
 
 #[test]
@@ -118,4 +116,39 @@ fn same_decomposition_at_a_georeferenced_offset() {
     let off = [1e6, -2e6, 5e5];
     let d = decompose(&demo_mesh(1.0, off), &params()).unwrap();
     assert_same_up_to(&base, &d, 1.0, off, "offset 1e6");
+}
+
+/// The files `primdecomp decompose` writes are byte-identical across runs and thread
+/// counts (the demo scene, JSON and OBJ); `--timings` adds `stats.seconds` and nothing
+/// else.
+#[test]
+fn cli_files_are_byte_identical() {
+    let dir = std::env::temp_dir().join(format!("primdecomp-bytes-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let input = concat!(env!("CARGO_MANIFEST_DIR"), "/datasets/demo_scene.obj");
+    let run = |name: &str, extra: &[&str]| {
+        let (json, obj) = (dir.join(format!("{name}.json")), dir.join(format!("{name}.obj")));
+        let status = std::process::Command::new(env!("CARGO_BIN_EXE_primdecomp"))
+            .args(["decompose", input, "-n", "150", "--quiet", "-o"])
+            .arg(&json)
+            .arg("--obj")
+            .arg(&obj)
+            .args(extra)
+            .status()
+            .expect("runs");
+        assert!(status.success(), "{name}");
+        (std::fs::read(json).unwrap(), std::fs::read(obj).unwrap())
+    };
+    let one = run("one", &["--threads", "1"]);
+    for (name, threads) in [("two", "2"), ("again", "2"), ("eight", "8")] {
+        assert!(run(name, &["--threads", threads]) == one, "{name} differs");
+    }
+    let timed = run("timed", &["--timings"]);
+    let mut v: serde_json::Value = serde_json::from_slice(&timed.0).unwrap();
+    assert!(v["stats"]["seconds"]["total"].as_f64().is_some());
+    v["stats"].as_object_mut().unwrap().remove("seconds");
+    let plain: serde_json::Value = serde_json::from_slice(&one.0).unwrap();
+    assert_eq!(v, plain);
+    assert_eq!(timed.1, one.1);
+    std::fs::remove_dir_all(&dir).ok();
 }

@@ -31,7 +31,7 @@ def decompose(binary, mesh, targets, out_dir, timeout, threads=1, extra=()):
     for old in out_dir.glob("*.json"):
         old.unlink()
     out = out_dir / "ours.json"
-    cmd = [str(binary), "decompose", str(mesh), "-n", ",".join(map(str, targets)), "-o", str(out), "--quiet", "--threads", str(threads), *extra]
+    cmd = [str(binary), "decompose", str(mesh), "-n", ",".join(map(str, targets)), "-o", str(out), "--quiet", "--timings", "--threads", str(threads), *extra]
     t0 = time.time()
     try:
         p = subprocess.run(cmd, capture_output=True, timeout=timeout)

@@ -1,6 +1,7 @@
 //! The JSON result contract: one document per target level with the input's
-//! description, every effective setting, statistics (timings only under
-//! `stats.seconds`, so the rest is byte-identical across runs) and the primitives,
+//! description, every effective setting, statistics and the primitives (stage timings
+//! under `stats.seconds` only when asked for, [`to_json_timed`]: without them the
+//! document is byte-identical across runs and thread counts),
 //! rotations as scalar-last unit quaternions. Also the reverse direction
 //! ([`read_primitives`]) and the quaternion conversions the eval tools share.
 
@@ -224,7 +225,8 @@ struct Stats<'a> {
     counts: Counts,
     primitives: usize,
     bytes: usize,
-    seconds: Seconds<'a>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    seconds: Option<Seconds<'a>>,
 }
 
 #[derive(Serialize)]
@@ -244,8 +246,18 @@ struct DocumentIn {
 
 /// The JSON document of `dec.levels[level]` (panics if `level` is out of range):
 /// pretty-printed, 2-space indent, arrays of plain numbers on one line, ending in a
-/// newline. Everything except `stats.seconds` depends only on the inputs.
+/// newline. It depends only on the input and the settings (byte-identical across runs
+/// and thread counts): no timings.
 pub fn to_json(dec: &Decomposition, level: usize, params: &Params) -> String {
+    document(dec, level, params, false)
+}
+
+/// [`to_json`] plus the stage timings under `stats.seconds` (`--timings`).
+pub fn to_json_timed(dec: &Decomposition, level: usize, params: &Params) -> String {
+    document(dec, level, params, true)
+}
+
+fn document(dec: &Decomposition, level: usize, params: &Params, timed: bool) -> String {
     let lv = &dec.levels[level];
     debug_assert_eq!(
         lv.faces.len(),
@@ -285,7 +297,7 @@ pub fn to_json(dec: &Decomposition, level: usize, params: &Params) -> String {
             counts: Counts(lv.counts()),
             primitives: lv.primitives.len(),
             bytes: lv.bytes(),
-            seconds: Seconds(&dec.timings),
+            seconds: timed.then_some(Seconds(&dec.timings)),
         },
         primitives,
     };
@@ -430,7 +442,7 @@ mod tests {
     #[test]
     fn document_contract() {
         let dec = sample_decomposition();
-        let text = to_json(&dec, 0, &Params::default());
+        let text = to_json_timed(&dec, 0, &Params::default());
         assert!(text.ends_with("}\n"));
         let v: serde_json::Value = serde_json::from_str(&text).unwrap();
         assert_eq!(v["format"], "primdecomp");
@@ -461,7 +473,7 @@ mod tests {
 
     #[test]
     fn key_order() {
-        let text = to_json(&sample_decomposition(), 0, &Params::default());
+        let text = to_json_timed(&sample_decomposition(), 0, &Params::default());
         // Within each group, every pattern must occur after the previous one.
         let groups = [
             r#""format"|"version"|"input"|"settings"|"stats"|"primitives": ["#,
@@ -480,19 +492,24 @@ mod tests {
     }
 
     #[test]
-    fn deterministic_except_seconds() {
+    fn timings_only_when_asked() {
         let mut dec = sample_decomposition();
         let a = to_json(&dec, 0, &Params::default());
-        assert_eq!(a, to_json(&dec, 0, &Params::default()));
+        let ta = to_json_timed(&dec, 0, &Params::default());
         dec.timings.stages[0].1 = 123.0;
-        let b = to_json(&dec, 0, &Params::default());
+        // Without timings the document depends only on input and settings.
+        assert_eq!(a, to_json(&dec, 0, &Params::default()));
+        assert!(!a.contains("\"seconds\""), "{a}");
+        let tb = to_json_timed(&dec, 0, &Params::default());
+        assert_ne!(ta, tb);
         let strip = |s: &str| {
             let mut v: serde_json::Value = serde_json::from_str(s).unwrap();
-            v["stats"]["seconds"] = serde_json::Value::Null;
+            v["stats"].as_object_mut().unwrap().remove("seconds");
             v.to_string()
         };
-        assert_ne!(a, b);
-        assert_eq!(strip(&a), strip(&b));
+        let plain: serde_json::Value = serde_json::from_str(&a).unwrap();
+        assert_eq!(strip(&ta), plain.to_string());
+        assert_eq!(strip(&tb), plain.to_string());
     }
 
     /// Every number of a primitive's JSON form.

@@ -127,7 +127,10 @@ fn cli_files_are_byte_identical() {
     std::fs::create_dir_all(&dir).unwrap();
     let input = concat!(env!("CARGO_MANIFEST_DIR"), "/datasets/demo_scene.obj");
     let run = |name: &str, extra: &[&str]| {
-        let (json, obj) = (dir.join(format!("{name}.json")), dir.join(format!("{name}.obj")));
+        let (json, obj) = (
+            dir.join(format!("{name}.json")),
+            dir.join(format!("{name}.obj")),
+        );
         let status = std::process::Command::new(env!("CARGO_BIN_EXE_primdecomp"))
             .args(["decompose", input, "-n", "150", "--quiet", "-o"])
             .arg(&json)

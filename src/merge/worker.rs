@@ -183,8 +183,9 @@ impl<'p> Pricer<'p> {
 
     /// Prices the merges of `root` with each of `nbrs` and hands the candidates to
     /// `push` in neighbour order (merges over the excess cap are skipped), exactly as
-    /// a serial loop over `nbrs` would. `meanwhile` runs once, on this thread, while
-    /// the worker starts on the batch (before pricing when there is no worker).
+    /// a serial loop over `nbrs` would. `meanwhile` runs on this thread while the
+    /// worker starts on the batch, and only then: with no worker to overlap, work done
+    /// ahead is only overhead (the caller's results must not depend on it).
     pub fn price(
         &mut self,
         cl: &Clusters,
@@ -200,7 +201,6 @@ impl<'p> Pricer<'p> {
             _ => None,
         };
         let ev = self.ev;
-        meanwhile();
         let Some(sh) = shared else {
             for &n in nbrs {
                 if let Some((c, _)) = ev.candidate(cl, root, n, &mut self.ws) {
@@ -209,6 +209,7 @@ impl<'p> Pricer<'p> {
             }
             return;
         };
+        meanwhile();
         self.found.clear();
         self.found.resize(nbrs.len(), None);
         self.mine.clear();

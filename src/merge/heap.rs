@@ -263,6 +263,45 @@ mod tests {
         }
     }
 
+    /// Buckets far larger than `KEEP_CAPACITY` (whose allocations refills free rather
+    /// than keep) pop the same sequence as `BinaryHeap`, with many tied costs and
+    /// pushes below the last pop in between; the proptest below never fills a bucket
+    /// that far.
+    #[test]
+    fn large_buckets_pop_like_binary_heap() {
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        let n = 50 * KEEP_CAPACITY + 17;
+        let mut make = || {
+            let r = next();
+            c(
+                (r % 1000) as f64 - 50.0,
+                (r >> 20) as u32 % 4000,
+                (r >> 40) as u32 % 4000,
+            )
+        };
+        let batch: Vec<Candidate> = (0..n).map(|_| make()).collect();
+        let (mut r, mut s) = (RadixHeap::default(), StdHeap::from_vec(batch.clone()));
+        batch.into_iter().for_each(|x| r.push(x));
+        for i in 0..n {
+            assert_eq!(r.pop(), s.pop(), "pop {i}");
+            if i % 3 == 0 {
+                let x = make();
+                r.push(x);
+                s.push(x);
+            }
+        }
+        while let Some(x) = s.pop() {
+            assert_eq!(r.pop(), Some(x));
+        }
+        assert!(r.pop().is_none());
+    }
+
     proptest! {
         /// Any interleaving of pushes and pops, with costs drawn from a small set
         /// (many ties) including negative ones and ones below the last pop, gives the

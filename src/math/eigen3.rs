@@ -132,9 +132,11 @@ fn solve(m: &Sym3, direct: bool) -> Eigen3 {
         return Eigen3::ZERO_IDENTITY;
     }
     // Division rather than multiplication by 1/s: 1/s overflows for subnormal s.
-    let scaled = rows.map(|r| r.map(|x| x / s));
+    let [r0, r1, r2] = rows;
+    let row = |r: [f64; 3]| [r[0] / s, r[1] / s, r[2] / s];
+    let scaled = [row(r0), row(r1), row(r2)];
     if let Some((values, columns)) = deflate(&scaled).filter(|_| direct) {
-        return finish(values.map(|x| x * s), columns);
+        return finish([values[0] * s, values[1] * s, values[2] * s], columns);
     }
     let (a, v) = jacobi(scaled, SWEEPS);
     let values = [a[0][0] * s, a[1][1] * s, a[2][2] * s];
@@ -155,20 +157,20 @@ fn deflate(a: &[[f64; 3]; 3]) -> Option<([f64; 3], [V3; 3])> {
         return Some((values, [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]));
     }
     let iso = isolated_value(a, off)?;
-    let r = [0, 1, 2].map(|i| {
-        let mut row = a[i];
-        row[i] -= iso;
-        row
-    });
+    let r = [
+        [a[0][0] - iso, a[0][1], a[0][2]],
+        [a[1][0], a[1][1] - iso, a[1][2]],
+        [a[2][0], a[2][1], a[2][2] - iso],
+    ];
     let cs = [cross(r[0], r[1]), cross(r[0], r[2]), cross(r[1], r[2])];
-    let n2 = cs.map(|c| dot(c, c));
+    let n2 = [dot(cs[0], cs[0]), dot(cs[1], cs[1]), dot(cs[2], cs[2])];
     let k = (1..3).fold(0, |k, i| if n2[i] > n2[k] { i } else { k });
     if n2[k] <= 1e-20 {
         return None;
     }
     let v = scale(cs[k], 1.0 / n2[k].sqrt());
     // Any unit u ⟂ v (crossing v with the axis it is least aligned with), w = v × u.
-    let m = v.map(f64::abs);
+    let m = [v[0].abs(), v[1].abs(), v[2].abs()];
     let least = (1..3).fold(0, |k, i| if m[i] < m[k] { i } else { k });
     let mut e = [0.0; 3];
     e[least] = 1.0;
@@ -184,8 +186,16 @@ fn deflate(a: &[[f64; 3]; 3]) -> Option<([f64; 3], [V3; 3])> {
         cc * m00 + 2.0 * cs * m01 + ss * m11,
         ss * m00 - 2.0 * cs * m01 + cc * m11,
     ];
-    let u2 = [0, 1, 2].map(|i| c * u[i] + s * w[i]);
-    let w2 = [0, 1, 2].map(|i| c * w[i] - s * u[i]);
+    let u2 = [
+        c * u[0] + s * w[0],
+        c * u[1] + s * w[1],
+        c * u[2] + s * w[2],
+    ];
+    let w2 = [
+        c * w[0] - s * u[0],
+        c * w[1] - s * u[1],
+        c * w[2] - s * u[2],
+    ];
     Some((values, [v, u2, w2]))
 }
 
@@ -318,7 +328,7 @@ fn finish(values: [f64; 3], columns: [V3; 3]) -> Eigen3 {
     ]);
     let (v0, v1) = (canonical_sign(v0), canonical_sign(v1));
     Eigen3 {
-        values: order.map(|i| values[i]),
+        values: [values[order[0]], values[order[1]], values[order[2]]],
         vectors: [v0, v1, cross(v0, v1)],
     }
 }

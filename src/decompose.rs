@@ -147,14 +147,13 @@ pub fn decompose_with_progress(
         clusters
     };
     drop(pairs); // the clusters hold the adjacency now
-                 // Greedy merging down through every target in one pass (Alg. 1 loop).
+
+    // Greedy merging down through every target in one pass (Alg. 1 loop).
     let now = Instant::now();
     let merged = crate::merge::run(&ev, clusters, &targets, progress);
     dec.bridge_edges = merged.bridge_edges;
     dec.merges += merged.merges;
-    dec.fits.seed += merged.fits.seed;
-    dec.fits.eager += merged.fits.eager;
-    dec.fits.lazy += merged.fits.lazy;
+    dec.fits += merged.fits;
     t.push("merge", now);
     // Remove nested primitives (§3.4), then return to world coordinates.
     let now = Instant::now();

@@ -59,6 +59,15 @@ pub struct FitCounts {
     pub lazy: usize,
 }
 
+impl std::ops::AddAssign for FitCounts {
+    /// Counts of two runs together (the phases of `Params::partitions`).
+    fn add_assign(&mut self, o: FitCounts) {
+        self.seed += o.seed;
+        self.eager += o.eager;
+        self.lazy += o.lazy;
+    }
+}
+
 /// Visited-marks for deduplicating vertex unions without clearing a whole array.
 struct Stamps {
     mark: Vec<u32>,

@@ -150,9 +150,7 @@ pub fn merge_parts(
     let mut out = Phase1::default();
     for (groups, m) in results {
         out.merges += m.merges;
-        out.fits.seed += m.fits.seed;
-        out.fits.eager += m.fits.eager;
-        out.fits.lazy += m.fits.lazy;
+        out.fits += m.fits;
         out.parts.push(groups);
     }
     out

@@ -132,11 +132,16 @@ pub fn decompose_with_progress(
     let mut targets = params.targets.clone();
     targets.sort_unstable_by(|a, b| b.cmp(a));
     targets.dedup();
+    // Progress is the fraction of the merges to the last target (over both phases).
+    let last = *targets.last().expect("validated: one target or more");
+    let total = mesh.face_count().saturating_sub(last).max(1) as f64;
     let clusters = if partitioned(mesh, params, targets[0]) {
         t.push("seed", now);
         // Phase 1 of `Params::partitions`: parts merged in parallel (merge/partition.rs).
         let now = Instant::now();
-        let p1 = partition::merge_parts(&ev, &q, &volumes, &pairs, targets[0], params.partitions);
+        let merged = |m: usize| progress(m as f64 / total);
+        let k = params.partitions;
+        let p1 = partition::merge_parts(&ev, &q, &volumes, &pairs, targets[0], k, &merged);
         (dec.merges, dec.fits) = (p1.merges, p1.fits);
         let clusters = partition::clusters(p1, q, volumes, &pairs);
         t.push("partitions", now);
@@ -150,7 +155,9 @@ pub fn decompose_with_progress(
 
     // Greedy merging down through every target in one pass (Alg. 1 loop).
     let now = Instant::now();
-    let merged = crate::merge::run(&ev, clusters, &targets, progress);
+    let (done, rest) = (dec.merges as f64, clusters.live.saturating_sub(last) as f64);
+    let phase2 = |f: f64| progress((done + f * rest) / total);
+    let merged = crate::merge::run(&ev, clusters, &targets, &phase2);
     dec.bridge_edges = merged.bridge_edges;
     dec.merges += merged.merges;
     dec.fits += merged.fits;

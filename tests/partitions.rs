@@ -146,3 +146,23 @@ fn partitioned_output_encloses_corpus_meshes() {
         }
     }
 }
+
+/// Progress covers both phases as one fraction of the merges: phase 1's parallel parts
+/// report their merges so far (a bar no longer waits at 0% through phase 1), every
+/// value within [0, 1].
+#[test]
+fn progress_is_reported_during_phase_one() {
+    let m = mesh(&uv_sphere(3.0, 150, 200));
+    let p = params(&[100], 2);
+    let seen = std::sync::Mutex::new(Vec::new());
+    let dec =
+        primdecomp::decompose::decompose_with_progress(&m, &p, &|f| seen.lock().unwrap().push(f))
+            .unwrap();
+    assert!(dec.timings.stages.iter().any(|s| s.0 == "partitions"));
+    let seen = seen.into_inner().unwrap();
+    assert!(seen.iter().all(|f| (0.0..=1.0).contains(f)), "{seen:?}");
+    // 30,000 faces, two parts of ~14,200 merges each, reported every 4,096 merges.
+    assert!(seen.len() >= 4, "{seen:?}");
+    assert!(seen.iter().any(|&f| f < 0.5), "{seen:?}");
+    assert!(seen.iter().any(|&f| f > 0.5), "{seen:?}");
+}

@@ -160,10 +160,16 @@ pub(super) enum Scope {
 
 /// Phase 1 of `Params::partitions`: merges `cl` (one part's clusters) down to
 /// `target` on this thread alone (no worker: the parts run in parallel), or until
-/// adjacency runs out; returns the clusters and the merge counts.
-pub(super) fn merge_part(ev: &Evaluator, cl: Clusters, target: usize) -> (Clusters, MergeOutput) {
+/// adjacency runs out, reporting progress as [`run`] does; returns the clusters and
+/// the merge counts.
+pub(super) fn merge_part(
+    ev: &Evaluator,
+    cl: Clusters,
+    target: usize,
+    progress: &(dyn Fn(f64) + Sync),
+) -> (Clusters, MergeOutput) {
     let mut pricer = Pricer::serial(ev);
-    let (out, cl) = merge_loop::<RadixHeap>(ev, cl, &[target], &|_| {}, &mut pricer, Scope::Part);
+    let (out, cl) = merge_loop::<RadixHeap>(ev, cl, &[target], progress, &mut pricer, Scope::Part);
     (cl, out)
 }
 

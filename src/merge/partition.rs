@@ -22,6 +22,7 @@ use super::driver::{merge_part, FitCounts, MergeOutput};
 use crate::math::Sym3;
 use crate::mesh::Mesh;
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 
 /// Phase 1 stops at about this many clusters per unit of the largest target (F2 =
 /// 16 × N, never fewer than the target); the choice against 8× is measured in
@@ -126,7 +127,8 @@ pub fn phase1_size(largest_target: usize) -> usize {
 /// Phase 1: splits the faces into `k` parts and merges each (in parallel, one task per
 /// part) down to its share of [`phase1_size`], in proportion to its faces (at least
 /// one cluster). `q` and `volume` are the faces' operators and seed volumes, `pairs`
-/// the input's adjacent face pairs.
+/// the input's adjacent face pairs; `merged` is told, now and then, how many merges
+/// all parts have done so far (progress only).
 pub fn merge_parts(
     ev: &Evaluator,
     q: &[Sym3],
@@ -134,17 +136,26 @@ pub fn merge_parts(
     pairs: &[(u32, u32)],
     largest_target: usize,
     k: usize,
+    merged: &(dyn Fn(usize) + Sync),
 ) -> Phase1 {
     let parts = split(ev.mesh, k);
     let faces = ev.mesh.face_count() as u128;
     let size = phase1_size(largest_target) as u128;
     let local_pairs = pairs_by_part(&parts, pairs, faces as usize);
+    let done: Vec<AtomicUsize> = parts.iter().map(|_| AtomicUsize::new(0)).collect();
     let results: Vec<(Groups, MergeOutput)> = parts
         .par_iter()
         .zip(local_pairs.par_iter())
-        .map(|(part, lp)| {
-            let target = (size * part.len() as u128).div_ceil(faces.max(1)).max(1);
-            merge_one(ev, q, volume, part, lp, target as usize)
+        .enumerate()
+        .map(|(i, (part, lp))| {
+            let target = (size * part.len() as u128).div_ceil(faces.max(1)).max(1) as usize;
+            // The loop reports the fraction of its part's merges to the target.
+            let span = part.len().saturating_sub(target).max(1) as f64;
+            let report = |f: f64| {
+                done[i].store((f * span).round() as usize, Relaxed);
+                merged(done.iter().map(|d| d.load(Relaxed)).sum());
+            };
+            merge_one(ev, q, volume, part, lp, target, &report)
         })
         .collect();
     let mut out = Phase1::default();
@@ -217,6 +228,7 @@ fn merge_one(
     part: &[u32],
     pairs: &[(u32, u32)],
     target: usize,
+    progress: &(dyn Fn(f64) + Sync),
 ) -> (Groups, MergeOutput) {
     let (sub, sub_welded, global) = sub_mesh(ev.mesh, ev.welded, part);
     // Same fit settings, cost grid and hull tolerance as the whole input's.
@@ -230,7 +242,7 @@ fn merge_one(
         part.iter().map(|&f| volume[f as usize]).collect(),
         pairs,
     );
-    let (cl, out) = merge_part(&sub_ev, cl, target);
+    let (cl, out) = merge_part(&sub_ev, cl, target, progress);
     let mut g = Groups {
         offsets: vec![0],
         ..Groups::default()

@@ -110,6 +110,11 @@ struct DecomposeArgs {
     /// count N: merges of clusters with N or more neighbours are deferred, others exact.
     #[arg(long, default_value = "64")]
     reprice: String,
+    /// Split the faces into K spatial parts merged in parallel (to 16x the largest
+    /// target) before the global merge: faster on several cores, merges across parts
+    /// wait (docs/results/partitions.md). 1 = one global greedy.
+    #[arg(long, default_value_t = 1)]
+    partitions: usize,
     /// Keep primitives whose points lie inside another primitive.
     #[arg(long)]
     keep_contained: bool,
@@ -224,6 +229,7 @@ fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
         merge_min_extent_rel: a.merge_min_extent,
         remove_contained: !a.keep_contained,
         remove_thin_boxes: a.remove_thin_boxes,
+        partitions: a.partitions,
         ..Default::default()
     };
     for w in &a.weights {

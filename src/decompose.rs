@@ -3,7 +3,7 @@
 
 use crate::error::{Error, Result};
 use crate::math::V3;
-use crate::merge::{Clusters, Evaluator, Workspace};
+use crate::merge::{partition, Clusters, Evaluator, Workspace};
 use crate::mesh::{adjacency, dedup, Mesh};
 use crate::params::{Params, Reprice};
 use crate::postprocess::{keep_mask, Cleanup};
@@ -131,19 +131,39 @@ pub fn decompose_with_progress(
     let now = Instant::now();
     let ev = evaluator(mesh, &welded, params, bounds);
     let volumes = seed_volumes(&ev, &q);
-    let clusters = Clusters::new(q, volumes, &pairs);
-    drop(pairs); // the clusters hold the adjacency now
-    t.push("seed", now);
-    // Greedy merging down through every target in one pass (Alg. 1 loop).
-    let now = Instant::now();
     let mut targets = params.targets.clone();
     targets.sort_unstable_by(|a, b| b.cmp(a));
     targets.dedup();
-    let merged = crate::merge::run(&ev, clusters, &targets, progress);
+    // Progress is the fraction of the merges to the last target (over both phases).
+    let last = *targets.last().expect("validated: one target or more");
+    let total = mesh.face_count().saturating_sub(last).max(1) as f64;
+    let clusters = if partitioned(mesh, params, targets[0]) {
+        t.push("seed", now);
+        // Phase 1 of `Params::partitions`: parts merged in parallel (merge/partition.rs).
+        let now = Instant::now();
+        let merged = |m: usize| progress(m as f64 / total);
+        let k = params.partitions;
+        let p1 = partition::merge_parts(&ev, &q, &volumes, &pairs, targets[0], k, &merged);
+        (dec.merges, dec.fits) = (p1.merges, p1.fits);
+        let clusters = partition::clusters(p1, q, volumes, &pairs);
+        t.push("partitions", now);
+        clusters
+    } else {
+        let clusters = Clusters::new(q, volumes, &pairs);
+        t.push("seed", now);
+        clusters
+    };
+    drop(pairs); // the clusters hold the adjacency now
+
+    // Greedy merging down through every target in one pass (Alg. 1 loop).
+    let now = Instant::now();
+    let (done, rest) = (dec.merges as f64, clusters.live.saturating_sub(last) as f64);
+    let phase2 = |f: f64| progress((done + f * rest) / total);
+    let merged = crate::merge::run(&ev, clusters, &targets, &phase2);
     dec.bridge_edges = merged.bridge_edges;
-    dec.merges = merged.merges;
-    dec.fits = merged.fits;
-    dec.merges_ahead = merged.ahead;
+    dec.merges += merged.merges;
+    dec.fits += merged.fits;
+    dec.merges_ahead += merged.ahead;
     t.push("merge", now);
     // Remove nested primitives (§3.4), then return to world coordinates.
     let now = Instant::now();
@@ -161,6 +181,12 @@ pub fn decompose_with_progress(
         .collect();
     dec.timings.push("postprocess", now);
     Ok(dec)
+}
+
+/// Whether the run starts with partitioned merging: more than one part asked for and
+/// more faces than phase 1 would leave (else it would merge nothing).
+fn partitioned(mesh: &Mesh, params: &Params, largest_target: usize) -> bool {
+    params.partitions > 1 && mesh.face_count() > partition::phase1_size(largest_target)
 }
 
 fn input_info(mesh: &Mesh, (lo, hi): (V3, V3)) -> InputInfo {

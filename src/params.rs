@@ -16,6 +16,7 @@
 //! | `merge_min_extent_rel` | none (= `min_extent_rel`) | merges are priced as if primitives were at least this thick: coplanar merges across gaps and holes (a roof's rim into a lid) cost more; output thickness unchanged | — (below `min_extent_rel` it has no effect) |
 //! | `remove_contained` | true | — | keeps nested primitives |
 //! | `reprice` | `Deferred { min_degree: 64 }` | merges of clusters with at least `min_degree` neighbours leave their pairs' old queue entries as keys and re-price each when popped; a higher `min_degree` defers fewer merges (`Exact`: none, the paper's order, F^1.5 on large flat regions) | defers more merges: fewer fits, faster, the order drifts from exact greedy; `min_degree: 0` defers all (about 0.8× the time on the corpus, quality mixed: docs/results/reprice.md) |
+//! | `partitions` | 1 | the faces are split into that many spatial parts, merged in parallel (one task each) to 16× the largest target before the global merge loop: faster on 2+ cores, merges across part boundaries wait (docs/results/partitions.md) | — (1 = one global greedy, Alg. 1) |
 //! | `remove_thin_boxes` | None | (when set) drops boxes thinner than this fraction of the diagonal if still covered | — |
 
 use crate::error::{Error, Result};
@@ -80,7 +81,19 @@ pub struct Params {
     pub remove_thin_boxes: Option<f64>,
     /// When merged clusters' pairs are re-priced (exact greedy order or lazy).
     pub reprice: Reprice,
+    /// Spatial parts merged in parallel before the global merge loop (`merge::partition`);
+    /// 1 = none (Alg. 1 as is). Serialized only when not 1, so that default runs'
+    /// output stays as it was.
+    #[serde(skip_serializing_if = "is_one")]
+    pub partitions: usize,
 }
+
+fn is_one(k: &usize) -> bool {
+    *k == 1
+}
+
+/// The most parts `partitions` may ask for.
+pub const MAX_PARTITIONS: usize = 4096;
 
 /// Serializes a per-kind array as `{"box": …, "sphere": …, …}`.
 fn by_kind<T: Serialize, S: serde::Serializer>(
@@ -109,6 +122,7 @@ impl Default for Params {
             remove_contained: true,
             remove_thin_boxes: None,
             reprice: Reprice::Deferred { min_degree: 64 },
+            partitions: 1,
         }
     }
 }
@@ -159,6 +173,12 @@ impl Params {
             if !(m.is_finite() && m >= 0.0) {
                 return bad(format!("max-excess-volume must be ≥ 0, got {m}"));
             }
+        }
+        if !(1..=MAX_PARTITIONS).contains(&self.partitions) {
+            return bad(format!(
+                "partitions must be from 1 to {MAX_PARTITIONS}, got {}",
+                self.partitions
+            ));
         }
         if let Dedup::Tolerance(t) = self.dedup {
             if !(t.is_finite() && t >= 0.0) {

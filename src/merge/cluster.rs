@@ -221,6 +221,15 @@ impl Clusters {
         }
     }
 
+    /// Root `c`'s neighbour list as stored: the input's adjacency while it is a single
+    /// face, else its list (resolved to live roots only if just resolved).
+    pub fn neighbors(&self, c: u32) -> &[u32] {
+        match self.slot[c as usize] {
+            NO_LISTS => self.input_neighbors(c),
+            s => &self.slab[s as usize].neighbors,
+        }
+    }
+
     /// Resolves root `c`'s neighbour list once it has grown past twice its length at
     /// the last resolve (amortised O(1) per entry; keeps `neighbor_len` within about
     /// twice the degree while merges skip resolving it).

@@ -63,6 +63,15 @@ pub struct FitCounts {
     pub lazy: usize,
 }
 
+impl std::ops::AddAssign for FitCounts {
+    /// Counts of two runs together (the phases of `Params::partitions`).
+    fn add_assign(&mut self, o: FitCounts) {
+        self.seed += o.seed;
+        self.eager += o.eager;
+        self.lazy += o.lazy;
+    }
+}
+
 /// Visited-marks for deduplicating vertex unions without clearing a whole array.
 struct Stamps {
     mark: Vec<u32>,
@@ -139,9 +148,33 @@ fn run_counted<Q: Queue>(
     progress: &(dyn Fn(f64) + Sync),
 ) -> (MergeOutput, Stats) {
     with_pricer(ev, |p| {
-        let out = merge_loop::<Q>(ev, cl, targets, progress, p);
+        let out = merge_loop::<Q>(ev, cl, targets, progress, p, Scope::Whole).0;
         (out, p.stats)
     })
+}
+
+/// What the merge loop runs on: the whole input, or one spatial part of it in phase 1
+/// of `Params::partitions` (`partition.rs`), which fits no snapshots (only the
+/// clusters are kept) and never bridges (linking components is a global decision).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Scope {
+    Whole,
+    Part,
+}
+
+/// Phase 1 of `Params::partitions`: merges `cl` (one part's clusters) down to
+/// `target` on this thread alone (no worker: the parts run in parallel), or until
+/// adjacency runs out, reporting progress as [`run`] does; returns the clusters and
+/// the merge counts.
+pub(super) fn merge_part(
+    ev: &Evaluator,
+    cl: Clusters,
+    target: usize,
+    progress: &(dyn Fn(f64) + Sync),
+) -> (Clusters, MergeOutput) {
+    let mut pricer = Pricer::serial(ev);
+    let (out, cl) = merge_loop::<RadixHeap>(ev, cl, &[target], progress, &mut pricer, Scope::Part);
+    (cl, out)
 }
 
 /// The loop of [`run_with`]; `pricer` re-prices each merged cluster's neighbours.
@@ -151,7 +184,8 @@ fn merge_loop<Q: Queue>(
     targets: &[usize],
     progress: &(dyn Fn(f64) + Sync),
     pricer: &mut Pricer,
-) -> MergeOutput {
+    scope: Scope,
+) -> (MergeOutput, Clusters) {
     let mut out = MergeOutput::default();
     let mut heap = Q::default();
     out.fits.seed += seed_queue(ev, &cl, &mut heap);
@@ -172,13 +206,16 @@ fn merge_loop<Q: Queue>(
     let mut next = 0;
     loop {
         while next < targets.len() && cl.live <= targets[next] {
-            out.snapshots.push(snapshot(ev, &cl, targets[next]));
+            out.snapshots.push(snapshot(ev, &cl, targets[next], scope));
             next += 1;
         }
         if next == targets.len() {
             break;
         }
         let Some(c) = heap.pop() else {
+            if scope == Scope::Part {
+                break;
+            }
             let bridged = bridge(ev, &mut cl);
             out.bridge_edges += bridged.len();
             out.fits.seed += bridged.len();
@@ -230,10 +267,10 @@ fn merge_loop<Q: Queue>(
         }
     }
     while next < targets.len() {
-        out.snapshots.push(snapshot(ev, &cl, targets[next]));
+        out.snapshots.push(snapshot(ev, &cl, targets[next], scope));
         next += 1;
     }
-    out
+    (out, cl)
 }
 
 /// Prices the input's adjacent pairs into `heap` in blocks, so that only one block of
@@ -242,12 +279,10 @@ fn seed_queue<Q: Queue>(ev: &Evaluator, cl: &Clusters, heap: &mut Q) -> usize {
     let (n, mut priced) = (cl.parent.len() as u32, 0);
     let mut block = Vec::with_capacity(PRICE_BLOCK);
     for a in 0..n {
-        block.extend(
-            cl.input_neighbors(a)
-                .iter()
-                .filter(|&&b| b > a)
-                .map(|&b| (a, b)),
-        );
+        // Roots' neighbour lists: the input's adjacency, or (phase 2 of
+        // `Params::partitions`) the resolved adjacency between groups of faces.
+        let nbrs = if cl.is_root(a) { cl.neighbors(a) } else { &[] };
+        block.extend(nbrs.iter().filter(|&&b| b > a).map(|&b| (a, b)));
         if block.len() >= PRICE_BLOCK || a + 1 == n {
             priced += block.len();
             price(ev, cl, &block).into_iter().for_each(|c| heap.push(c));
@@ -390,8 +425,15 @@ fn centroid(ev: &Evaluator, cl: &Clusters, c: u32) -> [f64; 3] {
     s.map(|x| x / vs.len().max(1) as f64)
 }
 
-/// Fits every live cluster (in root order) on all of its faces' vertices, for output.
-fn snapshot(ev: &Evaluator, cl: &Clusters, target: usize) -> Snapshot {
+/// Fits every live cluster (in root order) on all of its faces' vertices, for output
+/// (a part's loop only records that the target was reached).
+fn snapshot(ev: &Evaluator, cl: &Clusters, target: usize, scope: Scope) -> Snapshot {
+    if scope == Scope::Part {
+        return Snapshot {
+            target,
+            ..Snapshot::default()
+        };
+    }
     let roots = cl.roots();
     let prims: Vec<Primitive> = roots
         .par_iter()

@@ -8,6 +8,7 @@ pub mod cost;
 pub mod driver;
 pub mod heap;
 mod lazy;
+pub mod partition;
 pub mod worker;
 
 pub use cluster::{ClusterId, Clusters};

@@ -1,0 +1,375 @@
+//! Coarse-grained parallel first phase of the merge loop (`Params::partitions`, a
+//! speed/accuracy setting; ARCHITECTURE.md, "Where we deviate"). Alg. 1 (§3.3) is a
+//! sequential greedy; here it runs in two phases:
+//!
+//! 1. the faces are split into K spatial parts ([`split`]: recursive median split of
+//!    face centroids along the longest extent, ties broken by face index, so the parts
+//!    depend only on the input and K); in each part, as one rayon task, the unchanged
+//!    merge loop runs on the part's faces alone (a sub-mesh with local ids, only pairs
+//!    of faces in that part) down to its share of [`GROUPS_PER_TARGET`] × the largest
+//!    target, without bridging;
+//! 2. one global [`Clusters`] starts from phase 1's groups (Q, hull-reduced points and
+//!    priced volume as the part's loop left them, neighbours = adjacency between
+//!    groups), and the normal merge loop (with its worker) runs to the targets.
+//!
+//! Output primitives are still `fit_cluster_exact` of the final clusters, so the
+//! enclosure guarantee does not depend on this; only the merge order does (merges
+//! across part boundaries wait for phase 2).
+
+use super::cluster::Clusters;
+use super::cost::Evaluator;
+use super::driver::{merge_part, FitCounts, MergeOutput};
+use crate::math::Sym3;
+use crate::mesh::Mesh;
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
+
+/// Phase 1 stops at about this many clusters per unit of the largest target (F2 =
+/// 16 × N, never fewer than the target); the choice against 8× is measured in
+/// docs/results/partitions.md.
+pub const GROUPS_PER_TARGET: usize = 16;
+
+/// One part's clusters after phase 1, in the input's ids.
+#[derive(Debug, Default)]
+struct Groups {
+    /// The faces of each group (increasing within a group), as CSR.
+    faces: Vec<u32>,
+    offsets: Vec<u32>,
+    q: Vec<Sym3>,
+    volume: Vec<f64>,
+    /// Hull-reduced welded vertices of each group; empty for a single face.
+    verts: Vec<Vec<u32>>,
+}
+
+/// Phase 1's result: every part's groups, and the merges it did.
+#[derive(Debug, Default)]
+pub struct Phase1 {
+    parts: Vec<Groups>,
+    pub merges: usize,
+    pub fits: FitCounts,
+}
+
+impl Phase1 {
+    /// Number of groups phase 2 starts from.
+    pub fn groups(&self) -> usize {
+        self.parts.iter().map(|g| g.verts.len()).sum()
+    }
+}
+
+/// Splits the faces of `mesh` into `k` parts by recursive median split of their
+/// centroids along the longest extent of the centroids' box (lowest axis on ties),
+/// ordering faces by (coordinate, face index). Each part's faces are increasing; every
+/// face is in exactly one part; part sizes differ by at most one per level of
+/// splitting (`k` not a power of two: proportional shares). Independent of threads.
+pub fn split(mesh: &Mesh, k: usize) -> Vec<Vec<u32>> {
+    let centroids: Vec<[f64; 3]> = (0..mesh.face_count())
+        .into_par_iter()
+        .with_min_len(4096)
+        .map(|f| centroid(mesh, f))
+        .collect();
+    let mut ids: Vec<u32> = (0..mesh.face_count() as u32).collect();
+    let mut parts = Vec::with_capacity(k);
+    split_into(&mut ids, &centroids, k.max(1), &mut parts);
+    parts
+}
+
+fn centroid(mesh: &Mesh, f: usize) -> [f64; 3] {
+    let vs = mesh.face(f);
+    let mut s = [0.0; 3];
+    for &v in vs {
+        let p = mesh.pos(v);
+        (0..3).for_each(|i| s[i] += p[i]);
+    }
+    s.map(|x| x / vs.len().max(1) as f64)
+}
+
+fn split_into(ids: &mut [u32], c: &[[f64; 3]], k: usize, parts: &mut Vec<Vec<u32>>) {
+    if k == 1 {
+        let mut part = ids.to_vec();
+        part.sort_unstable();
+        parts.push(part);
+        return;
+    }
+    let axis = longest_axis(ids, c);
+    let left = k / 2;
+    let m = (ids.len() as u128 * left as u128 / k as u128) as usize;
+    if m > 0 && m < ids.len() {
+        ids.select_nth_unstable_by(m, |&a, &b| {
+            c[a as usize][axis]
+                .total_cmp(&c[b as usize][axis])
+                .then(a.cmp(&b))
+        });
+    }
+    let (lo, hi) = ids.split_at_mut(m);
+    split_into(lo, c, left, parts);
+    split_into(hi, c, k - left, parts);
+}
+
+/// The axis along which the centroids of `ids` spread farthest (the lowest on ties).
+fn longest_axis(ids: &[u32], c: &[[f64; 3]]) -> usize {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for &f in ids {
+        for k in 0..3 {
+            lo[k] = lo[k].min(c[f as usize][k]);
+            hi[k] = hi[k].max(c[f as usize][k]);
+        }
+    }
+    let ext = [0, 1, 2].map(|k| hi[k] - lo[k]);
+    (0..3).fold(0, |best, k| if ext[k] > ext[best] { k } else { best })
+}
+
+/// Phase 2's starting size: `GROUPS_PER_TARGET` × the largest target.
+pub fn phase1_size(largest_target: usize) -> usize {
+    largest_target.saturating_mul(GROUPS_PER_TARGET)
+}
+
+/// Phase 1: splits the faces into `k` parts and merges each (in parallel, one task per
+/// part) down to its share of [`phase1_size`], in proportion to its faces (at least
+/// one cluster). `q` and `volume` are the faces' operators and seed volumes, `pairs`
+/// the input's adjacent face pairs; `merged` is told, now and then, how many merges
+/// all parts have done so far (progress only).
+pub fn merge_parts(
+    ev: &Evaluator,
+    q: &[Sym3],
+    volume: &[f64],
+    pairs: &[(u32, u32)],
+    largest_target: usize,
+    k: usize,
+    merged: &(dyn Fn(usize) + Sync),
+) -> Phase1 {
+    let parts = split(ev.mesh, k);
+    let faces = ev.mesh.face_count() as u128;
+    let size = phase1_size(largest_target) as u128;
+    let local_pairs = pairs_by_part(&parts, pairs, faces as usize);
+    let done: Vec<AtomicUsize> = parts.iter().map(|_| AtomicUsize::new(0)).collect();
+    let results: Vec<(Groups, MergeOutput)> = parts
+        .par_iter()
+        .zip(local_pairs.par_iter())
+        .enumerate()
+        .map(|(i, (part, lp))| {
+            let target = (size * part.len() as u128).div_ceil(faces.max(1)).max(1) as usize;
+            // The loop reports the fraction of its part's merges to the target.
+            let span = part.len().saturating_sub(target).max(1) as f64;
+            let report = |f: f64| {
+                done[i].store((f * span).round() as usize, Relaxed);
+                merged(done.iter().map(|d| d.load(Relaxed)).sum());
+            };
+            merge_one(ev, q, volume, part, lp, target, &report)
+        })
+        .collect();
+    let mut out = Phase1::default();
+    for (groups, m) in results {
+        out.merges += m.merges;
+        out.fits += m.fits;
+        out.parts.push(groups);
+    }
+    out
+}
+
+/// Each part's adjacent pairs in its local face ids (a face's index in its part).
+fn pairs_by_part(parts: &[Vec<u32>], pairs: &[(u32, u32)], faces: usize) -> Vec<Vec<(u32, u32)>> {
+    let (mut part_of, mut local) = (vec![0u32; faces], vec![0u32; faces]);
+    for (p, fs) in parts.iter().enumerate() {
+        for (i, &f) in fs.iter().enumerate() {
+            part_of[f as usize] = p as u32;
+            local[f as usize] = i as u32;
+        }
+    }
+    let mut out = vec![Vec::new(); parts.len()];
+    for &(a, b) in pairs {
+        let p = part_of[a as usize];
+        if p == part_of[b as usize] {
+            out[p as usize].push((local[a as usize], local[b as usize]));
+        }
+    }
+    out
+}
+
+/// The faces `part` (increasing) as a mesh of their own: local face ids in order,
+/// local vertex ids for the faces' own and welded vertices (same positions and
+/// offset); returns it with its welded indices and each local vertex's input id.
+fn sub_mesh(mesh: &Mesh, welded: &[u32], part: &[u32]) -> (Mesh, Vec<u32>, Vec<u32>) {
+    let mut local = vec![u32::MAX; mesh.vertex_count()];
+    let mut global = Vec::new();
+    let mut id = |v: u32| {
+        let l = &mut local[v as usize];
+        if *l == u32::MAX {
+            *l = global.len() as u32;
+            global.push(v);
+        }
+        *l
+    };
+    let mut sub = Mesh {
+        offset: mesh.offset,
+        ..Mesh::default()
+    };
+    let mut sub_welded = Vec::new();
+    sub.face_offsets.push(0);
+    for &f in part {
+        let o = &mesh.face_offsets;
+        for i in o[f as usize] as usize..o[f as usize + 1] as usize {
+            sub.face_indices.push(id(mesh.face_indices[i]));
+            sub_welded.push(id(welded[i]));
+        }
+        sub.face_offsets.push(sub.face_indices.len() as u32);
+    }
+    sub.x = global.iter().map(|&v| mesh.x[v as usize]).collect();
+    sub.y = global.iter().map(|&v| mesh.y[v as usize]).collect();
+    sub.z = global.iter().map(|&v| mesh.z[v as usize]).collect();
+    (sub, sub_welded, global)
+}
+
+/// Runs the merge loop on one part down to `target` and returns its groups.
+fn merge_one(
+    ev: &Evaluator,
+    q: &[Sym3],
+    volume: &[f64],
+    part: &[u32],
+    pairs: &[(u32, u32)],
+    target: usize,
+    progress: &(dyn Fn(f64) + Sync),
+) -> (Groups, MergeOutput) {
+    let (sub, sub_welded, global) = sub_mesh(ev.mesh, ev.welded, part);
+    // Same fit settings, cost grid and hull tolerance as the whole input's.
+    let sub_ev = Evaluator {
+        mesh: &sub,
+        welded: &sub_welded,
+        ..*ev
+    };
+    let cl = Clusters::new(
+        part.iter().map(|&f| q[f as usize]).collect(),
+        part.iter().map(|&f| volume[f as usize]).collect(),
+        pairs,
+    );
+    let (cl, out) = merge_part(&sub_ev, cl, target, progress);
+    let mut g = Groups {
+        offsets: vec![0],
+        ..Groups::default()
+    };
+    for r in cl.roots() {
+        let start = g.faces.len();
+        g.faces.extend(cl.faces(r).map(|f| part[f as usize]));
+        g.faces[start..].sort_unstable();
+        g.offsets.push(g.faces.len() as u32);
+        g.q.push(cl.q[r as usize]);
+        g.volume.push(cl.volume[r as usize]);
+        g.verts
+            .push(cl.verts(r).iter().map(|&v| global[v as usize]).collect());
+    }
+    (g, out)
+}
+
+/// Phase 2's starting clusters: one per group of phase 1 (named by its lowest face),
+/// with the group's operator, priced volume and hull-reduced points, and neighbours =
+/// the groups adjacent to it through `pairs`; the merge clock starts at 0 as for
+/// single faces. `q` and `volume` are the per-face arrays (reused as storage).
+pub fn clusters(p1: Phase1, q: Vec<Sym3>, volume: Vec<f64>, pairs: &[(u32, u32)]) -> Clusters {
+    let mut cl = Clusters::new(q, volume, pairs);
+    let mut roots = Vec::with_capacity(p1.groups());
+    for g in p1.parts {
+        for (i, verts) in g.verts.into_iter().enumerate() {
+            let faces = &g.faces[g.offsets[i] as usize..g.offsets[i + 1] as usize];
+            let root = faces[0];
+            // Replaying the group's union through `merge` splices its face list and
+            // gathers its faces' neighbours; the last merge stores its points.
+            let mut pts = Some(verts);
+            for (j, &f) in faces.iter().enumerate().skip(1) {
+                let last = j + 1 == faces.len();
+                let v = if last { pts.take() } else { None };
+                cl.merge(root, f, v.unwrap_or_default(), 0.0);
+            }
+            cl.q[root as usize] = g.q[i];
+            cl.volume[root as usize] = g.volume[i];
+            roots.push(root);
+        }
+    }
+    // Seeding reads every root's neighbour list: resolve them to groups.
+    for &r in &roots {
+        cl.resolved_neighbors(r);
+    }
+    cl.clock = 0;
+    cl.changed.iter_mut().for_each(|c| *c = 0);
+    cl.repriced.iter_mut().for_each(|c| *c = 0);
+    cl
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn grid(n: u32) -> Mesh {
+        let pos: Vec<[f64; 3]> = (0..=n)
+            .flat_map(|j| (0..=n).map(move |i| [i as f64, j as f64, 0.0]))
+            .collect();
+        let faces: Vec<Vec<u32>> = (0..n)
+            .flat_map(|j| {
+                (0..n).map(move |i| {
+                    let v = j * (n + 1) + i;
+                    vec![v, v + 1, v + n + 2, v + n + 1]
+                })
+            })
+            .collect();
+        Mesh::from_polygons(&pos, &faces)
+    }
+
+    /// Every face in exactly one part, parts increasing and balanced (sizes within one
+    /// per level), for K a power of two and not.
+    #[test]
+    fn split_covers_each_face_once_and_balances() {
+        let mesh = crate::Mesh::from_builder(crate::demo::demo_scene());
+        let n = mesh.face_count();
+        for k in [1, 2, 3, 4, 7, 8, 16] {
+            let parts = split(&mesh, k);
+            assert_eq!(parts.len(), k);
+            let mut seen = vec![0u8; n];
+            for p in &parts {
+                assert!(p.windows(2).all(|w| w[0] < w[1]), "part not increasing");
+                p.iter().for_each(|&f| seen[f as usize] += 1);
+                let ideal = n as f64 / k as f64;
+                assert!(
+                    (p.len() as f64 - ideal).abs() <= 4.0,
+                    "k={k}: {} faces, ideal {ideal}",
+                    p.len()
+                );
+            }
+            assert!(
+                seen.iter().all(|&s| s == 1),
+                "k={k}: a face not in one part"
+            );
+        }
+    }
+
+    /// The split is a function of the input and K: same parts on 1 and 4 threads, and
+    /// spatial: on a 16×8 grid (longest extent x), 2 parts are the left and right
+    /// halves, and ties in the centroid coordinate go by face index.
+    #[test]
+    fn split_is_deterministic_and_spatial() {
+        let mesh = grid(16);
+        let one = crate::merge::driver::tests::in_pool(1, || split(&mesh, 8));
+        let four = crate::merge::driver::tests::in_pool(4, || split(&mesh, 8));
+        assert_eq!(one, four);
+        let pos: Vec<[f64; 3]> = (0..=8)
+            .flat_map(|j| (0..=16).map(move |i| [i as f64, j as f64, 0.0]))
+            .collect();
+        let faces: Vec<Vec<u32>> = (0..8)
+            .flat_map(|j| {
+                (0..16).map(move |i| {
+                    let v = j * 17 + i;
+                    vec![v, v + 1, v + 18, v + 17]
+                })
+            })
+            .collect();
+        let wide = Mesh::from_polygons(&pos, &faces);
+        let halves = split(&wide, 2);
+        for (p, want_left) in halves.iter().zip([true, false]) {
+            assert_eq!(p.len(), 64);
+            assert!(p.iter().all(|&f| (f % 16 < 8) == want_left));
+        }
+        // A single row of 5 equal centroids' worth of ties: a degenerate mesh whose faces
+        // all share one centroid splits by face index.
+        let tri = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+        let same = Mesh::from_polygons(&tri, &vec![vec![0, 1, 2]; 5]);
+        assert_eq!(split(&same, 2), vec![vec![0, 1], vec![2, 3, 4]]);
+    }
+}

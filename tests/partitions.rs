@@ -1,0 +1,168 @@
+//! `Params::partitions` (merge/partition.rs): with K > 1 parts the output must still
+//! enclose every input face (checked by the independent oracle, `common::contain`),
+//! hold at most N primitives, and be the same bytes on any thread count; K = 1 must be
+//! the default run, and its JSON must not mention the setting (default output unchanged).
+
+mod common;
+
+use common::check::assert_valid;
+use common::shapes::{cuboid, cylinder, flat_grid, join, mesh, uv_sphere, Polys};
+use primdecomp::export::json::to_json;
+use primdecomp::{decompose, Decomposition, Mesh, Params};
+use std::path::Path;
+
+fn moved((v, f): Polys, d: [f64; 3]) -> Polys {
+    (
+        v.iter().map(|p| [0, 1, 2].map(|k| p[k] + d[k])).collect(),
+        f,
+    )
+}
+
+/// ~6,100 faces in five components: a sphere, a flat grid (zero-cost merges that
+/// straddle part boundaries), a cylinder and two boxes; phase 2 must bridge them.
+fn scene() -> Mesh {
+    mesh(&join(&[
+        uv_sphere(3.0, 40, 60),
+        moved(flat_grid(60), [-30.0, -30.0, -5.0]),
+        moved(cylinder(1.0, 8.0, 64), [10.0, 0.0, -4.0]),
+        cuboid([-20.0, 12.0, 0.0], [-14.0, 14.0, 9.0]),
+        cuboid([15.0, 15.0, 1.0], [16.0, 25.0, 2.0]),
+    ]))
+}
+
+fn params(targets: &[usize], k: usize) -> Params {
+    Params {
+        targets: targets.to_vec(),
+        partitions: k,
+        ..Default::default()
+    }
+}
+
+/// The JSON minus timings (the only part allowed to differ between runs).
+fn stable_json(d: &Decomposition, level: usize, p: &Params) -> String {
+    let mut v: serde_json::Value = serde_json::from_str(&to_json(d, level, p)).unwrap();
+    v["stats"]["seconds"] = serde_json::Value::Null;
+    v.to_string()
+}
+
+fn assert_counts(dec: &Decomposition, what: &str) {
+    for l in &dec.levels {
+        assert!(
+            l.primitives.len() <= l.target,
+            "{what}: {} primitives for target {}",
+            l.primitives.len(),
+            l.target
+        );
+    }
+}
+
+/// K = 2, 4, 8 on the generated scene: enclosing, at most N, phase 1 really ran, and
+/// the two phases together merged down to the last target as K = 1 does.
+#[test]
+fn partitioned_output_encloses_the_generated_scene() {
+    let m = scene();
+    let one = decompose(&m, &params(&[60, 12], 1)).unwrap();
+    for k in [2, 4, 8] {
+        let p = params(&[60, 12], k);
+        let dec = decompose(&m, &p).unwrap();
+        assert_valid(&m, &dec, &p);
+        assert_counts(&dec, &format!("scene, K={k}"));
+        assert!(
+            dec.timings.stages.iter().any(|s| s.0 == "partitions"),
+            "K={k}: phase 1 did not run"
+        );
+        assert_eq!(dec.merges, one.merges, "K={k}: both run down to 12");
+    }
+}
+
+/// Same bytes on 1, 2 and 8 threads with K = 8 (parts are merged as parallel tasks
+/// whose order of completion varies; phase 2's worker shares re-pricing).
+#[test]
+fn partitioned_output_is_identical_on_any_thread_count() {
+    let m = scene();
+    let p = params(&[60, 12], 8);
+    let runs: Vec<Decomposition> = [1, 2, 8]
+        .iter()
+        .map(|&t| common::on_threads(t, || decompose(&m, &p).unwrap()))
+        .collect();
+    for level in 0..2 {
+        let a = stable_json(&runs[0], level, &p);
+        assert_eq!(a, stable_json(&runs[1], level, &p), "1 vs 2 threads");
+        assert_eq!(a, stable_json(&runs[2], level, &p), "1 vs 8 threads");
+    }
+}
+
+/// K = 1 is the default run, and its JSON does not name the setting, so a default
+/// run's output is byte for byte what it was before `partitions` existed. A K > 1 run
+/// whose phase 1 would leave as many clusters as faces (16 × N ≥ F) is K = 1's run
+/// with the setting recorded.
+#[test]
+fn one_partition_is_the_default_run() {
+    let m = scene();
+    let default = Params {
+        targets: vec![60, 12],
+        ..Default::default()
+    };
+    let a = decompose(&m, &default).unwrap();
+    let b = decompose(&m, &params(&[60, 12], 1)).unwrap();
+    let text = to_json(&b, 0, &params(&[60, 12], 1));
+    assert!(!text.contains("partitions"), "K=1 JSON names the setting");
+    assert_eq!(stable_json(&a, 0, &default), stable_json(&b, 0, &default));
+    let big = m.face_count() / 16 + 1;
+    let c1 = decompose(&m, &params(&[big], 1)).unwrap();
+    let c8 = decompose(&m, &params(&[big], 8)).unwrap();
+    assert_eq!(
+        format!("{:?}", c1.levels[0].primitives),
+        format!("{:?}", c8.levels[0].primitives)
+    );
+    assert!(to_json(&c8, 0, &params(&[big], 8)).contains("\"partitions\": 8"));
+}
+
+/// 0 parts is refused, not run.
+#[test]
+fn zero_partitions_is_refused() {
+    let m = scene();
+    let err = decompose(&m, &params(&[10], 0)).unwrap_err();
+    assert!(err.to_string().contains("partitions"), "{err}");
+}
+
+/// Corpus meshes (one closed scan, one model of many parts that phase 2 must bridge)
+/// with K = 4 and 8 at about 1% of their faces and at 20: enclosing and at most N.
+#[test]
+fn partitioned_output_encloses_corpus_meshes() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/datasets/corpus");
+    if !dir.is_dir() {
+        eprintln!("CORPUS ABSENT: {} not found; test skipped", dir.display());
+        return;
+    }
+    for name in ["stanford_bunny.obj", "peterbilt_truck.obj"] {
+        let m = primdecomp::mesh::io::load(&dir.join(name)).unwrap_or_else(|e| panic!("{e}"));
+        let targets = [(m.face_count() / 100).max(1), 20];
+        for k in [4, 8] {
+            let p = params(&targets, k);
+            let dec = decompose(&m, &p).unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert_valid(&m, &dec, &p);
+            assert_counts(&dec, &format!("{name}, K={k}"));
+        }
+    }
+}
+
+/// Progress covers both phases as one fraction of the merges: phase 1's parallel parts
+/// report their merges so far (a bar no longer waits at 0% through phase 1), every
+/// value within [0, 1].
+#[test]
+fn progress_is_reported_during_phase_one() {
+    let m = mesh(&uv_sphere(3.0, 150, 200));
+    let p = params(&[100], 2);
+    let seen = std::sync::Mutex::new(Vec::new());
+    let dec =
+        primdecomp::decompose::decompose_with_progress(&m, &p, &|f| seen.lock().unwrap().push(f))
+            .unwrap();
+    assert!(dec.timings.stages.iter().any(|s| s.0 == "partitions"));
+    let seen = seen.into_inner().unwrap();
+    assert!(seen.iter().all(|f| (0.0..=1.0).contains(f)), "{seen:?}");
+    // 30,000 faces, two parts of ~14,200 merges each, reported every 4,096 merges.
+    assert!(seen.len() >= 4, "{seen:?}");
+    assert!(seen.iter().any(|&f| f < 0.5), "{seen:?}");
+    assert!(seen.iter().any(|&f| f > 0.5), "{seen:?}");
+}

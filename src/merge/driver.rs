@@ -212,31 +212,11 @@ fn merge_loop<Q: Queue>(
         if next == targets.len() {
             break;
         }
-        let Some(c) = heap.pop() else {
-            if scope == Scope::Part {
-                break;
-            }
-            let bridged = bridge(ev, &mut cl);
-            out.bridge_edges += bridged.len();
-            out.fits.seed += bridged.len();
-            let fresh = price(ev, &cl, &bridged);
-            if fresh.is_empty() {
-                break;
-            }
-            fresh.into_iter().for_each(|c| heap.push(c));
-            continue;
+        let c = match next_step(ev, &mut cl, &mut heap, &mut lazy, &mut ws, &mut out, scope) {
+            Step::Merge(c) => c,
+            Step::Again => continue,
+            Step::Stop => break,
         };
-        match lazy.classify(&mut cl, &c) {
-            Pop::Fresh => {}
-            Pop::Drop => continue,
-            Pop::Reprice(a, b) => {
-                out.fits.lazy += 1;
-                if let Some((fresh, _)) = ev.candidate(&cl, a, b, &mut ws) {
-                    heap.push(fresh);
-                }
-                continue;
-            }
-        }
         if heap.len() > purge_at {
             purge(ev, &cl, &mut lazy, &mut heap);
             purge_at = (heap.len() + heap.len() / 4).max(PURGE_MIN);
@@ -271,6 +251,54 @@ fn merge_loop<Q: Queue>(
         next += 1;
     }
     (out, cl)
+}
+
+/// What the merge loop does next ([`next_step`]).
+enum Step {
+    /// Apply this fresh merge.
+    Merge(Candidate),
+    /// A stale entry was dropped or re-priced, or components were bridged: pop again.
+    Again,
+    /// Nothing left to merge (a part's adjacency, or the whole input's after bridging).
+    Stop,
+}
+
+/// Pops the queue's next entry and classifies it (lazy deletion, `lazy.rs`); when the
+/// queue runs dry, bridges components (§3.4) — except in a part, which just stops.
+fn next_step<Q: Queue>(
+    ev: &Evaluator,
+    cl: &mut Clusters,
+    heap: &mut Q,
+    lazy: &mut Lazy,
+    ws: &mut Workspace,
+    out: &mut MergeOutput,
+    scope: Scope,
+) -> Step {
+    let Some(c) = heap.pop() else {
+        if scope == Scope::Part {
+            return Step::Stop;
+        }
+        let bridged = bridge(ev, cl);
+        out.bridge_edges += bridged.len();
+        out.fits.seed += bridged.len();
+        let fresh = price(ev, cl, &bridged);
+        if fresh.is_empty() {
+            return Step::Stop;
+        }
+        fresh.into_iter().for_each(|c| heap.push(c));
+        return Step::Again;
+    };
+    match lazy.classify(cl, &c) {
+        Pop::Fresh => Step::Merge(c),
+        Pop::Drop => Step::Again,
+        Pop::Reprice(a, b) => {
+            out.fits.lazy += 1;
+            if let Some((fresh, _)) = ev.candidate(cl, a, b, ws) {
+                heap.push(fresh);
+            }
+            Step::Again
+        }
+    }
 }
 
 /// Prices the input's adjacent pairs into `heap` in blocks, so that only one block of

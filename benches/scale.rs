@@ -3,7 +3,9 @@
 //! to 2,000 primitives by the release CLI (wall time load → written JSON, and the
 //! process's peak resident memory from its `--timings` line), with meshopt's
 //! simplifier on the same input down to 2,000 triangles timed in the same run as the
-//! reference cost of a greedy QEM-style pass. Median of `RUNS` runs each.
+//! reference cost of a greedy QEM-style pass; each input also with the opt-in
+//! `--partitions 16` (the speed/accuracy setting of ARCHITECTURE.md, deviation 17).
+//! Median of `RUNS` runs each.
 //!
 //! Run: `cargo bench --bench scale` (needs `../shared/datasets/corpus`; says so
 //! loudly and exits when it is absent). Prints a markdown table.
@@ -44,21 +46,33 @@ fn main() {
         ("dragon_vrip_full.ply", dragon.as_path(), &mesh),
         ("dragon ×4 (subdivided)", big_path.as_path(), &big),
     ] {
-        let (t, rss) = cli_runs(&bin, path);
         let s = meshopt_runs(m);
-        println!(
-            "| {name} | {} | {t:.2} | {rss:.0} | {s:.3} | {:.1} |",
-            m.face_count(),
-            t / s
-        );
-        times.push(t);
+        // The default, then the opt-in speed setting `--partitions` (deviation 17).
+        for (setting, extra) in [
+            ("", &[][..]),
+            (", --partitions 16", &["--partitions", "16"][..]),
+        ] {
+            let (t, rss) = cli_runs(&bin, path, extra);
+            println!(
+                "| {name}{setting} | {} | {t:.2} | {rss:.0} | {s:.3} | {:.1} |",
+                m.face_count(),
+                t / s
+            );
+            if extra.is_empty() {
+                times.push(t);
+            }
+        }
     }
-    println!("\ntime(3.5M) / time(871k) = {:.2}", times[1] / times[0]);
+    println!(
+        "\ntime(3.5M) / time(871k) = {:.2} (default settings)",
+        times[1] / times[0]
+    );
     let _ = std::fs::remove_file(&big_path);
 }
 
-/// Median wall time and the largest peak RSS (MiB) of the CLI over `RUNS` runs.
-fn cli_runs(bin: &Path, input: &Path) -> (f64, f64) {
+/// Median wall time and the largest peak RSS (MiB) of the CLI over `RUNS` runs, with
+/// `extra` arguments.
+fn cli_runs(bin: &Path, input: &Path, extra: &[&str]) -> (f64, f64) {
     let out = std::env::temp_dir().join("primdecomp_scale_out.json");
     let mut t = Vec::new();
     let mut rss: f64 = 0.0;
@@ -74,6 +88,7 @@ fn cli_runs(bin: &Path, input: &Path) -> (f64, f64) {
                 "-o",
             ])
             .arg(&out)
+            .args(extra)
             .arg(input)
             .output()
             .expect("run primdecomp");

@@ -396,7 +396,8 @@ struct Ahead {
 /// it already holds that entry) while a re-pricing batch is out: the serial part of
 /// the next merge, done while the worker prices. Entries are only looked at: every one
 /// popped here goes back, so the queue, and with it the merge order, stays exactly as
-/// without the look-ahead. The entry is often the next merge (~2/3 of the dragon's);
+/// without the look-ahead. The entry is often the next merge (73% of the dragon's
+/// merges at N = 2000 used points reduced ahead);
 /// otherwise its points wait until it is popped still fresh (neither cluster changed
 /// since it was priced, so the same points) or another entry takes its place.
 fn look_ahead<Q: Queue>(

@@ -269,21 +269,12 @@ mod tests {
     /// that far.
     #[test]
     fn large_buckets_pop_like_binary_heap() {
-        let mut x = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = move || {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            x
-        };
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(7);
         let n = 50 * KEEP_CAPACITY + 17;
         let mut make = || {
-            let r = next();
-            c(
-                (r % 1000) as f64 - 50.0,
-                (r >> 20) as u32 % 4000,
-                (r >> 40) as u32 % 4000,
-            )
+            let cost = rng.gen_range(0..1000) as f64 - 50.0;
+            c(cost, rng.gen_range(0..4000), rng.gen_range(0..4000))
         };
         let batch: Vec<Candidate> = (0..n).map(|_| make()).collect();
         let (mut r, mut s) = (RadixHeap::default(), StdHeap::from_vec(batch.clone()));

@@ -52,12 +52,7 @@ fn pricing_merges_allocates_nothing_once_warm() {
             .map(|&(a, b)| (cl.find(a), cl.find(b)))
             .filter(|(a, b)| a != b)
             .collect();
-        assert!(
-            cl.live + 500 < cl.parent.len(),
-            "{} live of {}",
-            cl.live,
-            cl.parent.len()
-        );
+        assert!(cl.live + 500 < cl.len(), "{} live of {}", cl.live, cl.len());
         let pairs = live;
         let mut ws = Workspace::default();
         // Warm-up: the workspace grows to the largest candidate.

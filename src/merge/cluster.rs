@@ -23,32 +23,43 @@ struct Lists {
 /// No lists: the cluster is still one face, its neighbours those of the input graph.
 const NO_LISTS: u32 = u32::MAX;
 
-/// Struct-of-arrays cluster state, indexed by face id (valid at roots).
+/// The per-face fields read together on every queue pop (is it a root, has it changed
+/// since the entry was priced, where are its lists): one 16-byte record, four to a
+/// cache line, so checking an entry costs one line per cluster instead of four
+/// (ARCHITECTURE.md, "Performance").
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[repr(C, align(16))]
+struct Node {
+    parent: u32,
+    /// The merge clock when the cluster last changed (0: never merged).
+    changed: u32,
+    /// The merge clock when all the cluster's pairs were last priced (≤ `changed`;
+    /// equal unless its last merge was deferred, `Params::reprice`).
+    repriced: u32,
+    /// Index into `slab`, or [`NO_LISTS`].
+    slot: u32,
+}
+
+/// Cluster state, indexed by face id (valid at roots): struct-of-arrays except for
+/// the hot [`Node`] fields.
 ///
 /// Per face it stores only fixed-size fields (~76 bytes); vertex and neighbour lists
 /// live in a slab and exist only for clusters that merged or were bridged, so a
 /// million-face input does not pay for a million small allocations.
 #[derive(Debug, Default)]
 pub struct Clusters {
-    pub parent: Vec<u32>,
+    node: Vec<Node>,
     pub q: Vec<Sym3>,
     pub volume: Vec<f64>,
-    /// The merge clock when the cluster last changed (0: never merged).
-    pub changed: Vec<u32>,
     /// Merges done so far; a queue entry priced at `t` is stale once either cluster's
-    /// `changed` exceeds `t`.
+    /// last change (`changed`) is later than `t`.
     pub clock: u32,
-    /// The merge clock when all the cluster's pairs were last priced (≤ `changed`;
-    /// equal unless its last merge was deferred, `Params::reprice`).
-    pub repriced: Vec<u32>,
     /// Cyclic list: the next face of the same cluster.
     pub next_face: Vec<u32>,
     pub face_count: Vec<u32>,
     /// The input's face adjacency as CSR (neighbours of never-merged faces).
     adj_offsets: Vec<u32>,
     adj: Vec<u32>,
-    /// Index into `slab`, or [`NO_LISTS`].
-    slot: Vec<u32>,
     slab: Vec<Lists>,
     free: Vec<u32>,
     /// Number of live clusters.
@@ -76,40 +87,78 @@ impl Clusters {
             fill[b as usize] += 1;
         }
         Clusters {
-            parent: (0..n as u32).collect(),
+            node: (0..n as u32)
+                .map(|c| Node {
+                    parent: c,
+                    changed: 0,
+                    repriced: 0,
+                    slot: NO_LISTS,
+                })
+                .collect(),
             q,
             volume,
-            changed: vec![0; n],
             clock: 0,
-            repriced: vec![0; n],
             next_face: (0..n as u32).collect(),
             face_count: vec![1; n],
             adj_offsets,
             adj,
-            slot: vec![NO_LISTS; n],
             slab: Vec::new(),
             free: Vec::new(),
             live: n,
         }
     }
 
+    /// Number of faces (cluster ids are `0..len()`).
+    pub fn len(&self) -> usize {
+        self.node.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.node.is_empty()
+    }
+
     pub fn is_root(&self, c: u32) -> bool {
-        self.parent[c as usize] == c
+        self.node[c as usize].parent == c
+    }
+
+    /// The merge clock when cluster `c` last changed (0: never merged).
+    pub fn changed(&self, c: u32) -> u32 {
+        self.node[c as usize].changed
+    }
+
+    /// The merge clock when all of `c`'s pairs were last priced.
+    pub fn repriced(&self, c: u32) -> u32 {
+        self.node[c as usize].repriced
+    }
+
+    /// Records that all of root `c`'s pairs were priced now.
+    pub fn mark_repriced(&mut self, c: u32) {
+        self.node[c as usize].repriced = self.clock;
+    }
+
+    /// Restarts the merge clock: every cluster counts as never changed (phase 2 of
+    /// `Params::partitions` prices everything afresh).
+    pub fn reset_clock(&mut self) {
+        self.clock = 0;
+        for n in &mut self.node {
+            n.changed = 0;
+            n.repriced = 0;
+        }
     }
 
     /// Root of `c`'s cluster, without shortening the path (for shared borrows).
     pub fn root(&self, mut c: u32) -> u32 {
-        while self.parent[c as usize] != c {
-            c = self.parent[c as usize];
+        while self.node[c as usize].parent != c {
+            c = self.node[c as usize].parent;
         }
         c
     }
 
     /// Root of `c`'s cluster, with path halving.
     pub fn find(&mut self, mut c: u32) -> u32 {
-        while self.parent[c as usize] != c {
-            let g = self.parent[self.parent[c as usize] as usize];
-            self.parent[c as usize] = g;
+        while self.node[c as usize].parent != c {
+            let g = self.node[self.node[c as usize].parent as usize].parent;
+            self.node[c as usize].parent = g;
             c = g;
         }
         c
@@ -117,7 +166,7 @@ impl Clusters {
 
     /// Live cluster roots in increasing order.
     pub fn roots(&self) -> Vec<u32> {
-        (0..self.parent.len() as u32)
+        (0..self.len() as u32)
             .filter(|&c| self.is_root(c))
             .collect()
     }
@@ -148,7 +197,7 @@ impl Clusters {
 
     /// The reduced vertex list of cluster `c`; empty while it is a single face.
     pub fn verts(&self, c: u32) -> &[u32] {
-        match self.slot[c as usize] {
+        match self.node[c as usize].slot {
             NO_LISTS => &[],
             s => &self.slab[s as usize].verts,
         }
@@ -156,7 +205,7 @@ impl Clusters {
 
     /// The lists of `c`, created (neighbours copied from the input graph) if needed.
     fn lists_mut(&mut self, c: u32) -> &mut Lists {
-        if self.slot[c as usize] == NO_LISTS {
+        if self.node[c as usize].slot == NO_LISTS {
             let neighbors = self.input_neighbors(c).to_vec();
             let lists = Lists {
                 verts: Vec::new(),
@@ -173,16 +222,16 @@ impl Clusters {
                     (self.slab.len() - 1) as u32
                 }
             };
-            self.slot[c as usize] = s;
+            self.node[c as usize].slot = s;
         }
-        &mut self.slab[self.slot[c as usize] as usize]
+        &mut self.slab[self.node[c as usize].slot as usize]
     }
 
     /// Takes `c`'s lists out of the slab (freeing its slot).
     fn take_lists(&mut self, c: u32) -> Lists {
         let lists = std::mem::take(self.lists_mut(c));
-        self.free.push(self.slot[c as usize]);
-        self.slot[c as usize] = NO_LISTS;
+        self.free.push(self.node[c as usize].slot);
+        self.node[c as usize].slot = NO_LISTS;
         lists
     }
 
@@ -215,7 +264,7 @@ impl Clusters {
     /// Length of root `c`'s neighbour list: its degree when just resolved, else an
     /// upper bound (merged-away ids and duplicates count until the next resolve).
     pub fn neighbor_len(&self, c: u32) -> usize {
-        match self.slot[c as usize] {
+        match self.node[c as usize].slot {
             NO_LISTS => self.input_neighbors(c).len(),
             s => self.slab[s as usize].neighbors.len(),
         }
@@ -224,7 +273,7 @@ impl Clusters {
     /// Root `c`'s neighbour list as stored: the input's adjacency while it is a single
     /// face, else its list (resolved to live roots only if just resolved).
     pub fn neighbors(&self, c: u32) -> &[u32] {
-        match self.slot[c as usize] {
+        match self.node[c as usize].slot {
             NO_LISTS => self.input_neighbors(c),
             s => &self.slab[s as usize].neighbors,
         }
@@ -245,11 +294,11 @@ impl Clusters {
     pub fn merge(&mut self, a: u32, b: u32, verts: Vec<u32>, volume: f64) -> u32 {
         let (root, other) = (a.min(b), a.max(b));
         let (r, o) = (root as usize, other as usize);
-        self.parent[o] = root;
+        self.node[o].parent = root;
         self.q[r] = self.q[r].add(&self.q[o]);
         self.volume[r] = volume;
         self.clock += 1;
-        self.changed[r] = self.clock;
+        self.node[r].changed = self.clock;
         self.next_face.swap(r, o);
         self.face_count[r] += self.face_count[o];
         let moved = self.take_lists(other);

@@ -239,7 +239,7 @@ fn merge_loop<Q: Queue>(
                 || look_ahead(ev, &cl, &mut heap, &mut ahead, &mut stamps, &mut reducer);
             pricer.price(&cl, root, &nbrs, meanwhile, |c| batch.push(c));
             out.fits.eager += nbrs.len();
-            cl.repriced[root as usize] = cl.clock;
+            cl.mark_repriced(root);
             batch.drain(..).for_each(|c| heap.push(c));
         }
         if out.merges % 4096 == 0 {
@@ -304,7 +304,7 @@ fn next_step<Q: Queue>(
 /// Prices the input's adjacent pairs into `heap` in blocks, so that only one block of
 /// pairs and candidates exists outside the queue; returns how many were priced.
 fn seed_queue<Q: Queue>(ev: &Evaluator, cl: &Clusters, heap: &mut Q) -> usize {
-    let (n, mut priced) = (cl.parent.len() as u32, 0);
+    let (n, mut priced) = (cl.len() as u32, 0);
     let mut block = Vec::with_capacity(PRICE_BLOCK);
     for a in 0..n {
         // Roots' neighbour lists: the input's adjacency, or (phase 2 of

@@ -65,7 +65,7 @@ impl Lazy {
     /// Live roots `a < b` have an entry priced after both last changed.
     fn has_fresh(&self, cl: &Clusters, a: u32, b: u32) -> bool {
         let changed = latest_change(cl, a, b);
-        let (ra, rb) = (cl.repriced[a as usize], cl.repriced[b as usize]);
+        let (ra, rb) = (cl.repriced(a), cl.repriced(b));
         // One of them re-priced all its pairs (at once) since the later change…
         ra.max(rb) >= changed
             // … or this pair was re-priced when popped since then.
@@ -74,13 +74,10 @@ impl Lazy {
 }
 
 fn latest_change(cl: &Clusters, a: u32, b: u32) -> u32 {
-    cl.changed[a as usize].max(cl.changed[b as usize])
+    cl.changed(a).max(cl.changed(b))
 }
 
 /// Both clusters are live and unchanged since the pair was priced.
 pub(super) fn valid(cl: &Clusters, c: &Candidate) -> bool {
-    cl.is_root(c.a)
-        && cl.is_root(c.b)
-        && cl.changed[c.a as usize] <= c.t
-        && cl.changed[c.b as usize] <= c.t
+    cl.is_root(c.a) && cl.is_root(c.b) && cl.changed(c.a) <= c.t && cl.changed(c.b) <= c.t
 }

@@ -288,9 +288,7 @@ pub fn clusters(p1: Phase1, q: Vec<Sym3>, volume: Vec<f64>, pairs: &[(u32, u32)]
     for &r in &roots {
         cl.resolved_neighbors(r);
     }
-    cl.clock = 0;
-    cl.changed.iter_mut().for_each(|c| *c = 0);
-    cl.repriced.iter_mut().for_each(|c| *c = 0);
+    cl.reset_clock();
     cl
 }
 

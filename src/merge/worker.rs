@@ -403,8 +403,8 @@ mod tests {
 
     /// A few batches of the demo scene after some merges: (root, its neighbours).
     fn batches(cl: &mut Clusters) -> Vec<(u32, Vec<u32>)> {
-        for f in (0..cl.parent.len() as u32).step_by(7) {
-            let (a, b) = (cl.find(f), cl.find((f + 1) % cl.parent.len() as u32));
+        for f in (0..cl.len() as u32).step_by(7) {
+            let (a, b) = (cl.find(f), cl.find((f + 1) % cl.len() as u32));
             if a != b {
                 cl.merge(a, b, Vec::new(), 1.0);
             }

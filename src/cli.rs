@@ -5,7 +5,7 @@ use anyhow::{anyhow, bail};
 use clap::{Args, Parser, Subcommand};
 use primdecomp::export::{self, output_path_for, write_atomic};
 use primdecomp::sim::{Entry, Geometry, Run as SimRun, Settings as SimSettings};
-use primdecomp::{Decomposition, Dedup, Kind, Params, Reprice};
+use primdecomp::{Decomposition, Dedup, Kind, Params, Reduction, Reprice};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -115,6 +115,12 @@ struct DecomposeArgs {
     /// wait (docs/results/partitions.md). 1 = one global greedy.
     #[arg(long, default_value_t = 1)]
     partitions: usize,
+    /// How merged clusters' points are reduced for pricing: hull (exact: the convex
+    /// hull's vertices) or extremes (approximate: the extreme points along 13 fixed
+    /// axes; faster, different merges; docs/results/reduction.md). Output primitives
+    /// are always fitted on all of their faces' vertices.
+    #[arg(long, value_enum, default_value = "hull")]
+    reduction: ReductionArg,
     /// Keep primitives whose points lie inside another primitive.
     #[arg(long)]
     keep_contained: bool,
@@ -220,6 +226,13 @@ pub fn main() -> i32 {
 #[error("{0}")]
 struct BadArgs(String);
 
+/// `--reduction` (mirrors `primdecomp::Reduction`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+enum ReductionArg {
+    Hull,
+    Extremes,
+}
+
 fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
     let mut p = Params {
         targets: vec![1],
@@ -230,6 +243,10 @@ fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
         remove_contained: !a.keep_contained,
         remove_thin_boxes: a.remove_thin_boxes,
         partitions: a.partitions,
+        reduction: match a.reduction {
+            ReductionArg::Hull => Reduction::Hull,
+            ReductionArg::Extremes => Reduction::Extremes,
+        },
         ..Default::default()
     };
     for w in &a.weights {

@@ -252,6 +252,7 @@ pub fn evaluator<'a>(
         // 0/0 = NaN, which the merge loop drops like a merge over the excess cap.
         cost_unit: COST_GRID * diag.max(min_half).powi(3),
         hull_eps: 1e-12 * diag.max(min_half),
+        reduction: params.reduction,
     }
 }
 

@@ -17,6 +17,7 @@
 //! | `remove_contained` | true | — | keeps nested primitives |
 //! | `reprice` | `Deferred { min_degree: 64 }` | merges of clusters with at least `min_degree` neighbours leave their pairs' old queue entries as keys and re-price each when popped; a higher `min_degree` defers fewer merges (`Exact`: none, the paper's order, F^1.5 on large flat regions) | defers more merges: fewer fits, faster, the order drifts from exact greedy; `min_degree: 0` defers all (about 0.8× the time on the corpus, quality mixed: docs/results/reprice.md) |
 //! | `partitions` | 1 | the faces are split into that many spatial parts, merged in parallel (one task each) to 16× the largest target before the global merge loop: faster on 2+ cores, merges across part boundaries wait (docs/results/partitions.md) | — (1 = one global greedy, Alg. 1) |
+//! | `reduction` | `Hull` | — | `Extremes`: clusters keep only their extreme points along 13 fixed axes (≤ 26): no convex hull per merge, cheaper fits; merges are priced on an inner approximation, so the order (and the fit) changes: dragon merge stage 9.85 → 8.53 s on one thread (one run), corpus quality no worse on average but mixed per mesh (docs/results/reduction.md) |
 //! | `remove_thin_boxes` | None | (when set) drops boxes thinner than this fraction of the diagonal if still covered | — |
 
 use crate::error::{Error, Result};
@@ -47,6 +48,20 @@ pub enum Reprice {
     /// cost. Smaller merges are re-priced at once. Ignored (exact) when
     /// `max_excess_volume` is set: a pair over the cap has no entry to defer.
     Deferred { min_degree: u32 },
+}
+
+/// How a merged cluster's points are reduced before its merges are priced (the output
+/// is always fitted on all of its faces' vertices, whatever this says).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Reduction {
+    /// The vertices of the convex hull: every fit equals the fit on all points.
+    #[default]
+    Hull,
+    /// The extreme points along the 13 axes of a 26-DOP (`math::extremes`): no hull per
+    /// merge and at most 26 points per fit, but merges are priced on an inner
+    /// approximation of each cluster (docs/results/reduction.md).
+    Extremes,
 }
 
 /// All settings of a run.
@@ -86,10 +101,18 @@ pub struct Params {
     /// output stays as it was.
     #[serde(skip_serializing_if = "is_one")]
     pub partitions: usize,
+    /// How merged clusters' points are reduced for pricing; serialized only when not
+    /// the exact default.
+    #[serde(skip_serializing_if = "is_hull")]
+    pub reduction: Reduction,
 }
 
 fn is_one(k: &usize) -> bool {
     *k == 1
+}
+
+fn is_hull(r: &Reduction) -> bool {
+    *r == Reduction::Hull
 }
 
 /// The most parts `partitions` may ask for.
@@ -123,6 +146,7 @@ impl Default for Params {
             remove_thin_boxes: None,
             reprice: Reprice::Deferred { min_degree: 64 },
             partitions: 1,
+            reduction: Reduction::Hull,
         }
     }
 }

@@ -5,11 +5,10 @@
 
 mod common;
 
-use common::check::assert_valid;
+use common::check::{assert_counts, assert_same_on_threads, assert_valid, check_corpus_meshes};
 use common::shapes::{cuboid, cylinder, flat_grid, join, mesh, uv_sphere, Polys};
 use primdecomp::export::json::to_json;
-use primdecomp::{decompose, Decomposition, Mesh, Params};
-use std::path::Path;
+use primdecomp::{decompose, Mesh, Params};
 
 fn moved((v, f): Polys, d: [f64; 3]) -> Polys {
     (
@@ -38,17 +37,6 @@ fn params(targets: &[usize], k: usize) -> Params {
     }
 }
 
-fn assert_counts(dec: &Decomposition, what: &str) {
-    for l in &dec.levels {
-        assert!(
-            l.primitives.len() <= l.target,
-            "{what}: {} primitives for target {}",
-            l.primitives.len(),
-            l.target
-        );
-    }
-}
-
 /// K = 2, 4, 8 on the generated scene: enclosing, at most N, phase 1 really ran, and
 /// the two phases together merged down to the last target as K = 1 does.
 #[test]
@@ -72,17 +60,7 @@ fn partitioned_output_encloses_the_generated_scene() {
 /// whose order of completion varies; phase 2's worker shares re-pricing).
 #[test]
 fn partitioned_output_is_identical_on_any_thread_count() {
-    let m = scene();
-    let p = params(&[60, 12], 8);
-    let runs: Vec<Decomposition> = [1, 2, 8]
-        .iter()
-        .map(|&t| common::on_threads(t, || decompose(&m, &p).unwrap()))
-        .collect();
-    for level in 0..2 {
-        let a = to_json(&runs[0], level, &p);
-        assert_eq!(a, to_json(&runs[1], level, &p), "1 vs 2 threads");
-        assert_eq!(a, to_json(&runs[2], level, &p), "1 vs 8 threads");
-    }
+    assert_same_on_threads(&scene(), &params(&[60, 12], 8));
 }
 
 /// K = 1 is the default run, and its JSON does not name the setting, so a default
@@ -123,21 +101,7 @@ fn zero_partitions_is_refused() {
 /// with K = 4 and 8 at about 1% of their faces and at 20: enclosing and at most N.
 #[test]
 fn partitioned_output_encloses_corpus_meshes() {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/datasets/corpus");
-    if !dir.is_dir() {
-        eprintln!("CORPUS ABSENT: {} not found; test skipped", dir.display());
-        return;
-    }
-    for name in ["stanford_bunny.obj", "peterbilt_truck.obj"] {
-        let m = primdecomp::mesh::io::load(&dir.join(name)).unwrap_or_else(|e| panic!("{e}"));
-        let targets = [(m.face_count() / 100).max(1), 20];
-        for k in [4, 8] {
-            let p = params(&targets, k);
-            let dec = decompose(&m, &p).unwrap_or_else(|e| panic!("{name}: {e}"));
-            assert_valid(&m, &dec, &p);
-            assert_counts(&dec, &format!("{name}, K={k}"));
-        }
-    }
+    check_corpus_meshes(|t| vec![params(t, 4), params(t, 8)]);
 }
 
 /// Progress covers both phases as one fraction of the merges: phase 1's parallel parts

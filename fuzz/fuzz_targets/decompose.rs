@@ -15,7 +15,7 @@ mod contain;
 
 use arbitrary::{Result, Unstructured};
 use primdecomp::export::json::to_json;
-use primdecomp::{decompose, Dedup, Error, Mesh, Params, Reprice};
+use primdecomp::{decompose, Dedup, Error, Mesh, Params, Reduction, Reprice};
 
 /// A number that is usually one of `typical` and sometimes any f64 at all.
 fn pick(u: &mut Unstructured, typical: &[f64]) -> Result<f64> {
@@ -67,6 +67,10 @@ fn params(u: &mut Unstructured) -> Result<Params> {
     p.merge_min_extent_rel = match u.int_in_range(0..=3)? {
         0 => Some(pick(u, &[2e-3, 0.0, 0.5, 0.999])?),
         _ => None,
+    };
+    p.reduction = match u.arbitrary::<bool>()? {
+        true => Reduction::Extremes,
+        false => Reduction::Hull,
     };
     Ok(p)
 }

@@ -2,6 +2,7 @@
 //! branchless 3×3 symmetric eigen-solver (McAdams et al. 2011) used by §3.1–3.2.
 
 pub mod eigen3;
+pub mod extremes;
 pub mod hull;
 pub mod quat;
 pub mod sym3;

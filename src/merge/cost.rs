@@ -8,6 +8,7 @@ use crate::math::Sym3;
 use crate::mesh::Mesh;
 use crate::primitive::fit::{Fit, FitConfig, FrameSearch};
 use crate::primitive::{fit_best, Cloud, FitScratch};
+use crate::Reduction;
 
 /// Per-thread reusable buffers: the gathered points and the fit's scratch.
 #[derive(Debug, Default)]
@@ -56,6 +57,8 @@ pub struct Evaluator<'a> {
     pub cost_unit: f64,
     /// Distance below which a point counts as on a hull face (point reduction only).
     pub hull_eps: f64,
+    /// How merged clusters' points are reduced (`Params::reduction`).
+    pub reduction: Reduction,
     /// Merges whose clusters' neighbour lists hold at least this many entries are
     /// re-priced lazily (`Params::reprice`); `u32::MAX` = always at once (exact).
     pub defer_degree: u32,

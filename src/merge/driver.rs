@@ -13,8 +13,10 @@ use super::cost::{Evaluator, Workspace};
 use super::heap::{Candidate, Queue, RadixHeap};
 use super::lazy::{valid, Lazy, Pop};
 use super::worker::{with_pricer, Pricer, Stats};
+use crate::math::extremes::extreme_points;
 use crate::math::hull::{hull_vertices, HullWorkspace};
 use crate::primitive::Primitive;
+use crate::Reduction;
 use rayon::prelude::*;
 
 /// Pairs priced per parallel task.
@@ -358,6 +360,8 @@ struct Reducer {
 /// point lists, reduced to the vertices of their convex hull. Every fit maximises a
 /// convex function (or minimises a concave one) over the points, so the hull vertices
 /// give the same primitive as all points (ARCHITECTURE.md, "Exact point reduction").
+/// Under `Reduction::Extremes`, to their extreme points along 13 fixed axes instead
+/// (approximate, no hull).
 fn merged_points(
     ev: &Evaluator,
     cl: &Clusters,
@@ -382,7 +386,10 @@ fn merged_points(
         r.y.push(p[1]);
         r.z.push(p[2]);
     }
-    hull_vertices(&r.x, &r.y, &r.z, ev.hull_eps, &mut r.hull, &mut r.keep);
+    match ev.reduction {
+        Reduction::Hull => hull_vertices(&r.x, &r.y, &r.z, ev.hull_eps, &mut r.hull, &mut r.keep),
+        Reduction::Extremes => extreme_points(&r.x, &r.y, &r.z, &mut r.keep),
+    }
     r.keep.iter().map(|&i| out[i as usize]).collect()
 }
 

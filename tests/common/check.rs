@@ -57,3 +57,51 @@ pub fn assert_valid(mesh: &Mesh, dec: &Decomposition, params: &Params) {
         );
     }
 }
+
+/// Panics unless every level holds at most its target's primitives.
+pub fn assert_counts(dec: &Decomposition, what: &str) {
+    for l in &dec.levels {
+        assert!(
+            l.primitives.len() <= l.target,
+            "{what}: {} primitives for target {}",
+            l.primitives.len(),
+            l.target
+        );
+    }
+}
+
+/// Panics unless `params` give the same JSON bytes (as written without `--timings`)
+/// at every level on 1, 2 and 8 threads; returns the one-thread run.
+pub fn assert_same_on_threads(mesh: &Mesh, params: &Params) -> Decomposition {
+    let runs: Vec<Decomposition> = [1, 2, 8]
+        .iter()
+        .map(|&t| super::on_threads(t, || primdecomp::decompose(mesh, params).unwrap()))
+        .collect();
+    for level in 0..runs[0].levels.len() {
+        let a = to_json(&runs[0], level, params);
+        assert_eq!(a, to_json(&runs[1], level, params), "1 vs 2 threads");
+        assert_eq!(a, to_json(&runs[2], level, params), "1 vs 8 threads");
+    }
+    runs.into_iter().next().expect("three runs")
+}
+
+/// Decomposes corpus meshes (one closed scan, one model of many parts that must be
+/// bridged) at about 1% of their faces and at 20 under `with(targets)`, and checks
+/// every result valid and within its counts; says so loudly and returns when the
+/// corpus is absent.
+pub fn check_corpus_meshes(with: impl Fn(&[usize]) -> Vec<Params>) {
+    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/datasets/corpus");
+    if !dir.is_dir() {
+        eprintln!("CORPUS ABSENT: {} not found; test skipped", dir.display());
+        return;
+    }
+    for name in ["stanford_bunny.obj", "peterbilt_truck.obj"] {
+        let m = primdecomp::mesh::io::load(&dir.join(name)).unwrap_or_else(|e| panic!("{e}"));
+        let targets = [(m.face_count() / 100).max(1), 20];
+        for p in with(&targets) {
+            let dec = primdecomp::decompose(&m, &p).unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert_valid(&m, &dec, &p);
+            assert_counts(&dec, &format!("{name}, {p:?}"));
+        }
+    }
+}

@@ -31,6 +31,7 @@ CONFIGS = [
     ("reprice exact", ["--reprice", "exact"]),
     ("reprice deferred", ["--reprice", "deferred"]),
     ("merge floor 0.002", ["--merge-min-extent", "0.002"]),
+    ("extremes", ["--reduction", "extremes"]),
 ]
 SAMPLES = 50_000
 

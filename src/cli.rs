@@ -82,6 +82,11 @@ struct DecomposeArgs {
     /// With several inputs: print a markdown table of all results at the end.
     #[arg(long)]
     table: bool,
+    /// With several inputs: how many to decompose at once, each on its share of the
+    /// threads and within the --max-memory budget together (default: one per thread).
+    /// 1 = one after another, each with all threads. Outputs do not depend on it.
+    #[arg(long)]
+    jobs: Option<usize>,
     /// Refuse merges adding more than this fraction of the input's AABB volume.
     #[arg(long)]
     max_excess_volume: Option<f64>,
@@ -396,21 +401,35 @@ fn decompose(a: DecomposeArgs) -> anyhow::Result<()> {
     set_threads(a.threads)?;
     if a.inputs.len() == 1 {
         let out = a.out.clone().unwrap_or_else(|| default_out(&a.inputs[0]));
-        return run_one(&a, &a.inputs[0], &base, &targets, &out).map(|_| ());
+        return run_one(&a, &a.inputs[0], &base, &targets, &out, false).map(|_| ());
     }
     let dir = a.out.clone().unwrap_or_else(|| PathBuf::from("."));
     std::fs::create_dir_all(&dir)
         .map_err(|e| anyhow!("cannot create output directory {}: {e}", dir.display()))?;
+    let threads = rayon::current_num_threads();
+    let jobs = a.jobs.unwrap_or(threads).max(1);
+    let results = crate::batch::run_all(&a.inputs, jobs, threads, max_memory(&a)?, |i| {
+        let input = &a.inputs[i];
+        let r = run_one(
+            &a,
+            input,
+            &base,
+            &targets,
+            &dir.join(default_out(input)),
+            jobs > 1,
+        );
+        if let Err(e) = &r {
+            let _out = PRINT.lock();
+            eprintln!("error: {e:#}");
+        }
+        r
+    });
     let mut rows = Vec::new();
     let mut worst: Option<anyhow::Error> = None;
-    for input in &a.inputs {
-        let out = dir.join(default_out(input));
-        match run_one(&a, input, &base, &targets, &out) {
+    for r in results {
+        match r {
             Ok(dec) => rows.push(dec),
-            Err(e) => {
-                eprintln!("error: {e:#}");
-                worst = Some(e);
-            }
+            Err(e) => worst = Some(e),
         }
     }
     if a.table {
@@ -426,13 +445,18 @@ fn decompose(a: DecomposeArgs) -> anyhow::Result<()> {
     }
 }
 
-/// Loads, decomposes and writes one input.
+/// Keeps one input's messages together when several inputs run at once.
+static PRINT: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+/// Loads, decomposes and writes one input; `beside_others` (several inputs at once):
+/// no progress bar, and the messages printed in one block.
 fn run_one(
     a: &DecomposeArgs,
     input: &Path,
     base: &Params,
     targets: &[Target],
     out: &Path,
+    beside_others: bool,
 ) -> anyhow::Result<Decomposition> {
     let now = Instant::now();
     let mesh = primdecomp::mesh::io::load_limited(input, max_memory(a)?)?;
@@ -441,7 +465,7 @@ fn run_one(
         targets: resolve_targets(targets, mesh.face_count()),
         ..base.clone()
     };
-    let bar = progress_bar(mesh.face_count(), a.quiet);
+    let bar = progress_bar(mesh.face_count(), a.quiet || beside_others);
     let mut dec = primdecomp::decompose::decompose_with_progress(&mesh, &params, &|f| {
         if let Some(b) = &bar {
             b.set_position((f * 1000.0) as u64);
@@ -462,11 +486,12 @@ fn run_one(
         a.timings,
     )?;
     let write_s = now.elapsed().as_secs_f64();
+    let _out = PRINT.lock();
     if !a.quiet {
         print_summary(&dec, &mesh, &written);
     }
     if !a.quiet || a.timings {
-        print_timings(&dec, write_s);
+        print_timings(&dec, write_s, a.inputs.len() > 1);
     }
     Ok(dec)
 }
@@ -595,7 +620,7 @@ fn print_summary(dec: &Decomposition, mesh: &primdecomp::Mesh, written: &[PathBu
 }
 
 /// The stage breakdown (load through write) and the process's peak resident memory.
-fn print_timings(dec: &Decomposition, write_s: f64) {
+fn print_timings(dec: &Decomposition, write_s: f64, several: bool) {
     let stages: Vec<String> = dec
         .timings
         .stages
@@ -618,7 +643,16 @@ fn print_timings(dec: &Decomposition, write_s: f64) {
         dec.merges_ahead
     );
     if let Some(kib) = peak_rss_kib() {
-        println!("memory    peak resident {:.1} MiB", kib as f64 / 1024.0);
+        // The process's peak so far: with several inputs, of all of them up to now.
+        let whose = if several {
+            " (the process's, all inputs so far)"
+        } else {
+            ""
+        };
+        println!(
+            "memory    peak resident {:.1} MiB{whose}",
+            kib as f64 / 1024.0
+        );
     }
 }
 

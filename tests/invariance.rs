@@ -3,6 +3,7 @@
 
 mod common;
 
+use common::shapes::{cuboid, cylinder, join, obj_text};
 use primdecomp::export::json::to_json;
 use primdecomp::{decompose, demo, Decomposition, Kind, Mesh, Params, Primitive};
 
@@ -154,4 +155,76 @@ fn cli_files_are_byte_identical() {
     assert_eq!(v, plain);
     assert_eq!(timed.1, one.1);
     std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Several inputs decomposed side by side (`--jobs`, `src/batch.rs`) give the files a
+/// one-after-another run gives, byte for byte; a bad input among them fails the run
+/// (non-zero exit) after the others are written.
+#[test]
+fn cli_jobs_write_the_same_files() {
+    let root = std::env::temp_dir().join(format!("primdecomp-jobs-{}", std::process::id()));
+    std::fs::create_dir_all(&root).unwrap();
+    // The demo scene, and two generated meshes (a box; a cylinder beside a box).
+    let demo = concat!(env!("CARGO_MANIFEST_DIR"), "/datasets/demo_scene.obj");
+    let made = [
+        cuboid([0.0; 3], [1.0, 2.0, 3.0]),
+        join(&[
+            cylinder(1.0, 4.0, 24),
+            cuboid([2.0, 0.0, 0.0], [3.0, 1.0, 1.0]),
+        ]),
+    ];
+    let mut inputs = vec![demo.to_string()];
+    for (n, m) in made.iter().enumerate() {
+        let p = root.join(format!("made{n}.obj"));
+        std::fs::write(&p, obj_text(m)).unwrap();
+        inputs.push(p.display().to_string());
+    }
+    let bad = root.join("bad.obj");
+    std::fs::write(&bad, "v 0 0 0\nf 1 2 3\n").unwrap();
+    let run = |jobs: &str| {
+        let out = root.join(format!("jobs{jobs}"));
+        let status = std::process::Command::new(env!("CARGO_BIN_EXE_primdecomp"))
+            .arg("decompose")
+            .args(&inputs)
+            .arg(&bad)
+            .args([
+                "-n",
+                "40,8",
+                "--quiet",
+                "--threads",
+                "2",
+                "--jobs",
+                jobs,
+                "-o",
+            ])
+            .arg(&out)
+            .status()
+            .expect("runs");
+        assert!(
+            !status.success(),
+            "jobs {jobs}: the bad input must fail the run"
+        );
+        let mut files: Vec<(String, Vec<u8>)> = std::fs::read_dir(&out)
+            .unwrap()
+            .map(|e| {
+                let p = e.unwrap().path();
+                (
+                    p.file_name().unwrap().to_string_lossy().into(),
+                    std::fs::read(&p).unwrap(),
+                )
+            })
+            .collect();
+        files.sort();
+        files
+    };
+    let one = run("1");
+    assert_eq!(
+        one.len(),
+        2 * inputs.len(),
+        "{:?}",
+        one.iter().map(|f| &f.0).collect::<Vec<_>>()
+    );
+    assert!(run("2") == one, "--jobs 2 wrote different files");
+    assert!(run("3") == one, "--jobs 3 wrote different files");
+    std::fs::remove_dir_all(&root).ok();
 }

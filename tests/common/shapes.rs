@@ -209,3 +209,16 @@ pub fn plate_with_hole(size: f64, t: f64, n: usize, hole: usize) -> Polys {
     }
     (v, f)
 }
+
+/// `p` as OBJ text (1-based indices), for tests that run the CLI on generated meshes.
+pub fn obj_text((v, f): &Polys) -> String {
+    let mut t = String::new();
+    for p in v {
+        t += &format!("v {} {} {}\n", p[0], p[1], p[2]);
+    }
+    for face in f {
+        let ids: Vec<String> = face.iter().map(|i| (i + 1).to_string()).collect();
+        t += &format!("f {}\n", ids.join(" "));
+    }
+    t
+}

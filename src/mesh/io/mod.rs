@@ -293,6 +293,22 @@ pub(crate) mod text {
     }
 }
 
+/// The peak memory a decomposition of `path` is expected to need
+/// ([`crate::memory::estimate`]) from the counts its header declares, read without
+/// parsing the file; `None` where they cannot be known before parsing (glTF/GLB, an
+/// unreadable file, a header that does not parse). Schedulers running several inputs
+/// at once reserve this much per input.
+pub fn declared_estimate(path: &Path) -> Option<u64> {
+    let format = Format::from_path(path)?;
+    let file = std::fs::File::open(path).ok()?;
+    if file.metadata().ok()?.len() == 0 {
+        return None;
+    }
+    // SAFETY: as in `load_limited`: a read-only map living only for this call.
+    let map = unsafe { memmap2::Mmap::map(&file) }.ok()?;
+    crate::memory::declared_counts(&map, format).map(crate::memory::estimate)
+}
+
 /// Memory-maps and parses `path`, then re-centres it into a [`Mesh`]. No memory limit:
 /// see [`load_limited`].
 pub fn load(path: &Path) -> Result<Mesh> {

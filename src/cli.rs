@@ -180,6 +180,10 @@ struct SimArgs {
     /// Write a PNG plot of frame time against frame number.
     #[arg(long)]
     plot: Option<PathBuf>,
+    /// Skip the perturbed copy of the reference (the mesh against itself with every
+    /// ball started up to 1e-4 ball radii away: the behaviour measures' noise floor).
+    #[arg(long)]
+    no_perturbed: bool,
     /// Print nothing but errors.
     #[arg(short, long)]
     quiet: bool,
@@ -630,6 +634,7 @@ fn sim(a: SimArgs) -> anyhow::Result<()> {
         seed: a.seed,
         threads: a.threads,
         up: ["x", "y", "z"].iter().position(|u| *u == a.up).unwrap_or(1),
+        perturbed: !a.no_perturbed,
     };
     let bar = (!a.quiet).then(|| {
         let b = indicatif::ProgressBar::new(a.frames as u64);

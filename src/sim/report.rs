@@ -1,7 +1,7 @@
 //! The simulation's outputs as text: the JSON report (issue 4's keys, one entry
 //! per collider with the reference first) and the per-frame CSV.
 
-use super::scene::{BALL_RADIUS_REL, DT, GRAVITY, SCENE_DIAGONAL};
+use super::scene::{BALL_RADIUS_REL, DT, GRAVITY, PERTURBATION_RADII, SCENE_DIAGONAL};
 use super::Run;
 use crate::math::V3;
 use serde::Serialize;
@@ -24,6 +24,9 @@ struct SceneJson {
     dt: f64,
     up: &'static str,
     seed: u64,
+    /// The perturbed reference's largest start offset per axis, in ball radii
+    /// (absent entry when the run had none).
+    perturbation_radii: Option<f64>,
     threads: usize,
 }
 
@@ -109,6 +112,7 @@ pub fn to_json(run: &Run, path: &str, faces: usize) -> String {
             dt: DT,
             up: ["x", "y", "z"][sc.up],
             seed: run.settings.seed,
+            perturbation_radii: run.settings.perturbed.then_some(PERTURBATION_RADII),
             threads: run.settings.threads,
         },
         colliders,

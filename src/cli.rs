@@ -174,7 +174,8 @@ struct SimArgs {
     /// Write the report (per collider: frame times, similarity, …) as JSON.
     #[arg(long)]
     json: Option<PathBuf>,
-    /// Write per-frame physics-step times as CSV into this directory.
+    /// Write per-frame physics-step times (`<mesh>_frame_ms.csv`) and every ball's end
+    /// point per collider (`<mesh>_ends.csv`) as CSV into this directory.
     #[arg(long)]
     csv: Option<PathBuf>,
     /// Write a PNG plot of frame time against frame number.
@@ -679,6 +680,10 @@ fn write_sim_outputs(a: &SimArgs, run: &SimRun, input: &str, faces: usize) -> an
         write_atomic(
             &dir.join(format!("{stem}_frame_ms.csv")),
             report::frame_csv(run).as_bytes(),
+        )?;
+        write_atomic(
+            &dir.join(format!("{stem}_ends.csv")),
+            report::ends_csv(run).as_bytes(),
         )?;
     }
     if let Some(p) = &a.plot {

@@ -105,6 +105,11 @@ struct DecomposeArgs {
     /// output primitives keep --min-extent. Default: the same as --min-extent.
     #[arg(long)]
     merge_min_extent: Option<f64>,
+    /// Price merges of coplanar clusters only as if primitives were this thick
+    /// (half-extent, as a fraction of the diagonal): a roof's rim does not close into a
+    /// lid over a hole; other merges keep their prices. 0 = off (the paper's pricing).
+    #[arg(long, default_value_t = 0.01)]
+    flat_merge_extent: f64,
     /// When merged clusters' pairs are re-priced: exact (at once, the paper's greedy
     /// order), deferred (each when popped: faster, approximate order), or a neighbour
     /// count N: merges of clusters with N or more neighbours are deferred, others exact.
@@ -232,6 +237,7 @@ fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
         tangent_eps: a.tangent_eps,
         min_extent_rel: a.min_extent,
         merge_min_extent_rel: a.merge_min_extent,
+        flat_merge_extent_rel: a.flat_merge_extent,
         remove_contained: !a.keep_contained,
         remove_thin_boxes: a.remove_thin_boxes,
         partitions: a.partitions,

@@ -78,9 +78,17 @@ pub struct FitScratch {
     plane: PlaneScratch,
     /// The points' extent along each axis of the last frame fitted.
     span: [f64; 3],
+    /// The same in Q's eigen-frame, the first frame [`fit_best`] fits (flatness test).
+    eigen_span: [f64; 3],
 }
 
 impl FitScratch {
+    /// Whether the points of the last [`fit_best`] were coplanar up to round-off
+    /// ([`frame::flat`] on their extents in Q's eigen-frame).
+    pub fn was_flat(&self) -> bool {
+        frame::flat(self.eigen_span)
+    }
+
     /// Sorts the point indices along axis `k` once per fit, for the profile fits.
     fn sort_axis(&mut self, k: usize) {
         if self.sorted[k] {
@@ -114,6 +122,7 @@ pub fn fit_best(cloud: &Cloud, q: &Sym3, cfg: &FitConfig, s: &mut FitScratch) ->
     let eig = eigen_sym3(q);
     let axes = eig.vectors;
     let mut best = fit_in_frame(cloud, axes, cfg, s, None);
+    s.eigen_span = s.span;
     let tied = frame::tied_plane(&eig.values);
     let plane = match cfg.frames {
         FrameSearch::Eigen => None,

@@ -96,7 +96,8 @@ pub fn to_json(run: &Run, path: &str, faces: usize) -> String {
         .collect();
     let doc = ReportJson {
         format: "primdecomp-sim",
-        version: 1,
+        // 2: the perturbed reference is the second entry (kind `mesh_perturbed`).
+        version: 2,
         input: InputJson {
             path,
             faces,

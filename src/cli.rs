@@ -110,6 +110,11 @@ struct DecomposeArgs {
     /// output primitives keep --min-extent. Default: the same as --min-extent.
     #[arg(long)]
     merge_min_extent: Option<f64>,
+    /// Price merges of coplanar clusters only as if primitives were this thick
+    /// (half-extent, as a fraction of the diagonal): a roof's rim does not close into a
+    /// lid over a hole; other merges keep their prices. 0 = off (the paper's pricing).
+    #[arg(long, default_value_t = 0.01)]
+    flat_merge_extent: f64,
     /// When merged clusters' pairs are re-priced: exact (at once, the paper's greedy
     /// order), deferred (each when popped: faster, approximate order), or a neighbour
     /// count N: merges of clusters with N or more neighbours are deferred, others exact.
@@ -185,12 +190,17 @@ struct SimArgs {
     /// Write the report (per collider: frame times, similarity, …) as JSON.
     #[arg(long)]
     json: Option<PathBuf>,
-    /// Write per-frame physics-step times as CSV into this directory.
+    /// Write per-frame physics-step times (`<mesh>_frame_ms.csv`) and every ball's end
+    /// point per collider (`<mesh>_ends.csv`) as CSV into this directory.
     #[arg(long)]
     csv: Option<PathBuf>,
     /// Write a PNG plot of frame time against frame number.
     #[arg(long)]
     plot: Option<PathBuf>,
+    /// Skip the perturbed copy of the reference (the mesh against itself with every
+    /// ball started up to 1e-4 ball radii away: the behaviour measures' noise floor).
+    #[arg(long)]
+    no_perturbed: bool,
     /// Print nothing but errors.
     #[arg(short, long)]
     quiet: bool,
@@ -245,6 +255,7 @@ fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
         tangent_eps: a.tangent_eps,
         min_extent_rel: a.min_extent,
         merge_min_extent_rel: a.merge_min_extent,
+        flat_merge_extent_rel: a.flat_merge_extent,
         remove_contained: !a.keep_contained,
         remove_thin_boxes: a.remove_thin_boxes,
         partitions: a.partitions,
@@ -681,6 +692,7 @@ fn sim(a: SimArgs) -> anyhow::Result<()> {
         seed: a.seed,
         threads: a.threads,
         up: ["x", "y", "z"].iter().position(|u| *u == a.up).unwrap_or(1),
+        perturbed: !a.no_perturbed,
     };
     let bar = (!a.quiet).then(|| {
         let b = indicatif::ProgressBar::new(a.frames as u64);
@@ -725,6 +737,10 @@ fn write_sim_outputs(a: &SimArgs, run: &SimRun, input: &str, faces: usize) -> an
         write_atomic(
             &dir.join(format!("{stem}_frame_ms.csv")),
             report::frame_csv(run).as_bytes(),
+        )?;
+        write_atomic(
+            &dir.join(format!("{stem}_ends.csv")),
+            report::ends_csv(run).as_bytes(),
         )?;
     }
     if let Some(p) = &a.plot {

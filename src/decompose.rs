@@ -239,6 +239,7 @@ pub fn evaluator<'a>(
             frames: FrameSearch::Degenerate,
         },
         output_min_half: min_half,
+        flat_scale: (params.flat_merge_extent_rel * diag / price_half).max(1.0),
         max_excess: params
             .max_excess_volume
             .map_or(f64::INFINITY, |m| m * aabb_volume),

@@ -2,7 +2,8 @@
 //! (§3.3 weights, §3.4 deduplication and tangent term), except where the paper's
 //! choice made results depend on units (the minimum extent, here relative) and in
 //! deferring the re-pricing of clusters with 64 or more neighbours (ARCHITECTURE.md,
-//! "Where we deviate", 14: the flat-grid limit; the corpus at 1% is unchanged).
+//! "Where we deviate", 14: the flat-grid limit; the corpus at 1% is unchanged), and in
+//! pricing merges of coplanar clusters at a thicker floor (18: rims stay rims).
 //!
 //! | setting | default | raising it | lowering it |
 //! |---|---|---|---|
@@ -14,6 +15,7 @@
 //! | `dedup` | exact | `Tolerance(d)` also welds vertices closer than d (fuses parts) | `Off` keeps duplicate vertices: fewer merges across seams |
 //! | `min_extent_rel` | 5e-4 | flat clusters cost more: fewer coplanar "free" merges | flatter primitives; 0 is refused |
 //! | `merge_min_extent_rel` | none (= `min_extent_rel`) | merges are priced as if primitives were at least this thick: coplanar merges across gaps and holes (a roof's rim into a lid) cost more; output thickness unchanged | — (below `min_extent_rel` it has no effect) |
+//! | `flat_merge_extent_rel` | 0.01 | merges of coplanar clusters only are priced as if primitives were this thick (fraction of the diagonal): holes and gaps bridged in a plane cost more, so a roof's rim stays a rim instead of closing into a lid; other merges keep their prices | coplanar merges cost less; 0 = off (the paper's pricing: rims close into lids at low counts) |
 //! | `remove_contained` | true | — | keeps nested primitives |
 //! | `reprice` | `Deferred { min_degree: 64 }` | merges of clusters with at least `min_degree` neighbours leave their pairs' old queue entries as keys and re-price each when popped; a higher `min_degree` defers fewer merges (`Exact`: none, the paper's order, F^1.5 on large flat regions) | defers more merges: fewer fits, faster, the order drifts from exact greedy; `min_degree: 0` defers all (about 0.8× the time on the corpus, quality mixed: docs/results/reprice.md) |
 //! | `partitions` | 1 | the faces are split into that many spatial parts, merged in parallel (one task each) to 16× the largest target before the global merge loop: faster on 2+ cores, merges across part boundaries wait (docs/results/partitions.md) | — (1 = one global greedy, Alg. 1) |
@@ -89,6 +91,11 @@ pub struct Params {
     /// `min_extent_rel`. `None`: the same as `min_extent_rel` (the paper's single floor).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub merge_min_extent_rel: Option<f64>,
+    /// Minimum half-extent when pricing merges of *coplanar* clusters only, as a
+    /// fraction of the diagonal (their cost is scaled as if priced at this floor; the
+    /// larger of this and the pricing floor applies; 0 = no special case). Default
+    /// 0.01 (ARCHITECTURE.md, deviation 18: rims no longer close into lids).
+    pub flat_merge_extent_rel: f64,
     /// Remove primitives whose points lie inside another primitive (§3.4).
     pub remove_contained: bool,
     /// Remove boxes whose smallest half-extent is below this fraction of the diagonal,
@@ -142,6 +149,7 @@ impl Default for Params {
             dedup: Dedup::Exact,
             min_extent_rel: 5e-4,
             merge_min_extent_rel: None,
+            flat_merge_extent_rel: 0.01,
             remove_contained: true,
             remove_thin_boxes: None,
             reprice: Reprice::Deferred { min_degree: 64 },
@@ -192,6 +200,10 @@ impl Params {
             if !(m.is_finite() && (0.0..1.0).contains(&m)) {
                 return bad(format!("merge-min-extent must be in [0, 1), got {m}"));
             }
+        }
+        let m = self.flat_merge_extent_rel;
+        if !(m.is_finite() && (0.0..1.0).contains(&m)) {
+            return bad(format!("flat-merge-extent must be in [0, 1), got {m}"));
         }
         if let Some(m) = self.max_excess_volume {
             if !(m.is_finite() && m >= 0.0) {

@@ -68,6 +68,12 @@ fn params(u: &mut Unstructured) -> Result<Params> {
         0 => Some(pick(u, &[2e-3, 0.0, 0.5, 0.999])?),
         _ => None,
     };
+    // Last again. An exhausted input reads 0 twice, so entries grown before this setting
+    // run with it off, as they were grown; otherwise mostly the default (0.01).
+    if u.int_in_range(0..=3)? == 0 {
+        p.flat_merge_extent_rel = pick(u, &[0.0, 0.05, 0.5, 0.999])?;
+    }
+    // Last of all (an exhausted input reads false: the exact hull, as grown).
     p.reduction = match u.arbitrary::<bool>()? {
         true => Reduction::Extremes,
         false => Reduction::Hull,

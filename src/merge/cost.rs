@@ -55,6 +55,10 @@ pub struct Evaluator<'a> {
     /// diagonal cubed), so that round-off from units or position cannot reorder merges
     /// whose exact costs tie — coplanar merges cost exactly 0, and there are many.
     pub cost_unit: f64,
+    /// Factor on the cost of a merge whose points are coplanar (≥ 1): such merges are
+    /// priced as if primitives were `Params::flat_merge_extent_rel` thick instead of
+    /// the pricing floor (area across gaps and holes costs that thickness); 1 = off.
+    pub flat_scale: f64,
     /// Distance below which a point counts as on a hull face (point reduction only).
     pub hull_eps: f64,
     /// How merged clusters' points are reduced (`Params::reduction`).
@@ -184,8 +188,14 @@ impl<'a> Evaluator<'a> {
         if fit.volume - before > self.max_excess {
             return None;
         }
+        let mut cost = fit.cost - before;
+        // A coplanar merge's volumes are all area × 2·floor, so scaling its cost is
+        // pricing it at the thicker floor (Params::flat_merge_extent_rel).
+        if self.flat_scale > 1.0 && ws.fit.was_flat() {
+            cost *= self.flat_scale;
+        }
         let c = Candidate {
-            cost: ((fit.cost - before) / self.cost_unit).round(),
+            cost: (cost / self.cost_unit).round(),
             volume: fit.volume,
             a: a.id,
             b: b.id,

@@ -15,6 +15,14 @@
 //!   rest, with CCD on. Every collider sees exactly the same balls.
 //! - **Colliders.** The input mesh as one triangle mesh (the reference, always the
 //!   first entry), our primitives ([`shapes::primitive`]) and convex hulls, all fixed.
+//! - **Noise floor.** Unless [`Settings::perturbed`] is off, the second entry is the
+//!   reference again with every ball's start moved by up to
+//!   [`scene::PERTURBATION_RADII`] = 1e-4 r per axis (uniform, its own seeded stream):
+//!   kind `mesh_perturbed`, label `<input> (perturbed)`. Its behaviour measures are the
+//!   mesh against itself, so a collider's similarity differences smaller than
+//!   1 − the perturbed run's are chaos, not geometry. Its world is stepped in the
+//!   frame rotation like every other, so it adds the same load to all colliders'
+//!   frames; its frame times (the same mesh twice) show the timing noise floor too.
 //!
 //! # Timing
 //! All colliders' worlds live in one process and advance frame by frame, each frame
@@ -64,6 +72,8 @@ pub struct Settings {
     pub threads: usize,
     /// Up axis: 0 = x, 1 = y, 2 = z.
     pub up: usize,
+    /// Also simulate the perturbed reference (the behaviour's noise floor).
+    pub perturbed: bool,
 }
 
 impl Default for Settings {
@@ -74,6 +84,7 @@ impl Default for Settings {
             seed: 0,
             threads: 1,
             up: 1,
+            perturbed: true,
         }
     }
 }
@@ -83,6 +94,8 @@ impl Default for Settings {
 pub enum Geometry {
     /// The input mesh as a triangle mesh: the reference.
     Reference,
+    /// The reference with the balls' starts perturbed (the noise floor).
+    Perturbed,
     /// Primitives or convex hulls ([`crate::collider::load`]).
     Collider(Collider),
 }
@@ -92,6 +105,7 @@ impl Geometry {
     pub fn kind(&self) -> &'static str {
         match self {
             Geometry::Reference => "mesh",
+            Geometry::Perturbed => "mesh_perturbed",
             Geometry::Collider(Collider::Primitives(_)) => "primitives",
             Geometry::Collider(Collider::Hulls(_)) => "hulls",
         }
@@ -138,7 +152,7 @@ pub struct Run {
 fn placed(geometry: &Geometry, mesh: &Mesh, scene: &Scene) -> Result<(Vec<Placed>, usize)> {
     let f = &scene.frame;
     let all: Vec<Option<Placed>> = match geometry {
-        Geometry::Reference => vec![shapes::trimesh(mesh, f)],
+        Geometry::Reference | Geometry::Perturbed => vec![shapes::trimesh(mesh, f)],
         Geometry::Collider(Collider::Primitives(p)) => {
             p.iter().map(|p| shapes::primitive(p, f)).collect()
         }
@@ -159,8 +173,9 @@ fn placed(geometry: &Geometry, mesh: &Mesh, scene: &Scene) -> Result<(Vec<Placed
     Ok((kept, skipped))
 }
 
-/// Simulates the reference (`mesh` as a triangle mesh, labelled `input`) and every
-/// collider, interleaved frame by frame; the reference is the run's first outcome.
+/// Simulates the reference (`mesh` as a triangle mesh, labelled `input`), its
+/// perturbed copy (when `settings.perturbed`) and every collider, interleaved frame by
+/// frame; the reference is the run's first outcome, the perturbed copy the second.
 /// Calls `progress` with the number of frames done after each frame.
 pub fn run(
     mesh: &Mesh,
@@ -175,11 +190,19 @@ pub fn run(
         )));
     }
     let scene = Scene::new(mesh, settings);
-    let reference = Entry {
-        label: input.to_string(),
-        geometry: Geometry::Reference,
-    };
-    let entries: Vec<&Entry> = std::iter::once(&reference).chain(colliders).collect();
+    let reference = [
+        Entry {
+            label: input.to_string(),
+            geometry: Geometry::Reference,
+        },
+        Entry {
+            label: format!("{input} (perturbed)"),
+            geometry: Geometry::Perturbed,
+        },
+    ];
+    let own = if settings.perturbed { 2 } else { 1 };
+    let entries: Vec<&Entry> = reference[..own].iter().chain(colliders).collect();
+    let perturbed = scene.perturbed_release(settings.seed);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(settings.threads)
         .thread_name(|i| format!("sim-{i}"))
@@ -195,7 +218,11 @@ pub fn run(
             other => other,
         })?;
         parts.push((shapes.len(), skipped));
-        worlds.push(World::new(&scene, &shapes));
+        let release = match e.geometry {
+            Geometry::Perturbed => &perturbed,
+            _ => &scene.release,
+        };
+        worlds.push(World::new(&scene, &shapes, release));
     }
     let mut frame_ms = vec![Vec::with_capacity(settings.frames); worlds.len()];
     let mut cpu_ms = frame_ms.clone();
@@ -309,8 +336,37 @@ mod tests {
             }
             assert_eq!((o.behaviour.on_object, o.behaviour.resting), (1.0, 1.0));
         }
-        // The box's run matches the mesh's ball for ball.
+        // The perturbed mesh run and the box's run match the mesh's ball for ball.
+        assert_eq!(run.outcomes[1].kind, "mesh_perturbed");
         assert_eq!(run.outcomes[1].behaviour.similarity, 1.0);
+        assert_eq!(run.outcomes[2].behaviour.similarity, 1.0);
+    }
+
+    /// The noise-floor entry: second, labelled, its balls started at most
+    /// `PERTURBATION_RADII` · r per axis away (but not all at the same place); on one
+    /// ball on a box it ends where the reference's does; `perturbed: false` drops it.
+    #[test]
+    fn perturbed_reference_is_the_second_entry() {
+        let (mesh, e) = box_scene();
+        let run = run(&mesh, "in.obj", &e, &settings(1, 150), &|_| {}).unwrap();
+        let kinds: Vec<&str> = run.outcomes.iter().map(|o| o.kind).collect();
+        assert_eq!(kinds, ["mesh", "mesh_perturbed", "primitives"]);
+        assert_eq!(run.outcomes[1].label, "in.obj (perturbed)");
+        assert_eq!(run.outcomes[1].behaviour.similarity, 1.0);
+        assert_eq!(run.outcomes[1].behaviour.similarity_set, 1.0);
+        let moved = run.scene.perturbed_release(0);
+        let d = scene::PERTURBATION_RADII * run.scene.radius;
+        for (p, q) in run.scene.release.iter().zip(&moved) {
+            assert!((0..3).all(|k| (p[k] - q[k]).abs() <= d), "{p:?} vs {q:?}");
+            assert_ne!(p, q);
+        }
+        let off = Settings {
+            perturbed: false,
+            ..settings(1, 10)
+        };
+        let run = super::run(&mesh, "in.obj", &e, &off, &|_| {}).unwrap();
+        assert_eq!(run.outcomes.len(), 2);
+        assert_eq!(run.outcomes[1].kind, "primitives");
     }
 
     /// The same box read from a primdecomp JSON document and from an OBJ file of
@@ -338,7 +394,7 @@ mod tests {
         ];
         let run = run(&mesh, "mesh", &e, &settings(9, 150), &|_| {}).unwrap();
         let top = run.scene.aabb.1[1] + run.scene.radius;
-        let (a, b) = (heights(&run.outcomes[1]), heights(&run.outcomes[2]));
+        let (a, b) = (heights(&run.outcomes[2]), heights(&run.outcomes[3]));
         for (x, y) in a.iter().zip(&b) {
             assert!(
                 (x - y).abs() < 1e-3 * run.scene.radius,

@@ -1,7 +1,8 @@
 //! The simulation's outputs as text: the JSON report (issue 4's keys, one entry
-//! per collider with the reference first) and the per-frame CSV.
+//! per collider with the reference first), the per-frame CSV and the balls' end
+//! points CSV.
 
-use super::scene::{BALL_RADIUS_REL, DT, GRAVITY, SCENE_DIAGONAL};
+use super::scene::{BALL_RADIUS_REL, DT, GRAVITY, PERTURBATION_RADII, SCENE_DIAGONAL};
 use super::Run;
 use crate::math::V3;
 use serde::Serialize;
@@ -24,6 +25,9 @@ struct SceneJson {
     dt: f64,
     up: &'static str,
     seed: u64,
+    /// The perturbed reference's largest start offset per axis, in ball radii
+    /// (absent entry when the run had none).
+    perturbation_radii: Option<f64>,
     threads: usize,
 }
 
@@ -92,7 +96,8 @@ pub fn to_json(run: &Run, path: &str, faces: usize) -> String {
         .collect();
     let doc = ReportJson {
         format: "primdecomp-sim",
-        version: 1,
+        // 2: the perturbed reference is the second entry (kind `mesh_perturbed`).
+        version: 2,
         input: InputJson {
             path,
             faces,
@@ -109,6 +114,7 @@ pub fn to_json(run: &Run, path: &str, faces: usize) -> String {
             dt: DT,
             up: ["x", "y", "z"][sc.up],
             seed: run.settings.seed,
+            perturbation_radii: run.settings.perturbed.then_some(PERTURBATION_RADII),
             threads: run.settings.threads,
         },
         colliders,
@@ -150,4 +156,57 @@ pub fn frame_csv(run: &Run) -> String {
         s.push('\n');
     }
     s
+}
+
+/// CSV of where each ball ends, input coordinates: `collider,ball,x,y,z,speed`, one
+/// row per collider and ball (speed in m/s of the scene), for plotting where colliders
+/// send balls that the mesh keeps.
+pub fn ends_csv(run: &Run) -> String {
+    let mut s = String::from("collider,ball,x,y,z,speed\n");
+    for (name, o) in column_names(run).iter().zip(&run.outcomes) {
+        let name = name.replace('"', "\"\"");
+        for (i, (p, v)) in o.end.iter().zip(&o.speed).enumerate() {
+            let w = run.scene.frame.to_world(*p);
+            let _ = writeln!(s, "\"{name}\",{i},{},{},{},{v:.4}", w[0], w[1], w[2]);
+        }
+    }
+    s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::collider::Collider;
+    use crate::primitive::{Obb, Primitive};
+    use crate::sim::{run, Entry, Geometry, Settings};
+
+    /// The end-points CSV has one row per collider and ball, in input coordinates: a
+    /// ball resting on a 1-high box at y = 0…1 ends at y = 1 + its world radius.
+    #[test]
+    fn ends_csv_rows_are_input_coordinates() {
+        let mesh = crate::sim::cuboid_mesh([10.0, 0.0, 10.0], [12.0, 1.0, 12.0]);
+        let prim = Primitive::Box(Obb {
+            center: [11.0, 0.5, 11.0],
+            axes: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            half: [1.0, 0.5, 1.0],
+        });
+        let e = [Entry {
+            label: "box".into(),
+            geometry: Geometry::Collider(Collider::Primitives(vec![prim])),
+        }];
+        let s = Settings {
+            balls: 2,
+            frames: 150,
+            ..Default::default()
+        };
+        let r = run(&mesh, "m", &e, &s, &|_| {}).unwrap();
+        let csv = ends_csv(&r);
+        let rows: Vec<&str> = csv.lines().skip(1).collect();
+        assert_eq!(rows.len(), 3 * 2);
+        let top = 1.0 + r.scene.radius_world();
+        for row in rows {
+            let y: f64 = row.split(',').nth(3).unwrap().parse().unwrap();
+            assert!((y - top).abs() < 0.01 * r.scene.radius_world(), "{row}");
+        }
+    }
 }

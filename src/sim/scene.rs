@@ -22,6 +22,12 @@ pub const SPACING_RADII: f64 = 3.0;
 pub const GRAVITY: f64 = 9.81;
 /// Fixed time step, s.
 pub const DT: f64 = 1.0 / 60.0;
+/// Largest per-axis start offset of the perturbed reference run, in ball radii
+/// (1e-4 r = 10 µm in the scene: ~20 f32 ulps at 5 m from the origin, so Rapier sees
+/// it, and 5000 times smaller than the release jitter).
+pub const PERTURBATION_RADII: f64 = 1e-4;
+/// Mixed into the seed for the perturbation's stream, so it differs from the jitter's.
+const PERTURBATION_SEED: u64 = 0xD1B5_4A32_D192_ED03;
 
 /// Scene geometry shared by every collider's world, in the simulation frame.
 #[derive(Clone, Debug)]
@@ -85,6 +91,18 @@ impl Scene {
     pub fn radius_world(&self) -> f64 {
         self.radius / self.frame.scale
     }
+
+    /// The release positions, each moved by up to [`PERTURBATION_RADII`] · r per axis
+    /// (uniform, from a stream seeded by `seed`): the perturbed reference run, whose
+    /// distance from the reference run is the behaviour measures' noise floor.
+    pub fn perturbed_release(&self, seed: u64) -> Vec<V3> {
+        let mut rng = SplitMix(seed ^ PERTURBATION_SEED);
+        let d = PERTURBATION_RADII * self.radius;
+        self.release
+            .iter()
+            .map(|p| p.map(|x| x + d * rng.symmetric()))
+            .collect()
+    }
 }
 
 /// Columns `SPACING_RADII · r` apart over the AABB's footprint (cells centred, at
@@ -145,10 +163,11 @@ pub struct World {
 }
 
 impl World {
-    /// Static `shapes` plus one dynamic ball per release position, with CCD (fast
-    /// balls would otherwise tunnel through the reference's zero-thickness
-    /// triangles). Rapier's parallel parts run on the rayon pool the caller is in.
-    pub fn new(scene: &Scene, shapes: &[Placed]) -> World {
+    /// Static `shapes` plus one dynamic ball per `release` position (the scene's, or
+    /// their perturbed copy), with CCD (fast balls would otherwise tunnel through the
+    /// reference's zero-thickness triangles). Rapier's parallel parts run on the rayon
+    /// pool the caller is in.
+    pub fn new(scene: &Scene, shapes: &[Placed], release: &[V3]) -> World {
         let mut world = PhysicsWorld::new();
         let mut g = [0.0f32; 3];
         g[scene.up] = -GRAVITY as f32;
@@ -158,8 +177,7 @@ impl World {
             world.insert_collider(ColliderBuilder::new(shape.clone()).position(*pose), None);
         }
         let ball = ColliderBuilder::ball(scene.radius as f32);
-        let balls = scene
-            .release
+        let balls = release
             .iter()
             .map(|&p| {
                 let body = RigidBodyBuilder::dynamic()

@@ -4,7 +4,9 @@
 //! process's peak resident memory from its `--timings` line), with meshopt's
 //! simplifier on the same input down to 2,000 triangles timed in the same run as the
 //! reference cost of a greedy QEM-style pass; each input also with the opt-in
-//! `--partitions 16` (the speed/accuracy setting of ARCHITECTURE.md, deviation 17).
+//! `--partitions 16` (the speed/accuracy setting of ARCHITECTURE.md, deviation 17),
+//! and with that and `--reduction extremes` (the approximate point reduction,
+//! docs/results/reduction.md): the fastest settings there are.
 //! Median of `RUNS` runs each.
 //!
 //! Run: `cargo bench --bench scale` (needs `../shared/datasets/corpus`; says so
@@ -47,10 +49,12 @@ fn main() {
         ("dragon ×4 (subdivided)", big_path.as_path(), &big),
     ] {
         let s = meshopt_runs(m);
-        // The default, then the opt-in speed setting `--partitions` (deviation 17).
+        // The default, then the opt-in speed settings (deviation 17; reduction.md).
+        let fastest = ["--partitions", "16", "--reduction", "extremes"];
         for (setting, extra) in [
             ("", &[][..]),
-            (", --partitions 16", &["--partitions", "16"][..]),
+            (", --partitions 16", &fastest[..2]),
+            (", --partitions 16 --reduction extremes", &fastest[..]),
         ] {
             let (t, rss) = cli_runs(&bin, path, extra);
             println!(

@@ -63,10 +63,11 @@ pub fn run_all<T: Send>(
         used: Mutex::new(0),
         freed: Condvar::new(),
     };
-    // Largest files first; ties (and unreadable sizes, as 0) in input order.
+    // Largest files first (one `stat` per file); ties (and unreadable sizes, as 0) in
+    // input order.
     let mut order: Vec<usize> = (0..inputs.len()).collect();
     let size = |i: usize| std::fs::metadata(&inputs[i]).map_or(0, |m| m.len());
-    order.sort_by_key(|&i| std::cmp::Reverse(size(i)));
+    order.sort_by_cached_key(|&i| std::cmp::Reverse(size(i)));
     let next = AtomicUsize::new(0);
     let slots: Vec<Mutex<Option<anyhow::Result<T>>>> =
         inputs.iter().map(|_| Mutex::new(None)).collect();

@@ -47,7 +47,8 @@ impl Budget {
 }
 
 /// Runs `run(i)` for every input, `jobs` at a time, each inside a rayon pool of
-/// `threads / jobs` threads (at least one); results in input order. `memory` is the
+/// `threads / jobs` threads (at least one); results in input order. One job runs the
+/// inputs in order on the caller's own pool. `memory` is the
 /// budget (`None`: unlimited).
 pub fn run_all<T: Send>(
     inputs: &[PathBuf],
@@ -57,6 +58,11 @@ pub fn run_all<T: Send>(
     run: impl Fn(usize) -> anyhow::Result<T> + Sync,
 ) -> Vec<anyhow::Result<T>> {
     let jobs = jobs.clamp(1, inputs.len().max(1));
+    if jobs == 1 {
+        // One after another in input order on the caller's pool: no pool of our own,
+        // and nothing else runs beside an input, so no reservation is needed.
+        return (0..inputs.len()).map(run).collect();
+    }
     let per_job = (threads / jobs).max(1);
     let budget = Budget {
         limit: memory,

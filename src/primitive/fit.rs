@@ -154,11 +154,18 @@ fn fit_in_frame(
     bar: Option<Fit>,
 ) -> Fit {
     let frame = project(cloud, axes, s);
-    s.span = [0, 1, 2].map(|k| frame.hi[k] - frame.lo[k]);
+    // Explicit 3-element arrays, not `array::map`: its `try_map` is not always inlined
+    // (1.6% of the dragon's samples as a separate function, perf).
+    let (lo, hi) = (frame.lo, frame.hi);
+    s.span = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
     let obb = Obb::from_frame(&frame, cfg.min_half);
 
     // Local coordinates relative to the OBB centre (§3.2: other primitives start there).
-    let mid = [0, 1, 2].map(|k| 0.5 * (frame.lo[k] + frame.hi[k]));
+    let mid = [
+        0.5 * (lo[0] + hi[0]),
+        0.5 * (lo[1] + hi[1]),
+        0.5 * (lo[2] + hi[2]),
+    ];
     for k in 0..3 {
         s.u[k].iter_mut().for_each(|v| *v -= mid[k]);
     }
@@ -174,9 +181,11 @@ fn fit_in_frame(
         };
         best.offer(Kind::Sphere, Primitive::Sphere(sph), sph.volume());
     }
-    let radial = ext.radial2.map(f64::sqrt);
-    let cyls = [0, 1, 2].map(|k| fit_cylinder(&obb, &radial, k, cfg.min_half));
-    let cyl_volumes = cyls.map(|c| c.volume());
+    let r2 = ext.radial2;
+    let radial = [r2[0].sqrt(), r2[1].sqrt(), r2[2].sqrt()];
+    let cyl = |k| fit_cylinder(&obb, &radial, k, cfg.min_half);
+    let cyls = [cyl(0), cyl(1), cyl(2)];
+    let cyl_volumes = [cyls[0].volume(), cyls[1].volume(), cyls[2].volume()];
     let best_cyl = (0..3)
         .min_by(|&a, &b| cyl_volumes[a].total_cmp(&cyl_volumes[b]))
         .unwrap_or(0);

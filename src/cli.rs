@@ -5,7 +5,7 @@ use anyhow::{anyhow, bail};
 use clap::{Args, Parser, Subcommand};
 use primdecomp::export::{self, output_path_for, write_atomic};
 use primdecomp::sim::{Entry, Geometry, Run as SimRun, Settings as SimSettings};
-use primdecomp::{Decomposition, Dedup, Kind, Params, Reduction, Reprice};
+use primdecomp::{Decomposition, Dedup, Kind, Params, Partitions, Reduction, Reprice};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -122,9 +122,10 @@ struct DecomposeArgs {
     reprice: String,
     /// Split the faces into K spatial parts merged in parallel (to 16x the largest
     /// target) before the global merge: faster on several cores, merges across parts
-    /// wait (docs/results/partitions.md). 1 = one global greedy.
-    #[arg(long, default_value_t = 1)]
-    partitions: usize,
+    /// wait (docs/results/partitions.md). 1 = one global greedy (the paper); auto = 16
+    /// parts for inputs of 524,288 faces or more, else 1.
+    #[arg(long, default_value = "auto")]
+    partitions: String,
     /// How merged clusters' points are reduced for pricing: hull (exact: the convex
     /// hull's vertices) or extremes (approximate: the extreme points along 13 fixed
     /// axes; faster, different merges; docs/results/reduction.md). Output primitives
@@ -258,7 +259,12 @@ fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
         flat_merge_extent_rel: a.flat_merge_extent,
         remove_contained: !a.keep_contained,
         remove_thin_boxes: a.remove_thin_boxes,
-        partitions: a.partitions,
+        partitions: match a.partitions.as_str() {
+            "auto" => Partitions::Auto,
+            k => Partitions::Fixed(k.parse().map_err(|_| {
+                BadArgs(format!("--partitions: expected auto or a count, got '{k}'"))
+            })?),
+        },
         reduction: match a.reduction {
             ReductionArg::Hull => Reduction::Hull,
             ReductionArg::Extremes => Reduction::Extremes,

@@ -83,6 +83,8 @@ pub struct Decomposition {
     pub fits: crate::merge::FitCounts,
     /// Merges whose points were reduced while the batch before them was priced.
     pub merges_ahead: usize,
+    /// Spatial parts merged in parallel before the global loop (1 = none).
+    pub partitions: usize,
 }
 
 /// Decomposes `mesh` into primitives, one [`Level`] per target in `params.targets`.
@@ -137,12 +139,13 @@ pub fn decompose_with_progress(
     // Progress is the fraction of the merges to the last target (over both phases).
     let last = *targets.last().expect("validated: one target or more");
     let total = mesh.face_count().saturating_sub(last).max(1) as f64;
-    let clusters = if partitioned(mesh, params, targets[0]) {
+    dec.partitions = parts(mesh, params, targets[0]);
+    let clusters = if dec.partitions > 1 {
         t.push("seed", now);
         // Phase 1 of `Params::partitions`: parts merged in parallel (merge/partition.rs).
         let now = Instant::now();
         let merged = |m: usize| progress(m as f64 / total);
-        let k = params.partitions;
+        let k = dec.partitions;
         let p1 = partition::merge_parts(&ev, &q, &volumes, &pairs, targets[0], k, &merged);
         (dec.merges, dec.fits) = (p1.merges, p1.fits);
         let clusters = partition::clusters(p1, q, volumes, &pairs);
@@ -183,10 +186,15 @@ pub fn decompose_with_progress(
     Ok(dec)
 }
 
-/// Whether the run starts with partitioned merging: more than one part asked for and
-/// more faces than phase 1 would leave (else it would merge nothing).
-fn partitioned(mesh: &Mesh, params: &Params, largest_target: usize) -> bool {
-    params.partitions > 1 && mesh.face_count() > partition::phase1_size(largest_target)
+/// How many parts the run starts with: `Params::partitions` for this input, or 1
+/// when there are no more faces than phase 1 would leave (it would merge nothing).
+fn parts(mesh: &Mesh, params: &Params, largest_target: usize) -> usize {
+    let faces = mesh.face_count();
+    if faces > partition::phase1_size(largest_target) {
+        params.partitions.parts(faces)
+    } else {
+        1
+    }
 }
 
 fn input_info(mesh: &Mesh, (lo, hi): (V3, V3)) -> InputInfo {

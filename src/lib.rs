@@ -32,5 +32,5 @@ pub mod sim;
 pub use decompose::{decompose, Decomposition, InputInfo, Level, Timings};
 pub use error::{Error, Result};
 pub use mesh::Mesh;
-pub use params::{Dedup, Params, Reduction, Reprice};
+pub use params::{Dedup, Params, Partitions, Reduction, Reprice};
 pub use primitive::{Kind, Primitive};

@@ -2,8 +2,9 @@
 //! (§3.3 weights, §3.4 deduplication and tangent term), except where the paper's
 //! choice made results depend on units (the minimum extent, here relative) and in
 //! deferring the re-pricing of clusters with 64 or more neighbours (ARCHITECTURE.md,
-//! "Where we deviate", 14: the flat-grid limit; the corpus at 1% is unchanged), and in
-//! pricing merges of coplanar clusters at a thicker floor (18: rims stay rims).
+//! "Where we deviate", 15: the flat-grid limit; the corpus at 1% is unchanged), in
+//! pricing merges of coplanar clusters at a thicker floor (18: rims stay rims), and in
+//! merging inputs of 524,288 faces or more in 16 parallel parts first (19).
 //!
 //! | setting | default | raising it | lowering it |
 //! |---|---|---|---|
@@ -18,7 +19,7 @@
 //! | `flat_merge_extent_rel` | 0.01 | merges of coplanar clusters only are priced as if primitives were this thick (fraction of the diagonal): holes and gaps bridged in a plane cost more, so a roof's rim stays a rim instead of closing into a lid; other merges keep their prices | coplanar merges cost less; 0 = off (the paper's pricing: rims close into lids at low counts) |
 //! | `remove_contained` | true | — | keeps nested primitives |
 //! | `reprice` | `Deferred { min_degree: 64 }` | merges of clusters with at least `min_degree` neighbours leave their pairs' old queue entries as keys and re-price each when popped; a higher `min_degree` defers fewer merges (`Exact`: none, the paper's order, F^1.5 on large flat regions) | defers more merges: fewer fits, faster, the order drifts from exact greedy; `min_degree: 0` defers all (about 0.8× the time on the corpus, quality mixed: docs/results/reprice.md) |
-//! | `partitions` | 1 | the faces are split into that many spatial parts, merged in parallel (one task each) to 16× the largest target before the global merge loop: faster on 2+ cores, merges across part boundaries wait (docs/results/partitions.md) | — (1 = one global greedy, Alg. 1) |
+//! | `partitions` | `Auto` (16 parts from 524,288 faces, else 1) | `Fixed(K)`: the faces are split into K spatial parts, merged in parallel (one task each) to 16× the largest target before the global merge loop: faster on 2+ cores, merges across part boundaries wait (docs/results/partitions.md) | `Fixed(1)`: one global greedy, Alg. 1, on every input |
 //! | `reduction` | `Hull` | — | `Extremes`: clusters keep only their extreme points along 13 fixed axes (≤ 26): no convex hull per merge, cheaper fits; merges are priced on an inner approximation, so the order (and the fit) changes: dragon merge stage 9.85 → 8.53 s on one thread (one run), corpus quality no worse on average but mixed per mesh (docs/results/reduction.md) |
 //! | `remove_thin_boxes` | None | (when set) drops boxes thinner than this fraction of the diagonal if still covered | — |
 
@@ -66,6 +67,50 @@ pub enum Reduction {
     Extremes,
 }
 
+/// How many spatial parts the faces are split into and merged in parallel before the
+/// global merge loop (`merge::partition`; ARCHITECTURE.md, deviations 17 and 19).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Partitions {
+    /// [`AUTO_PARTS`] parts for inputs of at least [`AUTO_MIN_FACES`] faces (large scans,
+    /// where the parts cost no measurable quality), else one: Alg. 1 as is.
+    #[default]
+    Auto,
+    /// Exactly this many parts; 1 = one global greedy (Alg. 1).
+    Fixed(usize),
+}
+
+/// Inputs with at least this many faces are split under [`Partitions::Auto`].
+pub const AUTO_MIN_FACES: usize = 1 << 19;
+
+/// The parts [`Partitions::Auto`] uses on large inputs.
+pub const AUTO_PARTS: usize = 16;
+
+impl Partitions {
+    /// The number of parts for an input of `faces` faces.
+    pub fn parts(self, faces: usize) -> usize {
+        match self {
+            Partitions::Auto if faces >= AUTO_MIN_FACES => AUTO_PARTS,
+            Partitions::Auto => 1,
+            Partitions::Fixed(k) => k,
+        }
+    }
+
+    /// Whether this setting never splits (serialized settings then omit it).
+    fn is_default_like(&self) -> bool {
+        matches!(self, Partitions::Auto | Partitions::Fixed(1))
+    }
+}
+
+/// `"auto"` or the fixed count.
+impl Serialize for Partitions {
+    fn serialize<S: serde::Serializer>(&self, s: S) -> std::result::Result<S::Ok, S::Error> {
+        match self {
+            Partitions::Auto => s.serialize_str("auto"),
+            Partitions::Fixed(k) => s.serialize_u64(*k as u64),
+        }
+    }
+}
+
 /// All settings of a run.
 #[derive(Clone, Debug, PartialEq, Serialize)]
 pub struct Params {
@@ -103,19 +148,15 @@ pub struct Params {
     pub remove_thin_boxes: Option<f64>,
     /// When merged clusters' pairs are re-priced (exact greedy order or lazy).
     pub reprice: Reprice,
-    /// Spatial parts merged in parallel before the global merge loop (`merge::partition`);
-    /// 1 = none (Alg. 1 as is). Serialized only when not 1, so that default runs'
-    /// output stays as it was.
-    #[serde(skip_serializing_if = "is_one")]
-    pub partitions: usize,
+    /// Spatial parts merged in parallel before the global merge loop (`merge::partition`).
+    /// Serialized only when it fixes more than one part (the JSON's `stats.partitions`
+    /// says how many a run used), so that default runs' output stays as it was.
+    #[serde(skip_serializing_if = "Partitions::is_default_like")]
+    pub partitions: Partitions,
     /// How merged clusters' points are reduced for pricing; serialized only when not
     /// the exact default.
     #[serde(skip_serializing_if = "is_hull")]
     pub reduction: Reduction,
-}
-
-fn is_one(k: &usize) -> bool {
-    *k == 1
 }
 
 fn is_hull(r: &Reduction) -> bool {
@@ -153,7 +194,7 @@ impl Default for Params {
             remove_contained: true,
             remove_thin_boxes: None,
             reprice: Reprice::Deferred { min_degree: 64 },
-            partitions: 1,
+            partitions: Partitions::Auto,
             reduction: Reduction::Hull,
         }
     }
@@ -210,11 +251,12 @@ impl Params {
                 return bad(format!("max-excess-volume must be ≥ 0, got {m}"));
             }
         }
-        if !(1..=MAX_PARTITIONS).contains(&self.partitions) {
-            return bad(format!(
-                "partitions must be from 1 to {MAX_PARTITIONS}, got {}",
-                self.partitions
-            ));
+        if let Partitions::Fixed(k) = self.partitions {
+            if !(1..=MAX_PARTITIONS).contains(&k) {
+                return bad(format!(
+                    "partitions must be auto or from 1 to {MAX_PARTITIONS}, got {k}"
+                ));
+            }
         }
         if let Dedup::Tolerance(t) = self.dedup {
             if !(t.is_finite() && t >= 0.0) {
@@ -227,5 +269,39 @@ impl Params {
             }
         }
         Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Auto splits only large inputs, into `AUTO_PARTS`; a fixed count is used as given.
+    #[test]
+    fn partitions_auto_splits_large_inputs_only() {
+        assert_eq!(Partitions::Auto.parts(AUTO_MIN_FACES - 1), 1);
+        assert_eq!(Partitions::Auto.parts(AUTO_MIN_FACES), AUTO_PARTS);
+        assert_eq!(Partitions::Fixed(1).parts(10 * AUTO_MIN_FACES), 1);
+        assert_eq!(Partitions::Fixed(8).parts(10), 8);
+    }
+
+    /// Settings name the partitions only when they fix more than one part.
+    #[test]
+    fn partitions_serialize_only_when_fixed_above_one() {
+        let json = |k| {
+            let p = Params {
+                partitions: k,
+                ..Default::default()
+            };
+            serde_json::to_string(&p).unwrap()
+        };
+        assert!(!json(Partitions::Auto).contains("partitions"));
+        assert!(!json(Partitions::Fixed(1)).contains("partitions"));
+        assert!(json(Partitions::Fixed(8)).contains("\"partitions\":8"));
+        let zero = Params {
+            partitions: Partitions::Fixed(0),
+            ..Default::default()
+        };
+        assert!(zero.validate().is_err());
     }
 }

@@ -8,7 +8,7 @@ mod common;
 use common::check::{assert_counts, assert_same_on_threads, assert_valid, check_corpus_meshes};
 use common::shapes::{cuboid, cylinder, flat_grid, join, mesh, uv_sphere, Polys};
 use primdecomp::export::json::to_json;
-use primdecomp::{decompose, Mesh, Params};
+use primdecomp::{decompose, Mesh, Params, Partitions};
 
 fn moved((v, f): Polys, d: [f64; 3]) -> Polys {
     (
@@ -32,7 +32,7 @@ fn scene() -> Mesh {
 fn params(targets: &[usize], k: usize) -> Params {
     Params {
         targets: targets.to_vec(),
-        partitions: k,
+        partitions: Partitions::Fixed(k),
         ..Default::default()
     }
 }
@@ -52,6 +52,10 @@ fn partitioned_output_encloses_the_generated_scene() {
             dec.timings.stages.iter().any(|s| s.0 == "partitions"),
             "K={k}: phase 1 did not run"
         );
+        assert_eq!(dec.partitions, k);
+        let stats = to_json(&dec, 0, &p);
+        let stats = &stats[stats.find("\"stats\"").expect("stats")..];
+        assert!(stats.contains(&format!("\"partitions\": {k}")), "{stats}");
         assert_eq!(dec.merges, one.merges, "K={k}: both run down to 12");
     }
 }
@@ -63,12 +67,13 @@ fn partitioned_output_is_identical_on_any_thread_count() {
     assert_same_on_threads(&scene(), &params(&[60, 12], 8));
 }
 
-/// K = 1 is the default run, and its JSON does not name the setting, so a default
-/// run's output is byte for byte what it was before `partitions` existed. A K > 1 run
-/// whose phase 1 would leave as many clusters as faces (16 × N ≥ F) is K = 1's run
-/// with the setting recorded.
+/// Below `AUTO_MIN_FACES` faces the default (`Partitions::Auto`) is K = 1, and neither
+/// JSON names the setting, so a default run's output on such an input is byte for byte
+/// what it was before `partitions` existed. A K > 1 run whose phase 1 would leave as
+/// many clusters as faces (16 × N ≥ F) is K = 1's run with the setting recorded.
 #[test]
-fn one_partition_is_the_default_run() {
+fn one_partition_is_the_default_run_on_small_inputs() {
+    assert!(scene().face_count() < primdecomp::params::AUTO_MIN_FACES);
     let m = scene();
     let default = Params {
         targets: vec![60, 12],
@@ -78,7 +83,8 @@ fn one_partition_is_the_default_run() {
     let b = decompose(&m, &params(&[60, 12], 1)).unwrap();
     let text = to_json(&b, 0, &params(&[60, 12], 1));
     assert!(!text.contains("partitions"), "K=1 JSON names the setting");
-    assert_eq!(to_json(&a, 0, &default), to_json(&b, 0, &default));
+    assert_eq!(a.partitions, 1, "auto split a small input");
+    assert_eq!(to_json(&a, 0, &default), text);
     let big = m.face_count() / 16 + 1;
     let c1 = decompose(&m, &params(&[big], 1)).unwrap();
     let c8 = decompose(&m, &params(&[big], 8)).unwrap();

@@ -225,8 +225,15 @@ struct Stats<'a> {
     counts: Counts,
     primitives: usize,
     bytes: usize,
+    /// Spatial parts merged in parallel first; written only when more than one.
+    #[serde(skip_serializing_if = "at_most_one")]
+    partitions: usize,
     #[serde(skip_serializing_if = "Option::is_none")]
     seconds: Option<Seconds<'a>>,
+}
+
+fn at_most_one(k: &usize) -> bool {
+    *k <= 1
 }
 
 #[derive(Serialize)]
@@ -297,6 +304,7 @@ fn document(dec: &Decomposition, level: usize, params: &Params, timed: bool) -> 
             counts: Counts(lv.counts()),
             primitives: lv.primitives.len(),
             bytes: lv.bytes(),
+            partitions: dec.partitions,
             seconds: timed.then_some(Seconds(&dec.timings)),
         },
         primitives,

@@ -68,9 +68,7 @@ pub fn split(mesh: &Mesh, k: usize) -> Vec<Vec<u32>> {
         .map(|f| centroid(mesh, f))
         .collect();
     let mut ids: Vec<u32> = (0..mesh.face_count() as u32).collect();
-    let mut parts = Vec::with_capacity(k);
-    split_into(&mut ids, &centroids, k.max(1), &mut parts);
-    parts
+    split_into(&mut ids, &centroids, k.max(1))
 }
 
 fn centroid(mesh: &Mesh, f: usize) -> [f64; 3] {
@@ -83,12 +81,13 @@ fn centroid(mesh: &Mesh, f: usize) -> [f64; 3] {
     s.map(|x| x / vs.len().max(1) as f64)
 }
 
-fn split_into(ids: &mut [u32], c: &[[f64; 3]], k: usize, parts: &mut Vec<Vec<u32>>) {
+/// The parts of `ids` in order; the two halves of each split are split in parallel
+/// (their results do not depend on which thread runs them).
+fn split_into(ids: &mut [u32], c: &[[f64; 3]], k: usize) -> Vec<Vec<u32>> {
     if k == 1 {
         let mut part = ids.to_vec();
         part.sort_unstable();
-        parts.push(part);
-        return;
+        return vec![part];
     }
     let axis = longest_axis(ids, c);
     let left = k / 2;
@@ -101,8 +100,9 @@ fn split_into(ids: &mut [u32], c: &[[f64; 3]], k: usize, parts: &mut Vec<Vec<u32
         });
     }
     let (lo, hi) = ids.split_at_mut(m);
-    split_into(lo, c, left, parts);
-    split_into(hi, c, k - left, parts);
+    let (mut parts, rest) = rayon::join(|| split_into(lo, c, left), || split_into(hi, c, k - left));
+    parts.extend(rest);
+    parts
 }
 
 /// The axis along which the centroids of `ids` spread farthest (the lowest on ties).

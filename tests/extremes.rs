@@ -45,7 +45,8 @@ fn one_quad() {
 /// The `n` × `n` flat grid (`shapes::flat_grid`: every merge costs zero) decomposed to
 /// N = 100 and N = 1 with `reprice`, checked valid. Returns the seconds taken and the
 /// pairs re-priced per merge (at once and when popped).
-fn flat_grid(n: u32, reprice: Reprice) -> (f64, f64) {
+/// Returns the seconds, the pairs re-priced per merge and the parts merged first.
+fn flat_grid(n: u32, reprice: Reprice) -> (f64, f64, usize) {
     let (v, f) = shapes::flat_grid(n);
     let mesh = Mesh::from_polygons(&v, &f);
     let p = Params {
@@ -63,7 +64,7 @@ fn flat_grid(n: u32, reprice: Reprice) -> (f64, f64) {
          (decompose only), {per_merge:.2} pairs re-priced per merge"
     );
     assert!(counts[0] <= 100 && counts[1] == 1, "{counts:?}");
-    (secs, per_merge)
+    (secs, per_merge, dec.partitions)
 }
 
 #[test]
@@ -78,9 +79,9 @@ fn flat_grid_of_10_000_quads() {
 /// re-priced per merge stop growing with the grid's size.
 #[test]
 fn flat_grid_defers_its_long_strips() {
-    let (_, exact) = flat_grid(100, Reprice::Exact);
-    let (_, at_100) = flat_grid(100, Params::default().reprice);
-    let (_, at_200) = flat_grid(200, Params::default().reprice);
+    let (_, exact, _) = flat_grid(100, Reprice::Exact);
+    let (_, at_100, _) = flat_grid(100, Params::default().reprice);
+    let (_, at_200, _) = flat_grid(200, Params::default().reprice);
     assert!(exact > 40.0, "exact: {exact:.2} per merge");
     assert!(
         at_100 < exact / 2.0,
@@ -93,13 +94,17 @@ fn flat_grid_defers_its_long_strips() {
 }
 
 /// The issue's 1000 × 1000 grid (a million quads). With exact re-pricing it grew as
-/// F^1.5 (about 1.5 hours extrapolated) and was ignored; with the default (deferred
-/// re-pricing for clusters with 64 or more neighbours) the whole test took 13.9 s here
-/// (decompose 13.3 s, 3.76 pairs re-priced per merge, peak RSS 741 MB:
+/// F^1.5 (about 1.5 hours extrapolated) and was ignored; with deferred re-pricing for
+/// clusters with 64 or more neighbours the whole test took 13.9 s here (decompose
+/// 13.3 s, 3.76 pairs re-priced per merge, peak RSS 741 MB:
 /// `cargo test --release --test extremes flat_grid_of_a_million -- --nocapture`).
+/// It is above `AUTO_MIN_FACES`, so by default it is now merged in `AUTO_PARTS` lazy
+/// parts first (deviation 19): the default's large-input path, enclosing and within N;
+/// decompose 3.4 s, 2.00 pairs re-priced per merge (same command, machine shared).
 #[test]
 fn flat_grid_of_a_million_quads() {
-    flat_grid(1000, Params::default().reprice);
+    let (_, _, parts) = flat_grid(1000, Params::default().reprice);
+    assert_eq!(parts, primdecomp::params::AUTO_PARTS);
 }
 
 /// Growth of the flat grid's time with its size, printed (no assertion: timings are

@@ -129,3 +129,19 @@ fn progress_is_reported_during_phase_one() {
     assert!(seen.iter().any(|&f| f < 0.5), "{seen:?}");
     assert!(seen.iter().any(|&f| f > 0.5), "{seen:?}");
 }
+
+/// Phase 1 re-prices lazily (every merge deferred: deviation 19), so some pairs are
+/// re-priced when popped; with `Reprice::Exact` nothing is, in either phase.
+#[test]
+fn parts_defer_unless_repricing_is_exact() {
+    let m = scene();
+    let lazy = decompose(&m, &params(&[12], 4)).unwrap();
+    assert!(lazy.fits.lazy > 0, "{:?}", lazy.fits);
+    let p = Params {
+        reprice: primdecomp::Reprice::Exact,
+        ..params(&[12], 4)
+    };
+    let exact = decompose(&m, &p).unwrap();
+    assert_valid(&m, &exact, &p);
+    assert_eq!(exact.fits.lazy, 0, "{:?}", exact.fits);
+}

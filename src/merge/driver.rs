@@ -21,8 +21,11 @@ use rayon::prelude::*;
 
 /// Pairs priced per parallel task.
 const CHUNK: usize = 1024;
-/// Point lists up to this size are not worth reducing to their hull.
-const HULL_MIN: usize = 12;
+/// Point lists up to this size are not worth reducing to their hull: fitting a few
+/// extra points costs less than the hull (12 → 32: callgrind happy_buddha_100k
+/// `--threads 1` −3.6% instructions at `-n 1%`, −4.8% partitioned; ARCHITECTURE.md,
+/// "Performance": same primitives on 77 of 79 corpus meshes, round-off on two).
+const HULL_MIN: usize = 32;
 /// Stale entries [`look_ahead`] pops past to find a fresh one.
 const LOOK_PAST: usize = 8;
 /// Pairs priced per block when seeding the queue.

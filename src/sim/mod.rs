@@ -50,6 +50,7 @@
 
 pub mod metrics;
 pub mod plot;
+pub mod prism_shape;
 pub mod profile;
 pub mod report;
 pub mod scene;

@@ -202,6 +202,10 @@ struct SimArgs {
     /// ball started up to 1e-4 ball radii away: the behaviour measures' noise floor).
     #[arg(long)]
     no_perturbed: bool,
+    /// Attribute each collider's step time: Rapier's per-stage times and the contact
+    /// pairs per frame by shape kind, in the JSON report (`profile`) and printed.
+    #[arg(long)]
+    profile: bool,
     /// Print nothing but errors.
     #[arg(short, long)]
     quiet: bool,
@@ -699,6 +703,7 @@ fn sim(a: SimArgs) -> anyhow::Result<()> {
         threads: a.threads,
         up: ["x", "y", "z"].iter().position(|u| *u == a.up).unwrap_or(1),
         perturbed: !a.no_perturbed,
+        profile: a.profile,
     };
     let bar = (!a.quiet).then(|| {
         let b = indicatif::ProgressBar::new(a.frames as u64);
@@ -726,6 +731,9 @@ fn sim(a: SimArgs) -> anyhow::Result<()> {
     write_sim_outputs(&a, &run, &input, mesh.face_count())?;
     if !a.quiet {
         print_sim_table(&run);
+    }
+    if a.profile {
+        print!("{}", primdecomp::sim::report::profile_table(&run));
     }
     Ok(())
 }

@@ -50,6 +50,8 @@
 
 pub mod metrics;
 pub mod plot;
+pub mod prism_shape;
+pub mod profile;
 pub mod report;
 pub mod scene;
 pub mod shapes;
@@ -74,6 +76,9 @@ pub struct Settings {
     pub up: usize,
     /// Also simulate the perturbed reference (the behaviour's noise floor).
     pub perturbed: bool,
+    /// Attribute each collider's step time ([`profile`]): Rapier's stage timers and
+    /// the contact pairs by shape kind, counted after every (timed) step.
+    pub profile: bool,
 }
 
 impl Default for Settings {
@@ -85,6 +90,7 @@ impl Default for Settings {
             threads: 1,
             up: 1,
             perturbed: true,
+            profile: false,
         }
     }
 }
@@ -138,6 +144,8 @@ pub struct Outcome {
     /// Final ball centres (simulation frame) and speeds.
     pub end: Vec<V3>,
     pub speed: Vec<f64>,
+    /// Where the step time went, with [`Settings::profile`].
+    pub profile: Option<profile::Profile>,
 }
 
 /// A whole run: the scene and one outcome per collider, the reference first.
@@ -222,7 +230,7 @@ pub fn run(
             Geometry::Perturbed => &perturbed,
             _ => &scene.release,
         };
-        worlds.push(World::new(&scene, &shapes, release));
+        worlds.push(World::new(&scene, &shapes, release, settings.profile));
     }
     let mut frame_ms = vec![Vec::with_capacity(settings.frames); worlds.len()];
     let mut cpu_ms = frame_ms.clone();
@@ -240,13 +248,15 @@ pub fn run(
         }
     });
     let ends: Vec<(Vec<V3>, Vec<f64>)> = worlds.iter().map(World::balls).collect();
+    let profiles: Vec<Option<profile::Profile>> = worlds.iter().map(World::profile).collect();
     let reference = &ends[0].0;
     let outcomes = entries
         .iter()
         .zip(frame_ms.into_iter().zip(cpu_ms))
         .zip(ends.iter().zip(parts))
+        .zip(profiles)
         .map(
-            |((e, (ms, cpu)), ((end, speed), (shapes, skipped)))| Outcome {
+            |(((e, (ms, cpu)), ((end, speed), (shapes, skipped))), profile)| Outcome {
                 label: e.label.clone(),
                 kind: e.geometry.kind(),
                 shapes,
@@ -258,6 +268,7 @@ pub fn run(
                 behaviour: Behaviour::of(&scene, end, speed, reference),
                 end: end.clone(),
                 speed: speed.clone(),
+                profile,
             },
         )
         .collect();
@@ -428,6 +439,34 @@ mod tests {
         }
         assert_eq!(a.scene.release, b.scene.release);
         assert_ne!(a.scene.release, c.scene.release);
+    }
+
+    /// `profile` attributes every collider's steps: 4 balls resting on a box give
+    /// ball–cuboid pairs (the primitive) and ball–trimesh pairs (the mesh), touching
+    /// for most of the 150 frames, never two static shapes at once (there is one);
+    /// Rapier's stage times are filled in. Without it there is no profile.
+    #[test]
+    fn profile_counts_pairs_by_kind() {
+        let (mesh, e) = box_scene();
+        let s = Settings {
+            profile: true,
+            ..settings(4, 150)
+        };
+        let run = run(&mesh, "mesh", &e, &s, &|_| {}).unwrap();
+        for (o, key) in run
+            .outcomes
+            .iter()
+            .zip(["ball-tri_mesh", "ball-tri_mesh", "ball-cuboid"])
+        {
+            let p = o.profile.as_ref().expect("profiled");
+            let c = p.pairs[key];
+            assert!(c.touching > 2.0 && c.touching <= 4.0, "{}: {c:?}", o.label);
+            assert!(c.pairs >= c.touching, "{}: {c:?}", o.label);
+            assert_eq!(p.balls_on_several_shapes, 0.0);
+            assert!(p.step_ms > 0.0 && p.narrow_phase_ms > 0.0, "{p:?}");
+        }
+        let plain = super::run(&mesh, "mesh", &e, &settings(4, 5), &|_| {}).unwrap();
+        assert!(plain.outcomes.iter().all(|o| o.profile.is_none()));
     }
 
     /// Bad settings are refused with a message, not a panic or a hang.

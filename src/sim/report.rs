@@ -2,6 +2,7 @@
 //! per collider with the reference first), the per-frame CSV and the balls' end
 //! points CSV.
 
+use super::profile::Profile;
 use super::scene::{BALL_RADIUS_REL, DT, GRAVITY, PERTURBATION_RADII, SCENE_DIAGONAL};
 use super::Run;
 use crate::math::V3;
@@ -52,6 +53,8 @@ struct ColliderJson<'a> {
     on_object_agreement: f64,
     mean_displacement: f64,
     mean_displacement_rel: f64,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    profile: Option<&'a Profile>,
 }
 
 #[derive(Serialize)]
@@ -92,6 +95,7 @@ pub fn to_json(run: &Run, path: &str, faces: usize) -> String {
             on_object_agreement: o.behaviour.on_object_agreement,
             mean_displacement: o.behaviour.mean_displacement,
             mean_displacement_rel: o.behaviour.mean_displacement_rel,
+            profile: o.profile.as_ref(),
         })
         .collect();
     let doc = ReportJson {
@@ -121,6 +125,41 @@ pub fn to_json(run: &Run, path: &str, faces: usize) -> String {
     };
     let mut s = serde_json::to_string_pretty(&doc).unwrap_or_default();
     s.push('\n');
+    s
+}
+
+/// The step-time attribution of a profiled run as a Markdown table, one row per
+/// collider (mean per frame: Rapier's stage times, ms; balls awake and touching two
+/// or more static shapes; pairs, `touching/pairs`, by kind); empty without profiles.
+pub fn profile_table(run: &Run) -> String {
+    let mut s = String::new();
+    if run.outcomes.iter().all(|o| o.profile.is_none()) {
+        return s;
+    }
+    s.push_str("| collider | step | broad | narrow | islands | solver | CCD | update | awake | on ≥2 shapes | pairs touching/all by kind |\n");
+    s.push_str("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+    for (name, o) in column_names(run).iter().zip(&run.outcomes) {
+        let Some(p) = &o.profile else { continue };
+        let pairs: Vec<String> = p
+            .pairs
+            .iter()
+            .map(|(k, c)| format!("{k} {:.1}/{:.1}", c.touching, c.pairs))
+            .collect();
+        let _ = writeln!(
+            s,
+            "| {name} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.1} | {:.1} | {} |",
+            p.step_ms,
+            p.broad_phase_ms,
+            p.narrow_phase_ms,
+            p.islands_ms,
+            p.solver_ms,
+            p.ccd_ms,
+            p.update_ms,
+            p.awake_balls,
+            p.balls_on_several_shapes,
+            pairs.join(", ")
+        );
+    }
     s
 }
 

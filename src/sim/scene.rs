@@ -2,6 +2,7 @@
 //! scaled into, the balls' size and release positions, and one Rapier world per
 //! collider with identical balls. The rules are documented in [`super`].
 
+use super::profile::{Profile, Tally};
 use super::shapes::{Frame, Placed};
 use super::Settings;
 use crate::math::{norm, sub, V3};
@@ -160,14 +161,16 @@ pub fn process_cpu_ms() -> f64 {
 pub struct World {
     world: PhysicsWorld,
     balls: Vec<RigidBodyHandle>,
+    /// Step-time attribution, when profiling.
+    tally: Option<Tally>,
 }
 
 impl World {
     /// Static `shapes` plus one dynamic ball per `release` position (the scene's, or
     /// their perturbed copy), with CCD (fast balls would otherwise tunnel through the
     /// reference's zero-thickness triangles). Rapier's parallel parts run on the rayon
-    /// pool the caller is in.
-    pub fn new(scene: &Scene, shapes: &[Placed], release: &[V3]) -> World {
+    /// pool the caller is in. `profile`: tally every step ([`super::profile`]).
+    pub fn new(scene: &Scene, shapes: &[Placed], release: &[V3], profile: bool) -> World {
         let mut world = PhysicsWorld::new();
         let mut g = [0.0f32; 3];
         g[scene.up] = -GRAVITY as f32;
@@ -186,15 +189,28 @@ impl World {
                 world.insert(body, ball.clone()).0
             })
             .collect();
-        World { world, balls }
+        World {
+            world,
+            balls,
+            tally: profile.then(Tally::default),
+        }
     }
 
     /// Advances one fixed step; returns the wall time and the process CPU time of
-    /// the step alone, in ms.
+    /// the step alone, in ms. The profile's tally, if any, runs after the timing.
     pub fn step_timed(&mut self) -> (f64, f64) {
         let (t, c) = (Instant::now(), process_cpu_ms());
         self.world.step();
-        (t.elapsed().as_secs_f64() * 1e3, process_cpu_ms() - c)
+        let times = (t.elapsed().as_secs_f64() * 1e3, process_cpu_ms() - c);
+        if let Some(tally) = &mut self.tally {
+            tally.add(&self.world);
+        }
+        times
+    }
+
+    /// The step-time attribution so far, when profiling.
+    pub fn profile(&self) -> Option<Profile> {
+        self.tally.as_ref().map(Tally::profile)
     }
 
     /// Ball centres (simulation frame) and speeds (m/s), in release order.

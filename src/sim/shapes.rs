@@ -1,6 +1,7 @@
 //! Rapier shapes for the three kinds of collider the simulation compares (§4.1
 //! "Simulation details"): our primitives — native cuboid, ball, capsule and
-//! cylinder; frustums and prisms as convex hulls, since no engine has them —,
+//! cylinder; prisms as [`PrismShape`] (their corners' hull with an analytic point
+//! projection) and frustums as convex hulls, since no engine has them —,
 //! convex hulls (CoACD, V-HACD), and the input mesh itself as a triangle mesh.
 //!
 //! Every shape is placed in the simulation frame of [`Frame`]: world coordinates
@@ -8,6 +9,7 @@
 //! relative to their own centroid and the centroid goes into the pose, so f32
 //! keeps the detail of small parts far from the origin.
 
+use super::prism_shape::PrismShape;
 use crate::export::tessellate;
 use crate::math::quat::quat_from_axes;
 use crate::math::{add, cross, norm2, scale, sub, V3};
@@ -84,7 +86,7 @@ pub fn hull(points: &[V3]) -> Option<Placed> {
 }
 
 /// One primitive (world coordinates) as a Rapier shape in the simulation frame.
-/// `None` only for a frustum or prism so flat that its hull has no volume.
+/// `None` only for a frustum or prism so flat that it has no volume.
 pub fn primitive(p: &Primitive, frame: &Frame) -> Option<Placed> {
     let s = frame.scale;
     let placed = match *p {
@@ -105,12 +107,18 @@ pub fn primitive(p: &Primitive, frame: &Frame) -> Option<Placed> {
             let (pose, half) = y_axis_pose(frame.point(c.p0), frame.point(c.p1));
             (SharedShape::cylinder(half, (c.radius * s) as f32), pose)
         }
-        Primitive::Frustum(_) | Primitive::Prism(_) => {
-            let points: Vec<V3> = match p {
-                Primitive::Prism(q) => q.corners().to_vec(),
-                _ => tessellate(p, FRUSTUM_SEGMENTS).vertices,
-            };
-            let points: Vec<V3> = points.into_iter().map(|q| frame.point(q)).collect();
+        Primitive::Prism(q) => {
+            let h = [q.hx, q.hy, q.hz_top, q.hz_bottom].map(|x| (x * s) as f32);
+            let shape = PrismShape::new(h[0], h[1], h[2], h[3])?;
+            let pose = Pose::from_parts(Frame::vector(frame.point(q.center)), rotation(&q.axes));
+            (SharedShape::new(shape), pose)
+        }
+        Primitive::Frustum(_) => {
+            let points: Vec<V3> = tessellate(p, FRUSTUM_SEGMENTS)
+                .vertices
+                .into_iter()
+                .map(|q| frame.point(q))
+                .collect();
             return hull(&points);
         }
     };

@@ -1,0 +1,279 @@
+//! Our isosceles trapezoidal prism (§3.2) as a Rapier shape with an exact, analytic
+//! point projection. Parry has no such shape, and as a plain convex polyhedron every
+//! ball–prism pair of the narrow phase runs GJK over its corners (a ball's contact is
+//! the projection of its centre on the other shape), 5–7× the cost of a ball–cuboid
+//! pair (`cargo bench --bench sim_pairs`, docs/results/sim.md). The prism is the
+//! product of the x-interval [−hx, hx] and a trapezoid in (y, z), so the closest point
+//! of the solid to p = (x, q) is (clamp(x), closest point of the trapezoid to q): one
+//! clamp and three segment projections, no iteration. Everything else (support map,
+//! ray casts, CCD, mass, AABB, feature ids) is the same convex polyhedron as before,
+//! held inside, so the shape, its contacts' feature ids and its enclosure are
+//! unchanged.
+
+use rapier3d::math::Pose;
+use rapier3d::math::{Real, Vector};
+use rapier3d::parry::bounding_volume::{Aabb, BoundingSphere};
+use rapier3d::parry::mass_properties::MassProperties;
+use rapier3d::parry::query::{PointProjection, PointQuery, Ray, RayCast, RayIntersection};
+use rapier3d::parry::shape::{
+    ConvexPolyhedron, FeatureId, PolygonalFeature, PolygonalFeatureMap, Shape, ShapeType,
+    SubShapeId, SupportMap, TypedShape,
+};
+
+/// A prism in its local frame (extruded along x over [−hx, hx]; half-width along z
+/// `hz_bottom` at y = −hy and `hz_top` at y = +hy), simulation units.
+#[derive(Clone, Debug)]
+pub struct PrismShape {
+    hx: Real,
+    hy: Real,
+    hz_top: Real,
+    hz_bottom: Real,
+    /// The convex hull of the 8 corners: everything but point projection.
+    hull: ConvexPolyhedron,
+}
+
+/// Closest point to `q` on the segment `a`–`b` (2-D), and its squared distance.
+fn on_segment(q: [Real; 2], a: [Real; 2], b: [Real; 2]) -> ([Real; 2], Real) {
+    let ab = [b[0] - a[0], b[1] - a[1]];
+    let l2 = ab[0] * ab[0] + ab[1] * ab[1];
+    let t = if l2 > 0.0 {
+        (((q[0] - a[0]) * ab[0] + (q[1] - a[1]) * ab[1]) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    let c = [a[0] + t * ab[0], a[1] + t * ab[1]];
+    let d = [q[0] - c[0], q[1] - c[1]];
+    (c, d[0] * d[0] + d[1] * d[1])
+}
+
+impl PrismShape {
+    /// `None` when the prism spans no volume (the hull cannot be built).
+    pub fn new(hx: Real, hy: Real, hz_top: Real, hz_bottom: Real) -> Option<PrismShape> {
+        let mut corners = Vec::with_capacity(8);
+        for sx in [-1.0, 1.0] {
+            for (sy, hz) in [(-1.0, hz_bottom), (1.0, hz_top)] {
+                for sz in [-1.0, 1.0] {
+                    corners.push(Vector::new(sx * hx, sy * hy, sz * hz));
+                }
+            }
+        }
+        let hull = ConvexPolyhedron::from_convex_hull(&corners)?;
+        Some(PrismShape {
+            hx,
+            hy,
+            hz_top,
+            hz_bottom,
+            hull,
+        })
+    }
+
+    /// Whether (y, |z|) lies in the trapezoid (closed).
+    fn in_section(&self, y: Real, z: Real) -> bool {
+        if y.abs() > self.hy {
+            return false;
+        }
+        let s = if self.hy > 0.0 {
+            (y + self.hy) / (2.0 * self.hy)
+        } else {
+            0.5
+        };
+        z <= self.hz_bottom + (self.hz_top - self.hz_bottom) * s
+    }
+
+    /// Closest point to (y, z ≥ 0) on the trapezoid's boundary (its z ≥ 0 half, which
+    /// holds the closest point by symmetry), and the squared distance.
+    fn section_boundary(&self, y: Real, z: Real) -> ([Real; 2], Real) {
+        let (hy, zt, zb) = (self.hy, self.hz_top, self.hz_bottom);
+        let q = [y, z];
+        let mut best = on_segment(q, [-hy, 0.0], [-hy, zb]);
+        for (a, b) in [([hy, 0.0], [hy, zt]), ([-hy, zb], [hy, zt])] {
+            let c = on_segment(q, a, b);
+            if c.1 < best.1 {
+                best = c;
+            }
+        }
+        best
+    }
+}
+
+impl PointQuery for PrismShape {
+    fn project_local_point(&self, p: Vector, solid: bool) -> PointProjection {
+        let (x, y, za) = (p.x, p.y, p.z.abs());
+        let sz = if p.z < 0.0 { -1.0 } else { 1.0 };
+        let inside_x = x.abs() <= self.hx;
+        if !self.in_section(y, za) {
+            let (c, _) = self.section_boundary(y, za);
+            let cx = x.clamp(-self.hx, self.hx);
+            return PointProjection::new(false, Vector::new(cx, c[0], sz * c[1]));
+        }
+        let xf = if x < 0.0 { -self.hx } else { self.hx };
+        if !inside_x {
+            return PointProjection::new(false, Vector::new(xf, y, p.z));
+        }
+        if solid {
+            return PointProjection::new(true, p);
+        }
+        // Inside: the nearer of the x faces and the section's boundary.
+        let (c, d2) = self.section_boundary(y, za);
+        let dx = self.hx - x.abs();
+        if dx * dx <= d2 {
+            PointProjection::new(true, Vector::new(xf, y, p.z))
+        } else {
+            PointProjection::new(true, Vector::new(x, c[0], sz * c[1]))
+        }
+    }
+
+    /// As parry's convex polyhedron does: the feature is the hull's support feature
+    /// towards the projection direction.
+    fn project_local_point_and_get_feature(&self, p: Vector) -> (PointProjection, FeatureId) {
+        let proj = self.project_local_point(p, false);
+        let d = p - proj.point;
+        let dir = if proj.is_inside { -d } else { d };
+        match dir.try_normalize() {
+            Some(dir) => (proj, self.hull.support_feature_id_toward(dir)),
+            None => (proj, FeatureId::Unknown),
+        }
+    }
+}
+
+impl RayCast for PrismShape {
+    fn cast_local_ray_and_get_normal(
+        &self,
+        ray: &Ray,
+        max_time_of_impact: Real,
+        solid: bool,
+    ) -> Option<RayIntersection> {
+        self.hull
+            .cast_local_ray_and_get_normal(ray, max_time_of_impact, solid)
+    }
+}
+
+impl SupportMap for PrismShape {
+    fn local_support_point(&self, dir: Vector) -> Vector {
+        self.hull.local_support_point(dir)
+    }
+}
+
+impl PolygonalFeatureMap for PrismShape {
+    fn local_support_feature(&self, dir: Vector, out: &mut PolygonalFeature) {
+        self.hull.local_support_feature(dir, out)
+    }
+}
+
+impl Shape for PrismShape {
+    fn compute_local_aabb(&self) -> Aabb {
+        self.hull.local_aabb()
+    }
+    fn compute_local_bounding_sphere(&self) -> BoundingSphere {
+        self.hull.local_bounding_sphere()
+    }
+    fn compute_aabb(&self, position: &Pose) -> Aabb {
+        self.hull.aabb(position)
+    }
+    fn clone_dyn(&self) -> Box<dyn Shape> {
+        Box::new(self.clone())
+    }
+    fn scale_dyn(&self, scale: Vector, subdivisions: u32) -> Option<Box<dyn Shape>> {
+        self.hull.scale_dyn(scale, subdivisions)
+    }
+    fn mass_properties(&self, density: Real) -> MassProperties {
+        self.hull.mass_properties(density)
+    }
+    fn is_convex(&self) -> bool {
+        true
+    }
+    fn shape_type(&self) -> ShapeType {
+        ShapeType::Custom
+    }
+    fn as_typed_shape(&self) -> TypedShape<'_> {
+        TypedShape::Custom(self)
+    }
+    fn ccd_thickness(&self) -> Real {
+        self.hull.ccd_thickness()
+    }
+    fn ccd_angular_thickness(&self) -> Real {
+        self.hull.ccd_angular_thickness()
+    }
+    fn as_support_map(&self) -> Option<&dyn SupportMap> {
+        Some(self as &dyn SupportMap)
+    }
+    fn as_polygonal_feature_map(&self) -> Option<(&dyn PolygonalFeatureMap, Real)> {
+        Some((self as &dyn PolygonalFeatureMap, 0.0))
+    }
+    fn feature_normal_at_point(
+        &self,
+        subshape: SubShapeId,
+        feature: FeatureId,
+        point: Vector,
+    ) -> Option<Vector> {
+        self.hull.feature_normal_at_point(subshape, feature, point)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// The analytic projection agrees with parry's GJK projection on the same corners'
+    /// hull (same side, same distance to GJK's tolerance, a point on the surface), inside and
+    /// outside, for a trapezoid, a wedge (top
+    /// width 0) and a box-like prism: the shape the balls meet has not changed.
+    #[test]
+    fn projection_matches_the_hulls() {
+        let mut rng = ChaCha8Rng::seed_from_u64(3);
+        for (hx, hy, zt, zb) in [
+            (1.0, 0.5, 0.2, 0.8),
+            (0.3, 1.2, 0.0, 0.9),
+            (0.7, 0.7, 0.7, 0.7),
+            (0.002, 0.35, 0.002, 0.7),
+        ] {
+            let s = PrismShape::new(hx, hy, zt, zb).unwrap();
+            let (mut inside, mut outside) = (0, 0);
+            for _ in 0..20_000 {
+                // Around the prism, each axis over 1.6× its half-extent.
+                let ext = Vector::new(hx, hy, zt.max(zb)) * 1.6;
+                let p = Vector::new(
+                    rng.gen_range(-1.0..1.0),
+                    rng.gen_range(-1.0..1.0),
+                    rng.gen_range(-1.0..1.0),
+                ) * ext;
+                let surface = (s.hull.project_local_point(p, false).point - p).length();
+                for solid in [false, true] {
+                    let a = s.project_local_point(p, solid);
+                    let b = s.hull.project_local_point(p, solid);
+                    let (da, db) = ((a.point - p).length(), (b.point - p).length());
+                    // Within round-off of the surface either side is right.
+                    if surface > 1e-4 {
+                        assert_eq!(a.is_inside, b.is_inside, "{p:?} solid {solid}");
+                    }
+                    // GJK stops within a relative tolerance; ours is never farther.
+                    assert!(
+                        da <= db + 1e-4 && db - da < 1e-3 * db.max(0.1),
+                        "{p:?} solid {solid}: distance {da} vs hull {db}"
+                    );
+                    // The point may differ where faces tie or GJK stopped early on a
+                    // face, but it lies on the hull's surface (or is p, when solid).
+                    let on = (s.hull.project_local_point(a.point, false).point - a.point).length();
+                    assert!(
+                        on < 1e-4 || (solid && a.point == p),
+                        "{p:?} solid {solid}: {:?} is {on} off the surface",
+                        a.point
+                    );
+                }
+                if s.hull.contains_local_point(p) {
+                    inside += 1;
+                } else {
+                    outside += 1;
+                }
+            }
+            assert!(inside > 50 && outside > 1000, "{inside} in, {outside} out");
+        }
+    }
+
+    #[test]
+    fn flat_prism_has_no_shape() {
+        assert!(PrismShape::new(1.0, 0.0, 0.0, 0.0).is_none());
+    }
+}

@@ -1,0 +1,176 @@
+//! Where a collider's physics-step time goes (`primdecomp sim --profile`): Rapier's
+//! own per-stage timers (its `profiler` feature) and, after every step, the contact
+//! pairs of the world counted by the kinds of shape they join. A pair is what the
+//! broad phase hands the narrow phase (AABBs, grown by the prediction distance,
+//! overlap); a *touching* pair has a contact the solver sees. Ball–static pairs cost
+//! one narrow-phase test each (analytic for a cuboid, ball or capsule; a support-map
+//! projection for a cylinder or a convex polyhedron; a BVH walk for the triangle
+//! mesh); ball–ball pairs depend only on where the balls are, i.e. on behaviour.
+//! Figures are means per frame.
+
+use rapier3d::geometry::{ColliderHandle, ColliderSet, NarrowPhase, ShapeType};
+use rapier3d::pipeline::PhysicsWorld;
+use serde::Serialize;
+use std::collections::{BTreeMap, HashMap};
+
+/// Pairs of one kind, mean per frame.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct PairCount {
+    /// Pairs in the narrow phase (their AABBs overlap).
+    pub pairs: f64,
+    /// Of those, pairs with a contact the solver sees.
+    pub touching: f64,
+}
+
+/// Per-frame means of one collider's run.
+#[derive(Clone, Debug, Default, PartialEq, Serialize)]
+pub struct Profile {
+    /// Rapier's whole step, ms (its own timer).
+    pub step_ms: f64,
+    /// Broad phase, including the end-of-step AABB refresh, ms.
+    pub broad_phase_ms: f64,
+    /// Narrow phase (contact manifolds of every pair), ms.
+    pub narrow_phase_ms: f64,
+    /// Island building and constraint collection, ms.
+    pub islands_ms: f64,
+    /// Constraint solver, ms.
+    pub solver_ms: f64,
+    /// CCD time-of-impact search, ms.
+    pub ccd_ms: f64,
+    /// Position integration and its bookkeeping, ms.
+    pub update_ms: f64,
+    /// Balls awake (not asleep) after the step.
+    pub awake_balls: f64,
+    /// Balls touching two or more static shapes at once.
+    pub balls_on_several_shapes: f64,
+    /// Pairs by kind: `"ball-ball"`, `"ball-cuboid"`, `"ball-cylinder"`,
+    /// `"ball-convex_polyhedron"`, `"ball-tri_mesh"`, …
+    pub pairs: BTreeMap<String, PairCount>,
+}
+
+/// Running sums behind a [`Profile`].
+#[derive(Clone, Debug, Default)]
+pub struct Tally {
+    frames: usize,
+    sums: Profile,
+    /// Static shapes each ball touches this frame (scratch; only the counts are read).
+    touches: HashMap<ColliderHandle, u32>,
+}
+
+/// Snake-case name of a shape kind.
+fn kind_name(t: ShapeType) -> String {
+    let debug = format!("{t:?}");
+    let mut out = String::with_capacity(debug.len() + 4);
+    for (i, c) in debug.chars().enumerate() {
+        if c.is_ascii_uppercase() && i > 0 {
+            out.push('_');
+        }
+        out.push(c.to_ascii_lowercase());
+    }
+    out
+}
+
+/// Pair key: the two kinds, the ball first, otherwise alphabetical.
+fn pair_key(a: ShapeType, b: ShapeType) -> String {
+    let (a, b) = (kind_name(a), kind_name(b));
+    if a == "ball" || (b != "ball" && a <= b) {
+        format!("{a}-{b}")
+    } else {
+        format!("{b}-{a}")
+    }
+}
+
+impl Tally {
+    /// Adds one step of `world` (call right after the step).
+    pub fn add(&mut self, world: &PhysicsWorld) {
+        let c = &world.physics_pipeline.counters;
+        let s = &mut self.sums;
+        s.step_ms += c.step_time_ms();
+        s.broad_phase_ms += c.cd.broad_phase_time.time_ms() + c.cd.final_broad_phase_time.time_ms();
+        s.narrow_phase_ms += c.cd.narrow_phase_time.time_ms();
+        s.islands_ms += c.stages.island_construction_time.time_ms()
+            + c.stages.island_constraints_collection_time.time_ms();
+        s.solver_ms += c.stages.solver_time.time_ms();
+        s.ccd_ms += c.ccd.toi_computation_time.time_ms();
+        s.update_ms += c.stages.update_time.time_ms();
+        s.awake_balls += world.islands.active_bodies().count() as f64;
+        self.count_pairs(&world.narrow_phase, &world.colliders);
+        self.frames += 1;
+    }
+
+    fn count_pairs(&mut self, narrow: &NarrowPhase, colliders: &ColliderSet) {
+        self.touches.clear();
+        for p in narrow.contact_pairs() {
+            let (Some(c1), Some(c2)) = (colliders.get(p.collider1), colliders.get(p.collider2))
+            else {
+                continue;
+            };
+            let touching = p.has_any_active_contact();
+            let entry = self
+                .sums
+                .pairs
+                .entry(pair_key(c1.shape().shape_type(), c2.shape().shape_type()))
+                .or_default();
+            entry.pairs += 1.0;
+            if !touching {
+                continue;
+            }
+            entry.touching += 1.0;
+            // A static shape has no parent body; count the ball's touches of them.
+            match (c1.parent().is_some(), c2.parent().is_some()) {
+                (true, false) => *self.touches.entry(p.collider1).or_default() += 1,
+                (false, true) => *self.touches.entry(p.collider2).or_default() += 1,
+                _ => {}
+            }
+        }
+        self.sums.balls_on_several_shapes +=
+            self.touches.values().filter(|&&n| n >= 2).count() as f64;
+    }
+
+    /// Means per frame of everything added.
+    pub fn profile(&self) -> Profile {
+        let n = self.frames.max(1) as f64;
+        let s = &self.sums;
+        Profile {
+            step_ms: s.step_ms / n,
+            broad_phase_ms: s.broad_phase_ms / n,
+            narrow_phase_ms: s.narrow_phase_ms / n,
+            islands_ms: s.islands_ms / n,
+            solver_ms: s.solver_ms / n,
+            ccd_ms: s.ccd_ms / n,
+            update_ms: s.update_ms / n,
+            awake_balls: s.awake_balls / n,
+            balls_on_several_shapes: s.balls_on_several_shapes / n,
+            pairs: s
+                .pairs
+                .iter()
+                .map(|(k, c)| {
+                    let m = PairCount {
+                        pairs: c.pairs / n,
+                        touching: c.touching / n,
+                    };
+                    (k.clone(), m)
+                })
+                .collect(),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn pair_keys_put_the_ball_first() {
+        assert_eq!(pair_key(ShapeType::Cuboid, ShapeType::Ball), "ball-cuboid");
+        assert_eq!(pair_key(ShapeType::Ball, ShapeType::Ball), "ball-ball");
+        assert_eq!(
+            pair_key(ShapeType::Ball, ShapeType::ConvexPolyhedron),
+            "ball-convex_polyhedron"
+        );
+        assert_eq!(
+            pair_key(ShapeType::TriMesh, ShapeType::Ball),
+            "ball-tri_mesh"
+        );
+    }
+}

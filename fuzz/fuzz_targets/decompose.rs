@@ -15,7 +15,7 @@ mod contain;
 
 use arbitrary::{Result, Unstructured};
 use primdecomp::export::json::to_json;
-use primdecomp::{decompose, Dedup, Error, Mesh, Params, Reduction, Reprice};
+use primdecomp::{decompose, Dedup, Error, Mesh, Params, Partitions, Reduction, Reprice};
 
 /// A number that is usually one of `typical` and sometimes any f64 at all.
 fn pick(u: &mut Unstructured, typical: &[f64]) -> Result<f64> {
@@ -77,6 +77,13 @@ fn params(u: &mut Unstructured) -> Result<Params> {
     p.reduction = match u.arbitrary::<bool>()? {
         true => Reduction::Extremes,
         false => Reduction::Hull,
+    };
+    // After that (an exhausted input reads 0: auto, which never splits these small
+    // meshes, as grown): a fixed count splits them when 16 × N < faces, so phase 1's
+    // lazy parts run on hostile input too.
+    p.partitions = match u.int_in_range(0..=3)? {
+        0 => Partitions::Auto,
+        k => Partitions::Fixed([2, 3, 8][k as usize - 1]),
     };
     Ok(p)
 }

@@ -7,18 +7,13 @@
 //! of the solid to p = (x, q) is (clamp(x), closest point of the trapezoid to q): one
 //! clamp and three segment projections, no iteration. Everything else (support map,
 //! ray casts, CCD, mass, AABB, feature ids) is the same convex polyhedron as before,
-//! held inside, so the shape, its contacts' feature ids and its enclosure are
-//! unchanged.
+//! held inside ([`hull_backed`](super::hull_backed)), so the shape, its contacts'
+//! feature ids and its enclosure are unchanged.
 
-use rapier3d::math::Pose;
+use super::hull_backed::hull_backed_shape;
 use rapier3d::math::{Real, Vector};
-use rapier3d::parry::bounding_volume::{Aabb, BoundingSphere};
-use rapier3d::parry::mass_properties::MassProperties;
-use rapier3d::parry::query::{PointProjection, PointQuery, Ray, RayCast, RayIntersection};
-use rapier3d::parry::shape::{
-    ConvexPolyhedron, FeatureId, PolygonalFeature, PolygonalFeatureMap, Shape, ShapeType,
-    SubShapeId, SupportMap, TypedShape,
-};
+use rapier3d::parry::query::PointProjection;
+use rapier3d::parry::shape::ConvexPolyhedron;
 
 /// A prism in its local frame (extruded along x over [−hx, hx]; half-width along z
 /// `hz_bottom` at y = −hy and `hz_top` at y = +hy), simulation units.
@@ -33,7 +28,7 @@ pub struct PrismShape {
 }
 
 /// Closest point to `q` on the segment `a`–`b` (2-D), and its squared distance.
-fn on_segment(q: [Real; 2], a: [Real; 2], b: [Real; 2]) -> ([Real; 2], Real) {
+pub(super) fn on_segment(q: [Real; 2], a: [Real; 2], b: [Real; 2]) -> ([Real; 2], Real) {
     let ab = [b[0] - a[0], b[1] - a[1]];
     let l2 = ab[0] * ab[0] + ab[1] * ab[1];
     let t = if l2 > 0.0 {
@@ -94,10 +89,9 @@ impl PrismShape {
         }
         best
     }
-}
 
-impl PointQuery for PrismShape {
-    fn project_local_point(&self, p: Vector, solid: bool) -> PointProjection {
+    /// Exact closest point of the hull to `p` (see the module doc).
+    fn project(&self, p: Vector, solid: bool) -> PointProjection {
         let (x, y, za) = (p.x, p.y, p.z.abs());
         let sz = if p.z < 0.0 { -1.0 } else { 1.0 };
         let inside_x = x.abs() <= self.hx;
@@ -122,99 +116,16 @@ impl PointQuery for PrismShape {
             PointProjection::new(true, Vector::new(x, c[0], sz * c[1]))
         }
     }
-
-    /// As parry's convex polyhedron does: the feature is the hull's support feature
-    /// towards the projection direction.
-    fn project_local_point_and_get_feature(&self, p: Vector) -> (PointProjection, FeatureId) {
-        let proj = self.project_local_point(p, false);
-        let d = p - proj.point;
-        let dir = if proj.is_inside { -d } else { d };
-        match dir.try_normalize() {
-            Some(dir) => (proj, self.hull.support_feature_id_toward(dir)),
-            None => (proj, FeatureId::Unknown),
-        }
-    }
 }
 
-impl RayCast for PrismShape {
-    fn cast_local_ray_and_get_normal(
-        &self,
-        ray: &Ray,
-        max_time_of_impact: Real,
-        solid: bool,
-    ) -> Option<RayIntersection> {
-        self.hull
-            .cast_local_ray_and_get_normal(ray, max_time_of_impact, solid)
-    }
-}
-
-impl SupportMap for PrismShape {
-    fn local_support_point(&self, dir: Vector) -> Vector {
-        self.hull.local_support_point(dir)
-    }
-}
-
-impl PolygonalFeatureMap for PrismShape {
-    fn local_support_feature(&self, dir: Vector, out: &mut PolygonalFeature) {
-        self.hull.local_support_feature(dir, out)
-    }
-}
-
-impl Shape for PrismShape {
-    fn compute_local_aabb(&self) -> Aabb {
-        self.hull.local_aabb()
-    }
-    fn compute_local_bounding_sphere(&self) -> BoundingSphere {
-        self.hull.local_bounding_sphere()
-    }
-    fn compute_aabb(&self, position: &Pose) -> Aabb {
-        self.hull.aabb(position)
-    }
-    fn clone_dyn(&self) -> Box<dyn Shape> {
-        Box::new(self.clone())
-    }
-    fn scale_dyn(&self, scale: Vector, subdivisions: u32) -> Option<Box<dyn Shape>> {
-        self.hull.scale_dyn(scale, subdivisions)
-    }
-    fn mass_properties(&self, density: Real) -> MassProperties {
-        self.hull.mass_properties(density)
-    }
-    fn is_convex(&self) -> bool {
-        true
-    }
-    fn shape_type(&self) -> ShapeType {
-        ShapeType::Custom
-    }
-    fn as_typed_shape(&self) -> TypedShape<'_> {
-        TypedShape::Custom(self)
-    }
-    fn ccd_thickness(&self) -> Real {
-        self.hull.ccd_thickness()
-    }
-    fn ccd_angular_thickness(&self) -> Real {
-        self.hull.ccd_angular_thickness()
-    }
-    fn as_support_map(&self) -> Option<&dyn SupportMap> {
-        Some(self as &dyn SupportMap)
-    }
-    fn as_polygonal_feature_map(&self) -> Option<(&dyn PolygonalFeatureMap, Real)> {
-        Some((self as &dyn PolygonalFeatureMap, 0.0))
-    }
-    fn feature_normal_at_point(
-        &self,
-        subshape: SubShapeId,
-        feature: FeatureId,
-        point: Vector,
-    ) -> Option<Vector> {
-        self.hull.feature_normal_at_point(subshape, feature, point)
-    }
-}
+hull_backed_shape!(PrismShape);
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
+    use rapier3d::parry::query::PointQuery;
 
     /// The analytic projection agrees with parry's GJK projection on the same corners'
     /// hull (same side, same distance to GJK's tolerance, a point on the surface), inside and

@@ -22,7 +22,7 @@ use super::prism_shape::on_segment;
 use super::shapes::FRUSTUM_SEGMENTS;
 use rapier3d::math::{Real, Vector};
 use rapier3d::parry::query::PointProjection;
-use rapier3d::parry::shape::ConvexPolyhedron;
+use rapier3d::parry::shape::{ConvexPolyhedron, FeatureId};
 use std::f32::consts::PI;
 
 const K: usize = FRUSTUM_SEGMENTS;
@@ -44,6 +44,9 @@ pub struct FrustumShape {
     normals: [[Real; 2]; K],
     /// The convex hull of the two k-gons: everything but point projection.
     hull: ConvexPolyhedron,
+    /// The hull's support feature towards each side face's normal, then −y and +y
+    /// ([`hull_backed`](super::hull_backed)).
+    face_ids: [FeatureId; K + 2],
 }
 
 impl FrustumShape {
@@ -69,31 +72,42 @@ impl FrustumShape {
         let apo = [r_bottom * c, r_top * c];
         let d = [apo[1] - apo[0], 2.0 * hy];
         let slant_len = (d[0] * d[0] + d[1] * d[1]).sqrt();
+        let normals: [[Real; 2]; K] = std::array::from_fn(|j| {
+            let t = 2.0 * PI * (j as Real + 0.5) / K as Real;
+            [t.cos(), t.sin()]
+        });
+        // A side face's outward normal: (d_y · horizontal normal, −d_u) / |d|.
+        let face_ids = std::array::from_fn(|j| match j {
+            _ if j < K => {
+                let n = Vector::new(d[1] * normals[j][0], -d[0], d[1] * normals[j][1]);
+                hull.support_feature_id_toward(n.normalize())
+            }
+            _ if j == K => hull.support_feature_id_toward(Vector::NEG_Y),
+            _ => hull.support_feature_id_toward(Vector::Y),
+        });
         Some(FrustumShape {
             hy,
             apo,
             half: [r_bottom * s, r_top * s],
             slant: [d[0] / slant_len, d[1] / slant_len],
             slant_len,
-            normals: std::array::from_fn(|j| {
-                let t = 2.0 * PI * (j as Real + 0.5) / K as Real;
-                [t.cos(), t.sin()]
-            }),
+            normals,
             hull,
+            face_ids,
         })
     }
 
-    /// The side face whose outward normal is nearest the direction of (x, z).
-    fn sector(&self, x: Real, z: Real) -> [Real; 2] {
-        let mut best = self.normals[0];
-        let mut best_u = x * best[0] + z * best[1];
-        for &n in &self.normals[1..] {
+    /// The side face whose outward normal is nearest the direction of (x, z): its
+    /// index and horizontal normal.
+    fn sector(&self, x: Real, z: Real) -> (usize, [Real; 2]) {
+        let (mut best, mut best_u) = (0, x * self.normals[0][0] + z * self.normals[0][1]);
+        for (j, n) in self.normals.iter().enumerate().skip(1) {
             let u = x * n[0] + z * n[1];
             if u > best_u {
-                (best, best_u) = (n, u);
+                (best, best_u) = (j, u);
             }
         }
-        best
+        (best, self.normals[best])
     }
 
     /// Closest point to (t, w) of the side face as a trapezoid in its own plane: t
@@ -118,10 +132,17 @@ impl FrustumShape {
         )
     }
 
-    /// Exact closest point of the hull to `p` (see the module doc), in the sector's
-    /// coordinates (u, y, w), then rotated back.
+    /// Exact closest point of the hull to `p` (see the module doc).
     fn project(&self, p: Vector, solid: bool) -> PointProjection {
-        let n = self.sector(p.x, p.z);
+        self.project_on_face(p, solid).0
+    }
+
+    /// [`project`](Self::project), worked in the sector's coordinates (u, y, w) and
+    /// rotated back, and the hull's feature id when the closest point lies inside a
+    /// face (the projection direction is then that face's normal); `None` on an edge
+    /// or corner.
+    fn project_on_face(&self, p: Vector, solid: bool) -> (PointProjection, Option<FeatureId>) {
+        let (j, n) = self.sector(p.x, p.z);
         let (u, y, w) = (p.x * n[0] + p.z * n[1], p.y, p.z * n[0] - p.x * n[1]);
         let back =
             |u: Real, y: Real, w: Real| Vector::new(u * n[0] - w * n[1], y, u * n[1] + w * n[0]);
@@ -130,33 +151,35 @@ impl FrustumShape {
         let sd = (u - a0) * ey - (y + hy) * eu;
         let inside = sd <= 0.0 && y.abs() <= hy;
         if inside && solid {
-            return PointProjection::new(true, p);
+            return (PointProjection::new(true, p), None);
         }
         if inside {
             let (dt, db) = (hy - y, y + hy);
-            let q = if -sd <= dt.min(db) {
-                back(u - sd * ey, y + sd * eu, w)
+            let (q, f) = if -sd <= dt.min(db) {
+                (back(u - sd * ey, y + sd * eu, w), j)
             } else if dt <= db {
-                back(u, hy, w)
+                (back(u, hy, w), K + 1)
             } else {
-                back(u, -hy, w)
+                (back(u, -hy, w), K)
             };
-            return PointProjection::new(true, q);
+            return (PointProjection::new(true, q), Some(self.face_ids[f]));
         }
         // Outside: the nearest of the side face and the two caps.
         let t = (u - a0) * eu + (y + hy) * ey;
         let (c, d2) = self.side_face(t, w);
-        let mut best = (sd * sd + d2, [a0 + c[0] * eu, -hy + c[0] * ey, c[1]]);
-        for (cy, a, h) in [(-hy, a0, h0), (hy, a1, h1)] {
+        let side = [a0 + c[0] * eu, -hy + c[0] * ey, c[1]];
+        let mut best = (sd * sd + d2, side, (d2 == 0.0).then_some(j));
+        for (cy, a, h, f) in [(-hy, a0, h0, K), (hy, a1, h1, K + 1)] {
             let q = [u.min(a), cy, w.clamp(-h, h)];
             let d = [u - q[0], y - q[1], w - q[2]];
             let d2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
             if d2 < best.0 {
-                best = (d2, q);
+                best = (d2, q, (u < a && a > 0.0).then_some(f));
             }
         }
         let q = best.1;
-        PointProjection::new(false, back(q[0], q[1], q[2]))
+        let proj = PointProjection::new(false, back(q[0], q[1], q[2]));
+        (proj, best.2.map(|f| self.face_ids[f]))
     }
 }
 
@@ -236,6 +259,35 @@ mod tests {
                 let p = Vector::new(r * t.cos(), y * 0.999, r * t.sin()) * 0.999;
                 assert!(s.contains_local_point(p), "{p:?}");
             }
+        }
+    }
+
+    /// Where the closest point lies inside a face, the stored feature id is the one
+    /// parry finds by scanning the hull towards the projection direction (what
+    /// `project_local_point_and_get_feature` returned before the ids were stored),
+    /// and that case is common (over 5,000 of 20,000 points around the shape).
+    #[test]
+    fn face_ids_match_the_hulls() {
+        let mut rng = ChaCha8Rng::seed_from_u64(9);
+        for (hy, r0, r1) in [(1.0, 1.0, 0.7), (0.4, 0.3, 1.1), (0.8, 0.9, 0.0)] {
+            let s = FrustumShape::new(hy, r0, r1).unwrap();
+            let ext = Vector::new(r0.max(r1), hy, r0.max(r1)) * 1.6;
+            let mut faces = 0;
+            for _ in 0..20_000 {
+                let p = Vector::new(
+                    rng.gen_range(-1.0..1.0),
+                    rng.gen_range(-1.0..1.0),
+                    rng.gen_range(-1.0..1.0),
+                ) * ext;
+                let (proj, face) = s.project_on_face(p, false);
+                let d = p - proj.point;
+                let dir = if proj.is_inside { -d } else { d };
+                if let (Some(face), Some(dir)) = (face, dir.try_normalize()) {
+                    assert_eq!(face, s.hull.support_feature_id_toward(dir), "{p:?}");
+                    faces += 1;
+                }
+            }
+            assert!(faces > 5_000, "{faces} face projections");
         }
     }
 

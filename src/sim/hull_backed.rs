@@ -8,7 +8,9 @@
 //! is the projection of its centre, which parry otherwise finds by GJK over the
 //! hull's vertices.
 
-/// `PointQuery` (through the type's `project`), `RayCast`, `SupportMap`,
+/// `PointQuery` (through the type's `project`, and `project_on_face`, which also
+/// names the hull's feature when the closest point lies inside a face, the direction
+/// being that face's normal: the id parry would find by scanning the hull), `RayCast`, `SupportMap`,
 /// `PolygonalFeatureMap` and `Shape` for a type with a `hull: ConvexPolyhedron`.
 macro_rules! hull_backed_shape {
     ($t:ty) => {
@@ -22,7 +24,8 @@ macro_rules! hull_backed_shape {
             }
 
             /// As parry's convex polyhedron does: the feature is the hull's support
-            /// feature towards the projection direction.
+            /// feature towards the projection direction, stored per face when the
+            /// closest point lies inside one (that direction is the face's normal).
             fn project_local_point_and_get_feature(
                 &self,
                 p: rapier3d::math::Vector,
@@ -30,7 +33,10 @@ macro_rules! hull_backed_shape {
                 rapier3d::parry::query::PointProjection,
                 rapier3d::parry::shape::FeatureId,
             ) {
-                let proj = self.project(p, false);
+                let (proj, face) = self.project_on_face(p, false);
+                if let Some(face) = face {
+                    return (proj, face);
+                }
                 let d = p - proj.point;
                 let dir = if proj.is_inside { -d } else { d };
                 match dir.try_normalize() {

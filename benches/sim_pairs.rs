@@ -4,12 +4,14 @@
 //! its AABB but 0.05 clear of it (a broad-phase pair with no contact). Kinds: our
 //! native cuboid, capsule and cylinder; a prism as the hull of its 8 corners and as
 //! `PrismShape` (the same hull, analytic point projection: src/sim/prism_shape.rs); a frustum
-//! as its 16-gon hull (32 vertices); and convex hulls of 8, 16 and 64 points on a
+//! as its 16-gon hull (32 vertices) and as `FrustumShape` (the same hull, analytic point
+//! projection: src/sim/frustum_shape.rs); and convex hulls of 8, 16 and 64 points on a
 //! sphere, the range of V-HACD's hulls on the corpus. `primdecomp sim --profile` counts
 //! the pairs per frame by kind; this gives the cost per pair.
 //! Run: `cargo bench --bench sim_pairs` (figures in docs/results/sim.md).
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use primdecomp::export::tessellate;
 use primdecomp::primitive::{Frustum, Primitive, Prism};
 use primdecomp::sim::shapes::{self, Frame, Placed};
 use rapier3d::geometry::SharedShape;
@@ -81,6 +83,17 @@ fn cases() -> Vec<(&'static str, Placed)> {
         ("prism_native", shapes::primitive(&prism, &frame).unwrap()),
         (
             "frustum_hull_32",
+            shapes::hull(
+                &tessellate(&frustum, shapes::FRUSTUM_SEGMENTS)
+                    .vertices
+                    .into_iter()
+                    .map(|q| frame.point(q))
+                    .collect::<Vec<_>>(),
+            )
+            .unwrap(),
+        ),
+        (
+            "frustum_native",
             shapes::primitive(&frustum, &frame).unwrap(),
         ),
         ("hull_8", hull(8)),

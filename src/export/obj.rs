@@ -75,7 +75,7 @@ impl Tess {
 }
 
 /// Two unit vectors `u`, `v` with `u × v = a` (for unit `a`), chosen deterministically.
-fn frame(a: V3) -> (V3, V3) {
+pub(crate) fn frame(a: V3) -> (V3, V3) {
     let k = (0..3)
         .min_by(|&i, &j| a[i].abs().total_cmp(&a[j].abs()))
         .unwrap_or(0);

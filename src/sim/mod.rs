@@ -48,6 +48,8 @@
 //! - `mean_displacement`: mean distance between a ball's end and its end on the
 //!   mesh, in the input's units (`mean_displacement_rel`: over D).
 
+pub mod frustum_shape;
+mod hull_backed;
 pub mod metrics;
 pub mod plot;
 pub mod prism_shape;

@@ -1,7 +1,7 @@
 //! Rapier shapes for the three kinds of collider the simulation compares (§4.1
 //! "Simulation details"): our primitives — native cuboid, ball, capsule and
-//! cylinder; prisms as [`PrismShape`] (their corners' hull with an analytic point
-//! projection) and frustums as convex hulls, since no engine has them —,
+//! cylinder; prisms as [`PrismShape`] and frustums as [`FrustumShape`] (their corners'
+//! hulls with an analytic point projection), since no engine has them —,
 //! convex hulls (CoACD, V-HACD), and the input mesh itself as a triangle mesh.
 //!
 //! Every shape is placed in the simulation frame of [`Frame`]: world coordinates
@@ -9,12 +9,13 @@
 //! relative to their own centroid and the centroid goes into the pose, so f32
 //! keeps the detail of small parts far from the origin.
 
+use super::frustum_shape::FrustumShape;
 use super::prism_shape::PrismShape;
-use crate::export::tessellate;
+use crate::export::obj;
 use crate::math::quat::quat_from_axes;
-use crate::math::{add, cross, norm2, scale, sub, V3};
+use crate::math::{add, cross, norm2, normalize, scale, sub, V3};
 use crate::mesh::Mesh;
-use crate::primitive::Primitive;
+use crate::primitive::{Frustum, Primitive};
 use rapier3d::geometry::SharedShape;
 use rapier3d::math::{Pose, Rotation, Vector};
 
@@ -113,16 +114,25 @@ pub fn primitive(p: &Primitive, frame: &Frame) -> Option<Placed> {
             let pose = Pose::from_parts(Frame::vector(frame.point(q.center)), rotation(&q.axes));
             (SharedShape::new(shape), pose)
         }
-        Primitive::Frustum(_) => {
-            let points: Vec<V3> = tessellate(p, FRUSTUM_SEGMENTS)
-                .vertices
-                .into_iter()
-                .map(|q| frame.point(q))
-                .collect();
-            return hull(&points);
-        }
+        Primitive::Frustum(f) => return frustum(&f, frame),
     };
     Some(placed)
+}
+
+/// A frustum as [`FrustumShape`]: the hull of the OBJ export's tessellation (same
+/// vertex radii r / cos(π/k), same angles: the `stack` frame of `export::obj` puts
+/// vertex j at u cos t + v sin t, t = 2πj/k, which is angle −t in local (x, z) with
+/// x = u, y = the axis, z = u × axis = −v).
+fn frustum(f: &Frustum, frame: &Frame) -> Option<Placed> {
+    let (p0, p1) = (frame.point(f.p0), frame.point(f.p1));
+    let a = normalize(sub(p1, p0)).unwrap_or([0.0, 0.0, 1.0]);
+    let (u, _) = obj::frame(a);
+    let circ = frame.scale / (std::f64::consts::PI / FRUSTUM_SEGMENTS as f64).cos();
+    let hy = 0.5 * norm2(sub(p1, p0)).sqrt();
+    let shape = FrustumShape::new(hy as f32, (f.r0 * circ) as f32, (f.r1 * circ) as f32)?;
+    let centre = scale(add(p0, p1), 0.5);
+    let pose = Pose::from_parts(Frame::vector(centre), rotation(&[u, a, cross(u, a)]));
+    Some((SharedShape::new(shape), pose))
 }
 
 /// The input mesh as one triangle mesh in the simulation frame: polygons
@@ -159,7 +169,7 @@ pub fn trimesh(mesh: &Mesh, frame: &Frame) -> Option<Placed> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::primitive::{Capsule, Cylinder, Frustum, Obb, Prism, Sphere};
+    use crate::primitive::{Capsule, Cylinder, Obb, Prism, Sphere};
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 

@@ -3,7 +3,7 @@
 
 use crate::error::{Error, Result};
 use crate::math::V3;
-use crate::merge::{partition, Clusters, Evaluator, Workspace};
+use crate::merge::{components, partition, Clusters, Evaluator, Workspace};
 use crate::mesh::{adjacency, dedup, Mesh};
 use crate::params::{Params, Reprice};
 use crate::postprocess::{keep_mask, Cleanup};
@@ -151,6 +151,17 @@ pub fn decompose_with_progress(
         let clusters = partition::clusters(p1, q, volumes, &pairs);
         t.push("partitions", now);
         clusters
+    } else if let Some(comps) = component_phase(mesh, params, &pairs, targets[0]) {
+        t.push("seed", now);
+        // Every component merged whole, groups of them in parallel: the same clusters
+        // the global loop reaches before it links components (merge/components.rs).
+        let now = Instant::now();
+        let merged = |m: usize| progress(m as f64 / total);
+        let p1 = components::merge_components(&ev, &q, &volumes, &pairs, comps, &merged);
+        (dec.merges, dec.fits) = (p1.merges, p1.fits);
+        let clusters = partition::clusters(p1, q, volumes, &pairs);
+        t.push("components", now);
+        clusters
     } else {
         let clusters = Clusters::new(q, volumes, &pairs);
         t.push("seed", now);
@@ -195,6 +206,23 @@ fn parts(mesh: &Mesh, params: &Params, largest_target: usize) -> usize {
     } else {
         1
     }
+}
+
+/// The input's connected components when the run can merge them separately first
+/// ([`components::applies`]), else `None`.
+fn component_phase(
+    mesh: &Mesh,
+    params: &Params,
+    pairs: &[(u32, u32)],
+    largest_target: usize,
+) -> Option<Vec<Vec<u32>>> {
+    let faces = mesh.face_count();
+    let capped = params.max_excess_volume.is_some();
+    if faces < components::MIN_FACES || capped {
+        return None;
+    }
+    let comps = components::components(faces, pairs);
+    components::applies(faces, comps.len(), largest_target, capped).then_some(comps)
 }
 
 fn input_info(mesh: &Mesh, (lo, hi): (V3, V3)) -> InputInfo {

@@ -261,6 +261,28 @@ impl Clusters {
         lists.neighbors = n;
     }
 
+    /// Root `c`'s neighbour list as stored and its length when last resolved.
+    pub fn neighbor_list(&self, c: u32) -> (&[u32], u32) {
+        match self.node[c as usize].slot {
+            NO_LISTS => (
+                self.input_neighbors(c),
+                self.input_neighbors(c).len() as u32,
+            ),
+            s => {
+                let l = &self.slab[s as usize];
+                (&l.neighbors, l.resolved)
+            }
+        }
+    }
+
+    /// Replaces root `c`'s neighbour list and its resolved length (a cluster carried
+    /// over from a loop on part of the input, `merge::components`).
+    pub fn set_neighbor_list(&mut self, c: u32, neighbors: Vec<u32>, resolved: u32) {
+        let l = self.lists_mut(c);
+        l.neighbors = neighbors;
+        l.resolved = resolved;
+    }
+
     /// Length of root `c`'s neighbour list: its degree when just resolved, else an
     /// upper bound (merged-away ids and duplicates count until the next resolve).
     pub fn neighbor_len(&self, c: u32) -> usize {

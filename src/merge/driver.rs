@@ -313,9 +313,12 @@ fn seed_queue<Q: Queue>(ev: &Evaluator, cl: &Clusters, heap: &mut Q) -> usize {
     let mut block = Vec::with_capacity(PRICE_BLOCK);
     for a in 0..n {
         // Roots' neighbour lists: the input's adjacency, or (phase 2 of
-        // `Params::partitions`) the resolved adjacency between groups of faces.
+        // `Params::partitions`) the resolved adjacency between groups of faces, or
+        // (after `merge::components`) whole components' lists as their loops left them,
+        // whose merged-away ids name the component itself.
         let nbrs = if cl.is_root(a) { cl.neighbors(a) } else { &[] };
-        block.extend(nbrs.iter().filter(|&&b| b > a).map(|&b| (a, b)));
+        let pair = |&b: &u32| b > a && cl.is_root(b);
+        block.extend(nbrs.iter().copied().filter(|b| pair(b)).map(|b| (a, b)));
         if block.len() >= PRICE_BLOCK || a + 1 == n {
             priced += block.len();
             price(ev, cl, &block).into_iter().for_each(|c| heap.push(c));

@@ -4,6 +4,7 @@
 
 pub mod bridge;
 pub mod cluster;
+pub mod components;
 pub mod cost;
 pub mod driver;
 pub mod heap;

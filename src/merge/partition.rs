@@ -41,6 +41,11 @@ struct Groups {
     volume: Vec<f64>,
     /// Hull-reduced welded vertices of each group; empty for a single face.
     verts: Vec<Vec<u32>>,
+    /// Each group's neighbour list as its part's loop left it (input face ids) and its
+    /// length when last resolved, for groups of whole components (`merge::components`):
+    /// phase 2 then holds the lists the global loop would, so it decides deferrals
+    /// (`merge::driver::defer`) as that loop does. Empty for spatial parts.
+    neighbors: Vec<(Vec<u32>, u32)>,
 }
 
 /// Phase 1's result: every part's groups, and the merges it did.
@@ -143,21 +148,42 @@ pub fn merge_parts(
     let parts = split(ev.mesh, k);
     let faces = ev.mesh.face_count() as u128;
     let size = phase1_size(largest_target) as u128;
-    let local_pairs = pairs_by_part(&parts, pairs, faces as usize);
+    let targets = parts
+        .iter()
+        .map(|part| (size * part.len() as u128).div_ceil(faces.max(1)).max(1) as usize)
+        .collect();
+    merge_groups(ev, q, volume, pairs, &parts, targets, true, merged)
+}
+
+/// Merges each of `parts` (faces increasing within a part) down to its target, in
+/// parallel, one task per part: lazily (every merge deferred, deviation 19) when
+/// `lazy` and the run does not re-price exactly, else with the run's own settings.
+#[allow(clippy::too_many_arguments)]
+pub(super) fn merge_groups(
+    ev: &Evaluator,
+    q: &[Sym3],
+    volume: &[f64],
+    pairs: &[(u32, u32)],
+    parts: &[Vec<u32>],
+    targets: Vec<usize>,
+    lazy: bool,
+    merged: &(dyn Fn(usize) + Sync),
+) -> Phase1 {
+    let local_pairs = pairs_by_part(parts, pairs, ev.mesh.face_count());
     let done: Vec<AtomicUsize> = parts.iter().map(|_| AtomicUsize::new(0)).collect();
     let results: Vec<(Groups, MergeOutput)> = parts
         .par_iter()
         .zip(local_pairs.par_iter())
+        .zip(targets.par_iter())
         .enumerate()
-        .map(|(i, (part, lp))| {
-            let target = (size * part.len() as u128).div_ceil(faces.max(1)).max(1) as usize;
+        .map(|(i, ((part, lp), &target))| {
             // The loop reports the fraction of its part's merges to the target.
             let span = part.len().saturating_sub(target).max(1) as f64;
             let report = |f: f64| {
                 done[i].store((f * span).round() as usize, Relaxed);
                 merged(done.iter().map(|d| d.load(Relaxed)).sum());
             };
-            merge_one(ev, q, volume, part, lp, target, &report)
+            merge_one(ev, q, volume, part, lp, target, lazy, &report)
         })
         .collect();
     let mut out = Phase1::default();
@@ -223,6 +249,7 @@ fn sub_mesh(mesh: &Mesh, welded: &[u32], part: &[u32]) -> (Mesh, Vec<u32>, Vec<u
 }
 
 /// Runs the merge loop on one part down to `target` and returns its groups.
+#[allow(clippy::too_many_arguments)]
 fn merge_one(
     ev: &Evaluator,
     q: &[Sym3],
@@ -230,6 +257,7 @@ fn merge_one(
     part: &[u32],
     pairs: &[(u32, u32)],
     target: usize,
+    lazy: bool,
     progress: &(dyn Fn(f64) + Sync),
 ) -> (Groups, MergeOutput) {
     let (sub, sub_welded, global) = sub_mesh(ev.mesh, ev.welded, part);
@@ -239,10 +267,10 @@ fn merge_one(
         welded: &sub_welded,
         // Lazy greedy for every merge of a part unless re-pricing is exact (deviation
         // 19: user time ×0.62–0.74, Chamfer within ±1% but one input at +6.5%).
-        defer_degree: if ev.defer_degree == u32::MAX {
-            u32::MAX
-        } else {
+        defer_degree: if lazy && ev.defer_degree != u32::MAX {
             0
+        } else {
+            ev.defer_degree
         },
         ..*ev
     };
@@ -265,6 +293,11 @@ fn merge_one(
         g.volume.push(cl.volume[r as usize]);
         g.verts
             .push(cl.verts(r).iter().map(|&v| global[v as usize]).collect());
+        if !lazy {
+            let (n, resolved) = cl.neighbor_list(r);
+            g.neighbors
+                .push((n.iter().map(|&f| part[f as usize]).collect(), resolved));
+        }
     }
     (g, out)
 }
@@ -275,8 +308,8 @@ fn merge_one(
 /// single faces. `q` and `volume` are the per-face arrays (reused as storage).
 pub fn clusters(p1: Phase1, q: Vec<Sym3>, volume: Vec<f64>, pairs: &[(u32, u32)]) -> Clusters {
     let mut cl = Clusters::new(q, volume, pairs);
-    let mut roots = Vec::with_capacity(p1.groups());
-    for g in p1.parts {
+    for mut g in p1.parts {
+        let mut lists = std::mem::take(&mut g.neighbors).into_iter();
         for (i, verts) in g.verts.into_iter().enumerate() {
             let faces = &g.faces[g.offsets[i] as usize..g.offsets[i + 1] as usize];
             let root = faces[0];
@@ -290,12 +323,14 @@ pub fn clusters(p1: Phase1, q: Vec<Sym3>, volume: Vec<f64>, pairs: &[(u32, u32)]
             }
             cl.q[root as usize] = g.q[i];
             cl.volume[root as usize] = g.volume[i];
-            roots.push(root);
+            match lists.next() {
+                // Whole components: the list as the global loop would hold it.
+                Some((n, resolved)) if faces.len() > 1 => cl.set_neighbor_list(root, n, resolved),
+                Some(_) => {}
+                // Seeding reads every root's neighbour list: resolve it to groups.
+                None => drop(cl.resolved_neighbors(root)),
+            }
         }
-    }
-    // Seeding reads every root's neighbour list: resolve them to groups.
-    for &r in &roots {
-        cl.resolved_neighbors(r);
     }
     cl.reset_clock();
     cl

@@ -308,6 +308,7 @@ fn merge_one(
 /// single faces. `q` and `volume` are the per-face arrays (reused as storage).
 pub fn clusters(p1: Phase1, q: Vec<Sym3>, volume: Vec<f64>, pairs: &[(u32, u32)]) -> Clusters {
     let mut cl = Clusters::new(q, volume, pairs);
+    let mut unresolved = Vec::with_capacity(p1.groups());
     for mut g in p1.parts {
         let mut lists = std::mem::take(&mut g.neighbors).into_iter();
         for (i, verts) in g.verts.into_iter().enumerate() {
@@ -327,10 +328,14 @@ pub fn clusters(p1: Phase1, q: Vec<Sym3>, volume: Vec<f64>, pairs: &[(u32, u32)]
                 // Whole components: the list as the global loop would hold it.
                 Some((n, resolved)) if faces.len() > 1 => cl.set_neighbor_list(root, n, resolved),
                 Some(_) => {}
-                // Seeding reads every root's neighbour list: resolve it to groups.
-                None => drop(cl.resolved_neighbors(root)),
+                None => unresolved.push(root),
             }
         }
+    }
+    // Seeding reads every root's neighbour list: resolve the spatial parts' lists to
+    // groups, once every group is merged.
+    for r in unresolved {
+        cl.resolved_neighbors(r);
     }
     cl.reset_clock();
     cl
@@ -413,5 +418,40 @@ mod tests {
         let tri = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
         let same = Mesh::from_polygons(&tri, &vec![vec![0, 1, 2]; 5]);
         assert_eq!(split(&same, 2), vec![vec![0, 1], vec![2, 3, 4]]);
+    }
+
+    /// Phase 2 starts from resolved adjacency between groups: every root's list names
+    /// live roots only, and groups that share an edge name each other (a list resolved
+    /// before the later groups were merged named their faces instead, which seeding
+    /// skips: the groups then never merged by adjacency).
+    #[test]
+    fn phase_two_lists_name_adjacent_groups() {
+        use crate::decompose::{evaluator, seed_volumes};
+        use crate::mesh::{adjacency, dedup};
+        let mesh = grid(24);
+        let p = crate::Params::default();
+        let (welded, _) = dedup::weld(&mesh, p.dedup);
+        let pairs = adjacency::face_pairs(&mesh.face_offsets, &welded);
+        let mut q = Vec::new();
+        crate::quadric::face_quadrics(&mesh, p.tangent_eps, &mut q);
+        let ev = evaluator(&mesh, &welded, &p, mesh.aabb());
+        let vols = seed_volumes(&ev, &q);
+        let p1 = merge_parts(&ev, &q, &vols, &pairs, 4, 4, &|_| {});
+        let mut cl = clusters(p1, q, vols, &pairs);
+        let roots: Vec<u32> = cl.roots();
+        assert!(roots.len() > 4);
+        for &r in &roots {
+            let n = cl.neighbors(r).to_vec();
+            assert!(
+                !n.is_empty() && n.iter().all(|&b| cl.is_root(b) && b != r),
+                "{n:?}"
+            );
+        }
+        for &(a, b) in &pairs {
+            let (ra, rb) = (cl.find(a), cl.find(b));
+            if ra != rb {
+                assert!(cl.neighbors(ra).contains(&rb), "{ra} and {rb} adjacent");
+            }
+        }
     }
 }

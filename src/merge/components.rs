@@ -108,53 +108,39 @@ pub fn merge_components(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::decompose::{evaluator, seed_volumes};
+    use crate::merge::driver::tests::{reprice_modes, with_input};
     use crate::merge::{run, Clusters};
-    use crate::mesh::{adjacency, dedup};
-    use crate::{quadric, Params, Reduction, Reprice};
+    use crate::{Params, Reduction};
 
     /// The demo scene (several separate objects) merged to `n` < its component count
     /// by the global loop alone and by this module's phase 1 then the global loop:
     /// the same primitives and members at every target.
     fn same_as_global(p: Params, targets: &[usize]) {
         let mesh = crate::Mesh::from_builder(crate::demo::demo_scene());
-        let (welded, _) = dedup::weld(&mesh, p.dedup);
-        let pairs = adjacency::face_pairs(&mesh.face_offsets, &welded);
-        let mut q = Vec::new();
-        quadric::face_quadrics(&mesh, p.tangent_eps, &mut q);
-        let ev = evaluator(&mesh, &welded, &p, mesh.aabb());
-        let vols = seed_volumes(&ev, &q);
-        let comps = components(mesh.face_count(), &pairs);
-        assert!(targets[0] < comps.len(), "{} components", comps.len());
-        let global = run(
-            &ev,
-            Clusters::new(q.clone(), vols.clone(), &pairs),
-            targets,
-            &|_| {},
-        );
-        let p1 = merge_components(&ev, &q, &vols, &pairs, comps, &|_| {});
-        let cl = partition::clusters(p1, q, vols, &pairs);
-        let split = run(&ev, cl, targets, &|_| {});
-        for (a, b) in global.snapshots.iter().zip(&split.snapshots) {
-            assert_eq!(format!("{:?}", a.prims), format!("{:?}", b.prims), "{p:?}");
+        with_input(&mesh, &p, |ev, q, vols, pairs| {
+            let comps = components(mesh.face_count(), pairs);
+            assert!(targets[0] < comps.len(), "{} components", comps.len());
+            let fresh = || Clusters::new(q.to_vec(), vols.to_vec(), pairs);
+            let global = run(ev, fresh(), targets, &|_| {});
+            let p1 = merge_components(ev, q, vols, pairs, comps, &|_| {});
+            let cl = partition::clusters(p1, q.to_vec(), vols.to_vec(), pairs);
+            let split = run(ev, cl, targets, &|_| {});
+            assert_eq!(global.snapshots.len(), split.snapshots.len());
             let sorted = |m: &[Vec<u32>]| {
                 let mut m: Vec<Vec<u32>> = m.to_vec();
                 m.iter_mut().for_each(|f| f.sort_unstable());
                 m
             };
-            assert_eq!(sorted(&a.members), sorted(&b.members));
-        }
-        assert_eq!(global.snapshots.len(), split.snapshots.len());
+            for (a, b) in global.snapshots.iter().zip(&split.snapshots) {
+                assert_eq!(format!("{:?}", a.prims), format!("{:?}", b.prims), "{p:?}");
+                assert_eq!(sorted(&a.members), sorted(&b.members));
+            }
+        });
     }
 
     #[test]
     fn merging_components_apart_changes_nothing() {
-        let modes = [
-            Reprice::Exact,
-            Reprice::Deferred { min_degree: 0 },
-            Params::default().reprice,
-        ];
-        for reprice in modes {
+        for reprice in reprice_modes() {
             for reduction in [Reduction::Hull, Reduction::Extremes] {
                 let p = Params {
                     reprice,

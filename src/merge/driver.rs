@@ -512,13 +512,35 @@ pub(super) mod tests {
         f: impl FnOnce(&Evaluator, &(dyn Fn() -> Clusters + Sync)) -> R,
     ) -> R {
         let mesh = crate::Mesh::from_builder(crate::demo::demo_scene());
-        let (welded, _) = dedup::weld(&mesh, p.dedup);
+        with_input(&mesh, &p, |ev, q, vols, pairs| {
+            f(ev, &|| Clusters::new(q.to_vec(), vols.to_vec(), pairs))
+        })
+    }
+
+    /// Runs `f` on `mesh`'s evaluator under `p`, with the faces' operators, their
+    /// seed volumes and the adjacent face pairs (the driver's inputs, as `decompose`
+    /// builds them).
+    pub(in crate::merge) fn with_input<R>(
+        mesh: &crate::Mesh,
+        p: &Params,
+        f: impl FnOnce(&Evaluator, &[crate::math::Sym3], &[f64], &[(u32, u32)]) -> R,
+    ) -> R {
+        let (welded, _) = dedup::weld(mesh, p.dedup);
         let pairs = adjacency::face_pairs(&mesh.face_offsets, &welded);
         let mut q = Vec::new();
-        quadric::face_quadrics(&mesh, p.tangent_eps, &mut q);
-        let ev = evaluator(&mesh, &welded, &p, mesh.aabb());
+        quadric::face_quadrics(mesh, p.tangent_eps, &mut q);
+        let ev = evaluator(mesh, &welded, p, mesh.aabb());
         let vols = seed_volumes(&ev, &q);
-        f(&ev, &|| Clusters::new(q.clone(), vols.clone(), &pairs))
+        f(&ev, &q, &vols, &pairs)
+    }
+
+    /// Exact, fully deferred and the default re-pricing: the modes order tests run under.
+    pub(in crate::merge) fn reprice_modes() -> [Reprice; 3] {
+        [
+            Reprice::Exact,
+            Reprice::Deferred { min_degree: 0 },
+            Params::default().reprice,
+        ]
     }
 
     /// Reducing the next merge's points ahead of its turn (two threads: while the
@@ -528,12 +550,7 @@ pub(super) mod tests {
     /// re-priced or dropped when popped, as before).
     #[test]
     fn look_ahead_keeps_the_serial_order() {
-        let modes = [
-            Reprice::Exact,
-            Reprice::Deferred { min_degree: 0 },
-            Params::default().reprice,
-        ];
-        for reprice in modes {
+        for reprice in reprice_modes() {
             let p = Params {
                 reprice,
                 ..Params::default()

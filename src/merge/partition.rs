@@ -426,18 +426,16 @@ mod tests {
     /// skips: the groups then never merged by adjacency).
     #[test]
     fn phase_two_lists_name_adjacent_groups() {
-        use crate::decompose::{evaluator, seed_volumes};
-        use crate::mesh::{adjacency, dedup};
         let mesh = grid(24);
         let p = crate::Params::default();
-        let (welded, _) = dedup::weld(&mesh, p.dedup);
-        let pairs = adjacency::face_pairs(&mesh.face_offsets, &welded);
-        let mut q = Vec::new();
-        crate::quadric::face_quadrics(&mesh, p.tangent_eps, &mut q);
-        let ev = evaluator(&mesh, &welded, &p, mesh.aabb());
-        let vols = seed_volumes(&ev, &q);
-        let p1 = merge_parts(&ev, &q, &vols, &pairs, 4, 4, &|_| {});
-        let mut cl = clusters(p1, q, vols, &pairs);
+        let (mut cl, pairs) =
+            crate::merge::driver::tests::with_input(&mesh, &p, |ev, q, vols, pairs| {
+                let p1 = merge_parts(ev, q, vols, pairs, 4, 4, &|_| {});
+                (
+                    clusters(p1, q.to_vec(), vols.to_vec(), pairs),
+                    pairs.to_vec(),
+                )
+            });
         let roots: Vec<u32> = cl.roots();
         assert!(roots.len() > 4);
         for &r in &roots {

@@ -147,3 +147,57 @@ macro_rules! hull_backed_shape {
 }
 
 pub(super) use hull_backed_shape;
+
+/// Test check shared by the hull-backed shapes: on 20,000 random points in the box of
+/// half-size `ext`, the shape's exact projection (`project`) agrees with parry's GJK
+/// projection on its `hull` (inside/outside away from the surface; never farther,
+/// within GJK's tolerance; on the hull's surface), and the points fall both inside
+/// and outside.
+#[cfg(test)]
+pub(super) fn check_projection_against_hull(
+    project: impl Fn(rapier3d::math::Vector, bool) -> rapier3d::parry::query::PointProjection,
+    hull: &rapier3d::parry::shape::ConvexPolyhedron,
+    ext: rapier3d::math::Vector,
+    rng: &mut rand_chacha::ChaCha8Rng,
+) {
+    use rand::Rng;
+    use rapier3d::math::Vector;
+    use rapier3d::parry::query::PointQuery;
+    let (mut inside, mut outside) = (0, 0);
+    for _ in 0..20_000 {
+        let p = Vector::new(
+            rng.gen_range(-1.0..1.0),
+            rng.gen_range(-1.0..1.0),
+            rng.gen_range(-1.0..1.0),
+        ) * ext;
+        let surface = (hull.project_local_point(p, false).point - p).length();
+        for solid in [false, true] {
+            let a = project(p, solid);
+            let b = hull.project_local_point(p, solid);
+            let (da, db) = ((a.point - p).length(), (b.point - p).length());
+            // Within round-off of the surface either side is right.
+            if surface > 1e-4 {
+                assert_eq!(a.is_inside, b.is_inside, "{p:?} solid {solid}");
+            }
+            // GJK stops within a relative tolerance; ours is never farther.
+            assert!(
+                da <= db + 1e-4 && db - da < 1e-3 * db.max(0.1),
+                "{p:?} solid {solid}: distance {da} vs hull {db}"
+            );
+            // The point may differ where faces tie or GJK stopped early on a face,
+            // but it lies on the hull's surface (or is p, when solid).
+            let on = (hull.project_local_point(a.point, false).point - a.point).length();
+            assert!(
+                on < 1e-4 || (solid && a.point == p),
+                "{p:?} solid {solid}: {:?} is {on} off the surface",
+                a.point
+            );
+        }
+        if hull.contains_local_point(p) {
+            inside += 1;
+        } else {
+            outside += 1;
+        }
+    }
+    assert!(inside > 50 && outside > 1000, "{inside} in, {outside} out");
+}

@@ -164,6 +164,7 @@ hull_backed_shape!(PrismShape);
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::sim::hull_backed::check_projection_against_hull;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
     use rapier3d::parry::query::PointQuery;
@@ -182,45 +183,10 @@ mod tests {
             (0.002, 0.35, 0.002, 0.7),
         ] {
             let s = PrismShape::new(hx, hy, zt, zb).unwrap();
-            let (mut inside, mut outside) = (0, 0);
-            for _ in 0..20_000 {
-                // Around the prism, each axis over 1.6× its half-extent.
-                let ext = Vector::new(hx, hy, zt.max(zb)) * 1.6;
-                let p = Vector::new(
-                    rng.gen_range(-1.0..1.0),
-                    rng.gen_range(-1.0..1.0),
-                    rng.gen_range(-1.0..1.0),
-                ) * ext;
-                let surface = (s.hull.project_local_point(p, false).point - p).length();
-                for solid in [false, true] {
-                    let a = s.project_local_point(p, solid);
-                    let b = s.hull.project_local_point(p, solid);
-                    let (da, db) = ((a.point - p).length(), (b.point - p).length());
-                    // Within round-off of the surface either side is right.
-                    if surface > 1e-4 {
-                        assert_eq!(a.is_inside, b.is_inside, "{p:?} solid {solid}");
-                    }
-                    // GJK stops within a relative tolerance; ours is never farther.
-                    assert!(
-                        da <= db + 1e-4 && db - da < 1e-3 * db.max(0.1),
-                        "{p:?} solid {solid}: distance {da} vs hull {db}"
-                    );
-                    // The point may differ where faces tie or GJK stopped early on a
-                    // face, but it lies on the hull's surface (or is p, when solid).
-                    let on = (s.hull.project_local_point(a.point, false).point - a.point).length();
-                    assert!(
-                        on < 1e-4 || (solid && a.point == p),
-                        "{p:?} solid {solid}: {:?} is {on} off the surface",
-                        a.point
-                    );
-                }
-                if s.hull.contains_local_point(p) {
-                    inside += 1;
-                } else {
-                    outside += 1;
-                }
-            }
-            assert!(inside > 50 && outside > 1000, "{inside} in, {outside} out");
+            // Around the prism, each axis over 1.6× its half-extent.
+            let ext = Vector::new(hx, hy, zt.max(zb)) * 1.6;
+            let project = |p, solid| s.project_local_point(p, solid);
+            check_projection_against_hull(project, &s.hull, ext, &mut rng);
         }
     }
 

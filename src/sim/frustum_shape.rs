@@ -188,8 +188,8 @@ hull_backed_shape!(FrustumShape);
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sim::hull_backed::check_projection_against_hull;
-    use rand::{Rng, SeedableRng};
+    use crate::sim::hull_backed::{check_face_ids_against_hull, check_projection_against_hull};
+    use rand::SeedableRng;
     use rand_chacha::ChaCha8Rng;
     use rapier3d::parry::query::PointQuery;
 
@@ -241,22 +241,8 @@ mod tests {
         for (hy, r0, r1) in [(1.0, 1.0, 0.7), (0.4, 0.3, 1.1), (0.8, 0.9, 0.0)] {
             let s = FrustumShape::new(hy, r0, r1).unwrap();
             let ext = Vector::new(r0.max(r1), hy, r0.max(r1)) * 1.6;
-            let mut faces = 0;
-            for _ in 0..20_000 {
-                let p = Vector::new(
-                    rng.gen_range(-1.0..1.0),
-                    rng.gen_range(-1.0..1.0),
-                    rng.gen_range(-1.0..1.0),
-                ) * ext;
-                let (proj, face) = s.project_on_face(p, false);
-                let d = p - proj.point;
-                let dir = if proj.is_inside { -d } else { d };
-                if let (Some(face), Some(dir)) = (face, dir.try_normalize()) {
-                    assert_eq!(face, s.hull.support_feature_id_toward(dir), "{p:?}");
-                    faces += 1;
-                }
-            }
-            assert!(faces > 5_000, "{faces} face projections");
+            let on_face = |p| s.project_on_face(p, false);
+            check_face_ids_against_hull(on_face, &s.hull, ext, &mut rng);
         }
     }
 

@@ -160,16 +160,10 @@ pub(super) fn check_projection_against_hull(
     ext: rapier3d::math::Vector,
     rng: &mut rand_chacha::ChaCha8Rng,
 ) {
-    use rand::Rng;
-    use rapier3d::math::Vector;
     use rapier3d::parry::query::PointQuery;
     let (mut inside, mut outside) = (0, 0);
     for _ in 0..20_000 {
-        let p = Vector::new(
-            rng.gen_range(-1.0..1.0),
-            rng.gen_range(-1.0..1.0),
-            rng.gen_range(-1.0..1.0),
-        ) * ext;
+        let p = random_point(rng, ext);
         let surface = (hull.project_local_point(p, false).point - p).length();
         for solid in [false, true] {
             let a = project(p, solid);
@@ -200,4 +194,48 @@ pub(super) fn check_projection_against_hull(
         }
     }
     assert!(inside > 50 && outside > 1000, "{inside} in, {outside} out");
+}
+
+/// Test check shared by the hull-backed shapes: on 20,000 random points in the box of
+/// half-size `ext`, where the closest point lies inside a face (`project_on_face`
+/// names one), that id is the one parry finds by scanning the hull towards the
+/// projection direction; over 5,000 of the points land there.
+#[cfg(test)]
+pub(super) fn check_face_ids_against_hull(
+    project_on_face: impl Fn(
+        rapier3d::math::Vector,
+    ) -> (
+        rapier3d::parry::query::PointProjection,
+        Option<rapier3d::parry::shape::FeatureId>,
+    ),
+    hull: &rapier3d::parry::shape::ConvexPolyhedron,
+    ext: rapier3d::math::Vector,
+    rng: &mut rand_chacha::ChaCha8Rng,
+) {
+    let mut faces = 0;
+    for _ in 0..20_000 {
+        let p = random_point(rng, ext);
+        let (proj, face) = project_on_face(p);
+        let d = p - proj.point;
+        let dir = if proj.is_inside { -d } else { d };
+        if let (Some(face), Some(dir)) = (face, dir.try_normalize()) {
+            assert_eq!(face, hull.support_feature_id_toward(dir), "{p:?}");
+            faces += 1;
+        }
+    }
+    assert!(faces > 5_000, "{faces} face projections");
+}
+
+/// A uniform random point in the box of half-size `ext` about the origin.
+#[cfg(test)]
+fn random_point(
+    rng: &mut rand_chacha::ChaCha8Rng,
+    ext: rapier3d::math::Vector,
+) -> rapier3d::math::Vector {
+    use rand::Rng;
+    rapier3d::math::Vector::new(
+        rng.gen_range(-1.0..1.0),
+        rng.gen_range(-1.0..1.0),
+        rng.gen_range(-1.0..1.0),
+    ) * ext
 }

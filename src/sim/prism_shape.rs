@@ -164,8 +164,8 @@ hull_backed_shape!(PrismShape);
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::sim::hull_backed::check_projection_against_hull;
-    use rand::{Rng, SeedableRng};
+    use crate::sim::hull_backed::{check_face_ids_against_hull, check_projection_against_hull};
+    use rand::SeedableRng;
     use rand_chacha::ChaCha8Rng;
     use rapier3d::parry::query::PointQuery;
 
@@ -204,22 +204,8 @@ mod tests {
         ] {
             let s = PrismShape::new(hx, hy, zt, zb).unwrap();
             let ext = Vector::new(hx, hy, zt.max(zb)) * 1.6;
-            let mut faces = 0;
-            for _ in 0..20_000 {
-                let p = Vector::new(
-                    rng.gen_range(-1.0..1.0),
-                    rng.gen_range(-1.0..1.0),
-                    rng.gen_range(-1.0..1.0),
-                ) * ext;
-                let (proj, face) = s.project_on_face(p, false);
-                let d = p - proj.point;
-                let dir = if proj.is_inside { -d } else { d };
-                if let (Some(face), Some(dir)) = (face, dir.try_normalize()) {
-                    assert_eq!(face, s.hull.support_feature_id_toward(dir), "{p:?}");
-                    faces += 1;
-                }
-            }
-            assert!(faces > 5_000, "{faces} face projections");
+            let on_face = |p| s.project_on_face(p, false);
+            check_face_ids_against_hull(on_face, &s.hull, ext, &mut rng);
         }
     }
 

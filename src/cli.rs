@@ -655,8 +655,12 @@ fn print_timings(dec: &Decomposition, write_s: f64, several: bool) {
     );
     let f = dec.fits;
     println!(
-        "fits      {} merges; {} seeding, {} re-priced at once, {} when popped ({:.2} per merge); {} merges' points reduced ahead",
+        "fits      {} merges{}; {} seeding, {} re-priced at once, {} when popped ({:.2} per merge); {} merges' points reduced ahead",
         dec.merges,
+        match dec.merges_past {
+            0 => String::new(),
+            n => format!(" (and {n} past the target by components' loops)"),
+        },
         f.seed,
         f.eager,
         f.lazy,

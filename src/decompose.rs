@@ -83,6 +83,9 @@ pub struct Decomposition {
     pub fits: crate::merge::FitCounts,
     /// Merges whose points were reduced while the batch before them was priced.
     pub merges_ahead: usize,
+    /// Merges that components' loops did past the last target (they run each component
+    /// whole, then the output is replayed from their first merges; merge/components.rs).
+    pub merges_past: usize,
     /// Spatial parts merged in parallel before the global loop (1 = none).
     pub partitions: usize,
 }
@@ -140,6 +143,8 @@ pub fn decompose_with_progress(
     let last = *targets.last().expect("validated: one target or more");
     let total = mesh.face_count().saturating_sub(last).max(1) as f64;
     dec.partitions = parts(mesh, params, targets[0]);
+    // Snapshots that need no global loop (targets at or above the component count).
+    let mut early = Vec::new();
     let clusters = if dec.partitions > 1 {
         t.push("seed", now);
         // Phase 1 of `Params::partitions`: parts merged in parallel (merge/partition.rs).
@@ -150,30 +155,50 @@ pub fn decompose_with_progress(
         (dec.merges, dec.fits) = (p1.merges, p1.fits);
         let clusters = partition::clusters(p1, q, volumes, &pairs);
         t.push("partitions", now);
-        clusters
-    } else if let Some(comps) = component_phase(mesh, params, &pairs, targets[0]) {
+        Some(clusters)
+    } else if let Some(comps) = component_phase(mesh, params, &pairs) {
         t.push("seed", now);
         // Every component merged whole, groups of them in parallel: the same clusters
         // the global loop reaches before it links components (merge/components.rs).
         let now = Instant::now();
-        let merged = |m: usize| progress(m as f64 / total);
+        let merged = |m: usize| progress((m as f64 / total).min(1.0));
+        let count = comps.len();
         let p1 = components::merge_components(&ev, &q, &volumes, &pairs, comps, &merged);
         (dec.merges, dec.fits) = (p1.merges, p1.fits);
-        let clusters = partition::clusters(p1, q, volumes, &pairs);
+        // At targets of at least one cluster per component, the global loop's clusters
+        // are replayed from the components' own merges (merge/components.rs).
+        let replayed;
+        (early, replayed) = components::snapshots(&ev, &p1, &q, &volumes, &pairs, &targets, count);
+        let whole = early.len() == targets.len();
+        if whole {
+            (dec.merges, dec.merges_past) = (replayed, p1.merges - replayed);
+        }
+        // The global loop goes on only to targets below the component count.
+        let clusters = (!whole).then(|| partition::clusters(p1, q, volumes, &pairs));
         t.push("components", now);
         clusters
     } else {
         let clusters = Clusters::new(q, volumes, &pairs);
         t.push("seed", now);
-        clusters
+        Some(clusters)
     };
     drop(pairs); // the clusters hold the adjacency now
 
     // Greedy merging down through every target in one pass (Alg. 1 loop).
     let now = Instant::now();
-    let (done, rest) = (dec.merges as f64, clusters.live.saturating_sub(last) as f64);
-    let phase2 = |f: f64| progress((done + f * rest) / total);
-    let merged = crate::merge::run(&ev, clusters, &targets, &phase2);
+    let merged = match clusters {
+        None => crate::merge::MergeOutput {
+            snapshots: early,
+            ..Default::default()
+        },
+        Some(clusters) => {
+            let (done, rest) = (dec.merges as f64, clusters.live.saturating_sub(last) as f64);
+            let phase2 = |f: f64| progress((done + f * rest) / total);
+            let mut m = crate::merge::run(&ev, clusters, &targets[early.len()..], &phase2);
+            m.snapshots.splice(0..0, early);
+            m
+        }
+    };
     dec.bridge_edges = merged.bridge_edges;
     dec.merges += merged.merges;
     dec.fits += merged.fits;
@@ -210,19 +235,15 @@ fn parts(mesh: &Mesh, params: &Params, largest_target: usize) -> usize {
 
 /// The input's connected components when the run can merge them separately first
 /// ([`components::applies`]), else `None`.
-fn component_phase(
-    mesh: &Mesh,
-    params: &Params,
-    pairs: &[(u32, u32)],
-    largest_target: usize,
-) -> Option<Vec<Vec<u32>>> {
+fn component_phase(mesh: &Mesh, params: &Params, pairs: &[(u32, u32)]) -> Option<Vec<Vec<u32>>> {
     let faces = mesh.face_count();
     let capped = params.max_excess_volume.is_some();
     if faces < components::MIN_FACES || capped {
         return None;
     }
     let comps = components::components(faces, pairs);
-    components::applies(faces, comps.len(), largest_target, capped).then_some(comps)
+    let largest = comps.iter().map(Vec::len).max().unwrap_or(0);
+    components::applies(faces, comps.len(), largest, capped).then_some(comps)
 }
 
 fn input_info(mesh: &Mesh, (lo, hi): (V3, V3)) -> InputInfo {

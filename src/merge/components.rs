@@ -3,25 +3,32 @@
 //! components (deviation 6). Entries of one component never change another's, and
 //! the queue's order between two entries of the same component (cost, then ids, then
 //! pricing time) does not depend on what happens elsewhere, so the global loop does
-//! each component's merges in the order a loop on that component alone would. When
-//! the largest target is below the number of components, the global loop merges every
-//! component into one cluster before it links any, so that state can be computed per
-//! component: here, in parallel, by groups of whole components, each with the run's
-//! own settings ([`partition::merge_groups`], not lazy), on a sub-mesh whose face ids
-//! keep their order, and handed to phase 2 with the neighbour lists the global loop
-//! would hold. Phase 2 is the global loop from those clusters, which starts by linking
-//! components.
+//! each component's merges in the order a loop on that component alone would, and it
+//! merges every component into one cluster before it links any. Here that is done
+//! in parallel, by groups of whole components, each with the run's own settings
+//! ([`partition::merge_groups`], [`Kind::Components`]), on a sub-mesh whose face ids
+//! keep their order; each group's loop records its merges ([`Traced`]). Then:
+//!
+//! - a target at or above the number of components is reached before any linking:
+//!   the global loop's clusters there are the first `faces − target` merges of all
+//!   groups in the order the global loop interleaves them (each merge's key says
+//!   where), replayed by [`snapshots`] — no global loop at all;
+//! - a smaller target is reached by phase 2, the global loop started from every
+//!   component whole (with the neighbour lists the global loop would hold), which
+//!   starts by linking components.
 //!
 //! One thing is not the same: queue purges (`merge::driver::purge`) happen at other
 //! queue sizes in a smaller loop, and under deferred re-pricing a purge can drop a
 //! stale key that the global loop would have re-priced when popped (another, later key
 //! of the same pair then stands for it), which can change the order inside a
 //! component. Measured: the same primitives on the demo scene under every re-pricing
-//! mode (the tests below), on all 79 corpus meshes below 871k faces at `-n 1%` and
-//! `-n 200,40`, and on 78 of 79 at `-n 32` (ARCHITECTURE.md, "Performance").
+//! mode, at targets above, at and below its component count (the tests below); on
+//! the corpus, ARCHITECTURE.md, "Performance".
 
+use super::cluster::Clusters;
 use super::cost::Evaluator;
-use super::partition::{self, Phase1};
+use super::driver::{snapshot, Scope, Snapshot, Traced};
+use super::partition::{self, Kind, Phase1};
 use crate::math::Sym3;
 
 /// Inputs with fewer faces are merged by the global loop alone (the sub-meshes are
@@ -62,12 +69,20 @@ pub fn components(faces: usize, pairs: &[(u32, u32)]) -> Vec<Vec<u32>> {
     out
 }
 
+/// The largest component may hold at most this share of the faces: its group's loop
+/// runs alone on one thread without the global loop's re-pricing worker, so a
+/// dominant component is merged faster by the global loop. Wall time at `-n 1%`
+/// (ARCHITECTURE.md, "Performance"): largest share 0.56 (coacd_kettle) 0.07 → 0.06 s,
+/// 0.66 (panda_link6_visual) 0.18 → 0.18 s, 0.87 (bathtub) 0.11 → 0.13 s, 1.00
+/// (dragon_vrip_res2, 12 components) 1.9 → 2.8 s.
+pub const MAX_SHARE: f64 = 0.6;
+
 /// Whether the run's first phase can be merged per component: at least [`MIN_FACES`]
 /// faces, no excess cap (it can refuse merges and leave a component in pieces, which
-/// this phase does not claim to reproduce), and the largest target below the number
-/// of components.
-pub fn applies(faces: usize, components: usize, largest_target: usize, capped: bool) -> bool {
-    faces >= MIN_FACES && !capped && components >= 2 && largest_target < components
+/// this phase does not claim to reproduce), two components or more, and none holding
+/// more than [`MAX_SHARE`] of the faces.
+pub fn applies(faces: usize, components: usize, largest: usize, capped: bool) -> bool {
+    faces >= MIN_FACES && !capped && components >= 2 && largest as f64 <= MAX_SHARE * faces as f64
 }
 
 /// Splits `comps` into at most [`GROUPS`] groups of whole components balanced by
@@ -102,7 +117,69 @@ pub fn merge_components(
     merged: &(dyn Fn(usize) + Sync),
 ) -> Phase1 {
     let (parts, targets) = groups(comps);
-    partition::merge_groups(ev, q, volume, pairs, &parts, targets, false, merged)
+    partition::merge_groups(
+        ev,
+        q,
+        volume,
+        pairs,
+        &parts,
+        targets,
+        Kind::Components,
+        merged,
+    )
+}
+
+/// The global loop's snapshots at every target of `targets` (decreasing) that is at
+/// least the number of `components`, from phase 1's traces: the global loop does each
+/// group's merges in the group's order, interleaved by their keys ([`Traced`]), so a
+/// target's clusters come from the first `faces − target` merges in that order. They
+/// are replayed through [`Clusters::merge`] in each group's own order — the operators
+/// add up and the face lists splice as in the global loop — and fitted as it fits them.
+/// Also returns how many merges the last of them holds.
+pub fn snapshots(
+    ev: &Evaluator,
+    p1: &Phase1,
+    q: &[Sym3],
+    volume: &[f64],
+    pairs: &[(u32, u32)],
+    targets: &[usize],
+    components: usize,
+) -> (Vec<Snapshot>, usize) {
+    let traces = p1.traces();
+    let order = global_order(&traces);
+    let mut cl = Clusters::new(q.to_vec(), volume.to_vec(), pairs);
+    let faces = cl.len();
+    // Merges of each group replayed, and how many of the global order are counted.
+    let (mut done, mut want, mut counted) = (vec![0; traces.len()], vec![0; traces.len()], 0);
+    let mut out = Vec::new();
+    for &target in targets.iter().filter(|&&t| t >= components) {
+        let m = faces.saturating_sub(target).min(order.len());
+        for &(g, _) in &order[counted..m.max(counted)] {
+            want[g as usize] += 1;
+        }
+        counted = counted.max(m);
+        for (g, trace) in traces.iter().enumerate() {
+            for t in &trace[done[g]..want[g]] {
+                cl.merge(t.a, t.b, Vec::new(), 0.0);
+            }
+            done[g] = want[g];
+        }
+        out.push(snapshot(ev, &cl, target, Scope::Whole));
+    }
+    (out, counted)
+}
+
+/// Every merge of `traces` as (group, index), in the global loop's order: by key,
+/// each group's own order kept (its keys never decrease).
+fn global_order(traces: &[&[Traced]]) -> Vec<(u32, u32)> {
+    let mut order: Vec<(u32, u32)> = Vec::with_capacity(traces.iter().map(|t| t.len()).sum());
+    for (g, t) in traces.iter().enumerate() {
+        debug_assert!(t.windows(2).all(|w| w[0].cmp_key(&w[1]).is_le()));
+        order.extend((0..t.len() as u32).map(|i| (g as u32, i)));
+    }
+    let key = |&(g, i): &(u32, u32)| &traces[g as usize][i as usize];
+    order.sort_unstable_by(|x, y| key(x).cmp_key(key(y)).then(x.cmp(y)));
+    order
 }
 
 #[cfg(test)]
@@ -112,34 +189,86 @@ mod tests {
     use crate::merge::{run, Clusters};
     use crate::{Params, Reduction};
 
-    /// The demo scene (several separate objects) merged to `n` < its component count
-    /// by the global loop alone and by this module's phase 1 then the global loop:
-    /// the same primitives and members at every target.
+    /// The demo scene (several separate objects) merged to `targets` (decreasing) by
+    /// the global loop alone and as a run does when components apply (phase 1, the
+    /// replayed snapshots at targets of at least one cluster per component, phase 2
+    /// for the rest): the same primitives and members at every target.
     fn same_as_global(p: Params, targets: &[usize]) {
         let mesh = crate::Mesh::from_builder(crate::demo::demo_scene());
         with_input(&mesh, &p, |ev, q, vols, pairs| {
             let comps = components(mesh.face_count(), pairs);
-            assert!(targets[0] < comps.len(), "{} components", comps.len());
+            let count = comps.len();
             let fresh = || Clusters::new(q.to_vec(), vols.to_vec(), pairs);
             let global = run(ev, fresh(), targets, &|_| {});
             let p1 = merge_components(ev, q, vols, pairs, comps, &|_| {});
-            let cl = partition::clusters(p1, q.to_vec(), vols.to_vec(), pairs);
-            let split = run(ev, cl, targets, &|_| {});
-            assert_eq!(global.snapshots.len(), split.snapshots.len());
+            let mut split = snapshots(ev, &p1, q, vols, pairs, targets, count).0;
+            let rest = &targets[split.len()..];
+            if !rest.is_empty() {
+                let cl = partition::clusters(p1, q.to_vec(), vols.to_vec(), pairs);
+                split.extend(run(ev, cl, rest, &|_| {}).snapshots);
+            }
+            assert_eq!(global.snapshots.len(), split.len());
             let sorted = |m: &[Vec<u32>]| {
                 let mut m: Vec<Vec<u32>> = m.to_vec();
                 m.iter_mut().for_each(|f| f.sort_unstable());
                 m
             };
-            for (a, b) in global.snapshots.iter().zip(&split.snapshots) {
+            for (a, b) in global.snapshots.iter().zip(&split) {
+                assert_eq!(a.target, b.target);
                 assert_eq!(format!("{:?}", a.prims), format!("{:?}", b.prims), "{p:?}");
                 assert_eq!(sorted(&a.members), sorted(&b.members));
             }
         });
     }
 
+    /// Targets from every face down to one cluster, through the component count.
+    fn demo_targets() -> Vec<usize> {
+        let mesh = crate::Mesh::from_builder(crate::demo::demo_scene());
+        let p = Params::default();
+        let (faces, count) = with_input(&mesh, &p, |_, _, _, pairs| {
+            (
+                mesh.face_count(),
+                components(mesh.face_count(), pairs).len(),
+            )
+        });
+        assert!(
+            count >= 4 && faces > 8 * count,
+            "{faces} faces, {count} components"
+        );
+        let mut t = vec![
+            faces + 3,
+            faces - 1,
+            faces / 2,
+            faces / 5,
+            3 * count,
+            count + 1,
+        ];
+        t.extend([count, count - 1, 2, 1]);
+        t.sort_unstable_by(|a, b| b.cmp(a));
+        t.dedup();
+        t
+    }
+
+    /// Every merge's place in the global order matters at some target: under fully
+    /// deferred re-pricing (the most entries re-priced when popped, whose keys order
+    /// the merges too), the same as the global loop at every 4th target down to one.
+    #[test]
+    fn every_fourth_target_matches_the_global_loop() {
+        let faces = demo_targets()[0] - 3;
+        let all: Vec<usize> = (1..=faces).rev().step_by(4).collect();
+        let reprice = crate::Reprice::Deferred { min_degree: 0 };
+        same_as_global(
+            Params {
+                reprice,
+                ..Params::default()
+            },
+            &all,
+        );
+    }
+
     #[test]
     fn merging_components_apart_changes_nothing() {
+        let targets = demo_targets();
         for reprice in reprice_modes() {
             for reduction in [Reduction::Hull, Reduction::Extremes] {
                 let p = Params {
@@ -147,9 +276,26 @@ mod tests {
                     reduction,
                     ..Params::default()
                 };
-                same_as_global(p, &[3, 2, 1]);
+                same_as_global(p, &targets);
             }
         }
+    }
+
+    /// Merges of two loops interleave by key, each loop's own order kept on equal keys.
+    #[test]
+    fn global_order_interleaves_by_key() {
+        let t = |cost: f64, a: u32| Traced {
+            cost,
+            key_a: a,
+            key_b: a + 1,
+            a,
+            b: a + 1,
+        };
+        let g0 = [t(1.0, 0), t(3.0, 0), t(3.0, 0), t(5.0, 2)];
+        let g1 = [t(2.0, 10), t(3.0, 10), t(4.0, 12)];
+        let order = global_order(&[&g0, &g1]);
+        let want = [(0, 0), (1, 0), (0, 1), (0, 2), (1, 1), (1, 2), (0, 3)];
+        assert_eq!(order, want);
     }
 
     #[test]
@@ -175,10 +321,12 @@ mod tests {
     }
 
     #[test]
-    fn applies_only_below_the_component_count() {
-        assert!(applies(MIN_FACES, 10, 9, false));
-        assert!(!applies(MIN_FACES, 10, 10, false));
-        assert!(!applies(MIN_FACES, 10, 9, true));
-        assert!(!applies(MIN_FACES - 1, 10, 9, false));
+    fn applies_only_without_a_dominant_component() {
+        let big = MIN_FACES * 10;
+        assert!(applies(big, 10, big * 6 / 10, false));
+        assert!(!applies(big, 10, big * 6 / 10 + 1, false));
+        assert!(!applies(big, 1, big / 2, false));
+        assert!(!applies(big, 10, big / 2, true));
+        assert!(!applies(MIN_FACES - 1, 10, 1, false));
     }
 }

@@ -55,6 +55,52 @@ pub struct MergeOutput {
     pub fits: FitCounts,
     /// Merges whose points [`look_ahead`] had reduced (while a batch was priced).
     pub ahead: usize,
+    /// Every merge in order, with its place in the global order (`Scope::Traced` only).
+    pub trace: Vec<Traced>,
+}
+
+/// One merge of a traced loop: the pair merged, and the key at which a global loop
+/// holding this loop's entries among others does it. Entries of other loops never
+/// change this loop's, so the global loop pops each loop's entries in that loop's own
+/// order, and merges when the popped entry is fresh; an entry can come out after a
+/// cheaper one of the same loop only because it was pushed later, by an entry popped
+/// before it. So the global loop does this merge after every other loop's entries
+/// that pop before the latest (in pop order) of this loop's entries popped so far —
+/// the key. Entries dropped when popped change nothing and are left out (the next
+/// entry acted on pops no earlier than they did: it was queued when they were popped).
+/// Ids are the loop's own until `merge::partition` maps them to the input's.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Traced {
+    pub cost: f64,
+    pub key_a: u32,
+    pub key_b: u32,
+    pub a: u32,
+    pub b: u32,
+}
+
+impl Traced {
+    /// Global merge order between loops: by key (cost, then ids); two loops' keys are
+    /// never equal (their pairs differ), and one loop's keys never decrease.
+    pub fn cmp_key(&self, o: &Traced) -> std::cmp::Ordering {
+        self.cost
+            .total_cmp(&o.cost)
+            .then(self.key_a.cmp(&o.key_a))
+            .then(self.key_b.cmp(&o.key_b))
+    }
+}
+
+/// The latest entry in pop order that a traced loop popped and acted on.
+#[derive(Clone, Copy, Debug, Default)]
+struct Top(Option<Candidate>);
+
+impl Top {
+    /// `c` was popped and acted on (merged or re-priced).
+    fn popped(&mut self, c: &Candidate) {
+        // `Candidate`'s order is reversed for `BinaryHeap`: the least pops last.
+        if self.0.is_none_or(|t| *c < t) {
+            self.0 = Some(*c);
+        }
+    }
 }
 
 /// Candidate merges priced by the merge loop, by occasion.
@@ -165,20 +211,24 @@ fn run_counted<Q: Queue>(
 pub(super) enum Scope {
     Whole,
     Part,
+    /// A part that also records its merges (`MergeOutput::trace`).
+    Traced,
 }
 
 /// Phase 1 of `Params::partitions`: merges `cl` (one part's clusters) down to
 /// `target` on this thread alone (no worker: the parts run in parallel), or until
 /// adjacency runs out, reporting progress as [`run`] does; returns the clusters and
-/// the merge counts.
+/// the merge counts (and, when `traced`, every merge: [`Traced`]).
 pub(super) fn merge_part(
     ev: &Evaluator,
     cl: Clusters,
     target: usize,
+    traced: bool,
     progress: &(dyn Fn(f64) + Sync),
 ) -> (Clusters, MergeOutput) {
     let mut pricer = Pricer::serial(ev);
-    let (out, cl) = merge_loop::<RadixHeap>(ev, cl, &[target], progress, &mut pricer, Scope::Part);
+    let scope = if traced { Scope::Traced } else { Scope::Part };
+    let (out, cl) = merge_loop::<RadixHeap>(ev, cl, &[target], progress, &mut pricer, scope);
     (cl, out)
 }
 
@@ -206,6 +256,8 @@ fn merge_loop<Q: Queue>(
     // The points of a merge reduced ahead of its turn ([`look_ahead`]); batch buffer.
     let mut ahead: Option<Ahead> = None;
     let mut batch = Vec::new();
+    // The latest entry acted on, in pop order (`Scope::Traced`).
+    let mut top = Top::default();
     let start = cl.live;
     let last = *targets.last().expect("at least one target");
     let mut next = 0;
@@ -219,9 +271,24 @@ fn merge_loop<Q: Queue>(
         }
         let c = match next_step(ev, &mut cl, &mut heap, &mut lazy, &mut ws, &mut out, scope) {
             Step::Merge(c) => c,
+            Step::Repriced(c) => {
+                top.popped(&c);
+                continue;
+            }
             Step::Again => continue,
             Step::Stop => break,
         };
+        if scope == Scope::Traced {
+            top.popped(&c);
+            let k = top.0.unwrap_or(c);
+            out.trace.push(Traced {
+                cost: k.cost,
+                key_a: k.a,
+                key_b: k.b,
+                a: c.a,
+                b: c.b,
+            });
+        }
         if heap.len() > purge_at {
             purge(ev, &cl, &mut lazy, &mut heap);
             purge_at = (heap.len() + heap.len() / 4).max(PURGE_MIN);
@@ -262,7 +329,9 @@ fn merge_loop<Q: Queue>(
 enum Step {
     /// Apply this fresh merge.
     Merge(Candidate),
-    /// A stale entry was dropped or re-priced, or components were bridged: pop again.
+    /// This stale entry was re-priced: pop again.
+    Repriced(Candidate),
+    /// A stale entry was dropped, or components were bridged: pop again.
     Again,
     /// Nothing left to merge (a part's adjacency, or the whole input's after bridging).
     Stop,
@@ -280,7 +349,7 @@ fn next_step<Q: Queue>(
     scope: Scope,
 ) -> Step {
     let Some(c) = heap.pop() else {
-        if scope == Scope::Part {
+        if scope != Scope::Whole {
             return Step::Stop;
         }
         let bridged = bridge(ev, cl);
@@ -301,7 +370,7 @@ fn next_step<Q: Queue>(
             if let Some((fresh, _)) = ev.candidate(cl, a, b, ws) {
                 heap.push(fresh);
             }
-            Step::Again
+            Step::Repriced(c)
         }
     }
 }
@@ -469,8 +538,8 @@ fn centroid(ev: &Evaluator, cl: &Clusters, c: u32) -> [f64; 3] {
 
 /// Fits every live cluster (in root order) on all of its faces' vertices, for output
 /// (a part's loop only records that the target was reached).
-fn snapshot(ev: &Evaluator, cl: &Clusters, target: usize, scope: Scope) -> Snapshot {
-    if scope == Scope::Part {
+pub(super) fn snapshot(ev: &Evaluator, cl: &Clusters, target: usize, scope: Scope) -> Snapshot {
+    if scope != Scope::Whole {
         return Snapshot {
             target,
             ..Snapshot::default()

@@ -20,7 +20,7 @@
 
 use super::cluster::Clusters;
 use super::cost::Evaluator;
-use super::driver::{merge_part, FitCounts, MergeOutput};
+use super::driver::{merge_part, FitCounts, MergeOutput, Traced};
 use crate::math::Sym3;
 use crate::mesh::Mesh;
 use rayon::prelude::*;
@@ -46,6 +46,8 @@ struct Groups {
     /// phase 2 then holds the lists the global loop would, so it decides deferrals
     /// (`merge::driver::defer`) as that loop does. Empty for spatial parts.
     neighbors: Vec<(Vec<u32>, u32)>,
+    /// Every merge of the group's loop in order, in input ids (whole components only).
+    trace: Vec<Traced>,
 }
 
 /// Phase 1's result: every part's groups, and the merges it did.
@@ -57,6 +59,11 @@ pub struct Phase1 {
 }
 
 impl Phase1 {
+    /// Each group's merges in order ([`Kind::Components`]; empty for spatial parts).
+    pub(super) fn traces(&self) -> Vec<&[Traced]> {
+        self.parts.iter().map(|g| g.trace.as_slice()).collect()
+    }
+
     /// Number of groups phase 2 starts from.
     pub fn groups(&self) -> usize {
         self.parts.iter().map(|g| g.verts.len()).sum()
@@ -152,12 +159,22 @@ pub fn merge_parts(
         .iter()
         .map(|part| (size * part.len() as u128).div_ceil(faces.max(1)).max(1) as usize)
         .collect();
-    merge_groups(ev, q, volume, pairs, &parts, targets, true, merged)
+    merge_groups(ev, q, volume, pairs, &parts, targets, Kind::Spatial, merged)
+}
+
+/// What phase 1's groups of faces are.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Kind {
+    /// Spatial parts ([`split`]): merged lazily (every merge deferred, deviation 19)
+    /// unless the run re-prices exactly.
+    Spatial,
+    /// Whole connected components (`merge::components`): merged with the run's own
+    /// settings, each group's neighbour lists kept and its merges traced.
+    Components,
 }
 
 /// Merges each of `parts` (faces increasing within a part) down to its target, in
-/// parallel, one task per part: lazily (every merge deferred, deviation 19) when
-/// `lazy` and the run does not re-price exactly, else with the run's own settings.
+/// parallel, one task per part, as `kind` says.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn merge_groups(
     ev: &Evaluator,
@@ -166,7 +183,7 @@ pub(super) fn merge_groups(
     pairs: &[(u32, u32)],
     parts: &[Vec<u32>],
     targets: Vec<usize>,
-    lazy: bool,
+    kind: Kind,
     merged: &(dyn Fn(usize) + Sync),
 ) -> Phase1 {
     let local_pairs = pairs_by_part(parts, pairs, ev.mesh.face_count());
@@ -183,7 +200,7 @@ pub(super) fn merge_groups(
                 done[i].store((f * span).round() as usize, Relaxed);
                 merged(done.iter().map(|d| d.load(Relaxed)).sum());
             };
-            merge_one(ev, q, volume, part, lp, target, lazy, &report)
+            merge_one(ev, q, volume, part, lp, target, kind, &report)
         })
         .collect();
     let mut out = Phase1::default();
@@ -257,7 +274,7 @@ fn merge_one(
     part: &[u32],
     pairs: &[(u32, u32)],
     target: usize,
-    lazy: bool,
+    kind: Kind,
     progress: &(dyn Fn(f64) + Sync),
 ) -> (Groups, MergeOutput) {
     let (sub, sub_welded, global) = sub_mesh(ev.mesh, ev.welded, part);
@@ -267,7 +284,7 @@ fn merge_one(
         welded: &sub_welded,
         // Lazy greedy for every merge of a part unless re-pricing is exact (deviation
         // 19: user time ×0.62–0.74, Chamfer within ±1% but one input at +6.5%).
-        defer_degree: if lazy && ev.defer_degree != u32::MAX {
+        defer_degree: if kind == Kind::Spatial && ev.defer_degree != u32::MAX {
             0
         } else {
             ev.defer_degree
@@ -279,9 +296,20 @@ fn merge_one(
         part.iter().map(|&f| volume[f as usize]).collect(),
         pairs,
     );
-    let (cl, out) = merge_part(&sub_ev, cl, target, progress);
+    let traced = kind == Kind::Components;
+    let (cl, mut out) = merge_part(&sub_ev, cl, target, traced, progress);
+    // The merges in the input's ids (increasing with the part's own, so same order).
+    let global_id = |f: u32| part[f as usize];
+    let trace = std::mem::take(&mut out.trace).into_iter().map(|t| Traced {
+        key_a: global_id(t.key_a),
+        key_b: global_id(t.key_b),
+        a: global_id(t.a),
+        b: global_id(t.b),
+        ..t
+    });
     let mut g = Groups {
         offsets: vec![0],
+        trace: trace.collect(),
         ..Groups::default()
     };
     for r in cl.roots() {
@@ -293,7 +321,7 @@ fn merge_one(
         g.volume.push(cl.volume[r as usize]);
         g.verts
             .push(cl.verts(r).iter().map(|&v| global[v as usize]).collect());
-        if !lazy {
+        if kind == Kind::Components {
             let (n, resolved) = cl.neighbor_list(r);
             g.neighbors
                 .push((n.iter().map(|&f| part[f as usize]).collect(), resolved));

@@ -13,7 +13,7 @@
 
 use super::cluster::Clusters;
 use super::heap::Candidate;
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 
 /// What a popped queue entry stands for.
 pub(super) enum Pop {
@@ -28,7 +28,7 @@ pub(super) enum Pop {
 /// Pairs re-priced when popped, and the clock they were re-priced at.
 #[derive(Debug, Default)]
 pub(super) struct Lazy {
-    priced: HashMap<(u32, u32), u32>,
+    priced: FxHashMap<(u32, u32), u32>,
 }
 
 impl Lazy {

@@ -123,7 +123,8 @@ struct DecomposeArgs {
     /// Split the faces into K spatial parts merged in parallel (to 16x the largest
     /// target) before the global merge: faster on several cores, merges across parts
     /// wait (docs/results/partitions.md). 1 = one global greedy (the paper); auto = 16
-    /// parts for inputs of 524,288 faces or more, else 1.
+    /// parts (or one per 65,536 faces if more) for inputs of 524,288 faces or more,
+    /// else 1.
     #[arg(long, default_value = "auto")]
     partitions: String,
     /// How merged clusters' points are reduced for pricing: hull (exact: the convex

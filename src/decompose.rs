@@ -153,8 +153,11 @@ pub fn decompose_with_progress(
         let k = dec.partitions;
         let p1 = partition::merge_parts(&ev, &q, &volumes, &pairs, targets[0], k, &merged);
         (dec.merges, dec.fits) = (p1.merges, p1.fits);
-        let clusters = partition::clusters(p1, q, volumes, &pairs);
         t.push("partitions", now);
+        // Phase 2 starts from one cluster per group (serial, linear in the faces).
+        let now = Instant::now();
+        let clusters = partition::clusters(p1, q, volumes, &pairs);
+        t.push("regroup", now);
         Some(clusters)
     } else if let Some(comps) = component_phase(mesh, params, &pairs) {
         t.push("seed", now);

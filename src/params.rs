@@ -19,7 +19,7 @@
 //! | `flat_merge_extent_rel` | 0.01 | merges of coplanar clusters only are priced as if primitives were this thick (fraction of the diagonal): holes and gaps bridged in a plane cost more, so a roof's rim stays a rim instead of closing into a lid; other merges keep their prices | coplanar merges cost less; 0 = off (the paper's pricing: rims close into lids at low counts) |
 //! | `remove_contained` | true | — | keeps nested primitives |
 //! | `reprice` | `Deferred { min_degree: 64 }` | merges of clusters with at least `min_degree` neighbours leave their pairs' old queue entries as keys and re-price each when popped; a higher `min_degree` defers fewer merges (`Exact`: none, the paper's order, F^1.5 on large flat regions) | defers more merges: fewer fits, faster, the order drifts from exact greedy; `min_degree: 0` defers all (about 0.8× the time on the corpus, quality mixed: docs/results/reprice.md) |
-//! | `partitions` | `Auto` (16 parts from 524,288 faces, else 1) | `Fixed(K)`: the faces are split into K spatial parts, merged in parallel (one task each, re-pricing lazily unless `reprice` is `Exact`) to 16× the largest target before the global merge loop: faster on 2+ cores, merges across part boundaries wait (docs/results/partitions.md) | `Fixed(1)`: one global greedy, Alg. 1, on every input |
+//! | `partitions` | `Auto` (from 524,288 faces, 16 parts or one per 65,536 faces if more; else 1) | `Fixed(K)`: the faces are split into K spatial parts, merged in parallel (one task each, re-pricing lazily unless `reprice` is `Exact`) to 16× the largest target before the global merge loop: faster on 2+ cores, merges across part boundaries wait (docs/results/partitions.md) | `Fixed(1)`: one global greedy, Alg. 1, on every input |
 //! | `reduction` | `Hull` | — | `Extremes`: clusters keep only their extreme points along 13 fixed axes (≤ 26): no convex hull per merge, cheaper fits; merges are priced on an inner approximation, so the order (and the fit) changes: dragon merge stage 9.85 → 8.53 s on one thread (one run), corpus quality no worse on average but mixed per mesh (docs/results/reduction.md) |
 //! | `remove_thin_boxes` | None | (when set) drops boxes thinner than this fraction of the diagonal if still covered | — |
 
@@ -71,8 +71,9 @@ pub enum Reduction {
 /// global merge loop (`merge::partition`; ARCHITECTURE.md, deviations 17 and 19).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Partitions {
-    /// [`AUTO_PARTS`] parts for inputs of at least [`AUTO_MIN_FACES`] faces (large scans,
-    /// where the parts cost no measurable quality), else one: Alg. 1 as is.
+    /// For inputs of at least [`AUTO_MIN_FACES`] faces (large scans, where the parts
+    /// cost no measurable quality), [`AUTO_PARTS`] parts or one per [`AUTO_PART_FACES`]
+    /// faces if that is more; else one: Alg. 1 as is.
     #[default]
     Auto,
     /// Exactly this many parts; 1 = one global greedy (Alg. 1).
@@ -82,14 +83,22 @@ pub enum Partitions {
 /// Inputs with at least this many faces are split under [`Partitions::Auto`].
 pub const AUTO_MIN_FACES: usize = 1 << 19;
 
-/// The parts [`Partitions::Auto`] uses on large inputs.
+/// The fewest parts [`Partitions::Auto`] uses on large inputs.
 pub const AUTO_PARTS: usize = 16;
+
+/// [`Partitions::Auto`] gives a part at most about this many faces, so that a part's
+/// loop keeps its working set near one core's 1 MiB L2 cache and phase 1's time grows
+/// with the input's size, not faster (ARCHITECTURE.md, deviation 19): the 3.5M-face
+/// dragon ×4 in 54 parts instead of 16.
+pub const AUTO_PART_FACES: usize = 1 << 16;
 
 impl Partitions {
     /// The number of parts for an input of `faces` faces.
     pub fn parts(self, faces: usize) -> usize {
         match self {
-            Partitions::Auto if faces >= AUTO_MIN_FACES => AUTO_PARTS,
+            Partitions::Auto if faces >= AUTO_MIN_FACES => {
+                AUTO_PARTS.max(faces.div_ceil(AUTO_PART_FACES))
+            }
             Partitions::Auto => 1,
             Partitions::Fixed(k) => k,
         }
@@ -276,11 +285,19 @@ impl Params {
 mod tests {
     use super::*;
 
-    /// Auto splits only large inputs, into `AUTO_PARTS`; a fixed count is used as given.
+    /// Auto splits only large inputs, into `AUTO_PARTS` or more for the largest; a
+    /// fixed count is used as given.
     #[test]
     fn partitions_auto_splits_large_inputs_only() {
         assert_eq!(Partitions::Auto.parts(AUTO_MIN_FACES - 1), 1);
         assert_eq!(Partitions::Auto.parts(AUTO_MIN_FACES), AUTO_PARTS);
+        assert_eq!(
+            Partitions::Auto.parts(AUTO_PARTS * AUTO_PART_FACES),
+            AUTO_PARTS
+        );
+        assert_eq!(Partitions::Auto.parts(871_414), AUTO_PARTS);
+        assert_eq!(Partitions::Auto.parts(3_485_656), 54);
+        assert_eq!(Partitions::Auto.parts(17 * AUTO_PART_FACES + 1), 18);
         assert_eq!(Partitions::Fixed(1).parts(10 * AUTO_MIN_FACES), 1);
         assert_eq!(Partitions::Fixed(8).parts(10), 8);
     }

@@ -166,7 +166,8 @@ pub fn decompose_with_progress(
         let now = Instant::now();
         let merged = |m: usize| progress((m as f64 / total).min(1.0));
         let count = comps.len();
-        let p1 = components::merge_components(&ev, &q, &volumes, &pairs, comps, &merged);
+        let p1 =
+            components::merge_components(&ev, &q, &volumes, &pairs, comps, targets[0], &merged);
         (dec.merges, dec.fits) = (p1.merges, p1.fits);
         // At targets of at least one cluster per component, the global loop's clusters
         // are replayed from the components' own merges (merge/components.rs).

@@ -7,7 +7,8 @@
 //! merges every component into one cluster before it links any. Here that is done
 //! in parallel, by groups of whole components, each with the run's own settings
 //! ([`partition::merge_groups`], [`Kind::Components`]), on a sub-mesh whose face ids
-//! keep their order; each group's loop records its merges ([`Traced`]). Then:
+//! keep their order; each group's loop records its merges ([`Traced`]) when a target
+//! needs them. Then:
 //!
 //! - a target at or above the number of components is reached before any linking:
 //!   the global loop's clusters there are the first `faces − target` merges of all
@@ -106,27 +107,22 @@ fn groups(comps: Vec<Vec<u32>>) -> (Vec<Vec<u32>>, Vec<usize>) {
 }
 
 /// Merges every component into one cluster (or as far as its adjacency goes), groups
-/// of components in parallel; phase 2 continues from the result
-/// ([`partition::clusters`]).
+/// of components in parallel; [`snapshots`] and phase 2 ([`partition::clusters`])
+/// continue from the result. The merges are traced only when [`snapshots`] will need
+/// them: when the largest target is at least the number of components.
 pub fn merge_components(
     ev: &Evaluator,
     q: &[Sym3],
     volume: &[f64],
     pairs: &[(u32, u32)],
     comps: Vec<Vec<u32>>,
+    largest_target: usize,
     merged: &(dyn Fn(usize) + Sync),
 ) -> Phase1 {
+    let traced = largest_target >= comps.len();
     let (parts, targets) = groups(comps);
-    partition::merge_groups(
-        ev,
-        q,
-        volume,
-        pairs,
-        &parts,
-        targets,
-        Kind::Components,
-        merged,
-    )
+    let kind = Kind::Components { traced };
+    partition::merge_groups(ev, q, volume, pairs, &parts, targets, kind, merged)
 }
 
 /// The global loop's snapshots at every target of `targets` (decreasing) that is at
@@ -145,6 +141,9 @@ pub fn snapshots(
     targets: &[usize],
     components: usize,
 ) -> (Vec<Snapshot>, usize) {
+    if !targets.iter().any(|&t| t >= components) {
+        return (Vec::new(), 0);
+    }
     let traces = p1.traces();
     let order = global_order(&traces);
     let mut cl = Clusters::new(q.to_vec(), volume.to_vec(), pairs);
@@ -200,7 +199,7 @@ mod tests {
             let count = comps.len();
             let fresh = || Clusters::new(q.to_vec(), vols.to_vec(), pairs);
             let global = run(ev, fresh(), targets, &|_| {});
-            let p1 = merge_components(ev, q, vols, pairs, comps, &|_| {});
+            let p1 = merge_components(ev, q, vols, pairs, comps, targets[0], &|_| {});
             let mut split = snapshots(ev, &p1, q, vols, pairs, targets, count).0;
             let rest = &targets[split.len()..];
             if !rest.is_empty() {

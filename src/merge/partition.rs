@@ -59,7 +59,7 @@ pub struct Phase1 {
 }
 
 impl Phase1 {
-    /// Each group's merges in order ([`Kind::Components`]; empty for spatial parts).
+    /// Each group's merges in order (traced [`Kind::Components`], else empty).
     pub(super) fn traces(&self) -> Vec<&[Traced]> {
         self.parts.iter().map(|g| g.trace.as_slice()).collect()
     }
@@ -169,8 +169,8 @@ pub(super) enum Kind {
     /// unless the run re-prices exactly.
     Spatial,
     /// Whole connected components (`merge::components`): merged with the run's own
-    /// settings, each group's neighbour lists kept and its merges traced.
-    Components,
+    /// settings, each group's neighbour lists kept, and its merges traced if `traced`.
+    Components { traced: bool },
 }
 
 /// Merges each of `parts` (faces increasing within a part) down to its target, in
@@ -296,7 +296,7 @@ fn merge_one(
         part.iter().map(|&f| volume[f as usize]).collect(),
         pairs,
     );
-    let traced = kind == Kind::Components;
+    let traced = kind == Kind::Components { traced: true };
     let (cl, mut out) = merge_part(&sub_ev, cl, target, traced, progress);
     // The merges in the input's ids (increasing with the part's own, so same order).
     let global_id = |f: u32| part[f as usize];
@@ -321,7 +321,7 @@ fn merge_one(
         g.volume.push(cl.volume[r as usize]);
         g.verts
             .push(cl.verts(r).iter().map(|&v| global[v as usize]).collect());
-        if kind == Kind::Components {
+        if kind != Kind::Spatial {
             let (n, resolved) = cl.neighbor_list(r);
             g.neighbors
                 .push((n.iter().map(|&f| part[f as usize]).collect(), resolved));

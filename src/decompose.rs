@@ -116,22 +116,21 @@ pub fn decompose_with_progress(
         input: input_info(mesh, bounds),
         ..Default::default()
     };
-    let t = &mut dec.timings;
     // Weld overlapping vertices so seams between parts become adjacency (§3.4).
     let now = Instant::now();
     let (welded, distinct) = dedup::weld(mesh, params.dedup);
     dec.welded_vertices = distinct;
-    t.push("dedup", now);
+    dec.timings.push("dedup", now);
     // Faces sharing an edge form the merge graph (§3.3).
     let now = Instant::now();
     let pairs = adjacency::face_pairs(&mesh.face_offsets, &welded);
     dec.adjacency_edges = pairs.len();
-    t.push("adjacency", now);
+    dec.timings.push("adjacency", now);
     // One operator per face (§3.1).
     let now = Instant::now();
     let mut q = Vec::new();
     quadric::face_quadrics(mesh, params.tangent_eps, &mut q);
-    t.push("quadrics", now);
+    dec.timings.push("quadrics", now);
     // One primitive per face seeds the volumes (Alg. 1, line 2).
     let now = Instant::now();
     let ev = evaluator(mesh, &welded, params, bounds);
@@ -143,50 +142,23 @@ pub fn decompose_with_progress(
     let last = *targets.last().expect("validated: one target or more");
     let total = mesh.face_count().saturating_sub(last).max(1) as f64;
     dec.partitions = parts(mesh, params, targets[0]);
-    // Snapshots that need no global loop (targets at or above the component count).
-    let mut early = Vec::new();
-    let clusters = if dec.partitions > 1 {
-        t.push("seed", now);
-        // Phase 1 of `Params::partitions`: parts merged in parallel (merge/partition.rs).
-        let now = Instant::now();
-        let merged = |m: usize| progress(m as f64 / total);
-        let k = dec.partitions;
-        let p1 = partition::merge_parts(&ev, &q, &volumes, &pairs, targets[0], k, &merged);
-        (dec.merges, dec.fits) = (p1.merges, p1.fits);
-        t.push("partitions", now);
-        // Phase 2 starts from one cluster per group (serial, linear in the faces).
-        let now = Instant::now();
-        let clusters = partition::clusters(p1, q, volumes, &pairs);
-        t.push("regroup", now);
-        Some(clusters)
-    } else if let Some(comps) = component_phase(mesh, params, &pairs) {
-        t.push("seed", now);
-        // Every component merged whole, groups of them in parallel: the same clusters
-        // the global loop reaches before it links components (merge/components.rs).
-        let now = Instant::now();
-        let merged = |m: usize| progress((m as f64 / total).min(1.0));
-        let count = comps.len();
-        let p1 =
-            components::merge_components(&ev, &q, &volumes, &pairs, comps, targets[0], &merged);
-        (dec.merges, dec.fits) = (p1.merges, p1.fits);
-        // At targets of at least one cluster per component, the global loop's clusters
-        // are replayed from the components' own merges (merge/components.rs).
-        let replayed;
-        (early, replayed) = components::snapshots(&ev, &p1, &q, &volumes, &pairs, &targets, count);
-        let whole = early.len() == targets.len();
-        if whole {
-            (dec.merges, dec.merges_past) = (replayed, p1.merges - replayed);
-        }
-        // The global loop goes on only to targets below the component count.
-        let clusters = (!whole).then(|| partition::clusters(p1, q, volumes, &pairs));
-        t.push("components", now);
-        clusters
+    let input = MergeInput { q, volumes, pairs };
+    let merged_so_far = |m: usize| progress((m as f64 / total).min(1.0));
+    // Where the global loop starts, and the targets reached without it.
+    let (clusters, early) = if dec.partitions > 1 {
+        dec.timings.push("seed", now);
+        let clusters = partitioned(&ev, input, &targets, &mut dec, &merged_so_far);
+        (Some(clusters), Vec::new())
+    } else if let Some(comps) = component_phase(mesh, params, &input.pairs) {
+        dec.timings.push("seed", now);
+        by_components(&ev, input, comps, &targets, &mut dec, &merged_so_far)
     } else {
+        // The clusters take the adjacency over; the pairs go at the end of this block.
+        let MergeInput { q, volumes, pairs } = input;
         let clusters = Clusters::new(q, volumes, &pairs);
-        t.push("seed", now);
-        Some(clusters)
+        dec.timings.push("seed", now);
+        (Some(clusters), Vec::new())
     };
-    drop(pairs); // the clusters hold the adjacency now
 
     // Greedy merging down through every target in one pass (Alg. 1 loop).
     let now = Instant::now();
@@ -207,7 +179,7 @@ pub fn decompose_with_progress(
     dec.merges += merged.merges;
     dec.fits += merged.fits;
     dec.merges_ahead += merged.ahead;
-    t.push("merge", now);
+    dec.timings.push("merge", now);
     // Remove nested primitives (§3.4), then return to world coordinates.
     let now = Instant::now();
     dec.levels = params
@@ -224,6 +196,64 @@ pub fn decompose_with_progress(
         .collect();
     dec.timings.push("postprocess", now);
     Ok(dec)
+}
+
+/// What the merge loop consumes: the faces' operators and seed volumes, and the
+/// adjacent pairs (its clusters take the adjacency over).
+struct MergeInput {
+    q: Vec<crate::math::Sym3>,
+    volumes: Vec<f64>,
+    pairs: Vec<(u32, u32)>,
+}
+
+/// Phase 1 of `Params::partitions`: the parts merged in parallel (merge/partition.rs),
+/// then one cluster per group for the global loop.
+fn partitioned(
+    ev: &Evaluator,
+    input: MergeInput,
+    targets: &[usize],
+    dec: &mut Decomposition,
+    merged: &(dyn Fn(usize) + Sync),
+) -> Clusters {
+    let now = Instant::now();
+    let MergeInput { q, volumes, pairs } = input;
+    let k = dec.partitions;
+    let p1 = partition::merge_parts(ev, &q, &volumes, &pairs, targets[0], k, merged);
+    (dec.merges, dec.fits) = (p1.merges, p1.fits);
+    dec.timings.push("partitions", now);
+    // Phase 2 starts from one cluster per group (serial, linear in the faces).
+    let now = Instant::now();
+    let clusters = partition::clusters(p1, q, volumes, &pairs);
+    dec.timings.push("regroup", now);
+    clusters
+}
+
+/// Every component merged whole, groups of them in parallel: the same clusters the
+/// global loop reaches before it links components (merge/components.rs). Returns the
+/// snapshots at targets of at least one cluster per component, replayed from the
+/// components' own merges, and the global loop's start if a target lies below.
+fn by_components(
+    ev: &Evaluator,
+    input: MergeInput,
+    comps: Vec<Vec<u32>>,
+    targets: &[usize],
+    dec: &mut Decomposition,
+    merged: &(dyn Fn(usize) + Sync),
+) -> (Option<Clusters>, Vec<crate::merge::Snapshot>) {
+    let now = Instant::now();
+    let MergeInput { q, volumes, pairs } = input;
+    let count = comps.len();
+    let p1 = components::merge_components(ev, &q, &volumes, &pairs, comps, targets[0], merged);
+    (dec.merges, dec.fits) = (p1.merges, p1.fits);
+    let (early, replayed) = components::snapshots(ev, &p1, &q, &volumes, &pairs, targets, count);
+    let whole = early.len() == targets.len();
+    if whole {
+        (dec.merges, dec.merges_past) = (replayed, p1.merges - replayed);
+    }
+    // The global loop goes on only to targets below the component count.
+    let clusters = (!whole).then(|| partition::clusters(p1, q, volumes, &pairs));
+    dec.timings.push("components", now);
+    (clusters, early)
 }
 
 /// How many parts the run starts with: `Params::partitions` for this input, or 1

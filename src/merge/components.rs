@@ -194,7 +194,12 @@ mod tests {
     /// for the rest): the same primitives and members at every target.
     fn same_as_global(p: Params, targets: &[usize]) {
         let mesh = crate::Mesh::from_builder(crate::demo::demo_scene());
-        with_input(&mesh, &p, |ev, q, vols, pairs| {
+        same_as_global_on(&mesh, p, targets);
+    }
+
+    /// [`same_as_global`] on `mesh`.
+    fn same_as_global_on(mesh: &crate::Mesh, p: Params, targets: &[usize]) {
+        with_input(mesh, &p, |ev, q, vols, pairs| {
             let comps = components(mesh.face_count(), pairs);
             let count = comps.len();
             let fresh = || Clusters::new(q.to_vec(), vols.to_vec(), pairs);
@@ -276,6 +281,62 @@ mod tests {
                     ..Params::default()
                 };
                 same_as_global(p, &targets);
+            }
+        }
+    }
+
+    /// Bumpy grids of `sizes` quads (each quad two triangles, heights from a seeded
+    /// generator, so costs differ and ties are rare), side by side: one component each.
+    fn bumpy_grids(sizes: &[(u32, u32)], seed: u64) -> crate::Mesh {
+        let mut b = crate::mesh::MeshBuilder::new();
+        let mut x = seed | 1;
+        let mut height = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut left = 0.0;
+        for &(n, m) in sizes {
+            let base = b.positions.len() as u32;
+            for j in 0..=m {
+                for i in 0..=n {
+                    b.positions.push([left + i as f64, j as f64, height()]);
+                }
+            }
+            let id = |i: u32, j: u32| base + j * (n + 1) + i;
+            for j in 0..m {
+                for i in 0..n {
+                    b.push_face(&[id(i, j), id(i + 1, j), id(i + 1, j + 1)]);
+                    b.push_face(&[id(i, j), id(i + 1, j + 1), id(i, j + 1)]);
+                }
+            }
+            left += n as f64 + 2.0;
+        }
+        crate::Mesh::from_builder(b)
+    }
+
+    proptest::proptest! {
+        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(24))]
+        /// Random scenes of 2–5 components of random sizes, at random targets from
+        /// every face down to one cluster (so above, at and below the component
+        /// count): the same primitives and members as the global loop, under fully
+        /// deferred and the default re-pricing.
+        #[test]
+        fn random_scenes_match_the_global_loop(
+            sizes in proptest::collection::vec((1u32..8, 1u32..8), 2..6),
+            seed in proptest::prelude::any::<u64>(),
+            cuts in proptest::collection::vec(0.0f64..1.0, 1..6),
+        ) {
+            let mesh = bumpy_grids(&sizes, seed);
+            let faces = mesh.face_count();
+            let mut targets: Vec<usize> =
+                cuts.iter().map(|c| 1 + (c * faces as f64) as usize).collect();
+            targets.push(sizes.len());
+            targets.sort_unstable_by(|a, b| b.cmp(a));
+            targets.dedup();
+            for reprice in [crate::Reprice::Deferred { min_degree: 0 }, Params::default().reprice] {
+                same_as_global_on(&mesh, Params { reprice, ..Params::default() }, &targets);
             }
         }
     }

@@ -72,10 +72,11 @@ pub fn components(faces: usize, pairs: &[(u32, u32)]) -> Vec<Vec<u32>> {
 
 /// The largest component may hold at most this share of the faces: its group's loop
 /// runs alone on one thread without the global loop's re-pricing worker, so a
-/// dominant component is merged faster by the global loop. Wall time at `-n 1%`
-/// (ARCHITECTURE.md, "Performance"): largest share 0.56 (coacd_kettle) 0.07 → 0.06 s,
-/// 0.66 (panda_link6_visual) 0.18 → 0.18 s, 0.87 (bathtub) 0.11 → 0.13 s, 1.00
-/// (dragon_vrip_res2, 12 components) 1.9 → 2.8 s.
+/// dominant component is merged faster by the global loop. Wall time at `-n 1%`,
+/// global loop → applied anyway, 3 runs each (ARCHITECTURE.md, "Performance"):
+/// largest share 0.56 (coacd_kettle) 0.07–0.08 → 0.06–0.07 s, 0.66
+/// (panda_link6_visual) 0.18–0.19 → 0.18 s, 0.87 (bathtub) 0.10–0.11 → 0.13 s, 1.00
+/// (dragon_vrip_res2, 12 components) 1.69–2.12 → 2.55–2.96 s.
 pub const MAX_SHARE: f64 = 0.6;
 
 /// Whether the run's first phase can be merged per component: at least [`MIN_FACES`]
@@ -129,9 +130,10 @@ pub fn merge_components(
 /// least the number of `components`, from phase 1's traces: the global loop does each
 /// group's merges in the group's order, interleaved by their keys ([`Traced`]), so a
 /// target's clusters come from the first `faces − target` merges in that order. They
-/// are replayed through [`Clusters::merge`] in each group's own order — the operators
-/// add up and the face lists splice as in the global loop — and fitted as it fits them.
-/// Also returns how many merges the last of them holds.
+/// are replayed through [`Clusters::merge`] in that order — each group's merges keep
+/// their own order and groups share no cluster, so the operators add up and the face
+/// lists splice as in the global loop — and fitted as it fits them. Also returns how
+/// many merges the last of them holds.
 pub fn snapshots(
     ev: &Evaluator,
     p1: &Phase1,
@@ -148,24 +150,19 @@ pub fn snapshots(
     let order = global_order(&traces);
     let mut cl = Clusters::new(q.to_vec(), volume.to_vec(), pairs);
     let faces = cl.len();
-    // Merges of each group replayed, and how many of the global order are counted.
-    let (mut done, mut want, mut counted) = (vec![0; traces.len()], vec![0; traces.len()], 0);
+    // Merges of the global order replayed so far (targets decrease, so this grows).
+    let mut done = 0;
     let mut out = Vec::new();
     for &target in targets.iter().filter(|&&t| t >= components) {
-        let m = faces.saturating_sub(target).min(order.len());
-        for &(g, _) in &order[counted..m.max(counted)] {
-            want[g as usize] += 1;
+        let m = faces.saturating_sub(target).min(order.len()).max(done);
+        for &(g, i) in &order[done..m] {
+            let t = &traces[g as usize][i as usize];
+            cl.merge(t.a, t.b, Vec::new(), 0.0);
         }
-        counted = counted.max(m);
-        for (g, trace) in traces.iter().enumerate() {
-            for t in &trace[done[g]..want[g]] {
-                cl.merge(t.a, t.b, Vec::new(), 0.0);
-            }
-            done[g] = want[g];
-        }
+        done = m;
         out.push(snapshot(ev, &cl, target, Scope::Whole));
     }
-    (out, counted)
+    (out, done)
 }
 
 /// Every merge of `traces` as (group, index), in the global loop's order: by key,

@@ -298,7 +298,7 @@ fn merge_one(
     );
     let traced = kind == Kind::Components { traced: true };
     let (cl, mut out) = merge_part(&sub_ev, cl, target, traced, progress);
-    // The merges in the input's ids (increasing with the part's own, so same order).
+    // Face ids in the input's (increasing with the part's own, so the same order).
     let global_id = |f: u32| part[f as usize];
     let trace = std::mem::take(&mut out.trace).into_iter().map(|t| Traced {
         key_a: global_id(t.key_a),
@@ -314,7 +314,7 @@ fn merge_one(
     };
     for r in cl.roots() {
         let start = g.faces.len();
-        g.faces.extend(cl.faces(r).map(|f| part[f as usize]));
+        g.faces.extend(cl.faces(r).map(global_id));
         g.faces[start..].sort_unstable();
         g.offsets.push(g.faces.len() as u32);
         g.q.push(cl.q[r as usize]);
@@ -324,7 +324,7 @@ fn merge_one(
         if kind != Kind::Spatial {
             let (n, resolved) = cl.neighbor_list(r);
             g.neighbors
-                .push((n.iter().map(|&f| part[f as usize]).collect(), resolved));
+                .push((n.iter().map(|&f| global_id(f)).collect(), resolved));
         }
     }
     (g, out)

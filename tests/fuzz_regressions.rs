@@ -314,3 +314,72 @@ fn thin_box_removal_keeps_every_face_in_one_primitive() {
     };
     assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
 }
+
+/// `fuzz/fuzz_targets/decompose.rs`, run 13: a face collapsed to one point
+/// (4e25, 4e25, -1e25) among 21 vertices at the 1e25 scale, with a subnormal minimum
+/// extent and thin-box removal, was left outside every output primitive at target 23.
+/// Every face, degenerate or not, must lie in one output primitive.
+#[test]
+fn point_face_at_1e25_stays_enclosed() {
+    let v = [
+        [4e25, 4e25, 4e25],
+        [4e25, 4e25, 4e25],
+        [4e25, 4e25, 4e25],
+        [4e25, 4e25, -1e25],
+        [
+            -3.0000000000000005e25,
+            3.0000000000000005e25,
+            3.0000000000000005e25,
+        ],
+        [-1e25, 5e25, 4e25],
+        [116000000.0, -1e25, 6.000000000000001e25],
+        [-1e25, -1e25, -1e25],
+        [-1e25, -7.000000000000001e25, 116000000.0],
+        [1e25, 1e25, -1e25],
+        [3.0000000000000005e25, 1e25, 4e25],
+        [1e25, 6.000000000000001e25, 4e25],
+        [5e25, -5e25, -5e25],
+        [116000000.0, 5e25, 6.000000000000001e25],
+        [-4e25, -6.000000000000001e25, -4e25],
+        [116000000.0, -7.000000000000001e25, 2e25],
+        [6.000000000000001e25, 6.000000000000001e25, 4e25],
+        [4e25, 4e25, 4e25],
+        [4e25, 4e25, 4e25],
+        [116000000.0, 3.0000000000000005e25, 5e25],
+        [
+            6.000000000000001e25,
+            6.000000000000001e25,
+            6.000000000000001e25,
+        ],
+    ];
+    let f = vec![
+        vec![2, 2, 2, 2, 2, 11, 11],
+        vec![11, 11, 11, 2, 2],
+        vec![2; 8],
+        vec![2; 8],
+        vec![2, 16, 2, 2, 2, 2, 2, 2],
+        vec![2; 8],
+        vec![2, 2, 13, 2, 2, 2, 2, 2],
+        vec![2; 8],
+        vec![3; 8],
+        vec![3, 3, 0, 20, 1, 2, 17, 16],
+        vec![2],
+        vec![13, 13, 13, 13, 4, 17, 0],
+        vec![13, 15],
+        vec![3, 0],
+        vec![16, 17, 16, 16, 0, 9, 20],
+    ];
+    let mesh = Mesh::from_polygons(&v, &f);
+    let params = Params {
+        targets: vec![23, 13, 17],
+        weights: [1.0; 6],
+        tangent_eps: 1.0,
+        min_extent_rel: 1.26e-321,
+        merge_min_extent_rel: Some(0.002),
+        flat_merge_extent_rel: 0.0,
+        remove_thin_boxes: Some(0.1),
+        reprice: primdecomp::Reprice::Deferred { min_degree: 0 },
+        ..Default::default()
+    };
+    assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
+}

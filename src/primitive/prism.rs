@@ -40,10 +40,14 @@ impl Prism {
         if x.abs() > self.hx + tol || y.abs() > self.hy + tol {
             return false;
         }
-        // Distance to a slanted side is its z-excess times cos of the side's tilt.
+        // Distance to a slanted side is its z-excess times cos of the side's tilt. That
+        // is the distance to the side's whole line: where the side lies nearly along z
+        // (a thin prism whose widths differ, slope 1.6e13 in fuzz run 13) points far
+        // beyond its ends are near the line, so the wider end's width caps |z| too.
         let w = self.half_width_at(y);
         let slope = (self.hz_top - self.hz_bottom) / (2.0 * self.hy.max(f64::MIN_POSITIVE));
         z.abs() - w <= tol * (1.0 + slope * slope).sqrt()
+            && z.abs() <= self.hz_top.max(self.hz_bottom) + tol
     }
     /// The 8 corners (exact AABB source, and the OBJ tessellation).
     pub fn corners(&self) -> [V3; 8] {
@@ -63,5 +67,30 @@ impl Prism {
     }
     pub fn aabb(&self) -> (V3, V3) {
         crate::mesh::aabb_of(self.corners().into_iter())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Fuzz run 13: a prism 1e-3 thick whose widths are 1 and 10 has slanted sides
+    /// nearly along z (slope 4,500). A point at z = 100, inside the thickness, lies
+    /// within 0.1 of a side's *line* but 90 beyond the prism: it must not be contained,
+    /// while points on the wide end and just inside its corner are.
+    #[test]
+    fn thin_prism_does_not_contain_points_beyond_its_wide_end() {
+        let p = Prism {
+            center: [0.0; 3],
+            axes: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            hx: 1.0,
+            hy: 1e-3,
+            hz_top: 10.0,
+            hz_bottom: 1.0,
+        };
+        assert!(!p.contains([0.0, 0.0, 100.0], 0.1));
+        assert!(!p.contains([0.0, 1e-3, 10.2], 0.1));
+        assert!(p.contains([0.0, 1e-3, 10.05], 0.1));
+        assert!(p.contains([0.5, 0.0, 5.4], 1e-9));
     }
 }

@@ -91,6 +91,12 @@ pub struct HullWorkspace {
     tol: f64,
 }
 
+impl std::fmt::Debug for HullWorkspace {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("HullWorkspace").finish_non_exhaustive()
+    }
+}
+
 /// Indices (into the input) of a subset of points that contains every vertex of
 /// the convex hull of `x,y,z` (SoA slices, equal length; extra entries of longer
 /// slices are ignored).  Extra non-vertex points may be kept, but no point lying

@@ -64,6 +64,10 @@ pub enum FrameSearch {
     /// for every cluster: the output fits, where a nearly flat cluster's in-plane axes
     /// would otherwise come from the tangent term alone.
     Always,
+    /// [`FrameSearch::Always`], then the hull-edge frames turned about the other two
+    /// eigen-axes and the input's own axes (output fits, deviation 21): a tilted
+    /// cluster of a vehicle's cab gets a box that follows its roof, not Q's axes.
+    Thorough,
 }
 
 /// Reusable buffers: the points' coordinates in the OBB frame (centred on the OBB).
@@ -119,24 +123,80 @@ pub struct Fit {
 /// as fitting all of them, since a skipped fit could not have won (see `lower bounds`
 /// below and ARCHITECTURE.md, "Pruned fits").
 pub fn fit_best(cloud: &Cloud, q: &Sym3, cfg: &FitConfig, s: &mut FitScratch) -> Fit {
+    fit_best_frame(cloud, q, cfg, s).0
+}
+
+/// [`fit_best`] and the frame its fit was made in: refitting another cloud with the
+/// same extreme points in that frame ([`fit_frame`]) gives the same primitive.
+pub fn fit_best_frame(
+    cloud: &Cloud,
+    q: &Sym3,
+    cfg: &FitConfig,
+    s: &mut FitScratch,
+) -> (Fit, [V3; 3]) {
     let eig = eigen_sym3(q);
     let axes = eig.vectors;
-    let mut best = fit_in_frame(cloud, axes, cfg, s, None);
+    let mut best = (fit_in_frame(cloud, axes, cfg, s, None), axes);
     s.eigen_span = s.span;
     let tied = frame::tied_plane(&eig.values);
     let plane = match cfg.frames {
         FrameSearch::Eigen => None,
         FrameSearch::Degenerate => tied.or_else(|| frame::flat(s.span).then_some((1, 2))),
-        FrameSearch::Always => tied.or(Some((1, 2))),
+        FrameSearch::Always | FrameSearch::Thorough => tied.or(Some((1, 2))),
     };
     let Some(plane) = plane else {
         return best;
     };
+    best = turned_fits(cloud, axes, plane, cfg, s, best);
+    if cfg.frames == FrameSearch::Thorough {
+        // The other two planes, then the input's own axes (deviation 21).
+        for other in [(0, 1), (0, 2), (1, 2)].into_iter().filter(|&p| p != plane) {
+            best = turned_fits(cloud, axes, other, cfg, s, best);
+        }
+        best = keep_better(cloud, WORLD_AXES, cfg, s, best);
+    }
+    best
+}
+
+/// Every enabled kind in the frame `axes` alone: the cheapest.
+pub fn fit_frame(cloud: &Cloud, axes: [V3; 3], cfg: &FitConfig, s: &mut FitScratch) -> Fit {
+    fit_in_frame(cloud, axes, cfg, s, None)
+}
+
+/// The fit in `axes` with its frame if it beats `best` by the margin, else `best`.
+fn keep_better(
+    cloud: &Cloud,
+    axes: [V3; 3],
+    cfg: &FitConfig,
+    s: &mut FitScratch,
+    best: (Fit, [V3; 3]),
+) -> (Fit, [V3; 3]) {
+    let f = fit_in_frame(cloud, axes, cfg, s, Some(best.0));
+    if f.cost < best.0.cost {
+        (f, axes)
+    } else {
+        best
+    }
+}
+
+/// The input's axes, a frame the fit tries in [`FrameSearch::Thorough`].
+const WORLD_AXES: [V3; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+
+/// The frames along the hull edges of the points projected on `axes[plane]`, each
+/// kept when it beats `best` by the margin.
+fn turned_fits(
+    cloud: &Cloud,
+    axes: [V3; 3],
+    plane: (usize, usize),
+    cfg: &FitConfig,
+    s: &mut FitScratch,
+    mut best: (Fit, [V3; 3]),
+) -> (Fit, [V3; 3]) {
     let (e0, e1) = (axes[plane.0], axes[plane.1]);
     let dirs = frame::edge_directions(cloud.x, cloud.y, cloud.z, e0, e1, &mut s.plane);
     for k in 0..dirs {
         let turned = frame::turn(axes, plane, frame::direction(&s.plane, k));
-        best = fit_in_frame(cloud, turned, cfg, s, Some(best));
+        best = keep_better(cloud, turned, cfg, s, best);
     }
     best
 }
@@ -832,6 +892,77 @@ mod tests {
             )
             .cost;
             assert!(a <= d, "Always {a} > Degenerate {d}");
+        }
+    }
+
+    /// `Thorough` is never costlier than `Always`; it finds an axis-aligned box tilted
+    /// about a non-normal axis of Q (deviation 21); and its frame search on the hull's
+    /// vertices, refitted on every point (`Evaluator::fit_cluster_exact`), gives the
+    /// fit of the search on every point.
+    #[test]
+    fn thorough_search_and_its_hull_shortcut() {
+        // A 2 × 1 × 0.5 block whose operator is tilted by 20° about its long axis.
+        let mut pts = Vec::new();
+        for i in 0..8 {
+            let b = |k: usize, h: f64| if i >> k & 1 == 1 { h } else { -h };
+            pts.push([b(0, 1.0), b(1, 0.5), b(2, 0.25)]);
+        }
+        let (c, s) = (20f64.to_radians().cos(), 20f64.to_radians().sin());
+        let q = Sym3::outer([1.0, 0.0, 0.0], 0.01)
+            .add(&Sym3::outer([0.0, c, s], 0.02))
+            .add(&Sym3::outer([0.0, -s, c], 1.0));
+        let with = |frames| FitConfig {
+            frames,
+            ..only(Kind::Box)
+        };
+        let block = 2.0 * 1.0 * 0.5;
+        let always = fit_with(&pts, &q, &with(FrameSearch::Always)).volume;
+        let thorough = fit_with(&pts, &q, &with(FrameSearch::Thorough)).volume;
+        assert!(always > 1.2 * block, "Always found the block: {always}");
+        assert!((thorough - block).abs() <= 1e-9, "Thorough: {thorough}");
+        let mut rng = ChaCha8Rng::seed_from_u64(21);
+        let thorough = FitConfig {
+            frames: FrameSearch::Thorough,
+            ..all_kinds()
+        };
+        let mut ws = crate::math::hull::HullWorkspace::default();
+        let mut keep = Vec::new();
+        for _ in 0..200 {
+            let pts = random_cloud(&mut rng, 40, [1.0, 0.7, 0.4]);
+            let q = random_q(&mut rng);
+            let a = fit_with(
+                &pts,
+                &q,
+                &FitConfig {
+                    frames: FrameSearch::Always,
+                    ..all_kinds()
+                },
+            );
+            let t = fit_with(&pts, &q, &thorough);
+            assert!(t.cost <= a.cost, "Thorough {} > Always {}", t.cost, a.cost);
+            let [x, y, z] = [0, 1, 2].map(|k| pts.iter().map(|p| p[k]).collect::<Vec<f64>>());
+            crate::math::hull::hull_vertices(&x, &y, &z, 1e-12, &mut ws, &mut keep);
+            let sub = |v: &[f64]| keep.iter().map(|&i| v[i as usize]).collect::<Vec<f64>>();
+            let (hx, hy, hz) = (sub(&x), sub(&y), sub(&z));
+            let mut s = FitScratch::default();
+            let hull = Cloud {
+                x: &hx,
+                y: &hy,
+                z: &hz,
+            };
+            let (_, axes) = fit_best_frame(&hull, &q, &thorough, &mut s);
+            let full = Cloud {
+                x: &x,
+                y: &y,
+                z: &z,
+            };
+            let two = fit_frame(&full, axes, &thorough, &mut s);
+            assert!(
+                (two.cost - t.cost).abs() <= 1e-9 * t.cost,
+                "hull shortcut {} vs every point {}",
+                two.cost,
+                t.cost
+            );
         }
     }
 }

@@ -136,6 +136,12 @@ struct DecomposeArgs {
     /// Keep primitives whose points lie inside another primitive.
     #[arg(long)]
     keep_contained: bool,
+    /// Fill each target: when removing nested primitives leaves fewer than N, merge
+    /// less (search up to 8N) so the result has as many primitives as fit within N.
+    /// Costs up to 4 more merge passes; the JSON's settings.merge_target says where
+    /// the merge stopped.
+    #[arg(long)]
+    fill: bool,
     /// Remove boxes thinner than this fraction of the diagonal when others cover them.
     #[arg(long)]
     remove_thin_boxes: Option<f64>,
@@ -263,6 +269,7 @@ fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
         merge_min_extent_rel: a.merge_min_extent,
         flat_merge_extent_rel: a.flat_merge_extent,
         remove_contained: !a.keep_contained,
+        fill: a.fill,
         remove_thin_boxes: a.remove_thin_boxes,
         partitions: match a.partitions.as_str() {
             "auto" => Partitions::Auto,

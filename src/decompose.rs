@@ -29,6 +29,9 @@ pub struct InputInfo {
 pub struct Level {
     /// The requested target N.
     pub target: usize,
+    /// The target the merge loop stopped at: N, or with `Params::fill` the larger
+    /// count whose post-processed result fills the budget of N best (budget.rs).
+    pub merged_to: usize,
     /// Primitives in world coordinates, in a deterministic order.
     pub primitives: Vec<Primitive>,
     /// For each primitive, how many input faces it subsumes.
@@ -102,6 +105,19 @@ pub fn decompose_with_progress(
     progress: &(dyn Fn(f64) + Sync),
 ) -> Result<Decomposition> {
     params.validate()?;
+    if params.fill {
+        // Nested primitives removed leave room: merge less to fill it (budget.rs).
+        return crate::budget::fill(mesh, params, progress);
+    }
+    decompose_once(mesh, params, progress)
+}
+
+/// One bottom-up pass through `params.targets` (ignores `params.fill`).
+pub(crate) fn decompose_once(
+    mesh: &Mesh,
+    params: &Params,
+    progress: &(dyn Fn(f64) + Sync),
+) -> Result<Decomposition> {
     if mesh.face_count() == 0 {
         return Err(Error::EmptyMesh {
             path: "<mesh>".into(),
@@ -369,6 +385,7 @@ fn finish_level(mesh: &Mesh, snap: &crate::merge::Snapshot, params: &Params, dia
     let keep = keep_mask(mesh, &snap.prims, &snap.verts, &snap.members, cleanup);
     let mut level = Level {
         target: snap.target,
+        merged_to: snap.target,
         ..Default::default()
     };
     for (i, p) in snap.prims.iter().enumerate() {

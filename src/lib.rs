@@ -13,6 +13,7 @@
 // Loops over the three axes index several parallel arrays; iterators obscure them.
 #![allow(clippy::needless_range_loop)]
 
+pub mod budget;
 pub mod collider;
 pub mod decompose;
 pub mod demo;

@@ -21,6 +21,7 @@
 //! | `reprice` | `Deferred { min_degree: 64 }` | merges of clusters with at least `min_degree` neighbours leave their pairs' old queue entries as keys and re-price each when popped; a higher `min_degree` defers fewer merges (`Exact`: none, the paper's order, F^1.5 on large flat regions) | defers more merges: fewer fits, faster, the order drifts from exact greedy; `min_degree: 0` defers all (about 0.8× the time on the corpus, quality mixed: docs/results/reprice.md) |
 //! | `partitions` | `Auto` (from 524,288 faces, 16 parts or one per 65,536 faces if more; else 1) | `Fixed(K)`: the faces are split into K spatial parts, merged in parallel (one task each, re-pricing lazily unless `reprice` is `Exact`) to 16× the largest target before the global merge loop: faster on 2+ cores, merges across part boundaries wait (docs/results/partitions.md) | `Fixed(1)`: one global greedy, Alg. 1, on every input |
 //! | `reduction` | `Hull` | — | `Extremes`: clusters keep only their extreme points along 13 fixed axes (≤ 26): no convex hull per merge, cheaper fits; merges are priced on an inner approximation, so the order (and the fit) changes: dragon merge stage 9.85 → 8.53 s on one thread (one run), corpus quality no worse on average but mixed per mesh (docs/results/reduction.md) |
+//! | `fill` | false | (when set) a target N the post-processing left short of is met by merging less: up to N primitives, each covering fewer faces (tighter fit); costs one merge pass per search round (up to 4 more) | — |
 //! | `remove_thin_boxes` | None | (when set) drops boxes thinner than this fraction of the diagonal if still covered | — |
 
 use crate::error::{Error, Result};
@@ -166,6 +167,15 @@ pub struct Params {
     /// the exact default.
     #[serde(skip_serializing_if = "is_hull")]
     pub reduction: Reduction,
+    /// Fill the budget: when removing nested primitives leaves fewer than a target N,
+    /// merge to a larger count whose post-processed result has the most primitives
+    /// not above N (budget.rs). Serialized only when set.
+    #[serde(skip_serializing_if = "is_false")]
+    pub fill: bool,
+}
+
+fn is_false(b: &bool) -> bool {
+    !*b
 }
 
 fn is_hull(r: &Reduction) -> bool {
@@ -205,6 +215,7 @@ impl Default for Params {
             reprice: Reprice::Deferred { min_degree: 64 },
             partitions: Partitions::Auto,
             reduction: Reduction::Hull,
+            fill: false,
         }
     }
 }

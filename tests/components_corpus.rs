@@ -10,6 +10,8 @@
 //! change round-off, see the module's doc). Needs `../shared/datasets/corpus`; says so
 //! loudly and returns when it is absent.
 
+mod common;
+
 use primdecomp::{decompose, Params, Reprice};
 
 /// Meshes of 4,096 faces or more whose largest component holds at most 60% of the
@@ -27,13 +29,10 @@ fn params(targets: &[usize], cap: Option<f64>) -> Params {
 
 #[test]
 fn components_apart_equal_the_global_loop_on_corpus_meshes() {
-    let dir = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../shared/datasets/corpus");
-    if !dir.is_dir() {
-        eprintln!("CORPUS ABSENT: {} not found; test skipped", dir.display());
-        return;
-    }
     for name in MESHES {
-        let m = primdecomp::mesh::io::load(&dir.join(name)).unwrap_or_else(|e| panic!("{e}"));
+        let Some(m) = common::corpus_mesh(name) else {
+            return;
+        };
         let f = m.face_count();
         // A tenth and 1% of the faces, 32 and 8: at or above the component count for
         // the chair (3) everywhere, below it for the bones (26) at 8 and the truck (59)

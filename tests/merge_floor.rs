@@ -6,9 +6,9 @@
 mod common;
 
 use common::check::assert_valid;
+use common::corpus_mesh;
 use common::shapes::*;
 use primdecomp::{decompose, demo, Error, Mesh, Params, Primitive};
-use std::path::Path;
 
 /// The global pricing floor alone (the coplanar-only floor off).
 fn with_floor(targets: Vec<usize>, floor: Option<f64>) -> Params {
@@ -83,18 +83,6 @@ fn floor_keeps_a_roof_rim_open() {
         "the lid this test guards against did not form"
     );
     assert!(!covered(Some(0.002)), "the floor did not keep the rim open");
-}
-
-/// A corpus mesh, or `None` after printing "CORPUS ABSENT".
-fn corpus_mesh(name: &str) -> Option<Mesh> {
-    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
-        .join("../shared/datasets/corpus")
-        .join(name);
-    if !path.is_file() {
-        eprintln!("CORPUS ABSENT: {} not found; test skipped", path.display());
-        return None;
-    }
-    Some(primdecomp::mesh::io::load(&path).expect("loads"))
 }
 
 /// Whether a primitive covers the point just under the AABB's top (a roof rim's top),

@@ -85,6 +85,9 @@ fn params(u: &mut Unstructured) -> Result<Params> {
         0 => Partitions::Auto,
         k => Partitions::Fixed([2, 3, 8][k as usize - 1]),
     };
+    // After that (an exhausted input reads false, as grown): the budget search's extra
+    // passes (budget.rs) on hostile input.
+    p.fill = u.arbitrary::<bool>()?;
     Ok(p)
 }
 

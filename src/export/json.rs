@@ -218,6 +218,9 @@ struct Settings<'a> {
     #[serde(flatten)]
     params: &'a Params,
     target: usize,
+    /// Where the merge loop stopped, when `fill` made it differ from `target`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    merge_target: Option<usize>,
 }
 
 #[derive(Serialize)]
@@ -299,6 +302,7 @@ fn document(dec: &Decomposition, level: usize, params: &Params, timed: bool) -> 
         settings: Settings {
             params,
             target: lv.target,
+            merge_target: (lv.merged_to > lv.target).then_some(lv.merged_to),
         },
         stats: Stats {
             counts: Counts(lv.counts()),
@@ -430,6 +434,7 @@ mod tests {
             target: 7,
             faces: (1..=7).collect(),
             primitives,
+            ..Default::default()
         };
         Decomposition {
             input: InputInfo {

@@ -508,6 +508,7 @@ mod tests {
                         target: 1,
                         primitives: vec![prim],
                         faces: vec![1],
+                        ..Default::default()
                     };
                     let objs = parse(&to_obj(&level, detail));
                     assert_eq!(objs.len(), 1);
@@ -538,6 +539,7 @@ mod tests {
             target: 6,
             faces: vec![1; 6],
             primitives,
+            ..Default::default()
         };
         let text = to_obj(&level, DEFAULT_DETAIL);
         let names: Vec<String> = parse(&text).into_iter().map(|o| o.name).collect();

@@ -13,3 +13,16 @@ pub fn on_threads<R: Send>(threads: usize, f: impl FnOnce() -> R + Send) -> R {
         .expect("thread pool")
         .install(f)
 }
+
+/// A corpus mesh from `../shared/datasets/corpus`, or `None` after printing "CORPUS
+/// ABSENT" (the tests that need the corpus say so loudly and return).
+pub fn corpus_mesh(name: &str) -> Option<primdecomp::Mesh> {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../shared/datasets/corpus")
+        .join(name);
+    if !path.is_file() {
+        eprintln!("CORPUS ABSENT: {} not found; test skipped", path.display());
+        return None;
+    }
+    Some(primdecomp::mesh::io::load(&path).unwrap_or_else(|e| panic!("{e}")))
+}

@@ -1,0 +1,155 @@
+//! Filling the primitive budget (`Params::fill`), an extension of §3.4 "Removing
+//! Redundant Primitives". The merge loop stops at N clusters and post-processing then
+//! drops the primitives nested in others, so a run asked for N can return far fewer:
+//! truck_shrec at N = 64 keeps 19 (its cab interior and wheels sit inside the body's
+//! box), engine_2cylinder 19. With `fill`, each target N is met by merging less: the
+//! search looks for the merge target T ≥ N whose post-processed count is the largest
+//! not above N, and returns that level (`Level::merged_to` = T). Every level comes
+//! from the ordinary engine, so enclosure and determinism carry over unchanged.
+//!
+//! The search runs the whole engine once per round with a ladder of candidate targets
+//! (one bottom-up pass yields every rung), narrowing a bracket [best T, first T that
+//! overshoots N). The post-processed count is not monotone in T, so the result is the
+//! best rung found, not a proven optimum.
+
+use crate::decompose::{decompose_once, Decomposition, Level};
+use crate::error::Result;
+use crate::mesh::Mesh;
+use crate::params::Params;
+use std::time::Instant;
+
+/// Candidate targets per round (one merge pass gives them all).
+const LADDER: usize = 12;
+/// Rounds after the first pass: a ladder of 12 shrinks a bracket ~13× per round.
+const ROUNDS: usize = 4;
+/// The search looks at merge targets up to this multiple of N.
+const REACH: usize = 8;
+
+/// The search for one requested target.
+struct Search {
+    /// The N asked for.
+    want: usize,
+    /// Best level so far: the most primitives not above `want`, smallest T on ties.
+    best: Level,
+    /// Exclusive upper end of the targets still worth trying.
+    hi: usize,
+    /// The last round found nothing better and narrowed nothing.
+    done: bool,
+}
+
+impl Search {
+    fn new(level: Level, faces: usize) -> Search {
+        let want = level.target;
+        let short = level.primitives.len() < want;
+        // Targets above the face count merge nothing more than the face count itself.
+        let hi = if short {
+            faces.min(want.saturating_mul(REACH)) + 1
+        } else {
+            want + 1
+        };
+        Search {
+            want,
+            best: level,
+            hi,
+            done: false,
+        }
+    }
+
+    fn kept(&self) -> usize {
+        self.best.primitives.len()
+    }
+
+    /// Targets strictly between the best so far and `hi`, spaced geometrically.
+    fn ladder(&self) -> Vec<usize> {
+        let lo = self.best.merged_to;
+        if self.done || self.kept() >= self.want || self.hi <= lo + 1 {
+            return Vec::new();
+        }
+        if self.hi - lo - 1 <= LADDER {
+            return (lo + 1..self.hi).collect();
+        }
+        let ratio = self.hi as f64 / lo as f64;
+        let mut out: Vec<usize> = (1..=LADDER)
+            .map(|k| (lo as f64 * ratio.powf(k as f64 / (LADDER + 1) as f64)).round() as usize)
+            .map(|t| t.clamp(lo + 1, self.hi - 1))
+            .collect();
+        out.dedup();
+        out
+    }
+
+    /// Takes the best of a round's levels (sorted by target, ascending) in the
+    /// bracket and narrows it; a round that moves nothing ends this search.
+    fn update(&mut self, levels: &[Level]) {
+        let (lo, hi) = (self.best.merged_to, self.hi);
+        let rungs = || {
+            levels
+                .iter()
+                .filter(|l| l.merged_to > lo && l.merged_to < hi)
+        };
+        let mut better: Option<&Level> = None;
+        for l in rungs().filter(|l| l.primitives.len() <= self.want) {
+            if l.primitives.len() > better.map_or(self.kept(), |b| b.primitives.len()) {
+                better = Some(l);
+            }
+        }
+        if let Some(l) = better {
+            self.best = Level {
+                target: self.want,
+                ..l.clone()
+            };
+        }
+        let lo = self.best.merged_to;
+        let over = rungs().find(|l| l.merged_to > lo && l.primitives.len() > self.want);
+        if let Some(l) = over {
+            self.hi = l.merged_to;
+        }
+        self.done = better.is_none() && over.is_none();
+    }
+}
+
+/// [`crate::decompose::decompose_with_progress`] with `params.fill`: the first pass at
+/// the requested targets, then up to [`ROUNDS`] ladder passes for the targets the
+/// post-processing left short; progress runs over all of them.
+pub fn fill(
+    mesh: &Mesh,
+    params: &Params,
+    progress: &(dyn Fn(f64) + Sync),
+) -> Result<Decomposition> {
+    let once = Params {
+        fill: false,
+        ..params.clone()
+    };
+    // Progress: the first pass is the first half, each round an equal share of the rest.
+    let mut dec = decompose_once(mesh, &once, &|f| progress(0.5 * f))?;
+    let faces = mesh.face_count();
+    let levels = std::mem::take(&mut dec.levels);
+    let mut searches: Vec<Search> = levels.into_iter().map(|l| Search::new(l, faces)).collect();
+    for round in 1..=ROUNDS {
+        let mut targets: Vec<usize> = searches.iter().flat_map(Search::ladder).collect();
+        targets.sort_unstable();
+        targets.dedup();
+        if targets.is_empty() {
+            break;
+        }
+        let now = Instant::now();
+        let share = 0.5 / ROUNDS as f64;
+        let start = 0.5 + share * (round - 1) as f64;
+        let run = decompose_once(
+            mesh,
+            &Params {
+                targets,
+                ..once.clone()
+            },
+            &|f| progress(start + share * f),
+        )?;
+        dec.merges += run.merges;
+        dec.fits += run.fits;
+        for s in &mut searches {
+            s.update(&run.levels);
+        }
+        dec.timings.push(&format!("fill {round}"), now);
+    }
+    dec.levels = searches.into_iter().map(|s| s.best).collect();
+    progress(1.0);
+    Ok(dec)
+}

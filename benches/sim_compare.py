@@ -175,11 +175,14 @@ def tables(rows, a):
         "### Physics-step time per frame, median ms, and ours as a ratio to the peers",
         "",
         "wall = wall clock of the step; CPU = the process's CPU time during the step (the machine "
-        "was shared, so wall times include preemption in multiples of the scheduler tick).",
+        "was shared, so wall times include preemption in multiples of the scheduler tick). "
+        "mesh spread = |perturbed mesh / mesh - 1| of the median wall time, at least 0.02: the same "
+        "geometry run twice differs this much (chaotic piles and timer jitter), so a ratio within "
+        "1 ± spread is a tie.",
         "",
         "| mesh | faces | our prims | CoACD hulls | V-HACD hulls | wall mesh | ours | CoACD | V-HACD "
-        "| CPU mesh | ours | CoACD | V-HACD | ours/CoACD wall | CPU | ours/V-HACD wall | CPU |",
-        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
+        "| CPU mesh | ours | CoACD | V-HACD | ours/CoACD wall | CPU | ours/V-HACD wall | CPU | mesh spread |",
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|",
     ]
     for r in rows:
         wall = {k: g(r, k, "frame_ms_median") for k in ["mesh", "ours", *PEERS]}
@@ -189,6 +192,7 @@ def tables(rows, a):
         cells += [fmt(cpu[k], ".2f") for k in ["mesh", "ours", *PEERS]]
         for p in PEERS:
             cells += [fmt(ratio(wall["ours"], wall[p]), ".2f"), fmt(ratio(cpu["ours"], cpu[p]), ".2f")]
+        cells.append(fmt(spread(r), ".2f") if r.get("self") else "-")
         lines.append("| " + " | ".join(cells) + " |")
     lines += [
         "",
@@ -238,6 +242,12 @@ def tables(rows, a):
     return lines
 
 
+def spread(r):
+    """The step time's noise on this mesh: how far the perturbed mesh's median wall time
+    lies from the mesh's (same geometry, chaotic trajectories, timer jitter), at least 2%."""
+    return max(0.02, abs(ratio(r["self"]["frame_ms_median"], r["mesh"]["frame_ms_median"]) - 1))
+
+
 def summary(rows):
     out = []
     for peer in PEERS:
@@ -254,8 +264,13 @@ def summary(rows):
             floor = [(r, r["self"]["similarity"] / 2) for r in both if r.get("self")]
             worse = sum(r[mine]["similarity"] < f <= r[peer]["similarity"] for r, f in floor)
             better = sum(r[peer]["similarity"] < f <= r[mine]["similarity"] for r, f in floor)
+            # Slower beyond noise: by more than the mesh's own spread, |perturbed / mesh - 1|
+            # (the same geometry run twice, chaos and timer jitter alike), and by 2% at least.
+            timed = [r for r in both if r.get("self")]
+            slower = sum(ratio(r[mine]["frame_ms_median"], r[peer]["frame_ms_median"]) - 1 > spread(r) for r in timed)
             out.append(f"- vs {LABEL[peer]} on {len(both)} meshes, ours at the {how}: our median step ≤ theirs "
-                       f"on {faster} by wall clock, {cheaper} by CPU time; our similarity ≥ theirs on {closer}, "
+                       f"on {faster} by wall clock, {cheaper} by CPU time, slower by more than the mesh's own "
+                       f"spread on {slower} of {len(timed)}; our similarity ≥ theirs on {closer}, "
                        f"set similarity on {closer_set}; of {len(floor)} with the noise floor, only ours is off "
                        f"(similarity below half of mesh vs itself) on {worse}, only theirs on {better}.")
     return out

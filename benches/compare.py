@@ -29,6 +29,10 @@ def parse_args(argv):
     ap.add_argument("--peers-only", action="store_true", help="only fill the peer cache")
     ap.add_argument("--cached-only", action="store_true", help="never start a peer; a peer result missing from the cache is listed as not run")
     ap.add_argument("--samples", type=int, default=None, help="samples per surface for primdecomp eval (default: eval's own)")
+    ap.add_argument("--refresh-sim", action="store_true",
+                    help="only replace the simulation section of OUT/compare.md and the `sim` fields of OUT/compare.json "
+                         "with the current SIM summaries (after `python3 benches/sim_compare.py`); every other figure "
+                         "stays from the run named at the top of the report")
     ap.add_argument("--sweep", action="store_true", help="the speed/accuracy sweep of our engine -> docs/results/tradeoff.md")
     ap.add_argument("--out", default=str(ROOT / "docs" / "results"), help="report directory (default: %(default)s)")
     ap.add_argument("--sim", default=str(CACHE / "sim" / "summary"), help="directory of simulation results, SIM/<mesh file name>.json = {method: {metric: value}}, as benches/sim_compare.py writes them (default: %(default)s)")
@@ -56,6 +60,10 @@ def main(argv):
     if a.peers_only:
         fill_peer_cache(a, meshes, methods)
         return 0
+    if a.refresh_sim:
+        from compare_lib import report
+
+        return report.refresh_sim(a)
     if a.sweep:
         from compare_lib import sweep
 

@@ -2,6 +2,7 @@
 stated target rule, evaluate everything with `primdecomp eval`, and write the
 per-mesh tables, the Table-3-style summary, the failures and the plots."""
 
+import datetime
 import json
 import os
 import platform
@@ -144,6 +145,31 @@ def main(a, meshes, methods, cache):
     tmp.write_text(text)
     os.replace(tmp, out / "compare.md")
     print(f"wrote {out / 'compare.md'}", file=sys.stderr)
+    return 0
+
+
+def refresh_sim(a):
+    """`benches/compare --refresh-sim`: the simulation section of OUT/compare.md and the
+    records' `sim` fields in OUT/compare.json from the current SIM summaries, the rest
+    untouched (its figures stay those of the run the report's first lines name)."""
+    from . import markdown
+
+    out = Path(a.out)
+    data = json.loads((out / "compare.json").read_text())
+    for rec in data["records"]:
+        rec["sim"] = load_sim(a.sim, rec["mesh"])
+    head, sep, _ = (out / "compare.md").read_text().partition(markdown.SIM_HEADING)
+    if not sep:
+        print(f"{out / 'compare.md'} has no '{markdown.SIM_HEADING}' section", file=sys.stderr)
+        return 1
+    note = (f"Section refreshed by `{argv_line()}` at commit `{git_commit(Path(__file__).resolve().parents[2])}` "
+            f"on {datetime.date.today()}; the rest of this report is from the run named at the top.")
+    text = head + "\n".join(markdown.sim_table(data["records"], note))
+    for name, body in (("compare.json", json.dumps(data, indent=1) + "\n"), ("compare.md", text)):
+        tmp = out / f".{name}.tmp.{os.getpid()}"
+        tmp.write_text(body)
+        os.replace(tmp, out / name)
+    print(f"refreshed the simulation section of {out / 'compare.md'}", file=sys.stderr)
     return 0
 
 

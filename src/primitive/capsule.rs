@@ -11,6 +11,10 @@ pub struct Capsule {
 }
 
 impl Capsule {
+    /// Support function: the largest `n·x` over the capsule (`n` a unit vector).
+    pub fn support(&self, n: V3) -> f64 {
+        dot(n, self.p0).max(dot(n, self.p1)) + self.radius
+    }
     /// π·r²·L + 4/3·π·r³.
     pub fn volume(&self) -> f64 {
         let r = self.radius;

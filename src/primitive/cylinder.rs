@@ -13,6 +13,10 @@ pub struct Cylinder {
 }
 
 impl Cylinder {
+    /// Support function: the largest `n·x` over the cylinder (`n` a unit vector).
+    pub fn support(&self, n: V3) -> f64 {
+        super::disc_support(self.p0, self.p1, self.radius, self.radius, n)
+    }
     /// §3.2: π·r²·h.
     pub fn volume(&self) -> f64 {
         std::f64::consts::PI * self.radius * self.radius * norm2(sub(self.p1, self.p0)).sqrt()

@@ -158,6 +158,26 @@ pub fn fit_best_frame(
     best
 }
 
+/// The frames [`FrameSearch::Thorough`] tries, in the order [`fit_best_frame`] tries
+/// them: Q's eigen-frame, the hull-edge frames turned in the tied (else the (1, 2))
+/// eigen-plane, then in the two other planes, then the input's axes.
+pub fn thorough_frames(cloud: &Cloud, q: &Sym3, s: &mut FitScratch, out: &mut Vec<[V3; 3]>) {
+    out.clear();
+    let eig = eigen_sym3(q);
+    let axes = eig.vectors;
+    out.push(axes);
+    let first = frame::tied_plane(&eig.values).unwrap_or((1, 2));
+    let others = [(0, 1), (0, 2), (1, 2)].into_iter().filter(|&p| p != first);
+    for plane in std::iter::once(first).chain(others) {
+        let (e0, e1) = (axes[plane.0], axes[plane.1]);
+        let dirs = frame::edge_directions(cloud.x, cloud.y, cloud.z, e0, e1, &mut s.plane);
+        for k in 0..dirs {
+            out.push(frame::turn(axes, plane, frame::direction(&s.plane, k)));
+        }
+    }
+    out.push(WORLD_AXES);
+}
+
 /// Every enabled kind in the frame `axes` alone: the cheapest.
 pub fn fit_frame(cloud: &Cloud, axes: [V3; 3], cfg: &FitConfig, s: &mut FitScratch) -> Fit {
     fit_in_frame(cloud, axes, cfg, s, None)

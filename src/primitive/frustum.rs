@@ -13,6 +13,10 @@ pub struct Frustum {
 }
 
 impl Frustum {
+    /// Support function: the largest `n·x` over the frustum (`n` a unit vector).
+    pub fn support(&self, n: V3) -> f64 {
+        super::disc_support(self.p0, self.p1, self.r0, self.r1, n)
+    }
     /// §3.2: π·h/3·(r0² + r0·r1 + r1²).
     pub fn volume(&self) -> f64 {
         let h = norm2(sub(self.p1, self.p0)).sqrt();

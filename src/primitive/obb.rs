@@ -21,6 +21,13 @@ impl Obb {
         let d = sub(p, self.center);
         (0..3).all(|k| dot(d, self.axes[k]).abs() <= self.half[k] + tol)
     }
+    /// Support function: the largest `n·x` over the box (`n` a unit vector).
+    pub fn support(&self, n: V3) -> f64 {
+        dot(n, self.center)
+            + (0..3)
+                .map(|k| self.half[k] * dot(n, self.axes[k]).abs())
+                .sum::<f64>()
+    }
     pub fn aabb(&self) -> (V3, V3) {
         let mut lo = self.center;
         let mut hi = self.center;

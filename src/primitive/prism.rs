@@ -49,6 +49,13 @@ impl Prism {
         z.abs() - w <= tol * (1.0 + slope * slope).sqrt()
             && z.abs() <= self.hz_top.max(self.hz_bottom) + tol
     }
+    /// Support function: the largest `n·x` over the prism (`n` a unit vector).
+    pub fn support(&self, n: V3) -> f64 {
+        self.corners()
+            .into_iter()
+            .map(|c| crate::math::dot(n, c))
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
     /// The 8 corners (exact AABB source, and the OBJ tessellation).
     pub fn corners(&self) -> [V3; 8] {
         let mut out = [[0.0; 3]; 8];

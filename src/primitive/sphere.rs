@@ -16,6 +16,10 @@ impl Sphere {
     pub fn contains(&self, p: V3, tol: f64) -> bool {
         norm2(sub(p, self.center)).sqrt() <= self.radius + tol
     }
+    /// Support function: the largest `n·x` over the ball (`n` a unit vector).
+    pub fn support(&self, n: V3) -> f64 {
+        crate::math::dot(n, self.center) + self.radius
+    }
     pub fn aabb(&self) -> (V3, V3) {
         let r = self.radius;
         let c = self.center;

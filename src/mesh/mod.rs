@@ -5,6 +5,7 @@
 pub mod adjacency;
 pub mod dedup;
 pub mod io;
+pub mod orient;
 
 use crate::math::V3;
 

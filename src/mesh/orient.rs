@@ -1,0 +1,189 @@
+//! Consistent face orientation, for the outward reach of the output fits
+//! (`Params::outward_weight`, ARCHITECTURE.md deviation 22; not in the paper). Many
+//! inputs mix windings (truck_shrec: 46% of its area faces outward by its winding), so
+//! a face's own normal does not say which side is outside. Faces sharing an edge are
+//! made to agree (a shared edge runs in opposite directions in two agreeing faces),
+//! one connected component at a time from its lowest face, and each component is then
+//! turned so that its signed volume is positive: outward for a closed surface, the
+//! side facing away from the bulk for most open ones.
+
+use super::Mesh;
+use crate::math::{cross, dot, sub, V3};
+use std::collections::VecDeque;
+
+/// Per face, +1 to keep its winding or −1 to reverse it. `welded` are the faces'
+/// welded vertex indices (the mesh's CSR offsets) and `pairs` the faces sharing an
+/// edge ([`super::adjacency::face_pairs`]). Deterministic: breadth-first in face order.
+pub fn face_signs(mesh: &Mesh, welded: &[u32], pairs: &[(u32, u32)]) -> Vec<i8> {
+    let n = mesh.face_count();
+    let off = &mesh.face_offsets;
+    let face = |f: usize| &welded[off[f] as usize..off[f + 1] as usize];
+    // Neighbour lists (CSR) with the relation: +1 agree, −1 opposed, 0 unknown.
+    let mut deg = vec![0u32; n + 1];
+    for &(a, b) in pairs {
+        deg[a as usize + 1] += 1;
+        deg[b as usize + 1] += 1;
+    }
+    for i in 0..n {
+        deg[i + 1] += deg[i];
+    }
+    let mut fill = deg.clone();
+    let mut adj = vec![(0u32, 0i8); pairs.len() * 2];
+    for &(a, b) in pairs {
+        let rel = relation(face(a as usize), face(b as usize));
+        for (x, y) in [(a, b), (b, a)] {
+            adj[fill[x as usize] as usize] = (y, rel);
+            fill[x as usize] += 1;
+        }
+    }
+    let mut sign = vec![0i8; n];
+    let mut queue = VecDeque::new();
+    let mut members = Vec::new();
+    for start in 0..n {
+        if sign[start] != 0 {
+            continue;
+        }
+        sign[start] = 1;
+        queue.push_back(start);
+        members.clear();
+        while let Some(f) = queue.pop_front() {
+            members.push(f);
+            for &(g, rel) in &adj[deg[f] as usize..deg[f + 1] as usize] {
+                if sign[g as usize] == 0 {
+                    sign[g as usize] = if rel < 0 { -sign[f] } else { sign[f] };
+                    queue.push_back(g as usize);
+                }
+            }
+        }
+        if signed_volume(mesh, &members, &sign) < 0.0 {
+            members.iter().for_each(|&f| sign[f] = -sign[f]);
+        }
+    }
+    sign
+}
+
+/// +1 when the two polygons traverse a shared edge in opposite directions (they
+/// agree), −1 when in the same direction, 0 when no edge is found (degenerate faces).
+fn relation(a: &[u32], b: &[u32]) -> i8 {
+    fn edges(p: &[u32]) -> impl Iterator<Item = (u32, u32)> + '_ {
+        let k = p.len();
+        (0..k).map(move |i| (p[i], p[(i + 1) % k]))
+    }
+    for (u, v) in edges(a).filter(|(u, v)| u != v) {
+        for (s, t) in edges(b) {
+            if (s, t) == (v, u) {
+                return 1;
+            }
+            if (s, t) == (u, v) {
+                return -1;
+            }
+        }
+    }
+    0
+}
+
+/// Signed volume of the faces `members` with the windings `sign`, about the centre
+/// of their first face (fan triangulation; exact for a closed surface anywhere).
+fn signed_volume(mesh: &Mesh, members: &[usize], sign: &[i8]) -> f64 {
+    let pos = |v: u32| -> V3 { mesh.pos(v) };
+    let origin = mesh.face(members[0]).first().map_or([0.0; 3], |&v| pos(v));
+    let mut vol = 0.0;
+    for &f in members {
+        let vs = mesh.face(f);
+        for i in 1..vs.len().saturating_sub(1) {
+            let (a, b, c) = (pos(vs[0]), pos(vs[i]), pos(vs[i + 1]));
+            let t = dot(sub(a, origin), cross(sub(b, origin), sub(c, origin)));
+            vol += f64::from(sign[f]) * t;
+        }
+    }
+    vol
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A unit cube as six quads with outward windings.
+    fn cube(flip: &[usize]) -> Mesh {
+        let v: Vec<V3> = (0..8)
+            .map(|i| [(i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64])
+            .collect();
+        let mut f = vec![
+            vec![0, 2, 3, 1],
+            vec![4, 5, 7, 6],
+            vec![0, 1, 5, 4],
+            vec![2, 6, 7, 3],
+            vec![0, 4, 6, 2],
+            vec![1, 3, 7, 5],
+        ];
+        for &i in flip {
+            f[i].reverse();
+        }
+        Mesh::from_polygons(&v, &f)
+    }
+
+    fn signs(m: &Mesh) -> Vec<i8> {
+        let welded: Vec<u32> = m.face_indices.clone();
+        let pairs = super::super::adjacency::face_pairs(&m.face_offsets, &welded);
+        face_signs(m, &welded, &pairs)
+    }
+
+    /// Every face of the cube ends up facing outward, whichever faces were reversed in
+    /// the input: the reversed ones get −1, the others +1.
+    #[test]
+    fn mixed_windings_become_outward() {
+        let outward = cube(&[]);
+        let n = |m: &Mesh, f: usize, s: i8| {
+            let vs = m.face(f);
+            let (a, b, c) = (m.pos(vs[0]), m.pos(vs[1]), m.pos(vs[2]));
+            let nrm = cross(sub(b, a), sub(c, a));
+            // Positions are re-centred: the cube's centre is its vertices' mean.
+            let mid = (0..8u32).fold([0.0; 3], |s, v| {
+                let p = m.pos(v);
+                [s[0] + p[0] / 8.0, s[1] + p[1] / 8.0, s[2] + p[2] / 8.0]
+            });
+            let out = sub(a, mid);
+            f64::from(s) * dot(nrm, out)
+        };
+        for f in 0..6 {
+            assert!(
+                n(&outward, f, 1) > 0.0,
+                "the fixture's face {f} is not outward"
+            );
+        }
+        for flip in [
+            vec![],
+            vec![0],
+            vec![1, 3],
+            vec![0, 1, 2, 3, 4, 5],
+            vec![0, 2, 5],
+        ] {
+            let m = cube(&flip);
+            let s = signs(&m);
+            for f in 0..6 {
+                assert!(
+                    n(&m, f, s[f]) > 0.0,
+                    "flipped {flip:?}: face {f} faces inward"
+                );
+            }
+        }
+    }
+
+    /// Two separate cubes, one wound inside out: each component is turned on its own.
+    #[test]
+    fn components_are_oriented_apart() {
+        let a = cube(&[]);
+        let b = cube(&[0, 1, 2, 3, 4, 5]);
+        let mut v: Vec<V3> = (0..8).map(|i| a.pos(i)).collect();
+        v.extend((0..8).map(|i| {
+            let p = b.pos(i);
+            [p[0] + 3.0, p[1], p[2]]
+        }));
+        let mut f: Vec<Vec<u32>> = (0..6).map(|i| a.face(i).to_vec()).collect();
+        f.extend((0..6).map(|i| b.face(i).iter().map(|&x| x + 8).collect::<Vec<u32>>()));
+        let m = Mesh::from_polygons(&v, &f);
+        let s = signs(&m);
+        assert_eq!(&s[..6], &[1; 6]);
+        assert_eq!(&s[6..], &[-1; 6]);
+    }
+}

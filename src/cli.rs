@@ -142,6 +142,11 @@ struct DecomposeArgs {
     /// the merge stopped.
     #[arg(long)]
     fill: bool,
+    /// Weight of the outward reach when choosing each output primitive's frame: k·V +
+    /// W·(area-weighted distance the primitive reaches past its faces' outer side). 0 =
+    /// off (the volume alone, the paper's criterion).
+    #[arg(long, default_value_t = 0.0)]
+    outward_weight: f64,
     /// Remove boxes thinner than this fraction of the diagonal when others cover them.
     #[arg(long)]
     remove_thin_boxes: Option<f64>,
@@ -270,6 +275,7 @@ fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
         flat_merge_extent_rel: a.flat_merge_extent,
         remove_contained: !a.keep_contained,
         fill: a.fill,
+        outward_weight: a.outward_weight,
         remove_thin_boxes: a.remove_thin_boxes,
         partitions: match a.partitions.as_str() {
             "auto" => Partitions::Auto,

@@ -149,7 +149,16 @@ pub(crate) fn decompose_once(
     dec.timings.push("quadrics", now);
     // One primitive per face seeds the volumes (Alg. 1, line 2).
     let now = Instant::now();
-    let ev = evaluator(mesh, &welded, params, bounds);
+    // Outward sides agree across shared edges, for the outward reach (deviation 22).
+    let signs = if params.outward_weight > 0.0 {
+        crate::mesh::orient::face_signs(mesh, &welded, &pairs)
+    } else {
+        Vec::new()
+    };
+    let ev = Evaluator {
+        face_sign: &signs,
+        ..evaluator(mesh, &welded, params, bounds)
+    };
     let volumes = seed_volumes(&ev, &q);
     let mut targets = params.targets.clone();
     targets.sort_unstable_by(|a, b| b.cmp(a));
@@ -361,6 +370,8 @@ pub fn evaluator<'a>(
         cost_unit: COST_GRID * diag.max(min_half).powi(3),
         hull_eps: 1e-12 * diag.max(min_half),
         reduction: params.reduction,
+        outward_weight: params.outward_weight,
+        face_sign: &[],
     }
 }
 

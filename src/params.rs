@@ -22,6 +22,7 @@
 //! | `partitions` | `Auto` (from 524,288 faces, 16 parts or one per 65,536 faces if more; else 1) | `Fixed(K)`: the faces are split into K spatial parts, merged in parallel (one task each, re-pricing lazily unless `reprice` is `Exact`) to 16× the largest target before the global merge loop: faster on 2+ cores, merges across part boundaries wait (docs/results/partitions.md) | `Fixed(1)`: one global greedy, Alg. 1, on every input |
 //! | `reduction` | `Hull` | — | `Extremes`: clusters keep only their extreme points along 13 fixed axes (≤ 26): no convex hull per merge, cheaper fits; merges are priced on an inner approximation, so the order (and the fit) changes: dragon merge stage 9.85 → 8.53 s on one thread (one run), corpus quality no worse on average but mixed per mesh (docs/results/reduction.md) |
 //! | `fill` | false | (when set) a target N the post-processing left short of is met by merging less: up to N primitives, each covering fewer faces (tighter fit); costs one merge pass per search round (up to 4 more) | — |
+//! | `outward_weight` | 0 | output fits also price how far a primitive reaches past its faces' outer side (the volume balls and bodies meet): w·Σ area·gap is added to k·V when choosing an output frame; merges are priced as before | 0 = off: output frames chosen by k·V alone |
 //! | `remove_thin_boxes` | None | (when set) drops boxes thinner than this fraction of the diagonal if still covered | — |
 
 use crate::error::{Error, Result};
@@ -172,6 +173,16 @@ pub struct Params {
     /// not above N (budget.rs). Serialized only when set.
     #[serde(skip_serializing_if = "is_false")]
     pub fill: bool,
+    /// Weight of the outward reach in the output fit's frame choice: each output
+    /// cluster's frame minimises k·V + w·Σ_f area_f·(h(n_f) − n_f·f), h the primitive's
+    /// support function, n_f each face's outward normal (its winding). 0 = off; only
+    /// serialized when set.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub outward_weight: f64,
+}
+
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }
 
 fn is_false(b: &bool) -> bool {
@@ -216,6 +227,7 @@ impl Default for Params {
             partitions: Partitions::Auto,
             reduction: Reduction::Hull,
             fill: false,
+            outward_weight: 0.0,
         }
     }
 }
@@ -261,6 +273,10 @@ impl Params {
             if !(m.is_finite() && (0.0..1.0).contains(&m)) {
                 return bad(format!("merge-min-extent must be in [0, 1), got {m}"));
             }
+        }
+        let w = self.outward_weight;
+        if !(w.is_finite() && w >= 0.0) {
+            return bad(format!("outward-weight must be ≥ 0, got {w}"));
         }
         let m = self.flat_merge_extent_rel;
         if !(m.is_finite() && (0.0..1.0).contains(&m)) {

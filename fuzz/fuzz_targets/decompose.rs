@@ -88,6 +88,11 @@ fn params(u: &mut Unstructured) -> Result<Params> {
     // After that (an exhausted input reads false, as grown): the budget search's extra
     // passes (budget.rs) on hostile input.
     p.fill = u.arbitrary::<bool>()?;
+    // After that (an exhausted input reads 0: off, as grown): the outward reach's
+    // face orientation and support functions on hostile input (deviation 22).
+    if u.int_in_range(0..=3)? == 1 {
+        p.outward_weight = pick(u, &[1.0, 1e-9, 1e9])?.abs();
+    }
     Ok(p)
 }
 

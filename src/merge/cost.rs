@@ -6,9 +6,11 @@ use super::cluster::Clusters;
 use super::heap::Candidate;
 use crate::math::hull::{hull_vertices, HullWorkspace};
 use crate::math::Sym3;
+use crate::math::{cross, dot, norm, V3};
 use crate::mesh::Mesh;
+use crate::primitive::fit::thorough_frames;
 use crate::primitive::fit::{fit_best_frame, fit_frame, Fit, FitConfig, FrameSearch};
-use crate::primitive::{fit_best, Cloud, FitScratch};
+use crate::primitive::{fit_best, frame, Cloud, FitScratch, Primitive};
 use crate::Reduction;
 
 /// Per-thread reusable buffers: the gathered points and the fit's scratch.
@@ -24,6 +26,29 @@ pub struct Workspace {
     hx: Vec<f64>,
     hy: Vec<f64>,
     hz: Vec<f64>,
+    /// The output fit's candidate frames and the cluster's faces as outer sides, when
+    /// the outward reach is priced (`Params::outward_weight`).
+    frames: Vec<[V3; 3]>,
+    sides: Vec<OuterSide>,
+}
+
+/// A face as its outer side: unit normal (from its winding), area, and the largest
+/// `n·v` over its vertices (its plane).
+#[derive(Clone, Copy, Debug)]
+struct OuterSide {
+    n: V3,
+    area: f64,
+    offset: f64,
+}
+
+/// Σ area·(h(n) − offset) over the sides: how far, area-weighted, the primitive reaches
+/// past the faces' outer side (a volume, like k·V). A primitive enclosing the faces
+/// reaches at least their planes; only reach beyond them counts.
+fn outward_reach(prim: &Primitive, sides: &[OuterSide]) -> f64 {
+    sides
+        .iter()
+        .map(|s| s.area * (prim.support(s.n) - s.offset).max(0.0))
+        .sum()
 }
 
 impl Workspace {
@@ -73,6 +98,11 @@ pub struct Evaluator<'a> {
     /// Merges whose clusters' neighbour lists hold at least this many entries are
     /// re-priced lazily (`Params::reprice`); `u32::MAX` = always at once (exact).
     pub defer_degree: u32,
+    /// `Params::outward_weight`: the outward reach's weight in the output frame choice.
+    pub outward_weight: f64,
+    /// Per face, ±1: the winding that faces outward (`mesh::orient`); empty = the
+    /// faces' own windings (set only when `outward_weight` > 0).
+    pub face_sign: &'a [i8],
 }
 
 impl<'a> Evaluator<'a> {
@@ -145,18 +175,89 @@ impl<'a> Evaluator<'a> {
             min_half: self.output_min_half,
             ..self.cfg
         };
+        if self.outward_weight > 0.0 {
+            self.outer_sides(cl, c, ws);
+            return self.fit_outward(&cl.q[c as usize], &cfg, ws);
+        }
         self.fit_on_hull(&cl.q[c as usize], &cfg, ws)
     }
 
-    /// [`fit_best`] of the gathered points, its frames tried on the points' hull
-    /// vertices (a convex primitive encloses the points iff it encloses those) and only
-    /// the winning frame refitted on every point: the same fit for ~20 frames at the
-    /// price of one on every point (deviation 21).
-    fn fit_on_hull(&self, q: &Sym3, cfg: &FitConfig, ws: &mut Workspace) -> Fit {
-        let eps = self.hull_eps;
-        hull_vertices(&ws.x, &ws.y, &ws.z, eps, &mut ws.hull, &mut ws.keep);
+    /// The faces of cluster `c` as outer sides (Newell normals of their own vertices);
+    /// faces of zero area have no side and are skipped.
+    fn outer_sides(&self, cl: &Clusters, c: u32, ws: &mut Workspace) {
+        let m = self.mesh;
+        let pos = |v: u32| [m.x[v as usize], m.y[v as usize], m.z[v as usize]];
+        ws.sides.clear();
+        for f in cl.faces(c) {
+            let vs = m.face(f as usize);
+            let mut sum = [0.0; 3];
+            for (i, &v) in vs.iter().enumerate() {
+                let c = cross(pos(v), pos(vs[(i + 1) % vs.len()]));
+                sum = [sum[0] + c[0], sum[1] + c[1], sum[2] + c[2]];
+            }
+            let len = norm(sum);
+            if !(len > 0.0 && len.is_finite()) {
+                continue;
+            }
+            let s = self
+                .face_sign
+                .get(f as usize)
+                .map_or(1.0, |&s| f64::from(s));
+            let n = [s * sum[0] / len, s * sum[1] / len, s * sum[2] / len];
+            let offset = vs
+                .iter()
+                .map(|&v| dot(n, pos(v)))
+                .fold(f64::NEG_INFINITY, f64::max);
+            ws.sides.push(OuterSide {
+                n,
+                area: 0.5 * len,
+                offset,
+            });
+        }
+    }
+
+    /// The output fit with the outward reach priced: every frame of the thorough search
+    /// fitted on the points' hull vertices, the one with the least k·V + w·reach kept
+    /// (earlier frames win ties within [`frame::MARGIN`]) and refitted on every point.
+    fn fit_outward(&self, q: &Sym3, cfg: &FitConfig, ws: &mut Workspace) -> Fit {
+        // The search runs on the hull's vertices, or on every point when all are.
+        let (x, y, z) = if self.gather_hull(ws) {
+            (&ws.hx, &ws.hy, &ws.hz)
+        } else {
+            (&ws.x, &ws.y, &ws.z)
+        };
+        let hull = Cloud { x, y, z };
+        thorough_frames(&hull, q, &mut ws.fit, &mut ws.frames);
+        let mut best: Option<(f64, [V3; 3])> = None;
+        for &axes in &ws.frames {
+            let f = fit_frame(&hull, axes, cfg, &mut ws.fit);
+            let score = f.cost + self.outward_weight * outward_reach(&f.prim, &ws.sides);
+            if best.is_none_or(|(b, _)| score < b * (1.0 - frame::MARGIN)) {
+                best = Some((score, axes));
+            }
+        }
+        let axes = best.expect("the eigen-frame is always tried").1;
+        let all = Cloud {
+            x: &ws.x,
+            y: &ws.y,
+            z: &ws.z,
+        };
+        fit_frame(&all, axes, cfg, &mut ws.fit)
+    }
+
+    /// Copies the gathered points' hull vertices to `ws.hx/hy/hz`; false (nothing
+    /// copied) when every point is one.
+    fn gather_hull(&self, ws: &mut Workspace) -> bool {
+        hull_vertices(
+            &ws.x,
+            &ws.y,
+            &ws.z,
+            self.hull_eps,
+            &mut ws.hull,
+            &mut ws.keep,
+        );
         if ws.keep.len() == ws.x.len() {
-            return self.fit_points(q, cfg, ws);
+            return false;
         }
         for (dst, src) in [
             (&mut ws.hx, &ws.x),
@@ -165,6 +266,17 @@ impl<'a> Evaluator<'a> {
         ] {
             dst.clear();
             dst.extend(ws.keep.iter().map(|&i| src[i as usize]));
+        }
+        true
+    }
+
+    /// [`fit_best`] of the gathered points, its frames tried on the points' hull
+    /// vertices (a convex primitive encloses the points iff it encloses those) and only
+    /// the winning frame refitted on every point: the same fit for ~20 frames at the
+    /// price of one on every point (deviation 21).
+    fn fit_on_hull(&self, q: &Sym3, cfg: &FitConfig, ws: &mut Workspace) -> Fit {
+        if !self.gather_hull(ws) {
+            return self.fit_points(q, cfg, ws);
         }
         let hull = Cloud {
             x: &ws.hx,

@@ -70,22 +70,7 @@ impl Clusters {
     /// One cluster per face, with the given per-face operators and volumes.
     pub fn new(q: Vec<Sym3>, volume: Vec<f64>, pairs: &[(u32, u32)]) -> Clusters {
         let n = q.len();
-        let mut adj_offsets = vec![0u32; n + 1];
-        for &(a, b) in pairs {
-            adj_offsets[a as usize + 1] += 1;
-            adj_offsets[b as usize + 1] += 1;
-        }
-        for i in 0..n {
-            adj_offsets[i + 1] += adj_offsets[i];
-        }
-        let mut fill = adj_offsets.clone();
-        let mut adj = vec![0u32; 2 * pairs.len()];
-        for &(a, b) in pairs {
-            adj[fill[a as usize] as usize] = b;
-            fill[a as usize] += 1;
-            adj[fill[b as usize] as usize] = a;
-            fill[b as usize] += 1;
-        }
+        let (adj_offsets, adj) = crate::mesh::adjacency::neighbour_lists(n, pairs);
         Clusters {
             node: (0..n as u32)
                 .map(|c| Node {

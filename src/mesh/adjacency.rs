@@ -8,6 +8,28 @@ use rayon::prelude::*;
 /// so a non-manifold "fan" edge cannot create a quadratic number of pairs.
 const ALL_PAIRS_UP_TO: usize = 4;
 
+/// The pairs as neighbour lists of `n` faces, CSR: face `f`'s neighbours are
+/// `adj[offsets[f]..offsets[f + 1]]`, in the pairs' order.
+pub fn neighbour_lists(n: usize, pairs: &[(u32, u32)]) -> (Vec<u32>, Vec<u32>) {
+    let mut offsets = vec![0u32; n + 1];
+    for &(a, b) in pairs {
+        offsets[a as usize + 1] += 1;
+        offsets[b as usize + 1] += 1;
+    }
+    for i in 0..n {
+        offsets[i + 1] += offsets[i];
+    }
+    let mut fill = offsets.clone();
+    let mut adj = vec![0u32; 2 * pairs.len()];
+    for &(a, b) in pairs {
+        adj[fill[a as usize] as usize] = b;
+        fill[a as usize] += 1;
+        adj[fill[b as usize] as usize] = a;
+        fill[b as usize] += 1;
+    }
+    (offsets, adj)
+}
+
 /// Sorted, unique pairs `(a, b)` with `a < b` of faces sharing an edge. `offsets` and
 /// `indices` are the CSR polygons (indices already welded).
 ///

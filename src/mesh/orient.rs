@@ -18,24 +18,7 @@ pub fn face_signs(mesh: &Mesh, welded: &[u32], pairs: &[(u32, u32)]) -> Vec<i8> 
     let n = mesh.face_count();
     let off = &mesh.face_offsets;
     let face = |f: usize| &welded[off[f] as usize..off[f + 1] as usize];
-    // Neighbour lists (CSR) with the relation: +1 agree, −1 opposed, 0 unknown.
-    let mut deg = vec![0u32; n + 1];
-    for &(a, b) in pairs {
-        deg[a as usize + 1] += 1;
-        deg[b as usize + 1] += 1;
-    }
-    for i in 0..n {
-        deg[i + 1] += deg[i];
-    }
-    let mut fill = deg.clone();
-    let mut adj = vec![(0u32, 0i8); pairs.len() * 2];
-    for &(a, b) in pairs {
-        let rel = relation(face(a as usize), face(b as usize));
-        for (x, y) in [(a, b), (b, a)] {
-            adj[fill[x as usize] as usize] = (y, rel);
-            fill[x as usize] += 1;
-        }
-    }
+    let (deg, adj) = super::adjacency::neighbour_lists(n, pairs);
     let mut sign = vec![0i8; n];
     let mut queue = VecDeque::new();
     let mut members = Vec::new();
@@ -48,8 +31,10 @@ pub fn face_signs(mesh: &Mesh, welded: &[u32], pairs: &[(u32, u32)]) -> Vec<i8> 
         members.clear();
         while let Some(f) = queue.pop_front() {
             members.push(f);
-            for &(g, rel) in &adj[deg[f] as usize..deg[f + 1] as usize] {
+            for &g in &adj[deg[f] as usize..deg[f + 1] as usize] {
                 if sign[g as usize] == 0 {
+                    // Opposed windings flip; agreeing or unknown (no shared edge) keep.
+                    let rel = relation(face(f), face(g as usize));
                     sign[g as usize] = if rel < 0 { -sign[f] } else { sign[f] };
                     queue.push_back(g as usize);
                 }

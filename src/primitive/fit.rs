@@ -84,6 +84,8 @@ pub struct FitScratch {
     span: [f64; 3],
     /// The same in Q's eigen-frame, the first frame [`fit_best`] fits (flatness test).
     eigen_span: [f64; 3],
+    /// The frames of [`FrameSearch::Thorough`] ([`thorough_frames`]), reused.
+    frames: Vec<[V3; 3]>,
 }
 
 impl FitScratch {
@@ -142,20 +144,22 @@ pub fn fit_best_frame(
     let plane = match cfg.frames {
         FrameSearch::Eigen => None,
         FrameSearch::Degenerate => tied.or_else(|| frame::flat(s.span).then_some((1, 2))),
-        FrameSearch::Always | FrameSearch::Thorough => tied.or(Some((1, 2))),
+        FrameSearch::Always => tied.or(Some((1, 2))),
+        FrameSearch::Thorough => {
+            // Every plane's turned frames, then the input's own axes (deviation 21).
+            let mut frames = std::mem::take(&mut s.frames);
+            thorough_frames(cloud, q, s, &mut frames);
+            for &f in &frames[1..] {
+                best = keep_better(cloud, f, cfg, s, best);
+            }
+            s.frames = frames;
+            return best;
+        }
     };
     let Some(plane) = plane else {
         return best;
     };
-    best = turned_fits(cloud, axes, plane, cfg, s, best);
-    if cfg.frames == FrameSearch::Thorough {
-        // The other two planes, then the input's own axes (deviation 21).
-        for other in [(0, 1), (0, 2), (1, 2)].into_iter().filter(|&p| p != plane) {
-            best = turned_fits(cloud, axes, other, cfg, s, best);
-        }
-        best = keep_better(cloud, WORLD_AXES, cfg, s, best);
-    }
-    best
+    turned_fits(cloud, axes, plane, cfg, s, best)
 }
 
 /// The frames [`FrameSearch::Thorough`] tries, in the order [`fit_best_frame`] tries

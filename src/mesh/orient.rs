@@ -93,14 +93,10 @@ mod tests {
         let v: Vec<V3> = (0..8)
             .map(|i| [(i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64])
             .collect();
-        let mut f = vec![
-            vec![0, 2, 3, 1],
-            vec![4, 5, 7, 6],
-            vec![0, 1, 5, 4],
-            vec![2, 6, 7, 3],
-            vec![0, 4, 6, 2],
-            vec![1, 3, 7, 5],
-        ];
+        // The demo's box quads: corner i has bit k set at the high end of axis k.
+        let mut f: Vec<Vec<u32>> = crate::demo::BOX_FACES
+            .map(|q| q.map(|i| i as u32).to_vec())
+            .to_vec();
         for &i in flip {
             f[i].reverse();
         }

@@ -29,6 +29,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+from compare_lib.noise import step_spread  # the step-time noise band (standard library only)
 from compare_lib.peers import sha256_file  # the peer cache's own key (standard library only)
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -243,9 +244,8 @@ def tables(rows, a):
 
 
 def spread(r):
-    """The step time's noise on this mesh: how far the perturbed mesh's median wall time
-    lies from the mesh's (same geometry, chaotic trajectories, timer jitter), at least 2%."""
-    return max(0.02, abs(ratio(r["self"]["frame_ms_median"], r["mesh"]["frame_ms_median"]) - 1))
+    """The step time's noise on this mesh (`compare_lib.noise.step_spread`)."""
+    return step_spread(r["self"]["frame_ms_median"], r["mesh"]["frame_ms_median"])
 
 
 def summary(rows):

@@ -3,6 +3,7 @@
 import datetime
 
 from . import peers
+from .noise import step_spread
 from .report import RULE, machine, mean, median, metrics_of, slot, summary_rows
 
 KIND_LETTER = [("box", "b"), ("sphere", "s"), ("capsule", "c"), ("cylinder", "y"), ("frustum", "f"), ("prism", "p")]
@@ -179,7 +180,7 @@ def sim_table(records, note=None):
             ok = "met" if fast == len(both) and sim == len(both) else "**NOT met**"
             # Beyond noise: slower by more than the mesh's own spread (sim_compare.py).
             timed = [r for r in both if g(r, "self", "frame_ms_median") and g(r, "mesh", "frame_ms_median")]
-            spread = lambda r: max(0.02, abs(g(r, "self", "frame_ms_median") / g(r, "mesh", "frame_ms_median") - 1))  # noqa: E731
+            spread = lambda r: step_spread(g(r, "self", "frame_ms_median"), g(r, "mesh", "frame_ms_median"))  # noqa: E731
             slower = sum(g(r, mine, "frame_ms_median") / g(r, peer, "frame_ms_median") - 1 > spread(r) for r in timed)
             noise = f", slower beyond the mesh's own spread on {slower} of {len(timed)}" if timed else ""
             lines.append(f"- Goal (frame time ≤ {label}'s and similarity ≥ {label}'s on every mesh), ours {how}: "

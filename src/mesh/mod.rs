@@ -6,6 +6,7 @@ pub mod adjacency;
 pub mod dedup;
 pub mod io;
 pub mod orient;
+pub mod solid;
 
 use crate::math::V3;
 

@@ -147,6 +147,11 @@ struct DecomposeArgs {
     /// off (the volume alone, the paper's criterion).
     #[arg(long, default_value_t = 0.0)]
     outward_weight: f64,
+    /// Price merges by the volume they add outside the input (its interior by ray
+    /// parity on a voxel grid) instead of the whole volume: closed parts fill into
+    /// solid primitives rather than shells of plates.
+    #[arg(long)]
+    solid: bool,
     /// Remove boxes thinner than this fraction of the diagonal when others cover them.
     #[arg(long)]
     remove_thin_boxes: Option<f64>,
@@ -276,6 +281,7 @@ fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
         remove_contained: !a.keep_contained,
         fill: a.fill,
         outward_weight: a.outward_weight,
+        solid: a.solid,
         remove_thin_boxes: a.remove_thin_boxes,
         partitions: match a.partitions.as_str() {
             "auto" => Partitions::Auto,

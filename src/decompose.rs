@@ -4,6 +4,7 @@
 use crate::error::{Error, Result};
 use crate::math::V3;
 use crate::merge::{components, partition, Clusters, Evaluator, Workspace};
+use crate::mesh::solid::{self, Solid};
 use crate::mesh::{adjacency, dedup, Mesh};
 use crate::params::{Params, Reprice};
 use crate::postprocess::{keep_mask, Cleanup};
@@ -155,8 +156,13 @@ pub(crate) fn decompose_once(
     } else {
         Vec::new()
     };
+    // The interior, where merges are priced by the air they add (deviation 23).
+    let solid = params
+        .solid
+        .then(|| Solid::build(mesh, solid::CELLS, solid::VOTES));
     let ev = Evaluator {
         face_sign: &signs,
+        solid: solid.as_ref(),
         ..evaluator(mesh, &welded, params, bounds)
     };
     let volumes = seed_volumes(&ev, &q);
@@ -372,6 +378,7 @@ pub fn evaluator<'a>(
         reduction: params.reduction,
         outward_weight: params.outward_weight,
         face_sign: &[],
+        solid: None,
     }
 }
 
@@ -381,7 +388,8 @@ pub fn seed_volumes(ev: &Evaluator, q: &[crate::math::Sym3]) -> Vec<f64> {
         .into_par_iter()
         .with_min_len(1024)
         .map_init(Workspace::default, |ws, f| {
-            ev.fit_face(f as u32, &q[f], ws).volume
+            let fit = ev.fit_face(f as u32, &q[f], ws);
+            fit.volume * ev.air(&fit.prim)
         })
         .collect()
 }

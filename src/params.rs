@@ -23,6 +23,7 @@
 //! | `reduction` | `Hull` | — | `Extremes`: clusters keep only their extreme points along 13 fixed axes (≤ 26): no convex hull per merge, cheaper fits; merges are priced on an inner approximation, so the order (and the fit) changes: dragon merge stage 9.85 → 8.53 s on one thread (one run), corpus quality no worse on average but mixed per mesh (docs/results/reduction.md) |
 //! | `fill` | false | (when set) a target N the post-processing left short of is met by merging less: up to N primitives, each covering fewer faces (tighter fit); costs one merge pass per search round (up to 4 more) | — |
 //! | `outward_weight` | 0 | output fits also price how far a primitive reaches past its faces' outer side (the volume balls and bodies meet): w·Σ area·gap is added to k·V when choosing an output frame; merges are priced as before | 0 = off: output frames chosen by k·V alone |
+//! | `solid` | false | (when set) merges are priced by the volume their primitive adds outside the input (interior by ray parity on a 64-cell grid) rather than its whole volume: closed parts become one solid primitive instead of a shell of plates, fewer shapes per part in a physics scene; holes and gaps are priced as before | — |
 //! | `remove_thin_boxes` | None | (when set) drops boxes thinner than this fraction of the diagonal if still covered | — |
 
 use crate::error::{Error, Result};
@@ -179,6 +180,12 @@ pub struct Params {
     /// serialized when set.
     #[serde(skip_serializing_if = "is_zero")]
     pub outward_weight: f64,
+    /// Price merges by the volume their primitive adds outside the input (its interior
+    /// from ray parity on a voxel grid, `mesh::solid`) instead of its whole volume:
+    /// closed parts fill into solid primitives, gaps and holes are still priced.
+    /// Serialized only when set.
+    #[serde(skip_serializing_if = "is_false")]
+    pub solid: bool,
 }
 
 fn is_zero(x: &f64) -> bool {
@@ -228,6 +235,7 @@ impl Default for Params {
             reduction: Reduction::Hull,
             fill: false,
             outward_weight: 0.0,
+            solid: false,
         }
     }
 }

@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::check::{assert_same_on_threads, assert_valid};
+use common::check::{assert_default_output, assert_same_on_threads, assert_valid};
 use primdecomp::math::{cross, dot, norm};
 use primdecomp::mesh::{adjacency, orient};
 use primdecomp::{decompose, demo, Mesh, Params, Primitive};
@@ -80,18 +80,7 @@ fn patch(seed: u64) -> Mesh {
 #[test]
 fn zero_weight_is_the_default_output() {
     let m = Mesh::from_builder(demo::demo_scene());
-    let a = decompose(&m, &params(&[150, 20], 0.0)).unwrap();
-    let b = decompose(
-        &m,
-        &Params {
-            targets: vec![150, 20],
-            ..Default::default()
-        },
-    )
-    .unwrap();
-    for (x, y) in a.levels.iter().zip(&b.levels) {
-        assert_eq!(x.primitives, y.primitives);
-    }
+    assert_default_output(&m, &params(&[150, 20], 0.0));
 }
 
 /// A positive weight keeps every face enclosed (the independent oracle) and gives the

@@ -93,6 +93,9 @@ fn params(u: &mut Unstructured) -> Result<Params> {
     if u.int_in_range(0..=3)? == 1 {
         p.outward_weight = pick(u, &[1.0, 1e-9, 1e9])?.abs();
     }
+    // After that (an exhausted input reads false, as grown): the interior grid's ray
+    // parity and the air pricing on hostile input (deviation 23).
+    p.solid = u.arbitrary::<bool>()?;
     Ok(p)
 }
 

@@ -7,6 +7,7 @@ use super::heap::Candidate;
 use crate::math::hull::{hull_vertices, HullWorkspace};
 use crate::math::Sym3;
 use crate::math::{cross, dot, norm, V3};
+use crate::mesh::solid::Solid;
 use crate::mesh::Mesh;
 use crate::primitive::fit::thorough_frames;
 use crate::primitive::fit::{fit_best_frame, fit_frame, Fit, FitConfig, FrameSearch};
@@ -103,6 +104,9 @@ pub struct Evaluator<'a> {
     /// Per face, ±1: the winding that faces outward (`mesh::orient`); empty = the
     /// faces' own windings (set only when `outward_weight` > 0).
     pub face_sign: &'a [i8],
+    /// The input's interior (`Params::solid`, deviation 23): merges are priced by the
+    /// volume their primitive adds outside it; `None` = the paper's whole volume.
+    pub solid: Option<&'a Solid>,
 }
 
 impl<'a> Evaluator<'a> {
@@ -140,6 +144,12 @@ impl<'a> Evaluator<'a> {
             z: &ws.z,
         };
         fit_best(&cloud, q, cfg, &mut ws.fit)
+    }
+
+    /// The share of `prim` outside the input (1 unless `solid` is set): the part of
+    /// its volume a merge is priced for (deviation 23).
+    pub fn air(&self, prim: &Primitive) -> f64 {
+        self.solid.map_or(1.0, |s| 1.0 - s.inside_fraction(prim))
     }
 
     /// The primitive of face `f` alone, with its operator `q` (before any merge), in
@@ -336,11 +346,13 @@ impl<'a> Evaluator<'a> {
         self.push_points(b.verts, ws);
         let q = a.q.add(&b.q);
         let fit = self.fit_points(&q, &self.cfg, ws);
+        let air = self.air(&fit.prim);
+        let volume = fit.volume * air;
         let before = a.volume + b.volume;
-        if fit.volume - before > self.max_excess {
+        if volume - before > self.max_excess {
             return None;
         }
-        let mut cost = fit.cost - before;
+        let mut cost = fit.cost * air - before;
         // A coplanar merge's volumes are all area × 2·floor, so scaling its cost is
         // pricing it at the thicker floor (Params::flat_merge_extent_rel).
         if self.flat_scale > 1.0 && ws.fit.was_flat() {
@@ -348,7 +360,7 @@ impl<'a> Evaluator<'a> {
         }
         let c = Candidate {
             cost: (cost / self.cost_unit).round(),
-            volume: fit.volume,
+            volume,
             a: a.id,
             b: b.id,
             t: a.t.max(b.t),

@@ -85,6 +85,20 @@ pub fn assert_same_on_threads(mesh: &Mesh, params: &Params) -> Decomposition {
     runs.into_iter().next().expect("three runs")
 }
 
+/// Panics unless `params` (an option set to its off value) give the default engine's
+/// primitives at every level of `params.targets`.
+pub fn assert_default_output(mesh: &Mesh, params: &Params) {
+    let a = primdecomp::decompose(mesh, params).unwrap();
+    let default = Params {
+        targets: params.targets.clone(),
+        ..Default::default()
+    };
+    let b = primdecomp::decompose(mesh, &default).unwrap();
+    for (x, y) in a.levels.iter().zip(&b.levels) {
+        assert_eq!(x.primitives, y.primitives);
+    }
+}
+
 /// Decomposes corpus meshes (one closed scan, one model of many parts that must be
 /// bridged) at about 1% of their faces and at 20 under `with(targets)`, and checks
 /// every result valid and within its counts; says so loudly and returns when the

@@ -76,3 +76,33 @@ fn closed_parts_fill_instead_of_shells() {
     );
     assert_eq!(slab_boxes(&level(12, true)), 1, "solid pricing: one box");
 }
+
+/// kenney_wall_high at 64 with `--fill`: solid pricing filled the top slab (1.5 × 0.2
+/// × 0.7, y from 1.5 to 1.7, bevelled ends) into two boxes that overlapped over 97% of
+/// its length, each leaving out one bevelled end, and every ball resting on it touched
+/// both. The near-duplicate pair must be absorbed into one primitive reaching both ends;
+/// no other primitive may reach the slab's top then. Needs the corpus.
+#[test]
+fn wall_high_top_slab_is_one_primitive() {
+    let Some(m) = common::corpus_mesh("kenney_wall_high.glb") else {
+        return;
+    };
+    let p = Params {
+        fill: true,
+        ..params(&[64], true)
+    };
+    let dec = decompose(&m, &p).unwrap();
+    assert_valid(&m, &dec, &p);
+    let top: Vec<_> = dec.levels[0]
+        .primitives
+        .iter()
+        .map(|p| p.aabb())
+        .filter(|(lo, hi)| hi[1] > 1.69 && lo[1] < 1.51 && hi[0] - lo[0] > 1.0)
+        .collect();
+    assert_eq!(top.len(), 1, "boxes across the top slab: {top:?}");
+    let (lo, hi) = top[0];
+    assert!(
+        lo[0] < -0.749 && hi[0] > 0.749,
+        "one box end to end: {lo:?} {hi:?}"
+    );
+}

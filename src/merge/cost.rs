@@ -192,6 +192,20 @@ impl<'a> Evaluator<'a> {
         self.fit_on_hull(&cl.q[c as usize], &cfg, ws)
     }
 
+    /// The output fit of the points `verts` (faces' own vertices) with operator `q`:
+    /// what [`Self::fit_cluster_exact`] gives a cluster of those faces when the outward
+    /// reach is not priced (the frames of deviation 21, chosen by k·V).
+    pub fn fit_output_verts(&self, verts: &[u32], q: &Sym3, ws: &mut Workspace) -> Fit {
+        ws.clear();
+        self.push_points(verts, ws);
+        let cfg = FitConfig {
+            frames: FrameSearch::Thorough,
+            min_half: self.output_min_half,
+            ..self.cfg
+        };
+        self.fit_on_hull(q, &cfg, ws)
+    }
+
     /// The faces of cluster `c` as outer sides (Newell normals of their own vertices);
     /// faces of zero area have no side and are skipped.
     fn outer_sides(&self, cl: &Clusters, c: u32, ws: &mut Workspace) {

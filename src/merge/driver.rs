@@ -552,13 +552,19 @@ pub(super) fn snapshot(ev: &Evaluator, cl: &Clusters, target: usize, scope: Scop
             ev.fit_cluster_exact(cl, r, ws).prim
         })
         .collect();
-    Snapshot {
+    let mut snap = Snapshot {
         target,
         prims,
         faces: roots.iter().map(|&r| cl.face_count[r as usize]).collect(),
         verts: roots.par_iter().map(|&r| ev.all_verts(cl, r)).collect(),
         members: roots.par_iter().map(|&r| cl.faces(r).collect()).collect(),
+    };
+    // Solid pricing: near-duplicate primitives become one (deviation 23).
+    if ev.solid.is_some() {
+        let q = roots.iter().map(|&r| cl.q[r as usize]).collect();
+        super::absorb::absorb(ev, &mut snap, q);
     }
+    snap
 }
 
 #[cfg(test)]

@@ -2,6 +2,7 @@
 //! Structure", "Pairwise Component Merging"): clusters of faces, their candidate
 //! merges in a priority queue with lazy deletion, and the loop that drives them.
 
+pub mod absorb;
 pub mod bridge;
 pub mod cluster;
 pub mod components;

@@ -1,0 +1,153 @@
+//! Near-duplicate output primitives absorbed into one, with solid pricing
+//! (`Params::solid`, ARCHITECTURE.md deviation 23; not in the paper, whose §3.4 removes
+//! only primitives nested in another).
+//!
+//! Filled parts can leave two solid primitives that overlap almost entirely: the top
+//! slab of kenney_wall_high at 64 was two boxes over 97% of its length, each leaving
+//! out one bevelled end, and every ball resting on it touched both. Their merge adds
+//! almost no air, but the merge loop had stopped at its target before it. Here, two
+//! primitives whose bounding boxes mostly overlap are replaced by the output fit of
+//! both clusters' points when that fit exceeds the larger of the two by at most
+//! [`ABSORB`] of the smaller: one shape where there were two, enclosing the faces of
+//! both.
+
+use rayon::prelude::*;
+
+use super::cost::{Evaluator, Workspace};
+use super::driver::Snapshot;
+use crate::math::{Sym3, V3};
+use crate::primitive::Primitive;
+
+/// How much larger than the larger of two primitives their union's fit may be, as a
+/// share of the smaller one's volume: a near duplicate adds almost nothing, while a
+/// large box swallowing a small part beside it (a wheel under a truck's body) grows by
+/// more than the part.
+pub const ABSORB: f64 = 0.05;
+/// The share of the smaller bounding box the two must overlap to be tried.
+const OVERLAP: f64 = 0.5;
+/// Containment slack for the nested test, relative to the input diagonal (as
+/// `postprocess`'s, so that a pair skipped here is one it removes).
+const NESTED_TOL_REL: f64 = 1e-9;
+
+/// One pair that may be absorbed: growth (share of the smaller), the two indices
+/// (i < j) and their union's fit.
+type Candidate = (f64, usize, usize, Primitive);
+
+/// Replaces near-duplicate pairs of `snap`'s primitives by their union's fit, in rounds
+/// until none is left; `q` holds each primitive's operator. The best pairs (least
+/// growth, then lowest indices) go first and a primitive joins at most one pair per
+/// round, so the result is the same for any thread count. Only pairs touching a
+/// primitive that changed are priced again (a pair's fit depends on the pair alone).
+pub fn absorb(ev: &Evaluator, snap: &mut Snapshot, mut q: Vec<Sym3>) {
+    let n = snap.prims.len();
+    let mut alive = vec![true; n];
+    let mut dirty = vec![true; n];
+    let mut found: Vec<Candidate> = Vec::new();
+    loop {
+        found.retain(|c| alive[c.1] && alive[c.2] && !dirty[c.1] && !dirty[c.2]);
+        found.extend(near_duplicates(ev, snap, &q, &alive, &dirty));
+        found.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2)));
+        dirty.fill(false);
+        let mut used = vec![false; n];
+        for &(_, i, j, prim) in &found {
+            if used[i] || used[j] {
+                continue;
+            }
+            (used[i], used[j], dirty[i], alive[j]) = (true, true, true, false);
+            snap.prims[i] = prim;
+            snap.faces[i] += snap.faces[j];
+            snap.verts[i] = union(&snap.verts[i], &snap.verts[j]);
+            let members = std::mem::take(&mut snap.members[j]);
+            snap.members[i].extend(members);
+            q[i] = q[i].add(&q[j]);
+        }
+        if !dirty.contains(&true) {
+            break;
+        }
+    }
+    let idx: Vec<usize> = (0..n).filter(|&k| alive[k]).collect();
+    snap.prims = idx.iter().map(|&k| snap.prims[k]).collect();
+    snap.faces = idx.iter().map(|&k| snap.faces[k]).collect();
+    snap.verts = idx
+        .iter()
+        .map(|&k| std::mem::take(&mut snap.verts[k]))
+        .collect();
+    snap.members = idx
+        .iter()
+        .map(|&k| std::mem::take(&mut snap.members[k]))
+        .collect();
+}
+
+/// Every live pair (i < j) with a dirty member whose bounding boxes overlap by
+/// [`OVERLAP`] of the smaller, neither of which already holds the other's points (the
+/// nested removal of §3.4 drops those), and whose union's fit grows the larger by at
+/// most [`ABSORB`] of the smaller, with that growth and fit.
+fn near_duplicates(
+    ev: &Evaluator,
+    snap: &Snapshot,
+    q: &[Sym3],
+    alive: &[bool],
+    dirty: &[bool],
+) -> Vec<Candidate> {
+    let n = snap.prims.len();
+    let boxes: Vec<(V3, V3)> = snap.prims.iter().map(|p| p.aabb()).collect();
+    let live = |i: usize, j: usize| alive[i] && alive[j] && (dirty[i] || dirty[j]);
+    let pairs: Vec<(usize, usize)> = (0..n)
+        .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
+        .filter(|&(i, j)| live(i, j) && overlaps(boxes[i], boxes[j]))
+        .collect();
+    let tol = NESTED_TOL_REL * ev.mesh.diagonal().max(f64::MIN_POSITIVE);
+    let holds = |i: usize, j: usize| {
+        let p = &snap.prims[i];
+        snap.verts[j]
+            .iter()
+            .all(|&v| p.contains(ev.mesh.pos(v), tol))
+    };
+    pairs
+        .par_iter()
+        .filter(|&&(i, j)| !holds(i, j) && !holds(j, i))
+        .map_init(Workspace::default, |ws, &(i, j)| {
+            let (vi, vj) = (snap.prims[i].volume(), snap.prims[j].volume());
+            let verts = union(&snap.verts[i], &snap.verts[j]);
+            let fit = ev.fit_output_verts(&verts, &q[i].add(&q[j]), ws);
+            let growth = (fit.prim.volume() - vi.max(vj)) / vi.min(vj);
+            (growth <= ABSORB).then_some((growth, i, j, fit.prim))
+        })
+        .flatten()
+        .collect()
+}
+
+/// Whether the two boxes' intersection holds at least [`OVERLAP`] of the smaller's
+/// volume (boxes of zero volume never do).
+fn overlaps(a: (V3, V3), b: (V3, V3)) -> bool {
+    let vol = |lo: V3, hi: V3| (0..3).map(|k| (hi[k] - lo[k]).max(0.0)).product::<f64>();
+    let lo = [0, 1, 2].map(|k| a.0[k].max(b.0[k]));
+    let hi = [0, 1, 2].map(|k| a.1[k].min(b.1[k]));
+    let small = vol(a.0, a.1).min(vol(b.0, b.1));
+    small > 0.0 && vol(lo, hi) >= OVERLAP * small
+}
+
+/// The sorted union of two sorted, distinct lists.
+fn union(a: &[u32], b: &[u32]) -> Vec<u32> {
+    let mut v: Vec<u32> = a.iter().chain(b).copied().collect();
+    v.sort_unstable();
+    v.dedup();
+    v
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn overlap_is_measured_against_the_smaller_box() {
+        let unit = ([0.0; 3], [1.0; 3]);
+        assert!(overlaps(unit, ([0.5, 0.0, 0.0], [1.5, 1.0, 1.0])));
+        assert!(!overlaps(unit, ([0.6, 0.0, 0.0], [1.6, 1.0, 1.0])));
+        // A small box inside a large one overlaps all of itself.
+        assert!(overlaps(([0.2; 3], [0.3; 3]), ([0.0; 3], [5.0; 3])));
+        // Flat boxes have no volume and are never tried.
+        assert!(!overlaps(unit, ([0.0; 3], [1.0, 1.0, 0.0])));
+        assert_eq!(union(&[1, 3, 5], &[2, 3, 6]), vec![1, 2, 3, 5, 6]);
+    }
+}

@@ -4,7 +4,8 @@ primdecomp against CoACD and V-HACD -> docs/results/sim.md.
 
 For each mesh: our collider is `primdecomp decompose MESH -n N` with N as
 docs/results/compare.json chose it for the mesh (the byte-budget rule of
-benches/compare), else max(32, 1% of the faces), plus one at each peer's own hull
+benches/compare), else by the same rule against the CoACD hulls in the peer cache,
+else max(32, 1% of the faces), plus one at each peer's own hull
 count (the same number of colliders) (decomposed on every run; the simulation report is
 cached under benches/.cache/sim by the mesh's sha256, the settings and a hash of our
 primitives, so an engine change re-simulates); the peers' hulls come from peer caches laid out as
@@ -29,6 +30,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+from compare_lib import ours as our_levels  # the byte rule's targets and choice (standard library only)
 from compare_lib.noise import step_spread  # the step-time noise band (standard library only)
 from compare_lib.peers import sha256_file  # the peer cache's own key (standard library only)
 
@@ -86,28 +88,49 @@ COMPARE_JSON = ROOT / "docs" / "results" / "compare.json"
 
 def compare_target(mesh_name):
     """Our target N for the mesh in docs/results/compare.json (the byte-budget rule of
-    benches/compare), or None when the report has no result for it."""
+    benches/compare), or None when the report has no result for it or chose N without
+    CoACD's bytes (its 1% fallback)."""
     try:
         recs = json.loads(COMPARE_JSON.read_text())["records"]
     except (OSError, ValueError, KeyError):
         return None
     for r in recs:
-        if r.get("mesh") == mesh_name and (r.get("ours") or {}).get("status") == "ok":
+        if r.get("mesh") == mesh_name and r.get("budget_bytes") is not None and (r.get("ours") or {}).get("status") == "ok":
             return r["ours"].get("target")
     return None
 
 
-def ours(mesh, sha, binary, n=None, extra=()):
+def byte_rule_target(mesh, sha, binary, work, caches):
+    """The comparison report's rule applied here, for a mesh the report has no CoACD
+    result for but the peer cache has: the most primitives whose bytes stay within a
+    third of CoACD's hulls' (Table 2 bytes: 12 per vertex, 6 per triangle), from one
+    multi-target pass of the default engine, as benches/compare runs it. None when no
+    CoACD hulls are cached or no level fits."""
+    obj, _ = peer_obj(caches, sha, "coacd")
+    if obj is None:
+        return None
+    meta = json.loads((obj.parent / "meta.json").read_text())
+    budget = (12 * meta["hull_vertices"] + 6 * meta["hull_triangles"]) / 3.0
+    targets = our_levels.candidate_targets(budget, faces_of(mesh, binary, work))
+    run = our_levels.decompose(binary, mesh, targets, work / "byte_rule", timeout=600)
+    pick = our_levels.choose(run["levels"], budget) if run["status"] == "ok" else None
+    return None if pick is None else pick["settings"]["target"]
+
+
+def ours(mesh, sha, binary, n=None, extra=(), caches=()):
     """Our collider for the mesh, decomposed afresh (the engine may have changed since
     the last run), its target N and rule, and a short hash of its primitives that keys
     the simulation report. N: `n` when given (a peer's hull count), else the comparison
     report's choice (the most primitives whose bytes stay within a third of CoACD's),
-    else max(32, 1% of the faces)."""
+    else the same rule against CoACD's hulls in the peer cache, else max(32, 1% of the
+    faces)."""
     work = CACHE / "sim" / sha[:16]
     work.mkdir(parents=True, exist_ok=True)
     rule = "a peer's hull count"
     if n is None:
         n, rule = compare_target(mesh.name), "compare.json"
+    if n is None:
+        n, rule = byte_rule_target(mesh, sha, binary, work, caches), "bytes within a third of cached CoACD's"
     if n is None:
         n, rule = max(32, round(faces_of(mesh, binary, work) / 100)), "max(32, 1% of faces)"
     tag = hashlib.sha256(" ".join(extra).encode()).hexdigest()[:8] if extra else ""
@@ -301,7 +324,7 @@ def main(argv):
             print(f"CORPUS ABSENT or no such mesh: {mesh}", file=sys.stderr)
             continue
         sha = sha256_file(mesh)
-        mine, work, rule, key = ours(mesh, sha, a.bin, extra=a.decompose_args)
+        mine, work, rule, key = ours(mesh, sha, a.bin, extra=a.decompose_args, caches=a.peer_cache)
         found = {p: peer_obj(a.peer_cache, sha, p) for p in PEERS}
         order = {"ours": mine} | {p: f[0] for p, f in found.items()}
         keys = [key]
@@ -325,7 +348,7 @@ def main(argv):
         f"{a.balls} balls, {a.frames} frames at 1/60 s, seed {a.seed}, Rapier single-threaded, all colliders of a "
         "mesh interleaved frame by frame in one process (`primdecomp sim`). Ours: N as chosen in "
         "`docs/results/compare.json` (the most primitives whose bytes stay within a third of CoACD's), "
-        "else max(32, 1% of faces); and, in the last table, at each peer's own hull count (`-n N --fill`). "
+        "else the same rule against the cached CoACD hulls, else max(32, 1% of faces); and, in the last table, at each peer's own hull count (`-n N --fill`). "
         "Regenerate with:",
         "",
         "```sh",

@@ -146,7 +146,8 @@ def sim_table(records, note=None):
         f"From `python3 benches/sim_compare.py` (see `docs/results/sim.md`): {st.get('balls', '?')} balls, "
         f"{st.get('frames', '?')} frames, seed {st.get('seed', '?')}, Rapier single-threaded, every collider "
         "of a mesh interleaved frame by frame in one process. Our collider there: the target chosen by the "
-        "byte rule above where this report has one (else max(32, 1% of faces); per mesh in the JSON). Step = median physics-step time per frame (wall clock; CPU time of the "
+        "byte rule above where this report has one from CoACD's bytes, else the same rule against the CoACD hulls "
+        "in the peer cache, else max(32, 1% of faces); per mesh in the JSON. Step = median physics-step time per frame (wall clock; CPU time of the "
         "step in brackets); similarity = fraction of balls ending within one diameter of where the same ball "
         "ends on the mesh itself (`src/sim/mod.rs`).",
         "",

@@ -103,14 +103,14 @@ def compare_target(mesh_name):
 def byte_rule_target(mesh, sha, binary, work, caches):
     """The comparison report's rule applied here, for a mesh the report has no CoACD
     result for but the peer cache has: the most primitives whose bytes stay within a
-    third of CoACD's hulls' (Table 2 bytes: 12 per vertex, 6 per triangle), from one
+    third of CoACD's hulls' (Table 2 bytes), from one
     multi-target pass of the default engine, as benches/compare runs it. None when no
     CoACD hulls are cached or no level fits."""
     obj, _ = peer_obj(caches, sha, "coacd")
     if obj is None:
         return None
     meta = json.loads((obj.parent / "meta.json").read_text())
-    budget = (12 * meta["hull_vertices"] + 6 * meta["hull_triangles"]) / 3.0
+    budget = our_levels.byte_budget(meta["hull_vertices"], meta["hull_triangles"])
     targets = our_levels.candidate_targets(budget, faces_of(mesh, binary, work))
     run = our_levels.decompose(binary, mesh, targets, work / "byte_rule", timeout=600)
     pick = our_levels.choose(run["levels"], budget) if run["status"] == "ok" else None

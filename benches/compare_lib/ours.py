@@ -11,6 +11,12 @@ from pathlib import Path
 MAX_PRIM_BYTES, MIN_PRIM_BYTES = 44, 16
 
 
+def byte_budget(hull_vertices, hull_triangles):
+    """The rule's budget: one third of CoACD's hulls' bytes by the paper's Table 2
+    (12 per vertex, 6 per triangle)."""
+    return (12 * hull_vertices + 6 * hull_triangles) / 3.0
+
+
 def candidate_targets(budget_bytes, faces):
     """Targets from the most primitives that could fit `budget_bytes` (all
     spheres) down to 1, in steps of about 7%; without a budget, 1% of the faces."""

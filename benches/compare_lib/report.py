@@ -62,9 +62,8 @@ def run_mesh(a, mesh, methods, cache, work):
     mdir = work / mesh.name
     budget = None
     if "coacd" in colliders:
-        # Table 2 bytes of CoACD's hulls: 12 per vertex, 6 per triangle.
         c = rec["peers"]["coacd"]
-        budget = (12 * c["hull_vertices"] + 6 * c["hull_triangles"]) / 3.0
+        budget = ours.byte_budget(c["hull_vertices"], c["hull_triangles"])
     faces = count_faces(mesh)
     targets = ours.candidate_targets(budget, faces or 100)
     run = ours.decompose(a.bin, mesh, targets, mdir / "ours", a.timeout)

@@ -108,8 +108,8 @@ fn near_duplicates(
         .filter(|&&(i, j)| !holds(i, j) && !holds(j, i))
         .map_init(Workspace::default, |ws, &(i, j)| {
             let (vi, vj) = (snap.prims[i].volume(), snap.prims[j].volume());
-            let verts = union(&snap.verts[i], &snap.verts[j]);
-            let fit = ev.fit_output_verts(&verts, &q[i].add(&q[j]), ws);
+            let faces = snap.members[i].iter().chain(&snap.members[j]).copied();
+            let fit = ev.fit_output(faces, &q[i].add(&q[j]), ws);
             let growth = (fit.prim.volume() - vi.max(vj)) / vi.min(vj);
             (growth <= ABSORB).then_some((growth, i, j, fit.prim))
         })

@@ -157,7 +157,7 @@ impl Clusters {
     }
 
     /// Faces of cluster `c` in list order.
-    pub fn faces(&self, c: u32) -> impl Iterator<Item = u32> + '_ {
+    pub fn faces(&self, c: u32) -> impl Iterator<Item = u32> + Clone + '_ {
         let mut cur = c;
         let mut first = true;
         std::iter::from_fn(move || {

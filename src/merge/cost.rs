@@ -169,12 +169,22 @@ impl<'a> Evaluator<'a> {
 
     /// The primitive of one cluster fitted on every vertex of its faces (walking the
     /// cyclic face list), independent of any point reduction: this is what we output.
-    /// It uses the faces' own vertices, not the welded ones: a tolerance weld moves a
-    /// corner onto its group's first vertex (transitively, so arbitrarily far), and the
-    /// output must enclose the faces as given.
     pub fn fit_cluster_exact(&self, cl: &Clusters, c: u32, ws: &mut Workspace) -> Fit {
+        self.fit_output(cl.faces(c), &cl.q[c as usize], ws)
+    }
+
+    /// The output fit of `faces` with operator `q` (their summed quadrics). It uses the
+    /// faces' own vertices, not the welded ones: a tolerance weld moves a corner onto
+    /// its group's first vertex (transitively, so arbitrarily far), and the output must
+    /// enclose the faces as given.
+    pub fn fit_output(
+        &self,
+        faces: impl Iterator<Item = u32> + Clone,
+        q: &Sym3,
+        ws: &mut Workspace,
+    ) -> Fit {
         ws.clear();
-        for f in cl.faces(c) {
+        for f in faces.clone() {
             self.push_points(self.mesh.face(f as usize), ws);
         }
         // Output only: every cluster also tries the frames turned about each of its
@@ -186,33 +196,19 @@ impl<'a> Evaluator<'a> {
             ..self.cfg
         };
         if self.outward_weight > 0.0 {
-            self.outer_sides(cl, c, ws);
-            return self.fit_outward(&cl.q[c as usize], &cfg, ws);
+            self.outer_sides(faces, ws);
+            return self.fit_outward(q, &cfg, ws);
         }
-        self.fit_on_hull(&cl.q[c as usize], &cfg, ws)
-    }
-
-    /// The output fit of the points `verts` (faces' own vertices) with operator `q`:
-    /// what [`Self::fit_cluster_exact`] gives a cluster of those faces when the outward
-    /// reach is not priced (the frames of deviation 21, chosen by k·V).
-    pub fn fit_output_verts(&self, verts: &[u32], q: &Sym3, ws: &mut Workspace) -> Fit {
-        ws.clear();
-        self.push_points(verts, ws);
-        let cfg = FitConfig {
-            frames: FrameSearch::Thorough,
-            min_half: self.output_min_half,
-            ..self.cfg
-        };
         self.fit_on_hull(q, &cfg, ws)
     }
 
-    /// The faces of cluster `c` as outer sides (Newell normals of their own vertices);
-    /// faces of zero area have no side and are skipped.
-    fn outer_sides(&self, cl: &Clusters, c: u32, ws: &mut Workspace) {
+    /// `faces` as outer sides (Newell normals of their own vertices); faces of zero
+    /// area have no side and are skipped.
+    fn outer_sides(&self, faces: impl Iterator<Item = u32>, ws: &mut Workspace) {
         let m = self.mesh;
         let pos = |v: u32| [m.x[v as usize], m.y[v as usize], m.z[v as usize]];
         ws.sides.clear();
-        for f in cl.faces(c) {
+        for f in faces {
             let vs = m.face(f as usize);
             let mut sum = [0.0; 3];
             for (i, &v) in vs.iter().enumerate() {

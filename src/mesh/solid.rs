@@ -49,7 +49,7 @@ impl Solid {
     /// inside when at least `votes` of its six axis rays cross the surface an odd
     /// number of times. An empty or flat input has no inside.
     pub fn build(mesh: &Mesh, cells: usize, votes: u8) -> Solid {
-        let (lo, hi) = bounds(mesh);
+        let (lo, hi) = mesh.aabb();
         let side = (0..3).map(|k| hi[k] - lo[k]).fold(0.0, f64::max);
         if !(side > 0.0 && side.is_finite()) || cells == 0 {
             return Solid::default();
@@ -153,12 +153,12 @@ impl Solid {
     fn prefix_sums(&self) -> Vec<u32> {
         let [dx, dy, dz] = self.dims;
         let (nx, ny) = (dx + 1, dy + 1);
+        let at = |i: usize, j: usize, k: usize| (k * ny + j) * nx + i;
         let mut p = vec![0u32; nx * ny * (dz + 1)];
         for k in 0..dz {
             for j in 0..dy {
                 for i in 0..dx {
                     let v = u32::from(self.inside[self.index([i, j, k])]);
-                    let at = |i: usize, j: usize, k: usize| (k * ny + j) * nx + i;
                     p[at(i + 1, j + 1, k + 1)] = v
                         + p[at(i, j + 1, k + 1)]
                         + p[at(i + 1, j, k + 1)]
@@ -289,20 +289,6 @@ fn min3(a: [f64; 3]) -> f64 {
 
 fn max3(a: [f64; 3]) -> f64 {
     a[0].max(a[1]).max(a[2])
-}
-
-/// The AABB of the vertices used by faces.
-fn bounds(mesh: &Mesh) -> (V3, V3) {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for &v in &mesh.face_indices {
-        let p = mesh.pos(v);
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    (lo, hi)
 }
 
 /// Calls `f` on each triangle of the faces' fans.

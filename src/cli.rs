@@ -147,6 +147,12 @@ struct DecomposeArgs {
     /// off (the volume alone, the paper's criterion).
     #[arg(long, default_value_t = 0.0)]
     outward_weight: f64,
+    /// Weight of the rim reach when choosing each output primitive's frame and kind:
+    /// k·V + W·Σ len·gap², gap how far the primitive reaches past the plane of the
+    /// face across each creased boundary edge of its cluster (a side plate standing
+    /// past a wall's top as a curb). 0 = off (the volume alone, the paper's criterion).
+    #[arg(long, default_value_t = primdecomp::params::RIM_WEIGHT)]
+    rim_weight: f64,
     /// Price merges by the volume they add outside the input (its interior by ray
     /// parity on a voxel grid) instead of the whole volume: closed parts fill into
     /// solid primitives rather than shells of plates.
@@ -282,6 +288,7 @@ fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
         fill: a.fill,
         outward_weight: a.outward_weight,
         solid: a.solid,
+        rim_weight: a.rim_weight,
         remove_thin_boxes: a.remove_thin_boxes,
         partitions: match a.partitions.as_str() {
             "auto" => Partitions::Auto,

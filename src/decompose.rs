@@ -3,6 +3,7 @@
 
 use crate::error::{Error, Result};
 use crate::math::V3;
+use crate::merge::rim::FaceAdjacency;
 use crate::merge::{components, partition, Clusters, Evaluator, Workspace};
 use crate::mesh::solid::{self, Solid};
 use crate::mesh::{adjacency, dedup, Mesh};
@@ -150,8 +151,17 @@ pub(crate) fn decompose_once(
     dec.timings.push("quadrics", now);
     // One primitive per face seeds the volumes (Alg. 1, line 2).
     let now = Instant::now();
-    // Outward sides agree across shared edges, for the outward reach (deviation 22).
-    let signs = if params.outward_weight > 0.0 {
+    // Faces across each output cluster's boundary, for the rim reach (deviation 24).
+    let (adj_offsets, adj) = if params.rim_weight > 0.0 {
+        adjacency::neighbour_lists(mesh.face_count(), &pairs)
+    } else {
+        (Vec::new(), Vec::new())
+    };
+    // Outward sides agree across shared edges, for the outward and rim reaches
+    // (deviations 22 and 24).
+    let signs = if params.rim_weight > 0.0 {
+        crate::mesh::orient::face_signs_of_lists(mesh, &welded, &adj_offsets, &adj)
+    } else if params.outward_weight > 0.0 {
         crate::mesh::orient::face_signs(mesh, &welded, &pairs)
     } else {
         Vec::new()
@@ -163,6 +173,10 @@ pub(crate) fn decompose_once(
     let ev = Evaluator {
         face_sign: &signs,
         solid: solid.as_ref(),
+        face_adj: FaceAdjacency {
+            offsets: &adj_offsets,
+            adj: &adj,
+        },
         ..evaluator(mesh, &welded, params, bounds)
     };
     let volumes = seed_volumes(&ev, &q);
@@ -379,6 +393,8 @@ pub fn evaluator<'a>(
         outward_weight: params.outward_weight,
         face_sign: &[],
         solid: None,
+        rim_weight: params.rim_weight,
+        face_adj: FaceAdjacency::default(),
     }
 }
 

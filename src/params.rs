@@ -4,7 +4,9 @@
 //! deferring the re-pricing of clusters with 64 or more neighbours (ARCHITECTURE.md,
 //! "Where we deviate", 15: the flat-grid limit; the corpus at 1% is unchanged), in
 //! pricing merges of coplanar clusters at a thicker floor (18: rims stay rims), and in
-//! merging inputs of 524,288 faces or more in 16 parallel parts first (19).
+//! merging inputs of 524,288 faces or more in 16 parallel parts first (19), and in
+//! choosing each output primitive by k·V plus its rim reach (24: no curbs standing
+//! past the faces beside a cluster).
 //!
 //! | setting | default | raising it | lowering it |
 //! |---|---|---|---|
@@ -23,6 +25,7 @@
 //! | `reduction` | `Hull` | — | `Extremes`: clusters keep only their extreme points along 13 fixed axes (≤ 26): no convex hull per merge, cheaper fits; merges are priced on an inner approximation, so the order (and the fit) changes: dragon merge stage 9.85 → 8.53 s on one thread (one run), corpus quality no worse on average but mixed per mesh (docs/results/reduction.md) |
 //! | `fill` | false | (when set) a target N the post-processing left short of is met by merging less: up to N primitives, each covering fewer faces (tighter fit); costs one merge pass per search round (up to 4 more) | — |
 //! | `outward_weight` | 0 | output fits also price how far a primitive reaches past its faces' outer side (the volume balls and bodies meet): w·Σ area·gap is added to k·V when choosing an output frame; merges are priced as before | 0 = off: output frames chosen by k·V alone |
+//! | `rim_weight` | 1 | output primitives avoid reaching past the faces just outside their cluster more strongly (a side plate standing past a wall's top as a curb): w·Σ len·gap² over creased boundary edges is added to k·V when choosing an output frame and kind; merges are priced as before | less; 0 = off (k·V alone: the least-area plate around a sliver triangle may stand past the neighbouring face) |
 //! | `solid` | false | (when set) merges are priced by the volume their primitive adds outside the input (interior by ray parity on a 64-cell grid) rather than its whole volume: closed parts become one solid primitive instead of a shell of plates, fewer shapes per part in a physics scene; holes and gaps are priced as before | — |
 //! | `remove_thin_boxes` | None | (when set) drops boxes thinner than this fraction of the diagonal if still covered | — |
 
@@ -186,6 +189,20 @@ pub struct Params {
     /// Serialized only when set.
     #[serde(skip_serializing_if = "is_false")]
     pub solid: bool,
+    /// Weight of the rim reach in the output fit's choice of frame and kind (deviation
+    /// 24): each output cluster's primitive minimises k·V + w·Σ_e len_e·gap_e², gap_e
+    /// how far it reaches past the plane of the face across each creased boundary edge
+    /// e, on the side away from the cluster (a curb along a wall's top). 0 = off (k·V
+    /// alone, the paper's criterion); only serialized when not the default.
+    #[serde(skip_serializing_if = "is_default_rim_weight")]
+    pub rim_weight: f64,
+}
+
+/// [`Params::rim_weight`]'s default.
+pub const RIM_WEIGHT: f64 = 1.0;
+
+fn is_default_rim_weight(x: &f64) -> bool {
+    *x == RIM_WEIGHT
 }
 
 fn is_zero(x: &f64) -> bool {
@@ -236,6 +253,7 @@ impl Default for Params {
             fill: false,
             outward_weight: 0.0,
             solid: false,
+            rim_weight: RIM_WEIGHT,
         }
     }
 }
@@ -285,6 +303,10 @@ impl Params {
         let w = self.outward_weight;
         if !(w.is_finite() && w >= 0.0) {
             return bad(format!("outward-weight must be ≥ 0, got {w}"));
+        }
+        let w = self.rim_weight;
+        if !(w.is_finite() && w >= 0.0) {
+            return bad(format!("rim-weight must be ≥ 0, got {w}"));
         }
         let m = self.flat_merge_extent_rel;
         if !(m.is_finite() && (0.0..1.0).contains(&m)) {

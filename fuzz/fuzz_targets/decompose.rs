@@ -96,6 +96,11 @@ fn params(u: &mut Unstructured) -> Result<Params> {
     // After that (an exhausted input reads false, as grown): the interior grid's ray
     // parity and the air pricing on hostile input (deviation 23).
     p.solid = u.arbitrary::<bool>()?;
+    // After that (an exhausted input reads 0: the default weight, as grown): the rim
+    // reach's adjacency walk and the per-kind output fits at other weights, and off
+    // (deviation 24).
+    p.rim_weight =
+        [primdecomp::params::RIM_WEIGHT, 0.0, 1e-9, 1e9][u.int_in_range(0..=3)? as usize];
     Ok(p)
 }
 

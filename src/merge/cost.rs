@@ -4,14 +4,15 @@
 
 use super::cluster::Clusters;
 use super::heap::Candidate;
+use super::rim::{clamp_to_points, rim_reach, FaceAdjacency, Rim, Surroundings};
 use crate::math::hull::{hull_vertices, HullWorkspace};
 use crate::math::Sym3;
-use crate::math::{cross, dot, norm, V3};
+use crate::math::{dot, norm, V3};
 use crate::mesh::solid::Solid;
 use crate::mesh::Mesh;
 use crate::primitive::fit::thorough_frames;
 use crate::primitive::fit::{fit_best_frame, fit_frame, Fit, FitConfig, FrameSearch};
-use crate::primitive::{fit_best, frame, Cloud, FitScratch, Primitive};
+use crate::primitive::{fit_best, frame, Cloud, FitScratch, Kind, Primitive};
 use crate::Reduction;
 
 /// Per-thread reusable buffers: the gathered points and the fit's scratch.
@@ -31,6 +32,9 @@ pub struct Workspace {
     /// the outward reach is priced (`Params::outward_weight`).
     frames: Vec<[V3; 3]>,
     sides: Vec<OuterSide>,
+    /// The output cluster's faces, sorted, and its rims (`Params::rim_weight`).
+    members: Vec<u32>,
+    rims: Vec<Rim>,
 }
 
 /// A face as its outer side: unit normal (from its winding), area, and the largest
@@ -102,11 +106,17 @@ pub struct Evaluator<'a> {
     /// `Params::outward_weight`: the outward reach's weight in the output frame choice.
     pub outward_weight: f64,
     /// Per face, ±1: the winding that faces outward (`mesh::orient`); empty = the
-    /// faces' own windings (set only when `outward_weight` > 0).
+    /// faces' own windings (set only when `outward_weight` or `rim_weight` > 0).
     pub face_sign: &'a [i8],
     /// The input's interior (`Params::solid`, deviation 23): merges are priced by the
     /// volume their primitive adds outside it; `None` = the paper's whole volume.
     pub solid: Option<&'a Solid>,
+    /// `Params::rim_weight`: the rim reach's weight in the output frame choice
+    /// (deviation 24).
+    pub rim_weight: f64,
+    /// The input's face adjacency, for the output clusters' rims; empty = no rims
+    /// (set only when `rim_weight` > 0).
+    pub face_adj: FaceAdjacency<'a>,
 }
 
 impl<'a> Evaluator<'a> {
@@ -195,26 +205,39 @@ impl<'a> Evaluator<'a> {
             min_half: self.output_min_half,
             ..self.cfg
         };
+        ws.sides.clear();
+        ws.rims.clear();
         if self.outward_weight > 0.0 {
-            self.outer_sides(faces, ws);
-            return self.fit_outward(q, &cfg, ws);
+            self.outer_sides(faces.clone(), ws);
         }
-        self.fit_on_hull(q, &cfg, ws)
+        if self.rim_weight > 0.0 && !self.face_adj.is_empty() {
+            ws.members.clear();
+            ws.members.extend(faces);
+            ws.members.sort_unstable();
+            ws.members.dedup();
+            let around = Surroundings {
+                mesh: self.mesh,
+                welded: self.welded,
+                adj: self.face_adj,
+                signs: self.face_sign,
+            };
+            around.rims(&ws.members, &mut ws.rims);
+        }
+        if ws.sides.is_empty() && ws.rims.is_empty() {
+            return self.fit_on_hull(q, &cfg, ws);
+        }
+        self.fit_priced(q, &cfg, ws)
     }
 
     /// `faces` as outer sides (Newell normals of their own vertices); faces of zero
     /// area have no side and are skipped.
     fn outer_sides(&self, faces: impl Iterator<Item = u32>, ws: &mut Workspace) {
         let m = self.mesh;
-        let pos = |v: u32| [m.x[v as usize], m.y[v as usize], m.z[v as usize]];
+        let pos = |v: u32| m.pos(v);
         ws.sides.clear();
         for f in faces {
             let vs = m.face(f as usize);
-            let mut sum = [0.0; 3];
-            for (i, &v) in vs.iter().enumerate() {
-                let c = cross(pos(v), pos(vs[(i + 1) % vs.len()]));
-                sum = [sum[0] + c[0], sum[1] + c[1], sum[2] + c[2]];
-            }
+            let sum = m.newell(f as usize);
             let len = norm(sum);
             if !(len > 0.0 && len.is_finite()) {
                 continue;
@@ -236,33 +259,44 @@ impl<'a> Evaluator<'a> {
         }
     }
 
-    /// The output fit with the outward reach priced: every frame of the thorough search
-    /// fitted on the points' hull vertices, the one with the least k·V + w·reach kept
-    /// (earlier frames win ties within [`frame::MARGIN`]) and refitted on every point.
-    fn fit_outward(&self, q: &Sym3, cfg: &FitConfig, ws: &mut Workspace) -> Fit {
+    /// The output fit with the outward and rim reaches priced: every enabled kind in
+    /// every frame of the thorough search fitted on the points' hull vertices (the
+    /// reaches differ between kinds of one frame, so the kinds are priced one by one),
+    /// the (frame, kind) with the least k·V + w_o·outward + w_r·rim kept (earlier ones
+    /// win ties within [`frame::MARGIN`]) and refitted on every point.
+    fn fit_priced(&self, q: &Sym3, cfg: &FitConfig, ws: &mut Workspace) -> Fit {
         // The search runs on the hull's vertices, or on every point when all are.
         let (x, y, z) = if self.gather_hull(ws) {
             (&ws.hx, &ws.hy, &ws.hz)
         } else {
             (&ws.x, &ws.y, &ws.z)
         };
+        clamp_to_points(&mut ws.rims, x, y, z);
         let hull = Cloud { x, y, z };
         thorough_frames(&hull, q, &mut ws.fit, &mut ws.frames);
-        let mut best: Option<(f64, [V3; 3])> = None;
+        let mut best: Option<(f64, [V3; 3], FitConfig)> = None;
         for &axes in &ws.frames {
-            let f = fit_frame(&hull, axes, cfg, &mut ws.fit);
-            let score = f.cost + self.outward_weight * outward_reach(&f.prim, &ws.sides);
-            if best.is_none_or(|(b, _)| score < b * (1.0 - frame::MARGIN)) {
-                best = Some((score, axes));
+            for kind in Kind::ALL.into_iter().filter(|&k| cfg.enabled[k as usize]) {
+                let only = FitConfig {
+                    enabled: std::array::from_fn(|k| k == kind as usize),
+                    ..*cfg
+                };
+                let f = fit_frame(&hull, axes, &only, &mut ws.fit);
+                let score = f.cost
+                    + self.outward_weight * outward_reach(&f.prim, &ws.sides)
+                    + self.rim_weight * rim_reach(&f.prim, &ws.rims);
+                if best.is_none_or(|(b, _, _)| score < b * (1.0 - frame::MARGIN)) {
+                    best = Some((score, axes, only));
+                }
             }
         }
-        let axes = best.expect("the eigen-frame is always tried").1;
+        let (_, axes, only) = best.expect("the eigen-frame and one kind are always tried");
         let all = Cloud {
             x: &ws.x,
             y: &ws.y,
             z: &ws.z,
         };
-        fit_frame(&all, axes, cfg, &mut ws.fit)
+        fit_frame(&all, axes, &only, &mut ws.fit)
     }
 
     /// Copies the gathered points' hull vertices to `ws.hx/hy/hz`; false (nothing

@@ -11,6 +11,7 @@ pub mod driver;
 pub mod heap;
 mod lazy;
 pub mod partition;
+pub mod rim;
 pub mod worker;
 
 pub use cluster::{ClusterId, Clusters};

@@ -284,6 +284,7 @@ fn merge_one(
         welded: &sub_welded,
         // Indexed by the whole input's faces; a part fits no output primitives.
         face_sign: &[],
+        face_adj: crate::merge::rim::FaceAdjacency::default(),
         // Lazy greedy for every merge of a part unless re-pricing is exact (deviation
         // 19: user time ×0.62–0.74, Chamfer within ±1% but one input at +6.5%).
         defer_degree: if kind == Kind::Spatial && ev.defer_degree != u32::MAX {

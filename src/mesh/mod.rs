@@ -142,6 +142,17 @@ impl Mesh {
     pub fn face(&self, f: usize) -> &[u32] {
         &self.face_indices[self.face_offsets[f] as usize..self.face_offsets[f + 1] as usize]
     }
+    /// Newell's normal of face `f` from its own vertices: unnormalised, its length
+    /// twice the (planar) polygon's area, along the winding's right-hand normal.
+    pub fn newell(&self, f: usize) -> V3 {
+        let vs = self.face(f);
+        let mut n = [0.0; 3];
+        for (i, &v) in vs.iter().enumerate() {
+            let c = crate::math::cross(self.pos(v), self.pos(vs[(i + 1) % vs.len()]));
+            n = [n[0] + c[0], n[1] + c[1], n[2] + c[2]];
+        }
+        n
+    }
     /// Re-centred position of vertex `v`.
     #[inline]
     pub fn pos(&self, v: u32) -> V3 {

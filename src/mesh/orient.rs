@@ -1,5 +1,6 @@
-//! Consistent face orientation, for the outward reach of the output fits
-//! (`Params::outward_weight`, ARCHITECTURE.md deviation 22; not in the paper). Many
+//! Consistent face orientation, for the outward and rim reaches of the output fits
+//! (`Params::outward_weight` and `Params::rim_weight`, ARCHITECTURE.md deviations 22
+//! and 24; not in the paper). Many
 //! inputs mix windings (truck_shrec: 46% of its area faces outward by its winding), so
 //! a face's own normal does not say which side is outside. Faces sharing an edge are
 //! made to agree (a shared edge runs in opposite directions in two agreeing faces),
@@ -15,10 +16,16 @@ use std::collections::VecDeque;
 /// welded vertex indices (the mesh's CSR offsets) and `pairs` the faces sharing an
 /// edge ([`super::adjacency::face_pairs`]). Deterministic: breadth-first in face order.
 pub fn face_signs(mesh: &Mesh, welded: &[u32], pairs: &[(u32, u32)]) -> Vec<i8> {
+    let (deg, adj) = super::adjacency::neighbour_lists(mesh.face_count(), pairs);
+    face_signs_of_lists(mesh, welded, &deg, &adj)
+}
+
+/// [`face_signs`] from the adjacency as CSR neighbour lists
+/// ([`super::adjacency::neighbour_lists`]), when the caller has them already.
+pub fn face_signs_of_lists(mesh: &Mesh, welded: &[u32], deg: &[u32], adj: &[u32]) -> Vec<i8> {
     let n = mesh.face_count();
     let off = &mesh.face_offsets;
     let face = |f: usize| &welded[off[f] as usize..off[f + 1] as usize];
-    let (deg, adj) = super::adjacency::neighbour_lists(n, pairs);
     let mut sign = vec![0i8; n];
     let mut queue = VecDeque::new();
     let mut members = Vec::new();

@@ -1,0 +1,335 @@
+//! Rim reach: how far an output primitive pokes past the planes of the faces just
+//! outside its cluster, across the cluster's creased boundary edges (not in the paper;
+//! ARCHITECTURE.md deviation 24).
+//!
+//! The paper chooses a primitive by k·V alone (§3.3). Around a single face or a flat
+//! cluster every enclosure is a plate of the same thickness, so k·V is its area, and
+//! the least area is often a plate turned off the face's edges: a sliver triangle on a
+//! wall's side is enclosed by a rectangle along its longest edge that stands up past
+//! the wall's top as a curb, and an isosceles prism around a top triangle reaches out
+//! past the wall's side. In a physics scene a curb holds balls that fall off the mesh.
+//! The rim reach prices that: for each boundary edge of the cluster that is a convex
+//! crease (the face across it turns away by more than [`RIM_ANGLE_DEG`], faces
+//! oriented outward by `mesh::orient`), the distance the primitive's support reaches
+//! past that face's plane on its outer side, squared, times the edge's length (a
+//! volume, like k·V: the wedge a curb of that height stands in), counted only beyond
+//! the cluster's own points. Concave creases are not rims: past them is the object's
+//! inside. Creases one face away count too, across a neighbour that continues the
+//! cluster's surface.
+
+use crate::math::{dot, norm, sub, V3};
+use crate::mesh::Mesh;
+use crate::primitive::Primitive;
+
+/// Edges whose two faces' normals differ by less than this are not rims: the face
+/// across continues the surface (a tessellated curve), and any enclosure of the
+/// cluster reaches past its plane a little.
+pub const RIM_ANGLE_DEG: f64 = 20.0;
+
+/// The input's face adjacency as CSR lists (`mesh::adjacency::neighbour_lists`): face
+/// `f`'s neighbours are `adj[offsets[f]..offsets[f + 1]]`. Empty = no rim reach.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct FaceAdjacency<'a> {
+    pub offsets: &'a [u32],
+    pub adj: &'a [u32],
+}
+
+impl FaceAdjacency<'_> {
+    pub fn is_empty(&self) -> bool {
+        self.offsets.is_empty()
+    }
+    fn of(&self, f: u32) -> &[u32] {
+        let f = f as usize;
+        match (self.offsets.get(f), self.offsets.get(f + 1)) {
+            (Some(&a), Some(&b)) => &self.adj[a as usize..b as usize],
+            _ => &[],
+        }
+    }
+}
+
+/// One rim: the outward unit normal `d` of the face beyond a convex crease, its plane's
+/// offset `d·x` (raised by [`clamp_to_points`] to the cluster's own reach), and the
+/// crease's length.
+#[derive(Clone, Copy, Debug)]
+pub struct Rim {
+    d: V3,
+    offset: f64,
+    len: f64,
+}
+
+/// Raises each rim's plane to the farthest of the cluster's points along its
+/// direction: where the cluster's own faces cross a rim plane (a face across the
+/// edge that only touches the cluster there), every enclosure reaches that far, and
+/// only reach beyond it is a curb. Without this such a rim's unavoidable gap, squared,
+/// outweighed k·V between frames (cesium_milk_truck's roof fascia at 595 stood 0.15
+/// above the roof).
+pub fn clamp_to_points(rims: &mut [Rim], x: &[f64], y: &[f64], z: &[f64]) {
+    for r in rims {
+        let [dx, dy, dz] = r.d;
+        let reach = (0..x.len())
+            .map(|i| dx * x[i] + dy * y[i] + dz * z[i])
+            .fold(f64::NEG_INFINITY, f64::max);
+        r.offset = r.offset.max(reach);
+    }
+}
+
+/// Σ len·(h(d) − offset)² over the rims, h the primitive's support function: zero when
+/// the primitive stays behind every rim plane.
+pub fn rim_reach(prim: &Primitive, rims: &[Rim]) -> f64 {
+    rims.iter()
+        .map(|r| {
+            let gap = (prim.support(r.d) - r.offset).max(0.0);
+            r.len * gap * gap
+        })
+        .sum()
+}
+
+/// Outward unit normal (Newell's normal of its own vertices times its sign from
+/// `mesh::orient`, +1 when `signs` is empty) and centroid of face `f`; `None` for a
+/// face of zero area.
+fn normal_and_centre(mesh: &Mesh, signs: &[i8], f: u32) -> Option<(V3, V3)> {
+    let vs = mesh.face(f as usize);
+    let n = mesh.newell(f as usize);
+    let len = norm(n);
+    if !(len > 0.0 && len.is_finite()) {
+        return None;
+    }
+    let k = signs.get(f as usize).map_or(1.0, |&s| f64::from(s)) / len;
+    let mut c = [0.0; 3];
+    for &v in vs {
+        let p = mesh.pos(v);
+        c = [c[0] + p[0], c[1] + p[1], c[2] + p[2]];
+    }
+    let m = 1.0 / vs.len() as f64;
+    Some((
+        [n[0] * k, n[1] * k, n[2] * k],
+        [c[0] * m, c[1] * m, c[2] * m],
+    ))
+}
+
+/// The faces around one cluster and how to tell its rims: the input with its welded
+/// indices, its adjacency, and each face's outward sign (`mesh::orient`).
+#[derive(Clone, Copy, Debug)]
+pub struct Surroundings<'a> {
+    pub mesh: &'a Mesh,
+    pub welded: &'a [u32],
+    pub adj: FaceAdjacency<'a>,
+    pub signs: &'a [i8],
+}
+
+impl Surroundings<'_> {
+    /// Whether faces a and b (normals `na`, `nb`, centres `ca`, `cb`) meet at a convex
+    /// crease: they turn by more than [`RIM_ANGLE_DEG`] and b falls away below a's
+    /// plane. At a concave crease (a wall rising from a floor) the space past b's plane
+    /// is inside the object, where reaching costs nothing.
+    fn convex_crease(na: V3, ca: V3, nb: V3, cb: V3) -> bool {
+        dot(na, nb) < RIM_ANGLE_DEG.to_radians().cos() && dot(na, sub(cb, ca)) < 0.0
+    }
+
+    /// The rims of the cluster whose faces are `members` (sorted, unique) into `out`:
+    /// for each member face f and neighbour g outside the cluster, g's plane when f and
+    /// g meet at a convex crease; else, when g continues f's surface (they turn by less
+    /// than [`RIM_ANGLE_DEG`]), the planes of g's own convex creases with neighbours
+    /// outside the cluster, since a primitive turned off f's edges can stand past a
+    /// rim one face away (a sliver whose corner alone touches a wall's top).
+    pub fn rims(&self, members: &[u32], out: &mut Vec<Rim>) {
+        out.clear();
+        let cos_max = RIM_ANGLE_DEG.to_radians().cos();
+        let outside = |g: u32| members.binary_search(&g).is_err();
+        let at = |f: u32| normal_and_centre(self.mesh, self.signs, f);
+        for &f in members {
+            let Some((nf, cf)) = at(f) else {
+                continue;
+            };
+            for &g in self.adj.of(f).iter().filter(|&&g| outside(g)) {
+                let Some((ng, cg)) = at(g) else {
+                    continue;
+                };
+                if dot(nf, ng) < cos_max {
+                    if Self::convex_crease(nf, cf, ng, cg) {
+                        out.extend(self.rim(f, g, ng));
+                    }
+                    continue;
+                }
+                for &h in self.adj.of(g).iter().filter(|&&h| h != f && outside(h)) {
+                    match at(h) {
+                        Some((nh, ch)) if Self::convex_crease(ng, cg, nh, ch) => {
+                            out.extend(self.rim(g, h, nh));
+                        }
+                        _ => {}
+                    }
+                }
+            }
+        }
+    }
+
+    /// The rim of face `g` (outward unit normal `ng`) across its edge with face `e`;
+    /// `None` when the two share no edge.
+    fn rim(&self, e: u32, g: u32, ng: V3) -> Option<Rim> {
+        let offs = &self.mesh.face_offsets;
+        let wface = |f: u32| &self.welded[offs[f as usize] as usize..offs[f as usize + 1] as usize];
+        let (a, b) = shared_edge(wface(e), wface(g))?;
+        let offset = self
+            .mesh
+            .face(g as usize)
+            .iter()
+            .map(|&v| dot(ng, self.mesh.pos(v)))
+            .fold(f64::NEG_INFINITY, f64::max);
+        Some(Rim {
+            d: ng,
+            offset,
+            len: norm(sub(self.mesh.pos(b), self.mesh.pos(a))),
+        })
+    }
+}
+
+/// Two welded vertices both faces use (the first two found in `f`'s order), if any.
+fn shared_edge(f: &[u32], g: &[u32]) -> Option<(u32, u32)> {
+    let mut it = f.iter().copied().filter(|v| g.contains(v));
+    let a = it.next()?;
+    let b = it.find(|&v| v != a)?;
+    Some((a, b))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::adjacency::{face_pairs, neighbour_lists};
+    use crate::primitive::obb::Obb;
+
+    /// The rims of `members` in `m` (unwelded, windings as given: outward here).
+    fn rims_of(m: &Mesh, members: &[u32]) -> Vec<Rim> {
+        let welded = m.face_indices.clone();
+        let pairs = face_pairs(&m.face_offsets, &welded);
+        let (offsets, adj) = neighbour_lists(m.face_count(), &pairs);
+        let s = Surroundings {
+            mesh: m,
+            welded: &welded,
+            adj: FaceAdjacency {
+                offsets: &offsets,
+                adj: &adj,
+            },
+            signs: &[],
+        };
+        let mut out = vec![];
+        s.rims(members, &mut out);
+        out
+    }
+
+    /// An L of two outward faces: a top square at y = 1 over x, z ∈ [0, 1] (normal +y)
+    /// and a side square at z = 1 hanging below it (x, y ∈ [0, 1], normal +z), sharing
+    /// the edge z = 1, y = 1: a convex crease.
+    fn ell() -> Mesh {
+        Mesh::from_polygons(&ell_points(), &[vec![0, 3, 2, 1], vec![3, 4, 5, 2]])
+    }
+
+    fn ell_points() -> [V3; 6] {
+        [
+            [0.0, 1.0, 0.0],
+            [1.0, 1.0, 0.0],
+            [1.0, 1.0, 1.0],
+            [0.0, 1.0, 1.0],
+            [0.0, 0.0, 1.0],
+            [1.0, 0.0, 1.0],
+        ]
+    }
+
+    fn plate(center: V3, axes: [V3; 3], half: V3) -> Primitive {
+        Primitive::Box(Obb { center, axes, half })
+    }
+
+    #[test]
+    fn side_plate_standing_past_the_top_is_priced_and_a_flush_one_is_not() {
+        let m = ell();
+        let out = rims_of(&m, &[1]);
+        assert_eq!(out.len(), 1, "the side face has one rim: the top");
+        let r = out[0];
+        // Past the top is up: +y, the top's plane at y = 1.
+        let top = 1.0 - m.offset[1];
+        assert!((r.d[1] - 1.0).abs() < 1e-12 && (r.offset - top).abs() < 1e-12);
+        assert!((r.len - 1.0).abs() < 1e-12);
+        let axes = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let local = |p: V3| sub(p, m.offset);
+        let flush = plate(local([0.5, 0.5, 1.0]), axes, [0.5, 0.5, 0.001]);
+        assert_eq!(rim_reach(&flush, &out), 0.0);
+        let curb = plate(local([0.5, 0.55, 1.0]), axes, [0.5, 0.55, 0.001]);
+        assert!((rim_reach(&curb, &out) - 0.01).abs() < 1e-12, "1 · 0.1²");
+        // The top face's rim is the side's plane z = 1, crossed towards +z.
+        let out = rims_of(&m, &[0]);
+        assert_eq!(out.len(), 1);
+        let side = 1.0 - m.offset[2];
+        assert!((out[0].d[2] - 1.0).abs() < 1e-12 && (out[0].offset - side).abs() < 1e-12);
+        // Both faces in the cluster: no boundary edge has a face across it.
+        assert!(rims_of(&m, &[0, 1]).is_empty());
+    }
+
+    #[test]
+    fn rims_the_cluster_itself_crosses_start_at_its_points() {
+        let mut rims = vec![
+            Rim {
+                d: [0.0, 1.0, 0.0],
+                offset: 0.5,
+                len: 1.0,
+            },
+            Rim {
+                d: [1.0, 0.0, 0.0],
+                offset: 2.0,
+                len: 1.0,
+            },
+        ];
+        clamp_to_points(&mut rims, &[0.0, 1.0], &[0.8, 0.2], &[0.0, 0.0]);
+        assert_eq!(rims[0].offset, 0.8, "raised to the highest point");
+        assert_eq!(rims[1].offset, 2.0, "already past every point: kept");
+    }
+
+    #[test]
+    fn a_rim_one_face_away_counts() {
+        // The L's side continued downwards by a coplanar face 2 (y ∈ [-1, 0]): its
+        // cluster's only neighbour is the side, whose creased neighbour is the top.
+        let mut p = ell_points().to_vec();
+        p.extend([[0.0, -1.0, 1.0], [1.0, -1.0, 1.0]]);
+        let faces = [vec![0, 3, 2, 1], vec![3, 4, 5, 2], vec![4, 6, 7, 5]];
+        let m = Mesh::from_polygons(&p, &faces);
+        let out = rims_of(&m, &[2]);
+        assert_eq!(out.len(), 1, "the top, across the side");
+        let top = 1.0 - m.offset[1];
+        assert!((out[0].d[1] - 1.0).abs() < 1e-12 && (out[0].offset - top).abs() < 1e-12);
+    }
+
+    #[test]
+    fn concave_creases_gentle_bends_and_missing_adjacency_give_no_rims() {
+        // A floor (y = 0, normal +y) and a wall rising from its edge z = 0 (normal
+        // +z, into the room): past either's plane from the other is inside.
+        let p = [
+            [0.0, 0.0, 0.0],
+            [1.0, 0.0, 0.0],
+            [1.0, 0.0, 1.0],
+            [0.0, 0.0, 1.0],
+            [0.0, 1.0, 0.0],
+            [1.0, 1.0, 0.0],
+        ];
+        let m = Mesh::from_polygons(&p, &[vec![0, 3, 2, 1], vec![0, 1, 5, 4]]);
+        assert!(m.newell(0)[1] > 0.0 && m.newell(1)[2] > 0.0);
+        assert!(rims_of(&m, &[0]).is_empty() && rims_of(&m, &[1]).is_empty());
+        // Reversed windings make the same crease convex: the sign decides.
+        let m = Mesh::from_polygons(&p, &[vec![0, 1, 2, 3], vec![0, 4, 5, 1]]);
+        assert_eq!(rims_of(&m, &[0]).len(), 1);
+        // The L's side tilted to 10° below the top's plane: a continuing surface.
+        let t = 10f64.to_radians();
+        let mut p = ell_points();
+        p[4] = [0.0, 1.0 - t.sin(), 1.0 + t.cos()];
+        p[5] = [1.0, 1.0 - t.sin(), 1.0 + t.cos()];
+        let m = Mesh::from_polygons(&p, &[vec![0, 3, 2, 1], vec![3, 4, 5, 2]]);
+        assert!(rims_of(&m, &[1]).is_empty());
+        let welded = m.face_indices.clone();
+        let s = Surroundings {
+            mesh: &m,
+            welded: &welded,
+            adj: FaceAdjacency::default(),
+            signs: &[],
+        };
+        let mut out = vec![];
+        s.rims(&[1], &mut out);
+        assert!(out.is_empty());
+    }
+}

@@ -11,8 +11,10 @@ use crate::math::{dot, norm, V3};
 use crate::mesh::solid::Solid;
 use crate::mesh::Mesh;
 use crate::primitive::fit::thorough_frames;
-use crate::primitive::fit::{fit_best_frame, fit_frame, Fit, FitConfig, FrameSearch};
-use crate::primitive::{fit_best, frame, Cloud, FitScratch, Kind, Primitive};
+use crate::primitive::fit::{
+    fit_best_frame, fit_frame, fit_frame_priced, Fit, FitConfig, FrameSearch,
+};
+use crate::primitive::{fit_best, frame, Cloud, FitScratch, Primitive};
 use crate::Reduction;
 
 /// Per-thread reusable buffers: the gathered points and the fit's scratch.
@@ -259,11 +261,11 @@ impl<'a> Evaluator<'a> {
         }
     }
 
-    /// The output fit with the outward and rim reaches priced: every enabled kind in
-    /// every frame of the thorough search fitted on the points' hull vertices (the
-    /// reaches differ between kinds of one frame, so the kinds are priced one by one),
-    /// the (frame, kind) with the least k·V + w_o·outward + w_r·rim kept (earlier ones
-    /// win ties within [`frame::MARGIN`]) and refitted on every point.
+    /// The output fit with the outward and rim reaches priced: every frame of the
+    /// thorough search fitted on the points' hull vertices, every enabled kind in it
+    /// compared by k·V + w_o·outward + w_r·rim (the reaches differ between kinds of one
+    /// frame), the least kept (earlier frames win ties within [`frame::MARGIN`]) and
+    /// its frame refitted on every point.
     fn fit_priced(&self, q: &Sym3, cfg: &FitConfig, ws: &mut Workspace) -> Fit {
         // The search runs on the hull's vertices, or on every point when all are.
         let (x, y, z) = if self.gather_hull(ws) {
@@ -274,29 +276,31 @@ impl<'a> Evaluator<'a> {
         clamp_to_points(&mut ws.rims, x, y, z);
         let hull = Cloud { x, y, z };
         thorough_frames(&hull, q, &mut ws.fit, &mut ws.frames);
-        let mut best: Option<(f64, [V3; 3], FitConfig)> = None;
+        let (sides, rims) = (&ws.sides, &ws.rims);
+        let penalty = |p: &Primitive| {
+            self.outward_weight * outward_reach(p, sides) + self.rim_weight * rim_reach(p, rims)
+        };
+        let mut best: Option<(f64, [V3; 3])> = None;
         for &axes in &ws.frames {
-            for kind in Kind::ALL.into_iter().filter(|&k| cfg.enabled[k as usize]) {
-                let only = FitConfig {
-                    enabled: std::array::from_fn(|k| k == kind as usize),
-                    ..*cfg
-                };
-                let f = fit_frame(&hull, axes, &only, &mut ws.fit);
-                let score = f.cost
-                    + self.outward_weight * outward_reach(&f.prim, &ws.sides)
-                    + self.rim_weight * rim_reach(&f.prim, &ws.rims);
-                if best.is_none_or(|(b, _, _)| score < b * (1.0 - frame::MARGIN)) {
-                    best = Some((score, axes, only));
-                }
+            let bar = best.map_or(f64::INFINITY, |(b, _)| b * (1.0 - frame::MARGIN));
+            if let Some((_, score)) = fit_frame_priced(&hull, axes, cfg, &mut ws.fit, &penalty, bar)
+            {
+                best = Some((score, axes));
             }
         }
-        let (_, axes, only) = best.expect("the eigen-frame and one kind are always tried");
+        // No finite score anywhere (a reach overflowing at an extreme weight): k·V alone.
+        let Some((_, axes)) = best else {
+            return self.fit_on_hull(q, cfg, ws);
+        };
         let all = Cloud {
             x: &ws.x,
             y: &ws.y,
             z: &ws.z,
         };
-        fit_frame(&all, axes, &only, &mut ws.fit)
+        match fit_frame_priced(&all, axes, cfg, &mut ws.fit, &penalty, f64::INFINITY) {
+            Some((fit, _)) => fit,
+            None => fit_frame(&all, axes, cfg, &mut ws.fit),
+        }
     }
 
     /// Copies the gathered points' hull vertices to `ws.hx/hy/hz`; false (nothing

@@ -237,6 +237,38 @@ fn fit_in_frame(
     s: &mut FitScratch,
     bar: Option<Fit>,
 ) -> Fit {
+    let mut best = Candidate::new(cfg, None);
+    best.bar = bar.map_or(f64::INFINITY, |b| b.cost * (1.0 - frame::MARGIN));
+    offer_all(cloud, axes, s, &mut best);
+    match (best.fit, bar) {
+        (Some(f), Some(b)) if f.cost >= best.bar => b,
+        (f, b) => f.or(b).expect("at least one kind is enabled"),
+    }
+}
+
+/// The enabled kind in the frame `axes` with the least k·V + `penalty(primitive)`
+/// (`penalty` ≥ 0, so the kinds' lower bounds on k·V still prune), with that score;
+/// `None` unless the score is below `bar`. One projection of the points serves every
+/// kind. The output fit prices its rim and outward reaches this way (`merge::cost`).
+pub fn fit_frame_priced(
+    cloud: &Cloud,
+    axes: [V3; 3],
+    cfg: &FitConfig,
+    s: &mut FitScratch,
+    penalty: &dyn Fn(&Primitive) -> f64,
+    bar: f64,
+) -> Option<(Fit, f64)> {
+    let mut best = Candidate::new(cfg, Some(penalty));
+    best.bar = bar;
+    offer_all(cloud, axes, s, &mut best);
+    best.fit
+        .filter(|_| best.score < bar)
+        .map(|f| (f, best.score))
+}
+
+/// Offers every enabled kind fitted in the frame `axes` to `best`.
+fn offer_all(cloud: &Cloud, axes: [V3; 3], s: &mut FitScratch, best: &mut Candidate) {
+    let cfg = best.cfg;
     let frame = project(cloud, axes, s);
     // Explicit 3-element arrays, not `array::map`: its `try_map` is not always inlined
     // (1.6% of the dragon's samples as a separate function, perf).
@@ -254,8 +286,6 @@ fn fit_in_frame(
         s.u[k].iter_mut().for_each(|v| *v -= mid[k]);
     }
     s.sorted = [false; 3];
-    let mut best = Candidate::new(cfg);
-    best.bar = bar.map_or(f64::INFINITY, |b| b.cost * (1.0 - frame::MARGIN));
     best.offer(Kind::Box, Primitive::Box(obb), obb.volume());
     let ext = Extents::of(s);
     if cfg.enabled[Kind::Sphere as usize] {
@@ -293,11 +323,7 @@ fn fit_in_frame(
             best.offer(Kind::Capsule, Primitive::Capsule(c), c.volume());
         }
     }
-    offer_profiles(s, &obb, &ext, best_cyl, &mut best);
-    match (best.fit, bar) {
-        (Some(f), Some(b)) if f.cost >= best.bar => b,
-        (f, b) => f.or(b).expect("at least one kind is enabled"),
-    }
+    offer_profiles(s, &obb, &ext, best_cyl, best);
 }
 
 /// The frustum on the best cylinder's axis and the prisms of the 6 orderings, each
@@ -440,14 +466,20 @@ struct Candidate<'a> {
     cfg: &'a FitConfig,
     fit: Option<Fit>,
     bar: f64,
+    /// Added to each offer's k·V when comparing ([`fit_frame_priced`]); `None` = 0.
+    penalty: Option<&'a dyn Fn(&Primitive) -> f64>,
+    /// The best offer's k·V plus its penalty.
+    score: f64,
 }
 
 impl<'a> Candidate<'a> {
-    fn new(cfg: &'a FitConfig) -> Self {
+    fn new(cfg: &'a FitConfig, penalty: Option<&'a dyn Fn(&Primitive) -> f64>) -> Self {
         Candidate {
             cfg,
             fit: None,
             bar: f64::INFINITY,
+            penalty,
+            score: f64::INFINITY,
         }
     }
     /// True when a primitive of `kind` with volume at least `bound` cannot win: the
@@ -458,16 +490,17 @@ impl<'a> Candidate<'a> {
             return false;
         }
         let w = self.cfg.weights[kind as usize];
-        let best = self.fit.map_or(f64::INFINITY, |f| f.cost).min(self.bar);
-        w * bound * (1.0 - 1e-9) > best
+        w * bound * (1.0 - 1e-9) > self.score.min(self.bar)
     }
     fn offer(&mut self, kind: Kind, prim: Primitive, volume: f64) {
         if !self.cfg.enabled[kind as usize] {
             return;
         }
         let cost = self.cfg.weights[kind as usize] * volume;
-        if self.fit.is_none_or(|f| cost < f.cost) {
+        let score = cost + self.penalty.map_or(0.0, |p| p(&prim));
+        if self.fit.is_none() || score < self.score {
             self.fit = Some(Fit { prim, volume, cost });
+            self.score = score;
         }
     }
 }
@@ -673,6 +706,44 @@ mod tests {
             z: &z,
         };
         fit_best(&cloud, q, cfg, &mut FitScratch::default())
+    }
+
+    /// `fit_frame_priced` with no penalty is `fit_frame`; a penalty moves the choice
+    /// to the kind with the least k·V + penalty (pruning by k·V bounds stays exact,
+    /// since the penalty is ≥ 0); a bar below every score gives `None`.
+    #[test]
+    fn priced_fit_adds_the_penalty_to_each_kind() {
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
+        let axes = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+        let cfg = all_kinds();
+        for _ in 0..50 {
+            let pts = random_cloud(&mut rng, 30, [1.0, 0.6, 0.3]);
+            let (x, y, z) = cloud_of(&pts);
+            let cloud = Cloud {
+                x: &x,
+                y: &y,
+                z: &z,
+            };
+            let s = &mut FitScratch::default();
+            let plain = fit_frame(&cloud, axes, &cfg, s);
+            let (zero, score) = fit_frame_priced(&cloud, axes, &cfg, s, &|_| 0.0, f64::INFINITY)
+                .expect("an unbounded bar");
+            assert_eq!((zero.prim, zero.cost), (plain.prim, plain.cost));
+            assert_eq!(score, plain.cost);
+            // The plain winner's kind priced out: the winner is another kind, the best
+            // of the rest by k·V.
+            let winner = plain.prim.kind();
+            let away = |p: &Primitive| if p.kind() == winner { 1e30 } else { 0.0 };
+            let (other, _) = fit_frame_priced(&cloud, axes, &cfg, s, &away, f64::INFINITY)
+                .expect("an unbounded bar");
+            assert_ne!(other.prim.kind(), winner);
+            let rest = FitConfig {
+                enabled: std::array::from_fn(|k| k != winner as usize),
+                ..cfg
+            };
+            assert_eq!(other.cost, fit_frame(&cloud, axes, &rest, s).cost);
+            assert!(fit_frame_priced(&cloud, axes, &cfg, s, &|_| 0.0, plain.cost).is_none());
+        }
     }
 
     /// Deviation 12: a round primitive's p0→p1 has its largest component positive,

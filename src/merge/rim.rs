@@ -119,11 +119,11 @@ pub struct Surroundings<'a> {
 
 impl Surroundings<'_> {
     /// Whether faces a and b (normals `na`, `nb`, centres `ca`, `cb`) meet at a convex
-    /// crease: they turn by more than [`RIM_ANGLE_DEG`] and b falls away below a's
-    /// plane. At a concave crease (a wall rising from a floor) the space past b's plane
-    /// is inside the object, where reaching costs nothing.
-    fn convex_crease(na: V3, ca: V3, nb: V3, cb: V3) -> bool {
-        dot(na, nb) < RIM_ANGLE_DEG.to_radians().cos() && dot(na, sub(cb, ca)) < 0.0
+    /// crease: they turn by more than the angle whose cosine is `cos_max` and b falls
+    /// away below a's plane. At a concave crease (a wall rising from a floor) the space
+    /// past b's plane is inside the object, where reaching costs nothing.
+    fn convex_crease(na: V3, ca: V3, nb: V3, cb: V3, cos_max: f64) -> bool {
+        dot(na, nb) < cos_max && dot(na, sub(cb, ca)) < 0.0
     }
 
     /// The rims of the cluster whose faces are `members` (sorted, unique) into `out`:
@@ -146,14 +146,14 @@ impl Surroundings<'_> {
                     continue;
                 };
                 if dot(nf, ng) < cos_max {
-                    if Self::convex_crease(nf, cf, ng, cg) {
+                    if Self::convex_crease(nf, cf, ng, cg, cos_max) {
                         out.extend(self.rim(f, g, ng));
                     }
                     continue;
                 }
                 for &h in self.adj.of(g).iter().filter(|&&h| h != f && outside(h)) {
                     match at(h) {
-                        Some((nh, ch)) if Self::convex_crease(ng, cg, nh, ch) => {
+                        Some((nh, ch)) if Self::convex_crease(ng, cg, nh, ch, cos_max) => {
                             out.extend(self.rim(g, h, nh));
                         }
                         _ => {}

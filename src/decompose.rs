@@ -151,18 +151,16 @@ pub(crate) fn decompose_once(
     dec.timings.push("quadrics", now);
     // One primitive per face seeds the volumes (Alg. 1, line 2).
     let now = Instant::now();
-    // Faces across each output cluster's boundary, for the rim reach (deviation 24).
-    let (adj_offsets, adj) = if params.rim_weight > 0.0 {
+    // Face neighbour lists and outward sides agreeing across shared edges, for the
+    // outward and rim reaches of the output fits (deviations 22 and 24).
+    let reaches = params.rim_weight > 0.0 || params.outward_weight > 0.0;
+    let (adj_offsets, adj) = if reaches {
         adjacency::neighbour_lists(mesh.face_count(), &pairs)
     } else {
         (Vec::new(), Vec::new())
     };
-    // Outward sides agree across shared edges, for the outward and rim reaches
-    // (deviations 22 and 24).
-    let signs = if params.rim_weight > 0.0 {
+    let signs = if reaches {
         crate::mesh::orient::face_signs_of_lists(mesh, &welded, &adj_offsets, &adj)
-    } else if params.outward_weight > 0.0 {
-        crate::mesh::orient::face_signs(mesh, &welded, &pairs)
     } else {
         Vec::new()
     };

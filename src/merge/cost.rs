@@ -7,7 +7,8 @@ use super::heap::Candidate;
 use super::rim::{clamp_to_points, rim_reach, FaceAdjacency, Rim, Surroundings};
 use crate::math::hull::{hull_vertices, HullWorkspace};
 use crate::math::Sym3;
-use crate::math::{dot, norm, V3};
+use crate::math::{dot, V3};
+use crate::mesh::orient::outward_normal;
 use crate::mesh::solid::Solid;
 use crate::mesh::Mesh;
 use crate::primitive::fit::thorough_frames;
@@ -235,23 +236,15 @@ impl<'a> Evaluator<'a> {
     /// area have no side and are skipped.
     fn outer_sides(&self, faces: impl Iterator<Item = u32>, ws: &mut Workspace) {
         let m = self.mesh;
-        let pos = |v: u32| m.pos(v);
         ws.sides.clear();
         for f in faces {
-            let vs = m.face(f as usize);
-            let sum = m.newell(f as usize);
-            let len = norm(sum);
-            if !(len > 0.0 && len.is_finite()) {
+            let Some((n, len)) = outward_normal(m, self.face_sign, f) else {
                 continue;
-            }
-            let s = self
-                .face_sign
-                .get(f as usize)
-                .map_or(1.0, |&s| f64::from(s));
-            let n = [s * sum[0] / len, s * sum[1] / len, s * sum[2] / len];
-            let offset = vs
+            };
+            let offset = m
+                .face(f as usize)
                 .iter()
-                .map(|&v| dot(n, pos(v)))
+                .map(|&v| dot(n, m.pos(v)))
                 .fold(f64::NEG_INFINITY, f64::max);
             ws.sides.push(OuterSide {
                 n,

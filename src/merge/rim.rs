@@ -18,6 +18,7 @@
 //! cluster's surface.
 
 use crate::math::{dot, norm, sub, V3};
+use crate::mesh::orient::outward_normal;
 use crate::mesh::Mesh;
 use crate::primitive::Primitive;
 
@@ -84,27 +85,18 @@ pub fn rim_reach(prim: &Primitive, rims: &[Rim]) -> f64 {
         .sum()
 }
 
-/// Outward unit normal (Newell's normal of its own vertices times its sign from
-/// `mesh::orient`, +1 when `signs` is empty) and centroid of face `f`; `None` for a
+/// Outward unit normal ([`outward_normal`]) and centroid of face `f`; `None` for a
 /// face of zero area.
 fn normal_and_centre(mesh: &Mesh, signs: &[i8], f: u32) -> Option<(V3, V3)> {
+    let (n, _) = outward_normal(mesh, signs, f)?;
     let vs = mesh.face(f as usize);
-    let n = mesh.newell(f as usize);
-    let len = norm(n);
-    if !(len > 0.0 && len.is_finite()) {
-        return None;
-    }
-    let k = signs.get(f as usize).map_or(1.0, |&s| f64::from(s)) / len;
     let mut c = [0.0; 3];
     for &v in vs {
         let p = mesh.pos(v);
         c = [c[0] + p[0], c[1] + p[1], c[2] + p[2]];
     }
     let m = 1.0 / vs.len() as f64;
-    Some((
-        [n[0] * k, n[1] * k, n[2] * k],
-        [c[0] * m, c[1] * m, c[2] * m],
-    ))
+    Some((n, [c[0] * m, c[1] * m, c[2] * m]))
 }
 
 /// The faces around one cluster and how to tell its rims: the input with its welded

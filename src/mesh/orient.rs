@@ -20,6 +20,19 @@ pub fn face_signs(mesh: &Mesh, welded: &[u32], pairs: &[(u32, u32)]) -> Vec<i8> 
     face_signs_of_lists(mesh, welded, &deg, &adj)
 }
 
+/// Face `f`'s outward unit normal (Newell's normal of its own vertices times its sign
+/// in `signs`, +1 when `signs` is empty) and the Newell normal's length (twice the
+/// area); `None` for a face of zero area.
+pub fn outward_normal(mesh: &Mesh, signs: &[i8], f: u32) -> Option<(V3, f64)> {
+    let n = mesh.newell(f as usize);
+    let len = crate::math::norm(n);
+    if !(len > 0.0 && len.is_finite()) {
+        return None;
+    }
+    let k = signs.get(f as usize).map_or(1.0, |&s| f64::from(s)) / len;
+    Some(([n[0] * k, n[1] * k, n[2] * k], len))
+}
+
 /// [`face_signs`] from the adjacency as CSR neighbour lists
 /// ([`super::adjacency::neighbour_lists`]), when the caller has them already.
 pub fn face_signs_of_lists(mesh: &Mesh, welded: &[u32], deg: &[u32], adj: &[u32]) -> Vec<i8> {

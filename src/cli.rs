@@ -153,6 +153,11 @@ struct DecomposeArgs {
     /// past a wall's top as a curb). 0 = off (the volume alone, the paper's criterion).
     #[arg(long, default_value_t = primdecomp::params::RIM_WEIGHT)]
     rim_weight: f64,
+    /// Stop at exactly N clusters (the paper) even where the next merges add no
+    /// volume; by default they run first, so -n N gives at most N primitives, fewer
+    /// where faces merge for free (coplanar triangles into one plate).
+    #[arg(long)]
+    no_free_merges: bool,
     /// Price merges by the volume they add outside the input (its interior by ray
     /// parity on a voxel grid) instead of the whole volume: closed parts fill into
     /// solid primitives rather than shells of plates.
@@ -289,6 +294,7 @@ fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
         outward_weight: a.outward_weight,
         solid: a.solid,
         rim_weight: a.rim_weight,
+        free_merges: !a.no_free_merges,
         remove_thin_boxes: a.remove_thin_boxes,
         partitions: match a.partitions.as_str() {
             "auto" => Partitions::Auto,

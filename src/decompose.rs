@@ -393,6 +393,7 @@ pub fn evaluator<'a>(
         solid: None,
         rim_weight: params.rim_weight,
         face_adj: FaceAdjacency::default(),
+        free_merges: params.free_merges,
     }
 }
 

@@ -101,6 +101,10 @@ fn params(u: &mut Unstructured) -> Result<Params> {
     // (deviation 24).
     p.rim_weight =
         [primdecomp::params::RIM_WEIGHT, 0.0, 1e-9, 1e9][u.int_in_range(0..=3)? as usize];
+    // After that (an exhausted input reads false: free merges on, the default, so the
+    // grown corpus now runs with them): a target's snapshot held for merges that add
+    // no volume, and the exact stop (deviation 25).
+    p.free_merges = !u.arbitrary::<bool>()?;
     Ok(p)
 }
 

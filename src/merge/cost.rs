@@ -120,6 +120,9 @@ pub struct Evaluator<'a> {
     /// The input's face adjacency, for the output clusters' rims; empty = no rims
     /// (set only when `rim_weight` > 0).
     pub face_adj: FaceAdjacency<'a>,
+    /// `Params::free_merges`: merges that add no volume run before a target's
+    /// snapshot (deviation 25).
+    pub free_merges: bool,
 }
 
 impl<'a> Evaluator<'a> {

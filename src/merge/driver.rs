@@ -76,6 +76,8 @@ pub struct Traced {
     pub key_b: u32,
     pub a: u32,
     pub b: u32,
+    /// The merge's own cost: whether it runs before a target's snapshot ([`free`]).
+    pub own: f64,
 }
 
 impl Traced {
@@ -261,23 +263,38 @@ fn merge_loop<Q: Queue>(
     let start = cl.live;
     let last = *targets.last().expect("at least one target");
     let mut next = 0;
+    // The greedy order's next merge, popped at a target but not free: applied after
+    // that target's snapshot.
+    let mut held: Option<Candidate> = None;
     loop {
-        while next < targets.len() && cl.live <= targets[next] {
-            out.snapshots.push(snapshot(ev, &cl, targets[next], scope));
-            next += 1;
-        }
-        if next == targets.len() {
-            break;
-        }
-        let c = match next_step(ev, &mut cl, &mut heap, &mut lazy, &mut ws, &mut out, scope) {
-            Step::Merge(c) => c,
-            Step::Repriced(c) => {
-                top.popped(&c);
-                continue;
+        let reached = next < targets.len() && cl.live <= targets[next];
+        // A target's snapshot waits for merges that add no volume (deviation 25); the
+        // queue running dry there does not bridge components first.
+        if reached && (held.is_some() || heap.is_empty()) || next == targets.len() {
+            while next < targets.len() && cl.live <= targets[next] {
+                out.snapshots.push(snapshot(ev, &cl, targets[next], scope));
+                next += 1;
             }
-            Step::Again => continue,
-            Step::Stop => break,
+            if next == targets.len() {
+                break;
+            }
+        }
+        let c = match held.take() {
+            Some(c) => c,
+            None => match next_step(ev, &mut cl, &mut heap, &mut lazy, &mut ws, &mut out, scope) {
+                Step::Merge(c) => c,
+                Step::Repriced(c) => {
+                    top.popped(&c);
+                    continue;
+                }
+                Step::Again => continue,
+                Step::Stop => break,
+            },
         };
+        if reached && !(ev.free_merges && free(c.cost)) {
+            held = Some(c);
+            continue;
+        }
         if scope == Scope::Traced {
             top.popped(&c);
             let k = top.0.unwrap_or(c);
@@ -287,6 +304,7 @@ fn merge_loop<Q: Queue>(
                 key_b: k.b,
                 a: c.a,
                 b: c.b,
+                own: c.cost,
             });
         }
         if heap.len() > purge_at {
@@ -323,6 +341,15 @@ fn merge_loop<Q: Queue>(
         next += 1;
     }
     (out, cl)
+}
+
+/// Whether a merge adds no volume (k·V of the union at most the parts' volumes): the
+/// greedy order's next merge runs before a target's snapshot when it is free, so a
+/// target is reached with the same faces in fewer primitives of no more volume
+/// (ARCHITECTURE.md deviation 25). Without it, `-n` at the face count merges nothing
+/// and leaves one plate per triangle where coplanar triangles make one.
+pub fn free(cost: f64) -> bool {
+    cost <= 0.0
 }
 
 /// What the merge loop does next ([`next_step`]).
@@ -641,6 +668,45 @@ pub(super) mod tests {
                     assert!(two.ahead > 0, "{reprice:?}: points never reduced ahead");
                 }
             });
+        }
+    }
+
+    /// Merges that add no volume run before a target's snapshot (deviation 25), and that
+    /// only carries the greedy order on: each target's clusters are those the loop
+    /// without them holds at that smaller count — never more than the target, fewer
+    /// where the demo scene's coplanar faces merge for free — under every re-pricing
+    /// mode.
+    #[test]
+    fn free_merges_carry_the_greedy_order_on() {
+        for reprice in reprice_modes() {
+            let free = Params {
+                reprice,
+                ..Params::default()
+            };
+            let exact = Params {
+                free_merges: false,
+                ..free.clone()
+            };
+            let targets = [400, 300, 150, 40];
+            let with = with_demo_using(free, |ev, fresh| run(ev, fresh(), &targets, &|_| {}));
+            let counts: Vec<usize> = with.snapshots.iter().map(|s| s.prims.len()).collect();
+            assert!(
+                counts.iter().zip(&targets).all(|(c, t)| c <= t),
+                "{counts:?}"
+            );
+            assert!(
+                counts.iter().zip(&targets).any(|(c, t)| c < t),
+                "{reprice:?}: no free merge at any target: the test would pass vacuously"
+            );
+            let mut lower = counts.clone();
+            lower.dedup();
+            let without = with_demo_using(exact, |ev, fresh| run(ev, fresh(), &lower, &|_| {}));
+            for s in &with.snapshots {
+                let t = without.snapshots.iter().find(|t| t.target == s.prims.len());
+                let t = t.expect("a snapshot at each count");
+                assert_eq!(format!("{:?}", s.prims), format!("{:?}", t.prims));
+                assert_eq!(s.members, t.members);
+            }
         }
     }
 

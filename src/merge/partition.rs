@@ -377,8 +377,13 @@ mod tests {
     use super::*;
 
     fn grid(n: u32) -> Mesh {
+        grid_z(n, |_, _| 0.0)
+    }
+
+    /// An n × n grid of unit quads with heights `z(i, j)` at its vertices.
+    fn grid_z(n: u32, z: impl Fn(u32, u32) -> f64 + Copy) -> Mesh {
         let pos: Vec<[f64; 3]> = (0..=n)
-            .flat_map(|j| (0..=n).map(move |i| [i as f64, j as f64, 0.0]))
+            .flat_map(|j| (0..=n).map(move |i| [i as f64, j as f64, z(i, j)]))
             .collect();
         let faces: Vec<Vec<u32>> = (0..n)
             .flat_map(|j| {
@@ -457,7 +462,9 @@ mod tests {
     /// skips: the groups then never merged by adjacency).
     #[test]
     fn phase_two_lists_name_adjacent_groups() {
-        let mesh = grid(24);
+        // Bumpy, so that no merge is free and the parts stop at their targets (on a
+        // flat grid every merge adds no volume and each part ends as one group).
+        let mesh = grid_z(24, |i, j| ((i * 7 + j * 13) % 5) as f64 * 0.3);
         let p = crate::Params::default();
         let (mut cl, pairs) =
             crate::merge::driver::tests::with_input(&mesh, &p, |ev, q, vols, pairs| {

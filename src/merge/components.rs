@@ -13,8 +13,8 @@
 //! - a target at or above the number of components is reached before any linking:
 //!   the global loop's clusters there are the first `faces − target` merges of all
 //!   groups in the order the global loop interleaves them (each merge's key says
-//!   where), and the free ones after them (deviation 25: each merge's own cost says
-//!   which), replayed by [`snapshots`] — no global loop at all;
+//!   where), and the free ones after them (deviation 25: each traced merge says
+//!   whether it is), replayed by [`snapshots`] — no global loop at all;
 //! - a smaller target is reached by phase 2, the global loop started from every
 //!   component whole (with the neighbour lists the global loop would hold), which
 //!   starts by linking components.
@@ -29,7 +29,7 @@
 
 use super::cluster::Clusters;
 use super::cost::Evaluator;
-use super::driver::{free, snapshot, Scope, Snapshot, Traced};
+use super::driver::{snapshot, Scope, Snapshot, Traced};
 use super::partition::{self, Kind, Phase1};
 use crate::math::Sym3;
 
@@ -156,13 +156,13 @@ pub fn snapshots(
     let mut out = Vec::new();
     for &target in targets.iter().filter(|&&t| t >= components) {
         let mut m = faces.saturating_sub(target).min(order.len()).max(done);
-        // Then the merges that add no volume, as the global loop does (`driver::free`).
-        let own = |k: usize| {
+        // Then the free merges, as the global loop does (`driver::free`).
+        let free = |k: usize| {
             order
                 .get(k)
-                .map(|&(g, i)| traces[g as usize][i as usize].own)
+                .is_some_and(|&(g, i)| traces[g as usize][i as usize].free)
         };
-        while ev.free_merges && own(m).is_some_and(free) {
+        while ev.free_merges && free(m) {
             m += 1;
         }
         for &(g, i) in &order[done..m] {
@@ -357,7 +357,7 @@ mod tests {
             key_b: a + 1,
             a,
             b: a + 1,
-            own: cost,
+            free: false,
         };
         let g0 = [t(1.0, 0), t(3.0, 0), t(3.0, 0), t(5.0, 2)];
         let g1 = [t(2.0, 10), t(3.0, 10), t(4.0, 12)];

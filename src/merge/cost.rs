@@ -397,9 +397,10 @@ impl<'a> Evaluator<'a> {
             return None;
         }
         let mut cost = fit.cost * air - before;
+        let flat = ws.fit.was_flat();
         // A coplanar merge's volumes are all area × 2·floor, so scaling its cost is
         // pricing it at the thicker floor (Params::flat_merge_extent_rel).
-        if self.flat_scale > 1.0 && ws.fit.was_flat() {
+        if self.flat_scale > 1.0 && flat {
             cost *= self.flat_scale;
         }
         let c = Candidate {
@@ -408,6 +409,7 @@ impl<'a> Evaluator<'a> {
             a: a.id,
             b: b.id,
             t: a.t.max(b.t),
+            flat,
         };
         Some((c, fit))
     }

@@ -76,8 +76,8 @@ pub struct Traced {
     pub key_b: u32,
     pub a: u32,
     pub b: u32,
-    /// The merge's own cost: whether it runs before a target's snapshot ([`free`]).
-    pub own: f64,
+    /// Whether the merge itself is [`free`]: it runs before a target's snapshot.
+    pub free: bool,
 }
 
 impl Traced {
@@ -156,6 +156,7 @@ fn price(ev: &Evaluator, cl: &Clusters, pairs: &[(u32, u32)]) -> Vec<Candidate> 
         a: 0,
         b: 0,
         t: 0,
+        flat: false,
     };
     let mut out = vec![none; pairs.len()];
     out.par_chunks_mut(CHUNK)
@@ -291,7 +292,7 @@ fn merge_loop<Q: Queue>(
                 Step::Stop => break,
             },
         };
-        if reached && !(ev.free_merges && free(c.cost)) {
+        if reached && !(ev.free_merges && free(&c)) {
             held = Some(c);
             continue;
         }
@@ -304,7 +305,7 @@ fn merge_loop<Q: Queue>(
                 key_b: k.b,
                 a: c.a,
                 b: c.b,
-                own: c.cost,
+                free: free(&c),
             });
         }
         if heap.len() > purge_at {
@@ -343,13 +344,16 @@ fn merge_loop<Q: Queue>(
     (out, cl)
 }
 
-/// Whether a merge adds no volume (k·V of the union at most the parts' volumes): the
-/// greedy order's next merge runs before a target's snapshot when it is free, so a
-/// target is reached with the same faces in fewer primitives of no more volume
-/// (ARCHITECTURE.md deviation 25). Without it, `-n` at the face count merges nothing
-/// and leaves one plate per triangle where coplanar triangles make one.
-pub fn free(cost: f64) -> bool {
-    cost <= 0.0
+/// Whether a merge is free: coplanar points (a plate) and no added volume (k·V of the
+/// union at most the parts' volumes). The greedy order's next merge runs before a
+/// target's snapshot while it is free, so a target is reached with the same faces in
+/// fewer plates of no more area (ARCHITECTURE.md deviation 25); without it, `-n` at
+/// the face count merges nothing and leaves a plate per triangle where coplanar
+/// triangles make one. Only plates: parts that overlap count their common volume
+/// twice, so a solid merge can cost ≤ 0 and still cover space neither part did (two
+/// cubes sharing an edge into one box over both empty corners, tiny_shared_edge).
+pub fn free(c: &Candidate) -> bool {
+    c.flat && c.cost <= 0.0
 }
 
 /// What the merge loop does next ([`next_step`]).
@@ -674,8 +678,8 @@ pub(super) mod tests {
     /// Merges that add no volume run before a target's snapshot (deviation 25), and that
     /// only carries the greedy order on: each target's clusters are those the loop
     /// without them holds at that smaller count — never more than the target, fewer
-    /// where the demo scene's coplanar faces merge for free — under every re-pricing
-    /// mode.
+    /// where the demo scene's coplanar faces merge into plates for free — under every
+    /// re-pricing mode.
     #[test]
     fn free_merges_carry_the_greedy_order_on() {
         for reprice in reprice_modes() {
@@ -687,7 +691,8 @@ pub(super) mod tests {
                 free_merges: false,
                 ..free.clone()
             };
-            let targets = [400, 300, 150, 40];
+            // Above the face count (1,829) no merge is needed: only free ones run.
+            let targets = [5000, 1000, 400, 40];
             let with = with_demo_using(free, |ev, fresh| run(ev, fresh(), &targets, &|_| {}));
             let counts: Vec<usize> = with.snapshots.iter().map(|s| s.prims.len()).collect();
             assert!(

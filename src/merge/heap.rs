@@ -25,6 +25,8 @@ pub struct Candidate {
     pub b: u32,
     /// The merge clock (`Clusters::clock`) when the pair was priced.
     pub t: u32,
+    /// The merged points are coplanar: the merge makes a plate (`driver::free`).
+    pub flat: bool,
 }
 
 impl Eq for Candidate {}
@@ -231,6 +233,7 @@ mod tests {
             a,
             b,
             t: 0,
+            flat: false,
         }
     }
 

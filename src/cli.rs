@@ -71,7 +71,8 @@ struct DecomposeArgs {
     #[arg(required = true)]
     inputs: Vec<PathBuf>,
     /// Target primitive counts, comma-separated (a count, or a percentage of the input's
-    /// faces such as 1%); one result per target from one bottom-up pass.
+    /// faces such as 1%); one result per target from one bottom-up pass. At most N
+    /// each: merges into plates that add no area still run (see --no-free-merges).
     #[arg(
         short = 'n',
         long = "targets",
@@ -153,9 +154,9 @@ struct DecomposeArgs {
     /// past a wall's top as a curb). 0 = off (the volume alone, the paper's criterion).
     #[arg(long, default_value_t = primdecomp::params::RIM_WEIGHT)]
     rim_weight: f64,
-    /// Stop at exactly N clusters (the paper) even where the next merges add no
-    /// volume; by default they run first, so -n N gives at most N primitives, fewer
-    /// where faces merge for free (coplanar triangles into one plate).
+    /// Stop at exactly N clusters (the paper) even where the next merges add nothing;
+    /// by default merges of coplanar clusters into a plate of no more area run first,
+    /// so -n N gives at most N primitives, fewer where faces merge for free.
     #[arg(long)]
     no_free_merges: bool,
     /// Price merges by the volume they add outside the input (its interior by ray

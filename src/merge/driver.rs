@@ -269,7 +269,7 @@ fn merge_loop<Q: Queue>(
     let mut held: Option<Candidate> = None;
     loop {
         let reached = next < targets.len() && cl.live <= targets[next];
-        // A target's snapshot waits for merges that add no volume (deviation 25); the
+        // A target's snapshot waits for free merges into plates (deviation 25); the
         // queue running dry there does not bridge components first.
         if reached && (held.is_some() || heap.is_empty()) || next == targets.len() {
             while next < targets.len() && cl.live <= targets[next] {

@@ -159,6 +159,10 @@ struct DecomposeArgs {
     /// so -n N gives at most N primitives, fewer where faces merge for free.
     #[arg(long)]
     no_free_merges: bool,
+    /// Centre output plates on their faces (half the minimum thickness proud of the
+    /// surface) instead of laying them flush, reaching inward from the faces.
+    #[arg(long)]
+    no_flush_plates: bool,
     /// Price merges by the volume they add outside the input (its interior by ray
     /// parity on a voxel grid) instead of the whole volume: closed parts fill into
     /// solid primitives rather than shells of plates.
@@ -296,6 +300,7 @@ fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
         solid: a.solid,
         rim_weight: a.rim_weight,
         free_merges: !a.no_free_merges,
+        flush_plates: !a.no_flush_plates,
         remove_thin_boxes: a.remove_thin_boxes,
         partitions: match a.partitions.as_str() {
             "auto" => Partitions::Auto,

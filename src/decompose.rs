@@ -152,8 +152,8 @@ pub(crate) fn decompose_once(
     // One primitive per face seeds the volumes (Alg. 1, line 2).
     let now = Instant::now();
     // Face neighbour lists and outward sides agreeing across shared edges, for the
-    // outward and rim reaches of the output fits (deviations 22 and 24).
-    let reaches = params.rim_weight > 0.0 || params.outward_weight > 0.0;
+    // outward and rim reaches of the output fits and flush plates (deviations 22, 24, 26).
+    let reaches = params.rim_weight > 0.0 || params.outward_weight > 0.0 || params.flush_plates;
     let (adj_offsets, adj) = if reaches {
         adjacency::neighbour_lists(mesh.face_count(), &pairs)
     } else {
@@ -394,6 +394,7 @@ pub fn evaluator<'a>(
         rim_weight: params.rim_weight,
         face_adj: FaceAdjacency::default(),
         free_merges: params.free_merges,
+        flush_plates: params.flush_plates,
     }
 }
 

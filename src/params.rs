@@ -8,7 +8,8 @@
 //! choosing each output primitive by k·V plus its rim reach (24: no curbs standing
 //! past the faces beside a cluster), and in letting merges into plates that add no
 //! area run before a target's snapshot (25: at most N primitives, no seams where
-//! coplanar faces merge for free).
+//! coplanar faces merge for free), and in laying output plates flush on their faces
+//! (26: their outer side where the surface is).
 //!
 //! | setting | default | raising it | lowering it |
 //! |---|---|---|---|
@@ -29,6 +30,7 @@
 //! | `outward_weight` | 0 | output fits also price how far a primitive reaches past its faces' outer side (the volume balls and bodies meet): w·Σ area·gap is added to k·V when choosing an output frame; merges are priced as before | 0 = off: output frames chosen by k·V alone |
 //! | `rim_weight` | 1 | output primitives avoid reaching past the faces just outside their cluster more strongly (a side plate standing past a wall's top as a curb): w·Σ len·gap² over creased boundary edges is added to k·V when choosing an output frame and kind; merges are priced as before | less; 0 = off (k·V alone: the least-area plate around a sliver triangle may stand past the neighbouring face) |
 //! | `free_merges` | true | — | false: a target N stops at exactly N clusters (the paper) even where the next merges join coplanar clusters into a plate of no more area, e.g. `-n` at the face count merges nothing and leaves a plate per triangle where coplanar triangles make one (seams a rolling ball catches on) |
+//! | `flush_plates` | true | — | false: an output plate is centred on its faces, standing half the floor thickness (`min_extent_rel`) proud of the surface on its outer side; a ball rests that much higher than on the mesh |
 //! | `solid` | false | (when set) merges are priced by the volume their primitive adds outside the input (interior by ray parity on a 64-cell grid) rather than its whole volume: closed parts become one solid primitive instead of a shell of plates, fewer shapes per part in a physics scene; holes and gaps are priced as before | — |
 //! | `remove_thin_boxes` | None | (when set) drops boxes thinner than this fraction of the diagonal if still covered | — |
 
@@ -206,6 +208,13 @@ pub struct Params {
     /// the paper's stop. Serialized only when off.
     #[serde(skip_serializing_if = "is_true")]
     pub free_merges: bool,
+    /// Whether an output plate (a primitive at the `min_extent_rel` floor thickness,
+    /// its faces all facing one way along its thin axis) lies flush on its faces,
+    /// reaching inward from them, instead of centred on them (deviation 26): its outer
+    /// side is where the mesh's surface is. false = centred, half the floor proud of
+    /// the surface. Serialized only when off.
+    #[serde(skip_serializing_if = "is_true")]
+    pub flush_plates: bool,
 }
 
 /// [`Params::rim_weight`]'s default.
@@ -269,6 +278,7 @@ impl Default for Params {
             solid: false,
             rim_weight: RIM_WEIGHT,
             free_merges: true,
+            flush_plates: true,
         }
     }
 }

@@ -122,13 +122,19 @@ fn wall_high_has_no_curb_along_its_top() {
         };
         let dec = decompose(&m, &p).unwrap();
         let shapes = shapes(&dec, 0, &p);
+        // Over the footprint, the edges a quarter of the floor thickness in: a plate
+        // on a side lies flush inside it (deviation 26), its outer face on the edge.
+        let at = |k: usize, t: f64| {
+            let e = 0.25 * p.min_extent_rel * diag;
+            lo[k] + off[k] + e + (hi[k] - lo[k] - 2.0 * e) * t
+        };
         let mut n = 0;
         for i in 0..=60 {
             for k in 0..=20 {
                 let q = [
-                    lo[0] + off[0] + (hi[0] - lo[0]) * i as f64 / 60.0,
+                    at(0, i as f64 / 60.0),
                     top + 0.005 * diag,
-                    lo[2] + off[2] + (hi[2] - lo[2]) * k as f64 / 20.0,
+                    at(2, k as f64 / 20.0),
                 ];
                 n += usize::from(shapes.iter().any(|s| shape_contains(s, q, 0.0)));
             }

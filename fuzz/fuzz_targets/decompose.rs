@@ -105,6 +105,9 @@ fn params(u: &mut Unstructured) -> Result<Params> {
     // grown corpus now runs with them): a target's snapshot held for merges that add
     // no volume, and the exact stop (deviation 25).
     p.free_merges = !u.arbitrary::<bool>()?;
+    // After that (an exhausted input reads false: flush plates, the default): output
+    // plates moved onto their faces' outer side, and centred (deviation 26).
+    p.flush_plates = !u.arbitrary::<bool>()?;
     Ok(p)
 }
 

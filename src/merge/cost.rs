@@ -18,6 +18,10 @@ use crate::primitive::fit::{
 use crate::primitive::{fit_best, frame, Cloud, FitScratch, Primitive};
 use crate::Reduction;
 
+/// Faces whose outward normal is within about 0.8° of a plate's axis face along it
+/// ([`Evaluator::flush`]): a flat cluster's faces lie at round-off from it.
+const PARALLEL: f64 = 0.9999;
+
 /// Per-thread reusable buffers: the gathered points and the fit's scratch.
 #[derive(Debug, Default)]
 pub struct Workspace {
@@ -123,6 +127,8 @@ pub struct Evaluator<'a> {
     /// `Params::free_merges`: merges that add no volume run before a target's
     /// snapshot (deviation 25).
     pub free_merges: bool,
+    /// `Params::flush_plates`: output plates lie flush on their faces (deviation 26).
+    pub flush_plates: bool,
 }
 
 impl<'a> Evaluator<'a> {
@@ -218,7 +224,7 @@ impl<'a> Evaluator<'a> {
         }
         if self.rim_weight > 0.0 && !self.face_adj.is_empty() {
             ws.members.clear();
-            ws.members.extend(faces);
+            ws.members.extend(faces.clone());
             ws.members.sort_unstable();
             ws.members.dedup();
             let around = Surroundings {
@@ -229,10 +235,57 @@ impl<'a> Evaluator<'a> {
             };
             around.rims(&ws.members, &mut ws.rims);
         }
-        if ws.sides.is_empty() && ws.rims.is_empty() {
-            return self.fit_on_hull(q, &cfg, ws);
+        let mut fit = if ws.sides.is_empty() && ws.rims.is_empty() {
+            self.fit_on_hull(q, &cfg, ws)
+        } else {
+            self.fit_priced(q, &cfg, ws)
+        };
+        if self.flush_plates {
+            self.flush(faces, &mut fit.prim);
         }
-        self.fit_priced(q, &cfg, ws)
+        fit
+    }
+
+    /// Deviation 26: a plate at the output floor thickness whose faces all face one way
+    /// along its thin axis moves inward by its reach past their farthest vertex, so its
+    /// outer side lies on the faces as the mesh's surface does (centred on them it stood
+    /// `output_min_half` proud, and balls rested that high). Its cross-section is the
+    /// same all along that axis, so the faces stay inside.
+    fn flush(&self, faces: impl Iterator<Item = u32> + Clone, prim: &mut Primitive) {
+        let Some(axis) = prim.plate_axis(self.output_min_half) else {
+            return;
+        };
+        // The faces' common outward side along the axis: +1 or −1, 0 when they disagree.
+        let mut side = 0.0;
+        for f in faces.clone() {
+            let Some((n, _)) = outward_normal(self.mesh, self.face_sign, f) else {
+                continue;
+            };
+            let c = dot(n, axis);
+            let s = if c >= PARALLEL {
+                1.0
+            } else if c <= -PARALLEL {
+                -1.0
+            } else {
+                0.0
+            };
+            if s == 0.0 || (side != 0.0 && s != side) {
+                return;
+            }
+            side = s;
+        }
+        if side == 0.0 {
+            return;
+        }
+        let n = axis.map(|x| x * side);
+        let top = faces
+            .flat_map(|f| self.mesh.face(f as usize).iter().copied())
+            .map(|v| dot(n, self.mesh.pos(v)))
+            .fold(f64::NEG_INFINITY, f64::max);
+        let reach = prim.support(n) - top;
+        if reach > 0.0 && reach.is_finite() {
+            *prim = prim.translated(n.map(|x| -x * reach));
+        }
     }
 
     /// `faces` as outer sides (Newell normals of their own vertices); faces of zero

@@ -119,6 +119,26 @@ impl Primitive {
             Primitive::Prism(s) => s.support(n),
         }
     }
+    /// The unit axis along which this primitive is a plate at most `2·floor` thick with
+    /// the same cross-section all through (a box's thinnest axis, a prism's extrusion
+    /// axis, a cylinder's axis), for [`crate::merge::Evaluator`]'s flush plates
+    /// (deviation 26); `None` for any other shape.
+    pub fn plate_axis(&self, floor: f64) -> Option<V3> {
+        let thin = |h: f64| h <= floor * (1.0 + 1e-9);
+        match self {
+            Primitive::Box(s) => {
+                let k = (0..3).min_by(|&a, &b| s.half[a].total_cmp(&s.half[b]))?;
+                thin(s.half[k]).then_some(s.axes[k])
+            }
+            Primitive::Prism(s) => thin(s.hx).then_some(s.axes[0]),
+            Primitive::Cylinder(s) => {
+                let d = crate::math::sub(s.p1, s.p0);
+                let len = crate::math::norm(d);
+                (len > 0.0 && thin(0.5 * len)).then(|| d.map(|x| x / len))
+            }
+            Primitive::Sphere(_) | Primitive::Capsule(_) | Primitive::Frustum(_) => None,
+        }
+    }
     /// Whether `p` lies inside, allowing `tol` of slack (absolute distance units).
     pub fn contains(&self, p: V3, tol: f64) -> bool {
         match self {

@@ -124,8 +124,8 @@ pub struct Evaluator<'a> {
     /// The input's face adjacency, for the output clusters' rims; empty = no rims
     /// (set only when `rim_weight` > 0).
     pub face_adj: FaceAdjacency<'a>,
-    /// `Params::free_merges`: merges that add no volume run before a target's
-    /// snapshot (deviation 25).
+    /// `Params::free_merges`: free merges into plates run before a target's snapshot
+    /// (`merge::driver::free`, deviation 25).
     pub free_merges: bool,
     /// `Params::flush_plates`: output plates lie flush on their faces (deviation 26).
     pub flush_plates: bool,

@@ -241,7 +241,7 @@ impl<'a> Evaluator<'a> {
             self.fit_priced(q, &cfg, ws)
         };
         if self.flush_plates {
-            self.flush(faces, &mut fit.prim);
+            self.flush(faces, ws, &mut fit.prim);
         }
         fit
     }
@@ -250,14 +250,15 @@ impl<'a> Evaluator<'a> {
     /// along its thin axis moves inward by its reach past their farthest vertex, so its
     /// outer side lies on the faces as the mesh's surface does (centred on them it stood
     /// `output_min_half` proud, and balls rested that high). Its cross-section is the
-    /// same all along that axis, so the faces stay inside.
-    fn flush(&self, faces: impl Iterator<Item = u32> + Clone, prim: &mut Primitive) {
+    /// same all along that axis, so the faces stay inside. `ws` holds the faces' points
+    /// as gathered for the fit.
+    fn flush(&self, faces: impl Iterator<Item = u32>, ws: &Workspace, prim: &mut Primitive) {
         let Some(axis) = prim.plate_axis(self.output_min_half) else {
             return;
         };
         // The faces' common outward side along the axis: +1 or −1, 0 when they disagree.
         let mut side = 0.0;
-        for f in faces.clone() {
+        for f in faces {
             let Some((n, _)) = outward_normal(self.mesh, self.face_sign, f) else {
                 continue;
             };
@@ -278,9 +279,8 @@ impl<'a> Evaluator<'a> {
             return;
         }
         let n = axis.map(|x| x * side);
-        let top = faces
-            .flat_map(|f| self.mesh.face(f as usize).iter().copied())
-            .map(|v| dot(n, self.mesh.pos(v)))
+        let top = (0..ws.x.len())
+            .map(|i| dot(n, [ws.x[i], ws.y[i], ws.z[i]]))
             .fold(f64::NEG_INFINITY, f64::max);
         let reach = prim.support(n) - top;
         if reach > 0.0 && reach.is_finite() {

@@ -271,7 +271,7 @@ fn merge_loop<Q: Queue>(
         let reached = next < targets.len() && cl.live <= targets[next];
         // A target's snapshot waits for free merges into plates (deviation 25); the
         // queue running dry there does not bridge components first.
-        if reached && (held.is_some() || heap.is_empty()) || next == targets.len() {
+        if reached && (held.is_some() || heap.is_empty()) {
             while next < targets.len() && cl.live <= targets[next] {
                 out.snapshots.push(snapshot(ev, &cl, targets[next], scope));
                 next += 1;

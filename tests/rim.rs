@@ -147,3 +147,41 @@ fn wall_high_has_no_curb_along_its_top() {
     );
     assert_eq!(count(1.0), 0);
 }
+
+/// truck_shrec's body panels are one component joined through 54 edges that three
+/// faces share; walked across those, its hood came out facing down and the fender
+/// strip beside it (faces 4111, 4457–4459) met the hood at a "concave" crease, so the
+/// strip had no rim and its prism stood 0.03 (1.5 ball radii in the simulation) past
+/// the hood's edge, a fin that held the balls (ARCHITECTURE.md deviation 27). Now the
+/// hood (face 4383) faces up, the strip faces out, and the hood's plane is a rim of the
+/// strip. Corpus mesh; skipped loudly when absent.
+#[test]
+fn truck_hood_is_a_rim_of_the_fender_beside_it() {
+    use primdecomp::merge::rim::{FaceAdjacency, Surroundings};
+    use primdecomp::mesh::{adjacency, dedup, orient};
+    let Some(m) = common::corpus_mesh("truck_shrec.obj") else {
+        return;
+    };
+    let (welded, _) = dedup::weld(&m, Params::default().dedup);
+    let pairs = adjacency::face_pairs(&m.face_offsets, &welded);
+    let (offsets, adj) = adjacency::neighbour_lists(m.face_count(), &pairs);
+    let signs = orient::face_signs_of_lists(&m, &welded, &offsets, &adj);
+    let up = |f: u32| orient::outward_normal(&m, &signs, f).unwrap().0;
+    assert!(up(4383)[1] > 0.9, "the hood faces down: {:?}", up(4383));
+    assert!(up(4457)[2] > 0.8, "the fender faces in: {:?}", up(4457));
+    let around = Surroundings {
+        mesh: &m,
+        welded: &welded,
+        adj: FaceAdjacency {
+            offsets: &offsets,
+            adj: &adj,
+        },
+        signs: &signs,
+    };
+    let mut rims = vec![];
+    around.rims(&[4111, 4457, 4458, 4459], &mut rims);
+    assert!(
+        rims.iter().any(|r| r.direction()[1] > 0.9),
+        "no rim faces up: {rims:?}"
+    );
+}

@@ -58,6 +58,14 @@ pub struct Rim {
     len: f64,
 }
 
+impl Rim {
+    /// The outward unit normal of the face beyond the crease: the direction a
+    /// primitive must not reach along past the rim's plane.
+    pub fn direction(&self) -> V3 {
+        self.d
+    }
+}
+
 /// Raises each rim's plane to the farthest of the cluster's points along its
 /// direction: where the cluster's own faces cross a rim plane (a face across the
 /// edge that only touches the cluster there), every enclosure reaches that far, and

@@ -7,6 +7,7 @@ pub mod dedup;
 pub mod io;
 pub mod orient;
 pub mod solid;
+pub mod visibility;
 
 use crate::math::V3;
 

@@ -5,12 +5,18 @@
 //! a face's own normal does not say which side is outside. Faces sharing an edge are
 //! made to agree (a shared edge runs in opposite directions in two agreeing faces),
 //! one connected component at a time from its lowest face, and each component is then
-//! turned so that its signed volume is positive: outward for a closed surface, the
-//! side facing away from the bulk for most open ones.
+//! turned so that its signed volume is positive: outward for a closed surface. An open
+//! component is turned by what rays from its faces see instead (`visibility`,
+//! deviation 27), and by its signed volume only when they cannot tell.
 
+use super::visibility::{self, RayGrid};
 use super::Mesh;
 use crate::math::{cross, dot, sub, V3};
 use std::collections::VecDeque;
+
+/// An open patch's rays must favour one side by this much (in escaped rays per
+/// face, of 5 each way, area-weighted) to decide; else its signed volume does.
+const MIN_VOTE: f64 = 0.5;
 
 /// Per face, +1 to keep its winding or −1 to reverse it. `welded` are the faces'
 /// welded vertex indices (the mesh's CSR offsets) and `pairs` the faces sharing an
@@ -35,13 +41,21 @@ pub fn outward_normal(mesh: &Mesh, signs: &[i8], f: u32) -> Option<(V3, f64)> {
 
 /// [`face_signs`] from the adjacency as CSR neighbour lists
 /// ([`super::adjacency::neighbour_lists`]), when the caller has them already.
+///
+/// Windings propagate across manifold edges only (two faces on the edge): across an
+/// edge three faces share, "agreeing" means nothing, and truck_shrec's body, joined
+/// through such edges (54, counted over welded positions) into one component, came
+/// out with its hood facing down and its fenders out. Each patch so found is turned
+/// on its own.
 pub fn face_signs_of_lists(mesh: &Mesh, welded: &[u32], deg: &[u32], adj: &[u32]) -> Vec<i8> {
     let n = mesh.face_count();
     let off = &mesh.face_offsets;
     let face = |f: usize| &welded[off[f] as usize..off[f + 1] as usize];
+    let neighbours = |f: usize| &adj[deg[f] as usize..deg[f + 1] as usize];
     let mut sign = vec![0i8; n];
     let mut queue = VecDeque::new();
     let mut members = Vec::new();
+    let mut grid: Option<RayGrid> = None;
     for start in 0..n {
         if sign[start] != 0 {
             continue;
@@ -49,22 +63,60 @@ pub fn face_signs_of_lists(mesh: &Mesh, welded: &[u32], deg: &[u32], adj: &[u32]
         sign[start] = 1;
         queue.push_back(start);
         members.clear();
+        let mut open = false;
         while let Some(f) = queue.pop_front() {
             members.push(f);
-            for &g in &adj[deg[f] as usize..deg[f + 1] as usize] {
+            let mut crossed = 0;
+            for &g in neighbours(f) {
+                let Some(rel) = manifold_relation(face(f), g, neighbours(f), &face) else {
+                    continue;
+                };
+                crossed += 1;
                 if sign[g as usize] == 0 {
-                    // Opposed windings flip; agreeing or unknown (no shared edge) keep.
-                    let rel = relation(face(f), face(g as usize));
-                    sign[g as usize] = if rel < 0 { -sign[f] } else { sign[f] };
+                    // Opposed windings flip; agreeing keep.
+                    sign[g as usize] = rel * sign[f];
                     queue.push_back(g as usize);
                 }
             }
+            open |= crossed < face(f).len();
         }
-        if signed_volume(mesh, &members, &sign) < 0.0 {
+        let quota = visibility::SAMPLED_FACES * members.len() / n.max(1);
+        let seen = if open && quota > 0 {
+            let grid = grid.get_or_insert_with(|| RayGrid::build(mesh, visibility::CELLS));
+            visibility::vote(grid, &members, &sign, quota)
+        } else {
+            None
+        };
+        let inward = match seen {
+            Some(v) if v.abs() >= MIN_VOTE => v < 0.0,
+            _ => signed_volume(mesh, &members, &sign) < 0.0,
+        };
+        if inward {
             members.iter().for_each(|&f| sign[f] = -sign[f]);
         }
     }
     sign
+}
+
+/// [`relation`] of polygon `a` (welded indices) and face `g` across their shared edge,
+/// when that edge is manifold: no other neighbour of `a` in `around` uses it. `None`
+/// when they share no edge or a third face is on it.
+fn manifold_relation<'a>(
+    a: &[u32],
+    g: u32,
+    around: &[u32],
+    face: &impl Fn(usize) -> &'a [u32],
+) -> Option<i8> {
+    let b = face(g as usize);
+    let k = a.len();
+    let (u, v) = (0..k)
+        .map(|i| (a[i], a[(i + 1) % k]))
+        .find(|&(u, v)| u != v && b.contains(&u) && b.contains(&v))?;
+    let third = around
+        .iter()
+        .any(|&h| h != g && face(h as usize).contains(&u) && face(h as usize).contains(&v));
+    let rel = relation(a, b);
+    (!third && rel != 0).then_some(rel)
 }
 
 /// +1 when the two polygons traverse a shared edge in opposite directions (they
@@ -166,6 +218,35 @@ mod tests {
                     n(&m, f, s[f]) > 0.0,
                     "flipped {flip:?}: face {f} faces inward"
                 );
+            }
+        }
+    }
+
+    /// A cube with a fin inside on one top edge (a triangle to its centre, listed first):
+    /// that edge has three faces. Walking across it, the fin's winding decided the top
+    /// and the side differently, and half the cube came out facing in; now windings
+    /// cross manifold edges only and the cube, open where the fin joins it, is turned by
+    /// the rays from its faces.
+    #[test]
+    fn a_third_face_on_an_edge_does_not_turn_the_cube_inside_out() {
+        for fin in [[3u32, 7, 8], [7, 3, 8]] {
+            for flip in [vec![], vec![0, 2, 5]] {
+                let c = cube(&flip);
+                let mut v: Vec<V3> = (0..8).map(|i| c.pos(i)).collect();
+                v.push([0.0; 3]); // the cube's centre: positions are re-centred
+                let mut f = vec![fin.to_vec()];
+                f.extend((0..6).map(|i| c.face(i).to_vec()));
+                let m = Mesh::from_polygons(&v, &f);
+                let s = signs(&m);
+                for i in 0..6 {
+                    let vs = m.face(i + 1);
+                    let (a, b, d) = (m.pos(vs[0]), m.pos(vs[1]), m.pos(vs[2]));
+                    let out = dot(cross(sub(b, a), sub(d, a)), a) * f64::from(s[i + 1]);
+                    assert!(
+                        out > 0.0,
+                        "fin {fin:?}, flipped {flip:?}: face {i} faces inward"
+                    );
+                }
             }
         }
     }

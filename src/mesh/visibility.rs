@@ -16,9 +16,11 @@ use rayon::prelude::*;
 /// Cells along the grid's longest side, at most; fewer for small inputs
 /// (2·∛faces, at least 8).
 pub const CELLS: usize = 128;
-/// Face-in-cell entries, at most: past this the grid is coarsened (a mesh of a few
-/// huge faces would list each in most cells).
-const MAX_ENTRIES: usize = 1 << 25;
+/// Face-in-cell entries, at most (32 MiB): past this the grid is coarsened. A fan of
+/// 5,000 triangles spanning the whole box listed 13.6 M at 34 cells (a 58 MiB peak for
+/// a 5,000-face input); at 17 cells it lists 2.1 M. The dragon (871k faces) lists
+/// 1.5 M at 128.
+const MAX_ENTRIES: usize = 1 << 23;
 /// Faces sampled over the whole input, at most: a patch of p of the n faces gets
 /// ⌊SAMPLED_FACES·p/n⌋ of them (all when fewer), evenly spread, so rays stay bounded;
 /// a patch too small for one keeps its signed volume.
@@ -295,5 +297,48 @@ mod tests {
         let grid = RayGrid::build(&m, CELLS);
         let c = sub([0.5, 0.0, 0.5], m.offset);
         assert_eq!(grid.side_score(c, [0.0, -1.0, 0.0], 0), 5);
+    }
+
+    /// Faces that each span most of the box (3,000 triangles across a sphere, each
+    /// joining two nearly opposite points; up to 73 M entries at the 29 cells their count
+    /// asks for) coarsen the grid until it lists at most `MAX_ENTRIES`, and rays
+    /// still meet them.
+    #[test]
+    fn giant_faces_coarsen_the_grid() {
+        let n = 3000;
+        let mut p = vec![[0.0, 0.0, 0.0]];
+        for i in 0..=n {
+            let t = i as f64 * 2.399;
+            let z = 1.0 - 2.0 * (i as f64 + 0.5) / (n as f64 + 1.0);
+            let r = (1.0 - z * z).sqrt();
+            p.push([r * t.cos(), r * t.sin(), z]);
+        }
+        let half = n as u32 / 2;
+        let f: Vec<Vec<u32>> = (1..=n as u32)
+            .map(|i| vec![i, (i + half - 1) % n as u32 + 1, i % n as u32 + 1])
+            .collect();
+        let m = Mesh::from_polygons(&p, &f);
+        let grid = RayGrid::build(&m, CELLS);
+        assert!(
+            grid.faces.len() <= MAX_ENTRIES,
+            "{} entries",
+            grid.faces.len()
+        );
+        assert!(grid
+            .dims
+            .iter()
+            .all(|&d| d < 2 * (n as f64).cbrt() as usize));
+        // From the centre, some ray meets a face.
+        let c = [0.0; 3];
+        let hits = [
+            [1.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0],
+            [0.0, 0.0, 1.0],
+            [-1.0, 0.0, 0.0],
+        ]
+        .iter()
+        .filter(|&&d| grid.blocked(c, d, 0))
+        .count();
+        assert!(hits > 0);
     }
 }

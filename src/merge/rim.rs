@@ -18,7 +18,7 @@
 //! cluster's surface.
 
 use crate::math::{dot, norm, sub, V3};
-use crate::mesh::orient::outward_normal;
+use crate::mesh::orient::outward_normal_and_centre;
 use crate::mesh::Mesh;
 use crate::primitive::Primitive;
 
@@ -93,20 +93,6 @@ pub fn rim_reach(prim: &Primitive, rims: &[Rim]) -> f64 {
         .sum()
 }
 
-/// Outward unit normal ([`outward_normal`]) and centroid of face `f`; `None` for a
-/// face of zero area.
-fn normal_and_centre(mesh: &Mesh, signs: &[i8], f: u32) -> Option<(V3, V3)> {
-    let (n, _) = outward_normal(mesh, signs, f)?;
-    let vs = mesh.face(f as usize);
-    let mut c = [0.0; 3];
-    for &v in vs {
-        let p = mesh.pos(v);
-        c = [c[0] + p[0], c[1] + p[1], c[2] + p[2]];
-    }
-    let m = 1.0 / vs.len() as f64;
-    Some((n, [c[0] * m, c[1] * m, c[2] * m]))
-}
-
 /// The faces around one cluster and how to tell its rims: the input with its welded
 /// indices, its adjacency, and each face's outward sign (`mesh::orient`).
 #[derive(Clone, Copy, Debug)]
@@ -136,7 +122,8 @@ impl Surroundings<'_> {
         out.clear();
         let cos_max = RIM_ANGLE_DEG.to_radians().cos();
         let outside = |g: u32| members.binary_search(&g).is_err();
-        let at = |f: u32| normal_and_centre(self.mesh, self.signs, f);
+        let at =
+            |f: u32| outward_normal_and_centre(self.mesh, self.signs, f).map(|(n, c, _)| (n, c));
         for &f in members {
             let Some((nf, cf)) = at(f) else {
                 continue;

@@ -39,6 +39,21 @@ pub fn outward_normal(mesh: &Mesh, signs: &[i8], f: u32) -> Option<(V3, f64)> {
     Some(([n[0] * k, n[1] * k, n[2] * k], len))
 }
 
+/// Face `f`'s outward unit normal ([`outward_normal`]), its centroid (the mean of its
+/// vertices) and the Newell normal's length (twice its area); `None` for a face of
+/// zero area.
+pub fn outward_normal_and_centre(mesh: &Mesh, signs: &[i8], f: u32) -> Option<(V3, V3, f64)> {
+    let (n, len) = outward_normal(mesh, signs, f)?;
+    let vs = mesh.face(f as usize);
+    let mut c = [0.0; 3];
+    for &v in vs {
+        let p = mesh.pos(v);
+        c = [c[0] + p[0], c[1] + p[1], c[2] + p[2]];
+    }
+    let m = 1.0 / vs.len() as f64;
+    Some((n, [c[0] * m, c[1] * m, c[2] * m], len))
+}
+
 /// [`face_signs`] from the adjacency as CSR neighbour lists
 /// ([`super::adjacency::neighbour_lists`]), when the caller has them already.
 ///
@@ -98,45 +113,43 @@ pub fn face_signs_of_lists(mesh: &Mesh, welded: &[u32], deg: &[u32], adj: &[u32]
     sign
 }
 
-/// [`relation`] of polygon `a` (welded indices) and face `g` across their shared edge,
-/// when that edge is manifold: no other neighbour of `a` in `around` uses it. `None`
-/// when they share no edge or a third face is on it.
+/// Whether polygon `a` (welded indices) and face `g` agree across their shared edge
+/// when that edge is manifold (no other neighbour of `a` in `around` uses it): +1 when
+/// they run it in opposite directions, −1 when in the same. `None` when they share no
+/// edge or a third face is on it.
 fn manifold_relation<'a>(
     a: &[u32],
     g: u32,
     around: &[u32],
     face: &impl Fn(usize) -> &'a [u32],
 ) -> Option<i8> {
-    let b = face(g as usize);
-    let k = a.len();
-    let (u, v) = (0..k)
-        .map(|i| (a[i], a[(i + 1) % k]))
-        .find(|&(u, v)| u != v && b.contains(&u) && b.contains(&v))?;
-    let third = around
-        .iter()
-        .any(|&h| h != g && face(h as usize).contains(&u) && face(h as usize).contains(&v));
-    let rel = relation(a, b);
-    (!third && rel != 0).then_some(rel)
+    let (u, v, rel) = shared_edge(a, face(g as usize))?;
+    let third = around.iter().any(|&h| {
+        let c = face(h as usize);
+        h != g && c.contains(&u) && c.contains(&v)
+    });
+    (!third).then_some(rel)
 }
 
-/// +1 when the two polygons traverse a shared edge in opposite directions (they
-/// agree), −1 when in the same direction, 0 when no edge is found (degenerate faces).
-fn relation(a: &[u32], b: &[u32]) -> i8 {
+/// The first edge (u, v) of polygon `a` that polygon `b` also has, with +1 when `b`
+/// runs it the other way (the two agree) and −1 when the same way; `None` when they
+/// share no edge (or only degenerate ones).
+fn shared_edge(a: &[u32], b: &[u32]) -> Option<(u32, u32, i8)> {
     fn edges(p: &[u32]) -> impl Iterator<Item = (u32, u32)> + '_ {
         let k = p.len();
         (0..k).map(move |i| (p[i], p[(i + 1) % k]))
     }
-    for (u, v) in edges(a).filter(|(u, v)| u != v) {
-        for (s, t) in edges(b) {
-            if (s, t) == (v, u) {
-                return 1;
+    edges(a).filter(|(u, v)| u != v).find_map(|(u, v)| {
+        edges(b).find_map(|e| {
+            if e == (v, u) {
+                Some((u, v, 1))
+            } else if e == (u, v) {
+                Some((u, v, -1))
+            } else {
+                None
             }
-            if (s, t) == (u, v) {
-                return -1;
-            }
-        }
-    }
-    0
+        })
+    })
 }
 
 /// Signed volume of the faces `members` with the windings `sign`, about the centre

@@ -241,18 +241,10 @@ pub fn vote(grid: &RayGrid, members: &[usize], sign: &[i8], quota: usize) -> Opt
     let q = quota.clamp(1, members.len().max(1));
     for i in 0..q.min(members.len()) {
         let f = members[i * members.len() / q];
-        let nw = mesh.newell(f);
-        let len = norm(nw);
-        if !(len > 0.0 && len.is_finite()) {
+        let Some((n, c, len)) = super::orient::outward_normal_and_centre(mesh, sign, f as u32)
+        else {
             continue;
-        }
-        let n = nw.map(|x| x * f64::from(sign[f]) / len);
-        let vs = mesh.face(f);
-        let k = 1.0 / vs.len() as f64;
-        let c = vs.iter().fold([0.0; 3], |s, &v| {
-            let p = mesh.pos(v);
-            [s[0] + p[0] * k, s[1] + p[1] * k, s[2] + p[2] * k]
-        });
+        };
         sum += 0.5 * len * f64::from(grid.side_score(c, n, f as u32));
         area += 0.5 * len;
     }

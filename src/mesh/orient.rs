@@ -2,12 +2,12 @@
 //! (`Params::outward_weight` and `Params::rim_weight`, ARCHITECTURE.md deviations 22
 //! and 24; not in the paper). Many
 //! inputs mix windings (truck_shrec: 46% of its area faces outward by its winding), so
-//! a face's own normal does not say which side is outside. Faces sharing an edge are
-//! made to agree (a shared edge runs in opposite directions in two agreeing faces),
-//! one connected component at a time from its lowest face, and each component is then
-//! turned so that its signed volume is positive: outward for a closed surface. An open
-//! component is turned by what rays from its faces see instead (`visibility`,
-//! deviation 27), and by its signed volume only when they cannot tell.
+//! a face's own normal does not say which side is outside. Faces sharing an edge that
+//! no third face is on are made to agree (a shared edge runs in opposite directions in
+//! two agreeing faces), one patch at a time from its lowest face, and each patch is
+//! then turned: a closed one so that its signed volume is positive (outward), an open
+//! one by what rays from its faces see (`visibility`, deviation 27), and by its signed
+//! volume only when they cannot tell.
 
 use super::visibility::{self, RayGrid};
 use super::Mesh;

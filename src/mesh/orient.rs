@@ -59,7 +59,7 @@ pub fn outward_normal_and_centre(mesh: &Mesh, signs: &[i8], f: u32) -> Option<(V
 ///
 /// Windings propagate across manifold edges only (two faces on the edge): across an
 /// edge three faces share, "agreeing" means nothing, and truck_shrec's body, joined
-/// through such edges (54, counted over welded positions) into one component, came
+/// through such edges (54 of its 7,822) into one component, came
 /// out with its hood facing down and its fenders out. Each patch so found is turned
 /// on its own.
 pub fn face_signs_of_lists(mesh: &Mesh, welded: &[u32], deg: &[u32], adj: &[u32]) -> Vec<i8> {

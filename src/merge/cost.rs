@@ -113,7 +113,8 @@ pub struct Evaluator<'a> {
     /// `Params::outward_weight`: the outward reach's weight in the output frame choice.
     pub outward_weight: f64,
     /// Per face, ±1: the winding that faces outward (`mesh::orient`); empty = the
-    /// faces' own windings (set only when `outward_weight` or `rim_weight` > 0).
+    /// faces' own windings (set only when `outward_weight` or `rim_weight` > 0 or
+    /// `flush_plates`).
     pub face_sign: &'a [i8],
     /// The input's interior (`Params::solid`, deviation 23): merges are priced by the
     /// volume their primitive adds outside it; `None` = the paper's whole volume.
@@ -121,8 +122,8 @@ pub struct Evaluator<'a> {
     /// `Params::rim_weight`: the rim reach's weight in the output frame choice
     /// (deviation 24).
     pub rim_weight: f64,
-    /// The input's face adjacency, for the output clusters' rims; empty = no rims
-    /// (set only when `rim_weight` > 0).
+    /// The input's face adjacency, for the output clusters' rims (read only when
+    /// `rim_weight` > 0); empty = no rims (set when `face_sign` is).
     pub face_adj: FaceAdjacency<'a>,
     /// `Params::free_merges`: free merges into plates run before a target's snapshot
     /// (`merge::driver::free`, deviation 25).

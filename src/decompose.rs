@@ -394,6 +394,7 @@ pub fn evaluator<'a>(
         rim_weight: params.rim_weight,
         face_adj: FaceAdjacency::default(),
         free_merges: params.free_merges,
+        join_plates: params.free_merges,
         flush_plates: params.flush_plates,
     }
 }

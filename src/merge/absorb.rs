@@ -15,8 +15,8 @@ use rayon::prelude::*;
 
 use super::cost::{Evaluator, Workspace};
 use super::driver::Snapshot;
+use super::plates::{in_rounds, Candidate};
 use crate::math::{Sym3, V3};
-use crate::primitive::Primitive;
 
 /// How much larger than the larger of two primitives their union's fit may be, as a
 /// share of the smaller one's volume: a near duplicate adds almost nothing, while a
@@ -29,53 +29,13 @@ const OVERLAP: f64 = 0.5;
 /// `postprocess`'s, so that a pair skipped here is one it removes).
 const NESTED_TOL_REL: f64 = 1e-9;
 
-/// One pair that may be absorbed: growth (share of the smaller), the two indices
-/// (i < j) and their union's fit.
-type Candidate = (f64, usize, usize, Primitive);
-
 /// Replaces near-duplicate pairs of `snap`'s primitives by their union's fit, in rounds
-/// until none is left; `q` holds each primitive's operator. The best pairs (least
-/// growth, then lowest indices) go first and a primitive joins at most one pair per
-/// round, so the result is the same for any thread count. Only pairs touching a
-/// primitive that changed are priced again (a pair's fit depends on the pair alone).
-pub fn absorb(ev: &Evaluator, snap: &mut Snapshot, mut q: Vec<Sym3>) {
-    let n = snap.prims.len();
-    let mut alive = vec![true; n];
-    let mut dirty = vec![true; n];
-    let mut found: Vec<Candidate> = Vec::new();
-    loop {
-        found.retain(|c| alive[c.1] && alive[c.2] && !dirty[c.1] && !dirty[c.2]);
-        found.extend(near_duplicates(ev, snap, &q, &alive, &dirty));
-        found.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2)));
-        dirty.fill(false);
-        let mut used = vec![false; n];
-        for &(_, i, j, prim) in &found {
-            if used[i] || used[j] {
-                continue;
-            }
-            (used[i], used[j], dirty[i], alive[j]) = (true, true, true, false);
-            snap.prims[i] = prim;
-            snap.faces[i] += snap.faces[j];
-            snap.verts[i] = union(&snap.verts[i], &snap.verts[j]);
-            let members = std::mem::take(&mut snap.members[j]);
-            snap.members[i].extend(members);
-            q[i] = q[i].add(&q[j]);
-        }
-        if !dirty.contains(&true) {
-            break;
-        }
-    }
-    let idx: Vec<usize> = (0..n).filter(|&k| alive[k]).collect();
-    snap.prims = idx.iter().map(|&k| snap.prims[k]).collect();
-    snap.faces = idx.iter().map(|&k| snap.faces[k]).collect();
-    snap.verts = idx
-        .iter()
-        .map(|&k| std::mem::take(&mut snap.verts[k]))
-        .collect();
-    snap.members = idx
-        .iter()
-        .map(|&k| std::mem::take(&mut snap.members[k]))
-        .collect();
+/// until none is left, the least growth first (`plates::in_rounds`); `q` holds each
+/// primitive's operator and is compacted with the snapshot.
+pub fn absorb(ev: &Evaluator, snap: &mut Snapshot, q: &mut Vec<Sym3>) {
+    in_rounds(snap, q, |snap, q, alive, dirty| {
+        near_duplicates(ev, snap, q, alive, dirty)
+    });
 }
 
 /// Every live pair (i < j) with a dirty member whose bounding boxes overlap by
@@ -127,14 +87,6 @@ fn overlaps(a: (V3, V3), b: (V3, V3)) -> bool {
     small > 0.0 && vol(lo, hi) >= OVERLAP * small
 }
 
-/// The sorted union of two sorted, distinct lists.
-fn union(a: &[u32], b: &[u32]) -> Vec<u32> {
-    let mut v: Vec<u32> = a.iter().chain(b).copied().collect();
-    v.sort_unstable();
-    v.dedup();
-    v
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -148,6 +100,5 @@ mod tests {
         assert!(overlaps(([0.2; 3], [0.3; 3]), ([0.0; 3], [5.0; 3])));
         // Flat boxes have no volume and are never tried.
         assert!(!overlaps(unit, ([0.0; 3], [1.0, 1.0, 0.0])));
-        assert_eq!(union(&[1, 3, 5], &[2, 3, 6]), vec![1, 2, 3, 5, 6]);
     }
 }

@@ -128,6 +128,10 @@ pub struct Evaluator<'a> {
     /// `Params::free_merges`: free merges into plates run before a target's snapshot
     /// (`merge::driver::free`, deviation 25).
     pub free_merges: bool,
+    /// Coplanar plates a target's snapshot holds are joined where that adds no area
+    /// (`merge::plates`, deviation 28): `Params::free_merges` too, apart in tests that
+    /// check the loop's free merges alone.
+    pub join_plates: bool,
     /// `Params::flush_plates`: output plates lie flush on their faces (deviation 26).
     pub flush_plates: bool,
 }

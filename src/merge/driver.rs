@@ -590,10 +590,15 @@ pub(super) fn snapshot(ev: &Evaluator, cl: &Clusters, target: usize, scope: Scop
         verts: roots.par_iter().map(|&r| ev.all_verts(cl, r)).collect(),
         members: roots.par_iter().map(|&r| cl.faces(r).collect()).collect(),
     };
+    let mut q = roots.iter().map(|&r| cl.q[r as usize]).collect();
     // Solid pricing: near-duplicate primitives become one (deviation 23).
     if ev.solid.is_some() {
-        let q = roots.iter().map(|&r| cl.q[r as usize]).collect();
-        super::absorb::absorb(ev, &mut snap, q);
+        super::absorb::absorb(ev, &mut snap, &mut q);
+    }
+    // Plates in one plane the merge left apart become one where that adds no area
+    // (deviation 28).
+    if ev.join_plates {
+        super::plates::join(ev, &mut snap, &mut q);
     }
     snap
 }
@@ -679,7 +684,8 @@ pub(super) mod tests {
     /// only carries the greedy order on: each target's clusters are those the loop
     /// without them holds at that smaller count — never more than the target, fewer
     /// where the demo scene's coplanar faces merge into plates for free — under every
-    /// re-pricing mode.
+    /// re-pricing mode. (The plates joined after the loop, deviation 28, are left out
+    /// here: they are not the loop's.)
     #[test]
     fn free_merges_carry_the_greedy_order_on() {
         for reprice in reprice_modes() {
@@ -693,7 +699,13 @@ pub(super) mod tests {
             };
             // Above the face count (1,829) no merge is needed: only free ones run.
             let targets = [5000, 1000, 400, 40];
-            let with = with_demo_using(free, |ev, fresh| run(ev, fresh(), &targets, &|_| {}));
+            let with = with_demo_using(free, |ev, fresh| {
+                let loop_only = Evaluator {
+                    join_plates: false,
+                    ..*ev
+                };
+                run(&loop_only, fresh(), &targets, &|_| {})
+            });
             let counts: Vec<usize> = with.snapshots.iter().map(|s| s.prims.len()).collect();
             assert!(
                 counts.iter().zip(&targets).all(|(c, t)| c <= t),

@@ -11,6 +11,7 @@ pub mod driver;
 pub mod heap;
 mod lazy;
 pub mod partition;
+pub mod plates;
 pub mod rim;
 pub mod worker;
 

@@ -1,0 +1,368 @@
+//! Coplanar plates joined after the merge loop (`Params::free_merges`, ARCHITECTURE.md
+//! deviation 28; not in the paper, whose §3.4 removes only primitives nested in
+//! another).
+//!
+//! Free merges (deviation 25) join adjacent clusters into a plate of no more area, but
+//! only along the greedy order and only across shared edges. A flat polygon cut into
+//! long sliver triangles then keeps several plates that overlap: kenney_wall_high's
+//! top, 15 triangles in one plane, stayed four plates at N = 93, 90, 85, 80, 70 and
+//! 60, two of them (not adjacent: a third cluster's sliver runs between) covering the
+//! same 0.63 × 0.7 area, so a ball rolling there touched both. Here two plates in
+//! one plane whose bounding boxes touch are replaced by the output fit of both
+//! clusters' faces when that fit is itself a plate of no more k·V than the two (as a
+//! free merge is priced) that covers almost nothing neither of them did (a plate
+//! across an L of two plates would cover the L's corner, which may be a hole): one
+//! shape where there were two, enclosing the faces of both.
+
+use rayon::prelude::*;
+
+use super::cost::{Evaluator, Workspace};
+use super::driver::Snapshot;
+use crate::math::{cross, dot, madd, normalize, Sym3, V3};
+use crate::primitive::Primitive;
+
+/// Plates whose thin axes differ by more than this (cosine) are not in one plane.
+const PARALLEL_COS: f64 = 1.0 - 1e-9;
+/// Planes further apart than this share of the output floor are not one plane.
+const OFFSET_SHARE: f64 = 0.5;
+/// How much more area than the two parts cover together (their union, not their sum)
+/// the joined plate may cover, as a share of its own area: a plate across two sliver
+/// plates' seam covers a sliver of neither, one across an L of two plates the L's
+/// empty corner (which may be a hole in the mesh).
+const SPILL: f64 = 0.01;
+
+/// One pair that may be joined: its key (here the union's k·V less the two parts',
+/// ≤ 0), the two indices (i < j) and the union's fit.
+pub(super) type Candidate = (f64, usize, usize, Primitive);
+
+/// A primitive's plate: its thin axis made to point along its largest component's
+/// positive side, its mid-plane's offset along that axis (halfway between its support
+/// both ways), and its bounding box.
+#[derive(Clone, Copy)]
+struct Plate {
+    axis: V3,
+    offset: f64,
+    aabb: (V3, V3),
+}
+
+/// Joins pairs of coplanar plates of `snap` into one plate of no more k·V, in rounds
+/// until none is left ([`in_rounds`]); `q` holds each primitive's operator and is
+/// compacted with the snapshot.
+pub fn join(ev: &Evaluator, snap: &mut Snapshot, q: &mut Vec<Sym3>) {
+    in_rounds(snap, q, |snap, q, alive, dirty| {
+        coplanar_pairs(ev, snap, q, alive, dirty)
+    });
+}
+
+/// Replaces pairs of `snap`'s primitives by their union's fit in rounds until none is
+/// left: `find` gives the acceptable pairs (key, i < j, union's fit) among the live
+/// ones with a dirty member. The least keys go first (then the lowest indices) and a
+/// primitive joins at most one pair per round, so the result is the same for any
+/// thread count; a pair found earlier whose members are unchanged is kept without
+/// pricing it again (its fit depends on the pair alone). `q` (each primitive's
+/// operator) is joined and compacted with the snapshot. Shared with `absorb`.
+pub(super) fn in_rounds(
+    snap: &mut Snapshot,
+    q: &mut Vec<Sym3>,
+    find: impl Fn(&Snapshot, &[Sym3], &[bool], &[bool]) -> Vec<Candidate>,
+) {
+    let n = snap.prims.len();
+    let mut alive = vec![true; n];
+    let mut dirty = vec![true; n];
+    let mut found: Vec<Candidate> = Vec::new();
+    loop {
+        found.retain(|c| alive[c.1] && alive[c.2] && !dirty[c.1] && !dirty[c.2]);
+        found.extend(find(snap, q, &alive, &dirty));
+        found.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)).then(a.2.cmp(&b.2)));
+        dirty.fill(false);
+        let mut used = vec![false; n];
+        for &(_, i, j, prim) in &found {
+            if used[i] || used[j] {
+                continue;
+            }
+            (used[i], used[j], dirty[i], alive[j]) = (true, true, true, false);
+            snap.prims[i] = prim;
+            snap.faces[i] += snap.faces[j];
+            snap.verts[i] = union(&snap.verts[i], &snap.verts[j]);
+            let members = std::mem::take(&mut snap.members[j]);
+            snap.members[i].extend(members);
+            q[i] = q[i].add(&q[j]);
+        }
+        if !dirty.contains(&true) {
+            break;
+        }
+    }
+    compact(snap, q, &alive);
+}
+
+/// Keeps the entries of `snap` and `q` whose `alive` is set, in order.
+fn compact(snap: &mut Snapshot, q: &mut Vec<Sym3>, alive: &[bool]) {
+    let idx: Vec<usize> = (0..alive.len()).filter(|&k| alive[k]).collect();
+    snap.prims = idx.iter().map(|&k| snap.prims[k]).collect();
+    snap.faces = idx.iter().map(|&k| snap.faces[k]).collect();
+    snap.verts = idx
+        .iter()
+        .map(|&k| std::mem::take(&mut snap.verts[k]))
+        .collect();
+    snap.members = idx
+        .iter()
+        .map(|&k| std::mem::take(&mut snap.members[k]))
+        .collect();
+    *q = idx.iter().map(|&k| q[k]).collect();
+}
+
+/// The plate of `p` at the output floor `floor`, if it is one.
+fn plate(p: &Primitive, floor: f64) -> Option<Plate> {
+    let mut axis = p.plate_axis(floor)?;
+    let k = (0..3).max_by(|&a, &b| axis[a].abs().total_cmp(&axis[b].abs()))?;
+    if axis[k] < 0.0 {
+        axis = axis.map(|c| -c);
+    }
+    let back = axis.map(|c| -c);
+    Some(Plate {
+        axis,
+        offset: 0.5 * (p.support(axis) - p.support(back)),
+        aabb: p.aabb(),
+    })
+}
+
+/// Every live pair (i < j) with a dirty member of plates in one plane whose bounding
+/// boxes touch (within the floor), whose union's output fit is a plate of no more k·V
+/// than the two that covers at most [`SPILL`] more than they do, with that difference
+/// and fit.
+fn coplanar_pairs(
+    ev: &Evaluator,
+    snap: &Snapshot,
+    q: &[Sym3],
+    alive: &[bool],
+    dirty: &[bool],
+) -> Vec<Candidate> {
+    let floor = ev.output_min_half;
+    let plates: Vec<(usize, Plate)> = (0..snap.prims.len())
+        .filter(|&i| alive[i])
+        .filter_map(|i| plate(&snap.prims[i], floor).map(|p| (i, p)))
+        .collect();
+    // Sweep along x: a pair's boxes must overlap there first.
+    let mut order: Vec<usize> = (0..plates.len()).collect();
+    order.sort_by(|&a, &b| plates[a].1.aabb.0[0].total_cmp(&plates[b].1.aabb.0[0]));
+    let mut pairs = Vec::new();
+    for (s, &a) in order.iter().enumerate() {
+        let (i, pa) = plates[a];
+        for &b in &order[s + 1..] {
+            let (j, pb) = plates[b];
+            if pb.aabb.0[0] > pa.aabb.1[0] + floor {
+                break;
+            }
+            if (dirty[i] || dirty[j]) && one_plane(&pa, &pb, floor) {
+                pairs.push((i.min(j), i.max(j)));
+            }
+        }
+    }
+    pairs.sort_unstable();
+    let kv = |p: &Primitive| ev.cfg.weights[p.kind() as usize] * p.volume();
+    pairs
+        .par_iter()
+        .map_init(Workspace::default, |ws, &(i, j)| {
+            let parts = kv(&snap.prims[i]) + kv(&snap.prims[j]);
+            let faces = snap.members[i].iter().chain(&snap.members[j]).copied();
+            let fit = ev.fit_output(faces, &q[i].add(&q[j]), ws);
+            let gain = kv(&fit.prim) - parts;
+            let joined = fit.prim.plate_axis(floor).is_some()
+                && gain <= 0.0
+                && covers_no_more(&snap.prims[i], &snap.prims[j], &fit.prim, floor);
+            joined.then_some((gain, i, j, fit.prim))
+        })
+        .flatten()
+        .collect()
+}
+
+/// Whether two plates lie in one plane and their bounding boxes touch.
+fn one_plane(a: &Plate, b: &Plate, floor: f64) -> bool {
+    let touch =
+        (0..3).all(|k| a.aabb.0[k] <= b.aabb.1[k] + floor && b.aabb.0[k] <= a.aabb.1[k] + floor);
+    touch
+        && dot(a.axis, b.axis) >= PARALLEL_COS
+        && (a.offset - b.offset).abs() <= OFFSET_SHARE * floor
+}
+
+/// Whether plate `u` covers at most [`SPILL`] of its area more than plates `a` and `b`
+/// cover together (all three in one plane; false when a footprint is not a polygon).
+fn covers_no_more(a: &Primitive, b: &Primitive, u: &Primitive, floor: f64) -> bool {
+    let Some(n) = a.plate_axis(floor) else {
+        return false;
+    };
+    let (Some(fa), Some(fb), Some(fu)) = (footprint(a, n), footprint(b, n), footprint(u, n)) else {
+        return false;
+    };
+    let (aa, ab, au) = (area(&fa), area(&fb), area(&fu));
+    let both = aa + ab - area(&clip(&fa, &fb));
+    au - both <= SPILL * au
+}
+
+/// The footprint of a box or prism plate whose thin axis is ±`n`: its corners in a
+/// frame of the plane ⟂ `n`, counter-clockwise. `None` for other kinds (a disc).
+fn footprint(p: &Primitive, n: V3) -> Option<Vec<[f64; 2]>> {
+    let k = (0..3).min_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs()))?;
+    let mut e = [0.0; 3];
+    e[k] = 1.0;
+    let u = normalize(cross(n, e))?;
+    let v = cross(n, u);
+    let (c, d0, d1) = match p {
+        Primitive::Box(b) => {
+            let t = (0..3).min_by(|&x, &y| b.half[x].total_cmp(&b.half[y]))?;
+            let (i, j) = ((t + 1) % 3, (t + 2) % 3);
+            let s = |w: f64, ax: usize| crate::math::scale(b.axes[ax], w * b.half[ax]);
+            let corners = [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)]
+                .map(|(x, y)| crate::math::add(crate::math::add(b.center, s(x, i)), s(y, j)));
+            (corners, u, v)
+        }
+        Primitive::Prism(q) => {
+            let at = |y: f64, z: f64| madd(madd(q.center, q.axes[1], y), q.axes[2], z);
+            let corners = [
+                at(q.hy, q.hz_top),
+                at(q.hy, -q.hz_top),
+                at(-q.hy, -q.hz_bottom),
+                at(-q.hy, q.hz_bottom),
+            ];
+            (corners, u, v)
+        }
+        _ => return None,
+    };
+    let mut poly: Vec<[f64; 2]> = c.iter().map(|&x| [dot(x, d0), dot(x, d1)]).collect();
+    if signed_area(&poly) < 0.0 {
+        poly.reverse();
+    }
+    Some(poly)
+}
+
+/// The shoelace area of a polygon, positive when counter-clockwise.
+fn signed_area(p: &[[f64; 2]]) -> f64 {
+    let n = p.len();
+    0.5 * (0..n)
+        .map(|i| {
+            let (a, b) = (p[i], p[(i + 1) % n]);
+            a[0] * b[1] - a[1] * b[0]
+        })
+        .sum::<f64>()
+}
+
+fn area(p: &[[f64; 2]]) -> f64 {
+    signed_area(p).abs()
+}
+
+/// The intersection of two convex counter-clockwise polygons (Sutherland–Hodgman).
+fn clip(subject: &[[f64; 2]], by: &[[f64; 2]]) -> Vec<[f64; 2]> {
+    let mut out = subject.to_vec();
+    for i in 0..by.len() {
+        let (a, b) = (by[i], by[(i + 1) % by.len()]);
+        let side = |p: [f64; 2]| (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
+        let input = std::mem::take(&mut out);
+        for k in 0..input.len() {
+            let (p, q) = (input[k], input[(k + 1) % input.len()]);
+            let (sp, sq) = (side(p), side(q));
+            if sp >= 0.0 {
+                out.push(p);
+            }
+            if (sp >= 0.0) != (sq >= 0.0) {
+                let t = sp / (sp - sq);
+                out.push([p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])]);
+            }
+        }
+        if out.is_empty() {
+            break;
+        }
+    }
+    out
+}
+
+/// The sorted union of two sorted, distinct lists.
+fn union(a: &[u32], b: &[u32]) -> Vec<u32> {
+    let mut v: Vec<u32> = a.iter().chain(b).copied().collect();
+    v.sort_unstable();
+    v.dedup();
+    v
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::primitive::{Obb, Prism};
+
+    const FLOOR: f64 = 0.01;
+    const I3: [V3; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+
+    /// A plate in z = 0 over [x0, x1] × [y0, y1].
+    fn plate(x0: f64, x1: f64, y0: f64, y1: f64) -> Primitive {
+        Primitive::Box(Obb {
+            center: [0.5 * (x0 + x1), 0.5 * (y0 + y1), 0.0],
+            axes: I3,
+            half: [0.5 * (x1 - x0), 0.5 * (y1 - y0), FLOOR],
+        })
+    }
+
+    #[test]
+    fn clipped_areas_are_exact() {
+        let sq =
+            |x0: f64, y0: f64, s: f64| vec![[x0, y0], [x0 + s, y0], [x0 + s, y0 + s], [x0, y0 + s]];
+        assert_eq!(area(&clip(&sq(0.0, 0.0, 2.0), &sq(1.0, 1.0, 2.0))), 1.0);
+        assert_eq!(area(&clip(&sq(0.0, 0.0, 1.0), &sq(2.0, 2.0, 1.0))), 0.0);
+        // A square turned 45° inside the unit square's double: its own area.
+        let diamond = vec![[1.0, 0.0], [2.0, 1.0], [1.0, 2.0], [0.0, 1.0]];
+        assert!((area(&clip(&diamond, &sq(0.0, 0.0, 2.0))) - 2.0).abs() < 1e-12);
+        assert!((area(&clip(&sq(0.0, 0.0, 2.0), &diamond)) - 2.0).abs() < 1e-12);
+    }
+
+    /// Two plates that overlap in an L: the box around both covers the L's empty
+    /// corner (0, 1)–(1, 2), a quarter of its area, though it has no more area than
+    /// the two together (4 = 2 + 2). Two plates side by side: their box covers nothing
+    /// more.
+    #[test]
+    fn a_join_covers_no_corner_neither_part_covered() {
+        let (a, b) = (plate(0.0, 2.0, 0.0, 1.0), plate(1.0, 2.0, 0.0, 2.0));
+        assert!(!covers_no_more(&a, &b, &plate(0.0, 2.0, 0.0, 2.0), FLOOR));
+        let (a, b) = (plate(0.0, 1.0, 0.0, 1.0), plate(0.5, 2.0, 0.0, 1.0));
+        assert!(covers_no_more(&a, &b, &plate(0.0, 2.0, 0.0, 1.0), FLOOR));
+    }
+
+    /// A prism's footprint is its trapezoid: a triangle's prism (top width 0) and the
+    /// other half of a rectangle make the rectangle, spilling nothing.
+    #[test]
+    fn prism_footprints_are_trapezoids() {
+        // Extruded along z; y from −0.5 to 0.5; half-width along x 0 at the top, 1
+        // at the bottom: the triangle (−1, −0.5), (1, −0.5), (0, 0.5).
+        let tri = Primitive::Prism(Prism {
+            center: [0.0, 0.0, 0.0],
+            axes: [[0.0, 0.0, 1.0], [0.0, 1.0, 0.0], [-1.0, 0.0, 0.0]],
+            hx: FLOOR,
+            hy: 0.5,
+            hz_top: 0.0,
+            hz_bottom: 1.0,
+        });
+        let n = tri.plate_axis(FLOOR).unwrap();
+        assert!((area(&footprint(&tri, n).unwrap()) - 1.0).abs() < 1e-12);
+        let rect = plate(-1.0, 1.0, -0.5, 0.5);
+        assert!(covers_no_more(&tri, &rect, &rect, FLOOR));
+        assert!(!covers_no_more(&tri, &tri, &rect, FLOOR));
+    }
+
+    #[test]
+    fn unions_of_vertex_lists_are_sorted_and_distinct() {
+        assert_eq!(union(&[1, 3, 5], &[2, 3, 6]), vec![1, 2, 3, 5, 6]);
+    }
+
+    #[test]
+    fn plates_in_other_planes_are_not_one_plane() {
+        let p = |z: f64| Plate {
+            axis: [0.0, 0.0, 1.0],
+            offset: z,
+            aabb: ([0.0, 0.0, z - FLOOR], [1.0, 1.0, z + FLOOR]),
+        };
+        assert!(one_plane(&p(0.0), &p(0.4 * FLOOR), FLOOR));
+        assert!(!one_plane(&p(0.0), &p(FLOOR), FLOOR));
+        let far = Plate {
+            aabb: ([1.5, 0.0, -FLOOR], [2.0, 1.0, FLOOR]),
+            ..p(0.0)
+        };
+        assert!(!one_plane(&p(0.0), &far, FLOOR));
+    }
+}

@@ -156,7 +156,9 @@ struct DecomposeArgs {
     rim_weight: f64,
     /// Stop at exactly N clusters (the paper) even where the next merges add nothing;
     /// by default merges of coplanar clusters into a plate of no more area run first,
-    /// so -n N gives at most N primitives, fewer where faces merge for free.
+    /// and plates in one plane the merge left apart are joined where one plate covers
+    /// both with no more area, so -n N gives at most N primitives, fewer where faces
+    /// merge for free.
     #[arg(long)]
     no_free_merges: bool,
     /// Centre output plates on their faces (half the minimum thickness proud of the

@@ -29,7 +29,7 @@
 //! | `fill` | false | (when set) a target N the post-processing left short of is met by merging less: up to N primitives, each covering fewer faces (tighter fit); costs one merge pass per search round (up to 4 more) | — |
 //! | `outward_weight` | 0 | output fits also price how far a primitive reaches past its faces' outer side (the volume balls and bodies meet): w·Σ area·gap is added to k·V when choosing an output frame; merges are priced as before | 0 = off: output frames chosen by k·V alone |
 //! | `rim_weight` | 1 | output primitives avoid reaching past the faces just outside their cluster more strongly (a side plate standing past a wall's top as a curb): w·Σ len·gap² over creased boundary edges is added to k·V when choosing an output frame and kind; merges are priced as before | less; 0 = off (k·V alone: the least-area plate around a sliver triangle may stand past the neighbouring face) |
-//! | `free_merges` | true | — | false: a target N stops at exactly N clusters (the paper) even where the next merges join coplanar clusters into a plate of no more area, e.g. `-n` at the face count merges nothing and leaves a plate per triangle where coplanar triangles make one (seams a rolling ball catches on) |
+//! | `free_merges` | true | — | false: a target N stops at exactly N clusters (the paper) even where the next merges join coplanar clusters into a plate of no more area, e.g. `-n` at the face count merges nothing and leaves a plate per triangle where coplanar triangles make one (seams a rolling ball catches on), and plates in one plane that the merge left apart (not adjacent) stay apart, overlapping where their faces' slivers interleave |
 //! | `flush_plates` | true | — | false: an output plate is centred on its faces, standing half the floor thickness (`min_extent_rel`) proud of the surface on its outer side; a ball rests that much higher than on the mesh |
 //! | `solid` | false | (when set) merges are priced by the volume their primitive adds outside the input (interior by ray parity on a 64-cell grid) rather than its whole volume: closed parts become one solid primitive instead of a shell of plates, fewer shapes per part in a physics scene; holes and gaps are priced as before | — |
 //! | `remove_thin_boxes` | None | (when set) drops boxes thinner than this fraction of the diagonal if still covered | — |
@@ -204,8 +204,10 @@ pub struct Params {
     /// Whether a target's snapshot waits for the greedy order's next merges while they
     /// are free: coplanar points and cost ≤ 0, a plate of no more area than its parts
     /// (deviation 25). A target N then gives at most N primitives, fewer where faces
-    /// merge for free (coplanar triangles into one plate). false = exactly N clusters,
-    /// the paper's stop. Serialized only when off.
+    /// merge for free (coplanar triangles into one plate); then plates in one plane
+    /// whose boxes touch are joined where one plate covers both with no more k·V and
+    /// almost nothing else (deviation 28, `merge::plates`). false = exactly N
+    /// clusters, the paper's stop. Serialized only when off.
     #[serde(skip_serializing_if = "is_true")]
     pub free_merges: bool,
     /// Whether an output plate (a primitive at the `min_extent_rel` floor thickness,

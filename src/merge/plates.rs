@@ -142,15 +142,16 @@ fn coplanar_pairs(
         .filter(|&i| alive[i])
         .filter_map(|i| plate(&snap.prims[i], floor).map(|p| (i, p)))
         .collect();
-    // Sweep along x: a pair's boxes must overlap there first.
+    // Sweep along the axis the boxes overlap least on: a pair's boxes overlap there first.
+    let k = sweep_axis(plates.iter().map(|p| p.1.aabb));
     let mut order: Vec<usize> = (0..plates.len()).collect();
-    order.sort_by(|&a, &b| plates[a].1.aabb.0[0].total_cmp(&plates[b].1.aabb.0[0]));
+    order.sort_by(|&a, &b| plates[a].1.aabb.0[k].total_cmp(&plates[b].1.aabb.0[k]));
     let mut pairs = Vec::new();
     for (s, &a) in order.iter().enumerate() {
         let (i, pa) = plates[a];
         for &b in &order[s + 1..] {
             let (j, pb) = plates[b];
-            if pb.aabb.0[0] > pa.aabb.1[0] + floor {
+            if pb.aabb.0[k] > pa.aabb.1[k] + floor {
                 break;
             }
             if (dirty[i] || dirty[j]) && one_plane(&pa, &pb, floor) {
@@ -174,6 +175,24 @@ fn coplanar_pairs(
         })
         .flatten()
         .collect()
+}
+
+/// The axis along which boxes cover the least of their common span, summed: sweeping
+/// along it visits the fewest pairs (plates as long as the input along x, side by
+/// side in y, all overlap along x).
+fn sweep_axis(boxes: impl Iterator<Item = (V3, V3)> + Clone) -> usize {
+    let (mut lo, mut hi, mut sum) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3], [0.0; 3]);
+    for (a, b) in boxes {
+        for k in 0..3 {
+            lo[k] = lo[k].min(a[k]);
+            hi[k] = hi[k].max(b[k]);
+            sum[k] += b[k] - a[k];
+        }
+    }
+    let share = |k: usize| sum[k] / (hi[k] - lo[k]).max(f64::MIN_POSITIVE);
+    (0..3)
+        .min_by(|&a, &b| share(a).total_cmp(&share(b)))
+        .unwrap_or(0)
 }
 
 /// Whether two plates lie in one plane and their bounding boxes touch.
@@ -343,6 +362,16 @@ mod tests {
         let rect = plate(-1.0, 1.0, -0.5, 0.5);
         assert!(covers_no_more(&tri, &rect, &rect, FLOOR));
         assert!(!covers_no_more(&tri, &tri, &rect, FLOOR));
+    }
+
+    /// Strips as long as the scene along x, side by side in y: the sweep runs along y.
+    #[test]
+    fn sweeps_run_across_long_strips() {
+        let strips = (0..10).map(|i| {
+            let y = i as f64;
+            ([0.0, y, 0.0], [100.0, y + 0.5, 0.01])
+        });
+        assert_eq!(sweep_axis(strips), 1);
     }
 
     #[test]

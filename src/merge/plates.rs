@@ -23,6 +23,9 @@ use crate::primitive::Primitive;
 
 /// Plates whose thin axes differ by more than this (cosine) are not in one plane.
 const PARALLEL_COS: f64 = 1.0 - 1e-9;
+/// A prism whose extrusion axis is further off a plane's normal than this (cosine) has
+/// no footprint in that plane (a union's fit is that close to its parts' plane).
+const CAST_COS: f64 = 1.0 - 1e-6;
 /// Planes further apart than this share of the output floor are not one plane.
 const OFFSET_SHARE: f64 = 0.5;
 /// How much more area than the two parts cover together (their union, not their sum)
@@ -161,16 +164,27 @@ fn coplanar_pairs(
     }
     pairs.sort_unstable();
     let kv = |p: &Primitive| ev.cfg.weights[p.kind() as usize] * p.volume();
+    let scratch = || (Workspace::default(), Vec::new());
     pairs
         .par_iter()
-        .map_init(Workspace::default, |ws, &(i, j)| {
-            let parts = kv(&snap.prims[i]) + kv(&snap.prims[j]);
+        .map_init(scratch, |(ws, pts), &(i, j)| {
+            let (a, b) = (&snap.prims[i], &snap.prims[j]);
+            let (both, frame) = covered_together(a, b, floor)?;
+            let most = both / (1.0 - SPILL);
+            // The union's plate holds both clusters' points, so its footprint holds
+            // their hull: a pair whose hull already covers more is refused unfitted.
+            let flat = |v: &u32| project(ev.mesh.pos(*v), frame);
+            pts.clear();
+            pts.extend(snap.verts[i].iter().chain(&snap.verts[j]).map(flat));
+            if hull_area(pts) > most * (1.0 + 1e-9) {
+                return None;
+            }
             let faces = snap.members[i].iter().chain(&snap.members[j]).copied();
             let fit = ev.fit_output(faces, &q[i].add(&q[j]), ws);
-            let gain = kv(&fit.prim) - parts;
-            let joined = fit.prim.plate_axis(floor).is_some()
-                && gain <= 0.0
-                && covers_no_more(&snap.prims[i], &snap.prims[j], &fit.prim, floor);
+            let gain = kv(&fit.prim) - (kv(a) + kv(b));
+            let joined = gain <= 0.0
+                && fit.prim.plate_axis(floor).is_some()
+                && footprint(&fit.prim, frame).is_some_and(|f| area(&f) <= most);
             joined.then_some((gain, i, j, fit.prim))
         })
         .flatten()
@@ -204,54 +218,91 @@ fn one_plane(a: &Plate, b: &Plate, floor: f64) -> bool {
         && (a.offset - b.offset).abs() <= OFFSET_SHARE * floor
 }
 
-/// Whether plate `u` covers at most [`SPILL`] of its area more than plates `a` and `b`
-/// cover together (all three in one plane; false when a footprint is not a polygon).
-fn covers_no_more(a: &Primitive, b: &Primitive, u: &Primitive, floor: f64) -> bool {
-    let Some(n) = a.plate_axis(floor) else {
-        return false;
-    };
-    let (Some(fa), Some(fb), Some(fu)) = (footprint(a, n), footprint(b, n), footprint(u, n)) else {
-        return false;
-    };
-    let (aa, ab, au) = (area(&fa), area(&fb), area(&fu));
-    let both = aa + ab - area(&clip(&fa, &fb));
-    au - both <= SPILL * au
+/// The area plates `a` and `b` (in one plane) cover together, their union's and not
+/// their sum, and the frame of their plane it was measured in; `None` when a
+/// footprint is not a polygon. A plate joining them may cover at most [`SPILL`] of its
+/// own area more than that.
+fn covered_together(a: &Primitive, b: &Primitive, floor: f64) -> Option<(f64, (V3, V3))> {
+    let frame = plane_frame(a.plate_axis(floor)?)?;
+    let (fa, fb) = (footprint(a, frame)?, footprint(b, frame)?);
+    Some((area(&fa) + area(&fb) - area(&clip(&fa, &fb)), frame))
 }
 
-/// The footprint of a box or prism plate whose thin axis is ±`n`: its corners in a
-/// frame of the plane ⟂ `n`, counter-clockwise. `None` for other kinds (a disc).
-fn footprint(p: &Primitive, n: V3) -> Option<Vec<[f64; 2]>> {
+/// Two unit vectors spanning the plane ⟂ `n` (with `n` right-handed).
+fn plane_frame(n: V3) -> Option<(V3, V3)> {
     let k = (0..3).min_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs()))?;
     let mut e = [0.0; 3];
     e[k] = 1.0;
     let u = normalize(cross(n, e))?;
-    let v = cross(n, u);
-    let (c, d0, d1) = match p {
+    Some((u, cross(n, u)))
+}
+
+/// `x` in the plane frame `(u, v)`.
+fn project(x: V3, (u, v): (V3, V3)) -> [f64; 2] {
+    [dot(x, u), dot(x, v)]
+}
+
+/// The footprint of a box or prism in the plane frame `frame`: its shadow along the
+/// plane's normal, as corners counter-clockwise. A box is cast along its axis nearest
+/// the normal (a plate's thin axis; a union only a floor wide across too may be thinnest
+/// along another), a prism only along its extrusion axis; `None` for a prism turned
+/// off the normal and for other kinds (a disc).
+fn footprint(p: &Primitive, frame: (V3, V3)) -> Option<Vec<[f64; 2]>> {
+    let n = cross(frame.0, frame.1);
+    let corners = match p {
         Primitive::Box(b) => {
-            let t = (0..3).min_by(|&x, &y| b.half[x].total_cmp(&b.half[y]))?;
+            let t = (0..3)
+                .max_by(|&x, &y| dot(b.axes[x], n).abs().total_cmp(&dot(b.axes[y], n).abs()))?;
             let (i, j) = ((t + 1) % 3, (t + 2) % 3);
             let s = |w: f64, ax: usize| crate::math::scale(b.axes[ax], w * b.half[ax]);
-            let corners = [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)]
-                .map(|(x, y)| crate::math::add(crate::math::add(b.center, s(x, i)), s(y, j)));
-            (corners, u, v)
+            [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)]
+                .map(|(x, y)| crate::math::add(crate::math::add(b.center, s(x, i)), s(y, j)))
         }
-        Primitive::Prism(q) => {
+        Primitive::Prism(q) if dot(q.axes[0], n).abs() >= CAST_COS => {
             let at = |y: f64, z: f64| madd(madd(q.center, q.axes[1], y), q.axes[2], z);
-            let corners = [
+            [
                 at(q.hy, q.hz_top),
                 at(q.hy, -q.hz_top),
                 at(-q.hy, -q.hz_bottom),
                 at(-q.hy, q.hz_bottom),
-            ];
-            (corners, u, v)
+            ]
         }
         _ => return None,
     };
-    let mut poly: Vec<[f64; 2]> = c.iter().map(|&x| [dot(x, d0), dot(x, d1)]).collect();
+    let mut poly: Vec<[f64; 2]> = corners.iter().map(|&x| project(x, frame)).collect();
     if signed_area(&poly) < 0.0 {
         poly.reverse();
     }
     Some(poly)
+}
+
+/// The area of the convex hull of `pts` (reordered: Andrew's monotone chain).
+fn hull_area(pts: &mut [[f64; 2]]) -> f64 {
+    pts.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
+    let mut hull = Vec::with_capacity(pts.len() + 1);
+    chain(&mut hull, pts.iter().copied());
+    chain(&mut hull, pts.iter().rev().copied());
+    if hull.len() < 3 {
+        return 0.0;
+    }
+    area(&hull)
+}
+
+/// Appends the points' convex chain (turning left) to `hull`, less its last point, which
+/// starts the next chain.
+fn chain(hull: &mut Vec<[f64; 2]>, pts: impl Iterator<Item = [f64; 2]>) {
+    let turn = |o: [f64; 2], a: [f64; 2], b: [f64; 2]| {
+        (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+    };
+    let start = hull.len();
+    for p in pts {
+        while hull.len() >= start + 2 && turn(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0
+        {
+            hull.pop();
+        }
+        hull.push(p);
+    }
+    hull.pop();
 }
 
 /// The shoelace area of a polygon, positive when counter-clockwise.
@@ -310,6 +361,13 @@ mod tests {
     const FLOOR: f64 = 0.01;
     const I3: [V3; 3] = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 
+    /// Whether plate `u` covers no more than [`SPILL`] of its area beyond what `a` and
+    /// `b` cover together (the join's footprint rule).
+    fn covers_no_more(a: &Primitive, b: &Primitive, u: &Primitive, floor: f64) -> bool {
+        let (both, frame) = covered_together(a, b, floor).unwrap();
+        area(&footprint(u, frame).unwrap()) <= both / (1.0 - SPILL)
+    }
+
     /// A plate in z = 0 over [x0, x1] × [y0, y1].
     fn plate(x0: f64, x1: f64, y0: f64, y1: f64) -> Primitive {
         Primitive::Box(Obb {
@@ -358,7 +416,7 @@ mod tests {
             hz_bottom: 1.0,
         });
         let n = tri.plate_axis(FLOOR).unwrap();
-        assert!((area(&footprint(&tri, n).unwrap()) - 1.0).abs() < 1e-12);
+        assert!((area(&footprint(&tri, plane_frame(n).unwrap()).unwrap()) - 1.0).abs() < 1e-12);
         let rect = plate(-1.0, 1.0, -0.5, 0.5);
         assert!(covers_no_more(&tri, &rect, &rect, FLOOR));
         assert!(!covers_no_more(&tri, &tri, &rect, FLOOR));
@@ -372,6 +430,25 @@ mod tests {
             ([0.0, y, 0.0], [100.0, y + 0.5, 0.01])
         });
         assert_eq!(sweep_axis(strips), 1);
+    }
+
+    /// The hull bound that refuses pairs unfitted: a square's corners and inner points,
+    /// collinear points (no area), and points given in any order.
+    #[test]
+    fn hull_areas_are_exact() {
+        let mut sq = vec![
+            [0.0, 0.0],
+            [0.5, 0.5],
+            [2.0, 0.0],
+            [2.0, 2.0],
+            [0.0, 2.0],
+            [1.0, 0.0],
+        ];
+        assert_eq!(hull_area(&mut sq), 4.0);
+        let mut line = vec![[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]];
+        assert_eq!(hull_area(&mut line), 0.0);
+        let mut tri = vec![[3.0, 0.0], [0.0, 0.0], [0.0, 4.0], [1.0, 1.0]];
+        assert_eq!(hull_area(&mut tri), 6.0);
     }
 
     #[test]

@@ -18,7 +18,8 @@ use rayon::prelude::*;
 
 use super::cost::{Evaluator, Workspace};
 use super::driver::Snapshot;
-use crate::math::{cross, dot, madd, normalize, Sym3, V3};
+use crate::math::{add, cross, dot, madd, normalize, scale, Sym3, V3};
+use crate::primitive::frame::convex_hull_2d;
 use crate::primitive::Primitive;
 
 /// Plates whose thin axes differ by more than this (cosine) are not in one plane.
@@ -164,10 +165,10 @@ fn coplanar_pairs(
     }
     pairs.sort_unstable();
     let kv = |p: &Primitive| ev.cfg.weights[p.kind() as usize] * p.volume();
-    let scratch = || (Workspace::default(), Vec::new());
+    let scratch = || (Workspace::default(), Vec::new(), Vec::new());
     pairs
         .par_iter()
-        .map_init(scratch, |(ws, pts), &(i, j)| {
+        .map_init(scratch, |(ws, pts, hull), &(i, j)| {
             let (a, b) = (&snap.prims[i], &snap.prims[j]);
             let (both, frame) = covered_together(a, b, floor)?;
             let most = both / (1.0 - SPILL);
@@ -176,7 +177,7 @@ fn coplanar_pairs(
             let flat = |v: &u32| project(ev.mesh.pos(*v), frame);
             pts.clear();
             pts.extend(snap.verts[i].iter().chain(&snap.verts[j]).map(flat));
-            if hull_area(pts) > most * (1.0 + 1e-9) {
+            if hull_area(pts, hull) > most * (1.0 + 1e-9) {
                 return None;
             }
             let faces = snap.members[i].iter().chain(&snap.members[j]).copied();
@@ -194,7 +195,7 @@ fn coplanar_pairs(
 /// The axis along which boxes cover the least of their common span, summed: sweeping
 /// along it visits the fewest pairs (plates as long as the input along x, side by
 /// side in y, all overlap along x).
-fn sweep_axis(boxes: impl Iterator<Item = (V3, V3)> + Clone) -> usize {
+fn sweep_axis(boxes: impl Iterator<Item = (V3, V3)>) -> usize {
     let (mut lo, mut hi, mut sum) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3], [0.0; 3]);
     for (a, b) in boxes {
         for k in 0..3 {
@@ -254,9 +255,9 @@ fn footprint(p: &Primitive, frame: (V3, V3)) -> Option<Vec<[f64; 2]>> {
             let t = (0..3)
                 .max_by(|&x, &y| dot(b.axes[x], n).abs().total_cmp(&dot(b.axes[y], n).abs()))?;
             let (i, j) = ((t + 1) % 3, (t + 2) % 3);
-            let s = |w: f64, ax: usize| crate::math::scale(b.axes[ax], w * b.half[ax]);
+            let s = |w: f64, ax: usize| scale(b.axes[ax], w * b.half[ax]);
             [(1.0, 1.0), (-1.0, 1.0), (-1.0, -1.0), (1.0, -1.0)]
-                .map(|(x, y)| crate::math::add(crate::math::add(b.center, s(x, i)), s(y, j)))
+                .map(|(x, y)| add(add(b.center, s(x, i)), s(y, j)))
         }
         Primitive::Prism(q) if dot(q.axes[0], n).abs() >= CAST_COS => {
             let at = |y: f64, z: f64| madd(madd(q.center, q.axes[1], y), q.axes[2], z);
@@ -276,33 +277,13 @@ fn footprint(p: &Primitive, frame: (V3, V3)) -> Option<Vec<[f64; 2]>> {
     Some(poly)
 }
 
-/// The area of the convex hull of `pts` (reordered: Andrew's monotone chain).
-fn hull_area(pts: &mut [[f64; 2]]) -> f64 {
-    pts.sort_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
-    let mut hull = Vec::with_capacity(pts.len() + 1);
-    chain(&mut hull, pts.iter().copied());
-    chain(&mut hull, pts.iter().rev().copied());
+/// The area of the convex hull of `pts` (reordered), built in `hull`.
+fn hull_area(pts: &mut [[f64; 2]], hull: &mut Vec<[f64; 2]>) -> f64 {
+    convex_hull_2d(pts, hull);
     if hull.len() < 3 {
         return 0.0;
     }
-    area(&hull)
-}
-
-/// Appends the points' convex chain (turning left) to `hull`, less its last point, which
-/// starts the next chain.
-fn chain(hull: &mut Vec<[f64; 2]>, pts: impl Iterator<Item = [f64; 2]>) {
-    let turn = |o: [f64; 2], a: [f64; 2], b: [f64; 2]| {
-        (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
-    };
-    let start = hull.len();
-    for p in pts {
-        while hull.len() >= start + 2 && turn(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0
-        {
-            hull.pop();
-        }
-        hull.push(p);
-    }
-    hull.pop();
+    area(hull)
 }
 
 /// The shoelace area of a polygon, positive when counter-clockwise.
@@ -444,11 +425,11 @@ mod tests {
             [0.0, 2.0],
             [1.0, 0.0],
         ];
-        assert_eq!(hull_area(&mut sq), 4.0);
+        assert_eq!(hull_area(&mut sq, &mut vec![]), 4.0);
         let mut line = vec![[0.0, 0.0], [1.0, 1.0], [2.0, 2.0]];
-        assert_eq!(hull_area(&mut line), 0.0);
+        assert_eq!(hull_area(&mut line, &mut vec![]), 0.0);
         let mut tri = vec![[3.0, 0.0], [0.0, 0.0], [0.0, 4.0], [1.0, 1.0]];
-        assert_eq!(hull_area(&mut tri), 6.0);
+        assert_eq!(hull_area(&mut tri, &mut vec![]), 6.0);
     }
 
     #[test]

@@ -146,7 +146,7 @@ fn close(a: [f64; 2], b: [f64; 2]) -> bool {
 
 /// Andrew's monotone chain: the counter-clockwise hull of `p` (sorted in place) into
 /// `out`, collinear points dropped.
-fn convex_hull_2d(p: &mut [[f64; 2]], out: &mut Vec<[f64; 2]>) {
+pub(crate) fn convex_hull_2d(p: &mut [[f64; 2]], out: &mut Vec<[f64; 2]>) {
     out.clear();
     p.sort_unstable_by(|a, b| a[0].total_cmp(&b[0]).then(a[1].total_cmp(&b[1])));
     let cross = |o: [f64; 2], a: [f64; 2], b: [f64; 2]| {

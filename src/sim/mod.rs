@@ -465,10 +465,46 @@ mod tests {
             assert!(c.touching > 2.0 && c.touching <= 4.0, "{}: {c:?}", o.label);
             assert!(c.pairs >= c.touching, "{}: {c:?}", o.label);
             assert_eq!(p.balls_on_several_shapes, 0.0);
+            assert_eq!(p.contacts_of_balls_on_several, 0.0);
             assert!(p.step_ms > 0.0 && p.narrow_phase_ms > 0.0, "{p:?}");
         }
         let plain = super::run(&mesh, "mesh", &e, &settings(4, 5), &|_| {}).unwrap();
         assert!(plain.outcomes.iter().all(|o| o.profile.is_none()));
+    }
+
+    /// Balls resting on a top face that two overlapping boxes share (the box and a
+    /// slab of its upper half) touch both: the profile counts each such ball once and
+    /// its two contacts, while the mesh (one shape) has none.
+    #[test]
+    fn profile_counts_balls_on_two_overlapping_boxes() {
+        let (mesh, _) = box_mesh();
+        let part = |cy: f64, hy: f64| {
+            Primitive::Box(Obb {
+                center: [11.0, cy, 11.0],
+                axes: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+                half: [1.0, hy, 1.0],
+            })
+        };
+        let e = [Entry {
+            label: "two boxes".into(),
+            geometry: Geometry::Collider(Collider::Primitives(vec![
+                part(0.5, 0.5),
+                part(0.75, 0.25),
+            ])),
+        }];
+        let s = Settings {
+            profile: true,
+            ..settings(4, 150)
+        };
+        let run = run(&mesh, "mesh", &e, &s, &|_| {}).unwrap();
+        let mesh_p = run.outcomes[0].profile.as_ref().expect("profiled");
+        assert_eq!(mesh_p.balls_on_several_shapes, 0.0);
+        let p = run.outcomes[2].profile.as_ref().expect("profiled");
+        assert!(p.balls_on_several_shapes > 2.0, "{p:?}");
+        assert_eq!(
+            p.contacts_of_balls_on_several,
+            2.0 * p.balls_on_several_shapes
+        );
     }
 
     /// Bad settings are refused with a message, not a panic or a hang.

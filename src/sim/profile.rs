@@ -43,6 +43,9 @@ pub struct Profile {
     pub awake_balls: f64,
     /// Balls touching two or more static shapes at once.
     pub balls_on_several_shapes: f64,
+    /// Touching ball–static pairs of those balls: contacts the solver sees only
+    /// because the shapes under one ball are several (one each under a single shape).
+    pub contacts_of_balls_on_several: f64,
     /// Pairs by kind: `"ball-ball"`, `"ball-cuboid"`, `"ball-cylinder"`,
     /// `"ball-convex_polyhedron"`, `"ball-tri_mesh"`, …
     pub pairs: BTreeMap<String, PairCount>,
@@ -123,8 +126,9 @@ impl Tally {
                 _ => {}
             }
         }
-        self.sums.balls_on_several_shapes +=
-            self.touches.values().filter(|&&n| n >= 2).count() as f64;
+        let several = self.touches.values().filter(|&&n| n >= 2);
+        self.sums.balls_on_several_shapes += several.clone().count() as f64;
+        self.sums.contacts_of_balls_on_several += several.map(|&n| n as f64).sum::<f64>();
     }
 
     /// Means per frame of everything added.
@@ -141,6 +145,7 @@ impl Tally {
             update_ms: s.update_ms / n,
             awake_balls: s.awake_balls / n,
             balls_on_several_shapes: s.balls_on_several_shapes / n,
+            contacts_of_balls_on_several: s.contacts_of_balls_on_several / n,
             pairs: s
                 .pairs
                 .iter()

@@ -466,6 +466,8 @@ mod tests {
             assert!(c.pairs >= c.touching, "{}: {c:?}", o.label);
             assert_eq!(p.balls_on_several_shapes, 0.0);
             assert_eq!(p.contacts_of_balls_on_several, 0.0);
+            // The mesh and the box primitive each fill the input's AABB exactly.
+            assert!((p.shape_aabb_reach - 1.0).abs() < 1e-5, "{p:?}");
             assert!(p.step_ms > 0.0 && p.narrow_phase_ms > 0.0, "{p:?}");
         }
         let plain = super::run(&mesh, "mesh", &e, &settings(4, 5), &|_| {}).unwrap();
@@ -474,7 +476,8 @@ mod tests {
 
     /// Balls resting on a top face that two overlapping boxes share (the box and a
     /// slab of its upper half) touch both: the profile counts each such ball once and
-    /// its two contacts, while the mesh (one shape) has none.
+    /// its two contacts, while the mesh (one shape) has none; the two boxes reach over
+    /// the box's volume plus the slab's (each grown by the ball radius).
     #[test]
     fn profile_counts_balls_on_two_overlapping_boxes() {
         let (mesh, _) = box_mesh();

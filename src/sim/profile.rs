@@ -8,6 +8,7 @@
 //! mesh); ball–ball pairs depend only on where the balls are, i.e. on behaviour.
 //! Figures are means per frame.
 
+use crate::math::V3;
 use rapier3d::geometry::{ColliderHandle, ColliderSet, NarrowPhase, ShapeType};
 use rapier3d::pipeline::PhysicsWorld;
 use serde::Serialize;
@@ -43,6 +44,13 @@ pub struct Profile {
     pub awake_balls: f64,
     /// Balls touching two or more static shapes at once.
     pub balls_on_several_shapes: f64,
+    /// The static shapes' reach for the broad phase: the sum over shapes of the volume
+    /// where a ball's centre brings the ball's AABB over the shape's (its AABB grown by
+    /// the ball radius on every side), over the same volume for the input's AABB. 1
+    /// for one shape as large as the input; above 1 where shapes' boxes overlap or
+    /// stand out of their shapes (long tilted plates), below where they leave space
+    /// uncovered. Balls there cost a pair each frame, touching or not.
+    pub shape_aabb_reach: f64,
     /// Touching ball–static pairs of those balls: contacts the solver sees only
     /// because the shapes under one ball are several (one each under a single shape).
     pub contacts_of_balls_on_several: f64,
@@ -84,6 +92,32 @@ fn pair_key(a: ShapeType, b: ShapeType) -> String {
 }
 
 impl Tally {
+    /// A tally for `world`'s static shapes ([`Profile::shape_aabb_reach`]) against
+    /// the input's AABB `input` (both in the simulation frame) and balls of `radius`.
+    pub fn new(world: &PhysicsWorld, input: (V3, V3), radius: f64) -> Tally {
+        let grown = |lo: [f64; 3], hi: [f64; 3]| {
+            (0..3)
+                .map(|k| hi[k] - lo[k] + 2.0 * radius)
+                .product::<f64>()
+        };
+        let shapes: f64 = world
+            .colliders
+            .iter()
+            .filter(|(_, c)| c.parent().is_none())
+            .map(|(_, c)| {
+                let b = c.compute_aabb();
+                let (lo, hi) = (b.mins, b.maxs);
+                grown(
+                    [lo.x, lo.y, lo.z].map(f64::from),
+                    [hi.x, hi.y, hi.z].map(f64::from),
+                )
+            })
+            .sum();
+        let mut t = Tally::default();
+        t.sums.shape_aabb_reach = shapes / grown(input.0, input.1);
+        t
+    }
+
     /// Adds one step of `world` (call right after the step).
     pub fn add(&mut self, world: &PhysicsWorld) {
         let c = &world.physics_pipeline.counters;
@@ -146,6 +180,7 @@ impl Tally {
             awake_balls: s.awake_balls / n,
             balls_on_several_shapes: s.balls_on_several_shapes / n,
             contacts_of_balls_on_several: s.contacts_of_balls_on_several / n,
+            shape_aabb_reach: s.shape_aabb_reach,
             pairs: s
                 .pairs
                 .iter()

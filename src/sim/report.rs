@@ -130,14 +130,14 @@ pub fn to_json(run: &Run, path: &str, faces: usize) -> String {
 
 /// The step-time attribution of a profiled run as a Markdown table, one row per
 /// collider (mean per frame: Rapier's stage times, ms; balls awake and touching two
-/// or more static shapes, and their contacts with them; pairs, `touching/pairs`, by kind); empty without profiles.
+/// or more static shapes, and their contacts with them; the shapes' AABB reach; pairs, `touching/pairs`, by kind); empty without profiles.
 pub fn profile_table(run: &Run) -> String {
     let mut s = String::new();
     if run.outcomes.iter().all(|o| o.profile.is_none()) {
         return s;
     }
-    s.push_str("| collider | step | broad | narrow | islands | solver | CCD | update | awake | on ≥2 shapes | their contacts | pairs touching/all by kind |\n");
-    s.push_str("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
+    s.push_str("| collider | step | broad | narrow | islands | solver | CCD | update | awake | on ≥2 shapes | their contacts | AABB reach | pairs touching/all by kind |\n");
+    s.push_str("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n");
     for (name, o) in column_names(run).iter().zip(&run.outcomes) {
         let Some(p) = &o.profile else { continue };
         let pairs: Vec<String> = p
@@ -147,7 +147,7 @@ pub fn profile_table(run: &Run) -> String {
             .collect();
         let _ = writeln!(
             s,
-            "| {name} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.1} | {:.1} | {:.1} | {} |",
+            "| {name} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.3} | {:.1} | {:.1} | {:.1} | {:.2} | {} |",
             p.step_ms,
             p.broad_phase_ms,
             p.narrow_phase_ms,
@@ -158,6 +158,7 @@ pub fn profile_table(run: &Run) -> String {
             p.awake_balls,
             p.balls_on_several_shapes,
             p.contacts_of_balls_on_several,
+            p.shape_aabb_reach,
             pairs.join(", ")
         );
     }

@@ -189,10 +189,11 @@ impl World {
                 world.insert(body, ball.clone()).0
             })
             .collect();
+        let tally = profile.then(|| Tally::new(&world, scene.aabb, scene.radius));
         World {
             world,
             balls,
-            tally: profile.then(Tally::default),
+            tally,
         }
     }
 

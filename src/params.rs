@@ -28,7 +28,7 @@
 //! | `reduction` | `Hull` | — | `Extremes`: clusters keep only their extreme points along 13 fixed axes (≤ 26): no convex hull per merge, cheaper fits; merges are priced on an inner approximation, so the order (and the fit) changes: dragon merge stage 9.85 → 8.53 s on one thread (one run), corpus quality no worse on average but mixed per mesh (docs/results/reduction.md) |
 //! | `fill` | false | (when set) a target N the post-processing left short of is met by merging less: up to N primitives, each covering fewer faces (tighter fit); costs one merge pass per search round (up to 4 more) | — |
 //! | `outward_weight` | 0 | output fits also price how far a primitive reaches past its faces' outer side (the volume balls and bodies meet): w·Σ area·gap is added to k·V when choosing an output frame; merges are priced as before | 0 = off: output frames chosen by k·V alone |
-//! | `rim_weight` | 1 | output primitives avoid reaching past the faces just outside their cluster more strongly (a side plate standing past a wall's top as a curb): w·Σ len·gap² over creased boundary edges is added to k·V when choosing an output frame and kind; merges are priced as before | less; 0 = off (k·V alone: the least-area plate around a sliver triangle may stand past the neighbouring face) |
+//! | `rim_weight` | 1 | output primitives avoid reaching past the faces just outside their cluster more strongly (a side plate standing past a wall's top as a curb): w·Σ len·gap² over convex boundary edges (creases past 20°, and gentler bends past 2°: a plate standing past a rounded roof's next face) is added to k·V when choosing an output frame and kind; merges are priced as before | less; 0 = off (k·V alone: the least-area plate around a sliver triangle may stand past the neighbouring face) |
 //! | `free_merges` | true | — | false: a target N stops at exactly N clusters (the paper) even where the next merges join coplanar clusters into a plate of no more area, e.g. `-n` at the face count merges nothing and leaves a plate per triangle where coplanar triangles make one (seams a rolling ball catches on), and plates in one plane that the merge left apart (not adjacent) stay apart, overlapping where their faces' slivers interleave |
 //! | `flush_plates` | true | — | false: an output plate is centred on its faces, standing half the floor thickness (`min_extent_rel`) proud of the surface on its outer side; a ball rests that much higher than on the mesh |
 //! | `solid` | false | (when set) merges are priced by the volume their primitive adds outside the input (interior by ray parity on a 64-cell grid) rather than its whole volume: closed parts become one solid primitive instead of a shell of plates, fewer shapes per part in a physics scene; holes and gaps are priced as before | — |
@@ -196,8 +196,9 @@ pub struct Params {
     pub solid: bool,
     /// Weight of the rim reach in the output fit's choice of frame and kind (deviation
     /// 24): each output cluster's primitive minimises k·V + w·Σ_e len_e·gap_e², gap_e
-    /// how far it reaches past the plane of the face across each creased boundary edge
-    /// e, on the side away from the cluster (a curb along a wall's top). 0 = off (k·V
+    /// how far it reaches past the plane of the face across each convex boundary edge
+    /// e (a crease, or a gentle bend of more than 2°, deviation 29), on the side away
+    /// from the cluster (a curb along a wall's top). 0 = off (k·V
     /// alone, the paper's criterion); only serialized when not the default.
     #[serde(skip_serializing_if = "is_default_rim_weight")]
     pub rim_weight: f64,

@@ -1,5 +1,6 @@
 //! Shared test helpers.
 #![allow(dead_code)]
+pub mod basin;
 pub mod check;
 pub mod contain;
 pub mod demo;

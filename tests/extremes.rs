@@ -257,17 +257,6 @@ fn closest_on_triangle(p: [f64; 3], a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> [f
     [0, 1, 2].map(|k| a[k] + ab[k] * v + ac[k] * w)
 }
 
-/// Fan triangles of polygons.
-fn triangles(v: &[[f64; 3]], faces: &[Vec<u32>]) -> Vec<[[f64; 3]; 3]> {
-    faces
-        .iter()
-        .flat_map(|f| {
-            (1..f.len() - 1)
-                .map(move |i| [v[f[0] as usize], v[f[i] as usize], v[f[i + 1] as usize]])
-        })
-        .collect()
-}
-
 /// Tightness: the mean distance from points sampled uniformly (seeded, 20,000 by area)
 /// on the primitives' surfaces — the faces of their OBJ tessellation at 24 segments —
 /// to the nearest input triangle, by brute force. A one-way Chamfer distance, written
@@ -276,7 +265,7 @@ fn tightness(prims: &[Primitive], mesh_tris: &[[[f64; 3]; 3]]) -> f64 {
     let mut tris = Vec::new();
     for p in prims {
         let t = tessellate(p, 24);
-        tris.extend(triangles(&t.vertices, &t.faces));
+        tris.extend(common::fan_triangles(&t.vertices, &t.faces));
     }
     let area = |t: &[[f64; 3]; 3]| {
         let (u, v) = (
@@ -341,7 +330,7 @@ fn random_rotations_keep_count_and_tightness() {
         let mesh = Mesh::from_polygons(v, &faces);
         let dec = decompose(&mesh, &p).unwrap();
         assert_valid(&mesh, &dec, &p);
-        let tris = triangles(v, &faces);
+        let tris = common::fan_triangles(v, &faces);
         dec.levels
             .iter()
             .map(|l| (l.primitives.len(), tightness(&l.primitives, &tris)))

@@ -205,13 +205,11 @@ fn truck_roof_has_few_basins_at_128() {
         return;
     };
     let world = |p: V3| add(p, m.offset);
-    let mesh_tris: Vec<[V3; 3]> = (0..m.face_count())
-        .flat_map(|f| {
-            let vs = m.face(f);
-            let p = |k: usize| world(m.pos(vs[k]));
-            (1..vs.len() - 1).map(move |k| [p(0), p(k), p(k + 1)])
-        })
+    let verts: Vec<V3> = (0..m.vertex_count() as u32)
+        .map(|v| world(m.pos(v)))
         .collect();
+    let faces: Vec<Vec<u32>> = (0..m.face_count()).map(|f| m.face(f).to_vec()).collect();
+    let mesh_tris = common::fan_triangles(&verts, &faces);
     let p = params(&[128], 1.0);
     let dec = decompose(&m, &p).unwrap();
     let ours: Vec<[V3; 3]> = dec.levels[0]
@@ -219,15 +217,7 @@ fn truck_roof_has_few_basins_at_128() {
         .iter()
         .flat_map(|prim| {
             let t = tessellate(prim, 16);
-            let fan: Vec<[V3; 3]> = t
-                .faces
-                .iter()
-                .flat_map(|f| {
-                    let v = |k: usize| t.vertices[f[k] as usize];
-                    (1..f.len() - 1).map(move |k| [v(0), v(k), v(k + 1)])
-                })
-                .collect();
-            fan
+            common::fan_triangles(&t.vertices, &t.faces)
         })
         .collect();
     let (lo, hi) = m.aabb();

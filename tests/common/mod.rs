@@ -6,6 +6,17 @@ pub mod contain;
 pub mod demo;
 pub mod shapes;
 
+/// Fan triangles of polygons (`faces` index `v`).
+pub fn fan_triangles(v: &[[f64; 3]], faces: &[Vec<u32>]) -> Vec<[[f64; 3]; 3]> {
+    faces
+        .iter()
+        .flat_map(|f| {
+            (1..f.len() - 1)
+                .map(move |i| [v[f[0] as usize], v[f[i] as usize], v[f[i + 1] as usize]])
+        })
+        .collect()
+}
+
 /// Runs `f` on a rayon pool of `threads` threads.
 pub fn on_threads<R: Send>(threads: usize, f: impl FnOnce() -> R + Send) -> R {
     rayon::ThreadPoolBuilder::new()

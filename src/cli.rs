@@ -151,7 +151,8 @@ struct DecomposeArgs {
     /// Weight of the rim reach when choosing each output primitive's frame and kind:
     /// k·V + W·Σ len·gap², gap how far the primitive reaches past the plane of the
     /// face across each convex boundary edge of its cluster, creases and bends of more
-    /// than 2° (a side plate standing past a wall's top as a curb). 0 = off (the volume alone, the paper's criterion).
+    /// than 2° (a side plate standing past a wall's top as a curb). 0 = off (the
+    /// volume alone, the paper's criterion).
     #[arg(long, default_value_t = primdecomp::params::RIM_WEIGHT)]
     rim_weight: f64,
     /// Stop at exactly N clusters (the paper) even where the next merges add nothing;

@@ -8,25 +8,25 @@
 //! wall's side is enclosed by a rectangle along its longest edge that stands up past
 //! the wall's top as a curb, and an isosceles prism around a top triangle reaches out
 //! past the wall's side. In a physics scene a curb holds balls that fall off the mesh.
-//! The rim reach prices that: for each boundary edge of the cluster that is a convex
-//! crease (the face across it turns away by more than [`RIM_ANGLE_DEG`], faces
-//! oriented outward by `mesh::orient`), the distance the primitive's support reaches
-//! past that face's plane on its outer side, squared, times the edge's length (a
-//! volume, like k·V: the wedge a curb of that height stands in), counted only beyond
-//! the cluster's own points. Concave creases are not rims: past them is the object's
-//! inside. Creases one face away count too, across a neighbour that continues the
-//! cluster's surface, and so does that neighbour itself where it falls away by more
-//! than [`RIM_GENTLE_DEG`] (a tessellated rounded edge, whose enclosing plate would
-//! otherwise stand past the flat face beside it as a lip).
+//! The rim reach prices that: for each boundary edge of the cluster where the face
+//! across falls away (turns by more than [`RIM_GENTLE_DEG`] and lies below the member
+//! face's plane, faces oriented outward by `mesh::orient`: a crease, or a tessellated
+//! rounded edge whose enclosing plate would otherwise stand past it as a lip), the
+//! distance the primitive's support reaches past that face's plane on its outer side,
+//! squared, times the edge's length (a volume, like k·V: the wedge a curb of that
+//! height stands in), counted only beyond the cluster's own points. Concave creases
+//! are not rims: past them is the object's inside. Creases one face away count too,
+//! across a neighbour that continues the cluster's surface (turns by less than
+//! [`RIM_ANGLE_DEG`]).
 
 use crate::math::{dot, norm, sub, V3};
 use crate::mesh::orient::outward_normal_and_centre;
 use crate::mesh::Mesh;
 use crate::primitive::Primitive;
 
-/// Edges whose two faces' normals differ by less than this are not rims: the face
-/// across continues the surface (a tessellated curve), and any enclosure of the
-/// cluster reaches past its plane a little.
+/// Edges whose two faces' normals differ by less than this join faces of one surface
+/// (a tessellated curve): the face across continues the cluster's surface, so its own
+/// creases one face away are rims too. Past this it is a crease.
 pub const RIM_ANGLE_DEG: f64 = 20.0;
 
 /// A face across a boundary edge that continues the surface but falls away by more
@@ -126,13 +126,12 @@ impl Surroundings<'_> {
     }
 
     /// The rims of the cluster whose faces are `members` (sorted, unique) into `out`:
-    /// for each member face f and neighbour g outside the cluster, g's plane when f and
-    /// g meet at a convex crease; else, when g continues f's surface (they turn by less
-    /// than [`RIM_ANGLE_DEG`]), g's plane if g falls away by more than
-    /// [`RIM_GENTLE_DEG`] (a gentle convex bend), and the planes of g's own convex
-    /// creases with neighbours outside the cluster, since a primitive turned off f's
-    /// edges can stand past a rim one face away (a sliver whose corner alone touches a
-    /// wall's top).
+    /// for each member face f and neighbour g outside the cluster, g's plane when g
+    /// falls away from f by more than [`RIM_GENTLE_DEG`] (a convex bend or crease);
+    /// and, when g continues f's surface (they turn by less than [`RIM_ANGLE_DEG`]),
+    /// the planes of g's own convex creases with neighbours outside the cluster, since
+    /// a primitive turned off f's edges can stand past a rim one face away (a sliver
+    /// whose corner alone touches a wall's top).
     pub fn rims(&self, members: &[u32], out: &mut Vec<Rim>) {
         out.clear();
         let cos_max = RIM_ANGLE_DEG.to_radians().cos();
@@ -148,14 +147,11 @@ impl Surroundings<'_> {
                 let Some((ng, cg)) = at(g) else {
                     continue;
                 };
-                if dot(nf, ng) < cos_max {
-                    if Self::convex_crease(nf, cf, ng, cg, cos_max) {
-                        out.extend(self.rim(f, g, ng));
-                    }
-                    continue;
-                }
                 if Self::convex_crease(nf, cf, ng, cg, cos_gentle) {
                     out.extend(self.rim(f, g, ng));
+                }
+                if dot(nf, ng) < cos_max {
+                    continue; // a crease: g does not continue f's surface
                 }
                 for &h in self.adj.of(g).iter().filter(|&&h| h != f && outside(h)) {
                     match at(h) {

@@ -130,7 +130,8 @@ pub fn to_json(run: &Run, path: &str, faces: usize) -> String {
 
 /// The step-time attribution of a profiled run as a Markdown table, one row per
 /// collider (mean per frame: Rapier's stage times, ms; balls awake and touching two
-/// or more static shapes, and their contacts with them; the shapes' AABB reach; pairs, `touching/pairs`, by kind); empty without profiles.
+/// or more static shapes, and their contacts with them; the shapes' AABB reach;
+/// pairs, `touching/pairs`, by kind); empty without profiles.
 pub fn profile_table(run: &Run) -> String {
     let mut s = String::new();
     if run.outcomes.iter().all(|o| o.profile.is_none()) {

@@ -20,7 +20,7 @@ docs/results/compare.md. Standard library only.
 Usage:
   python3 benches/sim_compare.py [--meshes NAME ...] [--balls 5000] [--frames 1000]
       [--peer-cache DIR ...] [--bin target/release/primdecomp] [--out docs/results/sim.md]
-      [--decompose-args='--merge-min-extent 0.002' --no-summary]
+      [--decompose-args='--merge-min-extent 0.002' --no-summary] [--sim-args='--compound']
 """
 
 import argparse
@@ -149,11 +149,13 @@ def hull_count(obj):
 
 def simulate(mesh, colliders, work, key, a):
     # "p": reports with the perturbed reference (the noise floor); older ones lack it.
-    report = work / f"sim_p_b{a.balls}_f{a.frames}_s{a.seed}_{key}.json"
+    # Extra sim arguments (e.g. --compound) key their own report.
+    extra = "_" + hashlib.sha256(" ".join(a.sim_args).encode()).hexdigest()[:8] if a.sim_args else ""
+    report = work / f"sim_p_b{a.balls}_f{a.frames}_s{a.seed}_{key}{extra}.json"
     if not report.is_file() or a.rerun:
         cmd = [a.bin, "sim", "--input", str(mesh), *map(str, colliders), "--balls", str(a.balls),
                "--frames", str(a.frames), "--seed", str(a.seed), "--json", str(report),
-               "--plot", str(report.with_suffix(".png")), "--quiet"]
+               "--plot", str(report.with_suffix(".png")), "--quiet", *a.sim_args]
         print("+", " ".join(cmd), file=sys.stderr, flush=True)
         subprocess.run(cmd, check=True)
     return json.loads(report.read_text())
@@ -315,6 +317,10 @@ def main(argv):
                     help="extra arguments for our `primdecomp decompose` runs, one string "
                          "(e.g. --decompose-args='--merge-min-extent 0.002'); "
                          "use with --out and --no-summary to keep the default report")
+    ap.add_argument("--sim-args", default="", type=str.split,
+                    help="extra arguments for `primdecomp sim`, one string (e.g. "
+                         "--sim-args='--compound': each collider as one compound shape); "
+                         "use with --out and --no-summary to keep the default report")
     ap.add_argument("--no-summary", action="store_true",
                     help="do not write benches/.cache/sim/summary (the columns of docs/results/compare.md)")
     a = ap.parse_args(argv)
@@ -347,7 +353,10 @@ def main(argv):
         "# Rigid-body simulation: frame time and behaviour (paper §4.1)",
         "",
         f"{a.balls} balls, {a.frames} frames at 1/60 s, seed {a.seed}, Rapier single-threaded, all colliders of a "
-        "mesh interleaved frame by frame in one process (`primdecomp sim`). Ours: N as chosen in "
+        "mesh interleaved frame by frame in one process (`primdecomp sim`"
+        + (f" {' '.join(a.sim_args)}" if a.sim_args else "") + "; "
+        + ("each collider's parts as one compound shape" if "--compound" in a.sim_args
+           else "one Rapier collider per primitive or hull") + "). Ours: N as chosen in "
         "`docs/results/compare.json` (the most primitives whose bytes stay within a third of CoACD's), "
         "else the same rule against the cached CoACD hulls, else max(32, 1% of faces); and, in the last table, at each peer's own hull count (`-n N --fill`). "
         "Regenerate with:",

@@ -242,6 +242,11 @@ struct SimArgs {
     /// pairs per frame by shape kind, in the JSON report (`profile`) and printed.
     #[arg(long)]
     profile: bool,
+    /// Give Rapier each collider's parts as one compound shape (one collider with its
+    /// own BVH, as Rapier's `ColliderBuilder::convex_decomposition` does) instead of
+    /// one collider per part; every collider alike.
+    #[arg(long)]
+    compound: bool,
     /// Print nothing but errors.
     #[arg(short, long)]
     quiet: bool,
@@ -750,6 +755,7 @@ fn sim(a: SimArgs) -> anyhow::Result<()> {
         up: ["x", "y", "z"].iter().position(|u| *u == a.up).unwrap_or(1),
         perturbed: !a.no_perturbed,
         profile: a.profile,
+        compound: a.compound,
     };
     let bar = (!a.quiet).then(|| {
         let b = indicatif::ProgressBar::new(a.frames as u64);

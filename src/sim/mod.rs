@@ -14,7 +14,9 @@
 //!   SplitMix64 stream seeded with `seed`, so no two balls overlap; they start at
 //!   rest, with CCD on. Every collider sees exactly the same balls.
 //! - **Colliders.** The input mesh as one triangle mesh (the reference, always the
-//!   first entry), our primitives ([`shapes::primitive`]) and convex hulls, all fixed.
+//!   first entry), our primitives ([`shapes::primitive`]) and convex hulls, all fixed:
+//!   one Rapier collider per part, or with [`Settings::compound`] each collider's
+//!   parts as one compound shape (every collider alike).
 //! - **Noise floor.** Unless [`Settings::perturbed`] is off, the second entry is the
 //!   reference again with every ball's start moved by up to
 //!   [`scene::PERTURBATION_RADII`] = 1e-4 r per axis (uniform, its own seeded stream):
@@ -81,6 +83,11 @@ pub struct Settings {
     /// Attribute each collider's step time ([`profile`]): Rapier's stage timers and
     /// the contact pairs by shape kind, counted after every (timed) step.
     pub profile: bool,
+    /// Give Rapier each collider's parts as one compound shape (one collider with its
+    /// own BVH, as `ColliderBuilder::convex_decomposition` builds) instead of one
+    /// collider per part. Applies to every collider alike; the reference mesh is one
+    /// shape either way.
+    pub compound: bool,
 }
 
 impl Default for Settings {
@@ -93,6 +100,7 @@ impl Default for Settings {
             up: 1,
             perturbed: true,
             profile: false,
+            compound: false,
         }
     }
 }
@@ -232,7 +240,7 @@ pub fn run(
             Geometry::Perturbed => &perturbed,
             _ => &scene.release,
         };
-        worlds.push(World::new(&scene, &shapes, release, settings.profile));
+        worlds.push(World::new(&scene, shapes, release, settings));
     }
     let mut frame_ms = vec![Vec::with_capacity(settings.frames); worlds.len()];
     let mut cpu_ms = frame_ms.clone();
@@ -495,19 +503,78 @@ mod tests {
                 part(0.75, 0.25),
             ])),
         }];
-        let s = Settings {
-            profile: true,
-            ..settings(4, 150)
+        // The same with the two boxes as one compound collider: a ball on both is one
+        // pair with a manifold per box, counted as two shapes all the same.
+        for compound in [false, true] {
+            let s = Settings {
+                profile: true,
+                compound,
+                ..settings(4, 150)
+            };
+            let run = run(&mesh, "mesh", &e, &s, &|_| {}).unwrap();
+            let mesh_p = run.outcomes[0].profile.as_ref().expect("profiled");
+            assert_eq!(mesh_p.balls_on_several_shapes, 0.0);
+            let p = run.outcomes[2].profile.as_ref().expect("profiled");
+            let key = if compound {
+                "ball-compound"
+            } else {
+                "ball-cuboid"
+            };
+            assert!(p.pairs.contains_key(key), "{compound}: {p:?}");
+            assert!(p.balls_on_several_shapes > 2.0, "{compound}: {p:?}");
+            assert_eq!(
+                p.contacts_of_balls_on_several,
+                2.0 * p.balls_on_several_shapes
+            );
+        }
+    }
+
+    /// A collider of several parts given to Rapier as one compound shape holds the
+    /// balls where the same parts as separate colliders do: 16 balls on a box cut
+    /// into four quarter boxes rest on its top either way, ball for ball within
+    /// Rapier's contact tolerance, and the run reports one shape list per collider.
+    #[test]
+    fn compound_parts_hold_balls_like_separate_parts() {
+        let (mesh, _) = box_mesh();
+        let quarter = |x: f64, z: f64| {
+            Primitive::Box(Obb {
+                center: [x, 0.5, z],
+                axes: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+                half: [0.5, 0.5, 0.5],
+            })
         };
-        let run = run(&mesh, "mesh", &e, &s, &|_| {}).unwrap();
-        let mesh_p = run.outcomes[0].profile.as_ref().expect("profiled");
-        assert_eq!(mesh_p.balls_on_several_shapes, 0.0);
-        let p = run.outcomes[2].profile.as_ref().expect("profiled");
-        assert!(p.balls_on_several_shapes > 2.0, "{p:?}");
-        assert_eq!(
-            p.contacts_of_balls_on_several,
-            2.0 * p.balls_on_several_shapes
-        );
+        let parts = vec![
+            quarter(10.5, 10.5),
+            quarter(11.5, 10.5),
+            quarter(10.5, 11.5),
+            quarter(11.5, 11.5),
+        ];
+        let e = [Entry {
+            label: "quarters".into(),
+            geometry: Geometry::Collider(Collider::Primitives(parts)),
+        }];
+        let go = |compound| {
+            let s = Settings {
+                compound,
+                ..settings(16, 150)
+            };
+            run(&mesh, "mesh", &e, &s, &|_| {}).unwrap()
+        };
+        let (apart, joined) = (go(false), go(true));
+        let top = apart.scene.aabb.1[1] + apart.scene.radius;
+        let (a, b) = (heights(&apart.outcomes[2]), heights(&joined.outcomes[2]));
+        for (x, y) in a.iter().zip(&b) {
+            assert!(
+                (x - top).abs() < 0.01 * apart.scene.radius,
+                "apart {x} vs {top}"
+            );
+            assert!(
+                (y - top).abs() < 0.01 * apart.scene.radius,
+                "compound {y} vs {top}"
+            );
+        }
+        assert_eq!(joined.outcomes[2].shapes, 4);
+        assert_eq!(joined.outcomes[2].behaviour.on_object, 1.0);
     }
 
     /// Bad settings are refused with a message, not a panic or a hang.

@@ -9,7 +9,9 @@
 //! Figures are means per frame.
 
 use crate::math::V3;
-use rapier3d::geometry::{ColliderHandle, ColliderSet, NarrowPhase, ShapeType};
+use rapier3d::geometry::{
+    Collider, ColliderHandle, ColliderSet, ContactPair, NarrowPhase, ShapeType,
+};
 use rapier3d::pipeline::PhysicsWorld;
 use serde::Serialize;
 use std::collections::{BTreeMap, HashMap};
@@ -42,14 +44,17 @@ pub struct Profile {
     pub update_ms: f64,
     /// Balls awake (not asleep) after the step.
     pub awake_balls: f64,
-    /// Balls touching two or more static shapes at once.
+    /// Balls touching two or more static shapes at once (each part of a compound
+    /// counts as one shape).
     pub balls_on_several_shapes: f64,
     /// The static shapes' reach for the broad phase: the sum over shapes of the volume
     /// where a ball's centre brings the ball's AABB over the shape's (its AABB grown by
     /// the ball radius on every side), over the same volume for the input's AABB. 1
     /// for one shape as large as the input; above 1 where shapes' boxes overlap or
     /// stand out of their shapes (long tilted plates), below where they leave space
-    /// uncovered. Balls there cost a pair each frame, touching or not.
+    /// uncovered. Balls there cost a pair each frame, touching or not. A compound
+    /// collider is one box here (its parts' boxes are its own BVH's, walked in the
+    /// narrow phase).
     pub shape_aabb_reach: f64,
     /// Touching ball–static pairs of those balls: contacts the solver sees only
     /// because the shapes under one ball are several (one each under a single shape).
@@ -89,6 +94,32 @@ fn pair_key(a: ShapeType, b: ShapeType) -> String {
     } else {
         format!("{b}-{a}")
     }
+}
+
+/// Static shapes a touching ball–static pair `p` stands for: the parts of a compound
+/// with a contact point within the `prediction` distance (one manifold each; Rapier
+/// clusters a pair's manifolds for the solver and then clears their own solver
+/// contacts, so the points are read), otherwise 1 (a triangle mesh is one shape,
+/// however many of its triangles the ball touches).
+fn parts_touched(p: &ContactPair, fixed: &Collider, static_first: bool, prediction: f32) -> u32 {
+    if fixed.shape().shape_type() != ShapeType::Compound {
+        return 1;
+    }
+    let mut parts: Vec<u32> = p
+        .manifolds()
+        .iter()
+        .filter(|m| m.points.iter().any(|c| c.dist < prediction))
+        .map(|m| {
+            if static_first {
+                m.subshape1
+            } else {
+                m.subshape2
+            }
+        })
+        .collect();
+    parts.sort_unstable();
+    parts.dedup();
+    parts.len().max(1) as u32
 }
 
 impl Tally {
@@ -131,11 +162,12 @@ impl Tally {
         s.ccd_ms += c.ccd.toi_computation_time.time_ms();
         s.update_ms += c.stages.update_time.time_ms();
         s.awake_balls += world.islands.active_bodies().count() as f64;
-        self.count_pairs(&world.narrow_phase, &world.colliders);
+        let prediction = world.integration_parameters.prediction_distance();
+        self.count_pairs(&world.narrow_phase, &world.colliders, prediction);
         self.frames += 1;
     }
 
-    fn count_pairs(&mut self, narrow: &NarrowPhase, colliders: &ColliderSet) {
+    fn count_pairs(&mut self, narrow: &NarrowPhase, colliders: &ColliderSet, prediction: f32) {
         self.touches.clear();
         for p in narrow.contact_pairs() {
             let (Some(c1), Some(c2)) = (colliders.get(p.collider1), colliders.get(p.collider2))
@@ -154,11 +186,14 @@ impl Tally {
             }
             entry.touching += 1.0;
             // A static shape has no parent body; count the ball's touches of them.
-            match (c1.parent().is_some(), c2.parent().is_some()) {
-                (true, false) => *self.touches.entry(p.collider1).or_default() += 1,
-                (false, true) => *self.touches.entry(p.collider2).or_default() += 1,
-                _ => {}
-            }
+            let (ball, static_first) = match (c1.parent().is_some(), c2.parent().is_some()) {
+                (true, false) => (p.collider1, false),
+                (false, true) => (p.collider2, true),
+                _ => continue,
+            };
+            let fixed = if static_first { c1 } else { c2 };
+            *self.touches.entry(ball).or_default() +=
+                parts_touched(p, fixed, static_first, prediction);
         }
         let several = self.touches.values().filter(|&&n| n >= 2);
         self.sums.balls_on_several_shapes += several.clone().count() as f64;

@@ -30,6 +30,8 @@ struct SceneJson {
     /// (absent entry when the run had none).
     perturbation_radii: Option<f64>,
     threads: usize,
+    /// Each collider's parts given to Rapier as one compound shape.
+    compound: bool,
 }
 
 #[derive(Serialize)]
@@ -120,6 +122,7 @@ pub fn to_json(run: &Run, path: &str, faces: usize) -> String {
             seed: run.settings.seed,
             perturbation_radii: run.settings.perturbed.then_some(PERTURBATION_RADII),
             threads: run.settings.threads,
+            compound: run.settings.compound,
         },
         colliders,
     };

@@ -8,7 +8,7 @@ use super::Settings;
 use crate::math::{norm, sub, V3};
 use crate::mesh::Mesh;
 use rapier3d::dynamics::{RigidBodyBuilder, RigidBodyHandle};
-use rapier3d::geometry::ColliderBuilder;
+use rapier3d::geometry::{ColliderBuilder, SharedShape};
 use rapier3d::math::Vector;
 use rapier3d::pipeline::PhysicsWorld;
 use std::time::Instant;
@@ -169,15 +169,22 @@ impl World {
     /// Static `shapes` plus one dynamic ball per `release` position (the scene's, or
     /// their perturbed copy), with CCD (fast balls would otherwise tunnel through the
     /// reference's zero-thickness triangles). Rapier's parallel parts run on the rayon
-    /// pool the caller is in. `profile`: tally every step ([`super::profile`]).
-    pub fn new(scene: &Scene, shapes: &[Placed], release: &[V3], profile: bool) -> World {
+    /// pool the caller is in. `settings.profile`: tally every step
+    /// ([`super::profile`]); `settings.compound`: two or more shapes go in as one
+    /// compound collider.
+    pub fn new(scene: &Scene, shapes: Vec<Placed>, release: &[V3], settings: &Settings) -> World {
         let mut world = PhysicsWorld::new();
         let mut g = [0.0f32; 3];
         g[scene.up] = -GRAVITY as f32;
         world.gravity = Vector::from_array(g);
         world.integration_parameters.dt = DT as f32;
-        for (shape, pose) in shapes {
-            world.insert_collider(ColliderBuilder::new(shape.clone()).position(*pose), None);
+        if settings.compound && shapes.len() > 1 {
+            let parts = shapes.into_iter().map(|(s, p)| (p, s)).collect();
+            world.insert_collider(ColliderBuilder::new(SharedShape::compound(parts)), None);
+        } else {
+            for (shape, pose) in shapes {
+                world.insert_collider(ColliderBuilder::new(shape).position(pose), None);
+            }
         }
         let ball = ColliderBuilder::ball(scene.radius as f32);
         let balls = release
@@ -189,7 +196,9 @@ impl World {
                 world.insert(body, ball.clone()).0
             })
             .collect();
-        let tally = profile.then(|| Tally::new(&world, scene.aabb, scene.radius));
+        let tally = settings
+            .profile
+            .then(|| Tally::new(&world, scene.aabb, scene.radius));
         World {
             world,
             balls,

@@ -26,6 +26,7 @@ Usage:
 import argparse
 import hashlib
 import json
+import math
 import subprocess
 import sys
 from pathlib import Path
@@ -117,6 +118,11 @@ def byte_rule_target(mesh, sha, binary, work, caches):
     return None if pick is None else pick["settings"]["target"]
 
 
+def args_tag(args):
+    """A short hash of extra command-line arguments, for file names they key ("" for none)."""
+    return hashlib.sha256(" ".join(args).encode()).hexdigest()[:8] if args else ""
+
+
 def ours(mesh, sha, binary, n=None, extra=(), caches=()):
     """Our collider for the mesh, decomposed afresh (the engine may have changed since
     the last run), its target N and rule, and a short hash of its primitives that keys
@@ -133,7 +139,7 @@ def ours(mesh, sha, binary, n=None, extra=(), caches=()):
         n, rule = byte_rule_target(mesh, sha, binary, work, caches), "bytes within a third of cached CoACD's"
     if n is None:
         n, rule = max(32, round(faces_of(mesh, binary, work) / 100)), "max(32, 1% of faces)"
-    tag = hashlib.sha256(" ".join(extra).encode()).hexdigest()[:8] if extra else ""
+    tag = args_tag(extra)
     out = work / f"ours_n{n}{'_' + tag if tag else ''}.json"
     subprocess.run([binary, "decompose", str(mesh), "-n", str(n), "-o", str(out), "--quiet", *extra], check=True)
     prims = json.dumps(json.loads(out.read_text())["primitives"], sort_keys=True)
@@ -150,7 +156,7 @@ def hull_count(obj):
 def simulate(mesh, colliders, work, key, a):
     # "p": reports with the perturbed reference (the noise floor); older ones lack it.
     # Extra sim arguments (e.g. --compound) key their own report.
-    extra = "_" + hashlib.sha256(" ".join(a.sim_args).encode()).hexdigest()[:8] if a.sim_args else ""
+    extra = f"_{args_tag(a.sim_args)}" if a.sim_args else ""
     report = work / f"sim_p_b{a.balls}_f{a.frames}_s{a.seed}_{key}{extra}.json"
     if not report.is_file() or a.rerun:
         cmd = [a.bin, "sim", "--input", str(mesh), *map(str, colliders), "--balls", str(a.balls),
@@ -294,8 +300,10 @@ def summary(rows):
             # (the same geometry run twice, chaos and timer jitter alike), and by 2% at least.
             timed = [r for r in both if r.get("self")]
             slower = sum(ratio(r[mine]["frame_ms_median"], r[peer]["frame_ms_median"]) - 1 > spread(r) for r in timed)
+            ratios = [x for x in (ratio(r[mine]["frame_ms_median"], r[peer]["frame_ms_median"]) for r in both) if x]
+            geomean = math.exp(sum(math.log(x) for x in ratios) / len(ratios))
             out.append(f"- vs {LABEL[peer]} on {len(both)} meshes, ours at the {how}: our median step ≤ theirs "
-                       f"on {faster} by wall clock, {cheaper} by CPU time, slower by more than the mesh's own "
+                       f"on {faster} by wall clock (geometric mean of ours / theirs {geomean:.3f}), {cheaper} by CPU time, slower by more than the mesh's own "
                        f"spread on {slower} of {len(timed)}; our similarity ≥ theirs on {closer}, "
                        f"set similarity on {closer_set}; of {len(floor)} with the noise floor, only ours is off "
                        f"(similarity below half of mesh vs itself) on {worse}, only theirs on {better}.")

@@ -44,8 +44,11 @@ pub struct Profile {
     pub update_ms: f64,
     /// Balls awake (not asleep) after the step.
     pub awake_balls: f64,
-    /// Balls touching two or more static shapes at once (each part of a compound
-    /// counts as one shape).
+    /// Balls touching two or more static shapes at once. Each part of a compound
+    /// counts as one shape, touching when one of its contact points is within Rapier's
+    /// prediction distance: stricter than the test for a separate shape (a contact the
+    /// solver keeps, which also looks ahead by the approach speed), so counts of the
+    /// two modes compare only roughly.
     pub balls_on_several_shapes: f64,
     /// The static shapes' reach for the broad phase: the sum over shapes of the volume
     /// where a ball's centre brings the ball's AABB over the shape's (its AABB grown by
@@ -71,6 +74,8 @@ pub struct Tally {
     sums: Profile,
     /// Static shapes each ball touches this frame (scratch; only the counts are read).
     touches: HashMap<ColliderHandle, u32>,
+    /// A compound's parts under one ball (scratch for [`parts_touched`]).
+    parts: Vec<u32>,
 }
 
 /// Snake-case name of a shape kind.
@@ -99,24 +104,32 @@ fn pair_key(a: ShapeType, b: ShapeType) -> String {
 /// Static shapes a touching ball–static pair `p` stands for: the parts of a compound
 /// with a contact point within the `prediction` distance (one manifold each; Rapier
 /// clusters a pair's manifolds for the solver and then clears their own solver
-/// contacts, so the points are read), otherwise 1 (a triangle mesh is one shape,
-/// however many of its triangles the ball touches).
-fn parts_touched(p: &ContactPair, fixed: &Collider, static_first: bool, prediction: f32) -> u32 {
+/// contacts, so the points are read, without the solver's look-ahead by the
+/// approach speed that decides whether a pair touches at all), at least 1; any other
+/// shape is 1 (a triangle mesh is one shape, however many of its triangles the ball
+/// touches). `parts`: scratch.
+fn parts_touched(
+    p: &ContactPair,
+    fixed: &Collider,
+    static_first: bool,
+    prediction: f32,
+    parts: &mut Vec<u32>,
+) -> u32 {
     if fixed.shape().shape_type() != ShapeType::Compound {
         return 1;
     }
-    let mut parts: Vec<u32> = p
+    parts.clear();
+    let near = p
         .manifolds()
         .iter()
-        .filter(|m| m.points.iter().any(|c| c.dist < prediction))
-        .map(|m| {
-            if static_first {
-                m.subshape1
-            } else {
-                m.subshape2
-            }
-        })
-        .collect();
+        .filter(|m| m.points.iter().any(|c| c.dist < prediction));
+    parts.extend(near.map(|m| {
+        if static_first {
+            m.subshape1
+        } else {
+            m.subshape2
+        }
+    }));
     parts.sort_unstable();
     parts.dedup();
     parts.len().max(1) as u32
@@ -186,14 +199,13 @@ impl Tally {
             }
             entry.touching += 1.0;
             // A static shape has no parent body; count the ball's touches of them.
-            let (ball, static_first) = match (c1.parent().is_some(), c2.parent().is_some()) {
-                (true, false) => (p.collider1, false),
-                (false, true) => (p.collider2, true),
+            let (ball, fixed, static_first) = match (c1.parent(), c2.parent()) {
+                (Some(_), None) => (p.collider1, c2, false),
+                (None, Some(_)) => (p.collider2, c1, true),
                 _ => continue,
             };
-            let fixed = if static_first { c1 } else { c2 };
-            *self.touches.entry(ball).or_default() +=
-                parts_touched(p, fixed, static_first, prediction);
+            let n = parts_touched(p, fixed, static_first, prediction, &mut self.parts);
+            *self.touches.entry(ball).or_default() += n;
         }
         let several = self.touches.values().filter(|&&n| n >= 2);
         self.sums.balls_on_several_shapes += several.clone().count() as f64;

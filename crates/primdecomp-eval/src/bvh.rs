@@ -1,0 +1,310 @@
+//! A bounding-volume hierarchy over items with axis-aligned boxes (triangles,
+//! primitives, hulls), with exact nearest-item and containing-item queries, and the
+//! exact point-to-triangle distance the distance metrics rely on.
+//!
+//! Built by median splits on the longest axis of the item centroids (ties broken by
+//! item index, so the tree is the same on every run); queried depth-first, nearer
+//! child first, pruning nodes whose box is farther than the best distance so far.
+
+use primdecomp::math::{add, dot, norm2, scale, sub, V3};
+
+const LEAF: usize = 4;
+
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    lo: V3,
+    hi: V3,
+    /// Leaf: first item in `items`; inner: index of the left child (right = left + 1).
+    first: u32,
+    /// Leaf: item count; inner: 0.
+    count: u32,
+}
+
+/// The hierarchy; item ids are indices into the caller's item list.
+#[derive(Clone, Debug, Default)]
+pub struct Bvh {
+    nodes: Vec<Node>,
+    items: Vec<u32>,
+}
+
+/// Squared distance from `p` to the box `lo..hi` (0 inside).
+#[inline]
+pub fn box_dist2(p: V3, lo: V3, hi: V3) -> f64 {
+    let mut d = 0.0;
+    for k in 0..3 {
+        let e = (lo[k] - p[k]).max(p[k] - hi[k]).max(0.0);
+        d += e * e;
+    }
+    d
+}
+
+impl Bvh {
+    /// Builds over `boxes[i] = (lo, hi)`.
+    pub fn build(boxes: &[(V3, V3)]) -> Bvh {
+        let mut bvh = Bvh {
+            nodes: Vec::with_capacity(2 * boxes.len() / LEAF + 1),
+            items: (0..boxes.len() as u32).collect(),
+        };
+        if boxes.is_empty() {
+            return bvh;
+        }
+        let centroid = |i: u32| -> V3 {
+            let (lo, hi) = boxes[i as usize];
+            scale(add(lo, hi), 0.5)
+        };
+        bvh.nodes.push(Node {
+            lo: [0.0; 3],
+            hi: [0.0; 3],
+            first: 0,
+            count: boxes.len() as u32,
+        });
+        let mut stack = vec![0usize];
+        while let Some(n) = stack.pop() {
+            let (first, count) = (bvh.nodes[n].first as usize, bvh.nodes[n].count as usize);
+            let span = &mut bvh.items[first..first + count];
+            let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+            let (mut clo, mut chi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+            for &i in span.iter() {
+                let (blo, bhi) = boxes[i as usize];
+                let c = centroid(i);
+                for k in 0..3 {
+                    (lo[k], hi[k]) = (lo[k].min(blo[k]), hi[k].max(bhi[k]));
+                    (clo[k], chi[k]) = (clo[k].min(c[k]), chi[k].max(c[k]));
+                }
+            }
+            (bvh.nodes[n].lo, bvh.nodes[n].hi) = (lo, hi);
+            if count <= LEAF {
+                continue;
+            }
+            let axis = (0..3)
+                .max_by(|&a, &b| (chi[a] - clo[a]).total_cmp(&(chi[b] - clo[b])))
+                .unwrap_or(0);
+            let mid = count / 2;
+            span.select_nth_unstable_by(mid, |&a, &b| {
+                centroid(a)[axis]
+                    .total_cmp(&centroid(b)[axis])
+                    .then(a.cmp(&b))
+            });
+            let left = bvh.nodes.len();
+            for (f, c) in [(first, mid), (first + mid, count - mid)] {
+                bvh.nodes.push(Node {
+                    lo: [0.0; 3],
+                    hi: [0.0; 3],
+                    first: f as u32,
+                    count: c as u32,
+                });
+            }
+            bvh.nodes[n].first = left as u32;
+            bvh.nodes[n].count = 0;
+            stack.extend([left, left + 1]);
+        }
+        bvh
+    }
+
+    /// The smallest `dist2(item)` over all items, with that item (or `u32::MAX` when
+    /// empty). `dist2` must be at least the squared distance from `p` to the item's box.
+    pub fn nearest(&self, p: V3, mut dist2: impl FnMut(u32) -> f64) -> (f64, u32) {
+        let mut best = (f64::INFINITY, u32::MAX);
+        if self.nodes.is_empty() {
+            return best;
+        }
+        let mut stack: Vec<(f64, u32)> = Vec::with_capacity(64);
+        stack.push((0.0, 0));
+        while let Some((d, n)) = stack.pop() {
+            if d >= best.0 {
+                continue;
+            }
+            let node = self.nodes[n as usize];
+            if node.count > 0 {
+                let span = node.first as usize..(node.first + node.count) as usize;
+                for &i in &self.items[span] {
+                    let di = dist2(i);
+                    if di < best.0 || (di == best.0 && i < best.1) {
+                        best = (di, i);
+                    }
+                }
+                continue;
+            }
+            let (l, r) = (node.first, node.first + 1);
+            let dl = self.node_dist2(l, p);
+            let dr = self.node_dist2(r, p);
+            // Push the farther child first so the nearer one is visited next.
+            if dl <= dr {
+                stack.extend([(dr, r), (dl, l)]);
+            } else {
+                stack.extend([(dl, l), (dr, r)]);
+            }
+        }
+        best
+    }
+
+    fn node_dist2(&self, n: u32, p: V3) -> f64 {
+        let node = &self.nodes[n as usize];
+        box_dist2(p, node.lo, node.hi)
+    }
+
+    /// Whether `test(item)` holds for some item whose box, grown by `grow`, holds `p`.
+    pub fn any_at(&self, p: V3, grow: f64, mut test: impl FnMut(u32) -> bool) -> bool {
+        if self.nodes.is_empty() {
+            return false;
+        }
+        let g2 = grow.max(0.0) * grow.max(0.0);
+        let mut stack: Vec<u32> = Vec::with_capacity(64);
+        stack.push(0);
+        while let Some(n) = stack.pop() {
+            let node = self.nodes[n as usize];
+            if box_dist2(p, node.lo, node.hi) > g2 {
+                continue;
+            }
+            if node.count == 0 {
+                stack.extend([node.first, node.first + 1]);
+                continue;
+            }
+            let span = node.first as usize..(node.first + node.count) as usize;
+            if self.items[span].iter().any(|&i| test(i)) {
+                return true;
+            }
+        }
+        false
+    }
+}
+
+/// Box of a triangle.
+pub fn tri_box(t: &[V3; 3]) -> (V3, V3) {
+    let mut lo = t[0];
+    let mut hi = t[0];
+    for v in &t[1..] {
+        for k in 0..3 {
+            lo[k] = lo[k].min(v[k]);
+            hi[k] = hi[k].max(v[k]);
+        }
+    }
+    (lo, hi)
+}
+
+/// Squared distance from `p` to the closest point of triangle `t` (Ericson,
+/// Real-Time Collision Detection §5.1.5: Voronoi regions of vertices, edges, face).
+pub fn point_tri_dist2(p: V3, t: &[V3; 3]) -> f64 {
+    let [a, b, c] = *t;
+    let (ab, ac, ap) = (sub(b, a), sub(c, a), sub(p, a));
+    let (d1, d2) = (dot(ab, ap), dot(ac, ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return norm2(ap);
+    }
+    let bp = sub(p, b);
+    let (d3, d4) = (dot(ab, bp), dot(ac, bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return norm2(bp);
+    }
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        let v = d1 / (d1 - d3);
+        return norm2(sub(ap, scale(ab, v)));
+    }
+    let cp = sub(p, c);
+    let (d5, d6) = (dot(ab, cp), dot(ac, cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return norm2(cp);
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        let w = d2 / (d2 - d6);
+        return norm2(sub(ap, scale(ac, w)));
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
+        let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return norm2(sub(bp, scale(sub(c, b), w)));
+    }
+    let denom = va + vb + vc;
+    if denom <= 0.0 || !denom.is_finite() {
+        // Degenerate triangle: the nearest of its three edges.
+        return [(a, b), (b, c), (c, a)]
+            .iter()
+            .map(|&(s, e)| point_segment_dist2(p, s, e))
+            .fold(f64::INFINITY, f64::min);
+    }
+    let (v, w) = (vb / denom, vc / denom);
+    norm2(sub(ap, add(scale(ab, v), scale(ac, w))))
+}
+
+/// Squared distance from `p` to the segment `a`–`b`.
+pub fn point_segment_dist2(p: V3, a: V3, b: V3) -> f64 {
+    let ab = sub(b, a);
+    let l2 = norm2(ab);
+    let ap = sub(p, a);
+    let t = if l2 > 0.0 {
+        (dot(ap, ab) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    norm2(sub(ap, scale(ab, t)))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// Brute force over barycentric grid points plus the edges: an upper bound that
+    /// the exact distance must not exceed and must come within grid resolution of.
+    fn brute(p: V3, t: &[V3; 3]) -> f64 {
+        let n = 200;
+        let mut best = f64::INFINITY;
+        for i in 0..=n {
+            for j in 0..=n - i {
+                let (u, v) = (i as f64 / n as f64, j as f64 / n as f64);
+                let q = add(
+                    t[0],
+                    add(scale(sub(t[1], t[0]), u), scale(sub(t[2], t[0]), v)),
+                );
+                best = best.min(norm2(sub(p, q)));
+            }
+        }
+        best
+    }
+
+    #[test]
+    fn triangle_distance_matches_brute_force() {
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
+        let mut v = || -> V3 { std::array::from_fn(|_| rng.gen_range(-1.0..1.0)) };
+        for _ in 0..200 {
+            let t = [v(), v(), v()];
+            let p = scale(v(), 2.0);
+            let exact = point_tri_dist2(p, &t).sqrt();
+            let bf = brute(p, &t).sqrt();
+            assert!(exact <= bf + 1e-12, "{exact} > {bf}");
+            assert!(bf - exact < 0.02, "{exact} vs {bf}");
+        }
+        let flat = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]];
+        assert!((point_tri_dist2([1.0, 1.0, 0.0], &flat) - 1.0).abs() < 1e-15);
+    }
+
+    #[test]
+    fn nearest_and_any_at_match_linear_scans() {
+        let mut rng = ChaCha8Rng::seed_from_u64(9);
+        let tris: Vec<[V3; 3]> = (0..500)
+            .map(|_| {
+                let c: V3 = std::array::from_fn(|_| rng.gen_range(-5.0..5.0));
+                std::array::from_fn(|_| add(c, std::array::from_fn(|_| rng.gen_range(-0.3..0.3))))
+            })
+            .collect();
+        let boxes: Vec<_> = tris.iter().map(tri_box).collect();
+        let bvh = Bvh::build(&boxes);
+        for _ in 0..300 {
+            let p: V3 = std::array::from_fn(|_| rng.gen_range(-6.0..6.0));
+            let (d, i) = bvh.nearest(p, |i| point_tri_dist2(p, &tris[i as usize]));
+            let lin = tris
+                .iter()
+                .map(|t| point_tri_dist2(p, t))
+                .fold(f64::INFINITY, f64::min);
+            assert_eq!(d, lin);
+            assert_eq!(point_tri_dist2(p, &tris[i as usize]), d);
+            let near = |i: u32| point_tri_dist2(p, &tris[i as usize]) < 0.01;
+            let want = (0..tris.len() as u32).any(near);
+            assert_eq!(bvh.any_at(p, 0.1, near), want);
+        }
+        assert_eq!(Bvh::build(&[]).nearest([0.0; 3], |_| 0.0).1, u32::MAX);
+    }
+}

@@ -1,0 +1,127 @@
+//! One criterion group per stage of the driver (load, dedup, adjacency, quadrics, seed,
+//! merge, postprocess, output) on a small input (the demo scene), a medium one
+//! (`armadillo_libigl.obj`, 86k faces) and the million-face class
+//! (`dragon_vrip_full.ply`, 871k faces), the last two read from
+//! `../shared/datasets/corpus` — the bench says so loudly when it is absent.
+//! Targets are 1% of the faces. Run: `cargo bench --bench stages` (add a group name,
+//! e.g. `cargo bench --bench stages -- merge/medium`, to run one).
+
+use criterion::{criterion_group, criterion_main, BatchSize, Criterion};
+use primdecomp::decompose::{evaluator, seed_volumes};
+use primdecomp::merge::{run_with, Clusters, StdHeap};
+use primdecomp::mesh::{adjacency, dedup, io};
+use primdecomp::postprocess::{keep_mask, Cleanup};
+use primdecomp::{decompose, demo, quadric, Mesh, Params};
+use std::path::PathBuf;
+use std::time::Duration;
+
+struct Input {
+    name: &'static str,
+    path: Option<PathBuf>,
+    mesh: Mesh,
+}
+
+fn corpus(file: &str) -> Option<PathBuf> {
+    let p = primdecomp_testkit::corpus_dir().join(file);
+    if p.exists() {
+        Some(p)
+    } else {
+        eprintln!(
+            "CORPUS ABSENT: {} not found; that bench input is skipped",
+            p.display()
+        );
+        None
+    }
+}
+
+fn inputs() -> Vec<Input> {
+    let mut v = vec![Input {
+        name: "small",
+        path: None,
+        mesh: Mesh::from_builder(demo::demo_scene()),
+    }];
+    for (name, file) in [
+        ("medium", "armadillo_libigl.obj"),
+        ("large", "dragon_vrip_full.ply"),
+    ] {
+        if let Some(p) = corpus(file) {
+            let mesh = io::load(&p).expect("corpus mesh loads");
+            v.push(Input {
+                name,
+                path: Some(p),
+                mesh,
+            });
+        }
+    }
+    v
+}
+
+fn params(mesh: &Mesh) -> Params {
+    Params {
+        targets: vec![(mesh.face_count() / 100).max(1)],
+        ..Default::default()
+    }
+}
+
+fn stages(c: &mut Criterion) {
+    for inp in inputs() {
+        let m = &inp.mesh;
+        let p = params(m);
+        let mut g = c.benchmark_group(format!("stages/{}", inp.name));
+        g.sample_size(10).warm_up_time(Duration::from_millis(500));
+        if let Some(path) = &inp.path {
+            g.bench_function("load", |b| b.iter(|| io::load(path).unwrap()));
+        }
+        g.bench_function("dedup", |b| b.iter(|| dedup::weld(m, p.dedup)));
+        let (welded, _) = dedup::weld(m, p.dedup);
+        g.bench_function("adjacency", |b| {
+            b.iter(|| adjacency::face_pairs(&m.face_offsets, &welded))
+        });
+        let pairs = adjacency::face_pairs(&m.face_offsets, &welded);
+        // Setup never relies on a bench closure having run (filters skip them).
+        let mut q = Vec::new();
+        quadric::face_quadrics(m, p.tangent_eps, &mut q);
+        let mut q_bench = Vec::new();
+        g.bench_function("quadrics", |b| {
+            b.iter(|| quadric::face_quadrics(m, p.tangent_eps, &mut q_bench))
+        });
+        let ev = evaluator(m, &welded, &p, m.aabb());
+        g.bench_function("seed", |b| b.iter(|| seed_volumes(&ev, &q)));
+        let vols = seed_volumes(&ev, &q);
+        let fresh = || Clusters::new(q.clone(), vols.clone(), &pairs);
+        g.bench_function("merge", |b| {
+            b.iter_batched(
+                fresh,
+                |cl| primdecomp::merge::run(&ev, cl, &p.targets, &|_| {}),
+                BatchSize::LargeInput,
+            )
+        });
+        // The same merge loop driven by std's BinaryHeap: the radix heap's reference.
+        g.bench_function("merge_binary_heap", |b| {
+            b.iter_batched(
+                fresh,
+                |cl| run_with::<StdHeap>(&ev, cl, &p.targets, &|_| {}),
+                BatchSize::LargeInput,
+            )
+        });
+        let merged = primdecomp::merge::run(&ev, fresh(), &p.targets, &|_| {});
+        let snap = &merged.snapshots[0];
+        let cleanup = Cleanup {
+            diagonal: m.diagonal(),
+            remove_contained: true,
+            thin_box_half: None,
+        };
+        g.bench_function("postprocess", |b| {
+            b.iter(|| keep_mask(m, &snap.prims, &snap.verts, &snap.members, cleanup))
+        });
+        let dec = decompose(m, &p).unwrap();
+        g.bench_function("output_json", |b| {
+            b.iter(|| primdecomp::export::json::to_json(&dec, 0, &p))
+        });
+        g.bench_function("end_to_end", |b| b.iter(|| decompose(m, &p).unwrap()));
+        g.finish();
+    }
+}
+
+criterion_group!(benches, stages);
+criterion_main!(benches);

@@ -1,0 +1,285 @@
+//! The mesh as the algorithm needs it (§3: V and polygon faces F, |F_i| ≥ 3):
+//! struct-of-arrays positions, re-centred in f64, and polygons in CSR form.
+//! Nothing else from the file is kept.
+
+pub mod adjacency;
+pub mod dedup;
+pub mod io;
+pub mod orient;
+pub mod solid;
+pub mod visibility;
+
+use crate::math::V3;
+
+/// Largest distance of any vertex from the centre of the mesh's bounding box that the
+/// engine accepts. Fits take cubes (volumes) and fourth powers (squared quadric entries
+/// in the eigen-solver) of lengths; 1e60 keeps both far below f64's 1.8e308 even with
+/// large kind weights. Coordinates of 1e300 crashed the frustum fit before this limit.
+pub const MAX_EXTENT: f64 = 1e60;
+
+/// Largest magnitude of any world coordinate the engine accepts. Cylinders and
+/// frustums are written with their ends pushed out by up to about 320 ε × the
+/// coordinates' magnitude (`primitive::world`), so that rounding cannot tilt their axes
+/// out of the fitted solid; below 1e70 that stays under 1e-13 × 1e70 ≈ 1e57, inside the
+/// engine's range of lengths ([`MAX_EXTENT`]). Beyond it, the written lengths would
+/// exceed 1e154 at the top of the f64 range, and squaring them overflows.
+pub const MAX_POSITION: f64 = 1e70;
+
+/// `u32` index of an input face.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
+pub struct FaceId(pub u32);
+
+/// What a parser skipped, so the CLI can say it.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SkipCounts {
+    /// `l` elements, 2-vertex "faces" and other faces with fewer than 3 distinct indices.
+    pub short_faces: u64,
+    /// Non-triangle glTF primitives (points, lines) and similar unsupported elements.
+    pub other: u64,
+}
+
+/// What a parser produces: world coordinates in f64 and CSR polygons.
+#[derive(Clone, Debug, Default)]
+pub struct MeshBuilder {
+    pub positions: Vec<[f64; 3]>,
+    /// `face_offsets[f]..face_offsets[f+1]` indexes `face_indices`; starts with 0.
+    pub face_offsets: Vec<u32>,
+    pub face_indices: Vec<u32>,
+    pub skipped: SkipCounts,
+    /// Named objects in file order: each name with the first face it holds (OBJ `o`
+    /// and `g`). Empty when the file names none.
+    pub objects: Vec<(String, u32)>,
+}
+
+impl MeshBuilder {
+    pub fn new() -> Self {
+        MeshBuilder {
+            face_offsets: vec![0],
+            ..Default::default()
+        }
+    }
+    /// Appends a polygon; polygons with fewer than 3 vertices are counted and skipped.
+    /// Indices must already be validated against `positions.len()` by the parser.
+    pub fn push_face(&mut self, idx: &[u32]) {
+        if idx.len() < 3 {
+            self.skipped.short_faces += 1;
+            return;
+        }
+        self.face_indices.extend_from_slice(idx);
+        self.face_offsets.push(self.face_indices.len() as u32);
+    }
+    pub fn face_count(&self) -> usize {
+        self.face_offsets.len() - 1
+    }
+    /// Starts a named object at the next face; an earlier object that got no face is
+    /// dropped. Faces before the first name form an unnamed object of their own.
+    pub fn start_object(&mut self, name: String) {
+        let first = self.face_count() as u32;
+        if self.objects.is_empty() && first > 0 {
+            self.objects.push((String::new(), 0));
+        }
+        if self.objects.last().is_some_and(|o| o.1 == first) {
+            self.objects.pop();
+        }
+        self.objects.push((name, first));
+    }
+}
+
+/// A polygon mesh in struct-of-arrays form. Positions are re-centred: the world
+/// coordinate of vertex `v` is `[x[v], y[v], z[v]] + offset`.
+#[derive(Clone, Debug, Default)]
+pub struct Mesh {
+    pub x: Vec<f64>,
+    pub y: Vec<f64>,
+    pub z: Vec<f64>,
+    /// Subtracted from every input coordinate (the centre of the input's AABB).
+    pub offset: V3,
+    pub face_offsets: Vec<u32>,
+    pub face_indices: Vec<u32>,
+    pub skipped: SkipCounts,
+    /// Named objects: each name with its first face (see [`Mesh::objects`]).
+    pub object_starts: Vec<(String, u32)>,
+}
+
+/// A named part of a mesh: an OBJ `o` object or `g` group, with its faces.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct MeshObject<'a> {
+    /// The name the file gives it; empty for faces before the first name.
+    pub name: &'a str,
+    /// Its faces, a contiguous range of face indices.
+    pub faces: std::ops::Range<usize>,
+}
+
+impl Mesh {
+    /// Re-centres the builder's f64 coordinates on their AABB centre, so that a scan
+    /// at a 10^6 offset keeps its detail in every later computation.
+    pub fn from_builder(b: MeshBuilder) -> Mesh {
+        let (lo, hi) = aabb_of(b.positions.iter().copied());
+        let offset = if b.positions.is_empty() {
+            [0.0; 3]
+        } else {
+            [
+                0.5 * (lo[0] + hi[0]),
+                0.5 * (lo[1] + hi[1]),
+                0.5 * (lo[2] + hi[2]),
+            ]
+        };
+        let n = b.positions.len();
+        let (mut x, mut y, mut z) = (
+            Vec::with_capacity(n),
+            Vec::with_capacity(n),
+            Vec::with_capacity(n),
+        );
+        for p in &b.positions {
+            x.push(p[0] - offset[0]);
+            y.push(p[1] - offset[1]);
+            z.push(p[2] - offset[2]);
+        }
+        Mesh {
+            x,
+            y,
+            z,
+            offset,
+            face_offsets: b.face_offsets,
+            face_indices: b.face_indices,
+            skipped: b.skipped,
+            object_starts: b.objects,
+        }
+    }
+
+    /// Builds a mesh from world-space vertices and polygons (tests, demo, library users).
+    pub fn from_polygons(positions: &[[f64; 3]], faces: &[Vec<u32>]) -> Mesh {
+        let mut b = MeshBuilder::new();
+        b.positions.extend_from_slice(positions);
+        for f in faces {
+            b.push_face(f);
+        }
+        Mesh::from_builder(b)
+    }
+
+    /// The mesh's named objects in file order, each with its faces; one unnamed
+    /// object holding every face when the file names none. Objects without faces are
+    /// left out.
+    pub fn objects(&self) -> Vec<MeshObject<'_>> {
+        let n = self.face_count();
+        if self.object_starts.is_empty() {
+            return vec![MeshObject {
+                name: "",
+                faces: 0..n,
+            }];
+        }
+        let ends = self.object_starts.iter().skip(1).map(|o| o.1 as usize);
+        self.object_starts
+            .iter()
+            .zip(ends.chain([n]))
+            .filter(|(o, end)| (o.1 as usize) < *end)
+            .map(|(o, end)| MeshObject {
+                name: &o.0,
+                faces: o.1 as usize..end,
+            })
+            .collect()
+    }
+
+    #[inline]
+    pub fn face_count(&self) -> usize {
+        self.face_offsets.len().saturating_sub(1)
+    }
+    #[inline]
+    pub fn vertex_count(&self) -> usize {
+        self.x.len()
+    }
+    /// Vertex indices of face `f`.
+    #[inline]
+    pub fn face(&self, f: usize) -> &[u32] {
+        &self.face_indices[self.face_offsets[f] as usize..self.face_offsets[f + 1] as usize]
+    }
+    /// Newell's normal of face `f` from its own vertices: unnormalised, its length
+    /// twice the (planar) polygon's area, along the winding's right-hand normal.
+    pub fn newell(&self, f: usize) -> V3 {
+        let vs = self.face(f);
+        let mut n = [0.0; 3];
+        for (i, &v) in vs.iter().enumerate() {
+            let c = crate::math::cross(self.pos(v), self.pos(vs[(i + 1) % vs.len()]));
+            n = [n[0] + c[0], n[1] + c[1], n[2] + c[2]];
+        }
+        n
+    }
+    /// Re-centred position of vertex `v`.
+    #[inline]
+    pub fn pos(&self, v: u32) -> V3 {
+        let v = v as usize;
+        [self.x[v], self.y[v], self.z[v]]
+    }
+    /// World position of vertex `v`.
+    #[inline]
+    pub fn world_pos(&self, v: u32) -> V3 {
+        crate::math::add(self.pos(v), self.offset)
+    }
+    /// The first vertex (0-based) farther than [`MAX_EXTENT`] from the re-centring
+    /// origin on some axis (or not finite), with that distance.
+    pub fn vertex_out_of_range(&self) -> Option<(usize, f64)> {
+        let far = |i: usize| {
+            let d = self.x[i].abs().max(self.y[i].abs()).max(self.z[i].abs());
+            // A NaN distance (from an infinite offset) counts as out of range.
+            (d.is_nan() || d > MAX_EXTENT).then_some((i, d))
+        };
+        (0..self.vertex_count()).find_map(far)
+    }
+    /// The first vertex (0-based) with a world coordinate beyond ±[`MAX_POSITION`],
+    /// with that coordinate.
+    pub fn vertex_beyond_position_limit(&self) -> Option<(usize, f64)> {
+        (0..self.vertex_count()).find_map(|i| {
+            let p = self.world_pos(i as u32);
+            let c = p
+                .into_iter()
+                .fold(0.0f64, |m, c| if c.abs() > m.abs() { c } else { m });
+            (c.abs() > MAX_POSITION).then_some((i, c))
+        })
+    }
+    /// [`Mesh::vertex_out_of_range`] and [`Mesh::vertex_beyond_position_limit`] as the
+    /// errors for `path`.
+    pub fn check_extent(&self, path: &std::path::Path) -> crate::Result<()> {
+        if let Some((i, d)) = self.vertex_out_of_range() {
+            return Err(crate::Error::Extent {
+                path: path.to_path_buf(),
+                vertex: i as u64 + 1,
+                distance: d,
+                limit: MAX_EXTENT,
+            });
+        }
+        match self.vertex_beyond_position_limit() {
+            None => Ok(()),
+            Some((i, c)) => Err(crate::Error::Position {
+                path: path.to_path_buf(),
+                vertex: i as u64 + 1,
+                coordinate: c,
+                limit: MAX_POSITION,
+            }),
+        }
+    }
+    /// AABB of the re-centred positions of vertices used by faces (min, max).
+    pub fn aabb(&self) -> (V3, V3) {
+        aabb_of(self.face_indices.iter().map(|&v| self.pos(v)))
+    }
+    /// Length of the AABB diagonal of the used vertices.
+    pub fn diagonal(&self) -> f64 {
+        let (lo, hi) = self.aabb();
+        crate::math::norm(crate::math::sub(hi, lo))
+    }
+}
+
+/// Min/max corners of a point stream; `([0;3],[0;3])` for an empty stream.
+pub fn aabb_of(points: impl Iterator<Item = V3>) -> (V3, V3) {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in points {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    if lo[0] > hi[0] {
+        return ([0.0; 3], [0.0; 3]);
+    }
+    (lo, hi)
+}

@@ -1,0 +1,147 @@
+//! `Params::partitions` (merge/partition.rs): with K > 1 parts the output must still
+//! enclose every input face (checked by the independent oracle, `primdecomp_testkit::contain`),
+//! hold at most N primitives, and be the same bytes on any thread count; K = 1 must be
+//! the default run, and its JSON must not mention the setting (default output unchanged).
+
+use primdecomp::export::json::to_json;
+use primdecomp::{decompose, Mesh, Params, Partitions};
+use primdecomp_testkit::check::{
+    assert_counts, assert_same_on_threads, assert_valid, check_corpus_meshes,
+};
+use primdecomp_testkit::shapes::{cuboid, cylinder, flat_grid, join, mesh, uv_sphere, Polys};
+
+fn moved((v, f): Polys, d: [f64; 3]) -> Polys {
+    (
+        v.iter().map(|p| [0, 1, 2].map(|k| p[k] + d[k])).collect(),
+        f,
+    )
+}
+
+/// ~6,100 faces in five components: a sphere, a flat grid (zero-cost merges that
+/// straddle part boundaries), a cylinder and two boxes; phase 2 must bridge them.
+fn scene() -> Mesh {
+    mesh(&join(&[
+        uv_sphere(3.0, 40, 60),
+        moved(flat_grid(60), [-30.0, -30.0, -5.0]),
+        moved(cylinder(1.0, 8.0, 64), [10.0, 0.0, -4.0]),
+        cuboid([-20.0, 12.0, 0.0], [-14.0, 14.0, 9.0]),
+        cuboid([15.0, 15.0, 1.0], [16.0, 25.0, 2.0]),
+    ]))
+}
+
+fn params(targets: &[usize], k: usize) -> Params {
+    Params {
+        targets: targets.to_vec(),
+        partitions: Partitions::Fixed(k),
+        ..Default::default()
+    }
+}
+
+/// K = 2, 4, 8 on the generated scene: enclosing, at most N, phase 1 really ran, and
+/// the two phases together merged down to the last target as K = 1 does.
+#[test]
+fn partitioned_output_encloses_the_generated_scene() {
+    let m = scene();
+    let one = decompose(&m, &params(&[60, 12], 1)).unwrap();
+    for k in [2, 4, 8] {
+        let p = params(&[60, 12], k);
+        let dec = decompose(&m, &p).unwrap();
+        assert_valid(&m, &dec, &p);
+        assert_counts(&dec, &format!("scene, K={k}"));
+        assert!(
+            dec.timings.stages.iter().any(|s| s.0 == "partitions"),
+            "K={k}: phase 1 did not run"
+        );
+        assert_eq!(dec.partitions, k);
+        let stats = to_json(&dec, 0, &p);
+        let stats = &stats[stats.find("\"stats\"").expect("stats")..];
+        assert!(stats.contains(&format!("\"partitions\": {k}")), "{stats}");
+        assert_eq!(dec.merges, one.merges, "K={k}: both run down to 12");
+    }
+}
+
+/// Same bytes (the JSON as written without `--timings`) on 1, 2 and 8 threads with K = 8 (parts are merged as parallel tasks
+/// whose order of completion varies; phase 2's worker shares re-pricing).
+#[test]
+fn partitioned_output_is_identical_on_any_thread_count() {
+    assert_same_on_threads(&scene(), &params(&[60, 12], 8));
+}
+
+/// Below `AUTO_MIN_FACES` faces the default (`Partitions::Auto`) is K = 1, and neither
+/// JSON names the setting, so a default run's output on such an input is byte for byte
+/// what it was before `partitions` existed. A K > 1 run whose phase 1 would leave as
+/// many clusters as faces (16 × N ≥ F) is K = 1's run with the setting recorded.
+#[test]
+fn one_partition_is_the_default_run_on_small_inputs() {
+    assert!(scene().face_count() < primdecomp::params::AUTO_MIN_FACES);
+    let m = scene();
+    let default = Params {
+        targets: vec![60, 12],
+        ..Default::default()
+    };
+    let a = decompose(&m, &default).unwrap();
+    let b = decompose(&m, &params(&[60, 12], 1)).unwrap();
+    let text = to_json(&b, 0, &params(&[60, 12], 1));
+    assert!(!text.contains("partitions"), "K=1 JSON names the setting");
+    assert_eq!(a.partitions, 1, "auto split a small input");
+    assert_eq!(to_json(&a, 0, &default), text);
+    let big = m.face_count() / 16 + 1;
+    let c1 = decompose(&m, &params(&[big], 1)).unwrap();
+    let c8 = decompose(&m, &params(&[big], 8)).unwrap();
+    assert_eq!(
+        format!("{:?}", c1.levels[0].primitives),
+        format!("{:?}", c8.levels[0].primitives)
+    );
+    assert!(to_json(&c8, 0, &params(&[big], 8)).contains("\"partitions\": 8"));
+}
+
+/// 0 parts is refused, not run.
+#[test]
+fn zero_partitions_is_refused() {
+    let m = scene();
+    let err = decompose(&m, &params(&[10], 0)).unwrap_err();
+    assert!(err.to_string().contains("partitions"), "{err}");
+}
+
+/// Corpus meshes (one closed scan, one model of many parts that phase 2 must bridge)
+/// with K = 4 and 8 at about 1% of their faces and at 20: enclosing and at most N.
+#[test]
+fn partitioned_output_encloses_corpus_meshes() {
+    check_corpus_meshes(|t| vec![params(t, 4), params(t, 8)]);
+}
+
+/// Progress covers both phases as one fraction of the merges: phase 1's parallel parts
+/// report their merges so far (a bar no longer waits at 0% through phase 1), every
+/// value within [0, 1].
+#[test]
+fn progress_is_reported_during_phase_one() {
+    let m = mesh(&uv_sphere(3.0, 150, 200));
+    let p = params(&[100], 2);
+    let seen = std::sync::Mutex::new(Vec::new());
+    let dec =
+        primdecomp::decompose::decompose_with_progress(&m, &p, &|f| seen.lock().unwrap().push(f))
+            .unwrap();
+    assert!(dec.timings.stages.iter().any(|s| s.0 == "partitions"));
+    let seen = seen.into_inner().unwrap();
+    assert!(seen.iter().all(|f| (0.0..=1.0).contains(f)), "{seen:?}");
+    // 30,000 faces, two parts of ~14,200 merges each, reported every 4,096 merges.
+    assert!(seen.len() >= 4, "{seen:?}");
+    assert!(seen.iter().any(|&f| f < 0.5), "{seen:?}");
+    assert!(seen.iter().any(|&f| f > 0.5), "{seen:?}");
+}
+
+/// Phase 1 re-prices lazily (every merge deferred: deviation 19), so some pairs are
+/// re-priced when popped; with `Reprice::Exact` nothing is, in either phase.
+#[test]
+fn parts_defer_unless_repricing_is_exact() {
+    let m = scene();
+    let lazy = decompose(&m, &params(&[12], 4)).unwrap();
+    assert!(lazy.fits.lazy > 0, "{:?}", lazy.fits);
+    let p = Params {
+        reprice: primdecomp::Reprice::Exact,
+        ..params(&[12], 4)
+    };
+    let exact = decompose(&m, &p).unwrap();
+    assert_valid(&m, &exact, &p);
+    assert_eq!(exact.fits.lazy, 0, "{:?}", exact.fits);
+}

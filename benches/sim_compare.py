@@ -20,7 +20,7 @@ docs/results/compare.md. Standard library only.
 Usage:
   python3 benches/sim_compare.py [--meshes NAME ...] [--balls 5000] [--frames 1000]
       [--peer-cache DIR ...] [--bin target/release/primdecomp] [--out docs/results/sim.md]
-      [--decompose-args='--merge-min-extent 0.002' --no-summary] [--sim-args='--compound']
+      [--decompose-args='--rim-weight 0' --no-summary] [--sim-args='--compound']
 """
 
 import argparse
@@ -323,7 +323,7 @@ def main(argv):
     ap.add_argument("--rerun", action="store_true", help="simulate again even when a report is cached")
     ap.add_argument("--decompose-args", default="", type=str.split,
                     help="extra arguments for our `primdecomp decompose` runs, one string "
-                         "(e.g. --decompose-args='--merge-min-extent 0.002'); "
+                         "(e.g. --decompose-args='--rim-weight 0'); "
                          "use with --out and --no-summary to keep the default report")
     ap.add_argument("--sim-args", default="", type=str.split,
                     help="extra arguments for `primdecomp sim`, one string (e.g. "

@@ -30,8 +30,6 @@ CONFIGS = [
     ("box+sphere+capsule", ["--kinds", "box,sphere,capsule"]),
     ("reprice exact", ["--reprice", "exact"]),
     ("reprice deferred", ["--reprice", "deferred"]),
-    ("merge floor 0.002", ["--merge-min-extent", "0.002"]),
-    ("extremes", ["--reduction", "extremes"]),
 ]
 SAMPLES = 50_000
 

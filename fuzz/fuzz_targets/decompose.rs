@@ -14,8 +14,7 @@
 mod contain;
 
 use arbitrary::{Result, Unstructured};
-use primdecomp::export::json::to_json;
-use primdecomp::{decompose, Dedup, Error, Mesh, Params, Partitions, Reduction, Reprice};
+use primdecomp::{decompose, to_json, Dedup, Error, Mesh, Params, Partitions, Reprice};
 
 /// A number that is usually one of `typical` and sometimes any f64 at all.
 fn pick(u: &mut Unstructured, typical: &[f64]) -> Result<f64> {
@@ -41,7 +40,7 @@ fn params(u: &mut Unstructured) -> Result<Params> {
         *on = mask == 0 || mask & (1 << k) != 0;
     }
     p.tangent_eps = pick(u, &[0.01, 0.0, 1.0, 1e3])?;
-    p.min_extent_rel = pick(u, &[5e-4, 1e-12, 0.5, 0.999])?;
+    p.min_extent = pick(u, &[5e-4, 1e-12, 0.5, 0.999])?;
     p.max_excess_volume = match u.int_in_range(0..=3)? {
         0 => Some(pick(u, &[0.0, 1e-3, 1.0])?),
         _ => None,
@@ -51,7 +50,7 @@ fn params(u: &mut Unstructured) -> Result<Params> {
         1 => Dedup::Tolerance(pick(u, &[0.0, 1e-3, 0.5, 10.0])?),
         _ => Dedup::Exact,
     };
-    p.remove_contained = u.arbitrary()?;
+    p.remove_nested = u.arbitrary()?;
     p.remove_thin_boxes = match u.arbitrary::<bool>()? {
         true => Some(pick(u, &[0.0, 1e-3, 0.1])?),
         false => None,
@@ -64,20 +63,18 @@ fn params(u: &mut Unstructured) -> Result<Params> {
             min_degree: [64, 0, 1, 2, 4][d as usize - 1],
         },
     };
-    p.merge_min_extent_rel = match u.int_in_range(0..=3)? {
-        0 => Some(pick(u, &[2e-3, 0.0, 0.5, 0.999])?),
-        _ => None,
-    };
+    // Once the pricing floor `merge_min_extent_rel` (removed: docs/decisions); its bytes
+    // are still read so that the grown corpus keeps its meaning.
+    if u.int_in_range(0..=3)? == 0 {
+        pick(u, &[2e-3, 0.0, 0.5, 0.999])?;
+    }
     // Last again. An exhausted input reads 0 twice, so entries grown before this setting
     // run with it off, as they were grown; otherwise mostly the default (0.01).
     if u.int_in_range(0..=3)? == 0 {
-        p.flat_merge_extent_rel = pick(u, &[0.0, 0.05, 0.5, 0.999])?;
+        p.open_holes = pick(u, &[0.0, 0.05, 0.5, 0.999])?;
     }
-    // Last of all (an exhausted input reads false: the exact hull, as grown).
-    p.reduction = match u.arbitrary::<bool>()? {
-        true => Reduction::Extremes,
-        false => Reduction::Hull,
-    };
+    // Once `reduction` (the approximate extremes, removed: docs/decisions); read still.
+    u.arbitrary::<bool>()?;
     // After that (an exhausted input reads 0: auto, which never splits these small
     // meshes, as grown): a fixed count splits them when 16 × N < faces, so phase 1's
     // lazy parts run on hostile input too.
@@ -88,10 +85,9 @@ fn params(u: &mut Unstructured) -> Result<Params> {
     // After that (an exhausted input reads false, as grown): the budget search's extra
     // passes (budget.rs) on hostile input.
     p.fill = u.arbitrary::<bool>()?;
-    // After that (an exhausted input reads 0: off, as grown): the outward reach's
-    // face orientation and support functions on hostile input (deviation 22).
+    // Once `outward_weight` (removed: docs/decisions/0022); read still.
     if u.int_in_range(0..=3)? == 1 {
-        p.outward_weight = pick(u, &[1.0, 1e-9, 1e9])?.abs();
+        pick(u, &[1.0, 1e-9, 1e9])?;
     }
     // After that (an exhausted input reads false, as grown): the interior grid's ray
     // parity and the air pricing on hostile input (deviation 23).
@@ -100,11 +96,11 @@ fn params(u: &mut Unstructured) -> Result<Params> {
     // reach's adjacency walk and the per-kind output fits at other weights, and off
     // (deviation 24).
     p.rim_weight =
-        [primdecomp::params::RIM_WEIGHT, 0.0, 1e-9, 1e9][u.int_in_range(0..=3)? as usize];
+        [1.0, 0.0, 1e-9, 1e9][u.int_in_range(0..=3)? as usize];
     // After that (an exhausted input reads false: free merges on, the default, so the
     // grown corpus now runs with them): a target's snapshot held for merges that add
     // no volume, and the exact stop (deviation 25).
-    p.free_merges = !u.arbitrary::<bool>()?;
+    p.join_coplanar = !u.arbitrary::<bool>()?;
     // After that (an exhausted input reads false: flush plates, the default): output
     // plates moved onto their faces' outer side, and centred (deviation 26).
     p.flush_plates = !u.arbitrary::<bool>()?;
@@ -151,16 +147,22 @@ fn run(data: &[u8]) -> Result<()> {
         // Reproducing a finding as a test: the decoded case, exact to the bit.
         eprintln!("{params:?}\nverts {verts:?}\nfaces {faces:?}");
     }
-    let mesh = Mesh::from_polygons(&verts, &faces);
+    // Coordinates are finite and indices in range by construction.
+    let mesh = Mesh::from_polygons(&verts, &faces).expect("a valid mesh");
+    // The documented limits: 1e60 from the bounding box's centre, ±1e70 from the origin.
+    let far = (0..mesh.vertex_count() as u32).any(|v| {
+        let d = mesh.pos(v).iter().fold(0.0f64, |m, c| m.max(c.abs()));
+        d.is_nan() || d > 1e60
+    });
+    let beyond = (0..mesh.vertex_count() as u32)
+        .any(|v| mesh.world_pos(v).iter().any(|c| c.abs() > 1e70));
     let dec = match decompose(&mesh, &params) {
         Ok(d) => d,
         Err(Error::InvalidParams(_)) if params.validate().is_err() => return Ok(()),
         Err(Error::EmptyMesh { .. }) if mesh.face_count() == 0 => return Ok(()),
         // Documented refusals: beyond 1e60 of the centre or ±1e70 of the origin.
-        Err(Error::Extent { .. }) if mesh.vertex_out_of_range().is_some() => return Ok(()),
-        Err(Error::Position { .. }) if mesh.vertex_beyond_position_limit().is_some() => {
-            return Ok(())
-        }
+        Err(Error::Extent { .. }) if far => return Ok(()),
+        Err(Error::Position { .. }) if beyond => return Ok(()),
         Err(e) => panic!("unexpected error: {e}"),
     };
     assert!(params.validate().is_ok(), "invalid settings accepted");

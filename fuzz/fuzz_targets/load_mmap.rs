@@ -14,7 +14,7 @@ libfuzzer_sys::fuzz_target!(|data: &[u8]| {
     for ext in ["obj", "ply", "stl", "off"] {
         let path = dir.join(format!("input.{ext}"));
         std::fs::write(&path, data).expect("temporary file");
-        match primdecomp::mesh::io::load_limited(&path, Some(1 << 30)) {
+        match primdecomp::load_limited(&path, Some(1 << 30)) {
             Ok(mesh) => assert!(mesh.face_count() > 0, "a mesh without faces was accepted"),
             Err(e) => {
                 let text = e.to_string();

@@ -1,18 +1,17 @@
-//! Shared oracle of the parser targets: `parse_bytes` never panics, an error names
+//! Shared oracle of the parser targets: `parse_mesh` never panics, an error names
 //! the file, and a successful parse is a well-formed mesh (CSR offsets consistent,
 //! every polygon has ≥ 3 corners, every index in range, every coordinate finite, and
 //! the re-centred mesh finite too).
 
-use primdecomp::mesh::io::{parse_bytes, Format};
-use primdecomp::Mesh;
+use primdecomp::{parse_mesh, Format};
 use std::path::Path;
 
 pub fn check(data: &[u8], format: Format, name: &str) {
     // A directory that does not exist: a .gltf naming an external buffer gets an
     // error instead of reading files from the fuzzing machine.
     let path = Path::new("/nonexistent-primdecomp-fuzz").join(name);
-    let b = match parse_bytes(data, format, &path) {
-        Ok(b) => b,
+    let mesh = match parse_mesh(data, format, &path) {
+        Ok(m) => m,
         Err(e) => {
             let msg = e.to_string();
             assert!(msg.contains(name), "error does not name the file: {msg}");
@@ -20,23 +19,15 @@ pub fn check(data: &[u8], format: Format, name: &str) {
             return;
         }
     };
-    let n = b.positions.len();
-    assert_eq!(b.face_offsets.first(), Some(&0));
-    assert_eq!(
-        *b.face_offsets.last().unwrap() as usize,
-        b.face_indices.len()
-    );
-    for w in b.face_offsets.windows(2) {
-        assert!(w[1] >= w[0] + 3, "a face with fewer than 3 corners");
+    let n = mesh.vertex_count();
+    for f in 0..mesh.face_count() {
+        let face = mesh.face(f);
+        assert!(face.len() >= 3, "a face with fewer than 3 corners");
+        assert!(face.iter().all(|&i| (i as usize) < n));
     }
-    assert!(b.face_indices.iter().all(|&i| (i as usize) < n));
-    assert!(b.positions.iter().flatten().all(|c| c.is_finite()));
-    let mesh = Mesh::from_builder(b);
-    assert!(
-        mesh.offset.iter().all(|c| c.is_finite()),
-        "{:?}",
-        mesh.offset
-    );
-    let finite = |v: &[f64]| v.iter().all(|c| c.is_finite());
-    assert!(finite(&mesh.x) && finite(&mesh.y) && finite(&mesh.z));
+    let finite = |p: [f64; 3]| p.iter().all(|c| c.is_finite());
+    assert!(finite(mesh.centre()), "{:?}", mesh.centre());
+    for v in 0..n as u32 {
+        assert!(finite(mesh.pos(v)) && finite(mesh.world_pos(v)));
+    }
 }

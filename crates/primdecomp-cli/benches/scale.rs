@@ -13,7 +13,6 @@
 //! Run: `cargo bench --bench scale` (needs `../shared/datasets/corpus`; says so
 //! loudly and exits when it is absent). Prints a markdown table.
 
-use primdecomp::mesh::io;
 use primdecomp::Mesh;
 use std::collections::HashMap;
 use std::io::Write;
@@ -36,7 +35,7 @@ fn main() {
         return;
     }
     let bin = PathBuf::from(env!("CARGO_BIN_EXE_primdecomp"));
-    let mesh = io::load(&dragon).expect("dragon loads");
+    let mesh = primdecomp::load(&dragon).expect("dragon loads");
     let big_path = std::env::temp_dir().join("primdecomp_dragon_x4.ply");
     let big = subdivide(&mesh);
     write_ply(&big, &big_path);
@@ -164,7 +163,7 @@ fn subdivide(m: &Mesh) -> Mesh {
             vec![ab, bc, ca],
         ]);
     }
-    Mesh::from_polygons(&pos, &faces)
+    Mesh::from_polygons(&pos, &faces).unwrap()
 }
 
 /// Binary little-endian PLY (positions as float, triangles as uchar/int lists).

@@ -1,10 +1,11 @@
 //! Command-line interface: argument parsing (clap), the one-screen summary, progress
 //! bar and exit codes (0 ok, 2 bad input or settings, 1 anything else).
 
+use crate::paths::output_path_for;
 use anyhow::{anyhow, bail};
 use clap::{Args, Parser, Subcommand};
-use primdecomp::export::{self, output_path_for, write_atomic};
-use primdecomp::{Decomposition, Dedup, Kind, Params, Partitions, Reduction, Reprice};
+use primdecomp::{export, write_atomic, Stage};
+use primdecomp::{Decomposition, Dedup, Kind, Params, Partitions, Reprice};
 use primdecomp_sim::{Entry, Geometry, Run as SimRun, Settings as SimSettings};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -72,14 +73,16 @@ struct DecomposeArgs {
     inputs: Vec<PathBuf>,
     /// Target primitive counts, comma-separated (a count, or a percentage of the input's
     /// faces such as 1%); one result per target from one bottom-up pass. At most N
-    /// each: merges into plates that add no area still run (see --no-free-merges).
-    #[arg(
-        short = 'n',
-        long = "targets",
-        value_delimiter = ',',
-        default_value = "64"
-    )]
-    targets: Vec<String>,
+    /// each: fewer where nested primitives are removed and coplanar faces merge for
+    /// free (see --no-join-coplanar). Default: 64.
+    #[arg(short = 'n', long = "targets", value_delimiter = ',')]
+    targets: Option<Vec<String>>,
+    /// Start from the settings of a file: a primdecomp JSON result (its `settings`:
+    /// the same settings give the same primitives), or a JSON or TOML file of settings
+    /// (keys as in the JSON's `settings`; absent keys keep their defaults). Flags
+    /// given here override it.
+    #[arg(long, value_name = "FILE")]
+    config: Option<PathBuf>,
     /// With several inputs: print a markdown table of all results at the end.
     #[arg(long)]
     table: bool,
@@ -88,92 +91,77 @@ struct DecomposeArgs {
     /// 1 = one after another, each with all threads. Outputs do not depend on it.
     #[arg(long)]
     jobs: Option<usize>,
-    /// Refuse merges adding more than this fraction of the input's AABB volume.
+    /// Refuse merges adding more than this fraction of the input's bounding-box volume
+    /// (§3.3); re-prices every merge at once (--reprice exact) unless --reprice says
+    /// otherwise.
     #[arg(long)]
     max_excess_volume: Option<f64>,
-    /// Cost weights per kind, e.g. box=1,sphere=1,capsule=1,cylinder=1.05,frustum=2.1,prism=1.4.
+    /// Cost weights per kind, e.g. box=1,sphere=1,capsule=1,cylinder=1.05,frustum=2.1,prism=1.4
+    /// (the defaults): a heavier kind is chosen less often.
     #[arg(long, value_delimiter = ',')]
     weights: Vec<String>,
     /// Kinds allowed, e.g. box,sphere,capsule (default: all six).
     #[arg(long, value_delimiter = ',')]
     kinds: Vec<String>,
-    /// Weight ε of the tangent term in Q = area·(nnᵀ + ε·ttᵀ); 0 disables it.
-    #[arg(long, default_value_t = 0.01)]
-    tangent_eps: f64,
-    /// Vertex deduplication: exact, off, or a distance tolerance in input units.
-    #[arg(long, default_value = "exact")]
-    dedup: String,
-    /// Minimum half-extent of a primitive, as a fraction of the input's AABB diagonal.
-    #[arg(long, default_value_t = 5e-4)]
-    min_extent: f64,
-    /// Price merges as if every primitive were at least this thick (half-extent, as a
-    /// fraction of the diagonal): coplanar merges across gaps and holes cost more;
-    /// output primitives keep --min-extent. Default: the same as --min-extent.
+    /// Weight ε of the tangent term in Q = area·(nnᵀ + ε·ttᵀ); 0 disables it. Default 0.01.
     #[arg(long)]
-    merge_min_extent: Option<f64>,
-    /// Price merges of coplanar clusters only as if primitives were this thick
-    /// (half-extent, as a fraction of the diagonal): a roof's rim does not close into a
-    /// lid over a hole; other merges keep their prices. 0 = off (the paper's pricing).
-    #[arg(long, default_value_t = 0.01)]
-    flat_merge_extent: f64,
-    /// When merged clusters' pairs are re-priced: exact (at once, the paper's greedy
-    /// order), deferred (each when popped: faster, approximate order), or a neighbour
-    /// count N: merges of clusters with N or more neighbours are deferred, others exact.
-    #[arg(long, default_value = "64")]
-    reprice: String,
-    /// Split the faces into K spatial parts merged in parallel (to 16x the largest
-    /// target) before the global merge: faster on several cores, merges across parts
-    /// wait (docs/results/partitions.md). 1 = one global greedy (the paper); auto = 16
-    /// parts (or one per 65,536 faces if more) for inputs of 524,288 faces or more,
-    /// else 1.
-    #[arg(long, default_value = "auto")]
-    partitions: String,
-    /// How merged clusters' points are reduced for pricing: hull (exact: the convex
-    /// hull's vertices) or extremes (approximate: the extreme points along 13 fixed
-    /// axes; faster, different merges; docs/results/reduction.md). Output primitives
-    /// are always fitted on all of their faces' vertices.
-    #[arg(long, value_enum, default_value = "hull")]
-    reduction: ReductionArg,
-    /// Keep primitives whose points lie inside another primitive.
+    tangent_eps: Option<f64>,
+    /// Vertex deduplication: exact (default), off, or a distance tolerance in input units.
     #[arg(long)]
-    keep_contained: bool,
+    dedup: Option<String>,
+    /// Minimum half-extent of a primitive, as a fraction of the input's bounding-box
+    /// diagonal. Default 0.0005.
+    #[arg(long)]
+    min_extent: Option<f64>,
+    /// Keep primitives whose faces all lie inside another primitive.
+    #[arg(long)]
+    keep_nested: bool,
+    /// Also remove boxes thinner than this fraction of the diagonal when others cover
+    /// them.
+    #[arg(long)]
+    remove_thin_boxes: Option<f64>,
+    /// Keep holes and gaps in flat surfaces open: coplanar merges are priced as if the
+    /// primitive were this thick (half-extent, fraction of the diagonal), so a roof's
+    /// rim does not close into a lid. 0 = the paper's pricing. Default 0.01.
+    #[arg(long)]
+    open_holes: Option<f64>,
+    /// How strongly output primitives keep off the faces beside them (a plate standing
+    /// past a wall's top as a curb): k·V + W·Σ len·gap² over the convex boundary edges.
+    /// 0 = the volume alone, the paper's criterion. Default 1.
+    #[arg(long)]
+    rim_weight: Option<f64>,
+    /// Centre output plates on their faces (half the minimum thickness proud of the
+    /// surface) instead of laying them flush, reaching inward from the faces.
+    #[arg(long)]
+    no_flush_plates: bool,
+    /// Stop at exactly N clusters (the paper) even where the next merges add nothing;
+    /// by default coplanar faces merge into plates of no more area first, and plates in
+    /// one plane are joined where one covers both with no more area.
+    #[arg(long)]
+    no_join_coplanar: bool,
+    /// Price merges by the volume they add outside the input (its interior by ray
+    /// parity on a voxel grid) instead of the whole volume: closed parts fill into
+    /// solid primitives rather than shells of plates; slower.
+    #[arg(long)]
+    solid: bool,
     /// Fill each target: when removing nested primitives leaves fewer than N, merge
     /// less (search up to 8N) so the result has as many primitives as fit within N.
     /// Costs up to 4 more merge passes; the JSON's settings.merge_target says where
     /// the merge stopped.
     #[arg(long)]
     fill: bool,
-    /// Weight of the outward reach when choosing each output primitive's frame: k·V +
-    /// W·(area-weighted distance the primitive reaches past its faces' outer side). 0 =
-    /// off (the volume alone, the paper's criterion).
-    #[arg(long, default_value_t = 0.0)]
-    outward_weight: f64,
-    /// Weight of the rim reach when choosing each output primitive's frame and kind:
-    /// k·V + W·Σ len·gap², gap how far the primitive reaches past the plane of the
-    /// face across each convex boundary edge of its cluster, creases and bends of more
-    /// than 2° (a side plate standing past a wall's top as a curb). 0 = off (the
-    /// volume alone, the paper's criterion).
-    #[arg(long, default_value_t = primdecomp::params::RIM_WEIGHT)]
-    rim_weight: f64,
-    /// Stop at exactly N clusters (the paper) even where the next merges add nothing;
-    /// by default merges of coplanar clusters into a plate of no more area run first,
-    /// and plates in one plane the merge left apart are joined where one plate covers
-    /// both with no more area, so -n N gives at most N primitives, fewer where faces
-    /// merge for free.
+    /// When merged clusters' pairs are re-priced: exact (at once, the paper's greedy
+    /// order), deferred (each when popped: faster, approximate order), or a neighbour
+    /// count N: merges of clusters with N or more neighbours are deferred, others
+    /// exact. Default 64.
     #[arg(long)]
-    no_free_merges: bool,
-    /// Centre output plates on their faces (half the minimum thickness proud of the
-    /// surface) instead of laying them flush, reaching inward from the faces.
+    reprice: Option<String>,
+    /// Split the faces into K spatial parts merged in parallel (to 16x the largest
+    /// target) before the global merge: faster on several cores, merges across parts
+    /// wait. 1 = one global greedy (the paper); auto (default) = 16 parts (or one per
+    /// 65,536 faces if more) for inputs of 524,288 faces or more, else 1.
     #[arg(long)]
-    no_flush_plates: bool,
-    /// Price merges by the volume they add outside the input (its interior by ray
-    /// parity on a voxel grid) instead of the whole volume: closed parts fill into
-    /// solid primitives rather than shells of plates.
-    #[arg(long)]
-    solid: bool,
-    /// Remove boxes thinner than this fraction of the diagonal when others cover them.
-    #[arg(long)]
-    remove_thin_boxes: Option<f64>,
+    partitions: Option<String>,
     /// JSON output file; with several inputs, an output directory (default: INPUT's
     /// stem + .primdecomp.json in the current directory).
     #[arg(short, long)]
@@ -265,7 +253,7 @@ pub fn main() -> i32 {
         Cmd::Decompose(a) => decompose(*a),
         Cmd::Eval(a) => eval(a),
         Cmd::Sim(a) => sim(a),
-        Cmd::DemoScene { out } => write_atomic(&out, primdecomp::demo::demo_scene_obj().as_bytes())
+        Cmd::DemoScene { out } => write_atomic(&out, primdecomp::demo_scene_obj().as_bytes())
             .map_err(anyhow::Error::from)
             .map(|_| println!("wrote {}", out.display())),
     };
@@ -287,41 +275,41 @@ pub fn main() -> i32 {
 #[error("{0}")]
 struct BadArgs(String);
 
-/// `--reduction` (mirrors `primdecomp::Reduction`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
-enum ReductionArg {
-    Hull,
-    Extremes,
-}
-
+/// The settings: the defaults, then `--config`, then every flag given.
 fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
-    let mut p = Params {
-        targets: vec![1],
-        max_excess_volume: a.max_excess_volume,
-        tangent_eps: a.tangent_eps,
-        min_extent_rel: a.min_extent,
-        merge_min_extent_rel: a.merge_min_extent,
-        flat_merge_extent_rel: a.flat_merge_extent,
-        remove_contained: !a.keep_contained,
-        fill: a.fill,
-        outward_weight: a.outward_weight,
-        solid: a.solid,
-        rim_weight: a.rim_weight,
-        free_merges: !a.no_free_merges,
-        flush_plates: !a.no_flush_plates,
-        remove_thin_boxes: a.remove_thin_boxes,
-        partitions: match a.partitions.as_str() {
+    let mut p = match &a.config {
+        Some(path) => read_config(path)?,
+        None => Params::default(),
+    };
+    let set = |field: &mut f64, v: Option<f64>| {
+        if let Some(v) = v {
+            *field = v;
+        }
+    };
+    set(&mut p.tangent_eps, a.tangent_eps);
+    set(&mut p.min_extent, a.min_extent);
+    set(&mut p.open_holes, a.open_holes);
+    set(&mut p.rim_weight, a.rim_weight);
+    if let Some(m) = a.max_excess_volume {
+        p.max_excess_volume = Some(m);
+        p.reprice = Reprice::Exact;
+    }
+    if a.remove_thin_boxes.is_some() {
+        p.remove_thin_boxes = a.remove_thin_boxes;
+    }
+    p.remove_nested &= !a.keep_nested;
+    p.flush_plates &= !a.no_flush_plates;
+    p.join_coplanar &= !a.no_join_coplanar;
+    p.solid |= a.solid;
+    p.fill |= a.fill;
+    if let Some(k) = &a.partitions {
+        p.partitions = match k.as_str() {
             "auto" => Partitions::Auto,
             k => Partitions::Fixed(k.parse().map_err(|_| {
                 BadArgs(format!("--partitions: expected auto or a count, got '{k}'"))
             })?),
-        },
-        reduction: match a.reduction {
-            ReductionArg::Hull => Reduction::Hull,
-            ReductionArg::Extremes => Reduction::Extremes,
-        },
-        ..Default::default()
-    };
+        };
+    }
     for w in &a.weights {
         let (k, v) = w
             .split_once('=')
@@ -338,7 +326,40 @@ fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
             p.kinds[parse_kind(k)? as usize] = true;
         }
     }
-    p.dedup = match a.dedup.as_str() {
+    if let Some(d) = &a.dedup {
+        p.dedup = parse_dedup(d)?;
+    }
+    if let Some(r) = &a.reprice {
+        p.reprice = parse_reprice(r)?;
+    }
+    // Targets are resolved per input (percentages); validate with a stand-in.
+    let check = Params {
+        targets: vec![1],
+        ..p.clone()
+    };
+    check.validate().map_err(|e| BadArgs(e.to_string()))?;
+    Ok(p)
+}
+
+/// `--config FILE`: JSON (a result's settings or settings alone) or TOML settings.
+fn read_config(path: &Path) -> anyhow::Result<Params> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| BadArgs(format!("{}: cannot read the settings: {e}", path.display())))?;
+    let toml = path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("toml"));
+    let params = if toml {
+        let p: Params =
+            toml::from_str(&text).map_err(|e| BadArgs(format!("{}: {e}", path.display())))?;
+        p.validate().map(|()| p)
+    } else {
+        Params::from_json(&text)
+    };
+    params.map_err(|e| BadArgs(format!("{}: {e}", path.display())).into())
+}
+
+fn parse_dedup(d: &str) -> anyhow::Result<Dedup> {
+    Ok(match d {
         "exact" => Dedup::Exact,
         "off" => Dedup::Off,
         t => Dedup::Tolerance(t.parse().map_err(|_| {
@@ -346,8 +367,11 @@ fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
                 "--dedup: expected exact, off or a distance, got '{t}'"
             ))
         })?),
-    };
-    p.reprice = match a.reprice.as_str() {
+    })
+}
+
+fn parse_reprice(r: &str) -> anyhow::Result<Reprice> {
+    Ok(match r {
         "exact" => Reprice::Exact,
         "deferred" => Reprice::Deferred { min_degree: 0 },
         t => Reprice::Deferred {
@@ -357,17 +381,15 @@ fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
                 ))
             })?,
         },
-    };
-    p.validate().map_err(|e| BadArgs(e.to_string()))?;
-    Ok(p)
+    })
 }
 
 /// The memory limit in bytes from `--max-memory`; `None` for no limit.
 fn max_memory(a: &DecomposeArgs) -> anyhow::Result<Option<u64>> {
     Ok(match a.max_memory.trim() {
         "none" => None,
-        "available" => primdecomp::memory::available(),
-        s => Some(primdecomp::memory::parse_size(s).ok_or_else(|| {
+        "available" => crate::paths::available_memory(),
+        s => Some(crate::paths::parse_size(s).ok_or_else(|| {
             BadArgs(format!(
                 "--max-memory: expected a size like 8G, 'available' or 'none', got '{s}'"
             ))
@@ -438,7 +460,7 @@ fn eval(a: EvalArgs) -> anyhow::Result<()> {
         bail!(BadArgs("--samples must be at least 1".into()));
     }
     set_threads(a.threads)?;
-    let mesh = primdecomp::mesh::io::load(&a.input)?;
+    let mesh = primdecomp::load(&a.input)?;
     let colliders = a
         .colliders
         .iter()
@@ -465,7 +487,10 @@ fn eval(a: EvalArgs) -> anyhow::Result<()> {
 
 fn decompose(a: DecomposeArgs) -> anyhow::Result<()> {
     let base = params_from(&a)?;
-    let targets = parse_targets(&a.targets)?;
+    let targets = match &a.targets {
+        Some(t) => parse_targets(t)?,
+        None => base.targets.iter().map(|&n| Target::Count(n)).collect(),
+    };
     set_threads(a.threads)?;
     if a.inputs.len() == 1 {
         let out = a.out.clone().unwrap_or_else(|| default_out(&a.inputs[0]));
@@ -527,15 +552,15 @@ fn run_one(
     beside_others: bool,
 ) -> anyhow::Result<Decomposition> {
     let now = Instant::now();
-    let mesh = primdecomp::mesh::io::load_limited(input, max_memory(a)?)?;
+    let mesh = primdecomp::load_limited(input, max_memory(a)?)?;
     let load_s = now.elapsed().as_secs_f64();
     let params = Params {
         targets: resolve_targets(targets, mesh.face_count()),
         ..base.clone()
     };
     let bar = progress_bar(mesh.face_count(), a.quiet || beside_others);
-    let mut dec = primdecomp::decompose::decompose_with_progress(&mesh, &params, &|f| {
-        if let Some(b) = &bar {
+    let mut dec = primdecomp::decompose_with(&mesh, &params, &|stage: Stage, f: f64| {
+        if let (Some(b), Stage::Merge) = (&bar, stage) {
             b.set_position((f * 1000.0) as u64);
         }
     })?;
@@ -636,15 +661,15 @@ fn write_outputs(
     for (i, level) in dec.levels.iter().enumerate() {
         let path = output_path_for(out, level.target, n);
         let json = if timed {
-            export::json::to_json_timed(dec, i, params)
+            export::to_json_timed(dec, i, params)
         } else {
-            export::json::to_json(dec, i, params)
+            export::to_json(dec, i, params)
         };
         write_atomic(&path, json.as_bytes())?;
         written.push(path);
         if let Some(o) = obj {
             let path = output_path_for(o, level.target, n);
-            write_atomic(&path, export::obj::to_obj(level, detail).as_bytes())?;
+            write_atomic(&path, export::to_obj(level, detail).as_bytes())?;
             written.push(path);
         }
     }
@@ -658,13 +683,14 @@ fn print_summary(dec: &Decomposition, mesh: &primdecomp::Mesh, written: &[PathBu
         i.path.as_deref().unwrap_or("-"),
         i.faces,
         i.vertices,
-        dec.welded_vertices,
-        dec.adjacency_edges
+        dec.stats.welded_vertices,
+        dec.stats.adjacency_edges
     );
-    if mesh.skipped.short_faces + mesh.skipped.other > 0 {
+    let skipped = mesh.skipped();
+    if skipped.short_faces + skipped.other > 0 {
         println!(
             "skipped   {} faces with fewer than 3 vertices or lines, {} other elements",
-            mesh.skipped.short_faces, mesh.skipped.other
+            skipped.short_faces, skipped.other
         );
     }
     for l in &dec.levels {
@@ -700,19 +726,19 @@ fn print_timings(dec: &Decomposition, write_s: f64, several: bool) {
         stages.join(", "),
         dec.timings.total() + write_s
     );
-    let f = dec.fits;
+    let st = &dec.stats;
     println!(
         "fits      {} merges{}; {} seeding, {} re-priced at once, {} when popped ({:.2} per merge); {} merges' points reduced ahead",
-        dec.merges,
-        match dec.merges_past {
+        st.merges,
+        match st.merges_past {
             0 => String::new(),
             n => format!(" (and {n} past the target by components' loops)"),
         },
-        f.seed,
-        f.eager,
-        f.lazy,
-        (f.eager + f.lazy) as f64 / dec.merges.max(1) as f64,
-        dec.merges_ahead
+        st.fits_seeded,
+        st.fits_at_once,
+        st.fits_when_popped,
+        (st.fits_at_once + st.fits_when_popped) as f64 / st.merges.max(1) as f64,
+        st.merges_ahead
     );
     if let Some(kib) = peak_rss_kib() {
         // The process's peak so far: with several inputs, of all of them up to now.
@@ -736,7 +762,7 @@ fn peak_rss_kib() -> Option<u64> {
 }
 
 fn sim(a: SimArgs) -> anyhow::Result<()> {
-    let mesh = primdecomp::mesh::io::load(&a.input)?;
+    let mesh = primdecomp::load(&a.input)?;
     let entries = a
         .colliders
         .iter()

@@ -319,7 +319,7 @@ fn memory_limit_refuses_up_front() {
         "error: big.obj: decomposing this mesh (2000 faces, 6000 vertices) needs about 41.4 MiB, \
          more than the memory limit of 40.0 MiB (default: the memory available now); raise \
          the limit with --max-memory SIZE, e.g. --max-memory 64G (in the library: the \
-         max_memory of mesh::io::load_limited)"
+         max_memory of primdecomp::load_limited)"
     );
     assert!(!dir.join("big.json").exists());
     let (code, err) = run_in(

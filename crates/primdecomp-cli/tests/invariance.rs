@@ -1,16 +1,16 @@
 //! Same shape, same answer: the result must not depend on the thread count, the
 //! input's units or its position (georeferenced scans sit at 10^6 offsets).
 
-use primdecomp::export::json::to_json;
-use primdecomp::{decompose, demo, Decomposition, Kind, Mesh, Params, Primitive};
-use primdecomp_testkit::shapes::{cuboid, cylinder, join, obj_text};
+use primdecomp::to_json;
+use primdecomp::{decompose, Decomposition, Kind, Mesh, Params, Primitive};
+use primdecomp_testkit::shapes::{cuboid, cylinder, demo_polys, join, obj_text};
 
 fn demo_mesh(scale: f64, offset: [f64; 3]) -> Mesh {
-    let mut b = demo::demo_scene();
-    for p in &mut b.positions {
+    let (mut v, f) = demo_polys();
+    for p in &mut v {
         *p = [0, 1, 2].map(|k| p[k] * scale + offset[k]);
     }
-    Mesh::from_builder(b)
+    Mesh::from_polygons(&v, &f).unwrap()
 }
 
 fn params() -> Params {

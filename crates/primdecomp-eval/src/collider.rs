@@ -1,5 +1,5 @@
 //! Colliders to evaluate or simulate: our primitives (a primdecomp JSON document,
-//! read by [`primdecomp::export::read_primitives`]) or convex hulls in an OBJ file, one
+//! read by [`primdecomp::read_primitives`]) or convex hulls in an OBJ file, one
 //! hull per `o` object or `g` group, as CoACD and V-HACD write them.
 //!
 //! The OBJ reader follows the mesh reader's rules (global 1-based or negative
@@ -8,9 +8,9 @@
 //! of their own; objects or groups without faces are dropped. Each hull keeps only
 //! the vertices its faces use, in f64 world coordinates.
 
-use primdecomp::error::{Error, Result};
 use primdecomp::math::V3;
-use primdecomp::primitive::{Kind, Primitive};
+use primdecomp::{Error, Result};
+use primdecomp::{Kind, Primitive};
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -98,7 +98,7 @@ pub fn parse_json(bytes: &[u8], path: &Path) -> Result<Collider> {
             "the JSON document is not UTF-8",
         )
     })?;
-    let prims = primdecomp::export::read_primitives(text).map_err(|m| Error::format(path, m))?;
+    let prims = primdecomp::read_primitives(text).map_err(|m| Error::format(path, m))?;
     if prims.is_empty() {
         return Err(Error::format(path, "the document has no primitives"));
     }
@@ -109,24 +109,17 @@ pub fn parse_json(bytes: &[u8], path: &Path) -> Result<Collider> {
 /// with its objects ([`primdecomp::Mesh::objects`]), each fan-triangulated on the
 /// vertices its faces use.
 pub fn parse_hulls_obj(bytes: &[u8], path: &Path) -> Result<Vec<Hull>> {
-    let mesh = primdecomp::mesh::io::parse_bytes(bytes, primdecomp::mesh::io::Format::Obj, path)?;
+    let mesh = primdecomp::parse_mesh(bytes, primdecomp::Format::Obj, path)?;
     let mut hulls = Vec::new();
-    let mut starts: Vec<usize> = mesh.objects.iter().map(|o| o.1 as usize).collect();
-    if starts.first() != Some(&0) {
-        starts.insert(0, 0);
-    }
-    starts.push(mesh.face_count());
-    for w in starts.windows(2) {
+    for object in mesh.objects() {
         let mut local: HashMap<u32, u32> = HashMap::new();
         let mut hull = Hull::default();
-        for f in w[0]..w[1] {
-            let o = &mesh.face_offsets;
-            let corners = &mesh.face_indices[o[f] as usize..o[f + 1] as usize];
-            let mut ids = corners.iter().map(|&c| {
+        for f in object.faces {
+            let mut ids = mesh.face(f).iter().map(|&c| {
                 let next = hull.positions.len() as u32;
                 let l = *local.entry(c).or_insert(next);
                 if l == next {
-                    hull.positions.push(mesh.positions[c as usize]);
+                    hull.positions.push(mesh.world_pos(c));
                 }
                 l
             });
@@ -154,7 +147,7 @@ pub fn parse_hulls_obj(bytes: &[u8], path: &Path) -> Result<Vec<Hull>> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use primdecomp::primitive::Sphere;
+    use primdecomp::Sphere;
 
     fn hulls(s: &str) -> Result<Vec<Hull>> {
         parse_hulls_obj(s.as_bytes(), Path::new("h.obj"))

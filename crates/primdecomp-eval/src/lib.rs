@@ -25,8 +25,8 @@ pub mod shape;
 use crate::collider::{Collider, Hull};
 use bvh::{point_tri_dist2, tri_box, Bvh};
 use primdecomp::math::{cross, dot, norm, normalize, scale, sub, V3};
-use primdecomp::mesh::Mesh;
-use primdecomp::primitive::Primitive;
+use primdecomp::Mesh;
+use primdecomp::Primitive;
 use rayon::prelude::*;
 use sample::{Sample, Surface};
 use shape::Piece;
@@ -65,7 +65,7 @@ pub struct Input {
 impl Input {
     /// Fan-triangulates the mesh's polygons (re-centred frame).
     pub fn new(mesh: &Mesh) -> Input {
-        let mut tris = Vec::with_capacity(mesh.face_indices.len());
+        let mut tris = Vec::with_capacity(mesh.face_count());
         for f in 0..mesh.face_count() {
             let v = mesh.face(f);
             for k in 2..v.len() {
@@ -81,7 +81,7 @@ impl Input {
             bvh: Bvh::build(&boxes),
             tris,
             surface,
-            offset: mesh.offset,
+            offset: mesh.centre(),
             diag: mesh.diagonal(),
         }
     }
@@ -98,6 +98,17 @@ impl Input {
             .0
             .sqrt()
     }
+}
+
+/// The box no point is in: the start of a fold over points.
+const EMPTY_BOX: (V3, V3) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+
+fn min3(a: V3, b: V3) -> V3 {
+    [a[0].min(b[0]), a[1].min(b[1]), a[2].min(b[2])]
+}
+
+fn max3(a: V3, b: V3) -> V3 {
+    [a[0].max(b[0]), a[1].max(b[1]), a[2].max(b[2])]
 }
 
 /// A collider's parts in the input's frame, with their surfaces and a BVH.
@@ -149,7 +160,7 @@ impl Parts {
             }
             owner.resize(tris.len(), i as u32);
             let pts = tris[first..].iter().flatten().copied();
-            boxes.push(primdecomp::mesh::aabb_of(pts));
+            boxes.push(pts.fold(EMPTY_BOX, |(lo, hi), p| (min3(lo, p), max3(hi, p))));
             planes.push(hull_planes(&tris[first..]));
         }
         let tri_boxes: Vec<_> = tris.iter().map(tri_box).collect();
@@ -289,7 +300,7 @@ pub fn evaluate(input: &Input, collider: &Collider, samples: usize, seed: u64) -
 #[cfg(test)]
 mod tests {
     use super::*;
-    use primdecomp::primitive::{Obb, Sphere};
+    use primdecomp::{Obb, Sphere};
 
     /// The box's surface as a triangle mesh.
     pub(crate) fn box_mesh(b: &Primitive) -> Mesh {
@@ -298,7 +309,7 @@ mod tests {
         };
         let v: Vec<V3> = shape::box_triangles(b).into_iter().flatten().collect();
         let f: Vec<Vec<u32>> = (0..12).map(|i| vec![3 * i, 3 * i + 1, 3 * i + 2]).collect();
-        Mesh::from_polygons(&v, &f)
+        Mesh::from_polygons(&v, &f).unwrap()
     }
 
     fn cube(h: f64) -> Primitive {

@@ -8,7 +8,7 @@
 //! true surface, and the distance is to the true surface.
 
 use primdecomp::math::{add, cross, dot, madd, norm, norm2, normalize, scale, sub, V3};
-use primdecomp::primitive::{Obb, Primitive, Prism};
+use primdecomp::{Obb, Primitive, Prism};
 use std::f64::consts::PI;
 
 /// A surface piece with a closed-form area and an area-uniform sampler.
@@ -296,12 +296,12 @@ fn revolved_dist2(p: V3, p0: V3, p1: V3, r0: f64, r1: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use primdecomp::primitive::{Capsule, Cylinder, Frustum, Sphere};
+    use primdecomp::{Capsule, Cylinder, Frustum, Sphere};
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
     pub(crate) fn all_kinds() -> Vec<Primitive> {
-        let axes = primdecomp::math::quat::axes_from_quat([0.3, -0.2, 0.5, 0.8]);
+        let axes = primdecomp::math::axes_from_quat([0.3, -0.2, 0.5, 0.8]);
         vec![
             Primitive::Box(Obb {
                 center: [1.0, 2.0, 3.0],

@@ -4,8 +4,8 @@
 //! distance computed by quadrature, approached as samples grow), and the same
 //! numbers on one and on several threads.
 
-use primdecomp::primitive::{Obb, Sphere};
 use primdecomp::{Mesh, Primitive};
+use primdecomp::{Obb, Sphere};
 use primdecomp_eval::collider::{self, Collider};
 use primdecomp_eval::shape::box_triangles;
 use primdecomp_eval::{evaluate, Input, Metrics};
@@ -27,7 +27,7 @@ fn cube_mesh(h: f64, c: [f64; 3]) -> Mesh {
     };
     let v: Vec<[f64; 3]> = box_triangles(&b).into_iter().flatten().collect();
     let f: Vec<Vec<u32>> = (0..12).map(|i| vec![3 * i, 3 * i + 1, 3 * i + 2]).collect();
-    Mesh::from_polygons(&v, &f)
+    Mesh::from_polygons(&v, &f).unwrap()
 }
 
 fn cube_box(h: f64, c: [f64; 3]) -> Collider {

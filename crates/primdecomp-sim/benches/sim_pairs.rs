@@ -11,8 +11,8 @@
 //! Run: `cargo bench --bench sim_pairs` (figures in docs/results/sim.md).
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use primdecomp::export::tessellate;
-use primdecomp::primitive::{Frustum, Primitive, Prism};
+use primdecomp::tessellate;
+use primdecomp::{Frustum, Primitive, Prism};
 use primdecomp_sim::shapes::{self, Frame, Placed};
 use rapier3d::geometry::SharedShape;
 use rapier3d::math::{Pose, Vector};
@@ -84,7 +84,7 @@ fn cases() -> Vec<(&'static str, Placed)> {
         (
             "frustum_hull_32",
             shapes::hull(
-                &tessellate(&frustum, shapes::FRUSTUM_SEGMENTS)
+                &tessellate(&frustum, primdecomp_sim::frustum_shape::FRUSTUM_SEGMENTS)
                     .vertices
                     .into_iter()
                     .map(|q| frame.point(q))

@@ -19,11 +19,15 @@
 
 use super::hull_backed::hull_backed_shape;
 use super::prism_shape::on_segment;
-use super::shapes::FRUSTUM_SEGMENTS;
 use rapier3d::math::{Real, Vector};
 use rapier3d::parry::query::PointProjection;
 use rapier3d::parry::shape::{ConvexPolyhedron, FeatureId};
 use std::f32::consts::PI;
+
+/// Segments around the frustum's circles in its convex hull: the OBJ export's
+/// conservative tessellation (vertex radius r / cos(π/k)), so the hull contains the
+/// exact frustum.
+pub const FRUSTUM_SEGMENTS: usize = 16;
 
 const K: usize = FRUSTUM_SEGMENTS;
 

@@ -61,9 +61,9 @@ pub mod scene;
 pub mod shapes;
 
 use metrics::{Behaviour, FrameStats};
-use primdecomp::error::{Error, Result};
 use primdecomp::math::V3;
-use primdecomp::mesh::Mesh;
+use primdecomp::Mesh;
+use primdecomp::{Error, Result};
 use primdecomp_eval::collider::Collider;
 use scene::{Scene, World};
 use shapes::Placed;
@@ -298,7 +298,7 @@ pub(crate) fn cuboid_mesh(lo: V3, hi: V3) -> Mesh {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use primdecomp::primitive::{Obb, Primitive};
+    use primdecomp::{Obb, Primitive};
     use primdecomp_eval::collider::{parse_hulls_obj, parse_json};
     use std::path::Path;
 

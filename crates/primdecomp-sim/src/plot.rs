@@ -9,7 +9,6 @@
 use super::report::column_names;
 use super::Run;
 use plotters::prelude::*;
-use primdecomp::error::{Error, Result};
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
 
@@ -118,13 +117,27 @@ pub fn to_png(run: &Run, title: &str) -> std::result::Result<Vec<u8>, String> {
     Ok(out)
 }
 
+/// Why a plot was not written.
+#[derive(Debug, thiserror::Error)]
+pub enum PlotError {
+    /// It could not be drawn (no usable font, drawing failed).
+    #[error("{path}: cannot draw the plot: {msg}")]
+    Draw {
+        path: std::path::PathBuf,
+        msg: String,
+    },
+    /// It could not be written.
+    #[error(transparent)]
+    Write(#[from] primdecomp::Error),
+}
+
 /// Writes the plot to `path` atomically.
-pub fn write_png(run: &Run, title: &str, path: &Path) -> Result<()> {
-    let bytes = to_png(run, title).map_err(|msg| Error::Plot {
+pub fn write_png(run: &Run, title: &str, path: &Path) -> std::result::Result<(), PlotError> {
+    let bytes = to_png(run, title).map_err(|msg| PlotError::Draw {
         path: path.to_path_buf(),
         msg,
     })?;
-    primdecomp::export::write_atomic(path, &bytes)
+    Ok(primdecomp::write_atomic(path, &bytes)?)
 }
 
 #[cfg(test)]
@@ -139,10 +152,11 @@ mod tests {
             eprintln!("FONT ABSENT: skipping the plot test: {e}");
             return;
         }
-        let mesh = primdecomp::mesh::Mesh::from_polygons(
+        let mesh = primdecomp::Mesh::from_polygons(
             &[[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]],
             &[vec![0, 1, 2]],
-        );
+        )
+        .unwrap();
         let settings = crate::Settings {
             balls: 3,
             frames: 5,

@@ -222,7 +222,7 @@ pub fn ends_csv(run: &Run) -> String {
 mod tests {
     use super::*;
     use crate::{run, Entry, Geometry, Settings};
-    use primdecomp::primitive::{Obb, Primitive};
+    use primdecomp::{Obb, Primitive};
     use primdecomp_eval::collider::Collider;
 
     /// The end-points CSV has one row per collider and ball, in input coordinates: a

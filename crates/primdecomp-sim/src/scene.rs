@@ -6,7 +6,7 @@ use super::profile::{Profile, Tally};
 use super::shapes::{Frame, Placed};
 use super::Settings;
 use primdecomp::math::{norm, sub, V3};
-use primdecomp::mesh::Mesh;
+use primdecomp::Mesh;
 use rapier3d::dynamics::{RigidBodyBuilder, RigidBodyHandle};
 use rapier3d::geometry::{ColliderBuilder, SharedShape};
 use rapier3d::math::Vector;
@@ -73,7 +73,7 @@ impl Scene {
             1.0
         };
         let frame = Frame {
-            offset: mesh.offset,
+            offset: mesh.centre(),
             scale,
         };
         let aabb = (lo.map(|x| x * scale), hi.map(|x| x * scale));

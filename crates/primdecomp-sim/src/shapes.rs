@@ -9,20 +9,15 @@
 //! relative to their own centroid and the centroid goes into the pose, so f32
 //! keeps the detail of small parts far from the origin.
 
-use super::frustum_shape::FrustumShape;
+use super::frustum_shape::{FrustumShape, FRUSTUM_SEGMENTS};
 use super::prism_shape::PrismShape;
-use primdecomp::export::obj;
-use primdecomp::math::quat::quat_from_axes;
+use primdecomp::export::circle_frame;
+use primdecomp::math::quat_from_axes;
 use primdecomp::math::{add, cross, norm2, normalize, scale, sub, V3};
-use primdecomp::mesh::Mesh;
-use primdecomp::primitive::{Frustum, Primitive};
+use primdecomp::Mesh;
+use primdecomp::{Frustum, Primitive};
 use rapier3d::geometry::SharedShape;
 use rapier3d::math::{Pose, Rotation, Vector};
-
-/// Segments around the frustum's circles in its convex hull: the OBJ export's
-/// conservative tessellation (vertex radius r / cos(π/k)), so the hull contains the
-/// exact frustum.
-pub const FRUSTUM_SEGMENTS: usize = 16;
 
 /// World → simulation coordinates: `(p − offset) · scale`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -126,7 +121,7 @@ pub fn primitive(p: &Primitive, frame: &Frame) -> Option<Placed> {
 fn frustum(f: &Frustum, frame: &Frame) -> Option<Placed> {
     let (p0, p1) = (frame.point(f.p0), frame.point(f.p1));
     let a = normalize(sub(p1, p0)).unwrap_or([0.0, 0.0, 1.0]);
-    let (u, _) = obj::frame(a);
+    let (u, _) = circle_frame(a);
     let circ = frame.scale / (std::f64::consts::PI / FRUSTUM_SEGMENTS as f64).cos();
     let hy = 0.5 * norm2(sub(p1, p0)).sqrt();
     let shape = FrustumShape::new(hy as f32, (f.r0 * circ) as f32, (f.r1 * circ) as f32)?;
@@ -143,7 +138,7 @@ pub fn trimesh(mesh: &Mesh, frame: &Frame) -> Option<Placed> {
     let vertices: Vec<Vector> = (0..mesh.vertex_count() as u32)
         .map(|v| Frame::vector(scale(mesh.pos(v), s)))
         .collect();
-    let mut triangles = Vec::with_capacity(mesh.face_indices.len());
+    let mut triangles = Vec::with_capacity(mesh.face_count());
     for f in 0..mesh.face_count() {
         let face = mesh.face(f);
         for k in 1..face.len() - 1 {
@@ -169,7 +164,7 @@ pub fn trimesh(mesh: &Mesh, frame: &Frame) -> Option<Placed> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use primdecomp::primitive::{Capsule, Cylinder, Obb, Prism, Sphere};
+    use primdecomp::{Capsule, Cylinder, Obb, Prism, Sphere};
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
@@ -271,7 +266,7 @@ mod tests {
     fn trimesh_is_recentred_and_scaled() {
         let mesh = crate::cuboid_mesh([10.0, 0.0, 0.0], [11.0, 1.0, 1.0]);
         let frame = Frame {
-            offset: mesh.offset,
+            offset: mesh.centre(),
             scale: 2.0,
         };
         let (shape, pose) = trimesh(&mesh, &frame).expect("a closed cube");

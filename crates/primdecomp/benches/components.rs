@@ -36,7 +36,7 @@ fn tetrahedra(c: usize) -> Mesh {
             f.push(t.iter().map(|&k| b + k).collect::<Vec<u32>>());
         }
     }
-    Mesh::from_polygons(&v, &f)
+    Mesh::from_polygons(&v, &f).unwrap()
 }
 
 fn components(c: &mut Criterion) {

@@ -7,11 +7,11 @@
 //! e.g. `cargo bench --bench stages -- merge/medium`, to run one).
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion};
-use primdecomp::decompose::{evaluator, seed_volumes};
-use primdecomp::merge::{run_with, Clusters, StdHeap};
-use primdecomp::mesh::{adjacency, dedup, io};
-use primdecomp::postprocess::{keep_mask, Cleanup};
-use primdecomp::{decompose, demo, quadric, Mesh, Params};
+use primdecomp::internals::{
+    evaluator, face_pairs, face_quadrics, keep_mask, run, run_with, seed_volumes, weld, Cleanup,
+    Clusters, StdHeap,
+};
+use primdecomp::{decompose, demo_scene, load, Mesh, Params};
 use std::path::PathBuf;
 use std::time::Duration;
 
@@ -38,14 +38,14 @@ fn inputs() -> Vec<Input> {
     let mut v = vec![Input {
         name: "small",
         path: None,
-        mesh: Mesh::from_builder(demo::demo_scene()),
+        mesh: demo_scene(),
     }];
     for (name, file) in [
         ("medium", "armadillo_libigl.obj"),
         ("large", "dragon_vrip_full.ply"),
     ] {
         if let Some(p) = corpus(file) {
-            let mesh = io::load(&p).expect("corpus mesh loads");
+            let mesh = load(&p).expect("corpus mesh loads");
             v.push(Input {
                 name,
                 path: Some(p),
@@ -70,45 +70,39 @@ fn stages(c: &mut Criterion) {
         let mut g = c.benchmark_group(format!("stages/{}", inp.name));
         g.sample_size(10).warm_up_time(Duration::from_millis(500));
         if let Some(path) = &inp.path {
-            g.bench_function("load", |b| b.iter(|| io::load(path).unwrap()));
+            g.bench_function("load", |b| b.iter(|| load(path).unwrap()));
         }
-        g.bench_function("dedup", |b| b.iter(|| dedup::weld(m, p.dedup)));
-        let (welded, _) = dedup::weld(m, p.dedup);
-        g.bench_function("adjacency", |b| {
-            b.iter(|| adjacency::face_pairs(&m.face_offsets, &welded))
-        });
-        let pairs = adjacency::face_pairs(&m.face_offsets, &welded);
+        g.bench_function("dedup", |b| b.iter(|| weld(m, p.dedup)));
+        let (welded, _) = weld(m, p.dedup);
+        g.bench_function("adjacency", |b| b.iter(|| face_pairs(m, &welded)));
+        let pairs = face_pairs(m, &welded);
         // Setup never relies on a bench closure having run (filters skip them).
         let mut q = Vec::new();
-        quadric::face_quadrics(m, p.tangent_eps, &mut q);
+        face_quadrics(m, p.tangent_eps, &mut q);
         let mut q_bench = Vec::new();
         g.bench_function("quadrics", |b| {
-            b.iter(|| quadric::face_quadrics(m, p.tangent_eps, &mut q_bench))
+            b.iter(|| face_quadrics(m, p.tangent_eps, &mut q_bench))
         });
         let ev = evaluator(m, &welded, &p, m.aabb());
         g.bench_function("seed", |b| b.iter(|| seed_volumes(&ev, &q)));
         let vols = seed_volumes(&ev, &q);
         let fresh = || Clusters::new(q.clone(), vols.clone(), &pairs);
         g.bench_function("merge", |b| {
-            b.iter_batched(
-                fresh,
-                |cl| primdecomp::merge::run(&ev, cl, &p.targets, &|_| {}),
-                BatchSize::LargeInput,
-            )
+            b.iter_batched(fresh, |cl| run(&ev, cl, &p.targets), BatchSize::LargeInput)
         });
         // The same merge loop driven by std's BinaryHeap: the radix heap's reference.
         g.bench_function("merge_binary_heap", |b| {
             b.iter_batched(
                 fresh,
-                |cl| run_with::<StdHeap>(&ev, cl, &p.targets, &|_| {}),
+                |cl| run_with::<StdHeap>(&ev, cl, &p.targets),
                 BatchSize::LargeInput,
             )
         });
-        let merged = primdecomp::merge::run(&ev, fresh(), &p.targets, &|_| {});
+        let merged = run(&ev, fresh(), &p.targets);
         let snap = &merged.snapshots[0];
         let cleanup = Cleanup {
             diagonal: m.diagonal(),
-            remove_contained: true,
+            remove_nested: true,
             thin_box_half: None,
         };
         g.bench_function("postprocess", |b| {
@@ -116,7 +110,7 @@ fn stages(c: &mut Criterion) {
         });
         let dec = decompose(m, &p).unwrap();
         g.bench_function("output_json", |b| {
-            b.iter(|| primdecomp::export::json::to_json(&dec, 0, &p))
+            b.iter(|| primdecomp::to_json(&dec, 0, &p))
         });
         g.bench_function("end_to_end", |b| b.iter(|| decompose(m, &p).unwrap()));
         g.finish();

@@ -12,10 +12,12 @@
 //! overshoots N). The post-processed count is not monotone in T, so the result is the
 //! best rung found, not a proven optimum.
 
-use crate::decompose::{decompose_once, Decomposition, Level};
 use crate::error::Result;
 use crate::mesh::Mesh;
 use crate::params::Params;
+use crate::pipeline;
+use crate::progress::{Progress, Stage};
+use crate::result::{Decomposition, Level};
 use std::time::Instant;
 
 /// Candidate targets per round (one merge pass gives them all).
@@ -107,20 +109,16 @@ impl Search {
     }
 }
 
-/// [`crate::decompose::decompose_with_progress`] with `params.fill`: the first pass at
-/// the requested targets, then up to [`ROUNDS`] ladder passes for the targets the
-/// post-processing left short; progress runs over all of them.
-pub fn fill(
-    mesh: &Mesh,
-    params: &Params,
-    progress: &(dyn Fn(f64) + Sync),
-) -> Result<Decomposition> {
+/// [`crate::decompose_with`] with `params.fill`: the first pass at the requested
+/// targets, then up to [`ROUNDS`] ladder passes for the targets the post-processing
+/// left short; the merge stage's progress runs over all of them.
+pub(crate) fn fill(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Result<Decomposition> {
     let once = Params {
         fill: false,
         ..params.clone()
     };
     // Progress: the first pass is the first half, each round an equal share of the rest.
-    let mut dec = decompose_once(mesh, &once, &|f| progress(0.5 * f))?;
+    let mut dec = pipeline::run(mesh, &once, &Share::new(progress, 0.0, 0.5))?;
     let faces = mesh.face_count();
     let levels = std::mem::take(&mut dec.levels);
     let mut searches: Vec<Search> = levels.into_iter().map(|l| Search::new(l, faces)).collect();
@@ -134,22 +132,52 @@ pub fn fill(
         let now = Instant::now();
         let share = 0.5 / ROUNDS as f64;
         let start = 0.5 + share * (round - 1) as f64;
-        let run = decompose_once(
-            mesh,
-            &Params {
-                targets,
-                ..once.clone()
-            },
-            &|f| progress(start + share * f),
-        )?;
-        dec.merges += run.merges;
-        dec.fits += run.fits;
+        let ladder = Params {
+            targets,
+            ..once.clone()
+        };
+        let run = pipeline::run(mesh, &ladder, &Share::new(progress, start, share))?;
+        dec.stats.merges += run.stats.merges;
+        dec.stats.fits_seeded += run.stats.fits_seeded;
+        dec.stats.fits_at_once += run.stats.fits_at_once;
+        dec.stats.fits_when_popped += run.stats.fits_when_popped;
         for s in &mut searches {
             s.update(&run.levels);
         }
-        dec.timings.push(&format!("fill {round}"), now);
+        dec.timings
+            .push(&format!("fill {round}"), now.elapsed().as_secs_f64());
     }
     dec.levels = searches.into_iter().map(|s| s.best).collect();
-    progress(1.0);
+    progress.update(Stage::Merge, 1.0);
     Ok(dec)
+}
+
+/// One pass's share of the whole search's merge progress: its merge stage's fraction
+/// f is reported as `start + share·f`; other stages pass through, as does cancelling.
+struct Share<'p> {
+    inner: &'p dyn Progress,
+    start: f64,
+    share: f64,
+}
+
+impl<'p> Share<'p> {
+    fn new(inner: &'p dyn Progress, start: f64, share: f64) -> Self {
+        Share {
+            inner,
+            start,
+            share,
+        }
+    }
+}
+
+impl Progress for Share<'_> {
+    fn update(&self, stage: Stage, fraction: f64) {
+        match stage {
+            Stage::Merge => self.inner.update(stage, self.start + self.share * fraction),
+            _ => self.inner.update(stage, fraction),
+        }
+    }
+    fn cancelled(&self) -> bool {
+        self.inner.cancelled()
+    }
 }

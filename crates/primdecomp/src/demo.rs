@@ -8,7 +8,7 @@
 //! `datasets/demo_scene.obj` is [`demo_scene_obj`]'s output, checked by a test.
 
 use crate::math::{add, madd, scale, V3};
-use crate::mesh::MeshBuilder;
+use crate::mesh::{Mesh, MeshBuilder};
 use std::collections::HashMap;
 use std::f64::consts::{FRAC_PI_2, TAU};
 use std::fmt::Write;
@@ -258,21 +258,33 @@ fn build() -> Scene {
     s
 }
 
-/// The demo scene as polygons in world coordinates (meters, +y up).
-pub fn demo_scene() -> MeshBuilder {
+/// The built-in demo scene, made in code: a staircase, a table, three pipes (one bent
+/// by an elbow), a gable-roof house, a torus and a washer, laid out along +x in
+/// meters with +y up; 1,829 polygons (quads and n-gon caps kept whole), each object
+/// named ([`Mesh::objects`]). The same mesh as `datasets/demo_scene.obj`
+/// ([`demo_scene_obj`]).
+///
+/// ```
+/// let scene = primdecomp::demo_scene();
+/// assert_eq!(scene.face_count(), 1829);
+/// assert_eq!(scene.objects()[0].name, "stairs_step_0");
+/// ```
+pub fn demo_scene() -> Mesh {
     let s = build();
     let mut b = MeshBuilder::new();
     b.positions = s.positions;
     for o in &s.objects {
+        b.start_object(o.name.clone());
         for f in &o.faces {
             b.push_face(f);
         }
     }
-    b
+    Mesh::from_builder(b)
 }
 
-/// The demo scene as OBJ text: each object's new vertices follow its `o` line,
-/// then its faces (1-based, global indices). This is `datasets/demo_scene.obj`.
+/// The demo scene ([`demo_scene`]) as OBJ text: each object's new vertices follow its
+/// `o` line, then its faces (1-based, global indices). This is
+/// `datasets/demo_scene.obj`.
 pub fn demo_scene_obj() -> String {
     let s = build();
     let faces: usize = s.objects.iter().map(|o| o.faces.len()).sum();
@@ -400,10 +412,18 @@ mod tests {
 
     #[test]
     fn size_and_consistency() {
-        let b = demo_scene();
-        let faces = b.face_count();
+        let mesh = demo_scene();
+        let faces = mesh.face_count();
         assert!((1000..=5000).contains(&faces), "{faces} faces");
-        assert_eq!(b.skipped, Default::default());
+        assert_eq!(mesh.skipped, Default::default());
+        let s = build();
+        let b = (
+            s.positions,
+            s.objects
+                .iter()
+                .flat_map(|o| o.faces.concat())
+                .collect::<Vec<u32>>(),
+        );
         let text = demo_scene_obj();
         assert!(text.len() < 200_000, "{} bytes", text.len());
         // The OBJ text describes exactly the builder's mesh.
@@ -417,8 +437,8 @@ mod tests {
                 _ => {}
             }
         }
-        assert_eq!(pos, b.positions);
-        assert_eq!(idx, b.face_indices);
+        assert_eq!(pos, b.0);
+        assert_eq!(idx, b.1);
         assert!(pos.iter().all(|p| p[1] >= 0.0 && norm(*p) < 20.0));
     }
 }

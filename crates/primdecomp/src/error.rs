@@ -10,32 +10,48 @@ pub enum Error {
     /// The file could not be opened, mapped or read.
     #[error("{path}: cannot read: {source}")]
     Io {
+        /// The file.
         path: PathBuf,
+        /// What the operating system said.
         #[source]
         source: std::io::Error,
     },
     /// A text format is malformed at a given 1-based line.
     #[error("{path}:{line}: {msg}")]
     ParseLine {
+        /// The file.
         path: PathBuf,
+        /// 1-based line number.
         line: u64,
+        /// What is wrong there.
         msg: String,
     },
     /// A binary format is malformed at a given byte offset.
     #[error("{path}: at byte {offset}: {msg}")]
     ParseByte {
+        /// The file.
         path: PathBuf,
+        /// 0-based byte offset.
         offset: u64,
+        /// What is wrong there.
         msg: String,
     },
     /// The file is not in a format we read (unknown extension, compressed data, a directory…).
     #[error("{path}: {msg}")]
-    Format { path: PathBuf, msg: String },
+    Format {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong with it.
+        msg: String,
+    },
     /// The input parsed but has no polygon face to decompose.
     #[error(
         "{path}: the mesh has no polygon faces (faces with fewer than 3 vertices are skipped)"
     )]
-    EmptyMesh { path: PathBuf },
+    EmptyMesh {
+        /// The file (`<mesh>` for a mesh built in memory).
+        path: PathBuf,
+    },
     /// A vertex lies so far from the others that volumes (cubes of lengths) and the
     /// eigen-solver's squared entries would overflow f64.
     #[error(
@@ -43,10 +59,13 @@ pub enum Error {
          every vertex must lie within {limit:e} of it (rescale the mesh)"
     )]
     Extent {
+        /// The file (`<mesh>` for a mesh built in memory).
         path: PathBuf,
         /// 1-based, in the order the file lists vertices.
         vertex: u64,
+        /// Its distance from the centre of the bounding box.
         distance: f64,
+        /// The largest distance accepted.
         limit: f64,
     },
     /// A vertex lies so far from the origin that the written cylinders and frustums
@@ -56,10 +75,13 @@ pub enum Error {
          lie within ±{limit:e} (move the mesh nearer the origin)"
     )]
     Position {
+        /// The file (`<mesh>` for a mesh built in memory).
         path: PathBuf,
         /// 1-based, in the order the file lists vertices.
         vertex: u64,
+        /// The offending coordinate.
         coordinate: f64,
+        /// The largest magnitude accepted.
         limit: f64,
     },
     /// Decomposing the input would need more memory than allowed (checked before
@@ -68,27 +90,34 @@ pub enum Error {
         "{path}: decomposing this mesh ({faces} faces, {vertices} vertices) needs about {}, \
          more than the memory limit of {} (default: the memory available now); raise the \
          limit with --max-memory SIZE, e.g. --max-memory 64G (in the library: the \
-         max_memory of mesh::io::load_limited)",
-        crate::memory::show_bytes(*needed),
-        crate::memory::show_bytes(*limit)
+         max_memory of primdecomp::load_limited)",
+        show_bytes(*needed),
+        show_bytes(*limit)
     )]
     TooLarge {
+        /// The file.
         path: PathBuf,
+        /// Faces it holds (or declares).
         faces: u64,
+        /// Vertices it holds (or declares).
         vertices: u64,
+        /// Bytes the decomposition is estimated to need.
         needed: u64,
+        /// The limit, bytes.
         limit: u64,
     },
     /// A setting is out of range or inconsistent.
     #[error("invalid setting: {0}")]
     InvalidParams(String),
-    /// A plot could not be drawn (no usable font, drawing failed).
-    #[error("{path}: cannot draw the plot: {msg}")]
-    Plot { path: PathBuf, msg: String },
+    /// The caller's [`crate::Progress`] cancelled the run.
+    #[error("cancelled")]
+    Cancelled,
     /// An output file could not be written.
     #[error("{path}: cannot write: {source}")]
     Write {
+        /// The file.
         path: PathBuf,
+        /// What the operating system said.
         #[source]
         source: std::io::Error,
     },
@@ -121,10 +150,39 @@ impl Error {
     /// Exit code the CLI uses: 2 for bad input or settings, 1 for anything else.
     pub fn exit_code(&self) -> i32 {
         match self {
-            Error::Io { .. } | Error::Write { .. } | Error::Plot { .. } => 1,
+            Error::Io { .. } | Error::Write { .. } | Error::Cancelled => 1,
             _ => 2,
         }
     }
 }
 
+/// The library's result type.
 pub type Result<T> = std::result::Result<T, Error>;
+
+/// Bytes for a message: `1.5 GiB`, `300 MiB`, `12 KiB`.
+pub(crate) fn show_bytes(b: u64) -> String {
+    const UNITS: [&str; 5] = ["bytes", "KiB", "MiB", "GiB", "TiB"];
+    let mut v = b as f64;
+    let mut u = 0;
+    while v >= 1024.0 && u + 1 < UNITS.len() {
+        v /= 1024.0;
+        u += 1;
+    }
+    if u == 0 || v >= 100.0 {
+        format!("{v:.0} {}", UNITS[u])
+    } else {
+        format!("{v:.1} {}", UNITS[u])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sizes_in_messages() {
+        assert_eq!(show_bytes(3 << 29), "1.5 GiB");
+        assert_eq!(show_bytes(300 << 20), "300 MiB");
+        assert_eq!(show_bytes(12), "12 bytes");
+    }
+}

@@ -1,34 +1,142 @@
-//! primdecomp: decomposition of any 3D mesh into a small set of tight convex
-//! primitives for collision detection, after Knodt & Gao, "Convex Primitive
-//! Decomposition for Collision Detection" (the paper, §3).
+//! primdecomp turns any 3D mesh into a small set of tight convex primitives —
+//! oriented boxes, spheres, capsules, cylinders, frustums and isosceles trapezoidal
+//! prisms — for collision detection. It implements Knodt & Gao, "Convex Primitive
+//! Decomposition for Collision Detection" (the paper): every face becomes a
+//! primitive, and a greedy bottom-up pass merges neighbours, cheapest first, until as
+//! many primitives remain as asked for (§3). Every input face lies inside at least
+//! one output primitive.
 //!
-//! ```no_run
-//! let mesh = primdecomp::mesh::io::load("datasets/demo_scene.obj".as_ref())?;
-//! let params = primdecomp::Params { targets: vec![40], ..Default::default() };
-//! let result = primdecomp::decompose(&mesh, &params)?;
-//! println!("{} primitives", result.levels[0].primitives.len());
+//! # In one page
+//!
+//! Load a mesh (OBJ, PLY, STL, OFF, glTF/GLB) with [`load`], or build one from your
+//! own arrays with [`Mesh::from_triangles`] or [`Mesh::from_polygons`]; choose
+//! [`Params`] (the defaults are the paper's settings with our documented fixes);
+//! call [`decompose`]. The [`Decomposition`] holds one [`Level`] per target count,
+//! each a list of [`Primitive`]s in the mesh's own coordinates.
+//!
+//! ```
+//! use primdecomp::{decompose, Kind, Mesh, Params};
+//!
+//! // A unit cube as six quads.
+//! let corners: Vec<[f64; 3]> = (0..8)
+//!     .map(|i| [(i & 1) as f64, (i >> 1 & 1) as f64, (i >> 2 & 1) as f64])
+//!     .collect();
+//! let quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
+//! let cube = Mesh::from_polygons(&corners, &quads)?;
+//!
+//! let result = decompose(&cube, &Params { targets: vec![1], ..Params::default() })?;
+//! let level = &result.levels[0];
+//! assert_eq!(level.primitives.len(), 1);
+//! assert_eq!(level.primitives[0].kind(), Kind::Box);
+//! // The enclosure guarantee: every corner lies in the box.
+//! assert!(corners.iter().all(|&c| level.primitives[0].contains(c, 1e-9)));
 //! # Ok::<(), primdecomp::Error>(())
 //! ```
+//!
+//! Several targets come from one pass, coarse levels of detail for free:
+//!
+//! ```
+//! use primdecomp::{decompose, demo_scene, Params};
+//!
+//! let scene = demo_scene(); // stairs, a table, pipes, a house, a torus and a washer
+//! let params = Params { targets: vec![200, 50], ..Params::default() };
+//! let result = decompose(&scene, &params)?;
+//! for level in &result.levels {
+//!     println!("{} primitives, {} bytes", level.primitives.len(), level.bytes());
+//!     assert!(level.primitives.len() <= level.target);
+//! }
+//! # Ok::<(), primdecomp::Error>(())
+//! ```
+//!
+//! Long runs report progress and can be cancelled from another thread through a
+//! [`Progress`] ([`decompose_with`]). Results are written with [`to_json`] (the JSON
+//! contract the command line writes too, readable again with [`read_primitives`]) or
+//! as a conservative triangle mesh with [`tessellate`] / [`to_obj`] (each
+//! tessellated primitive contains the exact one). Everything is deterministic: the
+//! same mesh and settings give the same primitives on any number of threads.
+//!
+//! Errors are one type, [`Error`], naming the file and the line or byte offset where
+//! an input is malformed; nothing in this crate panics on bad input.
 
+// Every public item documented; the internals the tests reach are not public API.
+#![cfg_attr(not(feature = "test-internals"), deny(missing_docs))]
 // Loops over the three axes index several parallel arrays; iterators obscure them.
 #![allow(clippy::needless_range_loop)]
 
-pub mod budget;
-pub mod decompose;
-pub mod demo;
-pub mod error;
+mod budget;
+mod decompose;
+mod demo;
+mod error;
 pub mod export;
 pub mod math;
-pub mod memory;
-pub mod merge;
-pub mod mesh;
-pub mod params;
-pub mod postprocess;
-pub mod primitive;
-pub mod quadric;
+mod memory;
+mod merge;
+mod mesh;
+mod params;
+mod pipeline;
+mod postprocess;
+mod primitive;
+mod progress;
+mod quadric;
+mod result;
 
-pub use decompose::{decompose, Decomposition, InputInfo, Level, Timings};
+pub use decompose::{decompose, decompose_with};
+pub use demo::{demo_scene, demo_scene_obj};
 pub use error::{Error, Result};
-pub use mesh::Mesh;
-pub use params::{Dedup, Params, Partitions, Reduction, Reprice};
-pub use primitive::{Kind, Primitive};
+pub use export::{read_primitives, tessellate, to_json, to_obj, write_atomic};
+pub use mesh::io::{load, load_limited, memory_needed, parse_mesh, Format};
+pub use mesh::{Mesh, MeshObject, SkipCounts};
+pub use params::{Dedup, Params, Partitions, Reprice};
+pub use primitive::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
+pub use progress::{Progress, Stage};
+pub use result::{Decomposition, InputInfo, Level, Stats, Timings};
+
+/// The stages one by one, for the project's own tests and benchmarks (feature
+/// `test-internals`, which the workspace's test helpers turn on). Not part of the
+/// API: no documentation promises and no stability.
+#[cfg(feature = "test-internals")]
+#[doc(hidden)]
+#[allow(missing_docs)]
+pub mod internals {
+    use crate::math::Sym3;
+    pub use crate::merge::cluster::Clusters;
+    pub use crate::merge::cost::{Evaluator, Workspace};
+    use crate::merge::driver::MergeOutput;
+    pub use crate::merge::heap::StdHeap;
+    pub use crate::merge::rim::{FaceAdjacency, Surroundings};
+    pub use crate::merge::worker::with_pricer;
+    pub use crate::mesh::dedup::weld;
+    pub use crate::mesh::orient::face_signs_of_lists;
+    pub use crate::mesh::outward_normal;
+    use crate::mesh::Mesh;
+    pub use crate::params::{AUTO_MIN_FACES, AUTO_PARTS};
+    pub use crate::pipeline::evaluator;
+    pub use crate::postprocess::nested::{keep_mask, Cleanup};
+
+    /// Faces sharing an edge, by the welded indices `welded`.
+    pub fn face_pairs(mesh: &Mesh, welded: &[u32]) -> Vec<(u32, u32)> {
+        crate::mesh::adjacency::face_pairs(&mesh.face_offsets, welded)
+    }
+    pub use crate::mesh::adjacency::neighbour_lists;
+
+    pub use crate::quadric::face_quadrics;
+
+    /// Each face's seed volume.
+    pub fn seed_volumes(ev: &Evaluator, q: &[Sym3]) -> Vec<f64> {
+        crate::pipeline::seed_volumes(ev, q, &|_| true)
+    }
+
+    /// The merge loop through `targets` (decreasing).
+    pub fn run(ev: &Evaluator, cl: Clusters, targets: &[usize]) -> MergeOutput {
+        crate::merge::driver::run(ev, cl, targets, &|_| true)
+    }
+
+    /// The merge loop on another queue.
+    pub fn run_with<Q: crate::merge::heap::Queue>(
+        ev: &Evaluator,
+        cl: Clusters,
+        targets: &[usize],
+    ) -> MergeOutput {
+        crate::merge::driver::run_with::<Q>(ev, cl, targets, &|_| true)
+    }
+}

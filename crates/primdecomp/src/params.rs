@@ -1,45 +1,19 @@
-//! Settings of a decomposition. `Params::default()` equals the paper's settings
-//! (§3.3 weights, §3.4 deduplication and tangent term), except where the paper's
-//! choice made results depend on units (the minimum extent, here relative) and in
-//! deferring the re-pricing of clusters with 64 or more neighbours (ARCHITECTURE.md,
-//! "Where we deviate", 15: the flat-grid limit; the corpus at 1% is unchanged), in
-//! pricing merges of coplanar clusters at a thicker floor (18: rims stay rims), and in
-//! merging inputs of 524,288 faces or more in 16 parallel parts first (19), and in
-//! choosing each output primitive by k·V plus its rim reach (24: no curbs standing
-//! past the faces beside a cluster), and in letting merges into plates that add no
-//! area run before a target's snapshot (25: at most N primitives, no seams where
-//! coplanar faces merge for free), and in laying output plates flush on their faces
-//! (26: their outer side where the surface is).
-//!
-//! | setting | default | raising it | lowering it |
-//! |---|---|---|---|
-//! | `targets` | `[32]` | more, smaller primitives: tighter fit, more bytes | coarser colliders |
-//! | `max_excess_volume` | none | (when set) allows costlier merges; `None` = unlimited | stops merging earlier, may leave more than N primitives |
-//! | `weights[kind]` | box/sphere/capsule 1.0, cylinder 1.05, frustum 2.1, prism 1.4 | that kind is chosen less often | that kind is chosen more often |
-//! | `kinds` | all six | — | a disabled kind is never fitted (faster) |
-//! | `tangent_eps` | 0.01 | primitives align more with quad edge directions | at 0, orientation of flat clusters depends on round-off (§3.4) |
-//! | `dedup` | exact | `Tolerance(d)` also welds vertices closer than d (fuses parts) | `Off` keeps duplicate vertices: fewer merges across seams |
-//! | `min_extent_rel` | 5e-4 | flat clusters cost more: fewer coplanar "free" merges | flatter primitives; 0 is refused |
-//! | `merge_min_extent_rel` | none (= `min_extent_rel`) | merges are priced as if primitives were at least this thick: coplanar merges across gaps and holes (a roof's rim into a lid) cost more; output thickness unchanged | — (below `min_extent_rel` it has no effect) |
-//! | `flat_merge_extent_rel` | 0.01 | merges of coplanar clusters only are priced as if primitives were this thick (fraction of the diagonal): holes and gaps bridged in a plane cost more, so a roof's rim stays a rim instead of closing into a lid; other merges keep their prices | coplanar merges cost less; 0 = off (the paper's pricing: rims close into lids at low counts) |
-//! | `remove_contained` | true | — | keeps nested primitives |
-//! | `reprice` | `Deferred { min_degree: 64 }` | merges of clusters with at least `min_degree` neighbours leave their pairs' old queue entries as keys and re-price each when popped; a higher `min_degree` defers fewer merges (`Exact`: none, the paper's order, F^1.5 on large flat regions) | defers more merges: fewer fits, faster, the order drifts from exact greedy; `min_degree: 0` defers all (about 0.8× the time on the corpus, quality mixed: docs/results/reprice.md) |
-//! | `partitions` | `Auto` (from 524,288 faces, 16 parts or one per 65,536 faces if more; else 1) | `Fixed(K)`: the faces are split into K spatial parts, merged in parallel (one task each, re-pricing lazily unless `reprice` is `Exact`) to 16× the largest target before the global merge loop: faster on 2+ cores, merges across part boundaries wait (docs/results/partitions.md) | `Fixed(1)`: one global greedy, Alg. 1, on every input |
-//! | `reduction` | `Hull` | — | `Extremes`: clusters keep only their extreme points along 13 fixed axes (≤ 26): no convex hull per merge, cheaper fits; merges are priced on an inner approximation, so the order (and the fit) changes: dragon merge stage 9.85 → 8.53 s on one thread (one run), corpus quality no worse on average but mixed per mesh (docs/results/reduction.md) |
-//! | `fill` | false | (when set) a target N the post-processing left short of is met by merging less: up to N primitives, each covering fewer faces (tighter fit); costs one merge pass per search round (up to 4 more) | — |
-//! | `outward_weight` | 0 | output fits also price how far a primitive reaches past its faces' outer side (the volume balls and bodies meet): w·Σ area·gap is added to k·V when choosing an output frame; merges are priced as before | 0 = off: output frames chosen by k·V alone |
-//! | `rim_weight` | 1 | output primitives avoid reaching past the faces just outside their cluster more strongly (a side plate standing past a wall's top as a curb): w·Σ len·gap² over convex boundary edges (creases past 20°, and gentler bends past 2°: a plate standing past a rounded roof's next face) is added to k·V when choosing an output frame and kind; merges are priced as before | less; 0 = off (k·V alone: the least-area plate around a sliver triangle may stand past the neighbouring face) |
-//! | `free_merges` | true | — | false: a target N stops at exactly N clusters (the paper) even where the next merges join coplanar clusters into a plate of no more area, e.g. `-n` at the face count merges nothing and leaves a plate per triangle where coplanar triangles make one (seams a rolling ball catches on), and plates in one plane that the merge left apart (not adjacent) stay apart, overlapping where their faces' slivers interleave |
-//! | `flush_plates` | true | — | false: an output plate is centred on its faces, standing half the floor thickness (`min_extent_rel`) proud of the surface on its outer side; a ball rests that much higher than on the mesh |
-//! | `solid` | false | (when set) merges are priced by the volume their primitive adds outside the input (interior by ray parity on a 64-cell grid) rather than its whole volume: closed parts become one solid primitive instead of a shell of plates, fewer shapes per part in a physics scene; holes and gaps are priced as before | — |
-//! | `remove_thin_boxes` | None | (when set) drops boxes thinner than this fraction of the diagonal if still covered | — |
+//! Settings of a decomposition. The paper's settings come first (§3.3 weights, §3.4
+//! deduplication, tangent term and clean-up); then what our fixes to it do for a user,
+//! each on by default and each recorded under `docs/decisions/`; then speed. A run's
+//! settings are written into its JSON (`settings`) and read back by
+//! [`Params::from_json`], so a result can be reproduced from its own file.
 
 use crate::error::{Error, Result};
 use crate::primitive::Kind;
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
+
+/// The target count when none is given: primitives per input, before nested ones
+/// are removed.
+pub const DEFAULT_TARGET: usize = 64;
 
 /// How vertices at (nearly) the same position are merged before building adjacency (§3.4).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Dedup {
     /// No merging: topology exactly as in the file.
@@ -50,44 +24,32 @@ pub enum Dedup {
     Tolerance(f64),
 }
 
-/// When a merged cluster's merges with its neighbours are re-priced (§3.3, Alg. 1).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+/// When a merged cluster's candidate merges with its neighbours are re-priced (§3.3, Alg. 1).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Reprice {
-    /// Right after every merge: each pop is the cheapest merge at that moment.
+    /// Right after every merge: each merge is the cheapest at that moment (the paper).
     Exact,
-    /// Lazy greedy for merges whose clusters' neighbour lists hold at least `min_degree`
-    /// entries (about their degree; 0 = every merge): the pairs' old queue entries stay
-    /// as their keys, and each is re-priced when popped and pushed back with its fresh
-    /// cost. Smaller merges are re-priced at once. Ignored (exact) when
-    /// `max_excess_volume` is set: a pair over the cap has no entry to defer.
-    Deferred { min_degree: u32 },
-}
-
-/// How a merged cluster's points are reduced before its merges are priced (the output
-/// is always fitted on all of its faces' vertices, whatever this says).
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Reduction {
-    /// The vertices of the convex hull: every fit equals the fit on all points.
-    #[default]
-    Hull,
-    /// The extreme points along the 13 axes of a 26-DOP (`math::extremes`): no hull per
-    /// merge and at most 26 points per fit, but merges are priced on an inner
-    /// approximation of each cluster (docs/results/reduction.md).
-    Extremes,
+    /// Merges of clusters with at least `min_degree` neighbours leave their pairs'
+    /// queue entries as they were and re-price each when it is popped (0 = every
+    /// merge): large flat regions cost F log F instead of F^1.5
+    /// (docs/decisions/0015-deferred-repricing-of-high-degree-clusters.md).
+    Deferred {
+        /// Neighbour count from which a merge's re-pricing is deferred.
+        min_degree: u32,
+    },
 }
 
 /// How many spatial parts the faces are split into and merged in parallel before the
-/// global merge loop (`merge::partition`; ARCHITECTURE.md, deviations 17 and 19).
+/// global merge loop (docs/decisions/0017 and 0019).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Partitions {
-    /// For inputs of at least [`AUTO_MIN_FACES`] faces (large scans, where the parts
-    /// cost no measurable quality), [`AUTO_PARTS`] parts or one per [`AUTO_PART_FACES`]
-    /// faces if that is more; else one: Alg. 1 as is.
+    /// Inputs of at least 524,288 faces: 16 parts, or one per 65,536 faces if more
+    /// (large scans, where the parts cost no measurable quality); smaller inputs: one,
+    /// the paper's Alg. 1 as is.
     #[default]
     Auto,
-    /// Exactly this many parts; 1 = one global greedy (Alg. 1).
+    /// Exactly this many parts (1 to [`MAX_PARTITIONS`]); 1 = one global greedy.
     Fixed(usize),
 }
 
@@ -98,14 +60,16 @@ pub const AUTO_MIN_FACES: usize = 1 << 19;
 pub const AUTO_PARTS: usize = 16;
 
 /// [`Partitions::Auto`] gives a part at most about this many faces, so that a part's
-/// loop keeps its working set near one core's 1 MiB L2 cache and phase 1's time grows
-/// with the input's size, not faster (ARCHITECTURE.md, deviation 19): the 3.5M-face
-/// dragon ×4 in 54 parts instead of 16.
-pub const AUTO_PART_FACES: usize = 1 << 16;
+/// loop keeps its working set near one core's 1 MiB L2 cache and the first phase's
+/// time grows with the input's size, not faster (docs/decisions/0019).
+pub(crate) const AUTO_PART_FACES: usize = 1 << 16;
+
+/// The most parts [`Partitions::Fixed`] may ask for.
+pub const MAX_PARTITIONS: usize = 4096;
 
 impl Partitions {
     /// The number of parts for an input of `faces` faces.
-    pub fn parts(self, faces: usize) -> usize {
+    pub(crate) fn parts(self, faces: usize) -> usize {
         match self {
             Partitions::Auto if faces >= AUTO_MIN_FACES => {
                 AUTO_PARTS.max(faces.div_ceil(AUTO_PART_FACES))
@@ -113,11 +77,6 @@ impl Partitions {
             Partitions::Auto => 1,
             Partitions::Fixed(k) => k,
         }
-    }
-
-    /// Whether this setting never splits (serialized settings then omit it).
-    fn is_default_like(&self) -> bool {
-        matches!(self, Partitions::Auto | Partitions::Fixed(1))
     }
 }
 
@@ -131,171 +90,218 @@ impl Serialize for Partitions {
     }
 }
 
-/// All settings of a run.
-#[derive(Clone, Debug, PartialEq, Serialize)]
-pub struct Params {
-    /// Target primitive counts; one result per target from a single bottom-up pass.
-    pub targets: Vec<usize>,
-    /// Optional cap on one merge's excess volume, as a fraction of the input's AABB volume (§3.3).
-    pub max_excess_volume: Option<f64>,
-    /// Cost weight k(kind) per kind, indexed by `Kind as usize` (§3.3).
-    #[serde(serialize_with = "by_kind")]
-    pub weights: [f64; 6],
-    /// Which kinds may be fitted, indexed by `Kind as usize`.
-    #[serde(serialize_with = "by_kind")]
-    pub kinds: [bool; 6],
-    /// ε of the tangent term in Q = area·(nnᵀ + ε·ttᵀ) (§3.4); 0 disables it.
-    pub tangent_eps: f64,
-    /// Vertex deduplication (§3.4).
-    pub dedup: Dedup,
-    /// Minimum half-extent of any primitive as a fraction of the input's AABB diagonal
-    /// (the paper's absolute 1e-3, made relative so results do not depend on units).
-    pub min_extent_rel: f64,
-    /// Minimum half-extent when *pricing* merges, as a fraction of the diagonal (the
-    /// larger of this and `min_extent_rel` applies); output primitives keep
-    /// `min_extent_rel`. `None`: the same as `min_extent_rel` (the paper's single floor).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub merge_min_extent_rel: Option<f64>,
-    /// Minimum half-extent when pricing merges of *coplanar* clusters only, as a
-    /// fraction of the diagonal (their cost is scaled as if priced at this floor; the
-    /// larger of this and the pricing floor applies; 0 = no special case). Default
-    /// 0.01 (ARCHITECTURE.md, deviation 18: rims no longer close into lids).
-    pub flat_merge_extent_rel: f64,
-    /// Remove primitives whose points lie inside another primitive (§3.4).
-    pub remove_contained: bool,
-    /// Remove boxes whose smallest half-extent is below this fraction of the diagonal,
-    /// when every one of their points lies in another primitive (the Bistro figure's rule).
-    pub remove_thin_boxes: Option<f64>,
-    /// When merged clusters' pairs are re-priced (exact greedy order or lazy).
-    pub reprice: Reprice,
-    /// Spatial parts merged in parallel before the global merge loop (`merge::partition`).
-    /// Serialized only when it fixes more than one part (the JSON's `stats.partitions`
-    /// says how many a run used), so that default runs' output stays as it was.
-    #[serde(skip_serializing_if = "Partitions::is_default_like")]
-    pub partitions: Partitions,
-    /// How merged clusters' points are reduced for pricing; serialized only when not
-    /// the exact default.
-    #[serde(skip_serializing_if = "is_hull")]
-    pub reduction: Reduction,
-    /// Fill the budget: when removing nested primitives leaves fewer than a target N,
-    /// merge to a larger count whose post-processed result has the most primitives
-    /// not above N (budget.rs). Serialized only when set.
-    #[serde(skip_serializing_if = "is_false")]
-    pub fill: bool,
-    /// Weight of the outward reach in the output fit's frame choice: each output
-    /// cluster's frame minimises k·V + w·Σ_f area_f·(h(n_f) − n_f·f), h the primitive's
-    /// support function, n_f each face's outward normal (its winding). 0 = off; only
-    /// serialized when set.
-    #[serde(skip_serializing_if = "is_zero")]
-    pub outward_weight: f64,
-    /// Price merges by the volume their primitive adds outside the input (its interior
-    /// from ray parity on a voxel grid, `mesh::solid`) instead of its whole volume:
-    /// closed parts fill into solid primitives, gaps and holes are still priced.
-    /// Serialized only when set.
-    #[serde(skip_serializing_if = "is_false")]
-    pub solid: bool,
-    /// Weight of the rim reach in the output fit's choice of frame and kind (deviation
-    /// 24): each output cluster's primitive minimises k·V + w·Σ_e len_e·gap_e², gap_e
-    /// how far it reaches past the plane of the face across each convex boundary edge
-    /// e (a crease, or a gentle bend of more than 2°, deviation 29), on the side away
-    /// from the cluster (a curb along a wall's top). 0 = off (k·V
-    /// alone, the paper's criterion); only serialized when not the default.
-    #[serde(skip_serializing_if = "is_default_rim_weight")]
-    pub rim_weight: f64,
-    /// Whether a target's snapshot waits for the greedy order's next merges while they
-    /// are free: coplanar points and cost ≤ 0, a plate of no more area than its parts
-    /// (deviation 25). A target N then gives at most N primitives, fewer where faces
-    /// merge for free (coplanar triangles into one plate); then plates in one plane
-    /// whose boxes touch are joined where one plate covers both with no more k·V and
-    /// almost nothing else (deviation 28, `merge::plates`). false = exactly N
-    /// clusters, the paper's stop. Serialized only when off.
-    #[serde(skip_serializing_if = "is_true")]
-    pub free_merges: bool,
-    /// Whether an output plate (a primitive at the `min_extent_rel` floor thickness,
-    /// its faces all facing one way along its thin axis) lies flush on its faces,
-    /// reaching inward from them, instead of centred on them (deviation 26): its outer
-    /// side is where the mesh's surface is. false = centred, half the floor proud of
-    /// the surface. Serialized only when off.
-    #[serde(skip_serializing_if = "is_true")]
-    pub flush_plates: bool,
-}
-
-/// [`Params::rim_weight`]'s default.
-pub const RIM_WEIGHT: f64 = 1.0;
-
-fn is_default_rim_weight(x: &f64) -> bool {
-    *x == RIM_WEIGHT
-}
-
-fn is_zero(x: &f64) -> bool {
-    *x == 0.0
-}
-
-fn is_false(b: &bool) -> bool {
-    !*b
-}
-
-fn is_true(b: &bool) -> bool {
-    *b
-}
-
-fn is_hull(r: &Reduction) -> bool {
-    *r == Reduction::Hull
-}
-
-/// The most parts `partitions` may ask for.
-pub const MAX_PARTITIONS: usize = 4096;
-
-/// Serializes a per-kind array as `{"box": …, "sphere": …, …}`.
-fn by_kind<T: Serialize, S: serde::Serializer>(
-    v: &[T; 6],
-    s: S,
-) -> std::result::Result<S::Ok, S::Error> {
-    use serde::ser::SerializeMap;
-    let mut m = s.serialize_map(Some(6))?;
-    for k in Kind::ALL {
-        m.serialize_entry(k.name(), &v[k as usize])?;
+impl<'de> Deserialize<'de> for Partitions {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> std::result::Result<Self, D::Error> {
+        #[derive(Deserialize)]
+        #[serde(untagged)]
+        enum Raw {
+            Count(usize),
+            Word(String),
+        }
+        match Raw::deserialize(d)? {
+            Raw::Count(k) => Ok(Partitions::Fixed(k)),
+            Raw::Word(w) if w == "auto" => Ok(Partitions::Auto),
+            Raw::Word(w) => Err(serde::de::Error::custom(format!(
+                "partitions must be \"auto\" or a count, got \"{w}\""
+            ))),
+        }
     }
-    m.end()
+}
+
+/// All settings of a run. `Params::default()` is the recommended configuration:
+/// change only what you need, as in `Params { targets: vec![200, 50], ..Params::default() }`.
+///
+/// | setting | default | raising it | lowering it |
+/// |---|---|---|---|
+/// | `targets` | `[64]` | more, smaller primitives: tighter fit, more bytes | coarser colliders |
+/// | `weights[kind]` | box, sphere, capsule 1; cylinder 1.05; frustum 2.1; prism 1.4 | that kind is chosen less often | that kind is chosen more often |
+/// | `min_extent` | 5e-4 | thin parts get thicker primitives | flatter plates |
+/// | `open_holes` | 0.01 | holes and gaps in flat surfaces stay open at lower counts | 0: the paper's pricing (a roof's rim closes into a lid) |
+/// | `rim_weight` | 1 | primitives keep further off the faces beside them | 0: volume alone (a plate may stand past a wall's top as a curb) |
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Params {
+    // --- The paper's settings (§3.3, §3.4) ---
+    /// Target primitive counts, one [`crate::Level`] each from a single bottom-up pass
+    /// (§3.3). A level has at most its target's count: fewer where nested primitives
+    /// are removed and where coplanar faces merge for free ([`Params::join_coplanar`]).
+    pub targets: Vec<usize>,
+    /// Which kinds may be fitted, indexed by `Kind as usize` ([`Kind::ALL`] order).
+    #[serde(with = "by_kind")]
+    pub kinds: [bool; 6],
+    /// Cost weight k(kind) per kind, indexed by `Kind as usize`: a merge costs k·V, V
+    /// the volume of the primitive it makes (§3.3).
+    #[serde(with = "by_kind")]
+    pub weights: [f64; 6],
+    /// ε of the tangent term in each face's quadric Q = area·(nnᵀ + ε·ttᵀ) (§3.4
+    /// "Coplanar Vertices"): flat clusters align with their edges; 0 disables it.
+    pub tangent_eps: f64,
+    /// Vertex deduplication before adjacency (§3.4).
+    pub dedup: Dedup,
+    /// Smallest half-extent of any primitive, as a fraction of the input's bounding-box
+    /// diagonal (the paper's absolute 1e-3, made relative so that results do not
+    /// depend on units: docs/decisions/0001).
+    pub min_extent: f64,
+    /// Refuse merges adding more than this fraction of the input's bounding-box volume
+    /// (§3.3); `None` = unlimited. A capped merge has no queue entry to defer, so this
+    /// needs [`Reprice::Exact`] (checked by [`Params::validate`]).
+    pub max_excess_volume: Option<f64>,
+    /// Remove primitives whose faces all lie inside another primitive (§3.4
+    /// "Removing Redundant Primitives"); never loses coverage.
+    pub remove_nested: bool,
+    /// Also remove boxes whose smallest half-extent is below this fraction of the
+    /// diagonal when other primitives cover all their faces (the paper's Bistro figure).
+    pub remove_thin_boxes: Option<f64>,
+
+    // --- What our fixes to the paper do for you (docs/decisions) ---
+    /// Keeps holes and gaps in flat surfaces open: merges of coplanar clusters are
+    /// priced as if the primitive were at least this thick (half-extent, a fraction of
+    /// the diagonal), so a roof's rim stays a rim instead of closing into a lid; other
+    /// merges keep their prices. 0 = the paper's pricing (docs/decisions/0018).
+    pub open_holes: f64,
+    /// How strongly output primitives keep off the faces just outside their cluster: a
+    /// primitive's frame and kind minimise k·V + w·Σ len·gap² over the cluster's
+    /// convex boundary edges, gap how far it stands past the next face's plane (a curb
+    /// along a wall's top). 0 = volume alone (docs/decisions/0024 and 0029).
+    pub rim_weight: f64,
+    /// Output plates (primitives at the `min_extent` thickness) lie flush on their
+    /// faces, reaching inward, instead of centred on them half their thickness proud
+    /// of the surface (docs/decisions/0026).
+    pub flush_plates: bool,
+    /// Coplanar faces and plates merge for free: a target's level waits for the next
+    /// merges while they join coplanar clusters into a plate of no more area, then
+    /// plates in one plane are joined where one covers both with no more k·V. So a
+    /// target N gives at most N primitives, without seams where coplanar faces meet.
+    /// false = exactly N clusters, the paper's stop (docs/decisions/0025 and 0028).
+    pub join_coplanar: bool,
+    /// Prices merges by the volume their primitive adds outside the input (its
+    /// interior by ray parity on a voxel grid) instead of its whole volume: closed
+    /// parts become solid primitives instead of shells of plates; costs time
+    /// (docs/decisions/0023).
+    pub solid: bool,
+    /// Fills each target: when removing nested primitives leaves fewer than N, merge
+    /// less (up to 8N) so the level holds as many primitives as fit within N; up to
+    /// four more merge passes (docs/decisions/0020).
+    pub fill: bool,
+
+    // --- Speed (same quality within measurement noise) ---
+    /// When merged clusters' candidate merges are re-priced.
+    pub reprice: Reprice,
+    /// Spatial parts merged in parallel before the global loop.
+    pub partitions: Partitions,
 }
 
 impl Default for Params {
     fn default() -> Self {
         Params {
-            targets: vec![32],
-            max_excess_volume: None,
-            weights: [1.0, 1.0, 1.0, 1.05, 2.1, 1.4],
+            targets: vec![DEFAULT_TARGET],
             kinds: [true; 6],
+            weights: [1.0, 1.0, 1.0, 1.05, 2.1, 1.4],
             tangent_eps: 0.01,
             dedup: Dedup::Exact,
-            min_extent_rel: 5e-4,
-            merge_min_extent_rel: None,
-            flat_merge_extent_rel: 0.01,
-            remove_contained: true,
+            min_extent: 5e-4,
+            max_excess_volume: None,
+            remove_nested: true,
             remove_thin_boxes: None,
+            open_holes: 0.01,
+            rim_weight: 1.0,
+            flush_plates: true,
+            join_coplanar: true,
+            solid: false,
+            fill: false,
             reprice: Reprice::Deferred { min_degree: 64 },
             partitions: Partitions::Auto,
-            reduction: Reduction::Hull,
-            fill: false,
-            outward_weight: 0.0,
-            solid: false,
-            rim_weight: RIM_WEIGHT,
-            free_merges: true,
-            flush_plates: true,
         }
     }
 }
 
+/// Per-kind arrays as `{"box": …, "sphere": …, …}` (every kind named, in order).
+mod by_kind {
+    use crate::primitive::Kind;
+    use serde::de::{Deserialize, Deserializer, Error};
+    use serde::ser::{SerializeMap, Serializer};
+    use serde::Serialize;
+    use std::collections::BTreeMap;
+
+    pub fn serialize<T: Serialize, S: Serializer>(v: &[T; 6], s: S) -> Result<S::Ok, S::Error> {
+        let mut m = s.serialize_map(Some(6))?;
+        for k in Kind::ALL {
+            m.serialize_entry(k.name(), &v[k as usize])?;
+        }
+        m.end()
+    }
+
+    pub fn deserialize<'de, T, D>(d: D) -> Result<[T; 6], D::Error>
+    where
+        T: Deserialize<'de> + Copy,
+        D: Deserializer<'de>,
+    {
+        let map = BTreeMap::<String, T>::deserialize(d)?;
+        for name in map.keys() {
+            if Kind::from_name(name).is_none() {
+                return Err(D::Error::custom(format!(
+                    "unknown primitive kind \"{name}\" (expected box, sphere, capsule, \
+                     cylinder, frustum or prism)"
+                )));
+            }
+        }
+        let get = |k: Kind| map.get(k.name()).copied();
+        let missing = Kind::ALL.into_iter().find(|&k| get(k).is_none());
+        if let Some(k) = missing {
+            return Err(D::Error::custom(format!(
+                "kind \"{}\" is missing",
+                k.name()
+            )));
+        }
+        Ok(Kind::ALL.map(|k| get(k).expect("checked above")))
+    }
+}
+
 impl Params {
-    pub fn weight(&self, k: Kind) -> f64 {
-        self.weights[k as usize]
+    /// The settings of a primdecomp JSON result (its `settings` object), or a JSON
+    /// object of settings alone; keys left out keep their defaults, unknown keys are
+    /// an error. A result's own settings give back its primitives.
+    ///
+    /// ```
+    /// use primdecomp::{decompose, demo_scene, to_json, Params};
+    ///
+    /// let params = Params { targets: vec![40], rim_weight: 0.5, ..Params::default() };
+    /// let first = decompose(&demo_scene(), &params)?;
+    /// let json = to_json(&first, 0, &params);
+    /// let again = Params::from_json(&json)?;
+    /// assert_eq!(again, params);
+    /// assert_eq!(decompose(&demo_scene(), &again)?.levels, first.levels);
+    /// # Ok::<(), primdecomp::Error>(())
+    /// ```
+    pub fn from_json(text: &str) -> Result<Params> {
+        let bad = |e: serde_json::Error| Error::InvalidParams(format!("settings: {e}"));
+        let value: serde_json::Value = serde_json::from_str(text).map_err(bad)?;
+        let mut settings = match value.get("settings") {
+            Some(s) if value.get("format").is_some() => s.clone(),
+            _ => value,
+        };
+        // A result's settings also say which target its level is for.
+        if let Some(obj) = settings.as_object_mut() {
+            obj.remove("target");
+            obj.remove("merge_target");
+        }
+        let params: Params = serde_json::from_value(settings).map_err(bad)?;
+        params.validate()?;
+        Ok(params)
     }
-    pub fn enabled(&self, k: Kind) -> bool {
-        self.kinds[k as usize]
-    }
-    /// Checks every setting; the driver calls this before any work.
+
+    /// Checks every setting; [`crate::decompose`] calls this before any work.
     pub fn validate(&self) -> Result<()> {
         let bad = |m: String| Err(Error::InvalidParams(m));
+        let fraction = |name: &str, x: f64, zero_ok: bool| {
+            let ok = x.is_finite() && x < 1.0 && (x > 0.0 || (zero_ok && x == 0.0));
+            let range = if zero_ok { "[0, 1)" } else { "(0, 1)" };
+            if ok {
+                Ok(())
+            } else {
+                bad(format!("{name} must be in {range}, got {x}"))
+            }
+        };
         if self.targets.is_empty() || self.targets.contains(&0) {
             return bad("targets must be one or more positive counts".into());
         }
@@ -303,7 +309,7 @@ impl Params {
             return bad("at least one primitive kind must be enabled".into());
         }
         for k in Kind::ALL {
-            let w = self.weight(k);
+            let w = self.weights[k as usize];
             if !(w.is_finite() && w > 0.0) {
                 return bad(format!(
                     "weight of {} must be a positive number, got {w}",
@@ -311,38 +317,26 @@ impl Params {
                 ));
             }
         }
-        if !(self.tangent_eps.is_finite() && self.tangent_eps >= 0.0) {
-            return bad(format!("tangent-eps must be ≥ 0, got {}", self.tangent_eps));
-        }
-        if !(self.min_extent_rel.is_finite()
-            && self.min_extent_rel > 0.0
-            && self.min_extent_rel < 1.0)
-        {
-            return bad(format!(
-                "min-extent must be in (0, 1), got {}",
-                self.min_extent_rel
-            ));
-        }
-        if let Some(m) = self.merge_min_extent_rel {
-            if !(m.is_finite() && (0.0..1.0).contains(&m)) {
-                return bad(format!("merge-min-extent must be in [0, 1), got {m}"));
+        for (name, x) in [
+            ("tangent_eps", self.tangent_eps),
+            ("rim_weight", self.rim_weight),
+        ] {
+            if !(x.is_finite() && x >= 0.0) {
+                return bad(format!("{name} must be ≥ 0, got {x}"));
             }
         }
-        let w = self.outward_weight;
-        if !(w.is_finite() && w >= 0.0) {
-            return bad(format!("outward-weight must be ≥ 0, got {w}"));
-        }
-        let w = self.rim_weight;
-        if !(w.is_finite() && w >= 0.0) {
-            return bad(format!("rim-weight must be ≥ 0, got {w}"));
-        }
-        let m = self.flat_merge_extent_rel;
-        if !(m.is_finite() && (0.0..1.0).contains(&m)) {
-            return bad(format!("flat-merge-extent must be in [0, 1), got {m}"));
-        }
+        fraction("min_extent", self.min_extent, false)?;
+        fraction("open_holes", self.open_holes, true)?;
         if let Some(m) = self.max_excess_volume {
             if !(m.is_finite() && m >= 0.0) {
-                return bad(format!("max-excess-volume must be ≥ 0, got {m}"));
+                return bad(format!("max_excess_volume must be ≥ 0, got {m}"));
+            }
+            if self.reprice != Reprice::Exact {
+                return bad(
+                    "max_excess_volume needs reprice: exact (a merge over the cap has no queue \
+                     entry whose re-pricing could be deferred)"
+                        .into(),
+                );
             }
         }
         if let Partitions::Fixed(k) = self.partitions {
@@ -359,7 +353,7 @@ impl Params {
         }
         if let Some(t) = self.remove_thin_boxes {
             if !(t.is_finite() && t >= 0.0) {
-                return bad(format!("thin-box threshold must be ≥ 0, got {t}"));
+                return bad(format!("remove_thin_boxes must be ≥ 0, got {t}"));
             }
         }
         Ok(())
@@ -387,23 +381,43 @@ mod tests {
         assert_eq!(Partitions::Fixed(8).parts(10), 8);
     }
 
-    /// Settings name the partitions only when they fix more than one part.
+    /// Settings round-trip through JSON exactly, partitions as "auto" or a count,
+    /// and a zero count is refused.
     #[test]
-    fn partitions_serialize_only_when_fixed_above_one() {
-        let json = |k| {
+    fn settings_round_trip_through_json() {
+        for partitions in [Partitions::Auto, Partitions::Fixed(1), Partitions::Fixed(8)] {
             let p = Params {
-                partitions: k,
+                partitions,
+                targets: vec![7, 3],
+                kinds: [true, false, true, true, false, true],
+                dedup: Dedup::Tolerance(0.25),
+                reprice: Reprice::Exact,
+                max_excess_volume: Some(0.1),
+                remove_thin_boxes: Some(0.01),
                 ..Default::default()
             };
-            serde_json::to_string(&p).unwrap()
-        };
-        assert!(!json(Partitions::Auto).contains("partitions"));
-        assert!(!json(Partitions::Fixed(1)).contains("partitions"));
-        assert!(json(Partitions::Fixed(8)).contains("\"partitions\":8"));
+            let json = serde_json::to_string(&p).unwrap();
+            assert_eq!(Params::from_json(&json).unwrap(), p, "{json}");
+        }
         let zero = Params {
             partitions: Partitions::Fixed(0),
             ..Default::default()
         };
         assert!(zero.validate().is_err());
+        assert!(serde_json::to_string(&Params::default())
+            .unwrap()
+            .contains("\"partitions\":\"auto\""));
+    }
+
+    /// Unknown keys, unknown kinds and a cap without exact re-pricing are errors that
+    /// say what is wrong; a partial object keeps the other defaults.
+    #[test]
+    fn bad_settings_are_named() {
+        let err = |s: &str| Params::from_json(s).unwrap_err().to_string();
+        assert!(err(r#"{"targets": [3], "rim_wieght": 1}"#).contains("rim_wieght"));
+        assert!(err(r#"{"weights": {"box": 1, "cone": 2}}"#).contains("cone"));
+        assert!(err(r#"{"max_excess_volume": 0.1}"#).contains("reprice: exact"));
+        let p = Params::from_json(r#"{"targets": [5], "solid": true}"#).unwrap();
+        assert_eq!((p.targets, p.solid, p.rim_weight), (vec![5], true, 1.0));
     }
 }

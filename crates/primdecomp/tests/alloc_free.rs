@@ -4,7 +4,7 @@
 //! allocation. A counting global allocator proves it; it counts this thread only, so
 //! the test harness's other threads cannot disturb the count.
 
-use primdecomp::merge::Workspace;
+use primdecomp::internals::Workspace;
 use primdecomp_testkit::demo::{grow, with_demo};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;

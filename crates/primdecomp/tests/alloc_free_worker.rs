@@ -4,8 +4,7 @@
 //! here counts every thread, so this file holds this one test only: the harness's main
 //! thread just waits for it.
 
-use primdecomp::merge::worker::with_pricer;
-use primdecomp::merge::{Clusters, Evaluator};
+use primdecomp::internals::{with_pricer, Clusters, Evaluator};
 use primdecomp_testkit::demo::{grow, with_demo};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};

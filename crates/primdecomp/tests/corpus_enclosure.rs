@@ -4,7 +4,7 @@
 //! `primdecomp_testkit::contain`, which shares no code with the fitting; and the count must not
 //! exceed N (bridging makes every N reachable when no excess cap is set).
 
-use primdecomp::export::json::to_json;
+use primdecomp::to_json;
 use primdecomp::{decompose, Params};
 use primdecomp_testkit::contain::{faces_enclosed, parse_primitive};
 use rayon::prelude::*;
@@ -25,7 +25,7 @@ fn corpus() -> Option<Vec<std::path::PathBuf>> {
 
 /// One mesh: its table row, or the failures found.
 fn check(path: &Path) -> Option<(String, Vec<String>)> {
-    let mesh = primdecomp::mesh::io::load(path).unwrap_or_else(|e| panic!("{e}"));
+    let mesh = primdecomp::load(path).unwrap_or_else(|e| panic!("{e}"));
     let faces = mesh.face_count();
     if faces > MAX_FACES {
         return None;

@@ -6,8 +6,8 @@
 //! seeded random rotations the demo scene keeps its primitive count and its tightness
 //! (a one-way surface distance computed here, see [`tightness`]) within 10%.
 
-use primdecomp::export::obj::tessellate;
-use primdecomp::{decompose, demo, Error, Mesh, Params, Primitive, Reprice};
+use primdecomp::tessellate;
+use primdecomp::{decompose, Error, Mesh, Params, Primitive, Reprice};
 use primdecomp_testkit::check::assert_valid;
 use primdecomp_testkit::shapes::{self, cuboid};
 use rand::{Rng, SeedableRng};
@@ -22,7 +22,7 @@ fn params(targets: &[usize]) -> Params {
 
 /// Decomposes at each target and checks validity; returns the primitive counts.
 fn valid(v: &[[f64; 3]], f: &[Vec<u32>], targets: &[usize]) -> Vec<usize> {
-    let mesh = Mesh::from_polygons(v, f);
+    let mesh = Mesh::from_polygons(v, f).unwrap();
     let p = params(targets);
     let dec = decompose(&mesh, &p).unwrap_or_else(|e| panic!("{e}"));
     assert_valid(&mesh, &dec, &p);
@@ -46,7 +46,7 @@ fn one_quad() {
 /// Returns the seconds, the pairs re-priced per merge and the parts merged first.
 fn flat_grid(n: u32, reprice: Reprice) -> (f64, f64, usize) {
     let (v, f) = shapes::flat_grid(n);
-    let mesh = Mesh::from_polygons(&v, &f);
+    let mesh = Mesh::from_polygons(&v, &f).unwrap();
     let p = Params {
         reprice,
         ..params(&[100, 1])
@@ -56,13 +56,14 @@ fn flat_grid(n: u32, reprice: Reprice) -> (f64, f64, usize) {
     let secs = t.elapsed().as_secs_f64();
     assert_valid(&mesh, &dec, &p);
     let counts: Vec<usize> = dec.levels.iter().map(|l| l.primitives.len()).collect();
-    let per_merge = (dec.fits.eager + dec.fits.lazy) as f64 / dec.merges as f64;
+    let per_merge =
+        (dec.stats.fits_at_once + dec.stats.fits_when_popped) as f64 / dec.stats.merges as f64;
     eprintln!(
         "flat grid {n}x{n}, {reprice:?}: {counts:?} primitives in {secs:.1} s \
          (decompose only), {per_merge:.2} pairs re-priced per merge"
     );
     assert!(counts[0] <= 100 && counts[1] == 1, "{counts:?}");
-    (secs, per_merge, dec.partitions)
+    (secs, per_merge, dec.stats.partitions)
 }
 
 #[test]
@@ -102,7 +103,7 @@ fn flat_grid_defers_its_long_strips() {
 #[test]
 fn flat_grid_of_a_million_quads() {
     let (_, _, parts) = flat_grid(1000, Params::default().reprice);
-    assert_eq!(parts, primdecomp::params::AUTO_PARTS);
+    assert_eq!(parts, primdecomp::internals::AUTO_PARTS);
 }
 
 /// Growth of the flat grid's time with its size, printed (no assertion: timings are
@@ -184,8 +185,9 @@ fn coordinates_of_1e38() {
 /// vertex, and 1e59 (inside the limit) is decomposed normally.
 #[test]
 fn coordinates_beyond_the_extent_limit_are_refused() {
-    let tri =
-        |s: f64| Mesh::from_polygons(&[[0.0; 3], [s, 0.0, 0.0], [0.0, s, s]], &[vec![0, 1, 2]]);
+    let tri = |s: f64| {
+        Mesh::from_polygons(&[[0.0; 3], [s, 0.0, 0.0], [0.0, s, s]], &[vec![0, 1, 2]]).unwrap()
+    };
     match decompose(&tri(1e300), &params(&[1])) {
         Err(Error::Extent {
             vertex,
@@ -316,16 +318,10 @@ fn tightness(prims: &[Primitive], mesh_tris: &[[[f64; 3]; 3]]) -> f64 {
 /// whatever round-off made of the tangent term) it moved by −38% … +52%.
 #[test]
 fn random_rotations_keep_count_and_tightness() {
-    let base = demo::demo_scene();
-    let faces: Vec<Vec<u32>> = (0..base.face_count())
-        .map(|f| {
-            base.face_indices[base.face_offsets[f] as usize..base.face_offsets[f + 1] as usize]
-                .to_vec()
-        })
-        .collect();
+    let (base, faces) = primdecomp_testkit::shapes::demo_polys();
     let p = params(&[120, 40]);
     let run = |v: &[[f64; 3]]| {
-        let mesh = Mesh::from_polygons(v, &faces);
+        let mesh = Mesh::from_polygons(v, &faces).unwrap();
         let dec = decompose(&mesh, &p).unwrap();
         assert_valid(&mesh, &dec, &p);
         let tris = primdecomp_testkit::fan_triangles(v, &faces);
@@ -334,7 +330,7 @@ fn random_rotations_keep_count_and_tightness() {
             .map(|l| (l.primitives.len(), tightness(&l.primitives, &tris)))
             .collect::<Vec<_>>()
     };
-    let reference = run(&base.positions);
+    let reference = run(&base);
     let mut rng = ChaCha8Rng::seed_from_u64(2026);
     for r in 0..4 {
         // A uniform random rotation: a normalised 4D Gaussian-ish vector (Box–Muller).
@@ -345,7 +341,7 @@ fn random_rotations_keep_count_and_tightness() {
         let q = [g(&mut rng), g(&mut rng), g(&mut rng), g(&mut rng)];
         let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
         let q = q.map(|x| x / n);
-        let v: Vec<[f64; 3]> = base.positions.iter().map(|&x| rotate(q, x)).collect();
+        let v: Vec<[f64; 3]> = base.iter().map(|&x| rotate(q, x)).collect();
         for ((n0, t0), (n1, t1)) in reference.iter().zip(run(&v)) {
             eprintln!("rotation {r} {q:.3?}: {n0} → {n1} primitives, tightness {t0:.5} → {t1:.5}");
             let dn = (n1 as f64 - *n0 as f64).abs() / *n0 as f64;

@@ -70,7 +70,7 @@ fn cups_holding_cubes_fill_their_budget() {
 /// none worse than without filling.
 #[test]
 fn demo_scene_levels_fill_within_their_budgets() {
-    let m = Mesh::from_builder(primdecomp::demo::demo_scene());
+    let m = primdecomp::demo_scene();
     let counts = check(&m, &[120, 40, 12]);
     eprintln!("demo scene (plain, filled) at 120, 40, 12: {counts:?}");
 }

@@ -1,5 +1,5 @@
 //! `Params::flush_plates` (ARCHITECTURE.md, deviation 26): an output plate (a
-//! primitive at the floor thickness, `min_extent_rel` of the diagonal per half) lies
+//! primitive at the floor thickness, `min_extent` of the diagonal per half) lies
 //! flush on its faces, reaching inward from them, instead of centred on them, so a
 //! body resting on it rests where it would on the mesh. Decided by the independent
 //! containment oracle (`primdecomp_testkit::contain`) from points a quarter of the floor outside
@@ -53,9 +53,9 @@ fn around_box(d: f64) -> Vec<[f64; 3]> {
 #[test]
 fn a_boxs_side_plates_lie_inside_its_sides() {
     let m = mesh(&cuboid([0.0; 3], [2.0, 1.0, 0.5]));
-    let q = 0.25 * Params::default().min_extent_rel * m.diagonal();
+    let q = 0.25 * Params::default().min_extent * m.diagonal();
     let at = |flush| Params {
-        remove_contained: false,
+        remove_nested: false,
         ..params(&[6], flush)
     };
     let p = at(true);
@@ -87,8 +87,8 @@ fn an_open_sheets_plate_hangs_behind_its_faces() {
         .map(|p| p.iter().rev().copied().collect())
         .collect();
     for (faces, up) in [(f.clone(), 1.0), (flipped, -1.0)] {
-        let m = Mesh::from_polygons(&v, &faces);
-        let q = 0.25 * Params::default().min_extent_rel * m.diagonal();
+        let m = Mesh::from_polygons(&v, &faces).unwrap();
+        let q = 0.25 * Params::default().min_extent * m.diagonal();
         let p = params(&[m.face_count()], true);
         let dec = assert_same_on_threads(&m, &p);
         assert_valid(&m, &dec, &p);

@@ -14,7 +14,7 @@ use primdecomp_testkit::shapes::{cuboid, flat_grid, join, mesh, plate_with_hole}
 fn params(targets: &[usize], free: bool) -> Params {
     Params {
         targets: targets.to_vec(),
-        free_merges: free,
+        join_coplanar: free,
         ..Default::default()
     }
 }
@@ -94,7 +94,7 @@ fn overlapping_solids_are_not_merged_for_free() {
 /// under kenney_wall_high's flat top (the face balls roll on).
 fn plates_under_the_top(m: &Mesh, dec: &primdecomp::Decomposition, p: &Params) -> usize {
     let (lo, hi) = m.aabb();
-    let (off, diag) = (m.offset, m.diagonal());
+    let (off, diag) = (m.centre(), m.diagonal());
     let shapes = shapes(dec, 0, p);
     let mut hit = vec![false; shapes.len()];
     for i in 1..60 {
@@ -168,7 +168,7 @@ fn coplanar_plates_across_a_t_junction_become_one() {
         vec![4, 5, 6],
         vec![5, 2, 6],
     ];
-    let m = Mesh::from_polygons(&v, &f);
+    let m = Mesh::from_polygons(&v, &f).unwrap();
     let p = params(&[5], true);
     let dec = assert_same_on_threads(&m, &p);
     assert_valid(&m, &dec, &p);
@@ -203,7 +203,7 @@ fn wall_high_top_is_one_plate() {
         assert_valid(&m, &dec, &p);
         let shapes = shapes(&dec, 0, &p);
         let tol = primdecomp_testkit::check::tolerance(&m);
-        let off = m.offset;
+        let off = m.centre();
         let holds_all = |s: &primdecomp_testkit::contain::Shape| {
             on_top.iter().all(|&f| {
                 m.face(f).iter().all(|&v| {

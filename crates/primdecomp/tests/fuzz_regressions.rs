@@ -11,7 +11,7 @@ use primdecomp_testkit::check::assert_valid;
 #[test]
 fn tolerance_weld_does_not_shrink_the_output() {
     let v = [[1e-30, -1e-30, 0.0], [0.0, -1e-30, 2e-30]];
-    let mesh = Mesh::from_polygons(&v, &[vec![0, 1, 1]]);
+    let mesh = Mesh::from_polygons(&v, &[vec![0, 1, 1]]).unwrap();
     let params = Params {
         targets: vec![27],
         dedup: Dedup::Tolerance(10.0),
@@ -35,7 +35,7 @@ fn transitive_tolerance_weld_keeps_every_face_enclosed() {
         f.push(vec![2 * i, 2 * i + 2, 2 * i + 1]);
         f.push(vec![2 * i + 1, 2 * i + 2, 2 * i + 3]);
     }
-    let mesh = Mesh::from_polygons(&v, &f);
+    let mesh = Mesh::from_polygons(&v, &f).unwrap();
     for n in [40, 4, 1] {
         let params = Params {
             targets: vec![n],
@@ -61,7 +61,7 @@ fn thin_frustum_far_from_the_origin_keeps_its_face() {
         at([5.0, 0.0, 0.0]),
         at([5.0, 0.0, 5.0]),
     ];
-    let mesh = Mesh::from_polygons(&v, &[vec![0, 1, 2, 2, 2, 2]]);
+    let mesh = Mesh::from_polygons(&v, &[vec![0, 1, 2, 2, 2, 2]]).unwrap();
     let params = Params {
         targets: vec![18],
         weights: [1.0, 1.4, 2.1, 1.05, 1e-9, 1.0],
@@ -79,7 +79,7 @@ fn thin_frustum_far_from_the_origin_keeps_its_face() {
 fn tilted_discs(n: usize, gap: f64, offset: f64) -> Mesh {
     let (u, w) = ([0.6, 0.8, 0.0], [-0.48, 0.36, 0.8]);
     let mut v = Vec::new();
-    let mut f = Vec::new();
+    let mut f: Vec<Vec<u32>> = Vec::new();
     for d in 0..n {
         let first = v.len() as u32;
         for i in 0..64 {
@@ -89,16 +89,16 @@ fn tilted_discs(n: usize, gap: f64, offset: f64) -> Mesh {
         }
         f.push((first..first + 64).collect());
     }
-    Mesh::from_polygons(&v, &f)
+    Mesh::from_polygons(&v, &f).unwrap()
 }
 
-fn round_only(kind: Kind, targets: Vec<usize>, min_extent_rel: f64) -> Params {
+fn round_only(kind: Kind, targets: Vec<usize>, min_extent: f64) -> Params {
     let mut kinds = [false; 6];
     kinds[kind as usize] = true;
     Params {
         targets,
         kinds,
-        min_extent_rel,
+        min_extent,
         ..Default::default()
     }
 }
@@ -123,9 +123,9 @@ fn near_zero_length_axes_stay_enclosed_at_the_origin() {
 }
 
 /// Decomposes `mesh` to `n` with only cylinders, then only frustums, and checks both.
-fn cylinders_and_frustums_enclose(mesh: &Mesh, n: usize, min_extent_rel: f64) {
+fn cylinders_and_frustums_enclose(mesh: &Mesh, n: usize, min_extent: f64) {
     for kind in [Kind::Cylinder, Kind::Frustum] {
-        let params = round_only(kind, vec![n], min_extent_rel);
+        let params = round_only(kind, vec![n], min_extent);
         assert_valid(mesh, &decompose(mesh, &params).unwrap(), &params);
     }
 }
@@ -149,7 +149,7 @@ fn faces_on_one_point_still_merge() {
     let v = [[1e-30, -1e-30, -1e-30]];
     let mut f = vec![vec![0; 8], vec![0; 8]];
     f.extend(std::iter::repeat_n(vec![0], 14)); // skipped: fewer than 3 corners
-    let mesh = Mesh::from_polygons(&v, &f);
+    let mesh = Mesh::from_polygons(&v, &f).unwrap();
     let mut kinds = [false; 6];
     kinds[Kind::Box as usize] = true;
     kinds[Kind::Prism as usize] = true;
@@ -158,7 +158,7 @@ fn faces_on_one_point_still_merge() {
         weights: [1e-9, 2.1, 1e-9, 1.0, 1.0, 1.0],
         kinds,
         dedup: Dedup::Off,
-        remove_contained: false,
+        remove_nested: false,
         ..Default::default()
     };
     merges_to_one(&mesh, &params);
@@ -177,10 +177,10 @@ fn meshes_1e_minus_200_across_still_merge() {
         [4.0 * s, 0.0, s],
         [3.0 * s, s, 2.0 * s],
     ];
-    let mesh = Mesh::from_polygons(&v, &[vec![0, 1, 2], vec![3, 4, 5]]);
+    let mesh = Mesh::from_polygons(&v, &[vec![0, 1, 2], vec![3, 4, 5]]).unwrap();
     let params = Params {
         targets: vec![1],
-        remove_contained: false,
+        remove_nested: false,
         ..Default::default()
     };
     merges_to_one(&mesh, &params);
@@ -195,7 +195,7 @@ fn meshes_1e_minus_200_across_still_merge() {
 #[test]
 fn coordinates_near_the_top_of_f64_are_refused() {
     let v = [[5.391989341715902e68, 0.0, -4.294604791590196e304]];
-    let mesh = Mesh::from_polygons(&v, &[vec![0; 8]]);
+    let mesh = Mesh::from_polygons(&v, &[vec![0; 8]]).unwrap();
     let params = Params {
         targets: vec![37],
         weights: [1.0, 1.0, 1.0, 1.0, 1e-9, 1e9],
@@ -217,7 +217,7 @@ fn coordinates_near_the_top_of_f64_are_refused() {
     }
     for z in [1e70, -1e70, 9.9e69] {
         let v = [[0.0, 0.0, z], [0.0, 1e55, z], [0.0, 0.0, z]];
-        let mesh = Mesh::from_polygons(&v, &[vec![0, 1, 2], vec![0, 0, 0]]);
+        let mesh = Mesh::from_polygons(&v, &[vec![0, 1, 2], vec![0, 0, 0]]).unwrap();
         for kind in [Kind::Frustum, Kind::Cylinder] {
             let params = round_only(kind, vec![1], 5e-4);
             assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
@@ -234,12 +234,12 @@ fn coordinates_near_the_top_of_f64_are_refused() {
 fn minimum_extent_that_underflows_stays_positive() {
     let v = [[-1.2e9, 2e9, 0.0], [-1.2e9, 2e9, 6e-22]];
     let f = vec![vec![1, 1, 1, 0, 1, 1, 0, 1], vec![0; 5], vec![0; 8]];
-    let mesh = Mesh::from_polygons(&v, &f);
+    let mesh = Mesh::from_polygons(&v, &f).unwrap();
     let params = Params {
         targets: vec![15],
         weights: [1.0, 1e-9, 1.0, 1.0, 1.0, 1.0],
         dedup: Dedup::Off,
-        min_extent_rel: 6.833639853623446e-304,
+        min_extent: 6.833639853623446e-304,
         ..Default::default()
     };
     assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
@@ -257,14 +257,16 @@ fn minimum_extent_that_underflows_stays_positive() {
 /// square are normal, so downstream arithmetic on the primitives stays finite.
 #[test]
 fn a_face_on_the_origin_gets_a_normal_sized_primitive() {
-    let mesh = Mesh::from_polygons(&[[0.0; 3]], &[vec![0, 0, 0]]);
+    let mesh = Mesh::from_polygons(&[[0.0; 3]], &[vec![0, 0, 0]]).unwrap();
     let params = Params {
         targets: vec![39],
         max_excess_volume: Some(0.0),
+        // A cap re-prices every merge at once (the run it came from did so implicitly).
+        reprice: primdecomp::Reprice::Exact,
         weights: [1.05, 1.0, 1.05, 1.4, 1e-9, 1.4],
         kinds: [true, true, true, true, false, true],
         dedup: Dedup::Off,
-        min_extent_rel: 0.5,
+        min_extent: 0.5,
         ..Default::default()
     };
     assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
@@ -299,14 +301,14 @@ fn thin_box_removal_keeps_every_face_in_one_primitive() {
         vec![3, 3, 3, 3, 3, 3, 2, 0],
         vec![0; 8],
     ];
-    let mesh = Mesh::from_polygons(&v, &f);
+    let mesh = Mesh::from_polygons(&v, &f).unwrap();
     let params = Params {
         targets: vec![27],
         weights: [1.0, 1e-9, 1e-9, 1.05, 1.05, 1.05],
         kinds: [true, false, true, false, true, false],
         dedup: Dedup::Off,
-        min_extent_rel: 1e-12,
-        remove_contained: false,
+        min_extent: 1e-12,
+        remove_nested: false,
         remove_thin_boxes: Some(0.001),
         ..Default::default()
     };
@@ -367,14 +369,13 @@ fn point_face_at_1e25_stays_enclosed() {
         vec![3, 0],
         vec![16, 17, 16, 16, 0, 9, 20],
     ];
-    let mesh = Mesh::from_polygons(&v, &f);
+    let mesh = Mesh::from_polygons(&v, &f).unwrap();
     let params = Params {
         targets: vec![23, 13, 17],
         weights: [1.0; 6],
         tangent_eps: 1.0,
-        min_extent_rel: 1.26e-321,
-        merge_min_extent_rel: Some(0.002),
-        flat_merge_extent_rel: 0.0,
+        min_extent: 1.26e-321,
+        open_holes: 0.0,
         remove_thin_boxes: Some(0.1),
         reprice: primdecomp::Reprice::Deferred { min_degree: 0 },
         ..Default::default()

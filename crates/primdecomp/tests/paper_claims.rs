@@ -83,7 +83,7 @@ fn disjoint_parts_are_bridged_to_reach_the_target() {
     ]);
     let d = decompose(&mesh(&two), &with_target(1)).unwrap();
     assert_eq!(d.levels[0].primitives.len(), 1);
-    assert!(d.bridge_edges > 0);
+    assert!(d.stats.bridge_edges > 0);
 }
 
 /// A plate with a square hole, at a fine target, keeps the hole open: no primitive
@@ -126,7 +126,7 @@ fn multi_target_equals_separate_runs() {
 /// annuli had closed into thin disks over the hole there (and at 170 and 200).
 #[test]
 fn demo_scene_keeps_ring_holes_open() {
-    let mesh = primdecomp::Mesh::from_builder(primdecomp::demo::demo_scene());
+    let mesh = primdecomp::demo_scene();
     // Torus: centre (7.2, 0.75, 0.5), axis z, tube radius 0.15; washer: centre
     // (9.3, 0, 0.5), axis y, 0.1 thick (demo.rs).
     let probes = [
@@ -160,6 +160,7 @@ fn excess_volume_cap_stops_costly_merges() {
     ]);
     let mut params = with_target(1);
     params.max_excess_volume = Some(0.5);
+    params.reprice = primdecomp::Reprice::Exact;
     let p = run(&two, &params);
     assert_eq!(
         p.len(),

@@ -3,7 +3,7 @@
 //! hold at most N primitives, and be the same bytes on any thread count; K = 1 must be
 //! the default run, and its JSON must not mention the setting (default output unchanged).
 
-use primdecomp::export::json::to_json;
+use primdecomp::to_json;
 use primdecomp::{decompose, Mesh, Params, Partitions};
 use primdecomp_testkit::check::{
     assert_counts, assert_same_on_threads, assert_valid, check_corpus_meshes,
@@ -52,11 +52,14 @@ fn partitioned_output_encloses_the_generated_scene() {
             dec.timings.stages.iter().any(|s| s.0 == "partitions"),
             "K={k}: phase 1 did not run"
         );
-        assert_eq!(dec.partitions, k);
+        assert_eq!(dec.stats.partitions, k);
         let stats = to_json(&dec, 0, &p);
         let stats = &stats[stats.find("\"stats\"").expect("stats")..];
         assert!(stats.contains(&format!("\"partitions\": {k}")), "{stats}");
-        assert_eq!(dec.merges, one.merges, "K={k}: both run down to 12");
+        assert_eq!(
+            dec.stats.merges, one.stats.merges,
+            "K={k}: both run down to 12"
+        );
     }
 }
 
@@ -67,13 +70,13 @@ fn partitioned_output_is_identical_on_any_thread_count() {
     assert_same_on_threads(&scene(), &params(&[60, 12], 8));
 }
 
-/// Below `AUTO_MIN_FACES` faces the default (`Partitions::Auto`) is K = 1, and neither
-/// JSON names the setting, so a default run's output on such an input is byte for byte
-/// what it was before `partitions` existed. A K > 1 run whose phase 1 would leave as
-/// many clusters as faces (16 × N ≥ F) is K = 1's run with the setting recorded.
+/// Below `AUTO_MIN_FACES` faces the default (`Partitions::Auto`) is K = 1: the same
+/// primitives as a fixed single part, each JSON recording the setting it was given and
+/// one part used. A K > 1 run whose phase 1 would leave as many clusters as faces
+/// (16 × N ≥ F) is K = 1's run with the setting recorded.
 #[test]
 fn one_partition_is_the_default_run_on_small_inputs() {
-    assert!(scene().face_count() < primdecomp::params::AUTO_MIN_FACES);
+    assert!(scene().face_count() < primdecomp::internals::AUTO_MIN_FACES);
     let m = scene();
     let default = Params {
         targets: vec![60, 12],
@@ -82,9 +85,13 @@ fn one_partition_is_the_default_run_on_small_inputs() {
     let a = decompose(&m, &default).unwrap();
     let b = decompose(&m, &params(&[60, 12], 1)).unwrap();
     let text = to_json(&b, 0, &params(&[60, 12], 1));
-    assert!(!text.contains("partitions"), "K=1 JSON names the setting");
-    assert_eq!(a.partitions, 1, "auto split a small input");
-    assert_eq!(to_json(&a, 0, &default), text);
+    assert!(
+        text.contains("\"partitions\": 1,"),
+        "K=1 JSON records the setting"
+    );
+    assert!(to_json(&a, 0, &default).contains("\"partitions\": \"auto\","));
+    assert_eq!(a.stats.partitions, 1, "auto split a small input");
+    assert_eq!(a.levels, b.levels);
     let big = m.face_count() / 16 + 1;
     let c1 = decompose(&m, &params(&[big], 1)).unwrap();
     let c8 = decompose(&m, &params(&[big], 8)).unwrap();
@@ -118,9 +125,12 @@ fn progress_is_reported_during_phase_one() {
     let m = mesh(&uv_sphere(3.0, 150, 200));
     let p = params(&[100], 2);
     let seen = std::sync::Mutex::new(Vec::new());
-    let dec =
-        primdecomp::decompose::decompose_with_progress(&m, &p, &|f| seen.lock().unwrap().push(f))
-            .unwrap();
+    let merge = |stage: primdecomp::Stage, f: f64| {
+        if stage == primdecomp::Stage::Merge && f > 0.0 && f < 1.0 {
+            seen.lock().unwrap().push(f)
+        }
+    };
+    let dec = primdecomp::decompose_with(&m, &p, &merge).unwrap();
     assert!(dec.timings.stages.iter().any(|s| s.0 == "partitions"));
     let seen = seen.into_inner().unwrap();
     assert!(seen.iter().all(|f| (0.0..=1.0).contains(f)), "{seen:?}");
@@ -136,12 +146,12 @@ fn progress_is_reported_during_phase_one() {
 fn parts_defer_unless_repricing_is_exact() {
     let m = scene();
     let lazy = decompose(&m, &params(&[12], 4)).unwrap();
-    assert!(lazy.fits.lazy > 0, "{:?}", lazy.fits);
+    assert!(lazy.stats.fits_when_popped > 0, "{:?}", lazy.stats);
     let p = Params {
         reprice: primdecomp::Reprice::Exact,
         ..params(&[12], 4)
     };
     let exact = decompose(&m, &p).unwrap();
     assert_valid(&m, &exact, &p);
-    assert_eq!(exact.fits.lazy, 0, "{:?}", exact.fits);
+    assert_eq!(exact.stats.fits_when_popped, 0, "{:?}", exact.stats);
 }

@@ -3,8 +3,8 @@
 //! thread count, a threshold no cluster reaches is the exact order, and an excess-volume
 //! cap keeps the exact order (a pair over the cap has no queue entry to defer).
 
-use primdecomp::export::json::to_json;
-use primdecomp::{decompose, demo, Decomposition, Mesh, Params, Reprice};
+use primdecomp::to_json;
+use primdecomp::{decompose, demo_scene, Decomposition, Mesh, Params, Reprice};
 use primdecomp_testkit::check::assert_valid;
 use primdecomp_testkit::shapes::{self, join, mesh, Polys};
 
@@ -43,12 +43,15 @@ fn run(m: &Mesh, p: &Params) -> Vec<String> {
 /// on flat and curved parts side by side.
 #[test]
 fn deferred_encloses_every_face() {
-    let meshes = [Mesh::from_builder(demo::demo_scene()), mesh(&mixed())];
+    let meshes = [demo_scene(), mesh(&mixed())];
     for m in &meshes {
         for reprice in [ALL, Reprice::Deferred { min_degree: 8 }] {
             let p = params(&[300, 60, 12, 1], reprice);
             let dec = decompose(m, &p).unwrap_or_else(|e| panic!("{e}"));
-            assert!(dec.fits.lazy > 0, "{reprice:?}: nothing was deferred");
+            assert!(
+                dec.stats.fits_when_popped > 0,
+                "{reprice:?}: nothing was deferred"
+            );
             assert_valid(m, &dec, &p);
         }
     }
@@ -72,7 +75,7 @@ fn deferred_is_identical_on_1_and_2_threads() {
 /// setting's only other effect is its entry in the JSON's settings.
 #[test]
 fn unreachable_threshold_is_exact() {
-    let m = Mesh::from_builder(demo::demo_scene());
+    let m = demo_scene();
     let never = Reprice::Deferred {
         min_degree: 1_000_000,
     };
@@ -90,21 +93,22 @@ fn unreachable_threshold_is_exact() {
     );
 }
 
-/// With an excess-volume cap every merge is re-priced at once (documented on
-/// `Reprice::Deferred`): same primitives as exact, and no fit deferred.
+/// An excess-volume cap needs every merge re-priced at once (a capped merge has no
+/// queue entry to defer): asked with deferral, the settings are refused up front with a
+/// message saying so; with exact re-pricing no fit is deferred.
 #[test]
 fn excess_cap_keeps_the_exact_order() {
-    let m = Mesh::from_builder(demo::demo_scene());
+    let m = demo_scene();
     let capped = |reprice| Params {
         max_excess_volume: Some(0.05),
         ..params(&[100], reprice)
     };
     let exact = decompose(&m, &capped(Reprice::Exact)).unwrap();
-    let deferred = decompose(&m, &capped(ALL)).unwrap();
-    assert_eq!(deferred.fits.lazy, 0);
-    assert_eq!(exact.fits, deferred.fits);
-    assert_eq!(
-        format!("{:?}", exact.levels[0].primitives),
-        format!("{:?}", deferred.levels[0].primitives)
-    );
+    assert_eq!(exact.stats.fits_when_popped, 0);
+    match decompose(&m, &capped(ALL)) {
+        Err(primdecomp::Error::InvalidParams(msg)) => {
+            assert!(msg.contains("reprice: exact"), "{msg}")
+        }
+        other => panic!("a cap with deferred re-pricing was not refused: {other:?}"),
+    }
 }

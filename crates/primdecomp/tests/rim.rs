@@ -7,7 +7,7 @@
 //! Whether a curb stands is decided by the independent containment oracle
 //! (`primdecomp_testkit::contain`), from points just above the top.
 
-use primdecomp::{decompose, demo, Mesh, Params};
+use primdecomp::{decompose, demo_scene, Mesh, Params};
 use primdecomp_testkit::check::{assert_same_on_threads, assert_valid, shapes};
 use primdecomp_testkit::contain::shape_contains;
 
@@ -48,7 +48,7 @@ fn slab() -> Mesh {
         vec![3, 7, 9, 6, 2], // top
         vec![0, 4, 8, 7, 3], // left
     ];
-    Mesh::from_polygons(&v, &f)
+    Mesh::from_polygons(&v, &f).unwrap()
 }
 
 /// How many of a grid of points `lift` above the top (y = 1), over the slab's
@@ -74,8 +74,8 @@ fn points_above_top(m: &Mesh, p: &Params, lift: f64) -> usize {
 fn sliver_under_a_slab_top_stands_no_curb() {
     let m = slab();
     let at = |w| Params {
-        remove_contained: false,
-        free_merges: false,
+        remove_nested: false,
+        join_coplanar: false,
         ..params(&[m.face_count()], w)
     };
     assert!(
@@ -89,7 +89,7 @@ fn sliver_under_a_slab_top_stands_no_curb() {
 /// the same on 1, 2 and 8 threads, at several levels of the demo scene and weights.
 #[test]
 fn rim_fits_enclose_and_ignore_threads() {
-    let m = Mesh::from_builder(demo::demo_scene());
+    let m = demo_scene();
     for w in [1.0, 100.0] {
         let p = params(&[300, 150, 40, 8], w);
         let dec = assert_same_on_threads(&m, &p);
@@ -111,11 +111,11 @@ fn wall_high_has_no_curb_along_its_top() {
         return;
     };
     let (lo, hi) = m.aabb();
-    let (off, diag) = (m.offset, m.diagonal());
+    let (off, diag) = (m.centre(), m.diagonal());
     let top = hi[1] + off[1];
     let count = |w: f64| {
         let p = Params {
-            free_merges: false,
+            join_coplanar: false,
             ..params(&[208], w)
         };
         let dec = decompose(&m, &p).unwrap();
@@ -123,7 +123,7 @@ fn wall_high_has_no_curb_along_its_top() {
         // Over the footprint, the edges a quarter of the floor thickness in: a plate
         // on a side lies flush inside it (deviation 26), its outer face on the edge.
         let at = |k: usize, t: f64| {
-            let e = 0.25 * p.min_extent_rel * diag;
+            let e = 0.25 * p.min_extent * diag;
             lo[k] + off[k] + e + (hi[k] - lo[k] - 2.0 * e) * t
         };
         let mut n = 0;
@@ -155,16 +155,18 @@ fn wall_high_has_no_curb_along_its_top() {
 /// strip. Corpus mesh; skipped loudly when absent.
 #[test]
 fn truck_hood_is_a_rim_of_the_fender_beside_it() {
-    use primdecomp::merge::rim::{FaceAdjacency, Surroundings};
-    use primdecomp::mesh::{adjacency, dedup, orient};
+    use primdecomp::internals::{
+        face_pairs, face_signs_of_lists, neighbour_lists, outward_normal, weld, FaceAdjacency,
+        Surroundings,
+    };
     let Some(m) = primdecomp_testkit::corpus_mesh("truck_shrec.obj") else {
         return;
     };
-    let (welded, _) = dedup::weld(&m, Params::default().dedup);
-    let pairs = adjacency::face_pairs(&m.face_offsets, &welded);
-    let (offsets, adj) = adjacency::neighbour_lists(m.face_count(), &pairs);
-    let signs = orient::face_signs_of_lists(&m, &welded, &offsets, &adj);
-    let up = |f: u32| orient::outward_normal(&m, &signs, f).unwrap().0;
+    let (welded, _) = weld(&m, Params::default().dedup);
+    let pairs = face_pairs(&m, &welded);
+    let (offsets, adj) = neighbour_lists(m.face_count(), &pairs);
+    let signs = face_signs_of_lists(&m, &welded, &offsets, &adj);
+    let up = |f: u32| outward_normal(&m, &signs, f).unwrap().0;
     assert!(up(4383)[1] > 0.9, "the hood faces down: {:?}", up(4383));
     assert!(up(4457)[2] > 0.8, "the fender faces in: {:?}", up(4457));
     let around = Surroundings {
@@ -196,13 +198,13 @@ fn truck_hood_is_a_rim_of_the_fender_beside_it() {
 /// Corpus mesh; skipped loudly when absent.
 #[test]
 fn truck_roof_has_few_basins_at_128() {
-    use primdecomp::export::obj::tessellate;
     use primdecomp::math::{add, V3};
+    use primdecomp::tessellate;
     use primdecomp_testkit::basin::{basin_cells, centre_heights, heights, Grid};
     let Some(m) = primdecomp_testkit::corpus_mesh("truck_shrec.obj") else {
         return;
     };
-    let world = |p: V3| add(p, m.offset);
+    let world = |p: V3| add(p, m.centre());
     let verts: Vec<V3> = (0..m.vertex_count() as u32)
         .map(|v| world(m.pos(v)))
         .collect();

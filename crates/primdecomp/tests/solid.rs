@@ -3,7 +3,7 @@
 //! keep the enclosure and thread independence; and a closed part must fill into solid
 //! primitives where the paper's pricing leaves it a shell of plates.
 
-use primdecomp::{decompose, demo, Mesh, Params};
+use primdecomp::{decompose, demo_scene, Params};
 use primdecomp_testkit::check::{assert_default_output, assert_same_on_threads, assert_valid};
 use primdecomp_testkit::shapes::{cuboid, cylinder, join, mesh};
 
@@ -18,7 +18,7 @@ fn params(targets: &[usize], solid: bool) -> Params {
 /// Off is the default engine, primitive for primitive.
 #[test]
 fn off_is_the_default_output() {
-    let m = Mesh::from_builder(demo::demo_scene());
+    let m = demo_scene();
     assert_default_output(&m, &params(&[150, 20], false));
 }
 
@@ -26,7 +26,7 @@ fn off_is_the_default_output() {
 /// on 1 and 2 threads.
 #[test]
 fn solid_pricing_encloses_and_ignores_threads() {
-    let m = Mesh::from_builder(demo::demo_scene());
+    let m = demo_scene();
     let p = params(&[150, 40, 8], true);
     let dec = assert_same_on_threads(&m, &p);
     assert_valid(&m, &dec, &p);

@@ -5,7 +5,7 @@
 #![allow(dead_code)]
 
 use super::contain::{faces_enclosed, parse_primitive, Shape};
-use primdecomp::export::json::to_json;
+use primdecomp::to_json;
 use primdecomp::{Decomposition, Mesh, Params};
 
 /// World-space corners of every face of `mesh`.
@@ -110,7 +110,7 @@ pub fn check_corpus_meshes(with: impl Fn(&[usize]) -> Vec<Params>) {
         return;
     }
     for name in ["stanford_bunny.obj", "peterbilt_truck.obj"] {
-        let m = primdecomp::mesh::io::load(&dir.join(name)).unwrap_or_else(|e| panic!("{e}"));
+        let m = primdecomp::load(&dir.join(name)).unwrap_or_else(|e| panic!("{e}"));
         let targets = [(m.face_count() / 100).max(1), 20];
         for p in with(&targets) {
             let dec = primdecomp::decompose(&m, &p).unwrap_or_else(|e| panic!("{name}: {e}"));

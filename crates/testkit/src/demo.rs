@@ -1,18 +1,18 @@
 //! The demo scene as merge-stage input, for the allocation tests.
 
-use primdecomp::decompose::{evaluator, seed_volumes};
-use primdecomp::merge::{Clusters, Evaluator};
-use primdecomp::mesh::{adjacency, dedup};
-use primdecomp::{demo, quadric, Mesh, Params};
+use primdecomp::internals::{
+    evaluator, face_pairs, face_quadrics, seed_volumes, weld, Clusters, Evaluator,
+};
+use primdecomp::{demo_scene, Params};
 
 /// Runs `f` on the demo scene's evaluator, its single-face clusters and adjacent pairs.
 pub fn with_demo<R>(f: impl FnOnce(&Evaluator, Clusters, Vec<(u32, u32)>) -> R) -> R {
-    let mesh = Mesh::from_builder(demo::demo_scene());
+    let mesh = demo_scene();
     let p = Params::default();
-    let (welded, _) = dedup::weld(&mesh, p.dedup);
-    let pairs = adjacency::face_pairs(&mesh.face_offsets, &welded);
+    let (welded, _) = weld(&mesh, p.dedup);
+    let pairs = face_pairs(&mesh, &welded);
     let mut q = Vec::new();
-    quadric::face_quadrics(&mesh, p.tangent_eps, &mut q);
+    face_quadrics(&mesh, p.tangent_eps, &mut q);
     let ev = evaluator(&mesh, &welded, &p, mesh.aabb());
     let vols = seed_volumes(&ev, &q);
     let cl = Clusters::new(q, vols, &pairs);

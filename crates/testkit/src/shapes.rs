@@ -46,7 +46,7 @@ pub fn join(parts: &[Polys]) -> Polys {
 }
 
 pub fn mesh(p: &Polys) -> Mesh {
-    Mesh::from_polygons(&p.0, &p.1)
+    Mesh::from_polygons(&p.0, &p.1).unwrap()
 }
 
 /// Closed cylinder along z: `n` side quads and two n-gon caps.
@@ -221,4 +221,26 @@ pub fn obj_text((v, f): &Polys) -> String {
         t += &format!("f {}\n", ids.join(" "));
     }
     t
+}
+
+/// The built-in demo scene ([`primdecomp::demo_scene`]) as world positions and
+/// polygons, read back from its OBJ text: the generator prints each coordinate in
+/// the shortest form that parses back to the same f64, so these are its exact values.
+pub fn demo_polys() -> Polys {
+    let (mut v, mut f) = (Vec::new(), Vec::new());
+    for line in primdecomp::demo_scene_obj().lines() {
+        let mut t = line.split_whitespace();
+        match t.next() {
+            Some("v") => {
+                let c: Vec<f64> = t.map(|x| x.parse().expect("demo coordinate")).collect();
+                v.push([c[0], c[1], c[2]]);
+            }
+            Some("f") => f.push(
+                t.map(|x| x.parse::<u32>().expect("demo index") - 1)
+                    .collect(),
+            ),
+            _ => {}
+        }
+    }
+    (v, f)
 }

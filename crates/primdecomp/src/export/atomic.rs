@@ -5,7 +5,7 @@
 use crate::error::{Error, Result};
 use std::fs::{self, OpenOptions};
 use std::io::{self, Write};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::atomic::{AtomicU64, Ordering};
 
 /// Makes temporary names unique within the process (the pid separates processes).
@@ -70,30 +70,10 @@ fn sync_dir(dir: &Path) {
     let _ = dir;
 }
 
-/// The output file for `target` when a run has `n_targets` targets: `base` itself for
-/// a single target, otherwise `_n{target}` inserted before the extension
-/// (`out.json` → `out_n500.json`, `out` → `out_n500`).
-pub fn output_path_for(base: &Path, target: usize, n_targets: usize) -> PathBuf {
-    if n_targets <= 1 {
-        return base.to_path_buf();
-    }
-    let Some(stem) = base.file_stem() else {
-        let mut s = base.as_os_str().to_os_string();
-        s.push(format!("_n{target}"));
-        return PathBuf::from(s);
-    };
-    let mut name = stem.to_os_string();
-    name.push(format!("_n{target}"));
-    if let Some(ext) = base.extension() {
-        name.push(".");
-        name.push(ext);
-    }
-    base.with_file_name(name)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::path::PathBuf;
 
     fn scratch_dir(tag: &str) -> PathBuf {
         let d = std::env::temp_dir().join(format!(
@@ -164,19 +144,5 @@ mod tests {
             write_atomic(Path::new("/"), b"x"),
             Err(Error::Write { .. })
         ));
-    }
-
-    #[test]
-    fn output_paths_per_target() {
-        let p = |s: &str, t, n| output_path_for(Path::new(s), t, n);
-        assert_eq!(p("out.json", 500, 1), PathBuf::from("out.json"));
-        assert_eq!(p("out.json", 500, 3), PathBuf::from("out_n500.json"));
-        assert_eq!(p("dir/out.obj", 40, 2), PathBuf::from("dir/out_n40.obj"));
-        assert_eq!(p("dir/out", 40, 2), PathBuf::from("dir/out_n40"));
-        assert_eq!(
-            p("a.b/out.tar.json", 7, 2),
-            PathBuf::from("a.b/out.tar_n7.json")
-        );
-        assert_eq!(p(".hidden", 7, 2), PathBuf::from(".hidden_n7"));
     }
 }

@@ -5,11 +5,11 @@
 //! rotations as scalar-last unit quaternions. Also the reverse direction
 //! ([`read_primitives`]) and the quaternion conversions the eval tools share.
 
-use crate::decompose::{Decomposition, Timings};
 use crate::math::quat::{axes_from_quat, quat_from_axes};
 use crate::math::V3;
 use crate::params::Params;
 use crate::primitive::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
+use crate::result::{Decomposition, Timings};
 use serde::ser::{SerializeMap, Serializer};
 use serde::{Deserialize, Serialize};
 
@@ -228,22 +228,17 @@ struct Stats<'a> {
     counts: Counts,
     primitives: usize,
     bytes: usize,
-    /// Spatial parts merged in parallel first; written only when more than one.
-    #[serde(skip_serializing_if = "at_most_one")]
+    /// Spatial parts merged in parallel first (1 = none).
     partitions: usize,
     #[serde(skip_serializing_if = "Option::is_none")]
     seconds: Option<Seconds<'a>>,
-}
-
-fn at_most_one(k: &usize) -> bool {
-    *k <= 1
 }
 
 #[derive(Serialize)]
 struct Document<'a> {
     format: &'static str,
     version: u32,
-    input: &'a crate::decompose::InputInfo,
+    input: &'a crate::result::InputInfo,
     settings: Settings<'a>,
     stats: Stats<'a>,
     primitives: Vec<PrimJson>,
@@ -308,7 +303,7 @@ fn document(dec: &Decomposition, level: usize, params: &Params, timed: bool) -> 
             counts: Counts(lv.counts()),
             primitives: lv.primitives.len(),
             bytes: lv.bytes(),
-            partitions: dec.partitions,
+            partitions: dec.stats.partitions,
             seconds: timed.then_some(Seconds(&dec.timings)),
         },
         primitives,
@@ -372,8 +367,8 @@ pub fn read_primitives(json: &str) -> Result<Vec<Primitive>, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::decompose::{InputInfo, Level};
     use crate::math::quat::tests::close;
+    use crate::result::{InputInfo, Level};
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
@@ -463,7 +458,7 @@ mod tests {
         assert_eq!(v["input"]["path"], "scene \"1\".obj");
         assert_eq!(v["input"]["faces"], 28);
         assert_eq!(v["settings"]["target"], 7);
-        assert_eq!(v["settings"]["targets"], serde_json::json!([32]));
+        assert_eq!(v["settings"]["targets"], serde_json::json!([64]));
         assert_eq!(v["settings"]["dedup"], "exact");
         assert_eq!(v["settings"]["weights"]["prism"], 1.4);
         assert_eq!(v["settings"]["kinds"]["frustum"], true);

@@ -1,12 +1,13 @@
-//! Output writers: the JSON result contract ([`json`]), a conservative OBJ
-//! tessellation of the primitives for viewing and physics engines ([`obj`]), and
-//! crash-safe file replacement shared by both ([`atomic`]).
+//! Writers: the JSON result contract ([`to_json`], read back by [`read_primitives`]),
+//! a conservative triangle-mesh tessellation of the primitives ([`tessellate`],
+//! [`to_obj`]: each tessellated primitive contains the exact one, so the enclosure
+//! guarantee holds for the mesh too), and crash-safe file replacement
+//! ([`write_atomic`]).
 
-pub mod atomic;
-pub mod json;
-pub mod obj;
+mod atomic;
+mod json;
+mod obj;
 
-pub use crate::math::quat::{axes_from_quat, quat_from_axes};
-pub use atomic::{output_path_for, write_atomic};
-pub use json::{read_primitives, to_json};
-pub use obj::{tessellate, to_obj, Tess, DEFAULT_DETAIL};
+pub use atomic::write_atomic;
+pub use json::{read_primitives, to_json, to_json_timed};
+pub use obj::{circle_frame, tessellate, to_obj, Tess, DEFAULT_DETAIL};

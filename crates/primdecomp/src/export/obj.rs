@@ -5,9 +5,9 @@
 //! caps, a UV sphere scaled by the exact factor that puts every face plane outside
 //! the sphere.
 
-use crate::decompose::Level;
 use crate::math::{add, cross, dot, madd, normalize, scale, sub, V3};
 use crate::primitive::Primitive;
+use crate::result::Level;
 use std::collections::HashMap;
 use std::f64::consts::{PI, TAU};
 use std::fmt::Write;
@@ -19,7 +19,9 @@ pub const DEFAULT_DETAIL: usize = 16;
 /// counter-clockwise seen from outside.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Tess {
+    /// Vertex positions.
     pub vertices: Vec<V3>,
+    /// Convex polygons, each a list of indices into `vertices`.
     pub faces: Vec<Vec<u32>>,
 }
 
@@ -76,7 +78,7 @@ impl Tess {
 
 /// Two unit vectors `u`, `v` with `u × v = a` (for unit `a`), chosen deterministically:
 /// the tessellation's circles put vertex j at `u cos t + v sin t`, t = 2πj/k.
-pub fn frame(a: V3) -> (V3, V3) {
+pub fn circle_frame(a: V3) -> (V3, V3) {
     let k = (0..3)
         .min_by(|&i, &j| a[i].abs().total_cmp(&a[j].abs()))
         .unwrap_or(0);
@@ -95,7 +97,7 @@ fn axis(p0: V3, p1: V3) -> V3 {
 /// `a`, first ring lowest: end caps, and quads between consecutive rings. Rings of
 /// radius 0 become poles (the cleaning turns their quads into triangles).
 fn stack(rings: &[(V3, f64)], a: V3, k: usize) -> Tess {
-    let (u, v) = frame(a);
+    let (u, v) = circle_frame(a);
     let dirs: Vec<V3> = (0..k)
         .map(|j| {
             let t = TAU * j as f64 / k as f64;
@@ -379,7 +381,7 @@ mod tests {
 
     /// Point on a circle of radius `r` about `c` in the plane normal to `a`.
     fn on_circle(c: V3, a: V3, r: f64, t: f64) -> V3 {
-        let (u, v) = frame(a);
+        let (u, v) = circle_frame(a);
         madd(madd(c, u, r * t.cos()), v, r * t.sin())
     }
 

@@ -49,7 +49,7 @@ impl Sym3 {
     }
 
     /// Full matrix, row-major.
-    pub fn to_rows(&self) -> [[f64; 3]; 3] {
+    pub fn to_rows(self) -> [[f64; 3]; 3] {
         [
             [self.xx, self.xy, self.xz],
             [self.xy, self.yy, self.yz],
@@ -58,6 +58,7 @@ impl Sym3 {
     }
 
     /// `M v`.
+    #[cfg(test)]
     #[inline]
     pub fn mul_vec(&self, v: V3) -> V3 {
         [

@@ -5,10 +5,6 @@
 
 use crate::math::Sym3;
 
-/// A cluster, named by its root face.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub struct ClusterId(pub u32);
-
 /// Lists owned by a cluster once it stops being a single face.
 #[derive(Debug, Default)]
 struct Lists {
@@ -97,7 +93,7 @@ impl Clusters {
     pub fn len(&self) -> usize {
         self.node.len()
     }
-
+    #[cfg(any(test, feature = "test-internals"))]
     pub fn is_empty(&self) -> bool {
         self.node.is_empty()
     }

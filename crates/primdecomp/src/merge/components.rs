@@ -119,7 +119,7 @@ pub fn merge_components(
     pairs: &[(u32, u32)],
     comps: Vec<Vec<u32>>,
     largest_target: usize,
-    merged: &(dyn Fn(usize) + Sync),
+    merged: &(dyn Fn(usize) -> bool + Sync),
 ) -> Phase1 {
     let traced = largest_target >= comps.len();
     let (parts, targets) = groups(comps);
@@ -193,14 +193,14 @@ mod tests {
     use super::*;
     use crate::merge::driver::tests::{reprice_modes, with_input};
     use crate::merge::{run, Clusters};
-    use crate::{Params, Reduction};
+    use crate::Params;
 
     /// The demo scene (several separate objects) merged to `targets` (decreasing) by
     /// the global loop alone and as a run does when components apply (phase 1, the
     /// replayed snapshots at targets of at least one cluster per component, phase 2
     /// for the rest): the same primitives and members at every target.
     fn same_as_global(p: Params, targets: &[usize]) {
-        let mesh = crate::Mesh::from_builder(crate::demo::demo_scene());
+        let mesh = crate::demo::demo_scene();
         same_as_global_on(&mesh, p, targets);
     }
 
@@ -210,13 +210,13 @@ mod tests {
             let comps = components(mesh.face_count(), pairs);
             let count = comps.len();
             let fresh = || Clusters::new(q.to_vec(), vols.to_vec(), pairs);
-            let global = run(ev, fresh(), targets, &|_| {});
-            let p1 = merge_components(ev, q, vols, pairs, comps, targets[0], &|_| {});
+            let global = run(ev, fresh(), targets, &|_| true);
+            let p1 = merge_components(ev, q, vols, pairs, comps, targets[0], &|_| true);
             let mut split = snapshots(ev, &p1, q, vols, pairs, targets, count).0;
             let rest = &targets[split.len()..];
             if !rest.is_empty() {
                 let cl = partition::clusters(p1, q.to_vec(), vols.to_vec(), pairs);
-                split.extend(run(ev, cl, rest, &|_| {}).snapshots);
+                split.extend(run(ev, cl, rest, &|_| true).snapshots);
             }
             assert_eq!(global.snapshots.len(), split.len());
             let sorted = |m: &[Vec<u32>]| {
@@ -234,7 +234,7 @@ mod tests {
 
     /// Targets from every face down to one cluster, through the component count.
     fn demo_targets() -> Vec<usize> {
-        let mesh = crate::Mesh::from_builder(crate::demo::demo_scene());
+        let mesh = crate::demo::demo_scene();
         let p = Params::default();
         let (faces, count) = with_input(&mesh, &p, |_, _, _, pairs| {
             (
@@ -281,14 +281,11 @@ mod tests {
     fn merging_components_apart_changes_nothing() {
         let targets = demo_targets();
         for reprice in reprice_modes() {
-            for reduction in [Reduction::Hull, Reduction::Extremes] {
-                let p = Params {
-                    reprice,
-                    reduction,
-                    ..Params::default()
-                };
-                same_as_global(p, &targets);
-            }
+            let p = Params {
+                reprice,
+                ..Params::default()
+            };
+            same_as_global(p, &targets);
         }
     }
 

@@ -8,7 +8,7 @@ use super::rim::{clamp_to_points, rim_reach, FaceAdjacency, Rim, Surroundings};
 use crate::math::hull::{hull_vertices, HullWorkspace};
 use crate::math::Sym3;
 use crate::math::{dot, V3};
-use crate::mesh::orient::outward_normal;
+use crate::mesh::outward_normal;
 use crate::mesh::solid::Solid;
 use crate::mesh::Mesh;
 use crate::primitive::fit::thorough_frames;
@@ -16,7 +16,6 @@ use crate::primitive::fit::{
     fit_best_frame, fit_frame, fit_frame_priced, Fit, FitConfig, FrameSearch,
 };
 use crate::primitive::{fit_best, frame, Cloud, FitScratch, Primitive};
-use crate::Reduction;
 
 /// Faces whose outward normal is within about 0.8° of a plate's axis face along it
 /// ([`Evaluator::flush`]): a flat cluster's faces lie at round-off from it.
@@ -35,32 +34,11 @@ pub struct Workspace {
     hx: Vec<f64>,
     hy: Vec<f64>,
     hz: Vec<f64>,
-    /// The output fit's candidate frames and the cluster's faces as outer sides, when
-    /// the outward reach is priced (`Params::outward_weight`).
+    /// The output fit's candidate frames, when the rim reach is priced.
     frames: Vec<[V3; 3]>,
-    sides: Vec<OuterSide>,
     /// The output cluster's faces, sorted, and its rims (`Params::rim_weight`).
     members: Vec<u32>,
     rims: Vec<Rim>,
-}
-
-/// A face as its outer side: unit normal (from its winding), area, and the largest
-/// `n·v` over its vertices (its plane).
-#[derive(Clone, Copy, Debug)]
-struct OuterSide {
-    n: V3,
-    area: f64,
-    offset: f64,
-}
-
-/// Σ area·(h(n) − offset) over the sides: how far, area-weighted, the primitive reaches
-/// past the faces' outer side (a volume, like k·V). A primitive enclosing the faces
-/// reaches at least their planes; only reach beyond them counts.
-fn outward_reach(prim: &Primitive, sides: &[OuterSide]) -> f64 {
-    sides
-        .iter()
-        .map(|s| s.area * (prim.support(s.n) - s.offset).max(0.0))
-        .sum()
 }
 
 impl Workspace {
@@ -90,9 +68,6 @@ pub struct Evaluator<'a> {
     /// Welded face indices (same CSR offsets as the mesh).
     pub welded: &'a [u32],
     pub cfg: FitConfig,
-    /// The output primitives' minimum half-extent (`cfg.min_half` prices merges and
-    /// may be larger: `Params::merge_min_extent_rel`).
-    pub output_min_half: f64,
     /// Largest excess volume one merge may add (absolute); `INFINITY` = no limit.
     pub max_excess: f64,
     /// Costs are rounded to multiples of this volume (a fixed fraction of the input's
@@ -100,21 +75,16 @@ pub struct Evaluator<'a> {
     /// whose exact costs tie — coplanar merges cost exactly 0, and there are many.
     pub cost_unit: f64,
     /// Factor on the cost of a merge whose points are coplanar (≥ 1): such merges are
-    /// priced as if primitives were `Params::flat_merge_extent_rel` thick instead of
-    /// the pricing floor (area across gaps and holes costs that thickness); 1 = off.
+    /// priced as if primitives were `Params::open_holes` thick instead of the minimum
+    /// extent (area across gaps and holes costs that thickness); 1 = off.
     pub flat_scale: f64,
     /// Distance below which a point counts as on a hull face (point reduction only).
     pub hull_eps: f64,
-    /// How merged clusters' points are reduced (`Params::reduction`).
-    pub reduction: Reduction,
     /// Merges whose clusters' neighbour lists hold at least this many entries are
     /// re-priced lazily (`Params::reprice`); `u32::MAX` = always at once (exact).
     pub defer_degree: u32,
-    /// `Params::outward_weight`: the outward reach's weight in the output frame choice.
-    pub outward_weight: f64,
     /// Per face, ±1: the winding that faces outward (`mesh::orient`); empty = the
-    /// faces' own windings (set only when `outward_weight` or `rim_weight` > 0 or
-    /// `flush_plates`).
+    /// faces' own windings (set only when `rim_weight` > 0 or `flush_plates`).
     pub face_sign: &'a [i8],
     /// The input's interior (`Params::solid`, deviation 23): merges are priced by the
     /// volume their primitive adds outside it; `None` = the paper's whole volume.
@@ -125,12 +95,12 @@ pub struct Evaluator<'a> {
     /// The input's face adjacency, for the output clusters' rims (read only when
     /// `rim_weight` > 0); empty = no rims (set when `face_sign` is).
     pub face_adj: FaceAdjacency<'a>,
-    /// `Params::free_merges`: free merges into plates run before a target's snapshot
-    /// (`merge::driver::free`, deviation 25).
+    /// `Params::join_coplanar`: free merges into plates run before a target's snapshot
+    /// (`merge::driver::free`, docs/decisions/0025).
     pub free_merges: bool,
     /// Coplanar plates a target's snapshot holds are joined where that adds no area
-    /// (`merge::plates`, deviation 28): `Params::free_merges` too, apart in tests that
-    /// check the loop's free merges alone.
+    /// (`postprocess::plates`, docs/decisions/0028): `Params::join_coplanar` too, apart
+    /// in tests that check the loop's free merges alone.
     pub join_plates: bool,
     /// `Params::flush_plates`: output plates lie flush on their faces (deviation 26).
     pub flush_plates: bool,
@@ -219,14 +189,10 @@ impl<'a> Evaluator<'a> {
         // stay priced as before.
         let cfg = FitConfig {
             frames: FrameSearch::Thorough,
-            min_half: self.output_min_half,
+            min_half: self.cfg.min_half,
             ..self.cfg
         };
-        ws.sides.clear();
         ws.rims.clear();
-        if self.outward_weight > 0.0 {
-            self.outer_sides(faces.clone(), ws);
-        }
         if self.rim_weight > 0.0 && !self.face_adj.is_empty() {
             ws.members.clear();
             ws.members.extend(faces.clone());
@@ -240,7 +206,7 @@ impl<'a> Evaluator<'a> {
             };
             around.rims(&ws.members, &mut ws.rims);
         }
-        let mut fit = if ws.sides.is_empty() && ws.rims.is_empty() {
+        let mut fit = if ws.rims.is_empty() {
             self.fit_on_hull(q, &cfg, ws)
         } else {
             self.fit_priced(q, &cfg, ws)
@@ -254,11 +220,11 @@ impl<'a> Evaluator<'a> {
     /// Deviation 26: a plate at the output floor thickness whose faces all face one way
     /// along its thin axis moves inward by its reach past their farthest vertex, so its
     /// outer side lies on the faces as the mesh's surface does (centred on them it stood
-    /// `output_min_half` proud, and balls rested that high). Its cross-section is the
+    /// `cfg.min_half` proud, and balls rested that high). Its cross-section is the
     /// same all along that axis, so the faces stay inside. `ws` holds the faces' points
     /// as gathered for the fit.
     fn flush(&self, faces: impl Iterator<Item = u32>, ws: &Workspace, prim: &mut Primitive) {
-        let Some(axis) = prim.plate_axis(self.output_min_half) else {
+        let Some(axis) = prim.plate_axis(self.cfg.min_half) else {
             return;
         };
         // The faces' common outward side along the axis: +1 or −1, 0 when they disagree.
@@ -293,32 +259,9 @@ impl<'a> Evaluator<'a> {
         }
     }
 
-    /// `faces` as outer sides (Newell normals of their own vertices); faces of zero
-    /// area have no side and are skipped.
-    fn outer_sides(&self, faces: impl Iterator<Item = u32>, ws: &mut Workspace) {
-        let m = self.mesh;
-        ws.sides.clear();
-        for f in faces {
-            let Some((n, len)) = outward_normal(m, self.face_sign, f) else {
-                continue;
-            };
-            let offset = m
-                .face(f as usize)
-                .iter()
-                .map(|&v| dot(n, m.pos(v)))
-                .fold(f64::NEG_INFINITY, f64::max);
-            ws.sides.push(OuterSide {
-                n,
-                area: 0.5 * len,
-                offset,
-            });
-        }
-    }
-
-    /// The output fit with the outward and rim reaches priced: every frame of the
-    /// thorough search fitted on the points' hull vertices, every enabled kind in it
-    /// compared by k·V + w_o·outward + w_r·rim (the reaches differ between kinds of one
-    /// frame), the least kept (earlier frames win ties within [`frame::MARGIN`]) and
+    /// The output fit with the rim reach priced: every frame of the thorough search
+    /// fitted on the points' hull vertices, every enabled kind in it compared by
+    /// k·V + w·rim (the reach differs between kinds of one frame), the least kept (earlier frames win ties within [`frame::MARGIN`]) and
     /// its frame refitted on every point.
     fn fit_priced(&self, q: &Sym3, cfg: &FitConfig, ws: &mut Workspace) -> Fit {
         // The search runs on the hull's vertices, or on every point when all are.
@@ -330,10 +273,8 @@ impl<'a> Evaluator<'a> {
         clamp_to_points(&mut ws.rims, x, y, z);
         let hull = Cloud { x, y, z };
         thorough_frames(&hull, q, &mut ws.fit, &mut ws.frames);
-        let (sides, rims) = (&ws.sides, &ws.rims);
-        let penalty = |p: &Primitive| {
-            self.outward_weight * outward_reach(p, sides) + self.rim_weight * rim_reach(p, rims)
-        };
+        let rims = &ws.rims;
+        let penalty = |p: &Primitive| self.rim_weight * rim_reach(p, rims);
         let mut best: Option<(f64, [V3; 3])> = None;
         for &axes in &ws.frames {
             let bar = best.map_or(f64::INFINITY, |(b, _)| b * (1.0 - frame::MARGIN));
@@ -457,7 +398,7 @@ impl<'a> Evaluator<'a> {
         let mut cost = fit.cost * air - before;
         let flat = ws.fit.was_flat();
         // A coplanar merge's volumes are all area × 2·floor, so scaling its cost is
-        // pricing it at the thicker floor (Params::flat_merge_extent_rel).
+        // pricing it at the thicker floor (Params::open_holes).
         if self.flat_scale > 1.0 && flat {
             cost *= self.flat_scale;
         }

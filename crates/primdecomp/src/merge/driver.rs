@@ -13,14 +13,16 @@ use super::cost::{Evaluator, Workspace};
 use super::heap::{Candidate, Queue, RadixHeap};
 use super::lazy::{valid, Lazy, Pop};
 use super::worker::{with_pricer, Pricer, Stats};
-use crate::math::extremes::extreme_points;
 use crate::math::hull::{hull_vertices, HullWorkspace};
 use crate::primitive::Primitive;
-use crate::Reduction;
+use crate::progress::GoOn;
 use rayon::prelude::*;
 
 /// Pairs priced per parallel task.
 const CHUNK: usize = 1024;
+/// The loop reports progress and checks whether to stop every this many merges
+/// (about 40 ms of a million-face run's merge loop).
+const CHECK_EVERY: usize = 4096;
 /// Point lists up to this size are not worth reducing to their hull: fitting a few
 /// extra points costs less than the hull (12 → 32: callgrind happy_buddha_100k
 /// `--threads 1` −3.6% instructions at `-n 1%`, −4.8% partitioned; ARCHITECTURE.md,
@@ -44,6 +46,9 @@ pub struct Snapshot {
     pub verts: Vec<Vec<u32>>,
     /// The faces of each primitive (post-processing checks coverage face by face).
     pub members: Vec<Vec<u32>>,
+    /// Each primitive's operator (the sum of its faces' quadrics), for refits after
+    /// the loop (`postprocess`).
+    pub q: Vec<crate::math::Sym3>,
 }
 
 #[derive(Clone, Debug, Default)]
@@ -57,6 +62,18 @@ pub struct MergeOutput {
     pub ahead: usize,
     /// Every merge in order, with its place in the global order (`Scope::Traced` only).
     pub trace: Vec<Traced>,
+    /// The run was told to stop ([`crate::progress`]): snapshots are missing.
+    pub stopped: bool,
+}
+
+impl MergeOutput {
+    /// The output of a loop told to stop before its first target.
+    pub(crate) fn stopped() -> MergeOutput {
+        MergeOutput {
+            stopped: true,
+            ..MergeOutput::default()
+        }
+    }
 }
 
 /// One merge of a traced loop: the pair merged, and the key at which a global loop
@@ -174,13 +191,8 @@ fn price(ev: &Evaluator, cl: &Clusters, pairs: &[(u32, u32)]) -> Vec<Candidate> 
 }
 
 /// Runs the merge loop down to the smallest target; `targets` sorted decreasing.
-pub fn run(
-    ev: &Evaluator,
-    cl: Clusters,
-    targets: &[usize],
-    progress: &(dyn Fn(f64) + Sync),
-) -> MergeOutput {
-    run_with::<RadixHeap>(ev, cl, targets, progress)
+pub fn run(ev: &Evaluator, cl: Clusters, targets: &[usize], go_on: GoOn) -> MergeOutput {
+    run_with::<RadixHeap>(ev, cl, targets, go_on)
 }
 
 /// [`run`] with a chosen queue (the benchmarks compare them; the order is the same).
@@ -188,9 +200,9 @@ pub fn run_with<Q: Queue>(
     ev: &Evaluator,
     cl: Clusters,
     targets: &[usize],
-    progress: &(dyn Fn(f64) + Sync),
+    go_on: GoOn,
 ) -> MergeOutput {
-    run_counted::<Q>(ev, cl, targets, progress).0
+    run_counted::<Q>(ev, cl, targets, go_on).0
 }
 
 /// [`run_with`], sharing re-pricing batches with a worker thread (`merge::worker`) when
@@ -199,10 +211,10 @@ fn run_counted<Q: Queue>(
     ev: &Evaluator,
     cl: Clusters,
     targets: &[usize],
-    progress: &(dyn Fn(f64) + Sync),
+    go_on: GoOn,
 ) -> (MergeOutput, Stats) {
     with_pricer(ev, |p| {
-        let out = merge_loop::<Q>(ev, cl, targets, progress, p, Scope::Whole).0;
+        let out = merge_loop::<Q>(ev, cl, targets, go_on, p, Scope::Whole).0;
         (out, p.stats)
     })
 }
@@ -227,11 +239,11 @@ pub(super) fn merge_part(
     cl: Clusters,
     target: usize,
     traced: bool,
-    progress: &(dyn Fn(f64) + Sync),
+    go_on: GoOn,
 ) -> (Clusters, MergeOutput) {
     let mut pricer = Pricer::serial(ev);
     let scope = if traced { Scope::Traced } else { Scope::Part };
-    let (out, cl) = merge_loop::<RadixHeap>(ev, cl, &[target], progress, &mut pricer, scope);
+    let (out, cl) = merge_loop::<RadixHeap>(ev, cl, &[target], go_on, &mut pricer, scope);
     (cl, out)
 }
 
@@ -240,7 +252,7 @@ fn merge_loop<Q: Queue>(
     ev: &Evaluator,
     mut cl: Clusters,
     targets: &[usize],
-    progress: &(dyn Fn(f64) + Sync),
+    go_on: GoOn,
     pricer: &mut Pricer,
     scope: Scope,
 ) -> (MergeOutput, Clusters) {
@@ -333,8 +345,12 @@ fn merge_loop<Q: Queue>(
             cl.mark_repriced(root);
             batch.drain(..).for_each(|c| heap.push(c));
         }
-        if out.merges % 4096 == 0 {
-            progress((start - cl.live) as f64 / (start - last.min(start)).max(1) as f64);
+        if out.merges % CHECK_EVERY == 0 {
+            let done = (start - cl.live) as f64 / (start - last.min(start)).max(1) as f64;
+            if !go_on(done) {
+                out.stopped = true;
+                return (out, cl);
+            }
         }
     }
     while next < targets.len() {
@@ -465,9 +481,7 @@ struct Reducer {
 /// The points to price a merged cluster by: the distinct vertices of both clusters'
 /// point lists, reduced to the vertices of their convex hull. Every fit maximises a
 /// convex function (or minimises a concave one) over the points, so the hull vertices
-/// give the same primitive as all points (ARCHITECTURE.md, "Exact point reduction").
-/// Under `Reduction::Extremes`, to their extreme points along 13 fixed axes instead
-/// (approximate, no hull).
+/// give the same primitive as all points (docs/decisions/0010).
 fn merged_points(
     ev: &Evaluator,
     cl: &Clusters,
@@ -492,10 +506,7 @@ fn merged_points(
         r.y.push(p[1]);
         r.z.push(p[2]);
     }
-    match ev.reduction {
-        Reduction::Hull => hull_vertices(&r.x, &r.y, &r.z, ev.hull_eps, &mut r.hull, &mut r.keep),
-        Reduction::Extremes => extreme_points(&r.x, &r.y, &r.z, &mut r.keep),
-    }
+    hull_vertices(&r.x, &r.y, &r.z, ev.hull_eps, &mut r.hull, &mut r.keep);
     r.keep.iter().map(|&i| out[i as usize]).collect()
 }
 
@@ -589,25 +600,17 @@ pub(super) fn snapshot(ev: &Evaluator, cl: &Clusters, target: usize, scope: Scop
         faces: roots.iter().map(|&r| cl.face_count[r as usize]).collect(),
         verts: roots.par_iter().map(|&r| ev.all_verts(cl, r)).collect(),
         members: roots.par_iter().map(|&r| cl.faces(r).collect()).collect(),
+        q: Vec::new(),
     };
-    let mut q = roots.iter().map(|&r| cl.q[r as usize]).collect();
-    // Solid pricing: near-duplicate primitives become one (deviation 23).
-    if ev.solid.is_some() {
-        super::absorb::absorb(ev, &mut snap, &mut q);
-    }
-    // Plates in one plane the merge left apart become one where that adds no area
-    // (deviation 28).
-    if ev.join_plates {
-        super::plates::join(ev, &mut snap, &mut q);
-    }
+    snap.q = roots.iter().map(|&r| cl.q[r as usize]).collect();
     snap
 }
 
 #[cfg(test)]
 pub(super) mod tests {
     use super::*;
-    use crate::decompose::{evaluator, seed_volumes};
     use crate::mesh::{adjacency, dedup};
+    use crate::pipeline::evaluator;
     use crate::{quadric, Params, Reprice};
 
     /// Runs `f` on the demo scene's evaluator and a maker of its single-face clusters.
@@ -622,7 +625,7 @@ pub(super) mod tests {
         p: Params,
         f: impl FnOnce(&Evaluator, &(dyn Fn() -> Clusters + Sync)) -> R,
     ) -> R {
-        let mesh = crate::Mesh::from_builder(crate::demo::demo_scene());
+        let mesh = crate::demo::demo_scene();
         with_input(&mesh, &p, |ev, q, vols, pairs| {
             f(ev, &|| Clusters::new(q.to_vec(), vols.to_vec(), pairs))
         })
@@ -641,7 +644,7 @@ pub(super) mod tests {
         let mut q = Vec::new();
         quadric::face_quadrics(mesh, p.tangent_eps, &mut q);
         let ev = evaluator(mesh, &welded, p, mesh.aabb());
-        let vols = seed_volumes(&ev, &q);
+        let vols = crate::pipeline::seed_volumes(&ev, &q, &|_| true);
         f(&ev, &q, &vols, &pairs)
     }
 
@@ -668,8 +671,12 @@ pub(super) mod tests {
             };
             with_demo_using(p, |ev, fresh| {
                 let targets = [400, 150, 40, 1];
-                let one = in_pool(1, || run_with::<RadixHeap>(ev, fresh(), &targets, &|_| {}));
-                let two = in_pool(2, || run_with::<RadixHeap>(ev, fresh(), &targets, &|_| {}));
+                let one = in_pool(1, || {
+                    run_with::<RadixHeap>(ev, fresh(), &targets, &|_| true)
+                });
+                let two = in_pool(2, || {
+                    run_with::<RadixHeap>(ev, fresh(), &targets, &|_| true)
+                });
                 assert_same(&one, &two);
                 assert_eq!(one.ahead, 0, "no worker, no look-ahead");
                 // Deferring every merge leaves no batch to overlap.
@@ -694,7 +701,7 @@ pub(super) mod tests {
                 ..Params::default()
             };
             let exact = Params {
-                free_merges: false,
+                join_coplanar: false,
                 ..free.clone()
             };
             // Above the face count (1,829) no merge is needed: only free ones run.
@@ -704,7 +711,7 @@ pub(super) mod tests {
                     join_plates: false,
                     ..*ev
                 };
-                run(&loop_only, fresh(), &targets, &|_| {})
+                run(&loop_only, fresh(), &targets, &|_| true)
             });
             let counts: Vec<usize> = with.snapshots.iter().map(|s| s.prims.len()).collect();
             assert!(
@@ -717,7 +724,7 @@ pub(super) mod tests {
             );
             let mut lower = counts.clone();
             lower.dedup();
-            let without = with_demo_using(exact, |ev, fresh| run(ev, fresh(), &lower, &|_| {}));
+            let without = with_demo_using(exact, |ev, fresh| run(ev, fresh(), &lower, &|_| true));
             for s in &with.snapshots {
                 let t = without.snapshots.iter().find(|t| t.target == s.prims.len());
                 let t = t.expect("a snapshot at each count");
@@ -757,8 +764,8 @@ pub(super) mod tests {
             };
             with_demo_using(p, |ev, fresh| {
                 let targets = [400, 150, 40, 1];
-                let a = run_with::<RadixHeap>(ev, fresh(), &targets, &|_| {});
-                let b = run_with::<crate::merge::StdHeap>(ev, fresh(), &targets, &|_| {});
+                let a = run_with::<RadixHeap>(ev, fresh(), &targets, &|_| true);
+                let b = run_with::<crate::merge::heap::StdHeap>(ev, fresh(), &targets, &|_| true);
                 assert_same(&a, &b);
             });
         }
@@ -773,13 +780,13 @@ pub(super) mod tests {
         with_demo(|ev, fresh| {
             let targets = [400, 150, 40, 1];
             let (one, s1) = in_pool(1, || {
-                run_counted::<RadixHeap>(ev, fresh(), &targets, &|_| {})
+                run_counted::<RadixHeap>(ev, fresh(), &targets, &|_| true)
             });
             assert_eq!(s1, Stats::default(), "one thread must not start a worker");
             let mut used = 0;
             for _ in 0..10 {
                 let (two, s2) = in_pool(2, || {
-                    run_counted::<RadixHeap>(ev, fresh(), &targets, &|_| {})
+                    run_counted::<RadixHeap>(ev, fresh(), &targets, &|_| true)
                 });
                 assert_same(&one, &two);
                 assert!(s2.shared > 0, "{s2:?}");

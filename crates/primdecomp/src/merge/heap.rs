@@ -52,6 +52,7 @@ impl PartialOrd for Candidate {
 /// A min-queue of candidates, cheapest first, then by `(a, b)`, then newest `t` first.
 pub trait Queue: Default {
     /// Builds the queue from an initial batch.
+    #[cfg(test)]
     fn from_vec(v: Vec<Candidate>) -> Self;
     fn push(&mut self, c: Candidate);
     fn pop(&mut self) -> Option<Candidate>;
@@ -65,11 +66,14 @@ pub trait Queue: Default {
 
 /// The reference queue: `std::collections::BinaryHeap`.
 #[derive(Debug, Default)]
+#[cfg(any(test, feature = "test-internals"))]
 pub struct StdHeap {
     heap: BinaryHeap<Candidate>,
 }
 
+#[cfg(any(test, feature = "test-internals"))]
 impl Queue for StdHeap {
+    #[cfg(test)]
     fn from_vec(v: Vec<Candidate>) -> Self {
         StdHeap {
             heap: BinaryHeap::from(v),
@@ -167,6 +171,7 @@ impl RadixHeap {
 }
 
 impl Queue for RadixHeap {
+    #[cfg(test)]
     fn from_vec(v: Vec<Candidate>) -> Self {
         let mut h = RadixHeap::default();
         let mut counts = [0usize; 65];

@@ -2,20 +2,17 @@
 //! Structure", "Pairwise Component Merging"): clusters of faces, their candidate
 //! merges in a priority queue with lazy deletion, and the loop that drives them.
 
-pub mod absorb;
-pub mod bridge;
-pub mod cluster;
-pub mod components;
-pub mod cost;
-pub mod driver;
-pub mod heap;
+pub(crate) mod bridge;
+pub(crate) mod cluster;
+pub(crate) mod components;
+pub(crate) mod cost;
+pub(crate) mod driver;
+pub(crate) mod heap;
 mod lazy;
-pub mod partition;
-pub mod plates;
-pub mod rim;
-pub mod worker;
+pub(crate) mod partition;
+pub(crate) mod rim;
+pub(crate) mod worker;
 
-pub use cluster::{ClusterId, Clusters};
-pub use cost::{Evaluator, Workspace};
-pub use driver::{run, run_with, FitCounts, MergeOutput, Snapshot};
-pub use heap::{Queue, RadixHeap, StdHeap};
+pub(crate) use cluster::Clusters;
+pub(crate) use cost::{Evaluator, Workspace};
+pub(crate) use driver::{run, FitCounts, MergeOutput, Snapshot};

@@ -56,6 +56,8 @@ pub struct Phase1 {
     parts: Vec<Groups>,
     pub merges: usize,
     pub fits: FitCounts,
+    /// A part's loop was told to stop ([`crate::progress`]): the groups are partial.
+    pub stopped: bool,
 }
 
 impl Phase1 {
@@ -150,7 +152,7 @@ pub fn merge_parts(
     pairs: &[(u32, u32)],
     largest_target: usize,
     k: usize,
-    merged: &(dyn Fn(usize) + Sync),
+    merged: &(dyn Fn(usize) -> bool + Sync),
 ) -> Phase1 {
     let parts = split(ev.mesh, k);
     let faces = ev.mesh.face_count() as u128;
@@ -184,7 +186,7 @@ pub(super) fn merge_groups(
     parts: &[Vec<u32>],
     targets: Vec<usize>,
     kind: Kind,
-    merged: &(dyn Fn(usize) + Sync),
+    merged: &(dyn Fn(usize) -> bool + Sync),
 ) -> Phase1 {
     let local_pairs = pairs_by_part(parts, pairs, ev.mesh.face_count());
     let done: Vec<AtomicUsize> = parts.iter().map(|_| AtomicUsize::new(0)).collect();
@@ -198,7 +200,7 @@ pub(super) fn merge_groups(
             let span = part.len().saturating_sub(target).max(1) as f64;
             let report = |f: f64| {
                 done[i].store((f * span).round() as usize, Relaxed);
-                merged(done.iter().map(|d| d.load(Relaxed)).sum());
+                merged(done.iter().map(|d| d.load(Relaxed)).sum())
             };
             merge_one(ev, q, volume, part, lp, target, kind, &report)
         })
@@ -207,6 +209,7 @@ pub(super) fn merge_groups(
     for (groups, m) in results {
         out.merges += m.merges;
         out.fits += m.fits;
+        out.stopped |= m.stopped;
         out.parts.push(groups);
     }
     out
@@ -275,7 +278,7 @@ fn merge_one(
     pairs: &[(u32, u32)],
     target: usize,
     kind: Kind,
-    progress: &(dyn Fn(f64) + Sync),
+    progress: crate::progress::GoOn,
 ) -> (Groups, MergeOutput) {
     let (sub, sub_welded, global) = sub_mesh(ev.mesh, ev.welded, part);
     // Same fit settings, cost grid and hull tolerance as the whole input's.
@@ -393,14 +396,14 @@ mod tests {
                 })
             })
             .collect();
-        Mesh::from_polygons(&pos, &faces)
+        Mesh::from_polygons(&pos, &faces).unwrap()
     }
 
     /// Every face in exactly one part, parts increasing and balanced (sizes within one
     /// per level), for K a power of two and not.
     #[test]
     fn split_covers_each_face_once_and_balances() {
-        let mesh = crate::Mesh::from_builder(crate::demo::demo_scene());
+        let mesh = crate::demo::demo_scene();
         let n = mesh.face_count();
         for k in [1, 2, 3, 4, 7, 8, 16] {
             let parts = split(&mesh, k);
@@ -443,7 +446,7 @@ mod tests {
                 })
             })
             .collect();
-        let wide = Mesh::from_polygons(&pos, &faces);
+        let wide = Mesh::from_polygons(&pos, &faces).unwrap();
         let halves = split(&wide, 2);
         for (p, want_left) in halves.iter().zip([true, false]) {
             assert_eq!(p.len(), 64);
@@ -452,7 +455,7 @@ mod tests {
         // A single row of 5 equal centroids' worth of ties: a degenerate mesh whose faces
         // all share one centroid splits by face index.
         let tri = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
-        let same = Mesh::from_polygons(&tri, &vec![vec![0, 1, 2]; 5]);
+        let same = Mesh::from_polygons(&tri, &vec![vec![0, 1, 2]; 5]).unwrap();
         assert_eq!(split(&same, 2), vec![vec![0, 1], vec![2, 3, 4]]);
     }
 
@@ -468,7 +471,7 @@ mod tests {
         let p = crate::Params::default();
         let (mut cl, pairs) =
             crate::merge::driver::tests::with_input(&mesh, &p, |ev, q, vols, pairs| {
-                let p1 = merge_parts(ev, q, vols, pairs, 4, 4, &|_| {});
+                let p1 = merge_parts(ev, q, vols, pairs, 4, 4, &|_| true);
                 (
                     clusters(p1, q.to_vec(), vols.to_vec(), pairs),
                     pairs.to_vec(),

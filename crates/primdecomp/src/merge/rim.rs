@@ -20,7 +20,7 @@
 //! [`RIM_ANGLE_DEG`]).
 
 use crate::math::{dot, norm, sub, V3};
-use crate::mesh::orient::outward_normal_and_centre;
+use crate::mesh::outward_normal_and_centre;
 use crate::mesh::Mesh;
 use crate::primitive::Primitive;
 
@@ -74,6 +74,7 @@ pub struct Rim {
 impl Rim {
     /// The outward unit normal of the face beyond the crease: the direction a
     /// primitive must not reach along past the rim's plane.
+    #[cfg(any(test, feature = "test-internals"))]
     pub fn direction(&self) -> V3 {
         self.d
     }
@@ -223,7 +224,7 @@ mod tests {
     /// and a side square at z = 1 hanging below it (x, y ∈ [0, 1], normal +z), sharing
     /// the edge z = 1, y = 1: a convex crease.
     fn ell() -> Mesh {
-        Mesh::from_polygons(&ell_points(), &[vec![0, 3, 2, 1], vec![3, 4, 5, 2]])
+        Mesh::from_polygons(&ell_points(), &[vec![0, 3, 2, 1], vec![3, 4, 5, 2]]).unwrap()
     }
 
     fn ell_points() -> [V3; 6] {
@@ -292,7 +293,7 @@ mod tests {
         let mut p = ell_points().to_vec();
         p.extend([[0.0, -1.0, 1.0], [1.0, -1.0, 1.0]]);
         let faces = [vec![0, 3, 2, 1], vec![3, 4, 5, 2], vec![4, 6, 7, 5]];
-        let m = Mesh::from_polygons(&p, &faces);
+        let m = Mesh::from_polygons(&p, &faces).unwrap();
         let out = rims_of(&m, &[2]);
         assert_eq!(out.len(), 1, "the top, across the side");
         let top = 1.0 - m.offset[1];
@@ -306,7 +307,7 @@ mod tests {
         let mut p = ell_points();
         p[4] = [0.0, 1.0 - t.sin(), 1.0 + t.cos()];
         p[5] = [1.0, 1.0 - t.sin(), 1.0 + t.cos()];
-        Mesh::from_polygons(&p, &[vec![0, 3, 2, 1], vec![3, 4, 5, 2]])
+        Mesh::from_polygons(&p, &[vec![0, 3, 2, 1], vec![3, 4, 5, 2]]).unwrap()
     }
 
     /// A gentle convex bend (10°, past [`RIM_GENTLE_DEG`], short of a crease) makes each
@@ -357,11 +358,11 @@ mod tests {
             [0.0, 1.0, 0.0],
             [1.0, 1.0, 0.0],
         ];
-        let m = Mesh::from_polygons(&p, &[vec![0, 3, 2, 1], vec![0, 1, 5, 4]]);
+        let m = Mesh::from_polygons(&p, &[vec![0, 3, 2, 1], vec![0, 1, 5, 4]]).unwrap();
         assert!(m.newell(0)[1] > 0.0 && m.newell(1)[2] > 0.0);
         assert!(rims_of(&m, &[0]).is_empty() && rims_of(&m, &[1]).is_empty());
         // Reversed windings make the same crease convex: the sign decides.
-        let m = Mesh::from_polygons(&p, &[vec![0, 1, 2, 3], vec![0, 4, 5, 1]]);
+        let m = Mesh::from_polygons(&p, &[vec![0, 1, 2, 3], vec![0, 4, 5, 1]]).unwrap();
         assert_eq!(rims_of(&m, &[0]).len(), 1);
         // The L's side tilted to 1° below the top's plane: the same surface.
         let m = bent_ell(1.0);

@@ -132,7 +132,7 @@ mod tests {
             [0.0, 1.0, 0.0],
             [1.0, 1.0, 0.0],
         ];
-        Mesh::from_polygons(&p, &[vec![0, 1, 2], vec![3, 5, 4]])
+        Mesh::from_polygons(&p, &[vec![0, 1, 2], vec![3, 5, 4]]).unwrap()
     }
 
     #[test]
@@ -170,7 +170,7 @@ mod tests {
             [1.0, 0.0, 0.0],
             [0.0, 1.0, 0.0],
         ];
-        let m = Mesh::from_polygons(&p, &[vec![0, 2, 3], vec![1, 3, 2]]);
+        let m = Mesh::from_polygons(&p, &[vec![0, 2, 3], vec![1, 3, 2]]).unwrap();
         let (f, _) = weld(&m, Dedup::Exact);
         assert_eq!(f[3], f[0]);
     }

@@ -2,12 +2,12 @@
 //! struct-of-arrays positions, re-centred in f64, and polygons in CSR form.
 //! Nothing else from the file is kept.
 
-pub mod adjacency;
-pub mod dedup;
-pub mod io;
-pub mod orient;
-pub mod solid;
-pub mod visibility;
+pub(crate) mod adjacency;
+pub(crate) mod dedup;
+pub(crate) mod io;
+pub(crate) mod orient;
+pub(crate) mod solid;
+pub(crate) mod visibility;
 
 use crate::math::V3;
 
@@ -15,7 +15,7 @@ use crate::math::V3;
 /// engine accepts. Fits take cubes (volumes) and fourth powers (squared quadric entries
 /// in the eigen-solver) of lengths; 1e60 keeps both far below f64's 1.8e308 even with
 /// large kind weights. Coordinates of 1e300 crashed the frustum fit before this limit.
-pub const MAX_EXTENT: f64 = 1e60;
+pub(crate) const MAX_EXTENT: f64 = 1e60;
 
 /// Largest magnitude of any world coordinate the engine accepts. Cylinders and
 /// frustums are written with their ends pushed out by up to about 320 ε × the
@@ -23,13 +23,9 @@ pub const MAX_EXTENT: f64 = 1e60;
 /// out of the fitted solid; below 1e70 that stays under 1e-13 × 1e70 ≈ 1e57, inside the
 /// engine's range of lengths ([`MAX_EXTENT`]). Beyond it, the written lengths would
 /// exceed 1e154 at the top of the f64 range, and squaring them overflows.
-pub const MAX_POSITION: f64 = 1e70;
+pub(crate) const MAX_POSITION: f64 = 1e70;
 
-/// `u32` index of an input face.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash, Default)]
-pub struct FaceId(pub u32);
-
-/// What a parser skipped, so the CLI can say it.
+/// What a reader skipped, so that a caller can say it ([`Mesh::skipped`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct SkipCounts {
     /// `l` elements, 2-vertex "faces" and other faces with fewer than 3 distinct indices.
@@ -40,7 +36,7 @@ pub struct SkipCounts {
 
 /// What a parser produces: world coordinates in f64 and CSR polygons.
 #[derive(Clone, Debug, Default)]
-pub struct MeshBuilder {
+pub(crate) struct MeshBuilder {
     pub positions: Vec<[f64; 3]>,
     /// `face_offsets[f]..face_offsets[f+1]` indexes `face_indices`; starts with 0.
     pub face_offsets: Vec<u32>,
@@ -85,20 +81,37 @@ impl MeshBuilder {
     }
 }
 
-/// A polygon mesh in struct-of-arrays form. Positions are re-centred: the world
-/// coordinate of vertex `v` is `[x[v], y[v], z[v]] + offset`.
+/// A polygon mesh as the engine reads it: positions in f64 struct-of-arrays,
+/// re-centred on their bounding box (so a scan a million units from the origin keeps
+/// its detail), and polygons as offsets into one index array. Nothing else from a file
+/// is kept. Build one with [`crate::load`], [`Mesh::from_triangles`] or
+/// [`Mesh::from_polygons`].
+///
+/// ```
+/// use primdecomp::Mesh;
+///
+/// let mesh = Mesh::from_triangles(
+///     &[[10.0, 0.0, 0.0], [11.0, 0.0, 0.0], [10.0, 1.0, 0.0]],
+///     &[[0, 1, 2]],
+/// )?;
+/// assert_eq!((mesh.face_count(), mesh.vertex_count()), (1, 3));
+/// assert_eq!(mesh.world_pos(1), [11.0, 0.0, 0.0]);
+/// assert_eq!(mesh.centre(), [10.5, 0.5, 0.0]);
+/// assert_eq!(mesh.pos(1), [0.5, -0.5, 0.0]);
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
 #[derive(Clone, Debug, Default)]
 pub struct Mesh {
-    pub x: Vec<f64>,
-    pub y: Vec<f64>,
-    pub z: Vec<f64>,
+    pub(crate) x: Vec<f64>,
+    pub(crate) y: Vec<f64>,
+    pub(crate) z: Vec<f64>,
     /// Subtracted from every input coordinate (the centre of the input's AABB).
-    pub offset: V3,
-    pub face_offsets: Vec<u32>,
-    pub face_indices: Vec<u32>,
-    pub skipped: SkipCounts,
+    pub(crate) offset: V3,
+    pub(crate) face_offsets: Vec<u32>,
+    pub(crate) face_indices: Vec<u32>,
+    pub(crate) skipped: SkipCounts,
     /// Named objects: each name with its first face (see [`Mesh::objects`]).
-    pub object_starts: Vec<(String, u32)>,
+    pub(crate) object_starts: Vec<(String, u32)>,
 }
 
 /// A named part of a mesh: an OBJ `o` object or `g` group, with its faces.
@@ -113,7 +126,7 @@ pub struct MeshObject<'a> {
 impl Mesh {
     /// Re-centres the builder's f64 coordinates on their AABB centre, so that a scan
     /// at a 10^6 offset keeps its detail in every later computation.
-    pub fn from_builder(b: MeshBuilder) -> Mesh {
+    pub(crate) fn from_builder(b: MeshBuilder) -> Mesh {
         let (lo, hi) = aabb_of(b.positions.iter().copied());
         let offset = if b.positions.is_empty() {
             [0.0; 3]
@@ -147,14 +160,43 @@ impl Mesh {
         }
     }
 
-    /// Builds a mesh from world-space vertices and polygons (tests, demo, library users).
-    pub fn from_polygons(positions: &[[f64; 3]], faces: &[Vec<u32>]) -> Mesh {
+    /// A mesh of triangles: `positions` in world coordinates, `triangles` indexing
+    /// them. Copies both once into the engine's layout (struct-of-arrays, re-centred).
+    ///
+    /// # Errors
+    /// [`crate::Error::Format`] naming the first non-finite coordinate or index out of
+    /// range.
+    pub fn from_triangles(positions: &[[f64; 3]], triangles: &[[u32; 3]]) -> crate::Result<Mesh> {
+        check_positions(positions)?;
+        let mut b = MeshBuilder::new();
+        b.positions.extend_from_slice(positions);
+        b.face_offsets
+            .extend((1..=triangles.len()).map(|t| 3 * t as u32));
+        b.face_indices.extend(triangles.iter().flatten());
+        check_indices(&b.face_indices, positions.len())?;
+        Ok(Mesh::from_builder(b))
+    }
+
+    /// A mesh of polygons (triangles, quads, n-gons; each a list of indices into
+    /// `positions`, world coordinates). Polygons are kept whole: the engine treats a
+    /// planar quad as one face. Polygons of fewer than 3 corners are skipped and
+    /// counted ([`Mesh::skipped`]), as the file readers do.
+    ///
+    /// # Errors
+    /// [`crate::Error::Format`] naming the first non-finite coordinate or index out of
+    /// range.
+    pub fn from_polygons<F: AsRef<[u32]>>(
+        positions: &[[f64; 3]],
+        faces: &[F],
+    ) -> crate::Result<Mesh> {
+        check_positions(positions)?;
         let mut b = MeshBuilder::new();
         b.positions.extend_from_slice(positions);
         for f in faces {
-            b.push_face(f);
+            b.push_face(f.as_ref());
         }
-        Mesh::from_builder(b)
+        check_indices(&b.face_indices, positions.len())?;
+        Ok(Mesh::from_builder(b))
     }
 
     /// The mesh's named objects in file order, each with its faces; one unnamed
@@ -180,10 +222,22 @@ impl Mesh {
             .collect()
     }
 
+    /// The centre of the input's bounding box, subtracted from every coordinate.
+    pub fn centre(&self) -> V3 {
+        self.offset
+    }
+
+    /// What the reader (or constructor) skipped.
+    pub fn skipped(&self) -> SkipCounts {
+        self.skipped
+    }
+
+    /// Number of polygon faces.
     #[inline]
     pub fn face_count(&self) -> usize {
         self.face_offsets.len().saturating_sub(1)
     }
+    /// Number of vertices (as given, before any welding).
     #[inline]
     pub fn vertex_count(&self) -> usize {
         self.x.len()
@@ -195,7 +249,7 @@ impl Mesh {
     }
     /// Newell's normal of face `f` from its own vertices: unnormalised, its length
     /// twice the (planar) polygon's area, along the winding's right-hand normal.
-    pub fn newell(&self, f: usize) -> V3 {
+    pub(crate) fn newell(&self, f: usize) -> V3 {
         let vs = self.face(f);
         let mut n = [0.0; 3];
         for (i, &v) in vs.iter().enumerate() {
@@ -204,20 +258,20 @@ impl Mesh {
         }
         n
     }
-    /// Re-centred position of vertex `v`.
+    /// Position of vertex `v` relative to [`Mesh::centre`] (how the engine computes).
     #[inline]
     pub fn pos(&self, v: u32) -> V3 {
         let v = v as usize;
         [self.x[v], self.y[v], self.z[v]]
     }
-    /// World position of vertex `v`.
+    /// World position of vertex `v` (`pos(v) + centre()`, rounded once).
     #[inline]
     pub fn world_pos(&self, v: u32) -> V3 {
         crate::math::add(self.pos(v), self.offset)
     }
     /// The first vertex (0-based) farther than [`MAX_EXTENT`] from the re-centring
     /// origin on some axis (or not finite), with that distance.
-    pub fn vertex_out_of_range(&self) -> Option<(usize, f64)> {
+    pub(crate) fn vertex_out_of_range(&self) -> Option<(usize, f64)> {
         let far = |i: usize| {
             let d = self.x[i].abs().max(self.y[i].abs()).max(self.z[i].abs());
             // A NaN distance (from an infinite offset) counts as out of range.
@@ -227,7 +281,7 @@ impl Mesh {
     }
     /// The first vertex (0-based) with a world coordinate beyond ±[`MAX_POSITION`],
     /// with that coordinate.
-    pub fn vertex_beyond_position_limit(&self) -> Option<(usize, f64)> {
+    pub(crate) fn vertex_beyond_position_limit(&self) -> Option<(usize, f64)> {
         (0..self.vertex_count()).find_map(|i| {
             let p = self.world_pos(i as u32);
             let c = p
@@ -238,7 +292,7 @@ impl Mesh {
     }
     /// [`Mesh::vertex_out_of_range`] and [`Mesh::vertex_beyond_position_limit`] as the
     /// errors for `path`.
-    pub fn check_extent(&self, path: &std::path::Path) -> crate::Result<()> {
+    pub(crate) fn check_extent(&self, path: &std::path::Path) -> crate::Result<()> {
         if let Some((i, d)) = self.vertex_out_of_range() {
             return Err(crate::Error::Extent {
                 path: path.to_path_buf(),
@@ -257,11 +311,12 @@ impl Mesh {
             }),
         }
     }
-    /// AABB of the re-centred positions of vertices used by faces (min, max).
+    /// Bounding box (min, max) of the vertices faces use, relative to [`Mesh::centre`].
     pub fn aabb(&self) -> (V3, V3) {
         aabb_of(self.face_indices.iter().map(|&v| self.pos(v)))
     }
-    /// Length of the AABB diagonal of the used vertices.
+    /// Length of the bounding box's diagonal: the scale every relative setting
+    /// ([`crate::Params::min_extent`], …) is a fraction of.
     pub fn diagonal(&self) -> f64 {
         let (lo, hi) = self.aabb();
         crate::math::norm(crate::math::sub(hi, lo))
@@ -269,7 +324,7 @@ impl Mesh {
 }
 
 /// Min/max corners of a point stream; `([0;3],[0;3])` for an empty stream.
-pub fn aabb_of(points: impl Iterator<Item = V3>) -> (V3, V3) {
+pub(crate) fn aabb_of(points: impl Iterator<Item = V3>) -> (V3, V3) {
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
     for p in points {
@@ -282,4 +337,61 @@ pub fn aabb_of(points: impl Iterator<Item = V3>) -> (V3, V3) {
         return ([0.0; 3], [0.0; 3]);
     }
     (lo, hi)
+}
+
+/// Face `f`'s outward unit normal (Newell's normal of its own vertices times its sign
+/// in `signs`, +1 when `signs` is empty) and the Newell normal's length (twice the
+/// area); `None` for a face of zero area.
+pub fn outward_normal(mesh: &Mesh, signs: &[i8], f: u32) -> Option<(V3, f64)> {
+    let n = mesh.newell(f as usize);
+    let len = crate::math::norm(n);
+    if !(len > 0.0 && len.is_finite()) {
+        return None;
+    }
+    let k = signs.get(f as usize).map_or(1.0, |&s| f64::from(s)) / len;
+    Some(([n[0] * k, n[1] * k, n[2] * k], len))
+}
+
+/// Face `f`'s outward unit normal ([`outward_normal`]), its centroid (the mean of its
+/// vertices) and the Newell normal's length (twice its area); `None` for a face of
+/// zero area.
+pub(crate) fn outward_normal_and_centre(
+    mesh: &Mesh,
+    signs: &[i8],
+    f: u32,
+) -> Option<(V3, V3, f64)> {
+    let (n, len) = outward_normal(mesh, signs, f)?;
+    let vs = mesh.face(f as usize);
+    let mut c = [0.0; 3];
+    for &v in vs {
+        let p = mesh.pos(v);
+        c = [c[0] + p[0], c[1] + p[1], c[2] + p[2]];
+    }
+    let m = 1.0 / vs.len() as f64;
+    Some((n, [c[0] * m, c[1] * m, c[2] * m], len))
+}
+
+/// Refuses non-finite coordinates (as the readers do).
+fn check_positions(positions: &[[f64; 3]]) -> crate::Result<()> {
+    match positions
+        .iter()
+        .position(|p| !p.iter().all(|c| c.is_finite()))
+    {
+        None => Ok(()),
+        Some(i) => Err(crate::Error::Format {
+            path: "<mesh>".into(),
+            msg: format!("vertex {i} has a non-finite coordinate {:?}", positions[i]),
+        }),
+    }
+}
+
+/// Refuses indices past the last vertex.
+fn check_indices(indices: &[u32], vertices: usize) -> crate::Result<()> {
+    match indices.iter().find(|&&v| v as usize >= vertices) {
+        None => Ok(()),
+        Some(v) => Err(crate::Error::Format {
+            path: "<mesh>".into(),
+            msg: format!("face index {v} is out of range ({vertices} vertices)"),
+        }),
+    }
 }

@@ -1,12 +1,12 @@
-//! Consistent face orientation, for the outward and rim reaches of the output fits
-//! (`Params::outward_weight` and `Params::rim_weight`, ARCHITECTURE.md deviations 22
-//! and 24; not in the paper). Many
+//! Consistent face orientation, for the rim reach of the output fits and flush plates
+//! (`Params::rim_weight`, `Params::flush_plates`; docs/decisions/0024, 0026 and 0027;
+//! not in the paper). Many
 //! inputs mix windings (truck_shrec: 46% of its area faces outward by its winding), so
 //! a face's own normal does not say which side is outside. Faces sharing an edge that
 //! no third face is on are made to agree (a shared edge runs in opposite directions in
 //! two agreeing faces), one patch at a time from its lowest face, and each patch is
 //! then turned: a closed one so that its signed volume is positive (outward), an open
-//! one by what rays from its faces see (`visibility`, deviation 27), and by its signed
+//! one by what rays from its faces see (`visibility`, docs/decisions/0027), and by its signed
 //! volume only when they cannot tell.
 
 use super::visibility::{self, RayGrid};
@@ -21,37 +21,10 @@ const MIN_VOTE: f64 = 0.5;
 /// Per face, +1 to keep its winding or −1 to reverse it. `welded` are the faces'
 /// welded vertex indices (the mesh's CSR offsets) and `pairs` the faces sharing an
 /// edge ([`super::adjacency::face_pairs`]). Deterministic: breadth-first in face order.
-pub fn face_signs(mesh: &Mesh, welded: &[u32], pairs: &[(u32, u32)]) -> Vec<i8> {
+#[cfg(test)]
+pub(crate) fn face_signs(mesh: &Mesh, welded: &[u32], pairs: &[(u32, u32)]) -> Vec<i8> {
     let (deg, adj) = super::adjacency::neighbour_lists(mesh.face_count(), pairs);
     face_signs_of_lists(mesh, welded, &deg, &adj)
-}
-
-/// Face `f`'s outward unit normal (Newell's normal of its own vertices times its sign
-/// in `signs`, +1 when `signs` is empty) and the Newell normal's length (twice the
-/// area); `None` for a face of zero area.
-pub fn outward_normal(mesh: &Mesh, signs: &[i8], f: u32) -> Option<(V3, f64)> {
-    let n = mesh.newell(f as usize);
-    let len = crate::math::norm(n);
-    if !(len > 0.0 && len.is_finite()) {
-        return None;
-    }
-    let k = signs.get(f as usize).map_or(1.0, |&s| f64::from(s)) / len;
-    Some(([n[0] * k, n[1] * k, n[2] * k], len))
-}
-
-/// Face `f`'s outward unit normal ([`outward_normal`]), its centroid (the mean of its
-/// vertices) and the Newell normal's length (twice its area); `None` for a face of
-/// zero area.
-pub fn outward_normal_and_centre(mesh: &Mesh, signs: &[i8], f: u32) -> Option<(V3, V3, f64)> {
-    let (n, len) = outward_normal(mesh, signs, f)?;
-    let vs = mesh.face(f as usize);
-    let mut c = [0.0; 3];
-    for &v in vs {
-        let p = mesh.pos(v);
-        c = [c[0] + p[0], c[1] + p[1], c[2] + p[2]];
-    }
-    let m = 1.0 / vs.len() as f64;
-    Some((n, [c[0] * m, c[1] * m, c[2] * m], len))
 }
 
 /// [`face_signs`] from the adjacency as CSR neighbour lists
@@ -185,7 +158,7 @@ mod tests {
         for &i in flip {
             f[i].reverse();
         }
-        Mesh::from_polygons(&v, &f)
+        Mesh::from_polygons(&v, &f).unwrap()
     }
 
     fn signs(m: &Mesh) -> Vec<i8> {
@@ -249,7 +222,7 @@ mod tests {
                 v.push([0.0; 3]); // the cube's centre: positions are re-centred
                 let mut f = vec![fin.to_vec()];
                 f.extend((0..6).map(|i| c.face(i).to_vec()));
-                let m = Mesh::from_polygons(&v, &f);
+                let m = Mesh::from_polygons(&v, &f).unwrap();
                 let s = signs(&m);
                 for i in 0..6 {
                     let vs = m.face(i + 1);
@@ -276,7 +249,7 @@ mod tests {
         }));
         let mut f: Vec<Vec<u32>> = (0..6).map(|i| a.face(i).to_vec()).collect();
         f.extend((0..6).map(|i| b.face(i).iter().map(|&x| x + 8).collect::<Vec<u32>>()));
-        let m = Mesh::from_polygons(&v, &f);
+        let m = Mesh::from_polygons(&v, &f).unwrap();
         let s = signs(&m);
         assert_eq!(&s[..6], &[1; 6]);
         assert_eq!(&s[6..], &[-1; 6]);

@@ -174,6 +174,7 @@ impl Solid {
     }
 
     /// How many cells are inside.
+    #[cfg(test)]
     pub fn inside_cells(&self) -> usize {
         self.inside.iter().filter(|&&b| b).count()
     }

@@ -241,8 +241,7 @@ pub fn vote(grid: &RayGrid, members: &[usize], sign: &[i8], quota: usize) -> Opt
     let q = quota.clamp(1, members.len().max(1));
     for i in 0..q.min(members.len()) {
         let f = members[i * members.len() / q];
-        let Some((n, c, len)) = super::orient::outward_normal_and_centre(mesh, sign, f as u32)
-        else {
+        let Some((n, c, len)) = super::outward_normal_and_centre(mesh, sign, f as u32) else {
             continue;
         };
         sum += 0.5 * len * f64::from(grid.side_score(c, n, f as u32));
@@ -270,7 +269,7 @@ mod tests {
             [2.0, 0.5, 2.0],
             [-1.0, 0.5, 2.0],
         ];
-        let m = Mesh::from_polygons(&p, &[vec![0, 3, 2, 1], vec![4, 7, 6, 5]]);
+        let m = Mesh::from_polygons(&p, &[vec![0, 3, 2, 1], vec![4, 7, 6, 5]]).unwrap();
         let grid = RayGrid::build(&m, CELLS);
         let c = sub([0.5, 0.0, 0.5], m.offset);
         assert!(!grid.blocked(c, [0.0, -1.0, 0.0], 0));
@@ -278,14 +277,14 @@ mod tests {
         assert_eq!(grid.side_score(c, [0.0, -1.0, 0.0], 0), 5);
         assert_eq!(grid.side_score(c, [0.0, 1.0, 0.0], 0), -5);
         // The square alone: both sides are open, the vote says nothing.
-        let m = Mesh::from_polygons(&p[..4], &[vec![0, 3, 2, 1]]);
+        let m = Mesh::from_polygons(&p[..4], &[vec![0, 3, 2, 1]]).unwrap();
         let grid = RayGrid::build(&m, CELLS);
         let c = sub([0.5, 0.0, 0.5], m.offset);
         assert_eq!(grid.side_score(c, [0.0, 1.0, 0.0], 0), 0);
         // A wall of two sheets 0.001 apart: from the lower, up is blocked at once.
         let mut q = p[..4].to_vec();
         q.extend(p[..4].iter().map(|v| [v[0], 0.001, v[2]]));
-        let m = Mesh::from_polygons(&q, &[vec![0, 3, 2, 1], vec![4, 5, 6, 7]]);
+        let m = Mesh::from_polygons(&q, &[vec![0, 3, 2, 1], vec![4, 5, 6, 7]]).unwrap();
         let grid = RayGrid::build(&m, CELLS);
         let c = sub([0.5, 0.0, 0.5], m.offset);
         assert_eq!(grid.side_score(c, [0.0, -1.0, 0.0], 0), 5);
@@ -309,7 +308,7 @@ mod tests {
         let f: Vec<Vec<u32>> = (1..=n as u32)
             .map(|i| vec![i, (i + half - 1) % n as u32 + 1, i % n as u32 + 1])
             .collect();
-        let m = Mesh::from_polygons(&p, &f);
+        let m = Mesh::from_polygons(&p, &f).unwrap();
         let grid = RayGrid::build(&m, CELLS);
         assert!(
             grid.faces.len() <= MAX_ENTRIES,

@@ -5,8 +5,11 @@ use crate::math::{dot, norm2, sub, V3};
 /// Capsule: segment `p0`–`p1` swept by a ball of `radius`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Capsule {
+    /// One end of the segment.
     pub p0: V3,
+    /// The other end.
     pub p1: V3,
+    /// Radius of the ball swept along it.
     pub radius: f64,
 }
 
@@ -21,6 +24,7 @@ impl Capsule {
         let l = norm2(sub(self.p1, self.p0)).sqrt();
         std::f64::consts::PI * r * r * (l + 4.0 / 3.0 * r)
     }
+    /// Whether `p` lies inside, allowing `tol` of slack (distance units).
     pub fn contains(&self, p: V3, tol: f64) -> bool {
         let ab = sub(self.p1, self.p0);
         let l2 = norm2(ab);
@@ -33,6 +37,7 @@ impl Capsule {
         let q = [d[0] - ab[0] * t, d[1] - ab[1] * t, d[2] - ab[2] * t];
         norm2(q).sqrt() <= self.radius + tol
     }
+    /// Axis-aligned bounds (min, max), conservative.
     pub fn aabb(&self) -> (V3, V3) {
         let r = self.radius;
         let mut lo = [0.0; 3];

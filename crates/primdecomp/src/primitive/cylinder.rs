@@ -7,8 +7,11 @@ use crate::math::{dot, norm2, normalize, sub, V3};
 /// Cylinder between cap centres `p0` and `p1`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Cylinder {
+    /// Centre of one cap.
     pub p0: V3,
+    /// Centre of the other cap.
     pub p1: V3,
+    /// Radius.
     pub radius: f64,
 }
 
@@ -21,6 +24,7 @@ impl Cylinder {
     pub fn volume(&self) -> f64 {
         std::f64::consts::PI * self.radius * self.radius * norm2(sub(self.p1, self.p0)).sqrt()
     }
+    /// Whether `p` lies inside, allowing `tol` of slack (distance units).
     pub fn contains(&self, p: V3, tol: f64) -> bool {
         let axis = sub(self.p1, self.p0);
         let len = norm2(axis).sqrt();
@@ -34,6 +38,7 @@ impl Cylinder {
         }
         (norm2(d) - t * t).max(0.0).sqrt() <= self.radius + tol
     }
+    /// Axis-aligned bounds (min, max), conservative.
     pub fn aabb(&self) -> (V3, V3) {
         let a = normalize(sub(self.p1, self.p0)).unwrap_or([0.0, 0.0, 1.0]);
         aabb_union(

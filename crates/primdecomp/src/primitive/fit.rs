@@ -21,14 +21,6 @@ impl<'a> Cloud<'a> {
     pub fn len(&self) -> usize {
         self.x.len()
     }
-    #[inline]
-    pub fn is_empty(&self) -> bool {
-        self.x.is_empty()
-    }
-    #[inline]
-    pub fn get(&self, i: usize) -> V3 {
-        [self.x[i], self.y[i], self.z[i]]
-    }
 }
 
 /// Orthonormal right-handed axes (largest eigenvalue first) and the points' bounds along them.
@@ -62,9 +54,11 @@ pub enum FrameSearch {
     Degenerate,
     /// Also the hull-edge frames turned about the normal axis (the largest eigenvalue's)
     /// for every cluster: the output fits, where a nearly flat cluster's in-plane axes
-    /// would otherwise come from the tangent term alone.
+    /// would otherwise come from the tangent term alone (what `Thorough` starts with;
+    /// the tests compare the two).
+    #[cfg(test)]
     Always,
-    /// [`FrameSearch::Always`], then the hull-edge frames turned about the other two
+    /// The hull-edge frames turned about the normal axis for every cluster, then those turned about the other two
     /// eigen-axes and the input's own axes (output fits, deviation 21): a tilted
     /// cluster of a vehicle's cab gets a box that follows its roof, not Q's axes.
     Thorough,
@@ -144,6 +138,7 @@ pub fn fit_best_frame(
     let plane = match cfg.frames {
         FrameSearch::Eigen => None,
         FrameSearch::Degenerate => tied.or_else(|| frame::flat(s.span).then_some((1, 2))),
+        #[cfg(test)]
         FrameSearch::Always => tied.or(Some((1, 2))),
         FrameSearch::Thorough => {
             // Every plane's turned frames, then the input's own axes (deviation 21).

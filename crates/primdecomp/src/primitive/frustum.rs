@@ -6,9 +6,13 @@ use crate::math::{dot, norm2, normalize, sub, V3};
 /// Frustum between cap centres `p0` (radius `r0`) and `p1` (radius `r1`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Frustum {
+    /// Centre of the cap of radius `r0`.
     pub p0: V3,
+    /// Centre of the cap of radius `r1`.
     pub p1: V3,
+    /// Radius at `p0`.
     pub r0: f64,
+    /// Radius at `p1`.
     pub r1: f64,
 }
 
@@ -22,6 +26,7 @@ impl Frustum {
         let h = norm2(sub(self.p1, self.p0)).sqrt();
         std::f64::consts::PI * h / 3.0 * (self.r0 * self.r0 + self.r0 * self.r1 + self.r1 * self.r1)
     }
+    /// Whether `p` lies inside, allowing `tol` of slack (distance units).
     pub fn contains(&self, p: V3, tol: f64) -> bool {
         let axis = sub(self.p1, self.p0);
         let h = norm2(axis).sqrt();
@@ -37,6 +42,7 @@ impl Frustum {
         let r = self.r0 + (self.r1 - self.r0) * s;
         (norm2(d) - t * t).max(0.0).sqrt() <= r + tol
     }
+    /// Axis-aligned bounds (min, max), conservative.
     pub fn aabb(&self) -> (V3, V3) {
         let a = normalize(sub(self.p1, self.p0)).unwrap_or([0.0, 0.0, 1.0]);
         aabb_union(

@@ -2,20 +2,20 @@
 //! point containment (used by post-processing, §3.4), and the per-kind fits,
 //! dispatched by `match` in [`fit`].
 
-pub mod capsule;
-pub mod cylinder;
-pub mod fit;
-pub mod frame;
-pub mod frustum;
-pub mod obb;
-pub mod prism;
-pub mod profile;
-pub mod sphere;
-pub mod world;
+pub(crate) mod capsule;
+pub(crate) mod cylinder;
+pub(crate) mod fit;
+pub(crate) mod frame;
+pub(crate) mod frustum;
+pub(crate) mod obb;
+pub(crate) mod prism;
+pub(crate) mod profile;
+pub(crate) mod sphere;
+pub(crate) mod world;
 
 pub use capsule::Capsule;
 pub use cylinder::Cylinder;
-pub use fit::{fit_best, Cloud, FitScratch};
+pub(crate) use fit::{fit_best, Cloud, FitScratch};
 pub use frustum::Frustum;
 pub use obb::Obb;
 pub use prism::Prism;
@@ -26,15 +26,22 @@ use crate::math::V3;
 /// Primitive kinds, in the order used everywhere (weights, counts, JSON).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Kind {
+    /// Oriented box ([`Obb`]).
     Box = 0,
+    /// Ball ([`Sphere`]).
     Sphere = 1,
+    /// Segment swept by a ball ([`Capsule`]).
     Capsule = 2,
+    /// Capped cylinder ([`Cylinder`]).
     Cylinder = 3,
+    /// Truncated cone ([`Frustum`]).
     Frustum = 4,
+    /// Isosceles trapezoidal prism ([`Prism`]).
     Prism = 5,
 }
 
 impl Kind {
+    /// Every kind, in index order.
     pub const ALL: [Kind; 6] = [
         Kind::Box,
         Kind::Sphere,
@@ -54,6 +61,7 @@ impl Kind {
             Kind::Prism => "prism",
         }
     }
+    /// The kind [`Kind::name`] names.
     pub fn from_name(s: &str) -> Option<Kind> {
         Kind::ALL.into_iter().find(|k| k.name() == s)
     }
@@ -78,15 +86,22 @@ impl Kind {
 /// (re-centred inside the engine, world in a [`crate::Decomposition`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Primitive {
+    /// An oriented box.
     Box(Obb),
+    /// A ball.
     Sphere(Sphere),
+    /// A capsule.
     Capsule(Capsule),
+    /// A capped cylinder.
     Cylinder(Cylinder),
+    /// A truncated cone.
     Frustum(Frustum),
+    /// An isosceles trapezoidal prism.
     Prism(Prism),
 }
 
 impl Primitive {
+    /// Its kind.
     pub fn kind(&self) -> Kind {
         match self {
             Primitive::Box(_) => Kind::Box,
@@ -97,6 +112,7 @@ impl Primitive {
             Primitive::Prism(_) => Kind::Prism,
         }
     }
+    /// Its volume (§3.2's formulas).
     pub fn volume(&self) -> f64 {
         match self {
             Primitive::Box(p) => p.volume(),
@@ -121,9 +137,9 @@ impl Primitive {
     }
     /// The unit axis along which this primitive is a plate at most `2·floor` thick with
     /// the same cross-section all through (a box's thinnest axis, a prism's extrusion
-    /// axis, a cylinder's axis), for [`crate::merge::Evaluator`]'s flush plates
-    /// (deviation 26); `None` for any other shape.
-    pub fn plate_axis(&self, floor: f64) -> Option<V3> {
+    /// axis, a cylinder's axis), for `merge::Evaluator`'s flush plates
+    /// (docs/decisions/0026); `None` for any other shape.
+    pub(crate) fn plate_axis(&self, floor: f64) -> Option<V3> {
         let thin = |h: f64| h <= floor * (1.0 + 1e-9);
         match self {
             Primitive::Box(s) => {
@@ -150,8 +166,9 @@ impl Primitive {
             Primitive::Prism(s) => s.contains(p, tol),
         }
     }
-    /// The same primitive moved by `d` (exactly as stored; to move a fitted primitive
-    /// to world coordinates use [`Primitive::to_world`], which keeps it enclosing).
+    /// The same primitive moved by `d`, each stored point plus `d` (rounded once: a
+    /// primitive that must keep enclosing points moved with it exactly is moved by the
+    /// library itself, which pads for round-off).
     pub fn translated(&self, d: V3) -> Primitive {
         use crate::math::add;
         match *self {

@@ -7,8 +7,11 @@ use crate::math::{dot, madd, sub, V3};
 /// Box with orthonormal right-handed `axes` and `half` extents along them.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Obb {
+    /// Centre.
     pub center: V3,
+    /// Unit axes (rows), orthonormal and right-handed.
     pub axes: [V3; 3],
+    /// Half-extents along the axes.
     pub half: V3,
 }
 
@@ -17,6 +20,7 @@ impl Obb {
     pub fn volume(&self) -> f64 {
         8.0 * self.half[0] * self.half[1] * self.half[2]
     }
+    /// Whether `p` lies inside, allowing `tol` of slack (distance units).
     pub fn contains(&self, p: V3, tol: f64) -> bool {
         let d = sub(p, self.center);
         (0..3).all(|k| dot(d, self.axes[k]).abs() <= self.half[k] + tol)
@@ -28,6 +32,7 @@ impl Obb {
                 .map(|k| self.half[k] * dot(n, self.axes[k]).abs())
                 .sum::<f64>()
     }
+    /// Axis-aligned bounds (min, max), conservative.
     pub fn aabb(&self) -> (V3, V3) {
         let mut lo = self.center;
         let mut hi = self.center;
@@ -39,7 +44,7 @@ impl Obb {
         (lo, hi)
     }
     /// The box of a frame: centre of the projected bounds, half-extents clamped to `min_half`.
-    pub fn from_frame(f: &Frame, min_half: f64) -> Obb {
+    pub(crate) fn from_frame(f: &Frame, min_half: f64) -> Obb {
         let mut center = f.origin;
         let mut half = [0.0; 3];
         for k in 0..3 {

@@ -6,13 +6,21 @@
 
 use crate::math::{dot, madd, sub, V3};
 
+/// Isosceles trapezoidal prism: a trapezoid in the local y–z plane extruded along x
+/// (see the module documentation for the frame).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Prism {
+    /// Centre.
     pub center: V3,
+    /// Unit axes (rows): extrusion (x), height (y), width (z); orthonormal, right-handed.
     pub axes: [V3; 3],
+    /// Half-length of the extrusion.
     pub hx: f64,
+    /// Half-height of the trapezoid.
     pub hy: f64,
+    /// Half-width of the trapezoid at y = +hy.
     pub hz_top: f64,
+    /// Half-width of the trapezoid at y = −hy.
     pub hz_bottom: f64,
 }
 
@@ -22,7 +30,7 @@ impl Prism {
         4.0 * self.hx * self.hy * (self.hz_top + self.hz_bottom)
     }
     /// Half-width along z at local height `y` (clamped to the prism's y range).
-    pub fn half_width_at(&self, y: f64) -> f64 {
+    pub(crate) fn half_width_at(&self, y: f64) -> f64 {
         let s = if self.hy > 0.0 {
             ((y + self.hy) / (2.0 * self.hy)).clamp(0.0, 1.0)
         } else {
@@ -30,6 +38,7 @@ impl Prism {
         };
         self.hz_bottom + (self.hz_top - self.hz_bottom) * s
     }
+    /// Whether `p` lies inside, allowing `tol` of slack (distance units).
     pub fn contains(&self, p: V3, tol: f64) -> bool {
         let d = sub(p, self.center);
         let (x, y, z) = (
@@ -72,6 +81,7 @@ impl Prism {
         }
         out
     }
+    /// Axis-aligned bounds (min, max), conservative.
     pub fn aabb(&self) -> (V3, V3) {
         crate::mesh::aabb_of(self.corners().into_iter())
     }

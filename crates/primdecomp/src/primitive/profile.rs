@@ -48,6 +48,7 @@ impl Objective {
 #[derive(Clone, Debug, Default)]
 pub struct ProfileScratch {
     hull: Vec<(f64, f64)>,
+    #[cfg(test)]
     order: Vec<u32>,
 }
 
@@ -78,7 +79,9 @@ fn upper_hull(order: &[u32], pt: &impl Fn(usize) -> (f64, f64), hull: &mut Vec<(
     }
 }
 
-/// Lowest-objective enclosing line `(l0, l1)` over the `n` points `pt(i) = (s, z)`.
+/// Lowest-objective enclosing line `(l0, l1)` over the `n` points `pt(i) = (s, z)`
+/// (the tests' entry; the fits share one sort per axis, [`fit_profile_sorted`]).
+#[cfg(test)]
 pub fn fit_profile(
     n: usize,
     pt: impl Fn(usize) -> (f64, f64),

@@ -2,9 +2,12 @@
 
 use crate::math::{norm2, sub, V3};
 
+/// Ball of `radius` around `center`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sphere {
+    /// Centre.
     pub center: V3,
+    /// Radius.
     pub radius: f64,
 }
 
@@ -13,6 +16,7 @@ impl Sphere {
     pub fn volume(&self) -> f64 {
         4.0 / 3.0 * std::f64::consts::PI * self.radius.powi(3)
     }
+    /// Whether `p` lies inside, allowing `tol` of slack (distance units).
     pub fn contains(&self, p: V3, tol: f64) -> bool {
         norm2(sub(p, self.center)).sqrt() <= self.radius + tol
     }
@@ -20,6 +24,7 @@ impl Sphere {
     pub fn support(&self, n: V3) -> f64 {
         crate::math::dot(n, self.center) + self.radius
     }
+    /// Axis-aligned bounds (min, max), conservative.
     pub fn aabb(&self) -> (V3, V3) {
         let r = self.radius;
         let c = self.center;

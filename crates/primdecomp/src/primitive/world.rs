@@ -49,8 +49,8 @@ impl Primitive {
     /// The primitive in world coordinates, `offset` being the re-centring offset:
     /// moved by `offset`, and for cylinders and frustums grown so that rounding cannot
     /// tilt the axis out of the fitted solid (see the module doc).
-    pub fn to_world(&self, offset: V3) -> Primitive {
-        let round = match *self {
+    pub(crate) fn to_world(self, offset: V3) -> Primitive {
+        let round = match self {
             Primitive::Cylinder(c) => world_round(c.p0, c.p1, c.radius, c.radius, offset),
             Primitive::Frustum(f) => world_round(f.p0, f.p1, f.r0, f.r1, offset),
             _ => return self.translated(offset),
@@ -61,7 +61,7 @@ impl Primitive {
         let Some(r) = round.filter(Round::is_finite) else {
             return self.translated(offset);
         };
-        match *self {
+        match self {
             Primitive::Cylinder(_) => Primitive::Cylinder(Cylinder {
                 p0: r.p0,
                 p1: r.p1,

@@ -2,6 +2,7 @@
 //! returns a [`MeshBuilder`] of f64 world coordinates and polygons, or an [`Error`]
 //! naming the file and the line or byte offset.
 
+mod declared;
 mod gltf;
 pub(crate) mod obj;
 mod off;
@@ -12,22 +13,28 @@ use crate::error::{Error, Result};
 use crate::mesh::{Mesh, MeshBuilder};
 use std::path::Path;
 
-pub use self::gltf::parse_gltf;
-pub use obj::parse_obj;
+pub(crate) use self::gltf::parse_gltf;
+pub(crate) use obj::parse_obj;
 pub(crate) use off::declared_counts as off_declared;
-pub use off::parse_off;
+pub(crate) use off::parse_off;
 pub(crate) use ply::declared_counts as ply_declared;
-pub use ply::parse_ply;
-pub use stl::parse_stl;
+pub(crate) use ply::parse_ply;
+pub(crate) use stl::parse_stl;
 
-/// The formats we read.
+/// The mesh formats [`crate::load`] reads, chosen by the file's extension.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Format {
+    /// Wavefront OBJ (`v` and `f`, polygons kept; `o`/`g` name objects).
     Obj,
+    /// PLY, ASCII or binary of either byte order.
     Ply,
+    /// STL, ASCII or binary.
     Stl,
+    /// OFF.
     Off,
+    /// glTF 2.0 with external or embedded buffers (every mesh node, transforms applied).
     Gltf,
+    /// Binary glTF.
     Glb,
 }
 
@@ -47,9 +54,26 @@ impl Format {
     }
 }
 
+/// A mesh from bytes already in memory in `format` (a file received over a network,
+/// an archive member); `path` names it in messages and, for `.gltf`, is where external
+/// buffers are resolved from. Unlike [`load`] it does not refuse an empty mesh or
+/// far-flung vertices ([`crate::decompose`] does).
+///
+/// ```
+/// use primdecomp::{parse_mesh, Format};
+///
+/// let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+/// let mesh = parse_mesh(obj, Format::Obj, "triangle.obj".as_ref())?;
+/// assert_eq!(mesh.face_count(), 1);
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
+pub fn parse_mesh(bytes: &[u8], format: Format, path: &Path) -> Result<Mesh> {
+    parse_bytes(bytes, format, path).map(Mesh::from_builder)
+}
+
 /// Parses bytes already in memory as `format`; `path` is used for messages (and, for
 /// `.gltf`, to resolve external buffers).
-pub fn parse_bytes(bytes: &[u8], format: Format, path: &Path) -> Result<MeshBuilder> {
+pub(crate) fn parse_bytes(bytes: &[u8], format: Format, path: &Path) -> Result<MeshBuilder> {
     if bytes.starts_with(&[0x1f, 0x8b]) {
         return Err(Error::format(
             path,
@@ -293,12 +317,11 @@ pub(crate) mod text {
     }
 }
 
-/// The peak memory a decomposition of `path` is expected to need
-/// ([`crate::memory::estimate`]) from the counts its header declares, read without
-/// parsing the file; `None` where they cannot be known before parsing (glTF/GLB, an
-/// unreadable file, a header that does not parse). Schedulers running several inputs
-/// at once reserve this much per input.
-pub fn declared_estimate(path: &Path) -> Option<u64> {
+/// The peak memory in bytes a decomposition of `path` is expected to need, from the
+/// counts its header declares, read without parsing the file; `None` where they
+/// cannot be known before parsing (glTF/GLB, an unreadable file, a header that does
+/// not parse). Schedulers running several inputs at once reserve this much per input.
+pub fn memory_needed(path: &Path) -> Option<u64> {
     let format = Format::from_path(path)?;
     let file = std::fs::File::open(path).ok()?;
     if file.metadata().ok()?.len() == 0 {
@@ -306,17 +329,28 @@ pub fn declared_estimate(path: &Path) -> Option<u64> {
     }
     // SAFETY: as in `load_limited`: a read-only map living only for this call.
     let map = unsafe { memmap2::Mmap::map(&file) }.ok()?;
-    crate::memory::declared_counts(&map, format).map(crate::memory::estimate)
+    declared::declared_counts(&map, format).map(crate::memory::estimate)
 }
 
-/// Memory-maps and parses `path`, then re-centres it into a [`Mesh`]. No memory limit:
-/// see [`load_limited`].
+/// Reads the mesh in `path` (OBJ, PLY, STL, OFF, glTF/GLB, by its extension):
+/// memory-mapped, parsed, re-centred. No memory limit: see [`load_limited`].
+///
+/// ```
+/// let mesh = primdecomp::load(concat!(env!("CARGO_MANIFEST_DIR"), "/../../datasets/demo_scene.obj").as_ref())?;
+/// assert_eq!(mesh.face_count(), primdecomp::demo_scene().face_count());
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
+///
+/// # Errors
+/// An [`Error`] naming the file and the line or byte offset where it is malformed, an
+/// [`Error::EmptyMesh`] when it has no polygon, [`Error::Extent`] / [`Error::Position`]
+/// for vertices too far apart or from the origin.
 pub fn load(path: &Path) -> Result<Mesh> {
     load_limited(path, None)
 }
 
 /// [`load`], refusing with [`Error::TooLarge`] an input whose decomposition would need
-/// more than `max_memory` bytes by [`crate::memory::estimate`]: once from the counts
+/// more than `max_memory` bytes by the memory model (`crate::memory`): once from the counts
 /// the file declares, before parsing, and once from the parsed mesh, before anything
 /// else is allocated for it.
 pub fn load_limited(path: &Path, max_memory: Option<u64>) -> Result<Mesh> {
@@ -341,7 +375,7 @@ pub fn load_limited(path: &Path, max_memory: Option<u64>) -> Result<Mesh> {
         // SAFETY: the map is read-only and lives only for this call; we accept that a
         // concurrent writer truncating the file could fault, as every mmap reader does.
         let map = unsafe { memmap2::Mmap::map(&file) }.map_err(io_err)?;
-        let declared = crate::memory::declared_counts(&map, format);
+        let declared = declared::declared_counts(&map, format);
         if let (Some(limit), Some(counts)) = (max_memory, declared) {
             crate::memory::check(path, counts, limit)?;
         }

@@ -13,10 +13,9 @@
 
 use rayon::prelude::*;
 
-use super::cost::{Evaluator, Workspace};
-use super::driver::Snapshot;
 use super::plates::{in_rounds, Candidate};
 use crate::math::{Sym3, V3};
+use crate::merge::{Evaluator, Snapshot, Workspace};
 
 /// How much larger than the larger of two primitives their union's fit may be, as a
 /// share of the smaller one's volume: a near duplicate adds almost nothing, while a

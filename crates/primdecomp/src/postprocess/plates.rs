@@ -16,9 +16,8 @@
 
 use rayon::prelude::*;
 
-use super::cost::{Evaluator, Workspace};
-use super::driver::Snapshot;
 use crate::math::{add, cross, dot, madd, normalize, scale, Sym3, V3};
+use crate::merge::{Evaluator, Snapshot, Workspace};
 use crate::primitive::frame::convex_hull_2d;
 use crate::primitive::Primitive;
 
@@ -141,7 +140,7 @@ fn coplanar_pairs(
     alive: &[bool],
     dirty: &[bool],
 ) -> Vec<Candidate> {
-    let floor = ev.output_min_half;
+    let floor = ev.cfg.min_half;
     let plates: Vec<(usize, Plate)> = (0..snap.prims.len())
         .filter(|&i| alive[i])
         .filter_map(|i| plate(&snap.prims[i], floor).map(|p| (i, p)))

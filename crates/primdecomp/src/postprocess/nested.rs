@@ -19,7 +19,7 @@ const TOL_REL: f64 = 1e-9;
 pub struct Cleanup {
     /// The input's AABB diagonal (scales the containment slack).
     pub diagonal: f64,
-    pub remove_contained: bool,
+    pub remove_nested: bool,
     /// Boxes whose smallest half-extent is below this (absolute) are removed when
     /// every one of their faces lies in some other kept primitive.
     pub thin_box_half: Option<f64>,
@@ -49,7 +49,7 @@ pub fn keep_mask(
             .total_cmp(&prims[j].volume())
             .then(i.cmp(&j))
     });
-    if cleanup.remove_contained {
+    if cleanup.remove_nested {
         // Hosts are independent of what gets removed, so find them all in parallel.
         let hosts: Vec<Vec<usize>> = (0..n)
             .into_par_iter()

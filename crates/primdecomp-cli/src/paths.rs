@@ -1,0 +1,80 @@
+//! Output file names and the memory limit's settings: command-line policy, not the
+//! library's.
+
+use std::path::{Path, PathBuf};
+
+/// The output file for `target` when a run has `n_targets` targets: `base` itself for
+/// a single target, otherwise `_n{target}` inserted before the extension
+/// (`out.json` → `out_n500.json`, `out` → `out_n500`).
+pub fn output_path_for(base: &Path, target: usize, n_targets: usize) -> PathBuf {
+    if n_targets <= 1 {
+        return base.to_path_buf();
+    }
+    let Some(stem) = base.file_stem() else {
+        let mut s = base.as_os_str().to_os_string();
+        s.push(format!("_n{target}"));
+        return PathBuf::from(s);
+    };
+    let mut name = stem.to_os_string();
+    name.push(format!("_n{target}"));
+    if let Some(ext) = base.extension() {
+        name.push(".");
+        name.push(ext);
+    }
+    base.with_file_name(name)
+}
+
+/// `MemAvailable` from `/proc/meminfo`, in bytes; `None` where it cannot be read.
+pub fn available_memory() -> Option<u64> {
+    let info = std::fs::read_to_string("/proc/meminfo").ok()?;
+    let line = info.lines().find(|l| l.starts_with("MemAvailable:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    kib.checked_mul(1024)
+}
+
+/// A size such as `512M`, `8G`, `1.5T` or `1048576` (bytes; K, M, G, T are powers of
+/// 1024, an optional trailing `B` or `iB` is accepted).
+pub fn parse_size(s: &str) -> Option<u64> {
+    let t = s.trim().to_ascii_uppercase();
+    let t = t.trim_end_matches("IB").trim_end_matches('B');
+    let (num, shift) = match t.chars().last()? {
+        'K' => (&t[..t.len() - 1], 10),
+        'M' => (&t[..t.len() - 1], 20),
+        'G' => (&t[..t.len() - 1], 30),
+        'T' => (&t[..t.len() - 1], 40),
+        _ => (t, 0),
+    };
+    let v: f64 = num.trim().parse().ok()?;
+    let bytes = v * (1u64 << shift) as f64;
+    (v.is_finite() && v >= 0.0 && bytes < u64::MAX as f64).then_some(bytes as u64)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn output_paths_per_target() {
+        let p = |s: &str, t, n| output_path_for(Path::new(s), t, n);
+        assert_eq!(p("out.json", 500, 1), PathBuf::from("out.json"));
+        assert_eq!(p("out.json", 500, 3), PathBuf::from("out_n500.json"));
+        assert_eq!(p("dir/out.obj", 40, 2), PathBuf::from("dir/out_n40.obj"));
+        assert_eq!(p("dir/out", 40, 2), PathBuf::from("dir/out_n40"));
+        assert_eq!(
+            p("a.b/out.tar.json", 7, 2),
+            PathBuf::from("a.b/out.tar_n7.json")
+        );
+        assert_eq!(p(".hidden", 7, 2), PathBuf::from(".hidden_n7"));
+    }
+
+    #[test]
+    fn sizes() {
+        assert_eq!(parse_size("1048576"), Some(1 << 20));
+        assert_eq!(parse_size("512M"), Some(512 << 20));
+        assert_eq!(parse_size("8g"), Some(8 << 30));
+        assert_eq!(parse_size("1.5GiB"), Some(3 << 29));
+        assert_eq!(parse_size("2KB"), Some(2048));
+        assert_eq!(parse_size("-1G"), None);
+        assert_eq!(parse_size("lots"), None);
+    }
+}

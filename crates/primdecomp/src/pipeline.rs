@@ -1,0 +1,426 @@
+//! One bottom-up pass (the paper's Algorithm 1), read top to bottom: weld, adjacency,
+//! quadrics, the surface around each face, seed primitives, the merge loop through
+//! every target, post-processing. Each stage is one call; [`Clock`] times it, reports
+//! it to the caller's [`Progress`] and stops the run when it is cancelled.
+
+use crate::error::{Error, Result};
+use crate::math::{Sym3, V3};
+use crate::merge::rim::FaceAdjacency;
+use crate::merge::{components, partition, Clusters, Evaluator, MergeOutput, Workspace};
+use crate::mesh::solid::{self, Solid};
+use crate::mesh::{adjacency, dedup, orient, Mesh};
+use crate::params::{Params, Reprice};
+use crate::primitive::fit::{FitConfig, FrameSearch};
+use crate::progress::{GoOn, Progress, Stage};
+use crate::result::{Decomposition, InputInfo, Stats, Timings};
+use crate::{postprocess, quadric};
+use rayon::prelude::*;
+use std::time::Instant;
+
+/// One pass through `params.targets` (`params.fill` is the caller's: `budget`).
+pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Result<Decomposition> {
+    // Far-flung vertices would overflow volumes to inf and NaN (issue 6).
+    check_input(mesh)?;
+    let mut clock = Clock::new(progress);
+    let bounds = mesh.aabb();
+    let targets = merge_order(&params.targets);
+    // Weld overlapping vertices so seams between parts become adjacency (§3.4).
+    let (welded, distinct) = clock.stage(Stage::Dedup, "dedup", |_, _| {
+        dedup::weld(mesh, params.dedup)
+    })?;
+    // Faces sharing an edge form the merge graph (§3.3).
+    let pairs = clock.stage(Stage::Adjacency, "adjacency", |_, _| {
+        adjacency::face_pairs(&mesh.face_offsets, &welded)
+    })?;
+    // One operator per face (§3.1).
+    let q = clock.stage(Stage::Quadrics, "quadrics", |_, _| {
+        let mut q = Vec::new();
+        quadric::face_quadrics(mesh, params.tangent_eps, &mut q);
+        q
+    })?;
+    // Each face's neighbours and outer side: output fits keep off rims and lie flush.
+    let surface = clock.stage(Stage::Seed, "surface", |_, _| {
+        Surface::build(mesh, &welded, &pairs, params)
+    })?;
+    // The input's interior, where merges are priced by the air they add (--solid).
+    let solid = clock.stage(Stage::Seed, "solid", |_, _| {
+        params
+            .solid
+            .then(|| Solid::build(mesh, solid::CELLS, solid::VOTES))
+    })?;
+    let ev = Evaluator {
+        face_sign: &surface.signs,
+        face_adj: surface.adjacency(),
+        solid: solid.as_ref(),
+        ..evaluator(mesh, &welded, params, bounds)
+    };
+    // One primitive per face seeds the volumes (Alg. 1, line 2).
+    let volumes = clock.stage(Stage::Seed, "seed", |go_on, _| seed_volumes(&ev, &q, go_on))?;
+    // Where the merge loop starts: spatial parts, components, or the faces themselves.
+    let first = FirstPhase::choose(mesh, params, &pairs, targets[0]);
+    let mut stats = Stats {
+        welded_vertices: distinct,
+        adjacency_edges: pairs.len(),
+        partitions: first.parts(),
+        ..Stats::default()
+    };
+    // Greedy merging down through every target in one pass (Alg. 1's loop).
+    let input = MergeInput { q, volumes, pairs };
+    let merged = clock.stage(Stage::Merge, "merge", |go_on, laps| {
+        merge(&ev, input, first, &targets, &mut stats, go_on, laps)
+    })?;
+    // Plates joined, duplicates absorbed, nested primitives removed, back to world
+    // coordinates (§3.4).
+    let levels = clock.stage(Stage::Postprocess, "postprocess", |_, _| {
+        postprocess::levels(&ev, merged, params)
+    })?;
+    Ok(Decomposition {
+        input: input_info(mesh, bounds),
+        levels,
+        timings: clock.timings,
+        stats,
+    })
+}
+
+/// Times each stage, reports it to the caller, and turns a cancellation into
+/// [`Error::Cancelled`] between stages (and within them through the callback).
+struct Clock<'p> {
+    progress: &'p dyn Progress,
+    timings: Timings,
+}
+
+impl<'p> Clock<'p> {
+    fn new(progress: &'p dyn Progress) -> Self {
+        Clock {
+            progress,
+            timings: Timings::default(),
+        }
+    }
+
+    /// Runs `work` as (part of) `stage`, timed as `name`. `work` gets a callback for
+    /// the fraction of the stage done that says whether to go on, and [`Laps`] to time
+    /// phases of its own (recorded before `name`, which keeps the rest).
+    fn stage<T>(
+        &mut self,
+        stage: Stage,
+        name: &str,
+        work: impl FnOnce(GoOn, &mut Laps) -> T,
+    ) -> Result<T> {
+        let p = self.progress;
+        if p.cancelled() {
+            return Err(Error::Cancelled);
+        }
+        p.update(stage, 0.0);
+        let go_on = |fraction: f64| {
+            p.update(stage, fraction.clamp(0.0, 1.0));
+            !p.cancelled()
+        };
+        let now = Instant::now();
+        let mut laps = Laps::default();
+        let out = work(&go_on, &mut laps);
+        let mut rest = now.elapsed().as_secs_f64();
+        for (lap, secs) in laps.0 {
+            self.timings.push(lap, secs);
+            rest -= secs;
+        }
+        self.timings.push(name, rest.max(0.0));
+        if p.cancelled() {
+            return Err(Error::Cancelled);
+        }
+        p.update(stage, 1.0);
+        Ok(out)
+    }
+}
+
+/// Phases a stage times on its own (`partitions`, `regroup`, `components`).
+#[derive(Default)]
+struct Laps(Vec<(&'static str, f64)>);
+
+impl Laps {
+    fn time<T>(&mut self, name: &'static str, work: impl FnOnce() -> T) -> T {
+        let now = Instant::now();
+        let out = work();
+        self.0.push((name, now.elapsed().as_secs_f64()));
+        out
+    }
+}
+
+/// Refuses an input the engine cannot decompose: no faces, or vertices so far apart
+/// that volumes would overflow.
+fn check_input(mesh: &Mesh) -> Result<()> {
+    if mesh.face_count() == 0 {
+        return Err(Error::EmptyMesh {
+            path: "<mesh>".into(),
+        });
+    }
+    mesh.check_extent("<mesh>".as_ref())
+}
+
+/// The targets in the order the merge loop reaches them: decreasing, each once.
+fn merge_order(targets: &[usize]) -> Vec<usize> {
+    let mut t = targets.to_vec();
+    t.sort_unstable_by(|a, b| b.cmp(a));
+    t.dedup();
+    t
+}
+
+/// What the output fits need of the faces around each cluster: the faces' neighbour
+/// lists and which side of each is outside (empty when no output fit reads them).
+struct Surface {
+    offsets: Vec<u32>,
+    adj: Vec<u32>,
+    signs: Vec<i8>,
+}
+
+impl Surface {
+    fn build(mesh: &Mesh, welded: &[u32], pairs: &[(u32, u32)], params: &Params) -> Surface {
+        if params.rim_weight == 0.0 && !params.flush_plates {
+            return Surface {
+                offsets: Vec::new(),
+                adj: Vec::new(),
+                signs: Vec::new(),
+            };
+        }
+        let (offsets, adj) = adjacency::neighbour_lists(mesh.face_count(), pairs);
+        let signs = orient::face_signs_of_lists(mesh, welded, &offsets, &adj);
+        Surface {
+            offsets,
+            adj,
+            signs,
+        }
+    }
+
+    fn adjacency(&self) -> FaceAdjacency<'_> {
+        FaceAdjacency {
+            offsets: &self.offsets,
+            adj: &self.adj,
+        }
+    }
+}
+
+/// What the merge loop consumes: the faces' operators and seed volumes, and the
+/// adjacent pairs (its clusters take the adjacency over).
+struct MergeInput {
+    q: Vec<Sym3>,
+    volumes: Vec<f64>,
+    pairs: Vec<(u32, u32)>,
+}
+
+/// How the merge loop starts, chosen once per run from the input and settings.
+enum FirstPhase {
+    /// Alg. 1 as is: one cluster per face.
+    Faces,
+    /// `k` spatial parts merged in parallel first (`merge::partition`;
+    /// docs/decisions/0017 and 0019).
+    Parts(usize),
+    /// Each connected component merged whole first, groups of them in parallel
+    /// (`merge::components`); the same clusters the global loop reaches.
+    Components(Vec<Vec<u32>>),
+}
+
+impl FirstPhase {
+    fn choose(mesh: &Mesh, params: &Params, pairs: &[(u32, u32)], largest: usize) -> Self {
+        let faces = mesh.face_count();
+        // Parts only where the faces outnumber what phase 1 would leave.
+        let parts = if faces > partition::phase1_size(largest) {
+            params.partitions.parts(faces)
+        } else {
+            1
+        };
+        if parts > 1 {
+            return FirstPhase::Parts(parts);
+        }
+        // A cap can refuse merges and leave a component in pieces, which the
+        // components phase does not claim to reproduce.
+        if faces < components::MIN_FACES || params.max_excess_volume.is_some() {
+            return FirstPhase::Faces;
+        }
+        let comps = components::components(faces, pairs);
+        let largest_comp = comps.iter().map(Vec::len).max().unwrap_or(0);
+        if components::applies(faces, comps.len(), largest_comp, false) {
+            FirstPhase::Components(comps)
+        } else {
+            FirstPhase::Faces
+        }
+    }
+
+    /// Spatial parts merged in parallel first (1 = none).
+    fn parts(&self) -> usize {
+        match self {
+            FirstPhase::Parts(k) => *k,
+            _ => 1,
+        }
+    }
+}
+
+/// The merge stage: the first phase, then the global loop through the targets it did
+/// not reach. Progress is the fraction of the merges down to the last target.
+fn merge(
+    ev: &Evaluator,
+    input: MergeInput,
+    first: FirstPhase,
+    targets: &[usize],
+    stats: &mut Stats,
+    go_on: GoOn,
+    laps: &mut Laps,
+) -> MergeOutput {
+    let MergeInput { q, volumes, pairs } = input;
+    let last = *targets.last().expect("validated: one target or more");
+    let total = ev.mesh.face_count().saturating_sub(last).max(1) as f64;
+    let merged_so_far = |m: usize| go_on(m as f64 / total);
+    let (clusters, early) = match first {
+        FirstPhase::Faces => (Some(Clusters::new(q, volumes, &pairs)), Vec::new()),
+        FirstPhase::Parts(k) => {
+            let p1 = laps.time("partitions", || {
+                partition::merge_parts(ev, &q, &volumes, &pairs, targets[0], k, &merged_so_far)
+            });
+            stats.merges = p1.merges;
+            add_fits(stats, p1.fits);
+            if p1.stopped {
+                return MergeOutput::stopped();
+            }
+            // Phase 2 starts from one cluster per group (serial, linear in the faces).
+            let clusters = laps.time("regroup", || partition::clusters(p1, q, volumes, &pairs));
+            (Some(clusters), Vec::new())
+        }
+        FirstPhase::Components(comps) => {
+            let count = comps.len();
+            let p1 = laps.time("components", || {
+                let (q, v, p) = (&q, &volumes, &pairs);
+                components::merge_components(ev, q, v, p, comps, targets[0], &merged_so_far)
+            });
+            stats.merges = p1.merges;
+            add_fits(stats, p1.fits);
+            if p1.stopped {
+                return MergeOutput::stopped();
+            }
+            let (early, replayed) =
+                components::snapshots(ev, &p1, &q, &volumes, &pairs, targets, count);
+            if early.len() == targets.len() {
+                // Every target reached: the output holds the replayed merges only.
+                (stats.merges, stats.merges_past) = (replayed, p1.merges - replayed);
+                (None, early)
+            } else {
+                // The global loop goes on to the targets below the component count.
+                (Some(partition::clusters(p1, q, volumes, &pairs)), early)
+            }
+        }
+    };
+    let Some(clusters) = clusters else {
+        return MergeOutput {
+            snapshots: early,
+            ..MergeOutput::default()
+        };
+    };
+    let done = stats.merges as f64;
+    let rest = clusters.live.saturating_sub(last) as f64;
+    let phase2 = |f: f64| go_on((done + f * rest) / total);
+    let mut out = crate::merge::run(ev, clusters, &targets[early.len()..], &phase2);
+    out.snapshots.splice(0..0, early);
+    stats.bridge_edges = out.bridge_edges;
+    stats.merges += out.merges;
+    stats.merges_ahead += out.ahead;
+    add_fits(stats, out.fits);
+    out
+}
+
+fn add_fits(stats: &mut Stats, fits: crate::merge::FitCounts) {
+    stats.fits_seeded += fits.seed;
+    stats.fits_at_once += fits.eager;
+    stats.fits_when_popped += fits.lazy;
+}
+
+fn input_info(mesh: &Mesh, (lo, hi): (V3, V3)) -> InputInfo {
+    InputInfo {
+        path: None,
+        faces: mesh.face_count(),
+        vertices: mesh.vertex_count(),
+        aabb_min: crate::math::add(lo, mesh.offset),
+        aabb_max: crate::math::add(hi, mesh.offset),
+    }
+}
+
+/// Smallest half-extent or radius of any primitive, whatever the mesh and settings.
+/// Every fit divides by half-extents, and volumes are their cubes: with a zero diagonal
+/// (a mesh collapsed to one point) or a product `min_extent × diagonal` that
+/// underflows (a mesh 6e-22 across with a minimum extent of 7e-304 made it 0, and the
+/// frustum fit divided 0 by 0), lengths must still be positive, and their cubes (and the
+/// reciprocals of their squares, in the tests' oracle) normal numbers. Together with
+/// `mesh::MAX_EXTENT` this keeps every length the engine fits within [1e-90, 1e60].
+/// Only meshes under ~1e-87 across are affected: their primitives are at least 2e-90
+/// across.
+pub(crate) const MIN_HALF: f64 = 1e-90;
+
+/// Merge costs are compared on a grid of this fraction of the diagonal cubed (2^-40).
+const COST_GRID: f64 = 1.0 / (1u64 << 40) as f64;
+
+/// Fit settings with the minimum extent and excess cap made absolute for this input,
+/// whose used vertices span `bounds` (re-centred, from [`Mesh::aabb`]). The surface
+/// and interior fields are left empty for the caller.
+pub fn evaluator<'a>(
+    mesh: &'a Mesh,
+    welded: &'a [u32],
+    params: &Params,
+    bounds: (V3, V3),
+) -> Evaluator<'a> {
+    let (lo, hi) = bounds;
+    let diag = crate::math::norm(crate::math::sub(hi, lo));
+    let min_half = (params.min_extent * diag).max(MIN_HALF);
+    let aabb_volume: f64 = (0..3)
+        .map(|k| (hi[k] - lo[k]).max(2.0 * min_half))
+        .product();
+    Evaluator {
+        mesh,
+        welded,
+        cfg: FitConfig {
+            weights: params.weights,
+            enabled: params.kinds,
+            min_half,
+            frames: FrameSearch::Degenerate,
+        },
+        flat_scale: (params.open_holes * diag / min_half).max(1.0),
+        max_excess: params
+            .max_excess_volume
+            .map_or(f64::INFINITY, |m| m * aabb_volume),
+        defer_degree: match params.reprice {
+            Reprice::Deferred { min_degree } => min_degree,
+            Reprice::Exact => u32::MAX,
+        },
+        // Never 0 (at least 2^-40 × MIN_HALF³ ≈ 1e-282): a zero grid priced every merge
+        // 0/0 = NaN, which the merge loop drops like a merge over the excess cap.
+        cost_unit: COST_GRID * diag.max(min_half).powi(3),
+        hull_eps: 1e-12 * diag.max(min_half),
+        face_sign: &[],
+        solid: None,
+        rim_weight: params.rim_weight,
+        face_adj: FaceAdjacency::default(),
+        free_merges: params.join_coplanar,
+        join_plates: params.join_coplanar,
+        flush_plates: params.flush_plates,
+    }
+}
+
+/// Faces per block of seed fits between progress reports and cancellation checks.
+const SEED_BLOCK: usize = 1 << 16;
+
+/// Volume of each face's own primitive, in parallel, a block at a time (stops early,
+/// with the rest left 0, when `go_on` says so; the caller then returns cancelled).
+pub(crate) fn seed_volumes(ev: &Evaluator, q: &[Sym3], go_on: GoOn) -> Vec<f64> {
+    let mut out = vec![0.0; q.len()];
+    for (b, block) in out.chunks_mut(SEED_BLOCK).enumerate() {
+        let start = b * SEED_BLOCK;
+        block
+            .par_iter_mut()
+            .enumerate()
+            .with_min_len(1024)
+            .for_each_init(Workspace::default, |ws, (i, v)| {
+                let f = start + i;
+                let fit = ev.fit_face(f as u32, &q[f], ws);
+                *v = fit.volume * ev.air(&fit.prim);
+            });
+        if !go_on((start + block.len()) as f64 / q.len().max(1) as f64) {
+            break;
+        }
+    }
+    out
+}

@@ -1,0 +1,65 @@
+//! Post-processing (§3.4 "Removing Redundant Primitives"), after the merge loop: each
+//! target's snapshot has near-duplicate primitives absorbed (with solid pricing,
+//! [`absorb`]), coplanar plates joined ([`plates`]), nested primitives removed
+//! ([`nested`]) and is moved back to world coordinates.
+
+pub(crate) mod absorb;
+pub(crate) mod nested;
+pub(crate) mod plates;
+
+use crate::merge::{Evaluator, MergeOutput, Snapshot};
+use crate::params::Params;
+use crate::result::Level;
+use nested::{keep_mask, Cleanup};
+
+/// One level per target in `params.targets` (in the order given) from the merge
+/// loop's snapshots.
+pub(crate) fn levels(ev: &Evaluator, merged: MergeOutput, params: &Params) -> Vec<Level> {
+    let diag = ev.mesh.diagonal();
+    let mut snaps = merged.snapshots;
+    for snap in &mut snaps {
+        let mut q = std::mem::take(&mut snap.q);
+        // Solid pricing: near-duplicate primitives become one (docs/decisions/0023).
+        if ev.solid.is_some() {
+            absorb::absorb(ev, snap, &mut q);
+        }
+        // Plates in one plane the merge left apart become one where that adds no
+        // area (docs/decisions/0028).
+        if ev.join_plates {
+            plates::join(ev, snap, &mut q);
+        }
+    }
+    params
+        .targets
+        .iter()
+        .map(|&n| {
+            let snap = snaps
+                .iter()
+                .find(|s| s.target == n)
+                .expect("a snapshot per target");
+            finish(ev, snap, params, diag)
+        })
+        .collect()
+}
+
+/// Removes nested primitives from one snapshot and moves it to world coordinates.
+fn finish(ev: &Evaluator, snap: &Snapshot, params: &Params, diag: f64) -> Level {
+    let cleanup = Cleanup {
+        diagonal: diag,
+        remove_nested: params.remove_nested,
+        thin_box_half: params.remove_thin_boxes.map(|t| t * diag),
+    };
+    let keep = keep_mask(ev.mesh, &snap.prims, &snap.verts, &snap.members, cleanup);
+    let mut level = Level {
+        target: snap.target,
+        merged_to: snap.target,
+        ..Default::default()
+    };
+    for (i, p) in snap.prims.iter().enumerate() {
+        if keep[i] {
+            level.primitives.push(p.to_world(ev.mesh.offset));
+            level.faces.push(snap.faces[i]);
+        }
+    }
+    level
+}

@@ -1,0 +1,109 @@
+//! What a run returns: the input's description, one [`Level`] of primitives per
+//! target, the stages' timings and the merge loop's counters.
+
+use crate::math::V3;
+use crate::primitive::Primitive;
+use serde::Serialize;
+
+/// What the input was: its size and bounding box in world coordinates.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct InputInfo {
+    /// The file it came from, when the caller says so (the library never sets it).
+    pub path: Option<String>,
+    /// Polygon faces.
+    pub faces: usize,
+    /// Vertices as given (before deduplication).
+    pub vertices: usize,
+    /// Lower corner of the axis-aligned box around the vertices faces use.
+    pub aabb_min: V3,
+    /// Upper corner of that box.
+    pub aabb_max: V3,
+}
+
+/// The result for one target count.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Level {
+    /// The requested target N.
+    pub target: usize,
+    /// The target the merge loop stopped at: N, or with [`crate::Params::fill`] the
+    /// larger count whose post-processed result fills the budget of N best.
+    pub merged_to: usize,
+    /// Primitives in world coordinates, in a deterministic order.
+    pub primitives: Vec<Primitive>,
+    /// For each primitive, how many input faces it was fitted to.
+    pub faces: Vec<u32>,
+}
+
+impl Level {
+    /// Primitive counts indexed by `Kind as usize` ([`crate::Kind::ALL`] order).
+    pub fn counts(&self) -> [usize; 6] {
+        let mut c = [0; 6];
+        for p in &self.primitives {
+            c[p.kind() as usize] += 1;
+        }
+        c
+    }
+
+    /// Storage by the paper's Table 2: 4 bytes per float of each primitive.
+    pub fn bytes(&self) -> usize {
+        self.primitives.iter().map(|p| p.kind().bytes()).sum()
+    }
+}
+
+/// Wall-clock seconds of each stage, in run order.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct Timings {
+    /// `(stage name, seconds)`, in the order the stages ran.
+    pub stages: Vec<(String, f64)>,
+}
+
+impl Timings {
+    pub(crate) fn push(&mut self, stage: &str, seconds: f64) {
+        self.stages.push((stage.to_string(), seconds));
+    }
+
+    /// Sum of the stages' seconds.
+    pub fn total(&self) -> f64 {
+        self.stages.iter().map(|s| s.1).sum()
+    }
+}
+
+/// Counters of a run, for reports and tuning; they do not depend on the thread count.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Stats {
+    /// Distinct vertices after deduplication.
+    pub welded_vertices: usize,
+    /// Pairs of faces sharing an edge.
+    pub adjacency_edges: usize,
+    /// Pairs of clusters linked across gaps once adjacency ran out (§3.4 "Pairwise
+    /// Component Merging").
+    pub bridge_edges: usize,
+    /// Merges done.
+    pub merges: usize,
+    /// Merges that per-component loops did past the last target (the output is
+    /// replayed from their first merges).
+    pub merges_past: usize,
+    /// Merges whose points were reduced while the batch before them was priced.
+    pub merges_ahead: usize,
+    /// Candidate merges priced when seeding the queue and when bridging.
+    pub fits_seeded: usize,
+    /// Candidate merges re-priced right after a merge.
+    pub fits_at_once: usize,
+    /// Stale candidates re-priced when popped (deferred re-pricing).
+    pub fits_when_popped: usize,
+    /// Spatial parts merged in parallel before the global loop (1 = none).
+    pub partitions: usize,
+}
+
+/// Everything a run produces.
+#[derive(Clone, Debug, Default)]
+pub struct Decomposition {
+    /// What the input was.
+    pub input: InputInfo,
+    /// One level per target, in the order the targets were given.
+    pub levels: Vec<Level>,
+    /// Seconds per stage.
+    pub timings: Timings,
+    /// The merge loop's counters.
+    pub stats: Stats,
+}

@@ -907,6 +907,10 @@
     $('mode').value = m;
     select(null);
     updatePanel();
+    // The panes' shape changed: fit again, looking from where the user looks now.
+    var f = fitCamera(cam.back, paneAspect());
+    cam.target = f.target;
+    cam.dist = f.dist;
     dirty();
   }
   // ---- input events ------------------------------------------------------------

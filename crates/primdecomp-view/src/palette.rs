@@ -28,7 +28,7 @@ pub const BACKGROUND_RGB: [u8; 3] = [0xf7, 0xf7, 0xf5];
 pub const PART_OPACITY: f32 = 0.88;
 
 /// Default opacity of the input mesh.
-pub const INPUT_OPACITY: f32 = 0.55;
+pub const INPUT_OPACITY: f32 = 0.8;
 
 /// Outline colour factor: outlines are the surface colour times this.
 pub const EDGE_FACTOR: f32 = 0.45;

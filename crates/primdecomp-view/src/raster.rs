@@ -2,8 +2,8 @@
 //! browser and no GPU. Each pane draws the input mesh and a collider as the page
 //! does (input first, the collider's parts blended over it where they are in front,
 //! outlines where the visible part changes or its faces turn by more than
-//! [`crate::geometry::FEATURE_ANGLE_DEG`]), at 3×3 samples per pixel. The same scene
-//! gives the same bytes.
+//! [`crate::geometry::FEATURE_ANGLE_DEG`]), at 3×3 samples per pixel, a band of rows
+//! at a time. The same scene gives the same bytes.
 
 use crate::camera::Camera;
 use crate::geometry::{Parts, FEATURE_ANGLE_DEG};
@@ -102,17 +102,17 @@ impl View {
         ]
     }
 
-    /// Draws triangles into `layer`: `base(t)` is the colour of triangle `t` (0..1),
-    /// `id(t)` its part id (≥ 1). Depth test: nearer wins.
-    fn draw(
+    /// The triangles in front of the camera, projected: `base(t)` is the colour of
+    /// triangle `t` (0..1), `id(t)` its part id (≥ 1).
+    fn prepare(
         &self,
-        layer: &mut Layer,
         positions: &[[f64; 3]],
         triangles: &[[u32; 3]],
         base: impl Fn(usize) -> [f32; 3],
         id: impl Fn(usize) -> u32,
-    ) {
+    ) -> Vec<Projected> {
         let cams: Vec<[f64; 3]> = positions.iter().map(|&p| self.cam(p)).collect();
+        let mut out = Vec::new();
         for (ti, t) in triangles.iter().enumerate() {
             let c = t.map(|i| cams[i as usize]);
             if c.iter().any(|p| -p[2] <= self.near) {
@@ -129,28 +129,51 @@ impl View {
             if len == 0.0 || !len.is_finite() {
                 continue;
             }
-            let n = n.map(|x| x / len);
             let s = c.map(|p| self.screen(p));
             let area = (s[1][0] - s[0][0]) * (s[2][1] - s[0][1])
                 - (s[1][1] - s[0][1]) * (s[2][0] - s[0][0]);
             if area == 0.0 || !area.is_finite() {
                 continue;
             }
-            let x0 = s.iter().map(|p| p[0]).fold(f64::INFINITY, f64::min);
-            let x1 = s.iter().map(|p| p[0]).fold(f64::NEG_INFINITY, f64::max);
             let y0 = s.iter().map(|p| p[1]).fold(f64::INFINITY, f64::min);
             let y1 = s.iter().map(|p| p[1]).fold(f64::NEG_INFINITY, f64::max);
-            let xa = (x0 - 0.5).ceil().max(0.0) as usize;
-            let xb = ((x1 - 0.5).floor().min(self.w as f64 - 1.0)).max(-1.0);
-            let ya = (y0 - 0.5).ceil().max(0.0) as usize;
-            let yb = ((y1 - 0.5).floor().min(self.h as f64 - 1.0)).max(-1.0);
-            if xb < 0.0 || yb < 0.0 {
+            let ya = (y0 - 0.5).ceil().max(0.0);
+            let yb = (y1 - 0.5).floor().min(self.h as f64 - 1.0);
+            if yb < ya {
                 continue;
             }
-            let (xb, yb) = (xb as usize, yb as usize);
-            let col = base(ti);
-            let pid = id(ti);
-            let inv = 1.0 / area;
+            out.push(Projected {
+                s,
+                n: n.map(|x| x / len),
+                inv_area: 1.0 / area,
+                rows: (ya as usize, yb as usize),
+                colour: base(ti),
+                id: id(ti),
+            });
+        }
+        out
+    }
+
+    /// Draws the triangles into `layer`, which holds sample rows `row0..` of the
+    /// grid. Depth test: nearer wins.
+    fn draw(&self, layer: &mut Layer, tris: &[Projected], row0: usize) {
+        let rows = layer.id.len() / self.w;
+        for t in tris {
+            let s = t.s;
+            let ya = t.rows.0.max(row0);
+            let yb = t.rows.1.min(row0 + rows - 1);
+            if yb < ya {
+                continue;
+            }
+            let x0 = s.iter().map(|p| p[0]).fold(f64::INFINITY, f64::min);
+            let x1 = s.iter().map(|p| p[0]).fold(f64::NEG_INFINITY, f64::max);
+            let xa = (x0 - 0.5).ceil().max(0.0) as usize;
+            let xb = ((x1 - 0.5).floor().min(self.w as f64 - 1.0)).max(-1.0);
+            if xb < 0.0 {
+                continue;
+            }
+            let xb = xb as usize;
+            let (n, inv) = (t.n, t.inv_area);
             for y in ya..=yb {
                 let py = y as f64 + 0.5;
                 for x in xa..=xb {
@@ -163,7 +186,7 @@ impl View {
                         continue;
                     }
                     let z = w0 * s[0][2] + w1 * s[1][2] + w2 * s[2][2];
-                    let k = y * self.w + x;
+                    let k = (y - row0) * self.w + x;
                     if z <= layer.inv_depth[k] {
                         continue;
                     }
@@ -180,13 +203,25 @@ impl View {
                     let nf = nn.map(|x| x as f32);
                     let sh = palette::shade(nf, view.map(|x| x as f32));
                     layer.inv_depth[k] = z;
-                    layer.colour[k] = col.map(|c| c * sh);
+                    layer.colour[k] = t.colour.map(|c| c * sh);
                     layer.normal[k] = nf;
-                    layer.id[k] = pid;
+                    layer.id[k] = t.id;
                 }
             }
         }
     }
+}
+
+/// A triangle projected onto the sample grid: its corners (x, y, inverse depth),
+/// camera-space unit normal, 1 / twice its signed screen area, the sample rows it
+/// may cover, its colour and part id.
+struct Projected {
+    s: [[f64; 3]; 3],
+    n: [f64; 3],
+    inv_area: f64,
+    rows: (usize, usize),
+    colour: [f32; 3],
+    id: u32,
 }
 
 fn unit_rgb(c: [u8; 3]) -> [f32; 3] {
@@ -200,38 +235,77 @@ fn mix(a: [f32; 3], b: [f32; 3], t: f32) -> [f32; 3] {
 /// Id of the input's surface in the visible-id buffer.
 const INPUT_ID: u32 = u32::MAX;
 
+/// Output rows drawn at a time: the sample buffers hold one band (and a row of
+/// samples above and below it for the outlines), so memory does not grow with the
+/// image's height.
+const BAND: usize = 32;
+
 /// Renders one pane of `width` × `height` pixels seen by `cam`.
 pub fn render(pane: &Pane, cam: &Camera, width: usize, height: usize) -> Image {
-    let (w, h) = (width.max(1) * SS, height.max(1) * SS);
+    let (width, height) = (width.max(1), height.max(1));
+    let (w, h) = (width * SS, height * SS);
     let view = View::new(cam, w, h);
-    let n = w * h;
-    let mut input = Layer::new(n);
-    if let Some((pos, tris)) = pane.input {
-        let c = unit_rgb(palette::INPUT_RGB);
-        view.draw(&mut input, pos, tris, |_| c, |_| INPUT_ID);
-    }
-    let mut parts = Layer::new(n);
-    let mut part_base: Vec<[f32; 3]> = Vec::new();
-    if let Some(p) = pane.parts {
-        part_base = p
-            .colour
-            .iter()
-            .map(|&k| unit_rgb(palette::rgb(k)))
-            .collect();
-        // Part of each triangle, from the part ranges.
-        let mut owner = vec![0u32; p.triangles.len()];
-        for (i, w) in p.starts.windows(2).enumerate() {
-            owner[w[0] as usize..w[1] as usize].fill(i as u32);
+    let input = match pane.input {
+        Some((pos, tris)) => {
+            let c = unit_rgb(palette::INPUT_RGB);
+            view.prepare(pos, tris, |_| c, |_| INPUT_ID)
         }
-        let base = &part_base;
-        view.draw(
-            &mut parts,
-            &p.positions,
-            &p.triangles,
-            |t| base[owner[t] as usize],
-            |t| owner[t] + 1,
-        );
+        None => Vec::new(),
+    };
+    let mut part_base: Vec<[f32; 3]> = Vec::new();
+    let parts = match pane.parts {
+        Some(p) => {
+            part_base = p
+                .colour
+                .iter()
+                .map(|&k| unit_rgb(palette::rgb(k)))
+                .collect();
+            // Part of each triangle, from the part ranges.
+            let mut owner = vec![0u32; p.triangles.len()];
+            for (i, w) in p.starts.windows(2).enumerate() {
+                owner[w[0] as usize..w[1] as usize].fill(i as u32);
+            }
+            let base = &part_base;
+            view.prepare(
+                &p.positions,
+                &p.triangles,
+                |t| base[owner[t] as usize],
+                |t| owner[t] + 1,
+            )
+        }
+        None => Vec::new(),
+    };
+    let mut rgb = Vec::with_capacity(width * height * 3);
+    for band in (0..height).step_by(BAND) {
+        let rows = BAND.min(height - band) * SS;
+        // Sample rows row0..row0 + n: the band and one row on each side.
+        let row0 = (band * SS).saturating_sub(1);
+        let n = (band * SS + rows + 1).min(h) - row0;
+        let samples = shade_band(&view, pane, &input, &parts, &part_base, row0, n);
+        let skip = band * SS - row0;
+        downsample(&samples[skip * w..(skip + rows) * w], width, &mut rgb);
     }
+    Image { width, height, rgb }
+}
+
+/// The final colour of sample rows `row0..row0 + n`, outlines drawn where the
+/// visible surface changes or turns (the first and last row only serve as
+/// neighbours and are not outlined).
+fn shade_band(
+    view: &View,
+    pane: &Pane,
+    input_tris: &[Projected],
+    part_tris: &[Projected],
+    part_base: &[[f32; 3]],
+    row0: usize,
+    n_rows: usize,
+) -> Vec<[f32; 3]> {
+    let w = view.w;
+    let n = w * n_rows;
+    let mut input = Layer::new(n);
+    view.draw(&mut input, input_tris, row0);
+    let mut parts = Layer::new(n);
+    view.draw(&mut parts, part_tris, row0);
     let bg = unit_rgb(palette::BACKGROUND_RGB);
     let (ai, ap) = (pane.input_opacity, pane.part_opacity);
     // What is seen at each sample: its colour, the visible surface's id (0: the
@@ -267,7 +341,7 @@ pub fn render(pane: &Pane, cam: &Camera, width: usize, height: usize) -> Image {
     }
     let cos = (FEATURE_ANGLE_DEG.to_radians().cos()) as f32;
     let mut out = colour.clone();
-    for y in 0..h {
+    for y in 0..n_rows {
         for x in 0..w {
             let k = y * w + x;
             if seen[k] == 0 {
@@ -277,7 +351,7 @@ pub fn render(pane: &Pane, cam: &Camera, width: usize, height: usize) -> Image {
                 (x > 0).then(|| k - 1),
                 (x + 1 < w).then(|| k + 1),
                 (y > 0).then(|| k - w),
-                (y + 1 < h).then(|| k + w),
+                (y + 1 < n_rows).then(|| k + w),
             ];
             let edge = neighbours.into_iter().flatten().any(|j| {
                 if seen[j] != seen[k] {
@@ -299,7 +373,7 @@ pub fn render(pane: &Pane, cam: &Camera, width: usize, height: usize) -> Image {
             }
         }
     }
-    downsample(&out, width.max(1), height.max(1))
+    out
 }
 
 fn depth_of(parts: &Layer, input: &Layer, id: u32, k: usize) -> f64 {
@@ -310,11 +384,12 @@ fn depth_of(parts: &Layer, input: &Layer, id: u32, k: usize) -> f64 {
     }
 }
 
-fn downsample(hi: &[[f32; 3]], width: usize, height: usize) -> Image {
+/// Appends the pixels of sample rows `hi` (a whole number of pixel rows, `width`
+/// pixels wide), each the mean of its SS × SS samples.
+fn downsample(hi: &[[f32; 3]], width: usize, rgb: &mut Vec<u8>) {
     let w = width * SS;
-    let mut rgb = Vec::with_capacity(width * height * 3);
     let norm = 1.0 / (SS * SS) as f32;
-    for y in 0..height {
+    for y in 0..hi.len() / w / SS {
         for x in 0..width {
             let mut acc = [0.0f32; 3];
             for dy in 0..SS {
@@ -330,7 +405,6 @@ fn downsample(hi: &[[f32; 3]], width: usize, height: usize) -> Image {
             }
         }
     }
-    Image { width, height, rgb }
 }
 
 /// Images of equal height side by side, left to right.

@@ -563,20 +563,7 @@ fn run_one(
     )?;
     let write_s = now.elapsed().as_secs_f64();
     if let Some(png) = &a.png {
-        let json = output_path_for(out, dec.levels[0].target, dec.levels.len());
-        let png = match a.inputs.len() {
-            1 => png.clone(),
-            _ => {
-                std::fs::create_dir_all(png)
-                    .map_err(|e| anyhow!("cannot create PNG directory {}: {e}", png.display()))?;
-                png.join(format!(
-                    "{}.png",
-                    input.file_stem().unwrap_or_default().to_string_lossy()
-                ))
-            }
-        };
-        decompose_png(&json, input, &mesh, &png)?;
-        written.push(png);
+        written.push(decompose_png(a, out, &dec, input, &mesh, png)?);
     }
     let _out = PRINT.lock();
     if !a.quiet {
@@ -1021,14 +1008,27 @@ fn recorded_input(result: &Path) -> Option<PathBuf> {
     p.is_file().then_some(p)
 }
 
-/// `decompose --png`: the first level, read back from its JSON, over the input.
+/// `decompose --png`: the first level, read back from the JSON just written, over
+/// the input; with several inputs `png` is a directory. Returns the file written.
 fn decompose_png(
-    json: &Path,
+    a: &DecomposeArgs,
+    out: &Path,
+    dec: &Decomposition,
     input: &Path,
     mesh: &primdecomp::Mesh,
     png: &Path,
-) -> anyhow::Result<()> {
+) -> anyhow::Result<PathBuf> {
     use primdecomp_view::{scene, source};
+    let png = match a.inputs.len() {
+        1 => png.to_path_buf(),
+        _ => {
+            std::fs::create_dir_all(png)
+                .map_err(|e| anyhow!("cannot create PNG directory {}: {e}", png.display()))?;
+            let stem = input.file_stem().unwrap_or_default().to_string_lossy();
+            png.join(format!("{stem}.png"))
+        }
+    };
+    let json = output_path_for(out, dec.levels[0].target, dec.levels.len());
     let opts = scene::Options::default();
     let s = scene::Scene {
         input: Some(scene::input_from(
@@ -1036,13 +1036,13 @@ fn decompose_png(
             &source::from_core_mesh(mesh),
             &opts,
         )),
-        levels: scene::load_levels(json, &opts)?,
+        levels: scene::load_levels(&json, &opts)?,
         peers: Vec::new(),
         eval: Vec::new(),
         up_axis: opts.up_axis,
     };
     let bytes = primdecomp_view::render_png(&s, primdecomp_view::PNG_SIZE)
         .ok_or_else(|| anyhow!("{}: nothing to draw", input.display()))?;
-    write_atomic(png, &bytes)?;
-    Ok(())
+    write_atomic(&png, &bytes)?;
+    Ok(png)
 }

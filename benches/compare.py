@@ -33,6 +33,10 @@ def parse_args(argv):
                     help="only replace the simulation section of OUT/compare.md and the `sim` fields of OUT/compare.json "
                          "with the current SIM summaries (after `python3 benches/sim_compare.py`); every other figure "
                          "stays from the run named at the top of the report")
+    ap.add_argument("--thumbs-only", action="store_true",
+                    help="only draw the pictures (input, ours, CoACD, V-HACD per mesh; `primdecomp view --png`) into "
+                         "OUT/thumbs and replace the pictures section of OUT/compare.md: ours decomposed again at the "
+                         "report's target, peers' hulls from the cache where present (none is run); --meshes limits it")
     ap.add_argument("--sweep", action="store_true", help="the speed/accuracy sweep of our engine -> docs/results/tradeoff.md")
     ap.add_argument("--out", default=str(ROOT / "docs" / "results"), help="report directory (default: %(default)s)")
     ap.add_argument("--sim", default=str(CACHE / "sim" / "summary"), help="directory of simulation results, SIM/<mesh file name>.json = {method: {metric: value}}, as benches/sim_compare.py writes them (default: %(default)s)")
@@ -64,6 +68,10 @@ def main(argv):
         from compare_lib import report
 
         return report.refresh_sim(a)
+    if a.thumbs_only:
+        from compare_lib import report
+
+        return report.refresh_thumbs(a, Path(a.cache))
     if a.sweep:
         from compare_lib import sweep
 

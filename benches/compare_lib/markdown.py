@@ -118,6 +118,55 @@ def failures(records, methods):
     return lines + [""]
 
 
+PICS_HEADING = "## Pictures"
+# The pictures stand before this section.
+PICS_BEFORE = "## Per mesh"
+
+
+def pictures(records, note=None):
+    """A row of thumbnails per mesh (input, ours, CoACD, V-HACD), as the paper's
+    figures; `note`, a line under the heading (where the pictures came from)."""
+    from . import thumbs
+
+    cols = [c for c in thumbs.COLUMNS if c != "input"]
+    lines = [
+        f"{PICS_HEADING} (as the paper's figures)",
+        "",
+        *([note, ""] if note else []),
+        f"Each collider drawn over its input mesh by `primdecomp view COLLIDER --input MESH --png OUT "
+        f"--png-size {thumbs.SIZE}` (`--compare HULLS.obj` for a peer's hulls): the viewer page's default "
+        "three-quarter view, rendered in software. Grey shows the input where it pokes out of a collider. "
+        "Colours: box blue, sphere red, capsule green, cylinder orange, frustum purple, prism teal, peer hulls "
+        "yellow. The interactive page: `primdecomp view OURS.json --input MESH --compare HULLS.obj -o view.html`.",
+        "",
+        "| mesh | input | " + " | ".join(label(c) for c in cols) + " |",
+        "|---|---|" + "---|" * len(cols),
+    ]
+    for r in records:
+        t = r.get("thumbs") or {}
+        if not t:
+            continue
+        cells = [r["mesh"]]
+        for c in ["input"] + cols:
+            cells.append(f"![{r['mesh']}, {label(c) if c != 'input' else 'input'}]({thumbs.DIR}/{t[c]})" if c in t else "–")
+        lines.append("| " + " | ".join(cells) + " |")
+    return lines + [""]
+
+
+def replace_section(text, heading, lines, before):
+    """`text` with the section starting at `heading` (to the next `## ` heading)
+    replaced by `lines`, or inserted before the section `before` when absent."""
+    body = "\n".join(lines) + "\n"
+    at = text.find("\n" + heading)
+    if at >= 0:
+        end = text.find("\n## ", at + 1)
+        return text[: at + 1] + body + (text[end + 1:] if end >= 0 else "")
+    at = text.find("\n" + before)
+    if at < 0:
+        return text.rstrip("\n") + "\n\n" + body
+    return text[: at + 1] + body + text[at + 1:]
+
+
 SIM_HEADING = "## Simulation"
 
 
@@ -221,6 +270,7 @@ def render(records, methods, a, cmd, commit, seconds):
         text += [*t2, ""] if common2 else ["No mesh has a CoACD (paper settings) result yet.", ""]
     text += targets_check(records, rows, main3)
     text += ["## Plots", "", "![distance per mesh](compare_distance.png)", "", "![bytes per mesh](compare_bytes.png)", "", "![seconds vs faces](compare_seconds.png)", ""]
+    text += pictures(records)
     text += ["## Per mesh (as the paper's appendix)", "", "Primitive letters: b box, s sphere, c capsule, y cylinder, f frustum, p prism.", ""]
     text += per_mesh_tables(records, ["ours"] + methods)
     text += failures(records, methods)

@@ -12,7 +12,7 @@ import sys
 import time
 from pathlib import Path
 
-from . import ours, peers, plots
+from . import ours, peers, plots, thumbs
 
 RULE = (
     "our target per mesh: from one multi-target pass over targets from the most primitives "
@@ -86,7 +86,19 @@ def run_mesh(a, mesh, methods, cache, work):
     rec["budget_bytes"] = budget
     rec.setdefault("faces", faces)
     evaluate_all(a, mesh, rec, colliders, mdir)
+    draw_thumbs(a, mesh, rec, colliders)
     return rec
+
+
+def draw_thumbs(a, mesh, rec, colliders):
+    """The record's row of pictures (thumbs.COLUMNS) into OUT/thumbs."""
+    pics = {k: v for k, v in colliders.items() if k in thumbs.COLUMNS}
+    drawn, failed = thumbs.render(a.bin, mesh, pics, Path(a.out) / thumbs.DIR, a.timeout)
+    rec["thumbs"] = drawn
+    if failed:
+        rec["thumb_errors"] = failed
+        for col, err in failed.items():
+            print(f"[compare] {mesh.name}: no {col} picture: {err}", file=sys.stderr)
 
 
 def count_faces(mesh):
@@ -164,11 +176,61 @@ def refresh_sim(a):
     note = (f"Section refreshed by `{argv_line()}` at commit `{git_commit(Path(__file__).resolve().parents[2])}` "
             f"on {datetime.date.today()}; the rest of this report is from the run named at the top.")
     text = head + "\n".join(markdown.sim_table(data["records"], note))
+    write_report(out, data, text)
+    print(f"refreshed the simulation section of {out / 'compare.md'}", file=sys.stderr)
+    return 0
+
+
+def write_report(out, data, text):
+    """OUT/compare.json and OUT/compare.md, each through a temporary file and a rename."""
     for name, body in (("compare.json", json.dumps(data, indent=1) + "\n"), ("compare.md", text)):
         tmp = out / f".{name}.tmp.{os.getpid()}"
         tmp.write_text(body)
         os.replace(tmp, out / name)
-    print(f"refreshed the simulation section of {out / 'compare.md'}", file=sys.stderr)
+
+
+def refresh_thumbs(a, cache):
+    """`benches/compare --thumbs-only`: the pictures section of OUT/compare.md and the
+    records' `thumbs` in OUT/compare.json, every other figure untouched. Ours is
+    decomposed again at the report's target by today's binary; peers' hulls come from
+    the cache where it has them (none is run)."""
+    from . import corpus, markdown
+
+    out = Path(a.out)
+    data = json.loads((out / "compare.json").read_text())
+    names = {Path(m).name for m in a.meshes} if a.meshes else None
+    for rec in data["records"]:
+        if names is not None and rec["mesh"] not in names:
+            continue
+        mesh = corpus.CORPUS / rec["mesh"]
+        if not mesh.is_file():
+            print(f"[compare] {rec['mesh']}: not in the corpus, no pictures", file=sys.stderr)
+            continue
+        print(f"[compare] pictures of {rec['mesh']}", file=sys.stderr, flush=True)
+        colliders = {}
+        target = rec["ours"].get("target")
+        if target:
+            run = ours.decompose(a.bin, mesh, [target], cache / "work" / rec["mesh"] / "thumbs", a.timeout)
+            if run["status"] == "ok":
+                colliders["ours"] = Path(run["levels"][0]["_path"])
+        sha = peers.sha256_file(mesh)
+        for m in ("coacd", "vhacd"):
+            d = peers.entry_dir(cache, sha, m, a.threads)
+            st_ = peers.read_status(d)
+            if st_ and st_["status"] == "ok":
+                colliders[m] = d / "hulls.obj"
+        rec.pop("thumb_errors", None)
+        draw_thumbs(a, mesh, rec, colliders)
+    have = lambda col: sum(1 for r in data["records"] if col in r.get("thumbs", {}))  # noqa: E731
+    note = (f"Pictures drawn by `{argv_line()}` at commit `{git_commit(Path(__file__).resolve().parents[2])}` on "
+            f"{datetime.date.today()}: ours decomposed again at the report's target by that commit's binary (the "
+            f"figures above are from the run named at the top); peers' hulls from `benches/.cache` where it has them "
+            f"(CoACD's for {have('coacd')}, V-HACD's for {have('vhacd')} of the {len(data['records'])} meshes), "
+            "'–' where it has none.")
+    text = markdown.replace_section((out / "compare.md").read_text(), markdown.PICS_HEADING,
+                                    markdown.pictures(data["records"], note), markdown.PICS_BEFORE)
+    write_report(out, data, text)
+    print(f"refreshed the pictures of {out / 'compare.md'}", file=sys.stderr)
     return 0
 
 

@@ -31,6 +31,9 @@ enum Cmd {
     /// Drop balls on the input mesh and on each collider in Rapier, time every frame's
     /// physics step and compare where the balls end (the paper's §4.1 benchmark).
     Sim(SimArgs),
+    /// Look at colliders: a self-contained HTML viewer page (-o) and/or a PNG render
+    /// of its default view (--png) of results, the input mesh and peers' hulls.
+    View(ViewArgs),
     /// Write the built-in demo scene (stairs, table, pipes, house, ring) as OBJ.
     DemoScene {
         /// Output file.
@@ -172,6 +175,10 @@ struct DecomposeArgs {
     /// Segments around circles in the OBJ tessellation.
     #[arg(long, default_value_t = 16)]
     obj_detail: usize,
+    /// Also render the first level over the input as PNG (`primdecomp view --png`);
+    /// with several inputs, a directory: one INPUT-stem.png each.
+    #[arg(long, value_name = "OUT.png")]
+    png: Option<PathBuf>,
     /// Refuse inputs whose decomposition is estimated to need more memory than this:
     /// a size such as 512M, 8G or 1.5T, "available" (the memory available at start,
     /// from /proc/meminfo) or "none".
@@ -253,6 +260,7 @@ pub fn main() -> i32 {
         Cmd::Decompose(a) => decompose(*a),
         Cmd::Eval(a) => eval(a),
         Cmd::Sim(a) => sim(a),
+        Cmd::View(a) => view(a),
         Cmd::DemoScene { out } => write_atomic(&out, primdecomp::demo_scene_obj().as_bytes())
             .map_err(anyhow::Error::from)
             .map(|_| println!("wrote {}", out.display())),
@@ -570,7 +578,7 @@ fn run_one(
     dec.input.path = Some(input.display().to_string());
     dec.timings.stages.insert(0, ("load".into(), load_s));
     let now = Instant::now();
-    let written = write_outputs(
+    let mut written = write_outputs(
         &dec,
         &params,
         out,
@@ -579,6 +587,9 @@ fn run_one(
         a.timings,
     )?;
     let write_s = now.elapsed().as_secs_f64();
+    if let Some(png) = &a.png {
+        written.push(decompose_png(a, out, &dec, input, &mesh, png)?);
+    }
     let _out = PRINT.lock();
     if !a.quiet {
         print_summary(&dec, &mesh, &written);
@@ -866,4 +877,198 @@ fn print_sim_table(run: &SimRun) {
             b.resting
         );
     }
+}
+
+/// `primdecomp view`.
+#[derive(Args, Debug)]
+struct ViewArgs {
+    /// Result JSON files of `primdecomp decompose`, one level each (or a document with
+    /// a `levels` array). A multi-target run's `-o` name (out.json) stands for the
+    /// files it wrote (out_n200.json, out_n50.json): every level, largest first.
+    results: Vec<PathBuf>,
+    /// The input mesh (OBJ, PLY, STL, OFF, glTF/GLB), shown semi-transparent; large
+    /// meshes are simplified for display (--display-faces). Default: the first
+    /// result's `input.path` when that file exists (--no-input: none).
+    #[arg(long)]
+    input: Option<PathBuf>,
+    /// Show no input mesh.
+    #[arg(long, conflicts_with = "input")]
+    no_input: bool,
+    /// Peers' convex hulls as OBJ (one `o`/`g` per hull, as CoACD and V-HACD write),
+    /// shown beside ours.
+    #[arg(long, num_args = 1.., value_name = "HULLS.obj")]
+    compare: Vec<PathBuf>,
+    /// An evaluation of these colliders (`primdecomp eval ... --json E.json`): its
+    /// distances go into the panel.
+    #[arg(long, value_name = "E.json")]
+    eval: Option<PathBuf>,
+    /// Write the viewer page here: one HTML file that works offline from disk.
+    #[arg(short, long, value_name = "view.html")]
+    out: Option<PathBuf>,
+    /// Write a PNG of the page's default view here (software-rendered, no browser).
+    #[arg(long, value_name = "OUT.png")]
+    png: Option<PathBuf>,
+    /// Width and height in pixels of each pane of the PNG (side by side when peers are
+    /// shown).
+    #[arg(long, default_value_t = primdecomp_view::PNG_SIZE)]
+    png_size: usize,
+    /// The input's up axis (the default view looks from the front right, above).
+    #[arg(long, default_value = "y", value_parser = ["y", "z"])]
+    up: String,
+    /// Most input triangles shown; larger inputs are simplified (meshoptimizer) to this.
+    #[arg(long, default_value_t = primdecomp_view::simplify::DISPLAY_TRIANGLES)]
+    display_faces: usize,
+    /// Segments around circles in the primitives' shown tessellation.
+    #[arg(long, default_value_t = 24)]
+    detail: usize,
+}
+
+/// Reads every file first (a bad one fails the run before anything is written), then
+/// writes the page and the PNG atomically.
+fn view(a: ViewArgs) -> anyhow::Result<()> {
+    use primdecomp_view::scene;
+    if a.out.is_none() && a.png.is_none() {
+        bail!(BadArgs(
+            "view: nothing to write: give -o view.html and/or --png OUT.png".into()
+        ));
+    }
+    if a.results.is_empty() && a.input.is_none() && a.compare.is_empty() {
+        bail!(BadArgs(
+            "view: nothing to show: give a result JSON, --input or --compare".into()
+        ));
+    }
+    if !(16..=8192).contains(&a.png_size) {
+        bail!(BadArgs(format!(
+            "--png-size must be 16 to 8192, got {}",
+            a.png_size
+        )));
+    }
+    if a.detail < 3 {
+        bail!(BadArgs(format!(
+            "--detail must be at least 3, got {}",
+            a.detail
+        )));
+    }
+    let opts = scene::Options {
+        detail: a.detail,
+        display_triangles: a.display_faces.max(1),
+        up_axis: if a.up == "z" { 2 } else { 1 },
+    };
+    let mut levels = Vec::new();
+    for r in &a.results {
+        for f in scene::result_files(r) {
+            levels.extend(scene::load_levels(&f, &opts)?);
+        }
+    }
+    let peers = a
+        .compare
+        .iter()
+        .map(|p| scene::load_peer(p, None))
+        .collect::<primdecomp::Result<Vec<_>>>()?;
+    let input_path = match (&a.input, a.no_input) {
+        (Some(p), _) => Some(p.clone()),
+        (None, true) => None,
+        (None, false) => a
+            .results
+            .first()
+            .and_then(|r| scene::result_files(r).into_iter().next())
+            .and_then(|f| recorded_input(&f)),
+    };
+    let input = input_path
+        .as_deref()
+        .map(|p| scene::load_input(p, &opts))
+        .transpose()?;
+    let eval = match &a.eval {
+        Some(e) => scene::load_eval(e, &levels, &peers)?,
+        None => Vec::new(),
+    };
+    let title = a
+        .results
+        .first()
+        .or(input_path.as_ref())
+        .or(a.compare.first())
+        .and_then(|p| p.file_name())
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let s = scene::Scene {
+        input,
+        levels,
+        peers,
+        eval,
+        up_axis: opts.up_axis,
+    };
+    if s.aabb().is_none() {
+        bail!(BadArgs(
+            "view: the files hold nothing to draw (no triangles)".into()
+        ));
+    }
+    if let Some(i) = &s.input {
+        if i.display.simplified {
+            println!(
+                "input     {}: {} triangles shown of {} (simplified for display)",
+                i.file,
+                i.display.triangles.len(),
+                i.display.source_triangles
+            );
+        }
+    }
+    if let Some(out) = &a.out {
+        write_atomic(out, primdecomp_view::html::page(&s, &title).as_bytes())?;
+        println!("wrote     {}", out.display());
+    }
+    if let Some(png) = &a.png {
+        let bytes =
+            primdecomp_view::render_png(&s, a.png_size).expect("checked: the scene has triangles");
+        write_atomic(png, &bytes)?;
+        println!("wrote     {}", png.display());
+    }
+    Ok(())
+}
+
+/// The input a result document names (`input.path`), if that file exists here.
+fn recorded_input(result: &Path) -> Option<PathBuf> {
+    let text = std::fs::read_to_string(result).ok()?;
+    let doc: serde_json::Value = serde_json::from_str(&text).ok()?;
+    let doc = doc.get("levels").and_then(|l| l.get(0)).unwrap_or(&doc);
+    let p = PathBuf::from(doc.get("input")?.get("path")?.as_str()?);
+    p.is_file().then_some(p)
+}
+
+/// `decompose --png`: the first level, read back from the JSON just written, over
+/// the input; with several inputs `png` is a directory. Returns the file written.
+fn decompose_png(
+    a: &DecomposeArgs,
+    out: &Path,
+    dec: &Decomposition,
+    input: &Path,
+    mesh: &primdecomp::Mesh,
+    png: &Path,
+) -> anyhow::Result<PathBuf> {
+    use primdecomp_view::{scene, source};
+    let png = match a.inputs.len() {
+        1 => png.to_path_buf(),
+        _ => {
+            std::fs::create_dir_all(png)
+                .map_err(|e| anyhow!("cannot create PNG directory {}: {e}", png.display()))?;
+            let stem = input.file_stem().unwrap_or_default().to_string_lossy();
+            png.join(format!("{stem}.png"))
+        }
+    };
+    let json = output_path_for(out, dec.levels[0].target, dec.levels.len());
+    let opts = scene::Options::default();
+    let s = scene::Scene {
+        input: Some(scene::input_from(
+            input,
+            &source::from_core_mesh(mesh),
+            &opts,
+        )),
+        levels: scene::load_levels(&json, &opts)?,
+        peers: Vec::new(),
+        eval: Vec::new(),
+        up_axis: opts.up_axis,
+    };
+    let bytes = primdecomp_view::render_png(&s, primdecomp_view::PNG_SIZE)
+        .ok_or_else(|| anyhow!("{}: nothing to draw", input.display()))?;
+    write_atomic(&png, &bytes)?;
+    Ok(png)
 }

@@ -1,0 +1,239 @@
+//! The viewer page: one HTML file holding its JavaScript (`assets/viewer.js`, WebGL
+//! with no library), its style and the scene's data (JSON with geometry as base64
+//! little-endian arrays), so it opens from disk with no network. The same scene gives
+//! the same bytes.
+
+use crate::camera;
+use crate::geometry::{Parts, FEATURE_ANGLE_DEG};
+use crate::palette;
+use crate::scene::{Collider, Detail, Scene};
+use serde_json::{json, Value};
+
+const TEMPLATE: &str = include_str!("../assets/page.html");
+const VIEWER_JS: &str = include_str!("../assets/viewer.js");
+
+/// The page for `scene`.
+pub fn page(scene: &Scene, title: &str) -> String {
+    let data = data(scene, title).to_string();
+    // Inside <script>, "</" could close the element: JSON allows "\/" for "/".
+    let data = data.replace("</", "<\\/");
+    debug_assert!(!VIEWER_JS.contains("</script"));
+    fill(
+        TEMPLATE,
+        &[
+            ("__PRIMDECOMP_TITLE__", &escape_html(title)),
+            ("__PRIMDECOMP_VIEWER_JS__", VIEWER_JS),
+            ("__PRIMDECOMP_DATA__", &data),
+        ],
+    )
+}
+
+/// The template with each marker replaced, in one pass over the template (a value
+/// holding a marker's text stays as it is).
+fn fill(template: &str, values: &[(&str, &str)]) -> String {
+    let mut out =
+        String::with_capacity(template.len() + values.iter().map(|v| v.1.len()).sum::<usize>());
+    let mut rest = template;
+    while let Some((at, (marker, value))) = values
+        .iter()
+        .filter_map(|v| rest.find(v.0).map(|i| (i, *v)))
+        .min_by_key(|x| x.0)
+    {
+        out.push_str(&rest[..at]);
+        out.push_str(value);
+        rest = &rest[at + marker.len()..];
+    }
+    out.push_str(rest);
+    out
+}
+
+fn escape_html(s: &str) -> String {
+    s.replace('&', "&amp;")
+        .replace('<', "&lt;")
+        .replace('>', "&gt;")
+        .replace('"', "&quot;")
+}
+
+/// Standard base64 with padding.
+pub fn base64(bytes: &[u8]) -> String {
+    const A: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    let mut out = String::with_capacity(bytes.len().div_ceil(3) * 4);
+    for c in bytes.chunks(3) {
+        let n = (c[0] as u32) << 16
+            | (*c.get(1).unwrap_or(&0) as u32) << 8
+            | *c.get(2).unwrap_or(&0) as u32;
+        for i in 0..4 {
+            if i <= c.len() {
+                out.push(A[(n >> (18 - 6 * i) & 63) as usize] as char);
+            } else {
+                out.push('=');
+            }
+        }
+    }
+    out
+}
+
+fn f32s(origin: [f64; 3], positions: &[[f64; 3]]) -> String {
+    let mut b = Vec::with_capacity(positions.len() * 12);
+    for p in positions {
+        for d in 0..3 {
+            b.extend_from_slice(&((p[d] - origin[d]) as f32).to_le_bytes());
+        }
+    }
+    base64(&b)
+}
+
+fn u32s(v: impl IntoIterator<Item = u32>) -> String {
+    let b: Vec<u8> = v.into_iter().flat_map(u32::to_le_bytes).collect();
+    base64(&b)
+}
+
+fn mesh(origin: [f64; 3], p: &Parts) -> Value {
+    json!({
+        "positions": f32s(origin, &p.positions),
+        "indices": u32s(p.triangles.iter().flatten().copied()),
+        "starts": u32s(p.starts.iter().copied()),
+        "colours": p.colour,
+        "edges": u32s(p.edges.iter().flatten().copied()),
+    })
+}
+
+fn collider(origin: [f64; 3], c: &Collider) -> Value {
+    let counts = c.counts();
+    let mut by_kind = serde_json::Map::new();
+    for k in primdecomp::Kind::ALL {
+        by_kind.insert(k.name().into(), json!(counts[k as usize]));
+    }
+    by_kind.insert("hull".into(), json!(counts[palette::HULL as usize]));
+    let (kind, parts, target) = match &c.detail {
+        Detail::Primitives { target, json, .. } => ("primitives", json.clone(), *target),
+        Detail::Hulls { sizes, .. } => (
+            "hulls",
+            sizes
+                .iter()
+                .map(|(v, t)| json!({"vertices": v, "triangles": t}))
+                .collect(),
+            None,
+        ),
+    };
+    json!({
+        "label": c.label,
+        "file": c.file,
+        "kind": kind,
+        "target": target,
+        "bytes": c.bytes(),
+        "count": c.parts.len(),
+        "counts": by_kind,
+        "parts": parts,
+        "mesh": mesh(origin, &c.parts),
+    })
+}
+
+/// The data the page embeds.
+pub fn data(scene: &Scene, title: &str) -> Value {
+    let (lo, hi) = scene.aabb().unwrap_or(([-1.0; 3], [1.0; 3]));
+    let origin = [0, 1, 2].map(|d| 0.5 * (lo[d] + hi[d]));
+    let rel = |p: [f64; 3]| [0, 1, 2].map(|d| p[d] - origin[d]);
+    // The direction of the default view; the page fits the distance and the target
+    // to its panes as camera.rs does.
+    let cam = camera::Camera::three_quarter(&scene.points(), scene.up_axis, 1.0).unwrap_or(
+        camera::Camera {
+            eye: [0.0, 0.0, 1.0],
+            target: [0.0; 3],
+            up: [0.0, 1.0, 0.0],
+            fov_y_deg: camera::FOV_Y_DEG,
+        },
+    );
+    let (_, _, back) = cam.basis();
+    let input = scene.input.as_ref().map(|i| {
+        let d = &i.display;
+        json!({
+            "file": i.file,
+            "faces": d.source_faces,
+            "source_triangles": d.source_triangles,
+            "triangles": d.triangles.len(),
+            "simplified": d.simplified,
+            "positions": f32s(origin, &d.positions),
+            "indices": u32s(d.triangles.iter().flatten().copied()),
+        })
+    });
+    let eval: Vec<Value> = scene
+        .eval
+        .iter()
+        .map(|r| {
+            let mut m = r.metrics.clone();
+            m.remove("counts");
+            m.insert("matches".into(), json!(r.matches));
+            Value::Object(m)
+        })
+        .collect();
+    json!({
+        "format": "primdecomp-view",
+        "version": 1,
+        "title": title,
+        "palette": {
+            "kinds": primdecomp::Kind::ALL.iter().map(|k| json!({
+                "name": k.name(),
+                "rgb": palette::hex(palette::KIND_RGB[*k as usize]),
+            })).collect::<Vec<_>>(),
+            "hull": palette::hex(palette::HULL_RGB),
+            "input": palette::hex(palette::INPUT_RGB),
+            "background": palette::hex(palette::BACKGROUND_RGB),
+            "edge_factor": palette::EDGE_FACTOR,
+            "part_opacity": palette::PART_OPACITY,
+            "input_opacity": palette::INPUT_OPACITY,
+            "light": {
+                "key": palette::KEY_LIGHT,
+                "ambient": palette::AMBIENT,
+                "key_weight": palette::KEY,
+                "head_weight": palette::HEAD,
+            },
+        },
+        "feature_angle_deg": FEATURE_ANGLE_DEG,
+        "camera": {
+            "lo": rel(lo),
+            "hi": rel(hi),
+            "back": back,
+            "up": cam.up,
+            "fov_y_deg": cam.fov_y_deg,
+            "fill": camera::FILL,
+            "centring_rounds": camera::CENTRING_ROUNDS,
+        },
+        "origin": origin,
+        "input": input,
+        "levels": scene.levels.iter().map(|c| collider(origin, c)).collect::<Vec<_>>(),
+        "peers": scene.peers.iter().map(|c| collider(origin, c)).collect::<Vec<_>>(),
+        "eval": eval,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn markers_are_filled_once_and_values_are_not_rescanned() {
+        let t = "a __X__ b __Y__ c __X__";
+        assert_eq!(
+            fill(t, &[("__X__", "__Y__"), ("__Y__", "y")]),
+            "a __Y__ b y c __Y__"
+        );
+    }
+
+    #[test]
+    fn base64_matches_the_rfc_examples() {
+        let cases = [
+            ("", ""),
+            ("f", "Zg=="),
+            ("fo", "Zm8="),
+            ("foo", "Zm9v"),
+            ("foob", "Zm9vYg=="),
+            ("fooba", "Zm9vYmE="),
+            ("foobar", "Zm9vYmFy"),
+        ];
+        for (i, o) in cases {
+            assert_eq!(base64(i.as_bytes()), o);
+        }
+        assert_eq!(base64(&[0xff, 0xfe, 0xfd]), "//79");
+    }
+}

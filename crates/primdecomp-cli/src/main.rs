@@ -8,6 +8,7 @@ static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 mod batch;
 mod cli;
+mod export_cmd;
 
 fn main() {
     std::process::exit(cli::main());

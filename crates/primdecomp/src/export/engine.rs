@@ -3,7 +3,7 @@
 //! each primitive kind to a native shape or to the conservative tessellation of
 //! [`tessellate`].
 //!
-//! Conventions (docs/decisions/0030-engine-exports.md):
+//! Conventions (docs/decisions/exports-engine-conventions.md):
 //! - `--up` names the up axis of the result (the input's): `y` (default) or `z`.
 //!   glTF and Godot are +Y up, MJCF and URDF +Z up (gravity along −z), so a result
 //!   whose up differs is turned by ±90° about x; USD declares the result's own axis

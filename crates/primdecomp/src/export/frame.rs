@@ -9,7 +9,7 @@
 //! surface by up to a few 2⁻²⁴ of the coordinates' magnitude. So every exported
 //! shape is first grown by [`GROW_REL`] of its magnitude ([`grow`]: a shape that
 //! contains the original's neighbourhood of that radius), which keeps the enclosure
-//! guarantee through every export (docs/decisions/0030-engine-exports.md).
+//! guarantee through every export (docs/decisions/exports-engine-conventions.md).
 
 use crate::math::quat::{axes_from_quat, quat_from_axes};
 use crate::math::{add, cross, dot, madd, norm, normalize, scale, sub, V3};

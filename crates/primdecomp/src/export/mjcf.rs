@@ -53,7 +53,7 @@ pub fn to_mjcf(objects: &[ResultObject], opts: &ExportOptions) -> String {
     let mut x = Xml::new();
     x.open("mujoco", &[("model", &opts.model)]);
     x.comment(
-        "primdecomp colliders: one static body per object (docs/decisions/0030-engine-exports.md)",
+        "primdecomp colliders: one static body per object (docs/decisions/exports-engine-conventions.md)",
     );
     x.empty("compiler", &[("angle", "radian")]);
     let mut meshes = Vec::new();

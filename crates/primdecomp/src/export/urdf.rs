@@ -53,7 +53,9 @@ pub fn to_urdf(objects: &[ResultObject], opts: &ExportOptions, stem: &str) -> Fi
     let mut files = Files::default();
     let mut x = Xml::new();
     x.open("robot", &[("name", &opts.model)]);
-    x.comment("primdecomp colliders: one link per object (docs/decisions/exports-engine-conventions.md)");
+    x.comment(
+        "primdecomp colliders: one link per object (docs/decisions/exports-engine-conventions.md)",
+    );
     let mut base = format!("{}_root", opts.model);
     while prepared.iter().any(|o| o.name == base) {
         base.push('_');

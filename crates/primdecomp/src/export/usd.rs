@@ -67,7 +67,7 @@ pub fn to_usda(objects: &[ResultObject], opts: &ExportOptions) -> String {
     let _ = writeln!(out, "    defaultPrim = {}", quote(&root));
     let _ = writeln!(
         out,
-        "    doc = \"primdecomp colliders (docs/decisions/0030-engine-exports.md)\""
+        "    doc = \"primdecomp colliders (docs/decisions/exports-engine-conventions.md)\""
     );
     let _ = writeln!(out, "    metersPerUnit = 1");
     let _ = writeln!(out, "    upAxis = \"{}\"", opts.up.name());

@@ -121,3 +121,23 @@ def test_names_with_quotes_and_angle_brackets(tmp_path):
     assert len(read_usd(tmp_path / "h.usda")[0]) == 3
     assert len(read_tscn(tmp_path / "h.tscn")) == 3
     json.loads((tmp_path / "h.gltf").read_text())
+
+
+def test_extension_decides_and_format_covers_xml(tmp_path):
+    """`--format mjcf` names the format of the .xml only: the other exports of the
+    same run keep the format their extension names; an unknown extension without
+    --format is refused with exit 2, and so is an export onto the input."""
+    import subprocess
+
+    obj = tmp_path / "cube.obj"
+    obj.write_text("o cube\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nv 0 0 1\nv 1 0 1\nv 0 1 1\nv 1 1 1\n"
+                   "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n")
+    res = tmp_path / "r.json"
+    run([BIN, "decompose", obj, "-n", "1", "-o", res, "--quiet", "--export", tmp_path / "a.glb",
+         "--export", tmp_path / "b.xml", "--format", "mjcf"])
+    assert (tmp_path / "a.glb").read_bytes()[:4] == b"glTF"
+    assert "<mujoco" in (tmp_path / "b.xml").read_text()
+    bad = subprocess.run([str(BIN), "export", str(res), "-o", str(tmp_path / "c.xml")], capture_output=True, text=True)
+    assert bad.returncode == 2 and "--format mjcf" in bad.stderr
+    bad = subprocess.run([str(BIN), "export", str(res), "-o", str(res), "--format", "gltf"], capture_output=True, text=True)
+    assert bad.returncode == 2 and "refusing to overwrite an input" in bad.stderr

@@ -628,8 +628,12 @@ fn run_objects(
     objs.input.path = Some(input.display().to_string());
     let n = objs.levels();
     let mut written = Vec::new();
+    let sum =
+        |f: fn(&Decomposition) -> usize| objs.objects.iter().map(|o| f(&o.decomposition)).sum();
     let mut dec = Decomposition {
         input: objs.input.clone(),
+        welded_vertices: sum(|d| d.welded_vertices),
+        adjacency_edges: sum(|d| d.adjacency_edges),
         ..Default::default()
     };
     dec.timings.stages.push(("load".into(), load_s));

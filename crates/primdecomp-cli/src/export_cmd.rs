@@ -13,9 +13,9 @@ use crate::cli::BadArgs;
 /// The options every export takes (`export` and `decompose --export`).
 #[derive(Args, Debug, Clone)]
 pub struct ExportArgs {
-    /// Export format when the extension does not say: gltf, glb, mjcf (MuJoCo's
-    /// .xml needs it), urdf, usda, tscn. Otherwise from the extension (.gltf, .glb,
-    /// .urdf, .usda, .tscn, .mjcf).
+    /// Export format for outputs whose extension does not name one: gltf, glb, mjcf
+    /// (MuJoCo's .xml needs it), urdf, usda, tscn. An extension that names a format
+    /// (.gltf, .glb, .urdf, .usda, .tscn, .mjcf) always decides.
     #[arg(long = "format")]
     pub format: Option<String>,
     /// Up axis of the result (the input's): y or z. glTF and Godot are +Y up, MJCF
@@ -60,19 +60,26 @@ pub struct ExportCmd {
 impl ExportArgs {
     /// Options and format for `out`.
     pub fn resolve(&self, out: &Path, model: &str) -> anyhow::Result<(Format, ExportOptions)> {
-        let format = match &self.format {
-            Some(f) => Format::from_name(f).ok_or_else(|| {
-                BadArgs(format!(
-                    "--format: expected gltf, glb, mjcf, urdf, usda or tscn, got '{f}'"
-                ))
-            })?,
-            None => Format::from_path(out).ok_or_else(|| {
-                BadArgs(format!(
-                    "{}: cannot tell the export format from the extension (.gltf, .glb, .urdf, .usda, .tscn, .mjcf; MuJoCo's .xml needs --format mjcf)",
-                    out.display()
-                ))
-            })?,
-        };
+        // The extension decides where it names a format; --format covers the others
+        // (MuJoCo's .xml), so `decompose --export a.glb --export b.xml --format mjcf`
+        // writes both.
+        let named = self
+            .format
+            .as_deref()
+            .map(|f| {
+                Format::from_name(f).ok_or_else(|| {
+                    BadArgs(format!(
+                        "--format: expected gltf, glb, mjcf, urdf, usda or tscn, got '{f}'"
+                    ))
+                })
+            })
+            .transpose()?;
+        let format = Format::from_path(out).or(named).ok_or_else(|| {
+            BadArgs(format!(
+                "{}: cannot tell the export format from the extension (.gltf, .glb, .urdf, .usda, .tscn, .mjcf; MuJoCo's .xml needs --format mjcf)",
+                out.display()
+            ))
+        })?;
         let up = match self.up.to_ascii_lowercase().as_str() {
             "y" => Up::Y,
             "z" => Up::Z,

@@ -5,12 +5,12 @@
 //!   (bridging across components makes every target reachable);
 //! - the JSON has no NaN or infinity (the oracle panics on a non-finite number);
 //! - every input face lies inside one output primitive, checked by the independent
-//!   oracle of the tests (`tests/common/contain.rs`, compiled here as is), with a
+//!   oracle of the tests (`crates/testkit/src/contain.rs`, compiled here as is), with a
 //!   tolerance of 1e-6 × the diagonal plus the round-off of the coordinates' magnitude.
 #![no_main]
 
 #[allow(dead_code)]
-#[path = "../../tests/common/contain.rs"]
+#[path = "../../crates/testkit/src/contain.rs"]
 mod contain;
 
 use arbitrary::{Result, Unstructured};

@@ -1,11 +1,13 @@
 //! Command-line interface: argument parsing (clap), the one-screen summary, progress
 //! bar and exit codes (0 ok, 2 bad input or settings, 1 anything else).
 
+use crate::exit::BadArgs;
 use crate::paths::output_path_for;
 use anyhow::{anyhow, bail};
 use clap::{Args, Parser, Subcommand};
 use primdecomp::{export, write_atomic, Stage};
 use primdecomp::{Decomposition, Dedup, Kind, Params, Partitions, Reprice};
+// `decompose --export` writes through export_cmd.
 use primdecomp_sim::{Entry, Geometry, Run as SimRun, Settings as SimSettings};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -34,6 +36,9 @@ enum Cmd {
     /// Look at colliders: a self-contained HTML viewer page (-o) and/or a PNG render
     /// of its default view (--png) of results, the input mesh and peers' hulls.
     View(ViewArgs),
+    /// Write a result's colliders for an engine: glTF/GLB with physics extensions,
+    /// MuJoCo MJCF, URDF, USD (.usda) or a Godot 4 scene (.tscn).
+    Export(Box<crate::export_cmd::ExportCmd>),
     /// Write the built-in demo scene (stairs, table, pipes, house, ring) as OBJ.
     DemoScene {
         /// Output file.
@@ -172,6 +177,20 @@ struct DecomposeArgs {
     /// Also write the primitives as a conservative OBJ tessellation.
     #[arg(long)]
     obj: Option<PathBuf>,
+    /// Decompose each object on its own, keeping its name: each glTF node with a mesh
+    /// (in the node's frame, its transform kept) and each OBJ o/g group. A total
+    /// count -n N is shared: one primitive each, the other N - k (k objects) in
+    /// proportion to surface area, largest remainder (ties to the earlier object);
+    /// with N < k each object still gets one. A percentage applies per object. The
+    /// JSON gains an `objects` list.
+    #[arg(long)]
+    per_object: bool,
+    /// Also export the colliders for an engine (repeatable): .gltf/.glb (Khronos or
+    /// OMI physics), .urdf, .usda, .tscn, or MuJoCo's .xml with --format mjcf.
+    #[arg(long, value_name = "OUT.EXT")]
+    export: Vec<PathBuf>,
+    #[command(flatten)]
+    export_opts: crate::export_cmd::ExportArgs,
     /// Segments around circles in the OBJ tessellation.
     #[arg(long, default_value_t = 16)]
     obj_detail: usize,
@@ -261,27 +280,16 @@ pub fn main() -> i32 {
         Cmd::Eval(a) => eval(a),
         Cmd::Sim(a) => sim(a),
         Cmd::View(a) => view(a),
+        Cmd::Export(a) => crate::export_cmd::export(*a),
         Cmd::DemoScene { out } => write_atomic(&out, primdecomp::demo_scene_obj().as_bytes())
             .map_err(anyhow::Error::from)
             .map(|_| println!("wrote {}", out.display())),
     };
     match result {
         Ok(()) => 0,
-        Err(e) => {
-            eprintln!("error: {e:#}");
-            match e.downcast_ref::<primdecomp::Error>() {
-                Some(pe) => pe.exit_code(),
-                None if e.downcast_ref::<BadArgs>().is_some() => 2,
-                None => 1,
-            }
-        }
+        Err(e) => crate::exit::report(&e),
     }
 }
-
-/// A settings error found by the CLI itself (exit code 2).
-#[derive(Debug, thiserror::Error)]
-#[error("{0}")]
-struct BadArgs(String);
 
 /// The settings: the defaults, then `--config`, then every flag given.
 fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
@@ -566,6 +574,9 @@ fn run_one(
         targets: resolve_targets(targets, mesh.face_count()),
         ..base.clone()
     };
+    if a.per_object {
+        return run_objects(a, input, &params, targets, &mesh, out, load_s);
+    }
     let bar = progress_bar(mesh.face_count(), a.quiet || beside_others);
     let mut dec = primdecomp::decompose_with(&mesh, &params, &|stage: Stage, f: f64| {
         if let (Some(b), Stage::Merge) = (&bar, stage) {
@@ -586,6 +597,17 @@ fn run_one(
         a.obj_detail,
         a.timings,
     )?;
+    for level in &dec.levels {
+        written.extend(crate::export_cmd::write_level_exports(
+            &a.export,
+            &a.export_opts,
+            &crate::export_cmd::whole(level),
+            level.target,
+            dec.levels.len(),
+            &[input],
+            Some(&mesh),
+        )?);
+    }
     let write_s = now.elapsed().as_secs_f64();
     if let Some(png) = &a.png {
         written.push(decompose_png(a, out, &dec, input, &mesh, png)?);
@@ -596,6 +618,98 @@ fn run_one(
     }
     if !a.quiet || a.timings {
         print_timings(&dec, write_s, a.inputs.len() > 1);
+    }
+    Ok(dec)
+}
+
+/// `--per-object`: decomposes each object on its own and writes the JSON (with
+/// `objects`), the OBJ (world primitives) and the exports per level. Returns a
+/// decomposition of the world primitives for the summary and the table.
+fn run_objects(
+    a: &DecomposeArgs,
+    input: &Path,
+    params: &Params,
+    targets: &[Target],
+    mesh: &primdecomp::Mesh,
+    out: &Path,
+    load_s: f64,
+) -> anyhow::Result<Decomposition> {
+    use primdecomp::{decompose_objects, ObjectTarget};
+    if a.obj_detail < 3 {
+        bail!(BadArgs(format!(
+            "--obj-detail must be at least 3, got {}",
+            a.obj_detail
+        )));
+    }
+    let now = Instant::now();
+    let wanted: Vec<ObjectTarget> = targets
+        .iter()
+        .map(|t| match *t {
+            Target::Count(n) => ObjectTarget::Total(n),
+            Target::Percent(p) => ObjectTarget::Percent(p),
+        })
+        .collect();
+    let mut objs = decompose_objects(mesh, params, &wanted)?;
+    objs.input.path = Some(input.display().to_string());
+    let n = objs.levels();
+    let mut written = Vec::new();
+    let sum = |f: fn(&primdecomp::Stats) -> usize| {
+        objs.objects.iter().map(|o| f(&o.decomposition.stats)).sum()
+    };
+    let mut dec = Decomposition {
+        input: objs.input.clone(),
+        stats: primdecomp::Stats {
+            welded_vertices: sum(|s| s.welded_vertices),
+            adjacency_edges: sum(|s| s.adjacency_edges),
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    dec.timings.stages.push(("load".into(), load_s));
+    dec.timings
+        .stages
+        .push(("decompose".into(), now.elapsed().as_secs_f64()));
+    for i in 0..n {
+        let json = export::to_json_objects(&objs, i, params);
+        let v: serde_json::Value = serde_json::from_str(&json)?;
+        let target = v["settings"]["target"].as_u64().unwrap_or(0) as usize;
+        let level = primdecomp::Level {
+            target,
+            merged_to: target,
+            primitives: objs.world_primitives(i),
+            faces: Vec::new(),
+        };
+        let path = output_path_for(out, target, n);
+        write_atomic(&path, json.as_bytes())?;
+        written.push(path);
+        if let Some(o) = &a.obj {
+            let path = output_path_for(o, target, n);
+            write_atomic(&path, export::to_obj(&level, a.obj_detail).as_bytes())?;
+            written.push(path);
+        }
+        written.extend(crate::export_cmd::write_level_exports(
+            &a.export,
+            &a.export_opts,
+            &crate::export_cmd::level_objects(&objs, i),
+            target,
+            n,
+            &[input],
+            Some(mesh),
+        )?);
+        dec.levels.push(level);
+    }
+    let _out = PRINT.lock();
+    if !a.quiet {
+        println!(
+            "objects   {}: {}",
+            objs.objects.len(),
+            objs.objects
+                .iter()
+                .map(|o| format!("{:?} ({} faces)", o.name, o.faces))
+                .collect::<Vec<_>>()
+                .join(", ")
+        );
+        print_summary(&dec, mesh, &written);
     }
     Ok(dec)
 }

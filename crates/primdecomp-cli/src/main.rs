@@ -8,6 +8,8 @@ static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 
 mod batch;
 mod cli;
+mod exit;
+mod export_cmd;
 mod paths;
 
 fn main() {

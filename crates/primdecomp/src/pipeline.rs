@@ -330,7 +330,7 @@ fn add_fits(stats: &mut Stats, fits: crate::merge::FitCounts) {
     stats.fits_when_popped += fits.lazy;
 }
 
-fn input_info(mesh: &Mesh, (lo, hi): (V3, V3)) -> InputInfo {
+pub(crate) fn input_info(mesh: &Mesh, (lo, hi): (V3, V3)) -> InputInfo {
     InputInfo {
         path: None,
         faces: mesh.face_count(),

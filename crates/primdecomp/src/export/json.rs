@@ -5,8 +5,10 @@
 //! rotations as scalar-last unit quaternions. Also the reverse direction
 //! ([`read_primitives`]) and the quaternion conversions the eval tools share.
 
+use crate::export::frame::Frame;
 use crate::math::quat::{axes_from_quat, quat_from_axes};
 use crate::math::V3;
+use crate::objects::{ObjectTarget, Objects, SHARE_RULE};
 use crate::params::Params;
 use crate::primitive::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
 use crate::result::{Decomposition, Timings};
@@ -218,6 +220,13 @@ struct Settings<'a> {
     #[serde(flatten)]
     params: &'a Params,
     target: usize,
+    /// With `--per-object` and a total count: how it was shared.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    share_rule: Option<&'static str>,
+    /// With `--per-object` and a percentage: the percentage (`target` is the sum of
+    /// the objects' shares).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    percent: Option<f64>,
     /// Where the merge loop stopped, when `fill` made it differ from `target`.
     #[serde(skip_serializing_if = "Option::is_none")]
     merge_target: Option<usize>,
@@ -242,11 +251,32 @@ struct Document<'a> {
     settings: Settings<'a>,
     stats: Stats<'a>,
     primitives: Vec<PrimJson>,
+    /// With `--per-object` only: each object with its frame and its primitives in
+    /// that frame (`primitives` above holds them all in world coordinates).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    objects: Option<Vec<ObjectJson>>,
+}
+
+/// One object of a per-object result: world = translation + scale · R(rotation) ·
+/// local, rotation a scalar-last unit quaternion.
+#[derive(Serialize, Deserialize)]
+struct ObjectJson {
+    name: String,
+    translation: V3,
+    rotation: [f64; 4],
+    scale: f64,
+    #[serde(default)]
+    faces: usize,
+    #[serde(default)]
+    target: usize,
+    primitives: Vec<PrimJson>,
 }
 
 #[derive(Deserialize)]
 struct DocumentIn {
     primitives: Vec<PrimJson>,
+    #[serde(default)]
+    objects: Option<Vec<ObjectJson>>,
 }
 
 /// The JSON document of `dec.levels[level]` (panics if `level` is out of range):
@@ -297,6 +327,8 @@ fn document(dec: &Decomposition, level: usize, params: &Params, timed: bool) -> 
         settings: Settings {
             params,
             target: lv.target,
+            share_rule: None,
+            percent: None,
             merge_target: (lv.merged_to > lv.target).then_some(lv.merged_to),
         },
         stats: Stats {
@@ -307,11 +339,151 @@ fn document(dec: &Decomposition, level: usize, params: &Params, timed: bool) -> 
             seconds: timed.then_some(Seconds(&dec.timings)),
         },
         primitives,
+        objects: None,
     };
-    let pretty = serde_json::to_string_pretty(&doc).expect("serializing plain data cannot fail");
+    finish(&doc)
+}
+
+fn finish(doc: &Document) -> String {
+    let pretty = serde_json::to_string_pretty(doc).expect("serializing plain data cannot fail");
     let mut out = inline_scalar_arrays(&pretty);
     out.push('\n');
     out
+}
+
+/// The JSON document of level `level` of a per-object result (`--per-object`): as
+/// [`to_json`], with `primitives` holding every object's primitives in world
+/// coordinates ([`Objects::world_primitives`]) and `objects` each object's name,
+/// frame, share of the target and primitives in its frame. `settings.target` is the
+/// total as given (or the sum of the shares for a percentage).
+pub fn to_json_objects(objs: &Objects, level: usize, params: &Params) -> String {
+    let world = objs.world_primitives(level);
+    let mut counts = [0usize; 6];
+    let mut bytes = 0;
+    let mut faces_of = Vec::new();
+    let objects: Vec<ObjectJson> = objs
+        .objects
+        .iter()
+        .map(|o| {
+            let lv = &o.decomposition.levels[level];
+            for p in &lv.primitives {
+                counts[p.kind() as usize] += 1;
+            }
+            bytes += lv.bytes();
+            faces_of
+                .extend((0..lv.primitives.len()).map(|i| lv.faces.get(i).copied().unwrap_or(0)));
+            ObjectJson {
+                name: o.name.clone(),
+                translation: o.frame.translation,
+                rotation: o.frame.rotation,
+                scale: o.frame.scale,
+                faces: o.faces,
+                target: lv.target,
+                primitives: lv
+                    .primitives
+                    .iter()
+                    .enumerate()
+                    .map(|(i, p)| PrimJson::new(p, lv.faces.get(i).copied().unwrap_or(0)))
+                    .collect(),
+            }
+        })
+        .collect();
+    let primitives: Vec<PrimJson> = world
+        .iter()
+        .zip(&faces_of)
+        .map(|(p, &f)| PrimJson::new(p, f))
+        .collect();
+    let (target, share_rule, percent) = match objs.targets[level] {
+        ObjectTarget::Total(n) => (n, Some(SHARE_RULE), None),
+        ObjectTarget::Percent(p) => (objects.iter().map(|o| o.target).sum(), None, Some(p)),
+    };
+    let doc = Document {
+        format: "primdecomp",
+        version: 1,
+        input: &objs.input,
+        settings: Settings {
+            params,
+            target,
+            share_rule,
+            percent,
+            merge_target: None,
+        },
+        stats: Stats {
+            counts: Counts(counts),
+            primitives: world.len(),
+            bytes,
+            partitions: 1,
+            seconds: None,
+        },
+        primitives,
+        objects: Some(objects),
+    };
+    finish(&doc)
+}
+
+/// An object of a result as the exporters read it: name, frame and primitives in
+/// that frame. A result without `objects` is one unnamed object in the world frame.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ResultObject {
+    /// The object's name (empty for a result without `objects`).
+    pub name: String,
+    /// Its frame: world = `frame.point(local)`.
+    pub frame: Frame,
+    /// Its primitives in local coordinates.
+    pub primitives: Vec<Primitive>,
+}
+
+/// Parses a primdecomp JSON document into its objects ([`ResultObject`]).
+pub fn read_objects(json: &str) -> Result<Vec<ResultObject>, String> {
+    let doc: DocumentIn =
+        serde_json::from_str(json).map_err(|e| format!("invalid primdecomp JSON: {e}"))?;
+    let prims = |v: Vec<PrimJson>, what: &str| -> Result<Vec<Primitive>, String> {
+        v.into_iter()
+            .enumerate()
+            .map(|(i, p)| {
+                p.into_primitive()
+                    .map_err(|e| format!("{what}primitive {i}: {e}"))
+            })
+            .collect()
+    };
+    match doc.objects {
+        None => Ok(vec![ResultObject {
+            name: String::new(),
+            frame: Frame::IDENTITY,
+            primitives: prims(doc.primitives, "")?,
+        }]),
+        Some(objs) => objs
+            .into_iter()
+            .enumerate()
+            .map(|(i, o)| {
+                let what = format!("object {i} ({:?}): ", o.name);
+                let finite = o.translation.iter().all(|x| x.is_finite())
+                    && o.scale.is_finite()
+                    && o.scale > 0.0;
+                if !finite {
+                    return Err(format!(
+                        "{what}translation or scale is not finite and positive"
+                    ));
+                }
+                let n = o.rotation.iter().map(|x| x * x).sum::<f64>().sqrt();
+                if !(n.is_finite() && (n - 1.0).abs() < 1e-6) {
+                    return Err(format!(
+                        "{what}rotation {:?} is not a unit quaternion",
+                        o.rotation
+                    ));
+                }
+                Ok(ResultObject {
+                    frame: Frame {
+                        translation: o.translation,
+                        rotation: o.rotation.map(|x| x / n),
+                        scale: o.scale,
+                    },
+                    primitives: prims(o.primitives, &what)?,
+                    name: o.name,
+                })
+            })
+            .collect(),
+    }
 }
 
 /// Joins arrays whose elements are all scalars onto their opening line. In

@@ -43,9 +43,15 @@ pub(crate) struct MeshBuilder {
     pub face_indices: Vec<u32>,
     pub skipped: SkipCounts,
     /// Named objects in file order: each name with the first face it holds (OBJ `o`
-    /// and `g`). Empty when the file names none.
+    /// and `g`, glTF mesh nodes). Empty when the file names none.
     pub objects: Vec<(String, u32)>,
+    /// Per entry of `objects`: the node's world transform for glTF mesh nodes
+    /// (column-major 4×4, glTF's layout), `None` for OBJ objects.
+    pub object_transforms: Vec<Option<Transform>>,
 }
+
+/// A column-major affine 4×4 matrix (`m[column][row]`, glTF's layout).
+pub type Transform = [[f64; 4]; 4];
 
 impl MeshBuilder {
     pub fn new() -> Self {
@@ -70,14 +76,26 @@ impl MeshBuilder {
     /// Starts a named object at the next face; an earlier object that got no face is
     /// dropped. Faces before the first name form an unnamed object of their own.
     pub fn start_object(&mut self, name: String) {
+        self.start_object_at(name, None);
+    }
+    /// [`MeshBuilder::start_object`] for a glTF mesh node: its faces are in world
+    /// coordinates, `transform` is the node's world transform.
+    pub fn start_node(&mut self, name: String, transform: Transform) {
+        self.start_object_at(name, Some(transform));
+    }
+    fn start_object_at(&mut self, name: String, transform: Option<Transform>) {
         let first = self.face_count() as u32;
+        self.object_transforms.resize(self.objects.len(), None);
         if self.objects.is_empty() && first > 0 {
             self.objects.push((String::new(), 0));
+            self.object_transforms.push(None);
         }
         if self.objects.last().is_some_and(|o| o.1 == first) {
             self.objects.pop();
+            self.object_transforms.pop();
         }
         self.objects.push((name, first));
+        self.object_transforms.push(transform);
     }
 }
 
@@ -112,15 +130,20 @@ pub struct Mesh {
     pub(crate) skipped: SkipCounts,
     /// Named objects: each name with its first face (see [`Mesh::objects`]).
     pub(crate) object_starts: Vec<(String, u32)>,
+    /// Per entry of `object_starts`: the glTF node's world transform, if any.
+    pub(crate) object_transforms: Vec<Option<Transform>>,
 }
 
 /// A named part of a mesh: an OBJ `o` object or `g` group, with its faces.
-#[derive(Clone, Debug, PartialEq, Eq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct MeshObject<'a> {
     /// The name the file gives it; empty for faces before the first name.
     pub name: &'a str,
     /// Its faces, a contiguous range of face indices.
     pub faces: std::ops::Range<usize>,
+    /// For a glTF mesh node, its world transform (the faces are already in world
+    /// coordinates); `None` for OBJ objects and files without nodes.
+    pub transform: Option<&'a Transform>,
 }
 
 impl Mesh {
@@ -156,6 +179,11 @@ impl Mesh {
             face_offsets: b.face_offsets,
             face_indices: b.face_indices,
             skipped: b.skipped,
+            object_transforms: {
+                let mut t = b.object_transforms;
+                t.resize(b.objects.len(), None);
+                t
+            },
             object_starts: b.objects,
         }
     }
@@ -208,16 +236,19 @@ impl Mesh {
             return vec![MeshObject {
                 name: "",
                 faces: 0..n,
+                transform: None,
             }];
         }
         let ends = self.object_starts.iter().skip(1).map(|o| o.1 as usize);
         self.object_starts
             .iter()
             .zip(ends.chain([n]))
-            .filter(|(o, end)| (o.1 as usize) < *end)
-            .map(|(o, end)| MeshObject {
+            .enumerate()
+            .filter(|(_, (o, end))| (o.1 as usize) < *end)
+            .map(|(i, (o, end))| MeshObject {
                 name: &o.0,
                 faces: o.1 as usize..end,
+                transform: self.object_transforms.get(i).and_then(Option::as_ref),
             })
             .collect()
     }

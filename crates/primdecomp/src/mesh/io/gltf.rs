@@ -63,6 +63,10 @@ pub fn parse_gltf(bytes: &[u8], path: &Path) -> Result<MeshBuilder> {
         Some(scene) => r.walk_scene(&doc, &scene)?,
         None => {
             for mesh in doc.meshes() {
+                let name = mesh
+                    .name()
+                    .map_or_else(|| format!("mesh{}", mesh.index()), str::to_string);
+                r.out.start_node(name, IDENTITY);
                 r.add_mesh(&mesh, &IDENTITY)?;
             }
         }
@@ -308,6 +312,13 @@ impl Reader<'_, '_> {
             }
             let m = mul(&parent, &local(node.transform()));
             if let Some(mesh) = node.mesh() {
+                // Each mesh node is an object of its own (`--per-object`): its name
+                // (else its mesh's, else `node{i}`) and world transform.
+                let name = node
+                    .name()
+                    .or(mesh.name())
+                    .map_or_else(|| format!("node{i}"), str::to_string);
+                self.out.start_node(name, m);
                 self.add_mesh(&mesh, &m)?;
             }
             let children: Vec<_> = node.children().collect();

@@ -1,0 +1,205 @@
+//! `primdecomp export` and `decompose --export` / `--per-object` (issue 28).
+
+use anyhow::bail;
+use clap::Args;
+use primdecomp::export::{
+    read_objects, write_export, ExportOptions, Format, Frame, Physics, ResultObject, Up,
+};
+use primdecomp::{Level, Objects};
+use std::path::{Path, PathBuf};
+
+use crate::exit::BadArgs;
+
+/// The options every export takes (`export` and `decompose --export`).
+#[derive(Args, Debug, Clone)]
+pub struct ExportArgs {
+    /// Export format for outputs whose extension does not name one: gltf, glb, mjcf
+    /// (MuJoCo's .xml needs it), urdf, usda, tscn. An extension that names a format
+    /// (.gltf, .glb, .urdf, .usda, .tscn, .mjcf) always decides.
+    #[arg(long = "format")]
+    pub format: Option<String>,
+    /// Up axis of the result (the input's): y or z. glTF and Godot are +Y up, MJCF
+    /// and URDF +Z up: a result whose up differs is turned; USD declares it.
+    #[arg(long, default_value = "y")]
+    pub up: String,
+    /// Multiply every length by this (input units to metres).
+    #[arg(long, default_value_t = 1.0)]
+    pub scale: f64,
+    /// glTF physics extensions: khr (KHR_implicit_shapes + KHR_physics_rigid_bodies)
+    /// or omi (OMI_physics_shape + OMI_physics_body, imported by Godot 4).
+    #[arg(long, default_value = "khr")]
+    pub gltf_physics: String,
+    /// glTF: also a coloured, half-transparent preview mesh of each collider.
+    #[arg(long)]
+    pub preview: bool,
+    /// URDF: write capsules as <capsule> (not in URDF 1.0) instead of a cylinder and
+    /// two spheres.
+    #[arg(long)]
+    pub urdf_capsule: bool,
+    /// Segments around circles of frustums (and of every preview) written as hulls.
+    #[arg(long, default_value_t = primdecomp::export::DEFAULT_DETAIL)]
+    pub export_detail: usize,
+}
+
+/// `primdecomp export`.
+#[derive(Args, Debug)]
+pub struct ExportCmd {
+    /// A primdecomp JSON result (from `decompose`, with or without --per-object).
+    pub result: PathBuf,
+    /// Output file; the format follows its extension (or --format).
+    #[arg(short, long)]
+    pub out: PathBuf,
+    /// glTF: include this input mesh (OBJ, PLY, STL, OFF, glTF/GLB) beside the
+    /// colliders, so the file is both the import and a preview.
+    #[arg(long)]
+    pub input: Option<PathBuf>,
+    #[command(flatten)]
+    pub opts: ExportArgs,
+}
+
+impl ExportArgs {
+    /// Options and format for `out`.
+    pub fn resolve(&self, out: &Path, model: &str) -> anyhow::Result<(Format, ExportOptions)> {
+        // The extension decides where it names a format; --format covers the others
+        // (MuJoCo's .xml), so `decompose --export a.glb --export b.xml --format mjcf`
+        // writes both.
+        let named = self
+            .format
+            .as_deref()
+            .map(|f| {
+                Format::from_name(f).ok_or_else(|| {
+                    BadArgs(format!(
+                        "--format: expected gltf, glb, mjcf, urdf, usda or tscn, got '{f}'"
+                    ))
+                })
+            })
+            .transpose()?;
+        let format = Format::from_path(out).or(named).ok_or_else(|| {
+            BadArgs(format!(
+                "{}: cannot tell the export format from the extension (.gltf, .glb, .urdf, .usda, .tscn, .mjcf; MuJoCo's .xml needs --format mjcf)",
+                out.display()
+            ))
+        })?;
+        let up = match self.up.to_ascii_lowercase().as_str() {
+            "y" => Up::Y,
+            "z" => Up::Z,
+            u => bail!(BadArgs(format!("--up: expected y or z, got '{u}'"))),
+        };
+        let physics = match self.gltf_physics.to_ascii_lowercase().as_str() {
+            "khr" => Physics::Khr,
+            "omi" => Physics::Omi,
+            p => bail!(BadArgs(format!(
+                "--gltf-physics: expected khr or omi, got '{p}'"
+            ))),
+        };
+        let opts = ExportOptions {
+            up,
+            scale: self.scale,
+            detail: self.export_detail,
+            physics,
+            preview: self.preview,
+            urdf_capsule: self.urdf_capsule,
+            model: model.to_string(),
+            input_mesh: None,
+        };
+        opts.validate().map_err(|e| BadArgs(e.to_string()))?;
+        Ok((format, opts))
+    }
+}
+
+/// The model name of an output path: its stem.
+fn model_name(out: &Path) -> String {
+    out.file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "primdecomp".into())
+}
+
+/// Refuses an output that is one of the inputs (never overwrite an input).
+pub fn not_an_input(out: &Path, inputs: &[&Path]) -> anyhow::Result<()> {
+    let Ok(o) = out.canonicalize() else {
+        return Ok(()); // does not exist yet
+    };
+    for i in inputs {
+        if i.canonicalize().is_ok_and(|c| c == o) {
+            bail!(BadArgs(format!(
+                "{}: refusing to overwrite an input with an export",
+                out.display()
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// World positions and polygons of a mesh, for `--input` / the decompose run.
+pub fn mesh_polygons(mesh: &primdecomp::Mesh) -> (Vec<[f64; 3]>, Vec<Vec<u32>>) {
+    let v = (0..mesh.vertex_count() as u32)
+        .map(|i| mesh.world_pos(i))
+        .collect();
+    let f = (0..mesh.face_count())
+        .map(|f| mesh.face(f).to_vec())
+        .collect();
+    (v, f)
+}
+
+pub fn export(a: ExportCmd) -> anyhow::Result<()> {
+    let text = std::fs::read_to_string(&a.result)
+        .map_err(|e| BadArgs(format!("{}: cannot read: {e}", a.result.display())))?;
+    let objects =
+        read_objects(&text).map_err(|e| BadArgs(format!("{}: {e}", a.result.display())))?;
+    let (format, mut opts) = a.opts.resolve(&a.out, &model_name(&a.out))?;
+    let mut inputs: Vec<&Path> = vec![&a.result];
+    if let Some(input) = &a.input {
+        inputs.push(input);
+        let mesh = primdecomp::load(input)?;
+        opts.input_mesh = Some(mesh_polygons(&mesh));
+    }
+    not_an_input(&a.out, &inputs)?;
+    for w in write_export(&a.out, &objects, format, &opts)? {
+        println!("wrote     {}", w.display());
+    }
+    Ok(())
+}
+
+/// The objects of level `i` of a per-object result, in their frames.
+pub fn level_objects(objs: &Objects, i: usize) -> Vec<ResultObject> {
+    objs.objects
+        .iter()
+        .map(|o| ResultObject {
+            name: o.name.clone(),
+            frame: o.frame,
+            primitives: o.decomposition.levels[i].primitives.clone(),
+        })
+        .collect()
+}
+
+/// One unnamed world-frame object of a level.
+pub fn whole(level: &Level) -> Vec<ResultObject> {
+    vec![ResultObject {
+        name: String::new(),
+        frame: Frame::IDENTITY,
+        primitives: level.primitives.clone(),
+    }]
+}
+
+/// Writes `decompose --export` files of one level; returns the paths.
+pub fn write_level_exports(
+    exports: &[PathBuf],
+    args: &ExportArgs,
+    objects: &[ResultObject],
+    target: usize,
+    levels: usize,
+    inputs: &[&Path],
+    input_mesh: Option<&primdecomp::Mesh>,
+) -> anyhow::Result<Vec<PathBuf>> {
+    let mut written = Vec::new();
+    for e in exports {
+        let path = crate::paths::output_path_for(e, target, levels);
+        let (format, mut opts) = args.resolve(e, &model_name(e))?;
+        if let (true, Some(m)) = (args.preview, input_mesh) {
+            opts.input_mesh = Some(mesh_polygons(m));
+        }
+        not_an_input(&path, inputs)?;
+        written.extend(write_export(&path, objects, format, &opts)?);
+    }
+    Ok(written)
+}

@@ -597,12 +597,9 @@ fn fit_frustum(s: &mut FitScratch, obb: &Obb, k: usize, min_half: f64) -> Frustu
     let (r0, r1) = fit_profile_sorted(&s.order[k], pt, Objective::Cone, &mut s.profile);
     let (a, sign) = canonical_axis(obb, k);
     let (r0, r1) = if sign > 0.0 { (r0, r1) } else { (r1, r0) };
-    Frustum {
-        p0: madd(obb.center, a, -h),
-        p1: madd(obb.center, a, h),
-        r0: r0.max(min_half),
-        r1: r1.max(min_half),
-    }
+    // The profile encloses the points in the frame's coordinates; `on_axis` keeps that
+    // true of the two rounded end points it stores, whose tilt the slope amplifies.
+    Frustum::on_axis(obb.center, a, h, r0.max(min_half), r1.max(min_half))
 }
 
 /// The 6 orderings (x = extrusion, y = trapezoid height, z = trapezoid width) of Alg. 3.
@@ -802,6 +799,81 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The proptest's case `seed = 5145880576667917998, n = 4, scale_exp = -2, flat = 0`
+    /// (points and frame printed from it): four coplanar points (equal x), seen along
+    /// Q's eigen-axis tilted by 4e-4 rad from their plane's normal, give a frustum 5.9e-7
+    /// long with radii 4.5e-3 and 6.3e-3, a slope of 3,200. The profile encloses the
+    /// points in the frame's coordinates, but the stored end points, each rounded by
+    /// ~1e-18, tilt the axis by ~1e-11, which moves the first point (on the wide cap,
+    /// 6.3e-3 from the axis) 2e-14 along it; read along the slope, its radius came out
+    /// 6.6e-11 short. The stored frustum must hold every point, and stay as tight as
+    /// the fit (the pad is a few parts in 1e6 of the radius, far below the taper).
+    #[test]
+    fn steep_short_frustum_holds_its_points_as_stored() {
+        let pts = [
+            [
+                -0.022502459917036123,
+                -0.016296016425464396,
+                -0.003921934604677015,
+            ],
+            [
+                -0.022502459917036123,
+                -0.026905066837726872,
+                -0.005700094694594271,
+            ],
+            [
+                -0.022502459917036123,
+                -0.028673762962947748,
+                -0.004288329982102997,
+            ],
+            [
+                -0.022502459917036123,
+                -0.0199448192811106,
+                -0.005484647845748873,
+            ],
+        ];
+        let axes = [
+            [
+                -0.0003838138662820177,
+                0.28316393620971103,
+                0.959071445679173,
+            ],
+            [
+                -0.9999999184330398,
+                1.1950617374821288e-5,
+                -0.0004037215585719801,
+            ],
+            [
+                -0.00012578088154038984,
+                -0.9590715224045627,
+                0.2831639085260768,
+            ],
+        ];
+        let (x, y, z) = cloud_of(&pts);
+        let cloud = Cloud {
+            x: &x,
+            y: &y,
+            z: &z,
+        };
+        let s = 0.01;
+        let cfg = FitConfig {
+            min_half: 1e-6 * s,
+            ..only(Kind::Frustum)
+        };
+        let Primitive::Frustum(f) = fit_frame(&cloud, axes, &cfg, &mut FitScratch::default()).prim
+        else {
+            panic!("not a frustum")
+        };
+        let len = sub(f.p1, f.p0);
+        assert!((5.8e-7..6.0e-7).contains(&len[0]), "{f:?}");
+        for p in pts {
+            assert!(f.contains(p, 1e-9 * s), "{f:?} misses {p:?}");
+        }
+        // Before the fix: r0 0.004459927177360676, r1 0.0063374048000030365.
+        assert!((f.r0 - 0.004459927177360676).abs() < 1e-8, "{f:?}");
+        assert!((f.r1 - 0.0063374048000030365).abs() < 1e-8, "{f:?}");
     }
 
     /// `n` points uniform in the box `[-h, h]`.

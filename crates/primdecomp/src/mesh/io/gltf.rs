@@ -234,9 +234,8 @@ fn load_buffers<'a>(
 }
 
 /// What a refusal of an external URI tells the user to do about it.
-const OPT_IN: &str = "only data: URIs and files inside the glTF's folder are read unless \
-                      external URIs are allowed (--allow-external-uris; in the library, \
-                      LoadOptions::allow_external_uris)";
+const OPT_IN: &str = "only files inside the glTF's folder are read without \
+                      --allow-external-uris (LoadOptions::allow_external_uris in the library)";
 
 /// Buffer `buffer`'s URI `uri` in the glTF file `path`.
 struct UriAt<'a> {

@@ -568,6 +568,11 @@ fn decompose_one(
     let input = &a.inputs[0];
     let dest = Dest {
         json: a.out.clone().unwrap_or_else(|| default_out(input)),
+        json_flag: if a.out.is_some() {
+            "-o"
+        } else {
+            "the default output"
+        },
         obj: a.obj.clone(),
         batch_input: None,
     };
@@ -597,6 +602,7 @@ fn decompose_batch(
         .iter()
         .map(|i| Dest {
             json: dir.join(default_out(i)),
+            json_flag: "-o",
             obj: a.obj.as_ref().map(|o| o.join(default_obj(i))),
             batch_input: Some(i.clone()),
         })
@@ -696,6 +702,8 @@ static PRINT: std::sync::Mutex<()> = std::sync::Mutex::new(());
 /// ([`output_path_for`]), and in a batch the input they are named after.
 struct Dest {
     json: PathBuf,
+    /// How messages name `json`'s origin: "-o", or "the default output".
+    json_flag: &'static str,
     obj: Option<PathBuf>,
     batch_input: Option<PathBuf>,
 }
@@ -706,8 +714,8 @@ impl Dest {
         let n = levels.len();
         let mut outs = Vec::new();
         for &t in levels {
-            let files =
-                std::iter::once(("-o", &self.json)).chain(self.obj.iter().map(|o| ("--obj", o)));
+            let files = std::iter::once((self.json_flag, &self.json))
+                .chain(self.obj.iter().map(|o| ("--obj", o)));
             for (flag, base) in files {
                 let path = output_path_for(base, t, n);
                 outs.push(match &self.batch_input {

@@ -16,7 +16,8 @@
 //! `input` is the path as given on the command line; `size` and `mtime_ns` (the
 //! modification time in nanoseconds since 1970) are the input's, taken before it was
 //! read; `settings` is [`settings_hash`], the hash of every setting that changes
-//! what is written; `outputs` are the files written in OUT with their sizes. An
+//! what is written; `outputs` are the files written with their sizes (relative to
+//! OUT, or absolute when `--obj` names another directory). An
 //! input's outputs are renamed into place (complete) before its line is appended.
 //!
 //! A run without `--resume` starts a new manifest. `--resume` reads it (a torn last
@@ -200,7 +201,11 @@ impl Manifest {
                         format!("{}: cannot stat an output just written", p.display())
                     })?
                     .len();
-                let file = p.strip_prefix(&self.dir).unwrap_or(p);
+                // Relative to the directory; elsewhere (--obj DIR2/) absolute.
+                let file = match p.strip_prefix(&self.dir) {
+                    Ok(inside) => inside.to_path_buf(),
+                    Err(_) => std::path::absolute(p)?,
+                };
                 Ok(Written {
                     file: file.to_string_lossy().into_owned(),
                     bytes,
@@ -353,6 +358,18 @@ mod tests {
         let m = Manifest::open(&d, true).unwrap();
         std::fs::write(&out, "{}").unwrap();
         assert!(!m.done_before(&input, stamp, "h1"), "the last record wins");
+        // An output in another directory (--obj DIR2/) is recorded by its absolute
+        // path and found again.
+        let other = crate::scratch_dir("manifest-elsewhere");
+        let elsewhere = other.join("a.primdecomp.obj");
+        std::fs::write(&elsewhere, "o a\n").unwrap();
+        m.done(&input, stamp, "h3", &[out.clone(), elsewhere.clone()])
+            .unwrap();
+        drop(m);
+        let m = Manifest::open(&d, true).unwrap();
+        assert!(m.done_before(&input, stamp, "h3"));
+        std::fs::remove_dir_all(&other).unwrap();
+        assert!(!m.done_before(&input, stamp, "h3"));
         // Without --resume the manifest starts again.
         drop(m);
         let m = Manifest::open(&d, false).unwrap();

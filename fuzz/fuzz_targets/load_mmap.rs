@@ -1,7 +1,7 @@
-//! Arbitrary bytes through the memory-mapped loader, `mesh::io::load_limited` (which
+//! Arbitrary bytes through the memory-mapped loader, `primdecomp::load_with` (which
 //! holds the crate's one `unsafe` block, `memmap2::Mmap::map`): the bytes are written
 //! to a temporary file under each text/binary extension in turn, then mapped and
-//! parsed. The parser targets feed `parse_bytes` in-memory slices; this one checks the
+//! parsed. The parser targets feed `parse_mesh` in-memory slices; this one checks the
 //! mapped path under AddressSanitizer (cargo-fuzz's default), and given corpus files
 //! as inputs (`load_mmap FILE...`) it maps real meshes. glTF is left out: its external
 //! buffer URIs would read other files. Invariants: no panic; an error names the file
@@ -14,7 +14,11 @@ libfuzzer_sys::fuzz_target!(|data: &[u8]| {
     for ext in ["obj", "ply", "stl", "off"] {
         let path = dir.join(format!("input.{ext}"));
         std::fs::write(&path, data).expect("temporary file");
-        match primdecomp::load_limited(&path, Some(1 << 30)) {
+        let options = primdecomp::LoadOptions {
+            max_memory: Some(1 << 30),
+            ..Default::default()
+        };
+        match primdecomp::load_with(&path, &options) {
             Ok(mesh) => assert!(mesh.face_count() > 0, "a mesh without faces was accepted"),
             Err(e) => {
                 let text = e.to_string();

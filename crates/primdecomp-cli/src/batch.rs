@@ -12,7 +12,7 @@
 //! (`primdecomp::memory_needed`; the whole budget where it cannot be known) from the
 //! `--max-memory` budget, and waits while the others' reservations leave too little;
 //! an input runs alone when nothing else is reserved, where the per-input limit of
-//! `load_limited` applies as in a sequential run.
+//! `LoadOptions::max_memory` applies as in a sequential run.
 
 use std::path::PathBuf;
 use std::sync::atomic::{AtomicUsize, Ordering};

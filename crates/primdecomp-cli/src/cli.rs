@@ -2,10 +2,12 @@
 //! bar and exit codes (0 ok, 2 bad input or settings, 1 anything else).
 
 use crate::exit::BadArgs;
+use crate::manifest::{self, Manifest, Stamp};
+use crate::outputs::{check_batch_dir, check_stems, names_dir, Guard, Out};
 use crate::paths::output_path_for;
 use anyhow::{anyhow, bail};
 use clap::{Args, Parser, Subcommand};
-use primdecomp::{export, write_atomic, Stage};
+use primdecomp::{export, write_atomic, LoadOptions, Stage};
 use primdecomp::{Decomposition, Dedup, Kind, Params, Partitions, Reprice};
 // `decompose --export` writes through export_cmd.
 use primdecomp_sim::{Entry, Geometry, Run as SimRun, Settings as SimSettings};
@@ -70,6 +72,21 @@ struct EvalArgs {
     /// Worker threads (default: all cores); results do not depend on it.
     #[arg(long)]
     threads: Option<usize>,
+    #[command(flatten)]
+    load: LoadArgs,
+}
+
+/// How inputs are read (every subcommand that reads a mesh).
+#[derive(Args, Debug)]
+struct LoadArgs {
+    /// glTF: also read buffers whose URIs are absolute paths, climb out of the glTF's
+    /// folder (a `..`, or a symbolic link leading out) or are file: URLs. By default
+    /// only data: URIs and files inside the glTF's own folder are read, so a glTF from
+    /// an untrusted source cannot make us read other files; URLs of other schemes
+    /// (http: …) are never read. Every input and buffer must be a regular file (a
+    /// pipe, socket, device or directory is refused before reading: exit 2).
+    #[arg(long)]
+    allow_external_uris: bool,
 }
 
 const EVAL_HELP: &str = include_str!("eval_help.txt");
@@ -91,7 +108,8 @@ struct DecomposeArgs {
     /// given here override it.
     #[arg(long, value_name = "FILE")]
     config: Option<PathBuf>,
-    /// With several inputs: print a markdown table of all results at the end.
+    /// With several inputs: print a markdown table of all results at the end (with
+    /// --resume, of the inputs run this time).
     #[arg(long)]
     table: bool,
     /// With several inputs: how many to decompose at once, each on its share of the
@@ -170,11 +188,18 @@ struct DecomposeArgs {
     /// 65,536 faces if more) for inputs of 524,288 faces or more, else 1.
     #[arg(long)]
     partitions: Option<String>,
-    /// JSON output file; with several inputs, an output directory (default: INPUT's
-    /// stem + .primdecomp.json in the current directory).
+    /// JSON output file (default: INPUT's stem + .primdecomp.json in the current
+    /// directory). With several inputs, or when it ends in / or is a directory: the
+    /// output directory, where each input writes STEM.primdecomp.json (STEM: its file
+    /// name without the extension); two inputs with the same STEM are refused before
+    /// anything runs (rename one), and so is a -o ending in .json. No output may be an
+    /// input: the paths are compared as files (device and inode, after symbolic
+    /// links), not as spellings, and a clash is refused before writing (exit 2).
     #[arg(short, long)]
     out: Option<PathBuf>,
-    /// Also write the primitives as a conservative OBJ tessellation.
+    /// Also write the primitives as a conservative OBJ tessellation to this file; in a
+    /// batch (-o naming a directory), the directory where each input writes
+    /// STEM.primdecomp.obj.
     #[arg(long)]
     obj: Option<PathBuf>,
     /// Decompose each object on its own, keeping its name: each glTF node with a mesh
@@ -214,6 +239,16 @@ struct DecomposeArgs {
     /// byte-identical across runs).
     #[arg(long)]
     timings: bool,
+    /// Finish a batch (-o DIR) that was interrupted (killed, power loss): inputs that
+    /// DIR/.primdecomp-manifest.jsonl records as done with the same size, modification
+    /// time and settings, and whose outputs are all in place, are skipped; the rest
+    /// (not reached, failed, changed) run again, ending with the files a clean run
+    /// writes. Without --resume a batch starts a new manifest. Outputs are renamed into
+    /// place only when complete, so a partial file is never left or trusted.
+    #[arg(long)]
+    resume: bool,
+    #[command(flatten)]
+    load: LoadArgs,
 }
 
 #[derive(Args, Debug)]
@@ -264,6 +299,8 @@ struct SimArgs {
     /// Print nothing but errors.
     #[arg(short, long)]
     quiet: bool,
+    #[command(flatten)]
+    load: LoadArgs,
 }
 
 /// Runs the command line; returns the process exit code.
@@ -400,6 +437,24 @@ fn parse_reprice(r: &str) -> anyhow::Result<Reprice> {
     })
 }
 
+/// How `decompose` reads each input: `--max-memory` and `--allow-external-uris`.
+fn load_options(a: &DecomposeArgs) -> anyhow::Result<LoadOptions> {
+    Ok(LoadOptions {
+        max_memory: max_memory(a)?,
+        allow_external_uris: a.load.allow_external_uris,
+    })
+}
+
+impl LoadArgs {
+    /// The options for `eval` and `sim`, which have no memory limit.
+    fn options(&self) -> LoadOptions {
+        LoadOptions {
+            allow_external_uris: self.allow_external_uris,
+            ..LoadOptions::default()
+        }
+    }
+}
+
 /// The memory limit in bytes from `--max-memory`; `None` for no limit.
 fn max_memory(a: &DecomposeArgs) -> anyhow::Result<Option<u64>> {
     Ok(match a.max_memory.trim() {
@@ -475,8 +530,16 @@ fn eval(a: EvalArgs) -> anyhow::Result<()> {
     if a.samples == 0 {
         bail!(BadArgs("--samples must be at least 1".into()));
     }
+    let guard = Guard::new(
+        std::iter::once(&a.input)
+            .chain(&a.colliders)
+            .map(PathBuf::as_path),
+    );
+    if let Some(out) = &a.json {
+        guard.check(&[Out::flag("--json", out, out.clone())])?;
+    }
     set_threads(a.threads)?;
-    let mesh = primdecomp::load(&a.input)?;
+    let mesh = primdecomp::load_with(&a.input, &a.load.options())?;
     let colliders = a
         .colliders
         .iter()
@@ -507,26 +570,135 @@ fn decompose(a: DecomposeArgs) -> anyhow::Result<()> {
         Some(t) => parse_targets(t)?,
         None => base.targets.iter().map(|&n| Target::Count(n)).collect(),
     };
-    set_threads(a.threads)?;
-    if a.inputs.len() == 1 {
-        let out = a.out.clone().unwrap_or_else(|| default_out(&a.inputs[0]));
-        return run_one(&a, &a.inputs[0], &base, &targets, &out, false).map(|_| ());
+    if a.obj_detail < 3 {
+        bail!(BadArgs(format!(
+            "--obj-detail must be at least 3, got {}",
+            a.obj_detail
+        )));
     }
-    let dir = a.out.clone().unwrap_or_else(|| PathBuf::from("."));
-    std::fs::create_dir_all(&dir)
-        .map_err(|e| anyhow!("cannot create output directory {}: {e}", dir.display()))?;
+    let guard = Guard::new(a.inputs.iter().map(PathBuf::as_path));
+    let dir = match &a.out {
+        Some(o) if a.inputs.len() > 1 || names_dir(o) => o.clone(),
+        None if a.inputs.len() > 1 => PathBuf::from("."),
+        _ => return decompose_one(&a, &base, &targets, &guard),
+    };
+    decompose_batch(&a, &base, &targets, &guard, &dir)
+}
+
+/// One input, written to -o (or the default name) and --obj as files.
+fn decompose_one(
+    a: &DecomposeArgs,
+    base: &Params,
+    targets: &[Target],
+    guard: &Guard,
+) -> anyhow::Result<()> {
+    if a.resume {
+        bail!(BadArgs(
+            "--resume finishes a batch: give -o a directory (e.g. -o out/), where the \
+             batch keeps its manifest"
+                .into()
+        ));
+    }
+    let input = &a.inputs[0];
+    let dest = Dest {
+        json: a.out.clone().unwrap_or_else(|| default_out(input)),
+        json_flag: if a.out.is_some() {
+            "-o"
+        } else {
+            "the default output"
+        },
+        obj: a.obj.clone(),
+        exports: a.export.clone(),
+        png: a.png.clone(),
+        batch_input: None,
+    };
+    guard.check(&dest.up_front(targets))?;
+    set_threads(a.threads)?;
+    run_one(a, input, base, targets, &dest, guard, false).map(|_| ())
+}
+
+/// Several inputs (or -o naming a directory): each writes STEM.primdecomp.json in the
+/// directory, one manifest line per input finished (`manifest.rs`), `--resume`
+/// skipping what an interrupted run finished.
+fn decompose_batch(
+    a: &DecomposeArgs,
+    base: &Params,
+    targets: &[Target],
+    guard: &Guard,
+    dir: &Path,
+) -> anyhow::Result<()> {
+    let n = a.inputs.len();
+    if !a.export.is_empty() {
+        bail!(BadArgs(
+            "--export writes one file per level of one input; with several inputs, \
+             decompose them to a directory and run `primdecomp export` on each result"
+                .into()
+        ));
+    }
+    check_batch_dir("-o", dir, n, "json", "STEM.primdecomp.json")?;
+    if let Some(o) = &a.obj {
+        check_batch_dir("--obj", o, n, "obj", "STEM.primdecomp.obj")?;
+    }
+    check_stems(&a.inputs, |i| dir.join(default_out(i)))?;
+    let dests: Vec<Dest> = a
+        .inputs
+        .iter()
+        .map(|i| Dest {
+            json: dir.join(default_out(i)),
+            json_flag: "-o",
+            obj: a.obj.as_ref().map(|o| o.join(default_obj(i))),
+            exports: Vec::new(),
+            png: a.png.as_ref().map(|d| d.join(default_png(i))),
+            batch_input: Some(i.clone()),
+        })
+        .collect();
+    let known: Vec<Out> = dests.iter().flat_map(|d| d.up_front(targets)).collect();
+    guard.check(&known)?;
+    set_threads(a.threads)?;
+    for d in std::iter::once(dir)
+        .chain(a.obj.as_deref())
+        .chain(a.png.as_deref())
+    {
+        std::fs::create_dir_all(d)
+            .map_err(|e| anyhow!("cannot create output directory {}: {e}", d.display()))?;
+    }
+    let settings = manifest::settings_hash(&serde_json::json!({
+        "params": base,
+        "targets": targets.iter().map(|t| format!("{t:?}")).collect::<Vec<_>>(),
+        "per_object": a.per_object,
+        "obj": a.obj,
+        "obj_detail": a.obj_detail,
+        "timings": a.timings,
+        "allow_external_uris": a.load.allow_external_uris,
+    }))?;
+    let manifest = Manifest::open(dir, a.resume)?;
+    clear_stale(a, dir);
+    let todo: Vec<usize> = (0..n)
+        .filter(|&i| {
+            let input = &a.inputs[i];
+            !(a.resume && manifest.done_before(input, Stamp::of(input), &settings))
+        })
+        .collect();
+    if a.resume && !a.quiet {
+        println!(
+            "resume: {} of {n} inputs were done by an earlier run ({}); running the other {}",
+            n - todo.len(),
+            dir.join(manifest::NAME).display(),
+            todo.len()
+        );
+    }
     let threads = rayon::current_num_threads();
     let jobs = a.jobs.unwrap_or(threads).max(1);
-    let results = crate::batch::run_all(&a.inputs, jobs, threads, max_memory(&a)?, |i| {
-        let input = &a.inputs[i];
-        let r = run_one(
-            &a,
-            input,
-            &base,
-            &targets,
-            &dir.join(default_out(input)),
-            jobs > 1,
-        );
+    let paths: Vec<PathBuf> = todo.iter().map(|&i| a.inputs[i].clone()).collect();
+    let results = crate::batch::run_all(&paths, jobs, threads, max_memory(a)?, |k| {
+        let (input, dest) = (&a.inputs[todo[k]], &dests[todo[k]]);
+        let stamp = Stamp::of(input);
+        let r = run_one(a, input, base, targets, dest, guard, jobs > 1);
+        let recorded = match &r {
+            Ok((_, written)) => manifest.done(input, stamp, &settings, written),
+            Err(e) => manifest.failed(input, stamp, &settings, &format!("{e:#}")),
+        };
+        let r = r.and_then(|(dec, _)| recorded.map(|()| dec));
         if let Err(e) = &r {
             let _out = PRINT.lock();
             eprintln!("error: {e:#}");
@@ -538,6 +710,8 @@ fn decompose(a: DecomposeArgs) -> anyhow::Result<()> {
     for r in results {
         match r {
             Ok(dec) => rows.push(dec),
+            // A failure that is not the input's fault (exit 1) outranks bad input.
+            Err(e) if worst.as_ref().is_some_and(|w| crate::exit::code(w) == 1) => drop(e),
             Err(e) => worst = Some(e),
         }
     }
@@ -545,37 +719,124 @@ fn decompose(a: DecomposeArgs) -> anyhow::Result<()> {
         print_table(&rows);
     }
     match worst {
-        Some(e) => Err(e.context(format!(
-            "{} of {} inputs failed",
-            a.inputs.len() - rows.len(),
-            a.inputs.len()
-        ))),
+        Some(e) => Err(e.context(format!("{} of {n} inputs failed", todo.len() - rows.len()))),
         None => Ok(()),
+    }
+}
+
+/// Removes what a killed run left half-written in the output directories: the
+/// temporary files (`write_atomic`'s `.NAME.tmp.PID.N`) of this batch's outputs
+/// (`STEM.primdecomp[_nT].json` or `.obj`), where process PID is gone.
+fn clear_stale(a: &DecomposeArgs, dir: &Path) {
+    let stems: std::collections::HashSet<String> = a
+        .inputs
+        .iter()
+        .filter_map(|i| Some(i.file_stem()?.to_string_lossy().into_owned()))
+        .collect();
+    let ours = |name: &str| {
+        let ext = name.ends_with(".json") || name.ends_with(".obj");
+        ext && name
+            .rsplit_once(".primdecomp")
+            .is_some_and(|(stem, _)| stems.contains(stem))
+    };
+    for d in std::iter::once(dir).chain(a.obj.as_deref()) {
+        manifest::remove_stale_temporaries(d, &ours);
     }
 }
 
 /// Keeps one input's messages together when several inputs run at once.
 static PRINT: std::sync::Mutex<()> = std::sync::Mutex::new(());
 
+/// Where one input's files go: the JSON and OBJ names before target suffixes
+/// ([`output_path_for`]), and in a batch the input they are named after.
+struct Dest {
+    json: PathBuf,
+    /// How messages name `json`'s origin: "-o", or "the default output".
+    json_flag: &'static str,
+    obj: Option<PathBuf>,
+    /// `--export` files (one input only).
+    exports: Vec<PathBuf>,
+    /// The `--png` file (in a batch, inside the `--png` directory).
+    png: Option<PathBuf>,
+    batch_input: Option<PathBuf>,
+}
+
+impl Dest {
+    /// The files written for `levels`, the targets of the decomposition's levels.
+    fn outs(&self, levels: &[usize]) -> Vec<Out> {
+        let n = levels.len();
+        let mut outs = Vec::new();
+        for &t in levels {
+            let files = std::iter::once((self.json_flag, &self.json))
+                .chain(self.obj.iter().map(|o| ("--obj", o)));
+            for (flag, base) in files {
+                let path = output_path_for(base, t, n);
+                outs.push(match &self.batch_input {
+                    Some(input) => Out::of_input(path, input),
+                    None => Out::flag(flag, base, path),
+                });
+            }
+        }
+        outs
+    }
+
+    /// The files whose names are known before decomposing: all of them unless a
+    /// percentage target among several makes the suffixes depend on the input.
+    fn up_front(&self, targets: &[Target]) -> Vec<Out> {
+        let mut counts: Vec<usize> = Vec::new();
+        for t in targets {
+            match *t {
+                Target::Count(c) => counts.push(c),
+                // One target: the name has no suffix, whatever the count.
+                Target::Percent(_) if targets.len() == 1 => counts.push(0),
+                Target::Percent(_) => return Vec::new(),
+            }
+        }
+        counts.sort_unstable_by(|a, b| b.cmp(a));
+        counts.dedup();
+        let mut outs = self.outs(&counts);
+        for e in &self.exports {
+            for &t in &counts {
+                outs.push(Out::flag(
+                    "--export",
+                    e,
+                    output_path_for(e, t, counts.len()),
+                ));
+            }
+        }
+        if let Some(png) = &self.png {
+            outs.push(match &self.batch_input {
+                Some(input) => Out::of_input(png.clone(), input),
+                None => Out::flag("--png", png, png.clone()),
+            });
+        }
+        outs
+    }
+}
+
 /// Loads, decomposes and writes one input; `beside_others` (several inputs at once):
-/// no progress bar, and the messages printed in one block.
+/// no progress bar, and the messages printed in one block. Returns the decomposition
+/// and the files written.
 fn run_one(
     a: &DecomposeArgs,
     input: &Path,
     base: &Params,
     targets: &[Target],
-    out: &Path,
+    dest: &Dest,
+    guard: &Guard,
     beside_others: bool,
-) -> anyhow::Result<Decomposition> {
+) -> anyhow::Result<(Decomposition, Vec<PathBuf>)> {
     let now = Instant::now();
-    let mesh = primdecomp::load_limited(input, max_memory(a)?)?;
+    let mesh = primdecomp::load_with(input, &load_options(a)?)?;
     let load_s = now.elapsed().as_secs_f64();
     let params = Params {
         targets: resolve_targets(targets, mesh.face_count()),
         ..base.clone()
     };
     if a.per_object {
-        return run_objects(a, input, &params, targets, &mesh, out, load_s);
+        let (mut dec, written) = run_objects(a, input, &params, targets, &mesh, dest, guard)?;
+        dec.timings.stages.insert(0, ("load".into(), load_s));
+        return Ok((dec, written));
     }
     let bar = progress_bar(mesh.face_count(), a.quiet || beside_others);
     let mut dec = primdecomp::decompose_with(&mesh, &params, &|stage: Stage, f: f64| {
@@ -589,14 +850,7 @@ fn run_one(
     dec.input.path = Some(input.display().to_string());
     dec.timings.stages.insert(0, ("load".into(), load_s));
     let now = Instant::now();
-    let mut written = write_outputs(
-        &dec,
-        &params,
-        out,
-        a.obj.as_deref(),
-        a.obj_detail,
-        a.timings,
-    )?;
+    let mut written = write_outputs(&dec, &params, dest, guard, a.obj_detail, a.timings)?;
     for level in &dec.levels {
         written.extend(crate::export_cmd::write_level_exports(
             &a.export,
@@ -609,8 +863,8 @@ fn run_one(
         )?);
     }
     let write_s = now.elapsed().as_secs_f64();
-    if let Some(png) = &a.png {
-        written.push(decompose_png(a, out, &dec, input, &mesh, png)?);
+    if let Some(png) = &dest.png {
+        written.push(decompose_png(&dest.json, &dec, input, &mesh, png)?);
     }
     let _out = PRINT.lock();
     if !a.quiet {
@@ -619,7 +873,7 @@ fn run_one(
     if !a.quiet || a.timings {
         print_timings(&dec, write_s, a.inputs.len() > 1);
     }
-    Ok(dec)
+    Ok((dec, written))
 }
 
 /// `--per-object`: decomposes each object on its own and writes the JSON (with
@@ -631,9 +885,9 @@ fn run_objects(
     params: &Params,
     targets: &[Target],
     mesh: &primdecomp::Mesh,
-    out: &Path,
-    load_s: f64,
-) -> anyhow::Result<Decomposition> {
+    dest: &Dest,
+    guard: &Guard,
+) -> anyhow::Result<(Decomposition, Vec<PathBuf>)> {
     use primdecomp::{decompose_objects, ObjectTarget};
     if a.obj_detail < 3 {
         bail!(BadArgs(format!(
@@ -665,27 +919,38 @@ fn run_objects(
         },
         ..Default::default()
     };
-    dec.timings.stages.push(("load".into(), load_s));
     dec.timings
         .stages
         .push(("decompose".into(), now.elapsed().as_secs_f64()));
+    let mut jsons = Vec::with_capacity(n);
     for i in 0..n {
         let json = export::to_json_objects(&objs, i, params);
         let v: serde_json::Value = serde_json::from_str(&json)?;
-        let target = v["settings"]["target"].as_u64().unwrap_or(0) as usize;
+        jsons.push((v["settings"]["target"].as_u64().unwrap_or(0) as usize, json));
+    }
+    // The names are known only now (a percentage's count): check them before writing.
+    let outs = dest.outs(&jsons.iter().map(|j| j.0).collect::<Vec<_>>());
+    guard.check(&outs)?;
+    let per_level = if dest.obj.is_some() { 2 } else { 1 };
+    for (i, (target, json)) in jsons.into_iter().enumerate() {
         let level = primdecomp::Level {
             target,
             merged_to: target,
             primitives: objs.world_primitives(i),
             faces: Vec::new(),
         };
-        let path = output_path_for(out, target, n);
-        write_atomic(&path, json.as_bytes())?;
-        written.push(path);
-        if let Some(o) = &a.obj {
-            let path = output_path_for(o, target, n);
-            write_atomic(&path, export::to_obj(&level, a.obj_detail).as_bytes())?;
-            written.push(path);
+        let json_out = &outs[i * per_level];
+        write_atomic(&json_out.path, json.as_bytes())?;
+        guard.wrote(json_out);
+        written.push(json_out.path.clone());
+        if dest.obj.is_some() {
+            let obj_out = &outs[i * per_level + 1];
+            write_atomic(
+                &obj_out.path,
+                export::to_obj(&level, a.obj_detail).as_bytes(),
+            )?;
+            guard.wrote(obj_out);
+            written.push(obj_out.path.clone());
         }
         written.extend(crate::export_cmd::write_level_exports(
             &a.export,
@@ -711,7 +976,7 @@ fn run_objects(
         );
         print_summary(&dec, mesh, &written);
     }
-    Ok(dec)
+    Ok((dec, written))
 }
 
 /// One markdown row per input and target.
@@ -745,12 +1010,28 @@ fn print_table(rows: &[Decomposition]) {
     }
 }
 
+/// `STEM.primdecomp.json`, STEM the input's file name without its extension.
 fn default_out(input: &Path) -> PathBuf {
+    named_after(input, "json")
+}
+
+/// `STEM.primdecomp.obj`, an input's OBJ in a batch.
+fn default_obj(input: &Path) -> PathBuf {
+    named_after(input, "obj")
+}
+
+/// `STEM.png`, an input's `--png` picture in a batch.
+fn default_png(input: &Path) -> PathBuf {
+    let stem = input.file_stem().unwrap_or_default().to_string_lossy();
+    PathBuf::from(format!("{stem}.png"))
+}
+
+fn named_after(input: &Path, ext: &str) -> PathBuf {
     let stem = input
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "out".into());
-    PathBuf::from(format!("{stem}.primdecomp.json"))
+    PathBuf::from(format!("{stem}.primdecomp.{ext}"))
 }
 
 fn progress_bar(faces: usize, quiet: bool) -> Option<indicatif::ProgressBar> {
@@ -765,38 +1046,37 @@ fn progress_bar(faces: usize, quiet: bool) -> Option<indicatif::ProgressBar> {
     Some(b)
 }
 
-/// Writes JSON (and OBJ) per level atomically; returns the paths written. With
-/// `timed` (`--timings`) the JSON holds the stage timings, which stop before writing
-/// (the file cannot time its own write); without, it is byte-identical across runs.
+/// Writes JSON (and OBJ) per level atomically, after checking that none of the files
+/// is an input or another output of the run ([`Guard`]); returns the paths written.
+/// With `timed` (`--timings`) the JSON holds the stage timings, which stop before
+/// writing (the file cannot time its own write); without, it is byte-identical across
+/// runs.
 fn write_outputs(
     dec: &Decomposition,
     params: &Params,
-    out: &Path,
-    obj: Option<&Path>,
+    dest: &Dest,
+    guard: &Guard,
     detail: usize,
     timed: bool,
 ) -> anyhow::Result<Vec<PathBuf>> {
-    if detail < 3 {
-        bail!(BadArgs(format!(
-            "--obj-detail must be at least 3, got {detail}"
-        )));
-    }
-    let n = dec.levels.len();
+    let levels: Vec<usize> = dec.levels.iter().map(|l| l.target).collect();
+    let outs = dest.outs(&levels);
+    guard.check(&outs)?;
+    let per_level = if dest.obj.is_some() { 2 } else { 1 };
     let mut written = Vec::new();
-    for (i, level) in dec.levels.iter().enumerate() {
-        let path = output_path_for(out, level.target, n);
-        let json = if timed {
+    for (out, k) in outs.iter().zip(0..) {
+        let (i, is_obj) = (k / per_level, k % per_level == 1);
+        let level = &dec.levels[i];
+        let bytes = if is_obj {
+            export::to_obj(level, detail)
+        } else if timed {
             export::to_json_timed(dec, i, params)
         } else {
             export::to_json(dec, i, params)
         };
-        write_atomic(&path, json.as_bytes())?;
-        written.push(path);
-        if let Some(o) = obj {
-            let path = output_path_for(o, level.target, n);
-            write_atomic(&path, export::to_obj(level, detail).as_bytes())?;
-            written.push(path);
-        }
+        write_atomic(&out.path, bytes.as_bytes())?;
+        guard.wrote(out);
+        written.push(out.path.clone());
     }
     Ok(written)
 }
@@ -887,7 +1167,24 @@ fn peak_rss_kib() -> Option<u64> {
 }
 
 fn sim(a: SimArgs) -> anyhow::Result<()> {
-    let mesh = primdecomp::load(&a.input)?;
+    let guard = Guard::new(
+        std::iter::once(&a.input)
+            .chain(&a.colliders)
+            .map(PathBuf::as_path),
+    );
+    let mut outs = Vec::new();
+    for (flag, path) in [("--json", &a.json), ("--plot", &a.plot)] {
+        if let Some(p) = path {
+            outs.push(Out::flag(flag, p, p.clone()));
+        }
+    }
+    if let Some(dir) = &a.csv {
+        for name in csv_names(&a.input) {
+            outs.push(Out::flag("--csv", dir, dir.join(name)));
+        }
+    }
+    guard.check(&outs)?;
+    let mesh = primdecomp::load_with(&a.input, &a.load.options())?;
     let entries = a
         .colliders
         .iter()
@@ -950,15 +1247,9 @@ fn write_sim_outputs(a: &SimArgs, run: &SimRun, input: &str, faces: usize) -> an
     if let Some(dir) = &a.csv {
         std::fs::create_dir_all(dir)
             .map_err(|e| anyhow!("cannot create CSV directory {}: {e}", dir.display()))?;
-        let stem = a.input.file_stem().unwrap_or_default().to_string_lossy();
-        write_atomic(
-            &dir.join(format!("{stem}_frame_ms.csv")),
-            report::frame_csv(run).as_bytes(),
-        )?;
-        write_atomic(
-            &dir.join(format!("{stem}_ends.csv")),
-            report::ends_csv(run).as_bytes(),
-        )?;
+        let [frames, ends] = csv_names(&a.input);
+        write_atomic(&dir.join(frames), report::frame_csv(run).as_bytes())?;
+        write_atomic(&dir.join(ends), report::ends_csv(run).as_bytes())?;
     }
     if let Some(p) = &a.plot {
         let name = a.input.file_name().unwrap_or_default().to_string_lossy();
@@ -969,6 +1260,12 @@ fn write_sim_outputs(a: &SimArgs, run: &SimRun, input: &str, faces: usize) -> an
         plot::write_png(run, &title, p)?;
     }
     Ok(())
+}
+
+/// The CSV files `sim --csv DIR` writes for `input`: frame times, then end points.
+fn csv_names(input: &Path) -> [String; 2] {
+    let stem = input.file_stem().unwrap_or_default().to_string_lossy();
+    [format!("{stem}_frame_ms.csv"), format!("{stem}_ends.csv")]
 }
 
 fn print_sim_table(run: &SimRun) {
@@ -1063,6 +1360,19 @@ fn view(a: ViewArgs) -> anyhow::Result<()> {
             a.detail
         )));
     }
+    // Nothing the page or the PNG is made from may be overwritten by them.
+    let read: Vec<PathBuf> = a
+        .results
+        .iter()
+        .flat_map(|r| scene::result_files(r))
+        .chain(a.input.iter().chain(&a.compare).chain(&a.eval).cloned())
+        .collect();
+    let guard = Guard::new(read.iter().map(PathBuf::as_path));
+    let outs: Vec<Out> = [("-o", &a.out), ("--png", &a.png)]
+        .into_iter()
+        .filter_map(|(flag, p)| p.as_ref().map(|p| Out::flag(flag, p, p.clone())))
+        .collect();
+    guard.check(&outs)?;
     let opts = scene::Options {
         detail: a.detail,
         display_triangles: a.display_faces.max(1),
@@ -1151,7 +1461,6 @@ fn recorded_input(result: &Path) -> Option<PathBuf> {
 /// `decompose --png`: the first level, read back from the JSON just written, over
 /// the input; with several inputs `png` is a directory. Returns the file written.
 fn decompose_png(
-    a: &DecomposeArgs,
     out: &Path,
     dec: &Decomposition,
     input: &Path,
@@ -1159,15 +1468,6 @@ fn decompose_png(
     png: &Path,
 ) -> anyhow::Result<PathBuf> {
     use primdecomp_view::{scene, source};
-    let png = match a.inputs.len() {
-        1 => png.to_path_buf(),
-        _ => {
-            std::fs::create_dir_all(png)
-                .map_err(|e| anyhow!("cannot create PNG directory {}: {e}", png.display()))?;
-            let stem = input.file_stem().unwrap_or_default().to_string_lossy();
-            png.join(format!("{stem}.png"))
-        }
-    };
     let json = output_path_for(out, dec.levels[0].target, dec.levels.len());
     let opts = scene::Options::default();
     let s = scene::Scene {
@@ -1183,6 +1483,6 @@ fn decompose_png(
     };
     let bytes = primdecomp_view::render_png(&s, primdecomp_view::PNG_SIZE)
         .ok_or_else(|| anyhow!("{}: nothing to draw", input.display()))?;
-    write_atomic(&png, &bytes)?;
-    Ok(png)
+    write_atomic(png, &bytes)?;
+    Ok(png.to_path_buf())
 }

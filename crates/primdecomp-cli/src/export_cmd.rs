@@ -9,6 +9,7 @@ use primdecomp::{Level, Objects};
 use std::path::{Path, PathBuf};
 
 use crate::exit::BadArgs;
+use crate::outputs::{Guard, Out};
 
 /// The options every export takes (`export` and `decompose --export`).
 #[derive(Args, Debug, Clone)]
@@ -114,19 +115,11 @@ fn model_name(out: &Path) -> String {
         .unwrap_or_else(|| "primdecomp".into())
 }
 
-/// Refuses an output that is one of the inputs (never overwrite an input).
-pub fn not_an_input(out: &Path, inputs: &[&Path]) -> anyhow::Result<()> {
-    let Ok(o) = out.canonicalize() else {
-        return Ok(()); // does not exist yet
-    };
-    for i in inputs {
-        if i.canonicalize().is_ok_and(|c| c == o) {
-            bail!(BadArgs(format!(
-                "{}: refusing to overwrite an input with an export",
-                out.display()
-            )));
-        }
-    }
+/// Refuses an output that is one of the inputs (never overwrite an input): the
+/// files compared by identity, as every output of the CLI (`outputs.rs`).
+pub fn not_an_input(flag: &str, out: &Path, inputs: &[&Path]) -> anyhow::Result<()> {
+    let guard = Guard::new(inputs.iter().copied());
+    guard.check(&[Out::flag(flag, out, out.to_path_buf())])?;
     Ok(())
 }
 
@@ -142,18 +135,19 @@ pub fn mesh_polygons(mesh: &primdecomp::Mesh) -> (Vec<[f64; 3]>, Vec<Vec<u32>>) 
 }
 
 pub fn export(a: ExportCmd) -> anyhow::Result<()> {
+    let inputs: Vec<&Path> = std::iter::once(a.result.as_path())
+        .chain(a.input.as_deref())
+        .collect();
+    not_an_input("-o", &a.out, &inputs)?;
     let text = std::fs::read_to_string(&a.result)
         .map_err(|e| BadArgs(format!("{}: cannot read: {e}", a.result.display())))?;
     let objects =
         read_objects(&text).map_err(|e| BadArgs(format!("{}: {e}", a.result.display())))?;
     let (format, mut opts) = a.opts.resolve(&a.out, &model_name(&a.out))?;
-    let mut inputs: Vec<&Path> = vec![&a.result];
     if let Some(input) = &a.input {
-        inputs.push(input);
         let mesh = primdecomp::load(input)?;
         opts.input_mesh = Some(mesh_polygons(&mesh));
     }
-    not_an_input(&a.out, &inputs)?;
     for w in write_export(&a.out, &objects, format, &opts)? {
         println!("wrote     {}", w.display());
     }
@@ -198,7 +192,7 @@ pub fn write_level_exports(
         if let (true, Some(m)) = (args.preview, input_mesh) {
             opts.input_mesh = Some(mesh_polygons(m));
         }
-        not_an_input(&path, inputs)?;
+        not_an_input("--export", &path, inputs)?;
         written.extend(write_export(&path, objects, format, &opts)?);
     }
     Ok(written)

@@ -10,7 +10,19 @@ mod batch;
 mod cli;
 mod exit;
 mod export_cmd;
+mod manifest;
+mod outputs;
 mod paths;
+
+/// A fresh, empty directory for one unit test (`tag` names it; the pid keeps runs
+/// apart).
+#[cfg(test)]
+fn scratch_dir(tag: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("primdecomp-{tag}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
 
 fn main() {
     std::process::exit(cli::main());

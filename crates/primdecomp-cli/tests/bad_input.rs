@@ -1,14 +1,22 @@
-//! Hostile input through the real binary (issue 6, item 1): every case either succeeds
+//! Hostile input through the real binary (issues 6 and 27): every case either succeeds
 //! with a valid result or fails with exit code 2 and a message naming the file and the
-//! line or byte offset, never panics, and never creates or modifies the output file.
+//! line or byte offset, never panics, never hangs (each run has a time limit), and
+//! never creates or modifies the output file. Inputs that are not regular files
+//! (pipes, symbolic link loops, devices, directories) and glTF buffer URIs that reach
+//! outside the glTF's folder are cases too; a second table runs commands whose
+//! outputs would overwrite an input or each other, which must be refused before
+//! anything is written.
 //!
 //! Each case also checks key fragments of its message here; the exact messages are the
-//! table in `docs/bad_input.md`, which this test regenerates and compares: a changed
-//! message fails the test until the table is regenerated with
+//! tables in `docs/bad_input.md`, which this test regenerates and compares: a changed
+//! message fails the test until the tables are regenerated with
 //! `PRIMDECOMP_BLESS=1 cargo test --release --test bad_input`.
 
+use std::collections::BTreeMap;
+use std::io::Read;
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
 
 /// What a case must produce.
 enum Want {
@@ -19,25 +27,109 @@ enum Want {
     Err(&'static [&'static str]),
 }
 
-/// The input of a case.
+/// The input of a case, or a file beside it.
 enum Input {
     File(Vec<u8>),
     Dir,
+    /// A named pipe, made with `mkfifo`.
+    Fifo,
+    /// A symbolic link to this target.
+    Link(&'static str),
+}
+
+impl Input {
+    fn make(&self, at: &Path) {
+        match self {
+            Input::File(bytes) => std::fs::write(at, bytes).unwrap(),
+            Input::Dir => std::fs::create_dir_all(at).unwrap(),
+            Input::Fifo => {
+                let ok = Command::new("mkfifo")
+                    .arg(at)
+                    .status()
+                    .expect("mkfifo runs");
+                assert!(ok.success(), "mkfifo {at:?}");
+            }
+            Input::Link(to) => std::os::unix::fs::symlink(to, at).unwrap(),
+        }
+    }
 }
 
 struct Case {
     name: &'static str,
     what: &'static str,
     input: Input,
+    /// Files made beside the input first (glTF buffers).
+    beside: Vec<(&'static str, Input)>,
+    /// Arguments after the usual ones.
+    args: &'static [&'static str],
     want: Want,
 }
 
 fn case(name: &'static str, what: &'static str, bytes: impl Into<Vec<u8>>, want: Want) -> Case {
+    made(name, what, Input::File(bytes.into()), want)
+}
+
+fn made(name: &'static str, what: &'static str, input: Input, want: Want) -> Case {
     Case {
         name,
         what,
-        input: Input::File(bytes.into()),
+        input,
+        beside: Vec::new(),
+        args: &[],
         want,
+    }
+}
+
+impl Case {
+    fn beside(mut self, name: &'static str, input: Input) -> Case {
+        self.beside.push((name, input));
+        self
+    }
+
+    fn args(mut self, args: &'static [&'static str]) -> Case {
+        self.args = args;
+        self
+    }
+}
+
+/// The longest any one run may take before the test calls it a hang.
+const LIMIT: Duration = Duration::from_secs(120);
+
+/// Runs `cmd` to the end like `Command::output`, but kills it and fails the test if it
+/// takes longer than [`LIMIT`] (a read blocked on a pipe would otherwise hang the
+/// test too).
+fn output_within(mut cmd: Command) -> Output {
+    let mut child = cmd
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .expect("runs");
+    let drain = |mut r: Box<dyn Read + Send>| {
+        std::thread::spawn(move || {
+            let mut v = Vec::new();
+            let _ = r.read_to_end(&mut v);
+            v
+        })
+    };
+    let out = drain(Box::new(child.stdout.take().unwrap()));
+    let err = drain(Box::new(child.stderr.take().unwrap()));
+    let start = Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait().unwrap() {
+            break status;
+        }
+        if start.elapsed() > LIMIT {
+            let _ = child.kill();
+            let _ = child.wait();
+            panic!("{cmd:?} still ran after {LIMIT:?}: it hangs");
+        }
+        std::thread::sleep(Duration::from_millis(10));
+    };
+    Output {
+        status,
+        stdout: out.join().unwrap(),
+        stderr: err.join().unwrap(),
     }
 }
 
@@ -45,17 +137,17 @@ fn case(name: &'static str, what: &'static str, bytes: impl Into<Vec<u8>>, want:
 /// returns its outcome and message for the table.
 fn run_case(dir: &Path, c: &Case) -> (String, String) {
     let name = c.name;
-    match &c.input {
-        Input::File(bytes) => std::fs::write(dir.join(name), bytes).unwrap(),
-        Input::Dir => std::fs::create_dir_all(dir.join(name)).unwrap(),
+    c.input.make(&dir.join(name));
+    for (file, input) in &c.beside {
+        input.make(&dir.join(file));
     }
     let out = format!("{name}.json");
     std::fs::write(dir.join(&out), b"previous result").unwrap();
-    let res = Command::new(env!("CARGO_BIN_EXE_primdecomp"))
-        .current_dir(dir)
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_primdecomp"));
+    cmd.current_dir(dir)
         .args(["decompose", name, "-n", "4", "--quiet", "-o", &out])
-        .output()
-        .expect("runs");
+        .args(c.args);
+    let res = output_within(cmd);
     let stderr = String::from_utf8_lossy(&res.stderr).trim().to_string();
     assert!(!stderr.contains("panicked"), "{name}: {stderr}");
     let row = match c.want {
@@ -130,16 +222,30 @@ fn binary_ply(declared_verts: u32, declared_faces: u32, faces: u32, eol: &str) -
     b
 }
 
-/// A GLB with one indexed triangle (3 f32 positions, 3 u16 indices, 2 bytes padding).
-fn glb() -> Vec<u8> {
-    let json = r#"{"asset":{"version":"2.0"},"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],"meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],"buffers":[{"byteLength":44}],"bufferViews":[{"buffer":0,"byteLength":36},{"buffer":0,"byteOffset":36,"byteLength":6}],"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"},{"bufferView":1,"componentType":5123,"count":3,"type":"SCALAR"}]}"#;
-    let mut j = json.as_bytes().to_vec();
-    j.resize(j.len().div_ceil(4) * 4, b' ');
+/// A glTF document of one indexed triangle in a buffer of 44 bytes ([`tri_bin`])
+/// whose source is `uri` (`None`: the GLB's binary chunk).
+fn tri_gltf(uri: Option<&str>) -> String {
+    let source = uri.map_or(String::new(), |u| format!(r#""uri":"{u}","#));
+    format!(
+        r#"{{"asset":{{"version":"2.0"}},"scenes":[{{"nodes":[0]}}],"nodes":[{{"mesh":0}}],"meshes":[{{"primitives":[{{"attributes":{{"POSITION":0}},"indices":1}}]}}],"buffers":[{{{source}"byteLength":44}}],"bufferViews":[{{"buffer":0,"byteLength":36}},{{"buffer":0,"byteOffset":36,"byteLength":6}}],"accessors":[{{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3"}},{{"bufferView":1,"componentType":5123,"count":3,"type":"SCALAR"}}]}}"#
+    )
+}
+
+/// The triangle's buffer: 3 f32 positions, 3 u16 indices, 2 bytes padding.
+fn tri_bin() -> Vec<u8> {
     let mut bin: Vec<u8> = [0f32, 0., 0., 1., 0., 0., 0., 1., 0.]
         .iter()
         .flat_map(|c| c.to_le_bytes())
         .collect();
     bin.extend([0u16, 1, 2, 0].iter().flat_map(|i| i.to_le_bytes()));
+    bin
+}
+
+/// A GLB with one indexed triangle.
+fn glb() -> Vec<u8> {
+    let mut j = tri_gltf(None).into_bytes();
+    j.resize(j.len().div_ceil(4) * 4, b' ');
+    let bin = tri_bin();
     let total = (12 + 8 + j.len() + 8 + bin.len()) as u32;
     let mut v = b"glTF".to_vec();
     v.extend(2u32.to_le_bytes().iter().chain(&total.to_le_bytes()));
@@ -219,7 +325,23 @@ fn cases() -> Vec<Case> {
         case("gzip.obj", "gzip data behind .obj", vec![0x1f, 0x8b, 8, 0, 0, 0, 0, 0], e(&["gzip"])),
         case("mesh.xyz", "unknown extension", TRI, e(&["unknown extension"])),
         case("no_extension", "no extension", TRI, e(&["unknown extension"])),
-        Case { name: "a_directory.obj", what: "a directory given as the input", input: Input::Dir, want: e(&["is a directory"]) },
+        made("a_directory.obj", "a directory given as the input", Input::Dir, e(&["is a directory, not a regular file"])),
+        made("pipe.obj", "a named pipe (FIFO, no writer) given as the input", Input::Fifo, e(&["is a named pipe (FIFO), not a regular file"])),
+        made("loop.obj", "a symbolic link to itself", Input::Link("loop.obj"), e(&["cannot open", "symbolic link loop"])),
+        made("dangling.obj", "a symbolic link to nothing", Input::Link("nowhere.obj"), e(&["cannot open: no such file"])),
+        made("device.obj", "a symbolic link to /dev/zero", Input::Link("/dev/zero"), e(&["is a character device, not a regular file"])),
+        case("uri_absolute.gltf", "glTF buffer URI /dev/zero (absolute)", tri_gltf(Some("/dev/zero")), e(&["buffer 0: the URI '/dev/zero' is an absolute path", "--allow-external-uris"])),
+        case("uri_absolute_allowed.gltf", "glTF buffer URI /dev/zero, with", tri_gltf(Some("/dev/zero")), e(&["names /dev/zero, which is a character device"])).args(&["--allow-external-uris"]),
+        case("uri_parent.gltf", "glTF buffer URI ../tri.bin", tri_gltf(Some("../tri.bin")), e(&["'../tri.bin' climbs out of the glTF's folder with '..'"])),
+        case("uri_encoded_parent.gltf", "glTF buffer URI %2E%2E/tri.bin", tri_gltf(Some("%2E%2E/tri.bin")), e(&["climbs out of the glTF's folder"])),
+        case("uri_file_url.gltf", "glTF buffer URI file:///etc/passwd", tri_gltf(Some("file:///etc/passwd")), e(&["is a file: URL"])),
+        case("uri_http.gltf", "glTF buffer URI https://…", tri_gltf(Some("https://example.com/tri.bin")), e(&["'https:', which is never read"])),
+        case("uri_link_out.gltf", "glTF buffer, a symbolic link beside it to /dev/zero", tri_gltf(Some("uri_link_out.bin")), e(&["leads out of the glTF's folder through a symbolic link, to /dev/zero"])).beside("uri_link_out.bin", Input::Link("/dev/zero")),
+        case("uri_pipe.gltf", "glTF buffer, a named pipe beside it", tri_gltf(Some("uri_pipe.bin")), e(&["names uri_pipe.bin, which is a named pipe (FIFO), not a regular file"])).beside("uri_pipe.bin", Input::Fifo),
+        case("uri_short.gltf", "glTF buffer file of 20 bytes, 44 declared", tri_gltf(Some("uri_short.bin")), e(&["which holds 20 bytes; the buffer declares 44"])).beside("uri_short.bin", Input::File(tri_bin()[..20].to_vec())),
+        case("uri_missing.gltf", "glTF buffer file missing", tri_gltf(Some("uri_missing.bin")), e(&["names uri_missing.bin, which cannot be opened: no such file"])),
+        case("uri_bad_base64.gltf", "glTF data: URI with bad base64", tri_gltf(Some("data:application/octet-stream;base64,%%%")), e(&["without valid base64"])),
+        case("uri_ok.gltf", "glTF buffer file beside it, 1 MB longer than declared", tri_gltf(Some("uri_ok.bin")), Want::Ok).beside("uri_ok.bin", Input::File([tri_bin(), vec![7; 1 << 20]].concat())),
     ]
 }
 
@@ -247,7 +369,25 @@ fn hostile_inputs_table() {
         } else {
             format!("`{}`", cell(&msg))
         };
-        table += &format!("| `{}` | {} | {} | {} |\n", c.name, c.what, outcome, msg);
+        let args = c.args.iter().map(|a| format!(" `{a}`")).collect::<String>();
+        table += &format!(
+            "| `{}` | {}{args} | {} | {} |\n",
+            c.name, c.what, outcome, msg
+        );
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+    table += "\n## Outputs that would destroy an input or each other\n\n\
+              Each command runs in a directory holding `m.obj` (a triangle), `link.obj` (a\n\
+              symbolic link to `m.obj`), `hard.obj` (a hard link to it), `a/x.obj`, `b/x.obj`,\n\
+              `b/y.obj`, `pipe.obj` (a named pipe) and `c.json`; \"nothing written\" means every\n\
+              file there kept its bytes and no file or directory was added.\n\n\
+              | command | what | outcome | exact message (stderr) |\n|---|---|---|---|\n";
+    let dir = tempdir("clashes");
+    make_clash_dir(&dir);
+    for c in clashes() {
+        let (outcome, msg) = run_clash(&dir, &c);
+        let cmd = format!("primdecomp {}", c.args.join(" "));
+        table += &format!("| `{cmd}` | {} | {outcome} | `{}` |\n", c.what, cell(&msg));
     }
     std::fs::remove_dir_all(&dir).unwrap();
     let doc = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/bad_input.md");
@@ -260,6 +400,137 @@ fn hostile_inputs_table() {
         "docs/bad_input.md differs from what the binary now says; regenerate it with \
          PRIMDECOMP_BLESS=1 cargo test --release --test bad_input\n{table}"
     );
+}
+
+/// A command whose outputs would overwrite an input or each other.
+struct Clash {
+    args: &'static [&'static str],
+    what: &'static str,
+    /// Fragments of the message (exit code 2 is always checked).
+    want: &'static [&'static str],
+    /// What the command may add (a batch's good inputs still run); nothing else may
+    /// appear or change.
+    writes: &'static [&'static str],
+}
+
+/// The heart of the message for an output that is `m.obj`.
+const SAME: &str = "is the input m.obj (the same file): refusing to overwrite an input";
+
+#[rustfmt::skip]
+fn clashes() -> Vec<Clash> {
+    let c = |args, what, want, writes| Clash {
+        args,
+        what,
+        want,
+        writes,
+    };
+    vec![
+        c(&["decompose", "m.obj", "-n", "4", "--quiet", "-o", "m.obj"], "-o is the input", &["-o m.obj", SAME], &[]),
+        c(&["decompose", "m.obj", "-n", "4", "--quiet", "-o", "./m.obj"], "-o is the input, spelled ./m.obj", &["-o ./m.obj", SAME], &[]),
+        c(&["decompose", "m.obj", "-n", "4", "--quiet", "-o", "link.obj"], "-o is a symbolic link to the input", &["-o link.obj", SAME], &[]),
+        c(&["decompose", "m.obj", "-n", "4", "--quiet", "-o", "hard.obj"], "-o is a hard link to the input", &["-o hard.obj", SAME], &[]),
+        c(&["decompose", "link.obj", "-n", "4", "--quiet", "-o", "m.obj"], "the input is a symbolic link to -o", &["-o m.obj is the input link.obj (the same file)"], &[]),
+        c(&["decompose", "m.obj", "-n", "4", "--quiet", "--obj", "m.obj"], "--obj is the input", &["--obj m.obj", SAME], &[]),
+        c(&["decompose", "m.obj", "-n", "4,8", "--quiet", "-o", "r.json", "--obj", "r.json"], "-o and --obj are one file once target suffixes are added", &["-o r.json (as r_n8.json) and --obj r.json (as r_n8.json) are the same file"], &[]),
+        c(&["decompose", "m.obj", "-n", "4", "--quiet", "-o", "r.json", "--obj", "./r.json"], "-o and --obj are one file", &["-o r.json and --obj ./r.json are the same file"], &[]),
+        c(&["decompose", "a/x.obj", "b/x.obj", "-n", "4", "--quiet", "-o", "out/"], "two inputs, one output name", &["a/x.obj and b/x.obj would both write out/x.primdecomp.json"], &[]),
+        c(&["decompose", "a/x.obj", "b/y.obj", "-n", "4", "--quiet", "-o", "one.json"], "two inputs, -o a .json file", &["-o one.json: ends in .json, but with 2 inputs -o names a directory"], &[]),
+        c(&["decompose", "a/x.obj", "b/y.obj", "-n", "4", "--quiet", "-o", "m.obj"], "two inputs, -o an existing file", &["-o m.obj: exists and is not a directory"], &[]),
+        c(&["decompose", "a/x.obj", "b/y.obj", "-n", "4", "--quiet", "-o", "out/", "--obj", "hulls.obj"], "two inputs, --obj a .obj file", &["--obj hulls.obj: ends in .obj, but with 2 inputs --obj names a directory"], &[]),
+        c(&["decompose", "m.obj", "-n", "4", "--quiet", "-o", "r.json", "--resume"], "--resume without a batch directory", &["--resume finishes a batch"], &[]),
+        c(&["decompose", "a/x.obj", "pipe.obj", "-n", "4", "--quiet", "-o", "out/"], "a batch with a named pipe among its inputs", &["pipe.obj: is a named pipe (FIFO), not a regular file", "1 of 2 inputs failed"], &["out", "out/.primdecomp-manifest.jsonl", "out/x.primdecomp.json"]),
+        c(&["eval", "--input", "m.obj", "c.json", "--json", "c.json"], "eval --json is a collider", &["--json c.json is the input c.json (the same file)"], &[]),
+        c(&["sim", "--input", "m.obj", "c.json", "--json", "./m.obj"], "sim --json is the input mesh", &["--json ./m.obj", SAME], &[]),
+        c(&["view", "c.json", "-o", "c.json"], "view -o is the result it shows", &["-o c.json is the input c.json (the same file)"], &[]),
+        c(&["view", "c.json", "--input", "m.obj", "--png", "./m.obj"], "view --png is the input mesh", &["--png ./m.obj", SAME], &[]),
+        c(&["export", "c.json", "-o", "./c.json", "--format", "glb"], "export -o is the result", &["-o ./c.json is the input c.json (the same file)"], &[]),
+        c(&["decompose", "m.obj", "-n", "4", "--quiet", "--export", "link.obj", "--format", "mjcf"], "--export is a link to the input", &["--export link.obj", SAME], &[]),
+        c(&["decompose", "m.obj", "-n", "4", "--quiet", "--png", "hard.obj"], "--png is a hard link to the input", &["--png hard.obj", SAME], &[]),
+        c(&["decompose", "a/x.obj", "b/y.obj", "-n", "4", "--quiet", "-o", "out/", "--export", "x.glb"], "--export with several inputs", &["--export writes one file per level of one input"], &[]),
+    ]
+}
+
+fn make_clash_dir(dir: &Path) {
+    Input::File(format!("{TRI}f 1 2 3\n").into_bytes()).make(&dir.join("m.obj"));
+    Input::Link("m.obj").make(&dir.join("link.obj"));
+    std::fs::hard_link(dir.join("m.obj"), dir.join("hard.obj")).unwrap();
+    for f in ["a/x.obj", "b/x.obj", "b/y.obj"] {
+        std::fs::create_dir_all(dir.join(f).parent().unwrap()).unwrap();
+        std::fs::copy(dir.join("m.obj"), dir.join(f)).unwrap();
+    }
+    Input::Fifo.make(&dir.join("pipe.obj"));
+    Input::File(b"{}".to_vec()).make(&dir.join("c.json"));
+}
+
+/// Every file and directory below `dir` (relative) with its bytes; a pipe is not
+/// read (that would block) and a link is its target.
+fn snapshot(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
+    let mut out = BTreeMap::new();
+    let mut todo = vec![dir.to_path_buf()];
+    while let Some(d) = todo.pop() {
+        for e in std::fs::read_dir(&d).unwrap() {
+            let p = e.unwrap().path();
+            let t = std::fs::symlink_metadata(&p).unwrap().file_type();
+            let bytes = if t.is_symlink() {
+                std::fs::read_link(&p)
+                    .unwrap()
+                    .into_os_string()
+                    .into_encoded_bytes()
+            } else if t.is_dir() {
+                todo.push(p.clone());
+                b"(directory)".to_vec()
+            } else if t.is_file() {
+                std::fs::read(&p).unwrap()
+            } else {
+                b"(other)".to_vec()
+            };
+            out.insert(p.strip_prefix(dir).unwrap().to_path_buf(), bytes);
+        }
+    }
+    out
+}
+
+/// Runs one command in `dir`: exit 2, the message's fragments, every file there
+/// unchanged and nothing added but `writes` (removed again after).
+fn run_clash(dir: &Path, c: &Clash) -> (String, String) {
+    let before = snapshot(dir);
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_primdecomp"));
+    cmd.current_dir(dir).args(c.args);
+    let res = output_within(cmd);
+    let what = c.args.join(" ");
+    let stderr = String::from_utf8_lossy(&res.stderr).trim().to_string();
+    assert!(!stderr.contains("panicked"), "{what}: {stderr}");
+    assert_eq!(res.status.code(), Some(2), "{what}: {stderr}");
+    for f in c.want {
+        assert!(stderr.contains(f), "{what}: message lacks '{f}': {stderr}");
+    }
+    let after = snapshot(dir);
+    for (p, bytes) in &before {
+        assert_eq!(after.get(p), Some(bytes), "{what}: {p:?} changed or went");
+    }
+    let added: Vec<&Path> = after
+        .keys()
+        .filter(|p| !before.contains_key(*p))
+        .map(PathBuf::as_path)
+        .collect();
+    let want: Vec<&Path> = c.writes.iter().map(Path::new).collect();
+    assert_eq!(added, want, "{what}: files added");
+    for p in c.writes.iter().filter(|p| !p.contains('/')) {
+        let p = dir.join(p);
+        let _ = std::fs::remove_dir_all(&p).or_else(|_| std::fs::remove_file(&p));
+    }
+    let outcome = match c.writes {
+        [] => "exit 2, nothing written".to_string(),
+        w => format!(
+            "exit 2, the other input written ({})",
+            w.iter()
+                .filter(|p| p.ends_with(".json"))
+                .map(|p| format!("`{p}`"))
+                .collect::<Vec<_>>()
+                .join(", ")
+        ),
+    };
+    (outcome, stderr)
 }
 
 /// A fresh directory per test (`name`): the tests of this file run in parallel and
@@ -276,11 +547,9 @@ fn tempdir(name: &str) -> PathBuf {
 
 /// Runs the binary in `dir` with `args`; returns (exit code, stderr).
 fn run_in(dir: &Path, args: &[&str]) -> (Option<i32>, String) {
-    let res = Command::new(env!("CARGO_BIN_EXE_primdecomp"))
-        .current_dir(dir)
-        .args(args)
-        .output()
-        .expect("runs");
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_primdecomp"));
+    cmd.current_dir(dir).args(args);
+    let res = output_within(cmd);
     (
         res.status.code(),
         String::from_utf8_lossy(&res.stderr).trim().to_string(),
@@ -319,7 +588,7 @@ fn memory_limit_refuses_up_front() {
         "error: big.obj: decomposing this mesh (2000 faces, 6000 vertices) needs about 41.4 MiB, \
          more than the memory limit of 40.0 MiB (default: the memory available now); raise \
          the limit with --max-memory SIZE, e.g. --max-memory 64G (in the library: the \
-         max_memory of primdecomp::load_limited)"
+         max_memory of primdecomp::LoadOptions)"
     );
     assert!(!dir.join("big.json").exists());
     let (code, err) = run_in(
@@ -365,5 +634,41 @@ fn memory_limit_refuses_up_front() {
         "{err}"
     );
     assert!(!dir.join("t.json").exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// An input the user may not read is bad input too: exit 2, one sentence naming the
+/// file. Root reads everything, so as root the binary runs as user 65534 through
+/// `setpriv` (util-linux).
+#[test]
+fn unreadable_input_is_exit_2() {
+    let dir = tempdir("permission");
+    let input = dir.join("secret.obj");
+    std::fs::write(&input, format!("{TRI}f 1 2 3\n")).unwrap();
+    let mode = |p: &Path, m| {
+        use std::os::unix::fs::PermissionsExt;
+        std::fs::set_permissions(p, std::fs::Permissions::from_mode(m)).unwrap();
+    };
+    mode(&input, 0o000);
+    mode(&dir, 0o777);
+    let uid = Command::new("id").arg("-u").output().expect("id runs");
+    let root = String::from_utf8_lossy(&uid.stdout).trim() == "0";
+    let bin = env!("CARGO_BIN_EXE_primdecomp");
+    let mut cmd = if root {
+        let mut c = Command::new("setpriv");
+        c.args(["--reuid=65534", "--regid=65534", "--clear-groups", bin]);
+        c
+    } else {
+        Command::new(bin)
+    };
+    cmd.current_dir(&dir)
+        .args(["decompose", "secret.obj", "-o", "out.json", "--quiet"]);
+    let res = output_within(cmd);
+    let stderr = String::from_utf8_lossy(&res.stderr).trim().to_string();
+    assert_eq!(
+        (res.status.code(), stderr.as_str()),
+        (Some(2), "error: secret.obj: cannot open: permission denied")
+    );
+    assert!(!dir.join("out.json").exists());
     std::fs::remove_dir_all(&dir).unwrap();
 }

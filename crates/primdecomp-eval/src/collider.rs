@@ -12,6 +12,7 @@ use primdecomp::math::V3;
 use primdecomp::{Error, Result};
 use primdecomp::{Kind, Primitive};
 use std::collections::HashMap;
+use std::io::Read;
 use std::path::Path;
 
 /// One convex hull as a triangle mesh: `triangles` index `positions`.
@@ -70,12 +71,19 @@ impl Collider {
     }
 }
 
-/// Loads a collider: `.json` is a primdecomp document, `.obj` convex hulls.
+/// Loads a collider: `.json` is a primdecomp document, `.obj` convex hulls. Like a
+/// mesh it must be a regular file ([`primdecomp::open_regular`]: a named
+/// pipe or device is refused before reading), and no more than its size is read.
 pub fn load(path: &Path) -> Result<Collider> {
-    let bytes = std::fs::read(path).map_err(|source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    })?;
+    let (file, meta) = primdecomp::open_regular(path)?;
+    let mut bytes = Vec::new();
+    (&file)
+        .take(meta.len())
+        .read_to_end(&mut bytes)
+        .map_err(|error| Error::Io {
+            path: path.to_path_buf(),
+            error,
+        })?;
     let ext = path
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());
@@ -257,7 +265,10 @@ mod tests {
             .to_string()
             .contains("unknown collider"));
         let missing = dir.join("none.json");
-        assert!(matches!(load(&missing), Err(Error::Io { .. })));
+        assert!(matches!(load(&missing), Err(Error::Open { .. })));
+        let folder = dir.join("d.json");
+        std::fs::create_dir(&folder).unwrap();
+        assert!(matches!(load(&folder), Err(Error::NotAFile { .. })));
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

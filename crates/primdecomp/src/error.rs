@@ -7,14 +7,54 @@ use std::path::PathBuf;
 /// parsing, parameter validation and the driver do.
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
-    /// The file could not be opened, mapped or read.
-    #[error("{path}: cannot read: {source}")]
+    /// The file was opened but could not be mapped or read (a device, memory or
+    /// system failure, not the input's fault: exit code 1). The message holds the OS
+    /// error's text once; it is not also given as the error's `source`, so printing
+    /// the chain does not repeat it.
+    #[error("{path}: cannot read: {}", reason(error))]
     Io {
         /// The file.
         path: PathBuf,
         /// What the operating system said.
-        #[source]
-        source: std::io::Error,
+        error: std::io::Error,
+    },
+    /// An input, or a file an input names (a glTF buffer), could not be opened: it
+    /// does not exist, permission is denied, its path loops through symbolic links or
+    /// runs through something that is not a directory (exit code 2).
+    #[error("{path}: cannot open: {}", reason(error))]
+    Open {
+        /// The file.
+        path: PathBuf,
+        /// What the operating system said.
+        error: std::io::Error,
+    },
+    /// An input is not a regular file (a directory, named pipe, socket or device):
+    /// refused before anything is read from it, so a pipe cannot block the run and a
+    /// device cannot feed it without end (exit code 2).
+    #[error("{path}: is {kind}, not a regular file")]
+    NotAFile {
+        /// The file.
+        path: PathBuf,
+        /// What it is instead.
+        kind: FileKind,
+    },
+    /// A glTF buffer's URI was refused or names nothing usable: a path outside the
+    /// glTF's folder without [`LoadOptions::allow_external_uris`], a URL scheme
+    /// other than `data:`, or a file that is missing, not a regular file or shorter
+    /// than the buffer's declared `byteLength` (exit code 2).
+    ///
+    /// [`LoadOptions::allow_external_uris`]: crate::LoadOptions::allow_external_uris
+    #[error("{path}: buffer {buffer}: the URI '{uri}' {reason}")]
+    Uri {
+        /// The glTF file.
+        path: PathBuf,
+        /// The buffer's index in the document.
+        buffer: usize,
+        /// The URI as the document gives it (cut to 80 characters, control
+        /// characters escaped).
+        uri: String,
+        /// Why it was not read, as the end of a sentence.
+        reason: String,
     },
     /// A text format is malformed at a given 1-based line.
     #[error("{path}:{line}: {msg}")]
@@ -90,7 +130,7 @@ pub enum Error {
         "{path}: decomposing this mesh ({faces} faces, {vertices} vertices) needs about {}, \
          more than the memory limit of {} (default: the memory available now); raise the \
          limit with --max-memory SIZE, e.g. --max-memory 64G (in the library: the \
-         max_memory of primdecomp::load_limited)",
+         max_memory of primdecomp::LoadOptions)",
         show_bytes(*needed),
         show_bytes(*limit)
     )]
@@ -112,15 +152,91 @@ pub enum Error {
     /// The caller's [`crate::Progress`] cancelled the run.
     #[error("cancelled")]
     Cancelled,
-    /// An output file could not be written.
-    #[error("{path}: cannot write: {source}")]
+    /// An output file could not be written (exit code 1). Like [`Error::Io`], the
+    /// OS error is in the message and the `error` field, not the `source`.
+    #[error("{path}: cannot write: {}", reason(error))]
     Write {
         /// The file.
         path: PathBuf,
         /// What the operating system said.
-        #[source]
-        source: std::io::Error,
+        error: std::io::Error,
     },
+}
+
+/// What an input that is not a regular file is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FileKind {
+    /// A directory.
+    Directory,
+    /// A named pipe (FIFO).
+    NamedPipe,
+    /// A Unix socket.
+    Socket,
+    /// A character device (`/dev/zero`, a terminal).
+    CharDevice,
+    /// A block device (a disk).
+    BlockDevice,
+    /// Anything else that is not a regular file.
+    Other,
+}
+
+impl FileKind {
+    /// The kind of a file that is not a regular file; `None` for a regular file.
+    pub(crate) fn of(meta: &std::fs::Metadata) -> Option<FileKind> {
+        let t = meta.file_type();
+        if t.is_file() {
+            return None;
+        }
+        if t.is_dir() {
+            return Some(FileKind::Directory);
+        }
+        #[cfg(unix)]
+        {
+            use std::os::unix::fs::FileTypeExt;
+            let kinds = [
+                (t.is_fifo(), FileKind::NamedPipe),
+                (t.is_socket(), FileKind::Socket),
+                (t.is_char_device(), FileKind::CharDevice),
+                (t.is_block_device(), FileKind::BlockDevice),
+            ];
+            if let Some((_, k)) = kinds.iter().find(|(is, _)| *is) {
+                return Some(*k);
+            }
+        }
+        Some(FileKind::Other)
+    }
+}
+
+impl std::fmt::Display for FileKind {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(match self {
+            FileKind::Directory => "a directory",
+            FileKind::NamedPipe => "a named pipe (FIFO)",
+            FileKind::Socket => "a socket",
+            FileKind::CharDevice => "a character device",
+            FileKind::BlockDevice => "a block device",
+            FileKind::Other => "neither a regular file nor a directory",
+        })
+    }
+}
+
+/// An OS error as the end of a sentence: lower case, without the "(os error N)"
+/// that `std` appends, and a symbolic-link loop called one.
+pub(crate) fn reason(e: &std::io::Error) -> String {
+    #[cfg(unix)]
+    if e.raw_os_error() == Some(libc::ELOOP) {
+        return "too many levels of symbolic links (a symbolic link loop?)".into();
+    }
+    let text = e.to_string();
+    let text = match text.rfind(" (os error ") {
+        Some(i) if text.ends_with(')') => &text[..i],
+        _ => &text,
+    };
+    let mut c = text.chars();
+    match c.next() {
+        Some(first) => first.to_lowercase().chain(c).collect(),
+        None => String::new(),
+    }
 }
 
 impl Error {
@@ -147,7 +263,9 @@ impl Error {
             msg: msg.into(),
         }
     }
-    /// Exit code the CLI uses: 2 for bad input or settings, 1 for anything else.
+    /// Exit code the CLI uses: 2 for bad input or settings (an input that cannot be
+    /// opened, is not a regular file, or does not parse, included), 1 for failures
+    /// that are not the input's fault (reading an opened file, writing, plotting).
     pub fn exit_code(&self) -> i32 {
         match self {
             Error::Io { .. } | Error::Write { .. } | Error::Cancelled => 1,

@@ -83,9 +83,11 @@ mod result;
 
 pub use decompose::{decompose, decompose_with};
 pub use demo::{demo_scene, demo_scene_obj};
-pub use error::{Error, Result};
+pub use error::{Error, FileKind, Result};
 pub use export::{read_primitives, tessellate, to_json, to_obj, write_atomic};
-pub use mesh::io::{load, load_limited, memory_needed, parse_mesh, Format};
+pub use mesh::io::{
+    load, load_with, memory_needed, open_regular, parse_mesh, parse_mesh_with, Format, LoadOptions,
+};
 pub use mesh::{Mesh, MeshObject, SkipCounts, Transform};
 pub use objects::{decompose_objects, ObjectResult, ObjectTarget, Objects};
 pub use params::{Dedup, Params, Partitions, Reprice};

@@ -19,9 +19,9 @@ static COUNTER: AtomicU64 = AtomicU64::new(0);
 /// naming `path`. A symlink at `path` is replaced by a regular file; the new file
 /// gets default permissions, not the old file's.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
-    let fail = |source| Error::Write {
+    let fail = |error| Error::Write {
         path: path.to_path_buf(),
-        source,
+        error,
     };
     let Some(name) = path.file_name() else {
         return Err(fail(io::Error::new(

@@ -25,9 +25,9 @@ pub fn write_export(
     for (rel, bytes) in &files.beside {
         let p = dir.join(rel);
         if let Some(parent) = p.parent() {
-            std::fs::create_dir_all(parent).map_err(|source| crate::Error::Write {
+            std::fs::create_dir_all(parent).map_err(|error| crate::Error::Write {
                 path: p.clone(),
-                source,
+                error,
             })?;
         }
         super::write_atomic(&p, bytes)?;

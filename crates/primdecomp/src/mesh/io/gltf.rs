@@ -7,12 +7,20 @@
 //! files relative to the file's directory, base64 `data:` URIs), and accessors are
 //! read by hand (any component type, byte strides, sparse substitution).
 //!
+//! External buffers follow [`LoadOptions::allow_external_uris`]: by default a URI
+//! must be a relative path that stays inside the glTF's folder (no absolute path, no
+//! `..` component, no symbolic link leading out, no URL scheme but `data:`). Any
+//! buffer file must be a regular file (opened without blocking, checked on the
+//! handle) holding at least the buffer's declared `byteLength`, checked before
+//! reading; exactly that many bytes are read.
+//!
 //! The default scene (or scene 0) is walked with node transforms composed in f64;
 //! a file without scenes contributes every mesh once, untransformed. Triangle lists,
 //! strips and fans become triangles; points and lines primitives are counted in
 //! [`SkipCounts::other`](crate::mesh::SkipCounts::other).
 
-use crate::error::{Error, Result};
+use super::{open_checked, LoadOptions, OpenFail};
+use crate::error::{reason, Error, Result};
 use crate::mesh::MeshBuilder;
 use gltf::accessor::sparse::IndexType;
 use gltf::accessor::{DataType, Dimensions};
@@ -20,7 +28,8 @@ use gltf::json::validation::Validate;
 use gltf::mesh::Mode;
 use gltf::scene::Transform;
 use std::borrow::Cow;
-use std::path::Path;
+use std::io::Read;
+use std::path::{Component, Path, PathBuf};
 
 /// Errors inside a primitive; the caller adds which mesh and primitive.
 type Res<T> = std::result::Result<T, String>;
@@ -43,8 +52,16 @@ const UNSUPPORTED: [&str; 4] = [
     "EXT_mesh_gpu_instancing",
 ];
 
-/// Parses a `.gltf` or `.glb` file; `path` locates external buffers.
-pub fn parse_gltf(bytes: &[u8], path: &Path) -> Result<MeshBuilder> {
+/// Parses a `.gltf` or `.glb` file with the default [`LoadOptions`]: external
+/// buffers are read only from inside the folder of `path`.
+#[cfg(test)]
+pub(crate) fn parse_gltf(bytes: &[u8], path: &Path) -> Result<MeshBuilder> {
+    parse_gltf_with(bytes, path, &LoadOptions::default())
+}
+
+/// Parses a `.gltf` or `.glb` file; `path` locates external buffers, which are read
+/// as `options.allow_external_uris` allows ([`LoadOptions`]).
+pub fn parse_gltf_with(bytes: &[u8], path: &Path, options: &LoadOptions) -> Result<MeshBuilder> {
     if bytes.trim_ascii().is_empty() {
         return Ok(MeshBuilder::new());
     }
@@ -56,7 +73,7 @@ pub fn parse_gltf(bytes: &[u8], path: &Path) -> Result<MeshBuilder> {
     let doc = document(json, path)?;
     let mut r = Reader {
         out: MeshBuilder::new(),
-        buffers: load_buffers(&doc, blob, path)?,
+        buffers: load_buffers(&doc, blob, path, options.allow_external_uris)?,
         path,
     };
     match doc.default_scene().or_else(|| doc.scenes().next()) {
@@ -182,13 +199,14 @@ fn check_attribute_refs(root: &gltf::json::Root, path: &Path) -> Result<()> {
     Ok(())
 }
 
-/// Loads every buffer: the GLB BIN chunk, a `data:` URI or a file next to `path`.
+/// Loads every buffer: the GLB BIN chunk, a `data:` URI or a file next to `path`
+/// (elsewhere only with `allow_external`).
 fn load_buffers<'a>(
     doc: &gltf::Document,
     blob: Option<&'a [u8]>,
     path: &Path,
+    allow_external: bool,
 ) -> Result<Vec<Cow<'a, [u8]>>> {
-    let base = path.parent().unwrap_or(Path::new(""));
     let mut out = Vec::new();
     for buf in doc.buffers() {
         let i = buf.index();
@@ -198,7 +216,14 @@ fn load_buffers<'a>(
                     format!("buffer {i} refers to the GLB binary chunk, which the file lacks");
                 Error::format(path, msg)
             })?),
-            gltf::buffer::Source::Uri(uri) => Cow::Owned(read_uri(uri, base, path, i)?),
+            gltf::buffer::Source::Uri(uri) => {
+                let at = UriAt {
+                    uri,
+                    path,
+                    buffer: i,
+                };
+                Cow::Owned(at.read(buf.length(), allow_external)?)
+            }
         };
         if data.len() < buf.length() {
             let msg = format!(
@@ -213,25 +238,166 @@ fn load_buffers<'a>(
     Ok(out)
 }
 
-fn read_uri(uri: &str, base: &Path, path: &Path, i: usize) -> Result<Vec<u8>> {
-    let fail = |msg: String| Error::format(path, format!("buffer {i}: {msg}"));
-    if let Some(rest) = uri.strip_prefix("data:") {
-        let b64 = rest.split_once(";base64,").map(|(_, d)| d);
-        return b64
-            .and_then(base64_decode)
-            .ok_or_else(|| fail("the data URI is not valid base64".into()));
-    }
-    let rel = match uri.strip_prefix("file://").or(uri.strip_prefix("file:")) {
-        Some(p) => p,
-        None if uri.contains(':') => {
-            return Err(fail(format!("the URI scheme of '{uri}' is not supported")))
+/// What a refusal of an external URI tells the user to do about it.
+const OPT_IN: &str = "only files inside the glTF's folder are read without \
+                      --allow-external-uris (LoadOptions::allow_external_uris in the library)";
+
+/// Buffer `buffer`'s URI `uri` in the glTF file `path`.
+struct UriAt<'a> {
+    uri: &'a str,
+    path: &'a Path,
+    buffer: usize,
+}
+
+impl UriAt<'_> {
+    fn refuse(&self, reason: String) -> Error {
+        Error::Uri {
+            path: self.path.to_path_buf(),
+            buffer: self.buffer,
+            uri: show_uri(self.uri),
+            reason,
         }
-        None => uri,
-    };
-    let decoded = percent_decode(rel)
-        .ok_or_else(|| fail(format!("the URI '{uri}' is not UTF-8 once decoded")))?;
-    let file = base.join(decoded);
-    std::fs::read(&file).map_err(|e| fail(format!("cannot read {}: {e}", file.display())))
+    }
+
+    /// The buffer's `len` declared bytes: a base64 `data:` URI decoded, or read from
+    /// the file the URI names relative to the glTF's folder.
+    fn read(&self, len: usize, allow_external: bool) -> Result<Vec<u8>> {
+        let uri = self.uri;
+        let rel = match uri_scheme(uri).map(str::to_ascii_lowercase).as_deref() {
+            Some("data") => {
+                let b64 = uri.split_once(";base64,").map(|(_, d)| d);
+                let msg = "is a data URI without valid base64 data";
+                return b64
+                    .and_then(base64_decode)
+                    .ok_or_else(|| self.refuse(msg.into()));
+            }
+            Some("file") if allow_external => {
+                let rest = &uri["file:".len()..];
+                rest.strip_prefix("//").unwrap_or(rest)
+            }
+            Some("file") => return Err(self.refuse(format!("is a file: URL; {OPT_IN}"))),
+            Some(s) => {
+                return Err(self.refuse(format!(
+                    "uses the URL scheme '{s}:', which is never read (only data: URIs and \
+                     file paths are)"
+                )))
+            }
+            None => uri,
+        };
+        let decoded = percent_decode(rel)
+            .ok_or_else(|| self.refuse("is not UTF-8 once its %-escapes are decoded".into()))?;
+        if decoded.contains('\0') {
+            return Err(self.refuse("holds a NUL character".into()));
+        }
+        let name = Path::new(&decoded);
+        let (base, file) = match self.path.parent() {
+            Some(d) if !d.as_os_str().is_empty() => (d, d.join(name)),
+            _ => (Path::new("."), name.to_path_buf()),
+        };
+        let open = if allow_external {
+            file.clone()
+        } else {
+            self.inside(name, base, &file)?
+        };
+        self.read_file(&file, &open, len)
+    }
+
+    /// The real path of `file` (`name` joined to the glTF's folder `base`), refusing
+    /// an absolute `name`, a `..` component and a symbolic link leading out of `base`.
+    fn inside(&self, name: &Path, base: &Path, file: &Path) -> Result<PathBuf> {
+        if name.has_root() || name.is_absolute() {
+            return Err(self.refuse(format!("is an absolute path; {OPT_IN}")));
+        }
+        if name.components().any(|c| c == Component::ParentDir) {
+            let msg = format!("climbs out of the glTF's folder with '..'; {OPT_IN}");
+            return Err(self.refuse(msg));
+        }
+        let real = std::fs::canonicalize(file).and_then(|real| {
+            let root = std::fs::canonicalize(base)?;
+            Ok((real.starts_with(&root), real))
+        });
+        match real {
+            Ok((true, real)) => Ok(real),
+            Ok((false, real)) => Err(self.refuse(format!(
+                "leads out of the glTF's folder through a symbolic link, to {}; {OPT_IN}",
+                real.display()
+            ))),
+            Err(e) => Err(self.cannot_open(file, &e)),
+        }
+    }
+
+    fn cannot_open(&self, file: &Path, e: &std::io::Error) -> Error {
+        let shown = file.display();
+        self.refuse(format!(
+            "names {shown}, which cannot be opened: {}",
+            reason(e)
+        ))
+    }
+
+    /// Exactly `len` bytes of `open` (the real path of `file`, which messages name),
+    /// after checking that it is a regular file holding at least that many.
+    fn read_file(&self, file: &Path, open: &Path, len: usize) -> Result<Vec<u8>> {
+        let shown = file.display();
+        let io = |error| Error::Io {
+            path: file.to_path_buf(),
+            error,
+        };
+        let (handle, meta) = open_checked(open).map_err(|e| match e {
+            OpenFail::Open(e) => self.cannot_open(file, &e),
+            OpenFail::NotAFile(kind) => self.refuse(format!(
+                "names {shown}, which is {kind}, not a regular file"
+            )),
+            OpenFail::Read(error) => io(error),
+        })?;
+        if meta.len() < len as u64 {
+            return Err(self.refuse(format!(
+                "names {shown}, which holds {} bytes; the buffer declares {len}",
+                meta.len()
+            )));
+        }
+        let mut data = Vec::new();
+        data.try_reserve_exact(len)
+            .map_err(|e| io(std::io::Error::new(std::io::ErrorKind::OutOfMemory, e)))?;
+        (&handle)
+            .take(len as u64)
+            .read_to_end(&mut data)
+            .map_err(io)?;
+        if data.len() < len {
+            return Err(self.refuse(format!(
+                "names {shown}, which ended after {} of its {len} bytes while being read",
+                data.len()
+            )));
+        }
+        Ok(data)
+    }
+}
+
+/// The URL scheme of `uri` (RFC 3986: a letter, then letters, digits, `+`, `-` or
+/// `.`, then `:`), if it has one.
+fn uri_scheme(uri: &str) -> Option<&str> {
+    let (scheme, _) = uri.split_once(':')?;
+    let mut c = scheme.chars();
+    let first = c.next()?;
+    let ok = first.is_ascii_alphabetic()
+        && c.all(|c| c.is_ascii_alphanumeric() || matches!(c, '+' | '-' | '.'));
+    ok.then_some(scheme)
+}
+
+/// A URI for a message: control characters escaped, cut to 80 characters.
+fn show_uri(uri: &str) -> String {
+    let mut out = String::new();
+    for (n, c) in uri.chars().enumerate() {
+        if n == 80 {
+            out.push('…');
+            break;
+        }
+        if c.is_control() {
+            out.extend(c.escape_default());
+        } else {
+            out.push(c);
+        }
+    }
+    out
 }
 
 /// Standard or URL-safe base64, padding optional, whitespace skipped.
@@ -706,6 +872,148 @@ mod tests {
         std::fs::remove_dir_all(&dir).unwrap();
         check_scene(&b.unwrap());
         assert!(err(j.as_bytes()).contains("dir/my data.bin"));
+    }
+
+    /// A scratch folder holding `bin()` as `b.bin`, removed on drop.
+    struct Scratch(PathBuf);
+
+    impl Scratch {
+        fn new(tag: &str) -> Scratch {
+            let d =
+                std::env::temp_dir().join(format!("primdecomp-gltf-{tag}-{}", std::process::id()));
+            let _ = std::fs::remove_dir_all(&d);
+            std::fs::create_dir_all(d.join("sub")).unwrap();
+            std::fs::write(d.join("b.bin"), bin()).unwrap();
+            Scratch(d)
+        }
+
+        /// Parses the test document with buffer URI `uri`, as `sub/t.gltf`.
+        fn parse(&self, uri: &str, allow: bool) -> Result<MeshBuilder> {
+            let j = json(&format!(r#""uri":"{uri}","#), "", SCENE);
+            let options = LoadOptions {
+                allow_external_uris: allow,
+                ..LoadOptions::default()
+            };
+            parse_gltf_with(j.as_bytes(), &self.0.join("sub/t.gltf"), &options)
+        }
+
+        fn err(&self, uri: &str, allow: bool) -> String {
+            let e = self.parse(uri, allow).unwrap_err();
+            assert_eq!(e.exit_code(), 2, "{e}");
+            e.to_string()
+        }
+    }
+
+    impl Drop for Scratch {
+        fn drop(&mut self) {
+            let _ = std::fs::remove_dir_all(&self.0);
+        }
+    }
+
+    /// By default only files inside the glTF's folder are read: absolute paths, `..`
+    /// (also %-encoded), symbolic links leading out and file: URLs are refused, each
+    /// naming the URI; with the option they are read. Other schemes never are.
+    #[cfg(unix)]
+    #[test]
+    fn uris_outside_the_folder_need_the_option() {
+        let s = Scratch::new("outside");
+        let abs = s.0.join("b.bin");
+        let abs = abs.to_str().unwrap();
+        std::os::unix::fs::symlink("../b.bin", s.0.join("sub/up.bin")).unwrap();
+        std::fs::write(s.0.join("sub/in.bin"), bin()).unwrap();
+        let url = format!("file://{abs}");
+        let cases = [
+            (abs, "is an absolute path"),
+            ("../b.bin", "climbs out of the glTF's folder with '..'"),
+            ("%2e%2e/b.bin", "climbs out of the glTF's folder with '..'"),
+            (
+                "up.bin",
+                "leads out of the glTF's folder through a symbolic link",
+            ),
+            (url.as_str(), "is a file: URL"),
+        ];
+        for (uri, why) in cases {
+            let e = s.err(uri, false);
+            assert!(
+                e.contains(&format!("buffer 0: the URI '{uri}' {why}")),
+                "{e}"
+            );
+            assert!(e.contains("--allow-external-uris"), "{e}");
+            check_scene(&s.parse(uri, true).unwrap());
+        }
+        check_scene(&s.parse("in.bin", false).unwrap());
+        check_scene(&s.parse("./in.bin", false).unwrap());
+        for uri in ["http://example.com/b.bin", "C:b.bin"] {
+            for allow in [false, true] {
+                assert!(s.err(uri, allow).contains("which is never read"), "{uri}");
+            }
+        }
+        let e = s.err("data:application/octet-stream;base64,@@@", false);
+        assert!(e.contains("is a data URI without valid base64 data"), "{e}");
+    }
+
+    /// A buffer file must be a regular file holding its declared length; only that
+    /// many bytes are read; a pipe or device is refused before any read (a read of
+    /// either would block or never end).
+    #[cfg(unix)]
+    #[test]
+    fn buffer_files_are_regular_and_no_longer_than_declared() {
+        let s = Scratch::new("regular");
+        let sub = s.0.join("sub");
+        std::fs::write(sub.join("short.bin"), &bin()[..40]).unwrap();
+        let e = s.err("short.bin", false);
+        assert!(
+            e.contains("which holds 40 bytes; the buffer declares 60"),
+            "{e}"
+        );
+        let mut long = bin();
+        long.extend([0xAB; 1000]);
+        std::fs::write(sub.join("long.bin"), long).unwrap();
+        check_scene(&s.parse("long.bin", false).unwrap());
+        let fifo = std::ffi::CString::new(sub.join("pipe.bin").to_str().unwrap()).unwrap();
+        assert_eq!(unsafe { libc::mkfifo(fifo.as_ptr(), 0o644) }, 0);
+        std::fs::create_dir(sub.join("dir.bin")).unwrap();
+        std::os::unix::fs::symlink("/dev/zero", sub.join("zero.bin")).unwrap();
+        let kinds = [
+            (
+                "pipe.bin",
+                false,
+                "is a named pipe (FIFO), not a regular file",
+            ),
+            ("dir.bin", false, "is a directory, not a regular file"),
+            (
+                "zero.bin",
+                true,
+                "is a character device, not a regular file",
+            ),
+            (
+                "/dev/zero",
+                true,
+                "is a character device, not a regular file",
+            ),
+        ];
+        for (uri, allow, want) in kinds {
+            let e = s.err(uri, allow);
+            assert!(
+                e.contains(&format!("the URI '{uri}' names ")) && e.contains(want),
+                "{e}"
+            );
+        }
+        let e = s.err("missing.bin", false);
+        assert!(
+            e.contains("missing.bin, which cannot be opened: no such file"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn uris_in_messages_are_escaped_and_cut() {
+        assert_eq!(show_uri("a\nb"), "a\\nb");
+        let long = "x".repeat(100);
+        assert_eq!(show_uri(&long), format!("{}…", "x".repeat(80)));
+        assert_eq!(uri_scheme("HTTP://x"), Some("HTTP"));
+        assert_eq!(uri_scheme("1:x"), None);
+        assert_eq!(uri_scheme("a/b:c"), None);
     }
 
     #[test]

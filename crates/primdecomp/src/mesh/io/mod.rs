@@ -1,6 +1,10 @@
 //! Mesh readers, one file per format. Binary formats are memory-mapped; every reader
 //! returns a [`MeshBuilder`] of f64 world coordinates and polygons, or an [`Error`]
 //! naming the file and the line or byte offset.
+//!
+//! Every file is opened through [`open_regular`]: without blocking (a named pipe
+//! cannot stall the open) and refused unless the opened handle is a regular file, so
+//! pipes, sockets, devices and directories are errors before anything is read.
 
 mod declared;
 mod gltf;
@@ -9,11 +13,12 @@ mod off;
 mod ply;
 mod stl;
 
-use crate::error::{Error, Result};
+use crate::error::{Error, FileKind, Result};
 use crate::mesh::{Mesh, MeshBuilder};
+use std::fs::{File, Metadata};
 use std::path::Path;
 
-pub(crate) use self::gltf::parse_gltf;
+pub(crate) use self::gltf::parse_gltf_with;
 pub(crate) use obj::parse_obj;
 pub(crate) use off::declared_counts as off_declared;
 pub(crate) use off::parse_off;
@@ -71,9 +76,103 @@ pub fn parse_mesh(bytes: &[u8], format: Format, path: &Path) -> Result<Mesh> {
     parse_bytes(bytes, format, path).map(Mesh::from_builder)
 }
 
-/// Parses bytes already in memory as `format`; `path` is used for messages (and, for
-/// `.gltf`, to resolve external buffers).
+/// [`parse_mesh`] with `options` (of which only the glTF URI policy applies: a
+/// `.gltf`'s external buffers are resolved from `path`'s folder).
+pub fn parse_mesh_with(
+    bytes: &[u8],
+    format: Format,
+    path: &Path,
+    options: &LoadOptions,
+) -> Result<Mesh> {
+    parse_bytes_with(bytes, format, path, options).map(Mesh::from_builder)
+}
+
+/// How [`load_with`] (and [`parse_mesh_with`]) read an input. `Default` is the
+/// safe setting for untrusted files: no memory limit, and glTF buffers read only from
+/// `data:` URIs, the GLB's own chunk or files inside the glTF's folder.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct LoadOptions {
+    /// Refuse with [`Error::TooLarge`] an input whose decomposition would need more
+    /// than this many bytes by the memory model ([`memory_needed`]): once from the counts the
+    /// file declares, before parsing, and once from the parsed mesh. `None`: no limit.
+    pub max_memory: Option<u64>,
+    /// glTF: also read buffer URIs that are absolute paths, climb out of the glTF's
+    /// folder (a `..` component, or a symbolic link inside the folder that leads out
+    /// of it) or are `file:` URLs. Off: such a URI is [`Error::Uri`], so a glTF from an
+    /// untrusted source reads nothing outside its own folder. Other URL schemes
+    /// (`http:` …) are never read. Either way a buffer must be a regular file holding
+    /// at least its declared `byteLength`, and only that many bytes are read.
+    pub allow_external_uris: bool,
+}
+
+/// Opens `path` for reading and returns it with its metadata, or refuses it with
+/// [`Error::NotAFile`] unless it is a regular file (after following symbolic links).
+///
+/// The path is `stat`ed first, so a socket or device is refused without being
+/// opened; then it is opened with `O_NONBLOCK` (opening a named pipe never waits for
+/// a writer) and `O_NOCTTY`, and the *opened handle's* metadata is checked again, so a
+/// file swapped for a pipe between the two is refused too. Failing to open is
+/// [`Error::Open`]; both are the input's fault (exit code 2).
+pub fn open_regular(path: &Path) -> Result<(File, Metadata)> {
+    match open_checked(path) {
+        Ok(opened) => Ok(opened),
+        Err(OpenFail::Open(error)) => Err(Error::Open {
+            path: path.to_path_buf(),
+            error,
+        }),
+        Err(OpenFail::NotAFile(kind)) => Err(Error::NotAFile {
+            path: path.to_path_buf(),
+            kind,
+        }),
+        Err(OpenFail::Read(error)) => Err(Error::Io {
+            path: path.to_path_buf(),
+            error,
+        }),
+    }
+}
+
+/// Why [`open_checked`] failed, without a path: the glTF reader words these as
+/// reasons a buffer URI is unusable.
+pub(crate) enum OpenFail {
+    Open(std::io::Error),
+    NotAFile(FileKind),
+    /// The opened handle's metadata could not be read.
+    Read(std::io::Error),
+}
+
+pub(crate) fn open_checked(path: &Path) -> std::result::Result<(File, Metadata), OpenFail> {
+    let meta = std::fs::metadata(path).map_err(OpenFail::Open)?;
+    if let Some(kind) = FileKind::of(&meta) {
+        return Err(OpenFail::NotAFile(kind));
+    }
+    let mut options = std::fs::OpenOptions::new();
+    options.read(true);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::OpenOptionsExt;
+        options.custom_flags(libc::O_NONBLOCK | libc::O_NOCTTY);
+    }
+    let file = options.open(path).map_err(OpenFail::Open)?;
+    let meta = file.metadata().map_err(OpenFail::Read)?;
+    match FileKind::of(&meta) {
+        Some(kind) => Err(OpenFail::NotAFile(kind)),
+        None => Ok((file, meta)),
+    }
+}
+
+/// Parses bytes already in memory as `format` with the default `LoadOptions`;
+/// `path` is used for messages (and, for `.gltf`, to resolve external buffers).
 pub(crate) fn parse_bytes(bytes: &[u8], format: Format, path: &Path) -> Result<MeshBuilder> {
+    parse_bytes_with(bytes, format, path, &LoadOptions::default())
+}
+
+/// `parse_bytes` with `options` (of which only the glTF URI policy applies here).
+pub(crate) fn parse_bytes_with(
+    bytes: &[u8],
+    format: Format,
+    path: &Path,
+    options: &LoadOptions,
+) -> Result<MeshBuilder> {
     if bytes.starts_with(&[0x1f, 0x8b]) {
         return Err(Error::format(
             path,
@@ -85,7 +184,7 @@ pub(crate) fn parse_bytes(bytes: &[u8], format: Format, path: &Path) -> Result<M
         Format::Ply => parse_ply(bytes, path),
         Format::Stl => parse_stl(bytes, path),
         Format::Off => parse_off(bytes, path),
-        Format::Gltf | Format::Glb => parse_gltf(bytes, path),
+        Format::Gltf | Format::Glb => parse_gltf_with(bytes, path, options),
     }
 }
 
@@ -319,21 +418,23 @@ pub(crate) mod text {
 
 /// The peak memory in bytes a decomposition of `path` is expected to need, from the
 /// counts its header declares, read without parsing the file; `None` where they
-/// cannot be known before parsing (glTF/GLB, an unreadable file, a header that does
-/// not parse). Schedulers running several inputs at once reserve this much per input.
+/// cannot be known before parsing (glTF/GLB, an unreadable file or one that is not a
+/// regular file, a header that does not parse). Schedulers running several inputs at
+/// once reserve this much per input.
 pub fn memory_needed(path: &Path) -> Option<u64> {
     let format = Format::from_path(path)?;
-    let file = std::fs::File::open(path).ok()?;
-    if file.metadata().ok()?.len() == 0 {
+    let (file, meta) = open_regular(path).ok()?;
+    if meta.len() == 0 {
         return None;
     }
-    // SAFETY: as in `load_limited`: a read-only map living only for this call.
+    // SAFETY: as in `load_with`: a read-only map living only for this call.
     let map = unsafe { memmap2::Mmap::map(&file) }.ok()?;
     declared::declared_counts(&map, format).map(crate::memory::estimate)
 }
 
 /// Reads the mesh in `path` (OBJ, PLY, STL, OFF, glTF/GLB, by its extension):
-/// memory-mapped, parsed, re-centred. No memory limit: see [`load_limited`].
+/// memory-mapped, parsed, re-centred, with the default [`LoadOptions`] (no memory
+/// limit, glTF buffers only from inside the glTF's folder): see [`load_with`].
 ///
 /// ```
 /// let mesh = primdecomp::load(concat!(env!("CARGO_MANIFEST_DIR"), "/../../datasets/demo_scene.obj").as_ref())?;
@@ -346,40 +447,52 @@ pub fn memory_needed(path: &Path) -> Option<u64> {
 /// [`Error::EmptyMesh`] when it has no polygon, [`Error::Extent`] / [`Error::Position`]
 /// for vertices too far apart or from the origin.
 pub fn load(path: &Path) -> Result<Mesh> {
-    load_limited(path, None)
+    load_with(path, &LoadOptions::default())
 }
 
-/// [`load`], refusing with [`Error::TooLarge`] an input whose decomposition would need
-/// more than `max_memory` bytes by the memory model (`crate::memory`): once from the counts
-/// the file declares, before parsing, and once from the parsed mesh, before anything
-/// else is allocated for it.
-pub fn load_limited(path: &Path, max_memory: Option<u64>) -> Result<Mesh> {
-    let io_err = |source| Error::Io {
-        path: path.to_path_buf(),
-        source,
-    };
-    let meta = std::fs::metadata(path).map_err(io_err)?;
-    if meta.is_dir() {
-        return Err(Error::format(path, "is a directory, not a mesh file"));
-    }
+/// Opens `path` with [`open_regular`] (refusing anything but a regular file before
+/// reading it), memory-maps and parses it, then re-centres it into a [`Mesh`].
+/// `options.max_memory` refuses with [`Error::TooLarge`] an input whose
+/// decomposition would need more than that by the memory model ([`memory_needed`]): once
+/// from the counts the file declares, before parsing, and once from the parsed mesh,
+/// before anything else is allocated for it. `options.allow_external_uris` is the
+/// glTF buffer policy ([`LoadOptions`]).
+///
+/// ```
+/// let options = primdecomp::LoadOptions {
+///     max_memory: Some(1 << 30),
+///     ..Default::default()
+/// };
+/// let mesh = primdecomp::load_with(
+///     concat!(env!("CARGO_MANIFEST_DIR"), "/../../datasets/demo_scene.obj").as_ref(),
+///     &options,
+/// )?;
+/// assert!(mesh.face_count() > 0);
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
+pub fn load_with(path: &Path, options: &LoadOptions) -> Result<Mesh> {
+    let (file, meta) = open_regular(path)?;
     let format = Format::from_path(path).ok_or_else(|| {
         Error::format(
             path,
             "unknown extension: expected .obj, .ply, .stl, .off, .gltf or .glb",
         )
     })?;
-    let file = std::fs::File::open(path).map_err(io_err)?;
+    let max_memory = options.max_memory;
     let builder = if meta.len() == 0 {
-        parse_bytes(&[], format, path)?
+        parse_bytes_with(&[], format, path, options)?
     } else {
         // SAFETY: the map is read-only and lives only for this call; we accept that a
         // concurrent writer truncating the file could fault, as every mmap reader does.
-        let map = unsafe { memmap2::Mmap::map(&file) }.map_err(io_err)?;
+        let map = unsafe { memmap2::Mmap::map(&file) }.map_err(|error| Error::Io {
+            path: path.to_path_buf(),
+            error,
+        })?;
         let declared = declared::declared_counts(&map, format);
         if let (Some(limit), Some(counts)) = (max_memory, declared) {
             crate::memory::check(path, counts, limit)?;
         }
-        parse_bytes(&map, format, path)?
+        parse_bytes_with(&map, format, path, options)?
     };
     if let Some(limit) = max_memory {
         let counts = crate::memory::Counts {

@@ -90,19 +90,21 @@ fn params(u: &mut Unstructured) -> Result<Params> {
         pick(u, &[1.0, 1e-9, 1e9])?;
     }
     // After that (an exhausted input reads false, as grown): the interior grid's ray
-    // parity and the air pricing on hostile input (deviation 23).
+    // parity and the air pricing on hostile input
+    // (docs/decisions/0023-merges-priced-by-the-air-they-add.md).
     p.solid = u.arbitrary::<bool>()?;
     // After that (an exhausted input reads 0: the default weight, as grown): the rim
     // reach's adjacency walk and the per-kind output fits at other weights, and off
-    // (deviation 24).
+    // (docs/decisions/0024-output-primitives-priced-by-rim-reach.md).
     p.rim_weight =
         [1.0, 0.0, 1e-9, 1e9][u.int_in_range(0..=3)? as usize];
     // After that (an exhausted input reads false: free merges on, the default, so the
     // grown corpus now runs with them): a target's snapshot held for merges that add
-    // no volume, and the exact stop (deviation 25).
+    // no volume, and the exact stop (docs/decisions/0025-free-merges-into-plates.md).
     p.join_coplanar = !u.arbitrary::<bool>()?;
     // After that (an exhausted input reads false: flush plates, the default): output
-    // plates moved onto their faces' outer side, and centred (deviation 26).
+    // plates moved onto their faces' outer side, and centred
+    // (docs/decisions/0026-output-plates-lie-flush.md).
     p.flush_plates = !u.arbitrary::<bool>()?;
     Ok(p)
 }

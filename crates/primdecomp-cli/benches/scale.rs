@@ -5,7 +5,8 @@
 //! simplifier on the same input down to 2,000 triangles timed in the same run as the
 //! reference cost of a greedy QEM-style pass. Each input runs with the default
 //! settings (both inputs are large enough for `--partitions auto` to split them, into
-//! 16 and 54 parts: ARCHITECTURE.md, deviation 19), with `--partitions 1` (one global greedy,
+//! 16 and 54 parts: docs/decisions/0019-large-inputs-merged-in-parts.md), with `--partitions 1`
+//! (one global greedy,
 //! the paper's Alg. 1) and with the opt-in `--reduction extremes` (the approximate
 //! point reduction, docs/results/reduction.md): the fastest settings there are.
 //! Median of `RUNS` runs each.

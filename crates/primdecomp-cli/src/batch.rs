@@ -1,7 +1,7 @@
 //! Several inputs at once (`primdecomp decompose A B C … --jobs J`): J inputs are
 //! decomposed side by side, each on its own share of the threads. An asset library is
 //! mostly small meshes, whose runs are too short for the merge loop's two threads to
-//! pay (ARCHITECTURE.md, "Performance"), so running one per core is what uses the
+//! pay (docs/decisions/perf-batch-jobs.md), so running one per core is what uses the
 //! machine. Each input's output is the same bytes on any thread count, so only the
 //! order of the messages changes.
 //!

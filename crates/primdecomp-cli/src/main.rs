@@ -1,7 +1,7 @@
 //! The `primdecomp` command: a thin shell over the library (see `cli.rs`).
 
-/// mimalloc only with `--features mimalloc`: measured no faster than the system
-/// allocator here, and it held ~60 MB more at peak (ARCHITECTURE.md, "Performance").
+/// mimalloc only with `--features mimalloc`: it was no faster than the system
+/// allocator and held more memory at peak (docs/decisions/perf-allocator-and-build.md).
 #[cfg(feature = "mimalloc")]
 #[global_allocator]
 static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;

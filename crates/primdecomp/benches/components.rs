@@ -1,9 +1,11 @@
 //! Many disjoint components (issue 6, "Limits"): C small tetrahedra on a jittered
 //! 3D grid (4 faces each, no shared vertices), decomposed to N = C/10 and to N = 1, for
 //! C = 1,000, 3,000 and 10,000. Adjacency runs out at N = C, so every further merge
-//! goes through the bridging step (ARCHITECTURE.md, deviation 6); a quadratic step
+//! goes through the bridging step (docs/decisions/0006-component-bridging-nearest-12.md); a
+//! quadratic step
 //! would show as a 10k/1k time ratio near 100 instead of near 10.
-//! Run: `cargo bench --bench components` (figures in ARCHITECTURE.md).
+//! Run: `cargo bench --bench components` (figures in docs/decisions/hostile-input-limits.md,
+//! "Many components").
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use primdecomp::{decompose, Mesh, Params};

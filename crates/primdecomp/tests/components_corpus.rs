@@ -32,8 +32,9 @@ fn components_apart_equal_the_global_loop_on_corpus_meshes() {
             return;
         };
         let f = m.face_count();
-        // Every face (where free merges into plates run before the snapshot, deviation
-        // 25: replayed from the traced merges marked free), a tenth and 1% of the faces,
+        // Every face (where free merges into plates run before the snapshot,
+        // docs/decisions/0025-free-merges-into-plates.md: replayed from the traced merges marked
+        // free), a tenth and 1% of the faces,
         // 32 and 8: at or above the component count for the chair (3) everywhere, below
         // it for the bones (26) at 8 and the truck (59) at 1%, 32 and 8.
         let targets = [f, f / 10, f / 100, 32, 8];

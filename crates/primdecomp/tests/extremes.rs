@@ -72,8 +72,8 @@ fn flat_grid_of_10_000_quads() {
 }
 
 /// Exact re-pricing re-prices the ~2L quads along a growing strip's sides at every
-/// merge (52.9 per merge on the 100² grid, growing with n: ARCHITECTURE.md "Known
-/// limits"). The default defers merges of clusters with 64 or more neighbours, so
+/// merge (growing with n: docs/decisions/limits-flat-grid.md). The default defers merges of
+/// clusters with 64 or more neighbours, so
 /// only strips shorter than about 32 quads re-price their sides at once: the pairs
 /// re-priced per merge stop growing with the grid's size.
 #[test]
@@ -98,7 +98,8 @@ fn flat_grid_defers_its_long_strips() {
 /// 13.3 s, 3.76 pairs re-priced per merge, peak RSS 741 MB:
 /// `cargo test --release --test extremes flat_grid_of_a_million -- --nocapture`).
 /// It is above `AUTO_MIN_FACES`, so by default it is now merged in `AUTO_PARTS` lazy
-/// parts first (deviation 19): the default's large-input path, enclosing and within N;
+/// parts first (docs/decisions/0019-large-inputs-merged-in-parts.md): the default's large-input
+/// path, enclosing and within N;
 /// decompose 3.4 s, 2.00 pairs re-priced per merge (same command, machine shared).
 #[test]
 fn flat_grid_of_a_million_quads() {

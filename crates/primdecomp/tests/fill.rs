@@ -75,8 +75,9 @@ fn demo_scene_levels_fill_within_their_budgets() {
     eprintln!("demo scene (plain, filled) at 120, 40, 12: {counts:?}");
 }
 
-/// truck_shrec at 64: the plain run keeps about 20 (19 before deviation 21's output
-/// fits, 20 after: the cab interior and wheels sit inside the body's box); filled, it
+/// truck_shrec at 64: the plain run keeps about 20 (19 before the output fits of
+/// docs/decisions/0021-thorough-output-frame-search.md, 20 after: the cab interior and wheels sit
+/// inside the body's box); filled, it
 /// must keep at least 50 (measured: 63 and 64, merge target 92).
 /// Needs `../shared/datasets/corpus`; says so loudly and returns when it is absent.
 #[test]

@@ -1,4 +1,4 @@
-//! `Params::flush_plates` (ARCHITECTURE.md, deviation 26): an output plate (a
+//! `Params::flush_plates` (docs/decisions/0026-output-plates-lie-flush.md): an output plate (a
 //! primitive at the floor thickness, `min_extent` of the diagonal per half) lies
 //! flush on its faces, reaching inward from them, instead of centred on them, so a
 //! body resting on it rests where it would on the mesh. Decided by the independent

@@ -1,4 +1,5 @@
-//! `Params::free_merges` (ARCHITECTURE.md, deviation 25): at a target, the greedy
+//! `Params::join_coplanar` (docs/decisions/0025-free-merges-into-plates.md): at a target, the
+//! greedy
 //! order's next merges still run before the snapshot while they add no volume. The
 //! paper's stop at exactly N clusters left, at N = the face count, one plate per
 //! triangle where coplanar triangles make one plate, and a ball rolling across their
@@ -148,8 +149,9 @@ fn wall_high_top_is_fewer_plates() {
 /// one three around a vertex at the middle of the shared side (a T-junction), so no
 /// edge is shared and no merge of the loop can join the squares. At the face count
 /// free merges make each square one plate; the two touch along x = 1, and one plate
-/// over both has their area and covers nothing else, so they become one (deviation
-/// 28; the build before it left two). The paper's stop keeps a primitive per triangle.
+/// over both has their area and covers nothing else, so they become one
+/// (docs/decisions/0028-coplanar-plates-joined.md; the build before it left two). The paper's stop
+/// keeps a primitive per triangle.
 #[test]
 fn coplanar_plates_across_a_t_junction_become_one() {
     let v = vec![

@@ -27,8 +27,9 @@ fn with_flat(target: usize, flat: f64) -> Params {
     }
 }
 
-/// The coplanar-only floor keeps both measured roof rims open (ARCHITECTURE.md,
-/// "Simulation benchmark"): kenney_building_small_a.glb at N = 64 (V-HACD's hull
+/// The coplanar-only floor keeps both measured roof rims open
+/// (docs/decisions/0018-coplanar-merges-priced-thicker.md): kenney_building_small_a.glb at N = 64
+/// (V-HACD's hull
 /// count) and kenney_building_garage.glb at N = 32 (CoACD's) close their rims into
 /// lids without it, and balls roll off (similarity 0.007 and 0.008); priced at
 /// 0.005 × diagonal or the default 0.01, the rims' holes cost more than the merges

@@ -121,8 +121,9 @@ fn multi_target_equals_separate_runs() {
 /// dropped through either must not hit a primitive on the hole's axis, at the hole's
 /// entry, middle or exit. At 150 and below the washer's inner wall merges into one
 /// cylinder, which is the hole itself (the enclosing solid of a tube's inner surface):
-/// a known limit of merging by excess volume, recorded in ARCHITECTURE.md. Before
-/// deviation 18 this test probed the middle only, at 150: the washer's top and bottom
+/// a known limit of merging by excess volume (docs/decisions/limits-ring-holes.md). Before
+/// docs/decisions/0018-coplanar-merges-priced-thicker.md this test probed the middle only, at 150:
+/// the washer's top and bottom
 /// annuli had closed into thin disks over the hole there (and at 170 and 200).
 #[test]
 fn demo_scene_keeps_ring_holes_open() {

@@ -140,7 +140,8 @@ fn progress_is_reported_during_phase_one() {
     assert!(seen.iter().any(|&f| f > 0.5), "{seen:?}");
 }
 
-/// Phase 1 re-prices lazily (every merge deferred: deviation 19), so some pairs are
+/// Phase 1 re-prices lazily (every merge deferred:
+/// docs/decisions/0019-large-inputs-merged-in-parts.md), so some pairs are
 /// re-priced when popped; with `Reprice::Exact` nothing is, in either phase.
 #[test]
 fn parts_defer_unless_repricing_is_exact() {

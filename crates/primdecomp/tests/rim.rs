@@ -1,4 +1,5 @@
-//! `Params::rim_weight` (ARCHITECTURE.md, deviation 24): output fits also price how far
+//! `Params::rim_weight` (docs/decisions/0024-output-primitives-priced-by-rim-reach.md): output
+//! fits also price how far
 //! a primitive stands past the plane of the face across each creased boundary edge of
 //! its cluster. The least-area plate around a sliver triangle on a wall's side is
 //! turned along the sliver's longest edge and stands past the wall's top as a curb,
@@ -66,7 +67,8 @@ fn points_above_top(m: &Mesh, p: &Params, lift: f64) -> usize {
     n
 }
 
-/// Every face alone (N = 9 without the free merges of deviation 25, which would join
+/// Every face alone (N = 9 without the free merges of
+/// docs/decisions/0025-free-merges-into-plates.md, which would join
 /// the sliver to its coplanar neighbours; nested primitives kept: the front's lower
 /// triangle's fit would otherwise hold the sliver's and hide it): without the rim reach the sliver's
 /// plate stands 0.02 above the top; with it, no primitive does.
@@ -101,7 +103,8 @@ fn rim_fits_enclose_and_ignore_threads() {
 }
 
 /// kenney_wall_high with a primitive per face (N = 208, as the simulation benchmark's
-/// byte rule chose, without the free merges of deviation 25 that now join coplanar
+/// byte rule chose, without the free merges of docs/decisions/0025-free-merges-into-plates.md that
+/// now join coplanar
 /// faces there): its side slivers stood up to 0.06 (2.6% of the diagonal) above
 /// the top as curbs before the rim reach; now nothing stands 0.5% of the diagonal
 /// above it anywhere over the top. Corpus mesh; skipped loudly when absent.
@@ -121,7 +124,8 @@ fn wall_high_has_no_curb_along_its_top() {
         let dec = decompose(&m, &p).unwrap();
         let shapes = shapes(&dec, 0, &p);
         // Over the footprint, the edges a quarter of the floor thickness in: a plate
-        // on a side lies flush inside it (deviation 26), its outer face on the edge.
+        // on a side lies flush inside it (docs/decisions/0026-output-plates-lie-flush.md), its
+        // outer face on the edge.
         let at = |k: usize, t: f64| {
             let e = 0.25 * p.min_extent * diag;
             lo[k] + off[k] + e + (hi[k] - lo[k] - 2.0 * e) * t
@@ -150,7 +154,8 @@ fn wall_high_has_no_curb_along_its_top() {
 /// faces share; walked across those, its hood came out facing down and the fender
 /// strip beside it (faces 4111, 4457–4459) met the hood at a "concave" crease, so the
 /// strip had no rim and its prism stood 0.03 (1.5 ball radii in the simulation) past
-/// the hood's edge, a fin that held the balls (ARCHITECTURE.md deviation 27). Now the
+/// the hood's edge, a fin that held the balls
+/// (docs/decisions/0027-open-surfaces-oriented-by-visibility.md). Now the
 /// hood (face 4383) faces up, the strip faces out, and the hood's plane is a rim of the
 /// strip. Corpus mesh; skipped loudly when absent.
 #[test]
@@ -193,7 +198,8 @@ fn truck_hood_is_a_rim_of_the_fender_beside_it() {
 /// of a ball of the simulation's radius (1% of the diagonal; the mesh itself has 36),
 /// and `primdecomp sim` left 12% of the balls on the collider against none on the
 /// mesh. With gentle convex bends as rims too (`merge::rim::RIM_GENTLE_DEG`) it has
-/// 125 and keeps 4% (ARCHITECTURE.md deviation 29). Basins from the triangles' height
+/// 125 and keeps 4% (docs/decisions/0029-gentle-convex-bends-are-rims.md). Basins from the
+/// triangles' height
 /// field (`primdecomp_testkit::basin`), the primitives through the OBJ export's tessellation.
 /// Corpus mesh; skipped loudly when absent.
 #[test]

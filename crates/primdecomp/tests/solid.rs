@@ -1,4 +1,5 @@
-//! `Params::solid` (ARCHITECTURE.md, deviation 23): merges priced by the volume their
+//! `Params::solid` (docs/decisions/0023-merges-priced-by-the-air-they-add.md): merges priced by
+//! the volume their
 //! primitive adds outside the input. Off must be the default output exactly; on must
 //! keep the enclosure and thread independence; and a closed part must fill into solid
 //! primitives where the paper's pricing leaves it a shell of plates.

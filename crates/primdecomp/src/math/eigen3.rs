@@ -1,5 +1,5 @@
 //! Eigen-decomposition of symmetric 3×3 matrices (§3.2 takes a cluster's axes from
-//! them), in `f64`, by two paths (ARCHITECTURE.md, deviation 16):
+//! them), in `f64`, by two paths (docs/decisions/0016-direct-eigen-solve.md):
 //!
 //! 1. **Direct** ([`deflate`]), for every matrix not within ~1e−12 of a multiple of
 //!    the identity: the eigenvalue farther from the middle one in closed form (the
@@ -8,8 +8,8 @@
 //!    rotation of the 2×2 block in the plane orthogonal to it. That eigenvalue is at
 //!    least 1.5·p from the others (`p` the deviatoric norm), so its vector is as well
 //!    conditioned as the matrix allows. It is as accurate as the Jacobi path below
-//!    (table in `print_accuracy_table`) at about half the cost (0.87× the whole corpus
-//!    run's CPU time).
+//!    (table in `print_accuracy_table`) at about half the cost of a Jacobi solve
+//!    (docs/decisions/perf-eigen-solve.md has the timings).
 //! 2. **Jacobi** ([`jacobi`]), the branchless scheme of McAdams et al. 2011,
 //!    "Computing the Singular Value Decomposition of 3×3 matrices with minimal
 //!    branching and elementary floating point operations" (its symmetric-eigenanalysis
@@ -22,9 +22,8 @@
 //! `γ·sh² ≥ ch²` with `γ = √8 + 3` (see `GAMMA` on why not `(√8 + 3)²`).
 //! The choice is made with 0/1-weighted blends (no data-dependent control
 //! flow inside a sweep); at most [`SWEEPS`] × 3 rotations, and one test per sweep
-//! ends the loop once the off-diagonal part is below 1e−20 of the matrix (on the
-//! armadillo at a 1% target this cut the whole run's time by ~10%, with the same
-//! primitive counts by kind).  One small
+//! ends the loop once the off-diagonal part is below 1e−20 of the matrix (converged
+//! matrices skip the remaining sweeps; docs/decisions/perf-eigen-solve.md).  One small
 //! addition to the paper: an exactly zero coupling `a_pq == 0` selects the
 //! identity rotation, so already-diagonal input (including multiples of the
 //! identity) comes back unrotated (the direct path returns diagonal input unrotated

@@ -1,5 +1,6 @@
-//! Component bridging (§3.4 "Pairwise Component Merging", ARCHITECTURE.md deviation
-//! 6): when adjacency runs out above the target, every live cluster is linked to its
+//! Component bridging (§3.4 "Pairwise Component Merging",
+//! docs/decisions/0006-component-bridging-nearest-12.md): when adjacency runs out above the
+//! target, every live cluster is linked to its
 //! [`BRIDGE_K`] nearest clusters by centroid, found with a k-d tree in O(C log C)
 //! instead of the paper's C(C−1)/2 pairs. If the links leave several groups, the loop
 //! runs out again with one cluster per group and bridges those: each round at least
@@ -9,17 +10,16 @@
 //! centroids. On 10,000 tetrahedra on a 3D grid those join clusters that share one
 //! coordinate but lie anywhere in that plane; the first such merge made a box
 //! spanning the plane, which then swallowed everything it covered one merge at a time
-//! while re-pricing a neighbour list that grew with it (ARCHITECTURE.md, "Many
-//! components").
+//! while re-pricing a neighbour list that grew with it
+//! (docs/decisions/hostile-input-limits.md, "Many components").
 
 use crate::math::V3;
 use rayon::prelude::*;
 
-/// Nearest clusters each cluster is linked to. On 14 multi-component corpus meshes
-/// (`-n 64,16,4`) the total primitive volume relative to the axis-order links had a
-/// geometric mean of 1.109, 1.011 and 1.031 at N = 4, 16, 64 with k = 4; 1.042, 1.007,
-/// 1.025 with k = 8; 1.004, 0.986, 0.991 with k = 12 (ARCHITECTURE.md, "Many
-/// components"). The cost is linear in k.
+/// Nearest clusters each cluster is linked to: on multi-component corpus meshes,
+/// 4 or 8 links left more total primitive volume than the old axis-order links, 12
+/// about as much or less (docs/decisions/0006-component-bridging-nearest-12.md). The
+/// cost is linear in k.
 pub const BRIDGE_K: usize = 12;
 
 /// Pairs `(i, j)`, `i < j`, sorted and distinct, linking every point to its `k`
@@ -133,9 +133,8 @@ fn before(a: (f64, u32), b: (f64, u32)) -> bool {
 
 /// Keeps the `k` smallest `(distance, index)` entries, sorted, so the one to drop
 /// and the pruning distance are the last entry: O(1) per visited node to reject,
-/// where a scan for the worst of an unsorted list cost O(k) at every node (on
-/// japanese_maple_tree, whose leaves are bridged round after round, the search was
-/// a third of all instructions).
+/// where a scan for the worst of an unsorted list cost O(k) at every node
+/// (docs/decisions/perf-bridging-kd-tree.md).
 fn offer(best: &mut Vec<(f64, u32)>, k: usize, c: (f64, u32)) {
     if best.len() == k {
         if !before(c, best[k - 1]) {

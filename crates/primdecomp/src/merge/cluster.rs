@@ -22,7 +22,7 @@ const NO_LISTS: u32 = u32::MAX;
 /// The per-face fields read together on every queue pop (is it a root, has it changed
 /// since the entry was priced, where are its lists): one 16-byte record, four to a
 /// cache line, so checking an entry costs one line per cluster instead of four
-/// (ARCHITECTURE.md, "Performance").
+/// (docs/decisions/perf-cluster-node-packing.md).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[repr(C, align(16))]
 struct Node {

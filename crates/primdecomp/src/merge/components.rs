@@ -1,6 +1,7 @@
 //! Parallelism across connected components (Alg. 1, §3.3, unchanged). The greedy
 //! loop only merges adjacent clusters until adjacency runs out, and only then links
-//! components (deviation 6). Entries of one component never change another's, and
+//! components (docs/decisions/0006-component-bridging-nearest-12.md). Entries of one component
+//! never change another's, and
 //! the queue's order between two entries of the same component (cost, then ids, then
 //! pricing time) does not depend on what happens elsewhere, so the global loop does
 //! each component's merges in the order a loop on that component alone would, and it
@@ -13,7 +14,8 @@
 //! - a target at or above the number of components is reached before any linking:
 //!   the global loop's clusters there are the first `faces − target` merges of all
 //!   groups in the order the global loop interleaves them (each merge's key says
-//!   where), and the free ones after them (deviation 25: each traced merge says
+//!   where), and the free ones after them (docs/decisions/0025-free-merges-into-plates.md: each
+//!   traced merge says
 //!   whether it is), replayed by [`snapshots`] — no global loop at all;
 //! - a smaller target is reached by phase 2, the global loop started from every
 //!   component whole (with the neighbour lists the global loop would hold), which
@@ -25,7 +27,7 @@
 //! of the same pair then stands for it), which can change the order inside a
 //! component. Measured: the same primitives on the demo scene under every re-pricing
 //! mode, at targets above, at and below its component count (the tests below); on
-//! the corpus, ARCHITECTURE.md, "Performance".
+//! the corpus, docs/decisions/perf-components-merged-apart.md.
 
 use super::cluster::Clusters;
 use super::cost::Evaluator;
@@ -73,11 +75,8 @@ pub fn components(faces: usize, pairs: &[(u32, u32)]) -> Vec<Vec<u32>> {
 
 /// The largest component may hold at most this share of the faces: its group's loop
 /// runs alone on one thread without the global loop's re-pricing worker, so a
-/// dominant component is merged faster by the global loop. Wall time at `-n 1%`,
-/// global loop → applied anyway, 3 runs each (ARCHITECTURE.md, "Performance"):
-/// largest share 0.56 (coacd_kettle) 0.07–0.08 → 0.06–0.07 s, 0.66
-/// (panda_link6_visual) 0.18–0.19 → 0.18 s, 0.87 (bathtub) 0.10–0.11 → 0.13 s, 1.00
-/// (dragon_vrip_res2, 12 components) 1.69–2.12 → 2.55–2.96 s.
+/// dominant component is merged faster by the global loop: measured shares up to 0.66
+/// gained or broke even, 0.87 and more lost (docs/decisions/perf-components-merged-apart.md).
 pub const MAX_SHARE: f64 = 0.6;
 
 /// Whether the run's first phase can be merged per component: at least [`MIN_FACES`]

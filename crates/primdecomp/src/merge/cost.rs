@@ -28,7 +28,8 @@ pub struct Workspace {
     y: Vec<f64>,
     z: Vec<f64>,
     fit: FitScratch,
-    /// The output fit's frame search runs on the points' hull vertices (deviation 21).
+    /// The output fit's frame search runs on the points' hull vertices
+    /// (docs/decisions/0021-thorough-output-frame-search.md).
     hull: HullWorkspace,
     keep: Vec<u32>,
     hx: Vec<f64>,
@@ -86,11 +87,12 @@ pub struct Evaluator<'a> {
     /// Per face, ±1: the winding that faces outward (`mesh::orient`); empty = the
     /// faces' own windings (set only when `rim_weight` > 0 or `flush_plates`).
     pub face_sign: &'a [i8],
-    /// The input's interior (`Params::solid`, deviation 23): merges are priced by the
+    /// The input's interior (`Params::solid`,
+    /// docs/decisions/0023-merges-priced-by-the-air-they-add.md): merges are priced by the
     /// volume their primitive adds outside it; `None` = the paper's whole volume.
     pub solid: Option<&'a Solid>,
     /// `Params::rim_weight`: the rim reach's weight in the output frame choice
-    /// (deviation 24).
+    /// (docs/decisions/0024-output-primitives-priced-by-rim-reach.md).
     pub rim_weight: f64,
     /// The input's face adjacency, for the output clusters' rims (read only when
     /// `rim_weight` > 0); empty = no rims (set when `face_sign` is).
@@ -102,7 +104,8 @@ pub struct Evaluator<'a> {
     /// (`postprocess::plates`, docs/decisions/0028): `Params::join_coplanar` too, apart
     /// in tests that check the loop's free merges alone.
     pub join_plates: bool,
-    /// `Params::flush_plates`: output plates lie flush on their faces (deviation 26).
+    /// `Params::flush_plates`: output plates lie flush on their faces
+    /// (docs/decisions/0026-output-plates-lie-flush.md).
     pub flush_plates: bool,
 }
 
@@ -144,7 +147,7 @@ impl<'a> Evaluator<'a> {
     }
 
     /// The share of `prim` outside the input (1 unless `solid` is set): the part of
-    /// its volume a merge is priced for (deviation 23).
+    /// its volume a merge is priced for (docs/decisions/0023-merges-priced-by-the-air-they-add.md).
     pub fn air(&self, prim: &Primitive) -> f64 {
         self.solid.map_or(1.0, |s| 1.0 - s.inside_fraction(prim))
     }
@@ -152,8 +155,8 @@ impl<'a> Evaluator<'a> {
     /// The primitive of face `f` alone, with its operator `q` (before any merge), in
     /// the eigen-frame only: it prices merges (its volume is subtracted from theirs),
     /// and the hull-edge frames there changed the order of a scan's merges for worse
-    /// Hausdorff distances (ARCHITECTURE.md, "Degenerate frames"); a face that ends up
-    /// alone in the output is refitted by [`Self::fit_cluster_exact`] with them.
+    /// Hausdorff distances (docs/decisions/0013-frames-for-degenerate-quadrics.md); a
+    /// face that ends up alone in the output is refitted by [`Self::fit_cluster_exact`] with them.
     pub fn fit_face(&self, f: u32, q: &Sym3, ws: &mut Workspace) -> Fit {
         ws.clear();
         self.push_points(self.face(f), ws);
@@ -185,7 +188,8 @@ impl<'a> Evaluator<'a> {
             self.push_points(self.mesh.face(f as usize), ws);
         }
         // Output only: every cluster also tries the frames turned about each of its
-        // axes and the input's axes (ARCHITECTURE.md, deviations 14 and 21); merges
+        // axes and the input's axes (docs/decisions/0014-output-fits-turn-about-the-normal.md,
+        // docs/decisions/0021-thorough-output-frame-search.md); merges
         // stay priced as before.
         let cfg = FitConfig {
             frames: FrameSearch::Thorough,
@@ -217,7 +221,8 @@ impl<'a> Evaluator<'a> {
         fit
     }
 
-    /// Deviation 26: a plate at the output floor thickness whose faces all face one way
+    /// docs/decisions/0026-output-plates-lie-flush.md: a plate at the output floor thickness whose
+    /// faces all face one way
     /// along its thin axis moves inward by its reach past their farthest vertex, so its
     /// outer side lies on the faces as the mesh's surface does (centred on them it stood
     /// `cfg.min_half` proud, and balls rested that high). Its cross-section is the
@@ -326,7 +331,7 @@ impl<'a> Evaluator<'a> {
     /// [`fit_best`] of the gathered points, its frames tried on the points' hull
     /// vertices (a convex primitive encloses the points iff it encloses those) and only
     /// the winning frame refitted on every point: the same fit for ~20 frames at the
-    /// price of one on every point (deviation 21).
+    /// price of one on every point (docs/decisions/0021-thorough-output-frame-search.md).
     fn fit_on_hull(&self, q: &Sym3, cfg: &FitConfig, ws: &mut Workspace) -> Fit {
         if !self.gather_hull(ws) {
             return self.fit_points(q, cfg, ws);

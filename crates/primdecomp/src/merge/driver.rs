@@ -24,9 +24,8 @@ const CHUNK: usize = 1024;
 /// (about 40 ms of a million-face run's merge loop).
 const CHECK_EVERY: usize = 4096;
 /// Point lists up to this size are not worth reducing to their hull: fitting a few
-/// extra points costs less than the hull (12 → 32: callgrind happy_buddha_100k
-/// `--threads 1` −3.6% instructions at `-n 1%`, −4.8% partitioned; ARCHITECTURE.md,
-/// "Performance": same primitives on 77 of 79 corpus meshes, round-off on two).
+/// extra points costs less than the hull. The hull's vertices are a subset of the
+/// points, so the fits agree up to the hull's tolerance (docs/decisions/perf-point-reduction.md).
 const HULL_MIN: usize = 32;
 /// Stale entries [`look_ahead`] pops past to find a fresh one.
 const LOOK_PAST: usize = 8;
@@ -281,7 +280,8 @@ fn merge_loop<Q: Queue>(
     let mut held: Option<Candidate> = None;
     loop {
         let reached = next < targets.len() && cl.live <= targets[next];
-        // A target's snapshot waits for free merges into plates (deviation 25); the
+        // A target's snapshot waits for free merges into plates
+        // (docs/decisions/0025-free-merges-into-plates.md); the
         // queue running dry there does not bridge components first.
         if reached && (held.is_some() || heap.is_empty()) {
             while next < targets.len() && cl.live <= targets[next] {
@@ -363,8 +363,8 @@ fn merge_loop<Q: Queue>(
 /// Whether a merge is free: coplanar points (a plate) and no added volume (k·V of the
 /// union at most the parts' volumes). The greedy order's next merge runs before a
 /// target's snapshot while it is free, so a target is reached with the same faces in
-/// fewer plates of no more area (ARCHITECTURE.md deviation 25); without it, `-n` at
-/// the face count merges nothing and leaves a plate per triangle where coplanar
+/// fewer plates of no more area (docs/decisions/0025-free-merges-into-plates.md);
+/// without it, `-n` at the face count merges nothing and leaves a plate per triangle where coplanar
 /// triangles make one. Only plates: parts that overlap count their common volume
 /// twice, so a solid merge can cost ≤ 0 and still cover space neither part did (two
 /// cubes sharing an edge into one box over both empty corners, tiny_shared_edge).
@@ -520,8 +520,8 @@ struct Ahead {
 /// it already holds that entry) while a re-pricing batch is out: the serial part of
 /// the next merge, done while the worker prices. Entries are only looked at: every one
 /// popped here goes back, so the queue, and with it the merge order, stays exactly as
-/// without the look-ahead. The entry is often the next merge (73% of the dragon's
-/// merges at N = 2000 used points reduced ahead);
+/// without the look-ahead. The entry is often the next merge
+/// (docs/decisions/perf-repricing-worker-and-look-ahead.md);
 /// otherwise its points wait until it is popped still fresh (neither cluster changed
 /// since it was priced, so the same points) or another entry takes its place.
 fn look_ahead<Q: Queue>(
@@ -687,11 +687,13 @@ pub(super) mod tests {
         }
     }
 
-    /// Merges that add no volume run before a target's snapshot (deviation 25), and that
+    /// Merges that add no volume run before a target's snapshot
+    /// (docs/decisions/0025-free-merges-into-plates.md), and that
     /// only carries the greedy order on: each target's clusters are those the loop
     /// without them holds at that smaller count — never more than the target, fewer
     /// where the demo scene's coplanar faces merge into plates for free — under every
-    /// re-pricing mode. (The plates joined after the loop, deviation 28, are left out
+    /// re-pricing mode. (The plates joined after the loop,
+    /// docs/decisions/0028-coplanar-plates-joined.md, are left out
     /// here: they are not the loop's.)
     #[test]
     fn free_merges_carry_the_greedy_order_on() {

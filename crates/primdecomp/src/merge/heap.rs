@@ -5,8 +5,8 @@
 //! [`RadixHeap`] drives the merges: a radix heap (buckets indexed by the highest bit in
 //! which a cost differs from the last extracted one) in front of a small binary heap
 //! that holds the current minimum cost group and the few candidates pushed below it.
-//! Merge costs are nearly monotone (about 5% of pushes land below the last popped
-//! cost on the armadillo and the dragon), so most pushes are an O(1) append to a
+//! Merge costs are nearly monotone (few pushes land below the last popped cost;
+//! docs/decisions/perf-merge-queue-radix-heap.md), so most pushes are an O(1) append to a
 //! bucket, and a pop touches a short heap instead of a multi-million-entry one.
 //! [`StdHeap`] (`std::collections::BinaryHeap`) is kept as the reference: both pop
 //! the same sequence (tested), and `benches/stages.rs` compares them on real runs.
@@ -160,8 +160,8 @@ impl RadixHeap {
         }
         // Give the emptied bucket its allocation back for the next round, unless it
         // is large: its items now sit in lower buckets, and a kept allocation stays
-        // resident however rarely the bucket fills again (on the 3.5M-face dragon the
-        // emptied buckets held ~500 MiB at the peak, ARCHITECTURE.md "Performance").
+        // resident however rarely the bucket fills again (hundreds of MiB at the peak on
+        // the largest inputs: docs/decisions/perf-merge-queue-radix-heap.md).
         let mut items = items;
         items.clear();
         if self.buckets[i].is_empty() && items.capacity() <= KEEP_CAPACITY {

@@ -3,7 +3,8 @@
 //! clusters before the merge) stay in the queue as keys, and each is re-priced for the
 //! clusters as they are when it is popped, then pushed back with its fresh cost
 //! (Minoux's accelerated greedy; our costs need not rise as clusters grow, so the
-//! merge order is no longer exactly greedy, see ARCHITECTURE.md).
+//! merge order is no longer exactly greedy, see
+//! docs/decisions/0015-deferred-repricing-of-high-degree-clusters.md).
 //!
 //! Every entry carries the merge clock it was priced at; each cluster records when it
 //! last changed (`Clusters::changed`) and when all its pairs were last priced

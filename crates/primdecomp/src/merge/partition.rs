@@ -1,5 +1,6 @@
 //! Coarse-grained parallel first phase of the merge loop (`Params::partitions`, a
-//! speed/accuracy setting; ARCHITECTURE.md, "Where we deviate"). Alg. 1 (§3.3) is a
+//! speed/accuracy setting; docs/decisions/0017-partitioned-first-phase.md and
+//! docs/decisions/0019-large-inputs-merged-in-parts.md). Alg. 1 (§3.3) is a
 //! sequential greedy; here it runs in two phases:
 //!
 //! 1. the faces are split into K spatial parts ([`split`]: recursive median split of
@@ -9,7 +10,7 @@
 //!    of faces in that part) down to its share of [`GROUPS_PER_TARGET`] × the largest
 //!    target, without bridging, and lazily: every merge's re-pricing is deferred
 //!    (`Reprice::Deferred { min_degree: 0 }`) unless the run asked for exact
-//!    re-pricing (deviation 19);
+//!    re-pricing (docs/decisions/0019-large-inputs-merged-in-parts.md);
 //! 2. one global [`Clusters`] starts from phase 1's groups (Q, hull-reduced points and
 //!    priced volume as the part's loop left them, neighbours = adjacency between
 //!    groups), and the normal merge loop (with its worker) runs to the targets.
@@ -167,7 +168,8 @@ pub fn merge_parts(
 /// What phase 1's groups of faces are.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum Kind {
-    /// Spatial parts ([`split`]): merged lazily (every merge deferred, deviation 19)
+    /// Spatial parts ([`split`]): merged lazily (every merge deferred,
+    /// docs/decisions/0019-large-inputs-merged-in-parts.md)
     /// unless the run re-prices exactly.
     Spatial,
     /// Whole connected components (`merge::components`): merged with the run's own
@@ -288,8 +290,8 @@ fn merge_one(
         // Indexed by the whole input's faces; a part fits no output primitives.
         face_sign: &[],
         face_adj: crate::merge::rim::FaceAdjacency::default(),
-        // Lazy greedy for every merge of a part unless re-pricing is exact (deviation
-        // 19: user time ×0.62–0.74, Chamfer within ±1% but one input at +6.5%).
+        // Lazy greedy for every merge of a part unless re-pricing is exact: faster at
+        // about the same quality (docs/decisions/0019-large-inputs-merged-in-parts.md).
         defer_degree: if kind == Kind::Spatial && ev.defer_degree != u32::MAX {
             0
         } else {

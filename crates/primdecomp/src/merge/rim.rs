@@ -1,6 +1,7 @@
 //! Rim reach: how far an output primitive pokes past the planes of the faces just
 //! outside its cluster, across the cluster's convex boundary edges (not in the paper;
-//! ARCHITECTURE.md deviations 24 and 29).
+//! docs/decisions/0024-output-primitives-priced-by-rim-reach.md and
+//! docs/decisions/0029-gentle-convex-bends-are-rims.md).
 //!
 //! The paper chooses a primitive by k·V alone (§3.3). Around a single face or a flat
 //! cluster every enclosure is a plate of the same thickness, so k·V is its area, and

@@ -1,7 +1,8 @@
 //! Re-pricing a merged cluster's neighbours on two cores (issue 5). After each merge of
-//! Alg. 1 the new cluster's merges with its 4–16 neighbours are re-priced: ~2 µs of
-//! fits per neighbour, too little to pay for a rayon task (ARCHITECTURE.md,
-//! "Performance"). Here one persistent worker thread lives as long as the merge loop
+//! Alg. 1 the new cluster's merges with its 4–16 neighbours are re-priced: a few
+//! microseconds of fits per neighbour, too little to pay for a rayon task
+//! (docs/decisions/perf-repricing-worker-and-look-ahead.md). Here one persistent worker thread
+//! lives as long as the merge loop
 //! and shares each batch with the main thread through atomics:
 //!
 //! - the main thread copies what pricing needs of the root and of each neighbour (a
@@ -33,9 +34,9 @@ use std::thread::{self, Thread};
 use std::time::{Duration, Instant};
 
 /// How long the idle worker spins for the next batch before it yields its core, and
-/// until when it keeps yielding before it parks. Merges come every ~10 µs on the
-/// dragon; spinning longer (50 µs) was no faster on a quiet machine and, on a busy one,
-/// spun through time slices the main thread needed (ARCHITECTURE.md, "Performance").
+/// until when it keeps yielding before it parks: merges come every few microseconds,
+/// and spinning longer takes time slices the main thread needs on a busy machine
+/// (docs/decisions/perf-repricing-worker-and-look-ahead.md).
 const SPIN_FOR: Duration = Duration::from_micros(5);
 const YIELD_UNTIL: Duration = Duration::from_micros(50);
 /// The least the main thread waits for the worker's share before pricing it itself.
@@ -201,8 +202,8 @@ impl<'p> Pricer<'p> {
         mut push: impl FnMut(Candidate),
     ) {
         let shared = match self.link {
-            // Every batch of two or more is shared: from 64 points only, the dragon's
-            // merge stage took 9.97 s instead of 8.6–9.5 s (ARCHITECTURE.md).
+            // Every batch of two or more is shared: a threshold on the batch's points
+            // made the merge stage slower (docs/decisions/perf-repricing-worker-and-look-ahead.md).
             Some((sh, _)) if nbrs.len() >= 2 => self.publish(sh, cl, root, nbrs).then_some(sh),
             _ => None,
         };

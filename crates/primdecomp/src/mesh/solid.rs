@@ -1,5 +1,6 @@
 //! The input's interior on a voxel grid, for pricing merges by the empty space they
-//! add (`Params::solid`, ARCHITECTURE.md deviation 23; not in the paper, whose §3.3
+//! add (`Params::solid`, docs/decisions/0023-merges-priced-by-the-air-they-add.md; not in the
+//! paper, whose §3.3
 //! cost is a primitive's whole volume).
 //!
 //! The paper prices a merge by the volume it adds, so a closed part's six faces stay

@@ -1,5 +1,6 @@
 //! Which side of an open surface is outside, by what can be seen from afar (not in the
-//! paper; ARCHITECTURE.md deviation 27). `orient` turns a closed patch by its signed
+//! paper; docs/decisions/0027-open-surfaces-oriented-by-visibility.md). `orient` turns a closed
+//! patch by its signed
 //! volume, which is exact; an open one (a car's body panels, a wall's shell with the
 //! hidden faces left out) has no inside, and its signed volume about any point says
 //! little: truck_shrec's hood came out facing down, so the fender beside it met the
@@ -16,10 +17,9 @@ use rayon::prelude::*;
 /// Cells along the grid's longest side, at most; fewer for small inputs
 /// (2·∛faces, at least 8).
 pub const CELLS: usize = 128;
-/// Face-in-cell entries, at most (32 MiB): past this the grid is coarsened. A fan of
-/// 5,000 triangles spanning the whole box listed 13.6 M at 34 cells (a 58 MiB peak for
-/// a 5,000-face input); at 17 cells it lists 2.1 M. The dragon (871k faces) lists
-/// 1.5 M at 128.
+/// Face-in-cell entries, at most (32 MiB): past this the grid is coarsened, so a few
+/// giant faces spanning the box cannot make the grid's lists outgrow the input; real
+/// inputs stay far below it (docs/decisions/0027-open-surfaces-oriented-by-visibility.md).
 const MAX_ENTRIES: usize = 1 << 23;
 /// Faces sampled over the whole input, at most: a patch of p of the n faces gets
 /// ⌊SAMPLED_FACES·p/n⌋ of them (all when fewer), evenly spread, so rays stay bounded;

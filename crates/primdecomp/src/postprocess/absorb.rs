@@ -1,5 +1,6 @@
 //! Near-duplicate output primitives absorbed into one, with solid pricing
-//! (`Params::solid`, ARCHITECTURE.md deviation 23; not in the paper, whose §3.4 removes
+//! (`Params::solid`, docs/decisions/0023-merges-priced-by-the-air-they-add.md; not in the paper,
+//! whose §3.4 removes
 //! only primitives nested in another).
 //!
 //! Filled parts can leave two solid primitives that overlap almost entirely: the top

@@ -1,8 +1,10 @@
-//! Coplanar plates joined after the merge loop (`Params::free_merges`, ARCHITECTURE.md
-//! deviation 28; not in the paper, whose §3.4 removes only primitives nested in
+//! Coplanar plates joined after the merge loop (`Params::join_coplanar`,
+//! docs/decisions/0028-coplanar-plates-joined.md; not in the paper, whose §3.4 removes only
+//! primitives nested in
 //! another).
 //!
-//! Free merges (deviation 25) join adjacent clusters into a plate of no more area, but
+//! Free merges (docs/decisions/0025-free-merges-into-plates.md) join adjacent clusters into a
+//! plate of no more area, but
 //! only along the greedy order and only across shared edges. A flat polygon cut into
 //! long sliver triangles then keeps several plates that overlap: kenney_wall_high's
 //! top, 15 triangles in one plane, stayed four plates at N = 93, 90, 85, 80, 70 and

@@ -43,8 +43,9 @@ pub struct FitConfig {
     pub frames: FrameSearch,
 }
 
-/// Which frames a fit tries besides the eigen-frame of §3.2 (ARCHITECTURE.md,
-/// deviations 13 and 14).
+/// Which frames a fit tries besides the eigen-frame of §3.2
+/// (docs/decisions/0013-frames-for-degenerate-quadrics.md,
+/// docs/decisions/0014-output-fits-turn-about-the-normal.md).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FrameSearch {
     /// The eigen-frame alone, as §3.2 (single faces when they price merges).
@@ -59,7 +60,8 @@ pub enum FrameSearch {
     #[cfg(test)]
     Always,
     /// The hull-edge frames turned about the normal axis for every cluster, then those turned about the other two
-    /// eigen-axes and the input's own axes (output fits, deviation 21): a tilted
+    /// eigen-axes and the input's own axes (output fits,
+    /// docs/decisions/0021-thorough-output-frame-search.md): a tilted
     /// cluster of a vehicle's cab gets a box that follows its roof, not Q's axes.
     Thorough,
 }
@@ -117,7 +119,7 @@ pub struct Fit {
 /// Kinds whose cheap lower bound on k·V already loses to the best offer so far are
 /// skipped without being fitted (capsules, frustum, prisms): the result is the same
 /// as fitting all of them, since a skipped fit could not have won (see `lower bounds`
-/// below and ARCHITECTURE.md, "Pruned fits").
+/// below and docs/decisions/perf-fit-pruning-and-profile-bounds.md).
 pub fn fit_best(cloud: &Cloud, q: &Sym3, cfg: &FitConfig, s: &mut FitScratch) -> Fit {
     fit_best_frame(cloud, q, cfg, s).0
 }
@@ -141,7 +143,8 @@ pub fn fit_best_frame(
         #[cfg(test)]
         FrameSearch::Always => tied.or(Some((1, 2))),
         FrameSearch::Thorough => {
-            // Every plane's turned frames, then the input's own axes (deviation 21).
+            // Every plane's turned frames, then the input's own axes
+            // (docs/decisions/0021-thorough-output-frame-search.md).
             let mut frames = std::mem::take(&mut s.frames);
             thorough_frames(cloud, q, s, &mut frames);
             for &f in &frames[1..] {
@@ -266,7 +269,7 @@ fn offer_all(cloud: &Cloud, axes: [V3; 3], s: &mut FitScratch, best: &mut Candid
     let cfg = best.cfg;
     let frame = project(cloud, axes, s);
     // Explicit 3-element arrays, not `array::map`: its `try_map` is not always inlined
-    // (1.6% of the dragon's samples as a separate function, perf).
+    // (docs/decisions/perf-fit-loop.md).
     let (lo, hi) = (frame.lo, frame.hi);
     s.span = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
     let obb = Obb::from_frame(&frame, cfg.min_half);
@@ -738,7 +741,8 @@ mod tests {
         }
     }
 
-    /// Deviation 12: a round primitive's p0→p1 has its largest component positive,
+    /// docs/decisions/0012-canonical-axis-direction.md: a round primitive's p0→p1 has its largest
+    /// component positive,
     /// whichever way the frame's eigenvector points (capsules used to follow the
     /// eigenvector: the demo scene at 1e-3 scale gave a capsule reversed).
     #[test]
@@ -1009,7 +1013,8 @@ mod tests {
     /// A nearly flat 4 × 1 plate (not coplanar within the 1e-6 of `frame::flat`) whose
     /// operator's in-plane axes are turned by 30° (as a tangent term can turn them):
     /// `Degenerate` keeps the turned box, `Always` finds the plate's own rectangle
-    /// (deviation 14), and over random clouds `Always` is never costlier.
+    /// (docs/decisions/0014-output-fits-turn-about-the-normal.md), and over random clouds `Always`
+    /// is never costlier.
     #[test]
     fn always_turns_nearly_flat_clusters_onto_their_edges() {
         let mut pts = Vec::new();
@@ -1058,7 +1063,8 @@ mod tests {
     }
 
     /// `Thorough` is never costlier than `Always`; it finds an axis-aligned box tilted
-    /// about a non-normal axis of Q (deviation 21); and its frame search on the hull's
+    /// about a non-normal axis of Q (docs/decisions/0021-thorough-output-frame-search.md); and its
+    /// frame search on the hull's
     /// vertices, refitted on every point (`Evaluator::fit_cluster_exact`), gives the
     /// fit of the search on every point.
     #[test]

@@ -6,7 +6,8 @@
 //! area. There the fit also tries the frames aligned with the longest edges of the
 //! points' convex hull projected onto the tied plane (a minimum-area rectangle and an
 //! isosceles trapezoid with a base on the polygon both have a side on a hull edge) and
-//! keeps the cheapest. ARCHITECTURE.md, "Degenerate frames", has the measurements.
+//! keeps the cheapest. The measurements are in
+//! docs/decisions/0013-frames-for-degenerate-quadrics.md.
 
 use crate::math::{dot, madd, scale, V3};
 

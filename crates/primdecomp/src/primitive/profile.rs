@@ -9,7 +9,8 @@
 //! the upper hull (sort + monotone chain in a reusable buffer) and, at each vertex, take
 //! the objective's best slope clamped to that vertex's range. The paper's Alg. 2/3
 //! estimate the two half-widths with a streaming heuristic and then "FixSide"; this
-//! reaches the optimum that heuristic approximates (ARCHITECTURE.md).
+//! reaches the optimum that heuristic approximates
+//! (docs/decisions/0003-exact-frustum-and-prism-profiles.md).
 
 /// What the line minimises.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

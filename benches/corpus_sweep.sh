@@ -9,7 +9,7 @@
 #
 # Usage: benches/corpus_sweep.sh OUT CONFIG... ; CONFIG is NAME=ARGS (extra decompose
 # arguments, word-split, for target/release/primdecomp) or NAME@BINARY=ARGS (another
-# build). Examples (docs/results/reprice.md, ARCHITECTURE.md deviation 14):
+# build). Examples (docs/results/reprice.md, docs/decisions/0014-output-fits-turn-about-the-normal.md):
 #   benches/corpus_sweep.sh OUT exact='--reprice exact' 64='--reprice 64' deferred='--reprice deferred'
 #   benches/corpus_sweep.sh OUT before@/tmp/primdecomp-before= after=
 # Environment: TARGET (default 1%), SAMPLES (default 30000). Resumable: a mesh whose

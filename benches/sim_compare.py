@@ -254,7 +254,7 @@ def tables(rows, a):
         "The same simulation, with ours decomposed to N = the peer's hull count (`-n N --fill`: "
         "where removing nested primitives would leave fewer, the merge stops earlier so that up to N "
         "remain; fewer where no merge target gives exactly N, or where coplanar faces merge into "
-        "plates for free, ARCHITECTURE.md deviation 25): the same number of colliders in the "
+        "plates for free, docs/decisions/0025-free-merges-into-plates.md): the same number of colliders in the "
         "scene, or fewer.",
         "",
         "| mesh | peer | peer hulls | our prims | ours/peer step wall | CPU | similarity mesh vs itself "

@@ -2,8 +2,8 @@
 """benches/sim_view.py: where the balls of a `primdecomp sim` run end, drawn over the
 geometry they ended on: one column per run (the mesh, the perturbed mesh, then each
 collider in the order given to `primdecomp sim`), top view above, side view below,
-balls coloured by height. This is how ARCHITECTURE.md ("Simulation benchmark", "Where
-our gaps were") found roof rims closed into lids.
+balls coloured by height. This is how docs/decisions/sim-gaps-and-the-byte-rule.md ("Where our gaps
+were") found roof rims closed into lids.
 
 Usage (y up, as `primdecomp sim`'s default; the peers' Python has trimesh and
 matplotlib):

@@ -6,9 +6,7 @@
 //! reference cost of a greedy QEM-style pass. Each input runs with the default
 //! settings (both inputs are large enough for `--partitions auto` to split them, into
 //! 16 and 54 parts: docs/decisions/0019-large-inputs-merged-in-parts.md), with `--partitions 1`
-//! (one global greedy,
-//! the paper's Alg. 1) and with the opt-in `--reduction extremes` (the approximate
-//! point reduction, docs/results/reduction.md): the fastest settings there are.
+//! (one global greedy, the paper's Alg. 1).
 //! Median of `RUNS` runs each.
 //!
 //! Run: `cargo bench --bench scale` (needs `../shared/datasets/corpus`; says so
@@ -50,11 +48,10 @@ fn main() {
         ("dragon ×4 (subdivided)", big_path.as_path(), &big),
     ] {
         let s = meshopt_runs(m);
-        // The default, the paper's single greedy, the opt-in speed setting.
+        // The default and the paper's single greedy.
         for (setting, extra) in [
             ("", &[][..]),
             (", --partitions 1", &["--partitions", "1"][..]),
-            (", --reduction extremes", &["--reduction", "extremes"][..]),
         ] {
             let (t, rss) = cli_runs(&bin, path, extra);
             println!(

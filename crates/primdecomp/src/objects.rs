@@ -24,7 +24,7 @@ pub const SHARE_RULE: &str = "a total count N is shared by the objects: one each
 /// A target as given on the command line.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum ObjectTarget {
-    /// A total primitive count shared by the objects ([`share_targets`]).
+    /// A total primitive count shared by the objects (one each, the rest in proportion to surface area).
     Total(usize),
     /// A percentage of each object's faces (at least one primitive each).
     Percent(f64),
@@ -64,7 +64,7 @@ impl Objects {
     }
 
     /// Every primitive of level `level` in world coordinates, object after object,
-    /// each grown by the rounding margin of [`conservative`] so that it contains the
+    /// each grown by the rounding margin of the engine exports so that it contains the
     /// object-frame primitive moved into the world.
     pub fn world_primitives(&self, level: usize) -> Vec<Primitive> {
         self.objects

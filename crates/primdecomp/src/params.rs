@@ -49,7 +49,7 @@ pub enum Partitions {
     /// the paper's Alg. 1 as is.
     #[default]
     Auto,
-    /// Exactly this many parts (1 to [`MAX_PARTITIONS`]); 1 = one global greedy.
+    /// Exactly this many parts (1 to 4096); 1 = one global greedy.
     Fixed(usize),
 }
 
@@ -65,7 +65,7 @@ pub const AUTO_PARTS: usize = 16;
 pub(crate) const AUTO_PART_FACES: usize = 1 << 16;
 
 /// The most parts [`Partitions::Fixed`] may ask for.
-pub const MAX_PARTITIONS: usize = 4096;
+pub(crate) const MAX_PARTITIONS: usize = 4096;
 
 impl Partitions {
     /// The number of parts for an input of `faces` faces.

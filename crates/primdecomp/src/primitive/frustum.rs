@@ -40,7 +40,7 @@ impl Frustum {
     /// that bound exceeds [`SLOPE_SLACK`]·m by is added to both radii, or, where a
     /// cylinder of radius r̂ is smaller (or the axis too short, L ≤ 40η, to carry a
     /// slope at all), both radii become r̂, which no tilt shortens.
-    pub fn on_axis(c: V3, a: V3, h: f64, r0: f64, r1: f64) -> Frustum {
+    pub(crate) fn on_axis(c: V3, a: V3, h: f64, r0: f64, r1: f64) -> Frustum {
         let (r0, r1) = stored_radii(c, h, r0, r1);
         Frustum {
             p0: madd(c, a, -h),

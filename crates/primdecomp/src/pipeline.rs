@@ -39,11 +39,11 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
         q
     })?;
     // Each face's neighbours and outer side: output fits keep off rims and lie flush.
-    let surface = clock.stage(Stage::Seed, "surface", |_, _| {
+    let surface = clock.step(Stage::Seed, "surface", || {
         Surface::build(mesh, &welded, &pairs, params)
     })?;
     // The input's interior, where merges are priced by the air they add (--solid).
-    let solid = clock.stage(Stage::Seed, "solid", |_, _| {
+    let solid = clock.step(Stage::Seed, "solid", || {
         params
             .solid
             .then(|| Solid::build(mesh, solid::CELLS, solid::VOTES))
@@ -87,6 +87,8 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
 struct Clock<'p> {
     progress: &'p dyn Progress,
     timings: Timings,
+    /// The stage reported last: a stage run in several steps starts (0) once.
+    current: Option<Stage>,
 }
 
 impl<'p> Clock<'p> {
@@ -94,10 +96,36 @@ impl<'p> Clock<'p> {
         Clock {
             progress,
             timings: Timings::default(),
+            current: None,
         }
     }
 
-    /// Runs `work` as (part of) `stage`, timed as `name`. `work` gets a callback for
+    /// Runs `work`, a step of `stage` before the one [`Clock::stage`] runs, timed as
+    /// `name`: it reports the stage's start, not its end.
+    fn step<T>(&mut self, stage: Stage, name: &str, work: impl FnOnce() -> T) -> Result<T> {
+        self.start(stage)?;
+        let now = Instant::now();
+        let out = work();
+        self.timings.push(name, now.elapsed().as_secs_f64());
+        match self.progress.cancelled() {
+            true => Err(Error::Cancelled),
+            false => Ok(out),
+        }
+    }
+
+    /// Reports `stage`'s start unless it has started already; `Cancelled` first if so.
+    fn start(&mut self, stage: Stage) -> Result<()> {
+        if self.progress.cancelled() {
+            return Err(Error::Cancelled);
+        }
+        if self.current != Some(stage) {
+            self.progress.update(stage, 0.0);
+            self.current = Some(stage);
+        }
+        Ok(())
+    }
+
+    /// Runs `work` as (the last step of) `stage`, timed as `name`. `work` gets a callback for
     /// the fraction of the stage done that says whether to go on, and [`Laps`] to time
     /// phases of its own (recorded before `name`, which keeps the rest).
     fn stage<T>(
@@ -106,11 +134,8 @@ impl<'p> Clock<'p> {
         name: &str,
         work: impl FnOnce(GoOn, &mut Laps) -> T,
     ) -> Result<T> {
+        self.start(stage)?;
         let p = self.progress;
-        if p.cancelled() {
-            return Err(Error::Cancelled);
-        }
-        p.update(stage, 0.0);
         let go_on = |fraction: f64| {
             p.update(stage, fraction.clamp(0.0, 1.0));
             !p.cancelled()

@@ -169,7 +169,8 @@ pub fn snapshots(
             cl.merge(t.a, t.b, Vec::new(), 0.0);
         }
         done = m;
-        out.push(snapshot(ev, &cl, target, Scope::Whole));
+        // The components' loops ran to the end: replaying them is not cancelled.
+        out.extend(snapshot(ev, &cl, target, Scope::Whole, &|| true));
     }
     (out, done)
 }

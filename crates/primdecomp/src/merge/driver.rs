@@ -257,7 +257,13 @@ fn merge_loop<Q: Queue>(
 ) -> (MergeOutput, Clusters) {
     let mut out = MergeOutput::default();
     let mut heap = Q::default();
-    out.fits.seed += seed_queue(ev, &cl, &mut heap);
+    match seed_queue(ev, &cl, &mut heap, go_on) {
+        Some(priced) => out.fits.seed += priced,
+        None => {
+            out.stopped = true;
+            return (out, cl);
+        }
+    }
     let mut purge_at = (heap.len() + heap.len() / 4).max(PURGE_MIN);
     let mut stamps = Stamps {
         mark: vec![0; ev.mesh.vertex_count()],
@@ -284,8 +290,13 @@ fn merge_loop<Q: Queue>(
         // (docs/decisions/0025-free-merges-into-plates.md); the
         // queue running dry there does not bridge components first.
         if reached && (held.is_some() || heap.is_empty()) {
+            let go_on_here = || go_on(fraction(start, cl.live, last));
             while next < targets.len() && cl.live <= targets[next] {
-                out.snapshots.push(snapshot(ev, &cl, targets[next], scope));
+                let Some(snap) = snapshot(ev, &cl, targets[next], scope, &go_on_here) else {
+                    out.stopped = true;
+                    return (out, cl);
+                };
+                out.snapshots.push(snap);
                 next += 1;
             }
             if next == targets.len() {
@@ -346,15 +357,19 @@ fn merge_loop<Q: Queue>(
             batch.drain(..).for_each(|c| heap.push(c));
         }
         if out.merges % CHECK_EVERY == 0 {
-            let done = (start - cl.live) as f64 / (start - last.min(start)).max(1) as f64;
-            if !go_on(done) {
+            if !go_on(fraction(start, cl.live, last)) {
                 out.stopped = true;
                 return (out, cl);
             }
         }
     }
+    let go_on_here = || go_on(fraction(start, cl.live, last));
     while next < targets.len() {
-        out.snapshots.push(snapshot(ev, &cl, targets[next], scope));
+        let Some(snap) = snapshot(ev, &cl, targets[next], scope, &go_on_here) else {
+            out.stopped = true;
+            return (out, cl);
+        };
+        out.snapshots.push(snap);
         next += 1;
     }
     (out, cl)
@@ -424,7 +439,13 @@ fn next_step<Q: Queue>(
 
 /// Prices the input's adjacent pairs into `heap` in blocks, so that only one block of
 /// pairs and candidates exists outside the queue; returns how many were priced.
-fn seed_queue<Q: Queue>(ev: &Evaluator, cl: &Clusters, heap: &mut Q) -> usize {
+/// The loop's progress: merges done of those from `start` clusters down to `last`.
+fn fraction(start: usize, live: usize, last: usize) -> f64 {
+    (start - live) as f64 / (start - last.min(start)).max(1) as f64
+}
+
+/// `None` when `go_on` (asked between blocks, reporting no progress yet) says stop.
+fn seed_queue<Q: Queue>(ev: &Evaluator, cl: &Clusters, heap: &mut Q, go_on: GoOn) -> Option<usize> {
     let (n, mut priced) = (cl.len() as u32, 0);
     let mut block = Vec::with_capacity(PRICE_BLOCK);
     for a in 0..n {
@@ -439,9 +460,12 @@ fn seed_queue<Q: Queue>(ev: &Evaluator, cl: &Clusters, heap: &mut Q) -> usize {
             priced += block.len();
             price(ev, cl, &block).into_iter().for_each(|c| heap.push(c));
             block.clear();
+            if !go_on(0.0) {
+                return None;
+            }
         }
     }
-    priced
+    Some(priced)
 }
 
 /// Drops stale entries: lazy deletion's would otherwise outnumber the live pairs many
@@ -580,19 +604,35 @@ fn centroid(ev: &Evaluator, cl: &Clusters, c: u32) -> [f64; 3] {
 
 /// Fits every live cluster (in root order) on all of its faces' vertices, for output
 /// (a part's loop only records that the target was reached).
-pub(super) fn snapshot(ev: &Evaluator, cl: &Clusters, target: usize, scope: Scope) -> Snapshot {
+/// `None` when `go_on` says stop while the output primitives are fitted (asked
+/// before every 64 clusters on each thread).
+pub(super) fn snapshot(
+    ev: &Evaluator,
+    cl: &Clusters,
+    target: usize,
+    scope: Scope,
+    go_on: &(dyn Fn() -> bool + Sync),
+) -> Option<Snapshot> {
     if scope != Scope::Whole {
-        return Snapshot {
+        return Some(Snapshot {
             target,
             ..Snapshot::default()
-        };
+        });
     }
     let roots = cl.roots();
     let prims: Vec<Primitive> = roots
-        .par_iter()
-        .map_init(Workspace::default, |ws, &r| {
-            ev.fit_cluster_exact(cl, r, ws).prim
+        .par_chunks(64)
+        .map_init(Workspace::default, |ws, chunk| {
+            go_on().then(|| {
+                chunk
+                    .iter()
+                    .map(|&r| ev.fit_cluster_exact(cl, r, ws).prim)
+                    .collect::<Vec<_>>()
+            })
         })
+        .collect::<Option<Vec<_>>>()?
+        .into_iter()
+        .flatten()
         .collect();
     let mut snap = Snapshot {
         target,
@@ -603,7 +643,7 @@ pub(super) fn snapshot(ev: &Evaluator, cl: &Clusters, target: usize, scope: Scop
         q: Vec::new(),
     };
     snap.q = roots.iter().map(|&r| cl.q[r as usize]).collect();
-    snap
+    Some(snap)
 }
 
 #[cfg(test)]

@@ -204,6 +204,10 @@ pub(super) fn merge_groups(
                 done[i].store((f * span).round() as usize, Relaxed);
                 merged(done.iter().map(|d| d.load(Relaxed)).sum())
             };
+            // A part that has not started when the run is cancelled does no work.
+            if !merged(done.iter().map(|d| d.load(Relaxed)).sum()) {
+                return (Groups::default(), MergeOutput::stopped());
+            }
             merge_one(ev, q, volume, part, lp, target, kind, &report)
         })
         .collect();

@@ -356,11 +356,9 @@ fn merge_loop<Q: Queue>(
             cl.mark_repriced(root);
             batch.drain(..).for_each(|c| heap.push(c));
         }
-        if out.merges % CHECK_EVERY == 0 {
-            if !go_on(fraction(start, cl.live, last)) {
-                out.stopped = true;
-                return (out, cl);
-            }
+        if out.merges % CHECK_EVERY == 0 && !go_on(fraction(start, cl.live, last)) {
+            out.stopped = true;
+            return (out, cl);
         }
     }
     let go_on_here = || go_on(fraction(start, cl.live, last));

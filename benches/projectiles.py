@@ -132,9 +132,14 @@ def main():
 {a.shots} shots per collider and speed (Fibonacci-sphere directions, each aimed at a
 seeded area-sampled surface point), no gravity, fixed steps of 1/60 s, balls of radius
 0.01 D in a scene scaled to D = 10 m (definitions: `crates/primdecomp-sim/src/projectiles.rs`).
-A shot *passes* when its ball ends inside the input's volume (winding number > 1/2) or
-beyond the object along its line. Fraction of the counted shots (lines that meet the
-input). Ours: `primdecomp decompose MESH` (default, N = 64) and with `--solid`. Peers:
+A shot *passes* when its ball's centre crosses the input's surface (ray cast of every
+frame's move) and ends inside the input's volume (winding number > 1/2) or past the
+input's last triangle on its line. CCD off = plain discrete steps (Rapier 0.36's own
+sweep of fast bodies against fixed colliders turned off, as in most engines' default);
+CCD on = that sweep plus CCD on the balls. Fraction of the counted shots (lines that
+meet the input). A ball that sinks into a solid part during a long step and is pushed
+out through another face (near an edge or corner) counts too: that is why solid hulls
+pass balls at 2 and 10 diameters per frame. Ours: `primdecomp decompose MESH` (default, N = 64) and with `--solid`. Peers:
 pinned CoACD and V-HACD with their defaults (benches/peers). Regenerate with:
 
 ```sh
@@ -142,7 +147,7 @@ cargo build --release
 bash benches/peers/venv.sh && {cmd} --run-peers
 ```
 
-## Mean pass-through over the meshes every collider ran on, CCD off (engines' default)
+## Mean pass-through over the meshes every collider ran on, CCD off
 
 {table(shead, summary(fractions[False], names))}
 

@@ -1,6 +1,6 @@
 //! `primdecomp sim --scenario projectiles`: balls fired at the object from every
 //! side at game speeds, with discrete fixed steps and (by default) no continuous
-//! collision detection, as game engines run; counts the balls that tunnel — end
+//! collision detection; counts the balls that tunnel — end
 //! inside the input's closed volume or beyond the object along their path. The
 //! paper's §4.1 measures frame time with slow balls; this measures what a thin
 //! collider (a plate, a triangle mesh) does to a fast body (issue 31).
@@ -25,13 +25,21 @@
 //! - **Frames.** Until the slowest shot, unobstructed, would be 4r past its t_out,
 //!   plus [`SETTLE_FRAMES`] for contacts to resolve.
 //!
+//! # Collision detection
+//! Off (default): plain discrete steps. Rapier 0.36 sweeps fast dynamic bodies
+//! against fixed colliders on its own (`IntegrationParameters::max_ccd_substeps`
+//! = 1); that is turned off (0), as most engines' default discrete mode.
+//! [`Settings::ccd`]: Rapier's default sweep and CCD on every ball.
+//!
 //! # Measures (per collider and speed, over the counted shots)
-//! - `inside`: the ball's centre ends inside the input's volume (generalized
+//! After every frame each ball's move since the last is ray cast against the input's
+//! triangles: `crossed` once its centre has crossed the input's surface.
+//! - `inside`: crossed, and the centre ends inside the input's volume (generalized
 //!   winding number of the input's triangles > 1/2: parity for a closed mesh,
 //!   robust to small holes).
-//! - `beyond`: it ends past the object along its path — its advance along dᵢ from the
-//!   start exceeds t_out + r — within 2r of its line (a ball that slid round the
-//!   object's side is deflected, one that tunnelled is not).
+//! - `beyond`: crossed, outside at the end, and past t_out + r along dᵢ from the
+//!   start. A ball a collider stops never crosses; one that sinks into a solid part
+//!   in a long step and is pushed out through another face (near an edge) counts.
 //! - `passed` = inside or beyond: the pass-through count.
 
 use super::scene::{frame_of, SplitMix, BALL_RADIUS_REL, DT};

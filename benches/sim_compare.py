@@ -204,6 +204,9 @@ def ratio(a, b):
 def tables(rows, a):
     g = lambda r, role, key: r[role][key] if r.get(role) else None  # noqa: E731
     lines = [
+        "Fast bodies (balls fired at 0.1–10 diameters per frame, discrete steps and CCD): "
+        "[projectiles.md](projectiles.md) (`python3 benches/projectiles.py`).",
+        "",
         "### Physics-step time per frame, median ms, and ours as a ratio to the peers",
         "",
         "wall = wall clock of the step; CPU = the process's CPU time during the step (the machine "

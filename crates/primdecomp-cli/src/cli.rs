@@ -167,7 +167,10 @@ struct DecomposeArgs {
     no_join_coplanar: bool,
     /// Price merges by the volume they add outside the input (its interior by ray
     /// parity on a voxel grid) instead of the whole volume: closed parts fill into
-    /// solid primitives rather than shells of plates; slower.
+    /// solid primitives rather than shells of plates; slower. Without it flat regions
+    /// are plates 2 × --min-extent thick (0.001 of the diagonal), which fast bodies can
+    /// skip between discrete physics steps: use --solid, a low -n or the engine's CCD
+    /// for colliders hit by fast bodies (docs/results/projectiles.md).
     #[arg(long)]
     solid: bool,
     /// Fill each target: when removing nested primitives leaves fewer than N, merge
@@ -296,6 +299,18 @@ struct SimArgs {
     /// one collider per part; every collider alike.
     #[arg(long)]
     compound: bool,
+    /// `drop`: balls dropped on the object, frame time and behaviour (paper §4.1).
+    /// `projectiles`: balls fired at the object from every side at four speeds
+    /// (0.1, 0.5, 2, 10 ball diameters per frame), CCD off unless --ccd, counting
+    /// the balls that pass through (end inside the input's volume or beyond it).
+    #[arg(long, default_value = "drop", value_parser = ["drop", "projectiles"])]
+    scenario: String,
+    /// Projectiles: shots per collider and speed (Fibonacci-sphere directions).
+    #[arg(long, default_value_t = 256)]
+    shots: usize,
+    /// Projectiles: continuous collision detection on the balls (engines default to off).
+    #[arg(long)]
+    ccd: bool,
     /// Print nothing but errors.
     #[arg(short, long)]
     quiet: bool,
@@ -1185,16 +1200,10 @@ fn sim(a: SimArgs) -> anyhow::Result<()> {
     }
     guard.check(&outs)?;
     let mesh = primdecomp::load_with(&a.input, &a.load.options())?;
-    let entries = a
-        .colliders
-        .iter()
-        .map(|p| -> anyhow::Result<Entry> {
-            Ok(Entry {
-                label: p.display().to_string(),
-                geometry: Geometry::Collider(primdecomp_eval::collider::load(p)?),
-            })
-        })
-        .collect::<anyhow::Result<Vec<_>>>()?;
+    if a.scenario == "projectiles" {
+        return projectiles(&a, &mesh);
+    }
+    let entries = sim_entries(&a.colliders)?;
     let settings = SimSettings {
         balls: a.balls,
         frames: a.frames,
@@ -1236,6 +1245,45 @@ fn sim(a: SimArgs) -> anyhow::Result<()> {
         print!("{}", primdecomp_sim::report::profile_table(&run));
     }
     Ok(())
+}
+
+/// `primdecomp sim --scenario projectiles`: the pass-through table, and its JSON.
+fn projectiles(a: &SimArgs, mesh: &primdecomp::Mesh) -> anyhow::Result<()> {
+    let entries = sim_entries(&a.colliders)?;
+    let settings = primdecomp_sim::projectiles::Settings {
+        shots: a.shots,
+        seed: a.seed,
+        ccd: a.ccd,
+        threads: a.threads,
+    };
+    let input = a.input.display().to_string();
+    let run =
+        primdecomp_sim::projectiles::run(mesh, &input, &entries, &settings).map_err(
+            |e| match e {
+                primdecomp::Error::InvalidParams(m) => BadArgs(m).into(),
+                e => anyhow::Error::from(e),
+            },
+        )?;
+    if let Some(p) = &a.json {
+        write_atomic(p, run.to_json(&input).as_bytes())?;
+    }
+    if !a.quiet {
+        print!("{}", run.table());
+    }
+    Ok(())
+}
+
+/// The colliders named on the command line, labelled by their paths.
+fn sim_entries(paths: &[PathBuf]) -> anyhow::Result<Vec<Entry>> {
+    paths
+        .iter()
+        .map(|p| -> anyhow::Result<Entry> {
+            Ok(Entry {
+                label: p.display().to_string(),
+                geometry: Geometry::Collider(primdecomp_eval::collider::load(p)?),
+            })
+        })
+        .collect()
 }
 
 /// JSON, CSV and plot, in that order (the plot needs a font and fails last).

@@ -56,6 +56,7 @@ pub mod metrics;
 pub mod plot;
 pub mod prism_shape;
 pub mod profile;
+pub mod projectiles;
 pub mod report;
 pub mod scene;
 pub mod shapes;
@@ -167,8 +168,11 @@ pub struct Run {
 }
 
 /// Rapier shapes of one collider; the count of parts that had no volume.
-fn placed(geometry: &Geometry, mesh: &Mesh, scene: &Scene) -> Result<(Vec<Placed>, usize)> {
-    let f = &scene.frame;
+pub(crate) fn placed(
+    geometry: &Geometry,
+    mesh: &Mesh,
+    f: &shapes::Frame,
+) -> Result<(Vec<Placed>, usize)> {
     let all: Vec<Option<Placed>> = match geometry {
         Geometry::Reference | Geometry::Perturbed => vec![shapes::trimesh(mesh, f)],
         Geometry::Collider(Collider::Primitives(p)) => {
@@ -231,10 +235,11 @@ pub fn run(
     let mut worlds = Vec::with_capacity(entries.len());
     let mut parts = Vec::with_capacity(entries.len());
     for e in &entries {
-        let (shapes, skipped) = placed(&e.geometry, mesh, &scene).map_err(|err| match err {
-            Error::InvalidParams(m) => Error::InvalidParams(format!("{}: {m}", e.label)),
-            other => other,
-        })?;
+        let (shapes, skipped) =
+            placed(&e.geometry, mesh, &scene.frame).map_err(|err| match err {
+                Error::InvalidParams(m) => Error::InvalidParams(format!("{}: {m}", e.label)),
+                other => other,
+            })?;
         parts.push((shapes.len(), skipped));
         let release = match e.geometry {
             Geometry::Perturbed => &perturbed,

@@ -45,10 +45,10 @@ pub struct Scene {
 }
 
 /// SplitMix64: a tiny, well-mixed, seedable stream for the release jitter.
-struct SplitMix(u64);
+pub(crate) struct SplitMix(pub(crate) u64);
 
 impl SplitMix {
-    fn next_u64(&mut self) -> u64 {
+    pub(crate) fn next_u64(&mut self) -> u64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
@@ -56,7 +56,7 @@ impl SplitMix {
         z ^ (z >> 31)
     }
     /// Uniform in [−1, 1).
-    fn symmetric(&mut self) -> f64 {
+    pub(crate) fn symmetric(&mut self) -> f64 {
         (self.next_u64() >> 11) as f64 / (1u64 << 52) as f64 - 1.0
     }
 }
@@ -65,18 +65,7 @@ impl Scene {
     /// Scales the input so its AABB diagonal is [`SCENE_DIAGONAL`] and lays out the
     /// release grid over its footprint.
     pub fn new(mesh: &Mesh, settings: &Settings) -> Scene {
-        let (lo, hi) = mesh.aabb();
-        let diag = norm(sub(hi, lo));
-        let scale = if diag > 0.0 && diag.is_finite() {
-            SCENE_DIAGONAL / diag
-        } else {
-            1.0
-        };
-        let frame = Frame {
-            offset: mesh.centre(),
-            scale,
-        };
-        let aabb = (lo.map(|x| x * scale), hi.map(|x| x * scale));
+        let (frame, aabb) = frame_of(mesh);
         let radius = BALL_RADIUS_REL * SCENE_DIAGONAL;
         let release = release_grid(aabb, radius, settings);
         Scene {
@@ -104,6 +93,23 @@ impl Scene {
             .map(|p| p.map(|x| x + d * rng.symmetric()))
             .collect()
     }
+}
+
+/// The simulation frame of `mesh` (re-centred on its AABB centre, scaled to an AABB
+/// diagonal of [`SCENE_DIAGONAL`]) and its AABB in that frame.
+pub fn frame_of(mesh: &Mesh) -> (Frame, (V3, V3)) {
+    let (lo, hi) = mesh.aabb();
+    let diag = norm(sub(hi, lo));
+    let scale = if diag > 0.0 && diag.is_finite() {
+        SCENE_DIAGONAL / diag
+    } else {
+        1.0
+    };
+    let frame = Frame {
+        offset: mesh.centre(),
+        scale,
+    };
+    (frame, (lo.map(|x| x * scale), hi.map(|x| x * scale)))
 }
 
 /// Columns `SPACING_RADII · r` apart over the AABB's footprint (cells centred, at

@@ -28,7 +28,9 @@ impl Progress for CancelAt {
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut args = std::env::args().skip(1);
-    let path = args.next().ok_or("usage: cancel_latency MESH [SECONDS...]")?;
+    let path = args
+        .next()
+        .ok_or("usage: cancel_latency MESH [SECONDS...]")?;
     let mut times: Vec<f64> = args.map(|a| a.parse()).collect::<Result<_, _>>()?;
     if times.is_empty() {
         times = vec![0.5, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 8.0];
@@ -48,7 +50,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         };
         let run = decompose_with(&mesh, &params, &p);
         let total = p.start.elapsed().as_secs_f64();
-        let stage = p.stage.lock().unwrap_or_else(|e| e.into_inner()).map(Stage::name);
+        let stage = p
+            .stage
+            .lock()
+            .unwrap_or_else(|e| e.into_inner())
+            .map(Stage::name);
         println!(
             "| {at:.1} | {} | {total:.3} | {:.3} | {} |",
             stage.unwrap_or("-"),

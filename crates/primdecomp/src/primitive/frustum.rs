@@ -94,7 +94,10 @@ fn stored_radii(c: V3, h: f64, r0: f64, r1: f64) -> (f64, f64) {
     }
     let eta = 4.0 * eps * m;
     let len = 2.0 * h;
-    if !(len > 40.0 * eta) {
+    if !matches!(
+        len.partial_cmp(&(40.0 * eta)),
+        Some(std::cmp::Ordering::Greater)
+    ) {
         return (big, big);
     }
     let delta = 4.0 * eta / len + 4.0 * eps;

@@ -179,6 +179,10 @@ struct DecomposeArgs {
     /// the merge stopped.
     #[arg(long)]
     fill: bool,
+    /// Cut the merge tree where the error is: split the primitive farthest from the
+    /// input until N remain, instead of the greedy pass's N clusters (docs/decisions/0032).
+    #[arg(long)]
+    cut: bool,
     /// When merged clusters' pairs are re-priced: exact (at once, the paper's greedy
     /// order), deferred (each when popped: faster, approximate order), or a neighbour
     /// count N: merges of clusters with N or more neighbours are deferred, others
@@ -370,6 +374,7 @@ fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
     p.join_coplanar &= !a.no_join_coplanar;
     p.solid |= a.solid;
     p.fill |= a.fill;
+    p.cut |= a.cut;
     if let Some(k) = &a.partitions {
         p.partitions = match k.as_str() {
             "auto" => Partitions::Auto,

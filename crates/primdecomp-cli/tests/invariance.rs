@@ -145,6 +145,16 @@ fn cli_files_are_byte_identical() {
     for (name, threads) in [("two", "2"), ("again", "2"), ("eight", "8")] {
         assert!(run(name, &["--threads", threads]) == one, "{name} differs");
     }
+    // The merge-tree cut (docs/decisions/0032) fits its nodes in parallel.
+    let cut_one = run("cut_one", &["--threads", "1", "--cut"]);
+    assert!(
+        cut_one != one,
+        "--cut changed nothing: the check would be vacuous"
+    );
+    assert!(
+        run("cut_two", &["--threads", "2", "--cut"]) == cut_one,
+        "--cut differs"
+    );
     let timed = run("timed", &["--timings"]);
     let mut v: serde_json::Value = serde_json::from_slice(&timed.0).unwrap();
     assert!(v["stats"]["seconds"]["total"].as_f64().is_some());

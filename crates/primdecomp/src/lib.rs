@@ -64,6 +64,7 @@
 #![allow(clippy::needless_range_loop)]
 
 mod budget;
+mod cut;
 mod decompose;
 mod demo;
 mod error;

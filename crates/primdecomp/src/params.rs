@@ -183,6 +183,11 @@ pub struct Params {
     /// less (up to 8N) so the level holds as many primitives as fit within N; up to
     /// four more merge passes (docs/decisions/0020).
     pub fill: bool,
+    /// Each target is a cut of the pass's merge tree instead of the clusters alive when
+    /// N remain: from the roots, the node whose primitive stands farthest from the
+    /// input (sampled one-way distance) is split until N remain or none is worth
+    /// splitting (docs/decisions/0032).
+    pub cut: bool,
 
     // --- Speed (same quality within measurement noise) ---
     /// When merged clusters' candidate merges are re-priced.
@@ -209,6 +214,7 @@ impl Default for Params {
             join_coplanar: true,
             solid: false,
             fill: false,
+            cut: false,
             reprice: Reprice::Deferred { min_degree: 64 },
             partitions: Partitions::Auto,
         }

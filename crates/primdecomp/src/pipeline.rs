@@ -23,7 +23,15 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
     check_input(mesh)?;
     let mut clock = Clock::new(progress);
     let bounds = mesh.aabb();
-    let targets = merge_order(&params.targets);
+    let targets = if params.cut {
+        // The tree's leaves (a snapshot of a few times the largest target) up to its
+        // roots (docs/decisions/0032).
+        let largest = params.targets.iter().copied().max().unwrap_or(1);
+        let leaves = largest.saturating_mul(crate::cut::LEAVES_PER_TARGET);
+        merge_order(&[leaves.min(mesh.face_count()).max(largest), 1])
+    } else {
+        merge_order(&params.targets)
+    };
     // Weld overlapping vertices so seams between parts become adjacency (§3.4).
     let (welded, distinct) = clock.stage(Stage::Dedup, "dedup", |_, _| {
         dedup::weld(mesh, params.dedup)
@@ -66,9 +74,15 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
     };
     // Greedy merging down through every target in one pass (Alg. 1's loop).
     let input = MergeInput { q, volumes, pairs };
-    let merged = clock.stage(Stage::Merge, "merge", |go_on, laps| {
+    let mut merged = clock.stage(Stage::Merge, "merge", |go_on, laps| {
         merge(&ev, input, first, &targets, &mut stats, go_on, laps)
     })?;
+    // The cut of the merge tree at each target where the error is (issue 26).
+    if params.cut && !merged.stopped {
+        merged.snapshots = clock.stage(Stage::Postprocess, "cut", |_, _| {
+            cut_tree(&ev, &merged, &params.targets)
+        })?;
+    }
     // Plates joined, duplicates absorbed, nested primitives removed, back to world
     // coordinates (§3.4).
     let levels = clock.stage(Stage::Postprocess, "postprocess", |_, _| {
@@ -80,6 +94,19 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
         timings: clock.timings,
         stats,
     })
+}
+
+/// The snapshots of `targets` cut from the tree of `merged` (leaves: its first
+/// snapshot; nodes: its merges after it).
+fn cut_tree(
+    ev: &Evaluator,
+    merged: &MergeOutput,
+    targets: &[usize],
+) -> Vec<crate::merge::Snapshot> {
+    let leaves = &merged.snapshots[0];
+    let log = &merged.log[merged.log_at_first..];
+    let tree = crate::cut::MergeTree::build(&leaves.members, &leaves.q, log, ev.mesh.face_count());
+    crate::cut::Cutter::new(ev, &tree).snapshots(targets)
 }
 
 /// Times each stage, reports it to the caller, and turns a cancellation into
@@ -293,6 +320,8 @@ fn merge(
     let last = *targets.last().expect("validated: one target or more");
     let total = ev.mesh.face_count().saturating_sub(last).max(1) as f64;
     let merged_so_far = |m: usize| go_on(m as f64 / total);
+    // The merges after the first snapshot that the replayed components did.
+    let mut tree_log = Vec::new();
     let (clusters, early) = match first {
         FirstPhase::Faces => (Some(Clusters::new(q, volumes, &pairs)), Vec::new()),
         FirstPhase::Parts(k) => {
@@ -319,8 +348,9 @@ fn merge(
             if p1.stopped {
                 return MergeOutput::stopped();
             }
-            let (early, replayed) =
+            let (early, replayed, after) =
                 components::snapshots(ev, &p1, &q, &volumes, &pairs, targets, count);
+            tree_log = after;
             if early.len() == targets.len() {
                 // Every target reached: the output holds the replayed merges only.
                 (stats.merges, stats.merges_past) = (replayed, p1.merges - replayed);
@@ -334,6 +364,7 @@ fn merge(
     let Some(clusters) = clusters else {
         return MergeOutput {
             snapshots: early,
+            log: tree_log,
             ..MergeOutput::default()
         };
     };
@@ -341,6 +372,11 @@ fn merge(
     let rest = clusters.live.saturating_sub(last) as f64;
     let phase2 = |f: f64| go_on((done + f * rest) / total);
     let mut out = crate::merge::run(ev, clusters, &targets[early.len()..], &phase2);
+    if !early.is_empty() {
+        // The first snapshot was replayed: the tree takes every merge after it.
+        out.log.splice(0..0, tree_log);
+        out.log_at_first = 0;
+    }
     out.snapshots.splice(0..0, early);
     stats.bridge_edges = out.bridge_edges;
     stats.merges += out.merges;

@@ -133,7 +133,8 @@ pub fn merge_components(
 /// are replayed through [`Clusters::merge`] in that order — each group's merges keep
 /// their own order and groups share no cluster, so the operators add up and the face
 /// lists splice as in the global loop — and fitted as it fits them. Also returns how
-/// many merges the last of them holds.
+/// many merges the last of them holds, and the merges of the global order after the
+/// first of them (the merge tree's, `cut::tree`).
 pub fn snapshots(
     ev: &Evaluator,
     p1: &Phase1,
@@ -142,9 +143,9 @@ pub fn snapshots(
     pairs: &[(u32, u32)],
     targets: &[usize],
     components: usize,
-) -> (Vec<Snapshot>, usize) {
+) -> (Vec<Snapshot>, usize, Vec<(u32, u32)>) {
     if !targets.iter().any(|&t| t >= components) {
-        return (Vec::new(), 0);
+        return (Vec::new(), 0, Vec::new());
     }
     let traces = p1.traces();
     let order = global_order(&traces);
@@ -153,6 +154,7 @@ pub fn snapshots(
     // Merges of the global order replayed so far (targets decrease, so this grows).
     let mut done = 0;
     let mut out = Vec::new();
+    let mut after_first = Vec::new();
     for &target in targets.iter().filter(|&&t| t >= components) {
         let mut m = faces.saturating_sub(target).min(order.len()).max(done);
         // Then the free merges, as the global loop does (`driver::free`).
@@ -171,8 +173,15 @@ pub fn snapshots(
         done = m;
         // The components' loops ran to the end: replaying them is not cancelled.
         out.extend(snapshot(ev, &cl, target, Scope::Whole, &|| true));
+        if out.len() == 1 {
+            let pair = |&(g, i): &(u32, u32)| {
+                let t = &traces[g as usize][i as usize];
+                (t.a, t.b)
+            };
+            after_first = order[done..].iter().map(pair).collect();
+        }
     }
-    (out, done)
+    (out, done, after_first)
 }
 
 /// Every merge of `traces` as (group, index), in the global loop's order: by key,

@@ -63,6 +63,11 @@ pub struct MergeOutput {
     pub trace: Vec<Traced>,
     /// The run was told to stop ([`crate::progress`]): snapshots are missing.
     pub stopped: bool,
+    /// Every merge of the whole input's loop in order, as a face of each merged
+    /// cluster: the merge tree's nodes (`cut::tree`). 8 bytes a merge.
+    pub log: Vec<(u32, u32)>,
+    /// How many of `log`'s merges came before the loop's first snapshot.
+    pub log_at_first: usize,
 }
 
 impl MergeOutput {
@@ -290,6 +295,9 @@ fn merge_loop<Q: Queue>(
         // (docs/decisions/0025-free-merges-into-plates.md); the
         // queue running dry there does not bridge components first.
         if reached && (held.is_some() || heap.is_empty()) {
+            if next == 0 {
+                out.log_at_first = out.log.len();
+            }
             let go_on_here = || go_on(fraction(start, cl.live, last));
             while next < targets.len() && cl.live <= targets[next] {
                 let Some(snap) = snapshot(ev, &cl, targets[next], scope, &go_on_here) else {
@@ -345,6 +353,9 @@ fn merge_loop<Q: Queue>(
         };
         let root = cl.merge(c.a, c.b, verts, c.volume);
         out.merges += 1;
+        if scope == Scope::Whole {
+            out.log.push((c.a, c.b));
+        }
         if !defer(ev, &mut cl, root) {
             let nbrs = cl.resolved_neighbors(root);
             // While the worker prices the batch, reduce the points of the likely next
@@ -360,6 +371,9 @@ fn merge_loop<Q: Queue>(
             out.stopped = true;
             return (out, cl);
         }
+    }
+    if next == 0 {
+        out.log_at_first = out.log.len();
     }
     let go_on_here = || go_on(fraction(start, cl.live, last));
     while next < targets.len() {

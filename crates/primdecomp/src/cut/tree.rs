@@ -1,0 +1,167 @@
+//! The merge tree of one bottom-up pass (§3.3, Alg. 1: every merge joins two clusters,
+//! so the pass defines a binary forest), kept compactly: the clusters of a fine
+//! snapshot are its leaves, every merge after that snapshot a node naming its two
+//! children, and each node's faces a contiguous range of one permutation of the faces
+//! (children's ranges side by side), with the node's operator Q — enough to refit any
+//! node's primitive (`Evaluator::fit_output` on the range's faces and Q).
+
+use crate::math::Sym3;
+
+/// No child: the node is a leaf (a cluster of the fine snapshot).
+const NONE: u32 = u32::MAX;
+
+/// One cluster of the forest: a leaf, or the merge of two earlier nodes.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct TreeNode {
+    /// The two merged nodes, [`NONE`] for a leaf.
+    pub children: [u32; 2],
+    /// The node's faces: `order[start..end]` of [`MergeTree::order`].
+    pub start: u32,
+    pub end: u32,
+    /// The sum of its faces' quadrics.
+    pub q: Sym3,
+}
+
+impl TreeNode {
+    pub(crate) fn is_leaf(&self) -> bool {
+        self.children[0] == NONE
+    }
+}
+
+/// The forest: nodes in merge order (leaves first), its roots (the clusters alive when
+/// merging stopped, in increasing order of their first leaf) and the faces permuted so
+/// that every node's faces are contiguous.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct MergeTree {
+    pub nodes: Vec<TreeNode>,
+    pub roots: Vec<u32>,
+    pub order: Vec<u32>,
+}
+
+impl MergeTree {
+    /// The forest whose leaves are the clusters `members` (with operators `q`) and whose
+    /// merges are `log`, in order: each a pair of faces, one in each merged cluster (the
+    /// merge loop names clusters by a face of theirs). `faces` is the input's face count.
+    pub(crate) fn build(
+        members: &[Vec<u32>],
+        q: &[Sym3],
+        log: &[(u32, u32)],
+        faces: usize,
+    ) -> Self {
+        let mut leaf_of = vec![NONE; faces];
+        for (i, m) in members.iter().enumerate() {
+            m.iter().for_each(|&f| leaf_of[f as usize] = i as u32);
+        }
+        let mut nodes: Vec<TreeNode> = q
+            .iter()
+            .map(|&q| TreeNode {
+                children: [NONE; 2],
+                start: 0,
+                end: 0,
+                q,
+            })
+            .collect();
+        // Union-find over leaves; `top[r]` is the node a set rooted at leaf r is now.
+        let mut parent: Vec<u32> = (0..members.len() as u32).collect();
+        let mut top: Vec<u32> = parent.clone();
+        for &(a, b) in log {
+            let (la, lb) = (leaf_of[a as usize], leaf_of[b as usize]);
+            if la == NONE || lb == NONE {
+                continue;
+            }
+            let (ra, rb) = (find(&mut parent, la), find(&mut parent, lb));
+            if ra == rb {
+                continue;
+            }
+            let (na, nb) = (top[ra as usize], top[rb as usize]);
+            let q = nodes[na as usize].q.add(&nodes[nb as usize].q);
+            nodes.push(TreeNode {
+                children: [na.min(nb), na.max(nb)],
+                start: 0,
+                end: 0,
+                q,
+            });
+            let (r, o) = (ra.min(rb), ra.max(rb));
+            parent[o as usize] = r;
+            top[r as usize] = (nodes.len() - 1) as u32;
+        }
+        let roots: Vec<u32> = (0..members.len() as u32)
+            .filter(|&l| parent[l as usize] == l)
+            .map(|l| top[l as usize])
+            .collect();
+        let mut tree = MergeTree {
+            nodes,
+            roots,
+            order: Vec::with_capacity(faces),
+        };
+        tree.lay_out(members);
+        tree
+    }
+
+    /// Assigns each node its range of [`Self::order`], depth-first from each root.
+    fn lay_out(&mut self, members: &[Vec<u32>]) {
+        let mut stack: Vec<(u32, bool)> = self.roots.iter().rev().map(|&r| (r, false)).collect();
+        while let Some((n, done)) = stack.pop() {
+            let node = self.nodes[n as usize];
+            if done {
+                self.nodes[n as usize].end = self.order.len() as u32;
+                continue;
+            }
+            self.nodes[n as usize].start = self.order.len() as u32;
+            if node.is_leaf() {
+                self.order.extend_from_slice(&members[n as usize]);
+                self.nodes[n as usize].end = self.order.len() as u32;
+                continue;
+            }
+            stack.push((n, true));
+            stack.push((node.children[1], false));
+            stack.push((node.children[0], false));
+        }
+    }
+
+    /// The faces of node `n`.
+    pub(crate) fn faces(&self, n: u32) -> &[u32] {
+        let node = &self.nodes[n as usize];
+        &self.order[node.start as usize..node.end as usize]
+    }
+}
+
+fn find(parent: &mut [u32], mut x: u32) -> u32 {
+    while parent[x as usize] != x {
+        let g = parent[parent[x as usize] as usize];
+        parent[x as usize] = g;
+        x = g;
+    }
+    x
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn q(w: f64) -> Sym3 {
+        Sym3 {
+            xx: w,
+            ..Sym3::ZERO
+        }
+    }
+
+    /// Leaves {0,1} {2} {3,4} {5}; merges 2+3 then 0+2: one root over the first four
+    /// leaves' faces, leaf {5} alone; ranges nest and Q adds up.
+    #[test]
+    fn merges_make_nested_ranges_and_summed_operators() {
+        let members = vec![vec![0, 1], vec![2], vec![4, 3], vec![5]];
+        let qs = [q(1.0), q(2.0), q(4.0), q(8.0)];
+        let t = MergeTree::build(&members, &qs, &[(2, 3), (0, 2), (4, 2)], 6);
+        assert_eq!(t.nodes.len(), 6, "two merges; the third joins one cluster");
+        assert_eq!(t.roots, vec![5, 3]);
+        let mut all: Vec<u32> = t.faces(5).to_vec();
+        all.sort();
+        assert_eq!(all, vec![0, 1, 2, 3, 4]);
+        assert_eq!(t.nodes[5].q.xx, 7.0);
+        assert_eq!(t.nodes[5].children, [0, 4]);
+        assert_eq!(t.faces(4), &[2, 4, 3]);
+        assert_eq!(t.faces(3), &[5]);
+        assert_eq!(t.order.len(), 6);
+    }
+}

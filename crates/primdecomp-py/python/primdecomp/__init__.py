@@ -1,0 +1,155 @@
+"""primdecomp: decompose meshes into convex primitives (boxes, spheres, capsules,
+cylinders, frustums, prisms) from Python. A thin layer over the Rust library; the
+decomposition runs with the GIL released, Ctrl-C raises KeyboardInterrupt.
+
+    import primdecomp
+    v, f = primdecomp.load("bunny.obj")
+    res = primdecomp.decompose(v, f, targets=[64])
+    for p in res.levels[0].primitives:
+        print(p.kind, p.volume, p.transform)
+"""
+
+import json as _json
+
+import numpy as _np
+
+from . import _native
+
+__all__ = ["load", "decompose", "decompose_file", "as_hulls", "Result", "Level", "Primitive"]
+
+
+def load(path):
+    """Load a mesh file (every format the core reads).
+
+    Returns (vertices (N,3) float64 array, faces as a list of polygons)."""
+    return _native.load(str(path))
+
+
+def _vertices(vertices):
+    v = _np.asarray(vertices)
+    if v.ndim != 2 or v.shape[1] != 3:
+        raise ValueError(f"vertices must be an (N,3) array, got shape {v.shape}")
+    if v.dtype.kind not in "fiu":
+        raise ValueError(f"vertices must be float32 or float64, got dtype {v.dtype}")
+    # No copy when already C-contiguous float64.
+    return _np.ascontiguousarray(v, dtype=_np.float64)
+
+
+def _faces(faces):
+    if isinstance(faces, _np.ndarray):
+        f = faces
+        if f.ndim != 2 or f.shape[1] not in (3, 4):
+            raise ValueError(f"faces must be an (F,3) or (F,4) integer array or a list of polygons, got shape {f.shape}")
+        if f.dtype.kind not in "iu":
+            raise ValueError(f"faces must be integers, got dtype {f.dtype}")
+        if f.size and (f.min() < 0 or f.max() > 0xFFFFFFFF):
+            raise ValueError("faces: vertex index out of range (negative or above 2^32-1)")
+        idx = _np.ascontiguousarray(f, dtype=_np.uint32).reshape(-1)
+        off = _np.arange(0, f.shape[0] * f.shape[1] + 1, f.shape[1], dtype=_np.uint32)
+        return off, idx
+    polys = [list(p) for p in faces]
+    lens = [len(p) for p in polys]
+    flat = [i for p in polys for i in p]
+    arr = _np.asarray(flat, dtype=_np.int64)
+    if arr.size and (arr.min() < 0 or arr.max() > 0xFFFFFFFF):
+        raise ValueError("faces: vertex index out of range (negative or above 2^32-1)")
+    off = _np.concatenate([[0], _np.cumsum(lens)]).astype(_np.uint32)
+    return off, arr.astype(_np.uint32)
+
+
+class Primitive:
+    """One primitive: `kind`, its parameters as in the JSON contract (`params`, also
+    as attributes), a 4x4 `transform` (local frame to world) and `volume`."""
+
+    def __init__(self, native, level, index, data, transform, volume):
+        self._native, self._level, self._index = native, level, index
+        self.params = dict(data)
+        self.kind = self.params.get("kind")
+        self.transform = _np.asarray(transform, dtype=_np.float64)
+        self.volume = volume
+
+    def __getattr__(self, name):
+        try:
+            return self.__dict__["params"][name]
+        except KeyError:
+            raise AttributeError(name) from None
+
+    def to_mesh(self, detail=16):
+        """Conservative tessellation (encloses the primitive): (vertices (V,3), polygons)."""
+        return self._native.tessellate(self._level, self._index, detail)
+
+    def __repr__(self):
+        return f"Primitive(kind={self.kind!r}, volume={self.volume:.6g})"
+
+
+class Level:
+    """One target's result: `target`, `primitives`."""
+
+    def __init__(self, native, level):
+        self._doc = _json.loads(native.to_json(level))
+        vols, tfs = native.volumes(level), native.transforms(level)
+        prims = self._doc["primitives"]
+        self.primitives = [Primitive(native, level, i, prims[i], tfs[i], vols[i]) for i in range(len(prims))]
+        self.target = self._doc.get("target")
+
+    def __repr__(self):
+        return f"Level(primitives={len(self.primitives)})"
+
+
+class Result:
+    """A decomposition: `levels`, `stats`, `to_json(level)`, `export(path, level)`."""
+
+    def __init__(self, native):
+        self._native = native
+        self.levels = [Level(native, i) for i in range(native.level_count())]
+        self.stats = self.levels[0]._doc.get("stats", {}) if self.levels else {}
+
+    def to_json(self, level=0):
+        """The CLI's JSON document (`primdecomp decompose`) of one level."""
+        return self._native.to_json(level)
+
+    def export(self, path, level=0):
+        """Write one level in the format named by the extension (.json, .obj, .gltf,
+        .glb, .urdf, .usda, .tscn, .xml = MJCF). Returns the files written."""
+        return self._native.export(str(path), level)
+
+
+def decompose(vertices, faces, progress=None, **settings):
+    """Decompose a mesh. `vertices`: (N,3) float array (float32/float64, any layout);
+    `faces`: (F,3)/(F,4) integer array or list of polygons. `settings`: the library's
+    `Params` fields (targets, kinds, weights, min_extent, ...), library defaults
+    otherwise. `progress(stage, fraction)` is called from the calling thread."""
+    v = _vertices(vertices)
+    off, idx = _faces(faces)
+    try:
+        text = _json.dumps(settings, allow_nan=False)
+    except (TypeError, ValueError) as e:
+        raise ValueError(f"invalid settings: {e}") from None
+    return Result(_native.decompose(v, off, idx, text, progress))
+
+
+def _settings(settings):
+    try:
+        return _json.dumps(settings, allow_nan=False)
+    except (TypeError, ValueError) as e:
+        raise ValueError(f"invalid settings: {e}") from None
+
+
+def decompose_file(path, progress=None, **settings):
+    """Decompose the mesh in a file with the CLI's own loader: the primitives equal
+    `primdecomp decompose PATH` byte for byte in to_json(). (decompose(*load(path))
+    may differ in the last bit: the loader keeps coordinates relative to the mesh's
+    centre, and load() returns them in world coordinates.)"""
+    return Result(_native.decompose_path(str(path), _settings(settings), progress))
+
+
+def as_hulls(vertices, faces, progress=None, **settings):
+    """Like coacd.run_coacd: [[vertices (V,3), triangles (T,3)], ...] of the first
+    level's primitives, each the conservative tessellation, triangulated."""
+    res = decompose(vertices, faces, progress=progress, **settings)
+    out = []
+    for p in res.levels[0].primitives if res.levels else []:
+        pv, polys = p.to_mesh()
+        tris = [[poly[0], poly[k], poly[k + 1]] for poly in polys for k in range(1, len(poly) - 1)]
+        out.append([pv, _np.asarray(tris, dtype=_np.int64).reshape(-1, 3)])
+    return out

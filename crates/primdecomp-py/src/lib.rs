@@ -1,0 +1,354 @@
+//! The native half of the `primdecomp` Python package (issue 29): a thin layer over
+//! the core library's public API. The Python half (python/primdecomp/__init__.py)
+//! checks shapes and dtypes and turns arrays into the contiguous float64 / uint32
+//! buffers read here without a copy; this file runs the decomposition with the GIL
+//! released, watches for Ctrl-C and progress from the calling thread, and converts
+//! the library's errors into Python exceptions.
+
+use numpy::{PyArray2, PyReadonlyArray1, PyReadonlyArray2};
+use primdecomp::export::{write_export, ExportOptions, Format};
+use primdecomp::{Decomposition, Error, Mesh, Params, Primitive, Progress, Stage};
+use pyo3::exceptions::{PyKeyboardInterrupt, PyOSError, PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::Path;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Mutex;
+use std::time::Duration;
+
+/// A mesh for Python: (vertices (N,3) float64, polygons).
+type MeshArrays<'py> = (Bound<'py, PyArray2<f64>>, Vec<Vec<u32>>);
+
+/// How often the waiting Python thread checks for signals and reports progress.
+const POLL: Duration = Duration::from_millis(50);
+
+fn to_py_err(e: Error) -> PyErr {
+    match e {
+        Error::Io { .. } => PyOSError::new_err(e.to_string()),
+        Error::Cancelled => PyKeyboardInterrupt::new_err(e.to_string()),
+        _ => PyValueError::new_err(e.to_string()),
+    }
+}
+
+fn panic_message(p: Box<dyn std::any::Any + Send>) -> String {
+    p.downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| p.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "unknown panic".into())
+}
+
+/// Loads a mesh file (every format the core reads): (vertices (N,3) float64, faces as
+/// a list of polygons), world coordinates.
+#[pyfunction]
+fn load<'py>(py: Python<'py>, path: &str) -> PyResult<MeshArrays<'py>> {
+    let mesh = py
+        .allow_threads(|| catch_unwind(|| primdecomp::load(Path::new(path))))
+        .map_err(|p| PyRuntimeError::new_err(panic_message(p)))?
+        .map_err(to_py_err)?;
+    let verts: Vec<Vec<f64>> = (0..mesh.vertex_count() as u32)
+        .map(|v| mesh.world_pos(v).to_vec())
+        .collect();
+    let faces = (0..mesh.face_count())
+        .map(|f| mesh.face(f).to_vec())
+        .collect();
+    let arr = if verts.is_empty() {
+        PyArray2::zeros(py, [0, 3], false)
+    } else {
+        PyArray2::from_vec2(py, &verts)?
+    };
+    Ok((arr, faces))
+}
+
+/// Progress shared between the worker thread (writes) and the Python thread (reads).
+struct Shared {
+    cancel: AtomicBool,
+    latest: Mutex<Option<(Stage, f64)>>,
+}
+
+impl Progress for Shared {
+    fn update(&self, stage: Stage, fraction: f64) {
+        if let Ok(mut l) = self.latest.lock() {
+            *l = Some((stage, fraction));
+        }
+    }
+    fn cancelled(&self) -> bool {
+        self.cancel.load(Ordering::Relaxed)
+    }
+}
+
+fn build_mesh(positions: &[f64], offsets: &[u32], indices: &[u32]) -> primdecomp::Result<Mesh> {
+    // SAFETY: [f64; 3] has the alignment of f64 and no padding; the Python side
+    // passes a C-contiguous (N,3) array.
+    let pos: &[[f64; 3]] =
+        unsafe { std::slice::from_raw_parts(positions.as_ptr().cast(), positions.len() / 3) };
+    let faces: Vec<&[u32]> = offsets
+        .windows(2)
+        .map(|w| &indices[w[0] as usize..w[1] as usize])
+        .collect();
+    Mesh::from_polygons(pos, &faces)
+}
+
+/// Runs `decompose_with` on a worker thread while this (Python) thread, GIL
+/// released, wakes every [`POLL`] to check signals and call the progress callback.
+fn run_watched(
+    py: Python<'_>,
+    mesh: &Mesh,
+    params: &Params,
+    callback: Option<&PyObject>,
+) -> PyResult<Decomposition> {
+    let shared = Shared {
+        cancel: AtomicBool::new(false),
+        latest: Mutex::new(None),
+    };
+    let mut raised: Option<PyErr> = None;
+    let mut reported: Option<(Stage, f64)> = None;
+    let out = std::thread::scope(|s| {
+        let worker = s.spawn(|| {
+            catch_unwind(AssertUnwindSafe(|| {
+                primdecomp::decompose_with(mesh, params, &shared)
+            }))
+        });
+        while !worker.is_finished() {
+            py.allow_threads(|| std::thread::park_timeout(POLL));
+            if raised.is_some() {
+                continue;
+            }
+            let now = *shared.latest.lock().unwrap_or_else(|e| e.into_inner());
+            let step = || -> PyResult<()> {
+                py.check_signals()?;
+                if let (Some(cb), Some((stage, f))) = (callback, now) {
+                    if reported != now {
+                        cb.call1(py, (stage.name(), f))?;
+                    }
+                }
+                Ok(())
+            };
+            if let Err(e) = step() {
+                raised = Some(e);
+                shared.cancel.store(true, Ordering::Relaxed);
+            }
+            reported = now;
+        }
+        worker.join()
+    });
+    if let Some(e) = raised {
+        return Err(e);
+    }
+    match out {
+        Ok(Ok(r)) => r.map_err(to_py_err),
+        Ok(Err(p)) | Err(p) => Err(PyRuntimeError::new_err(format!(
+            "primdecomp panicked (a bug, please report it): {}",
+            panic_message(p)
+        ))),
+    }
+}
+
+/// Decomposes vertices ((N,3) C-contiguous float64) and polygons (`offsets` into
+/// `indices`, uint32) with settings given as the JSON of `Params`.
+#[pyfunction]
+#[pyo3(signature = (vertices, offsets, indices, settings_json, progress=None))]
+fn decompose(
+    py: Python<'_>,
+    vertices: PyReadonlyArray2<'_, f64>,
+    offsets: PyReadonlyArray1<'_, u32>,
+    indices: PyReadonlyArray1<'_, u32>,
+    settings_json: &str,
+    progress: Option<PyObject>,
+) -> PyResult<NativeResult> {
+    let params = Params::from_json(settings_json).map_err(to_py_err)?;
+    params.validate().map_err(to_py_err)?;
+    let (v, o, i) = (
+        vertices.as_slice()?,
+        offsets.as_slice()?,
+        indices.as_slice()?,
+    );
+    let mesh = py
+        .allow_threads(|| catch_unwind(|| build_mesh(v, o, i)))
+        .map_err(|p| PyRuntimeError::new_err(panic_message(p)))?
+        .map_err(to_py_err)?;
+    let dec = run_watched(py, &mesh, &params, progress.as_ref())?;
+    Ok(NativeResult { dec, params })
+}
+
+/// Decomposes the mesh in a file exactly as `primdecomp decompose` does (same
+/// loader, so the same primitives byte for byte).
+#[pyfunction]
+#[pyo3(signature = (path, settings_json, progress=None))]
+fn decompose_path(
+    py: Python<'_>,
+    path: &str,
+    settings_json: &str,
+    progress: Option<PyObject>,
+) -> PyResult<NativeResult> {
+    let params = Params::from_json(settings_json).map_err(to_py_err)?;
+    params.validate().map_err(to_py_err)?;
+    let mesh = py
+        .allow_threads(|| catch_unwind(|| primdecomp::load(Path::new(path))))
+        .map_err(|p| PyRuntimeError::new_err(panic_message(p)))?
+        .map_err(to_py_err)?;
+    let dec = run_watched(py, &mesh, &params, progress.as_ref())?;
+    Ok(NativeResult { dec, params })
+}
+
+/// A finished decomposition and the settings that made it.
+#[pyclass(frozen, module = "primdecomp._native")]
+struct NativeResult {
+    dec: Decomposition,
+    params: Params,
+}
+
+fn frame(z: [f64; 3]) -> [[f64; 3]; 3] {
+    let n = (z[0] * z[0] + z[1] * z[1] + z[2] * z[2]).sqrt();
+    let z = if n > 0.0 {
+        z.map(|c| c / n)
+    } else {
+        [0.0, 0.0, 1.0]
+    };
+    let t = if z[0].abs() < 0.9 {
+        [1.0, 0.0, 0.0]
+    } else {
+        [0.0, 1.0, 0.0]
+    };
+    let cr = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let x = cr(t, z);
+    let xn = (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt();
+    let x = x.map(|c| c / xn);
+    [x, cr(z, x), z]
+}
+
+/// Rotation (columns = local axes) and translation of a primitive's local frame:
+/// axis kinds have local z along p0→p1 and their origin at its midpoint.
+fn transform(p: &Primitive) -> [[f64; 4]; 4] {
+    let mid = |a: [f64; 3], b: [f64; 3]| std::array::from_fn(|k| 0.5 * (a[k] + b[k]));
+    let dir = |a: [f64; 3], b: [f64; 3]| std::array::from_fn(|k| b[k] - a[k]);
+    let (c, axes) = match *p {
+        Primitive::Box(b) => (b.center, b.axes),
+        Primitive::Prism(b) => (b.center, b.axes),
+        Primitive::Sphere(s) => (
+            s.center,
+            [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+        ),
+        Primitive::Capsule(k) => (mid(k.p0, k.p1), frame(dir(k.p0, k.p1))),
+        Primitive::Cylinder(k) => (mid(k.p0, k.p1), frame(dir(k.p0, k.p1))),
+        Primitive::Frustum(k) => (mid(k.p0, k.p1), frame(dir(k.p0, k.p1))),
+    };
+    let mut m = [[0.0; 4]; 4];
+    for r in 0..3 {
+        for (col, a) in axes.iter().enumerate() {
+            m[r][col] = a[r];
+        }
+        m[r][3] = c[r];
+    }
+    m[3][3] = 1.0;
+    m
+}
+
+impl NativeResult {
+    fn level(&self, level: usize) -> PyResult<&primdecomp::Level> {
+        self.dec.levels.get(level).ok_or_else(|| {
+            PyValueError::new_err(format!(
+                "level {level} out of range: the result has {} levels",
+                self.dec.levels.len()
+            ))
+        })
+    }
+    fn primitive(&self, level: usize, i: usize) -> PyResult<&Primitive> {
+        let lv = self.level(level)?;
+        lv.primitives.get(i).ok_or_else(|| {
+            PyValueError::new_err(format!(
+                "primitive {i} out of range ({})",
+                lv.primitives.len()
+            ))
+        })
+    }
+}
+
+#[pymethods]
+impl NativeResult {
+    /// The number of levels (one per target).
+    fn level_count(&self) -> usize {
+        self.dec.levels.len()
+    }
+    /// The CLI's JSON document of one level.
+    fn to_json(&self, level: usize) -> PyResult<String> {
+        self.level(level)?;
+        Ok(primdecomp::to_json(&self.dec, level, &self.params))
+    }
+    /// Volumes of a level's primitives.
+    fn volumes(&self, level: usize) -> PyResult<Vec<f64>> {
+        Ok(self
+            .level(level)?
+            .primitives
+            .iter()
+            .map(|p| p.volume())
+            .collect())
+    }
+    /// 4x4 transforms of a level's primitives (row-major nested lists).
+    fn transforms(&self, level: usize) -> PyResult<Vec<[[f64; 4]; 4]>> {
+        Ok(self
+            .level(level)?
+            .primitives
+            .iter()
+            .map(transform)
+            .collect())
+    }
+    /// Conservative tessellation of one primitive: (vertices (V,3), polygons).
+    fn tessellate<'py>(
+        &self,
+        py: Python<'py>,
+        level: usize,
+        i: usize,
+        detail: usize,
+    ) -> PyResult<MeshArrays<'py>> {
+        let t = primdecomp::tessellate(self.primitive(level, i)?, detail);
+        let v: Vec<Vec<f64>> = t.vertices.iter().map(|p| p.to_vec()).collect();
+        Ok((PyArray2::from_vec2(py, &v)?, t.faces))
+    }
+    /// Writes one level in the format named by `path`'s extension (`.json`, `.obj`,
+    /// or an engine format: `.gltf`, `.glb`, `.urdf`, `.usda`, `.tscn`; `.xml` = MJCF).
+    fn export(&self, path: &str, level: usize) -> PyResult<Vec<String>> {
+        let p = Path::new(path);
+        let json = self.to_json(level)?;
+        let ext = p
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase);
+        let written = match ext.as_deref() {
+            Some("json") => primdecomp::write_atomic(p, json.as_bytes()).map(|_| vec![p.into()]),
+            Some("obj") => {
+                let obj = primdecomp::to_obj(self.level(level)?, primdecomp::export::DEFAULT_DETAIL);
+                primdecomp::write_atomic(p, obj.as_bytes()).map(|_| vec![p.into()])
+            }
+            _ => {
+                let format = match ext.as_deref() {
+                    Some("xml") => Format::Mjcf,
+                    _ => Format::from_path(p).ok_or_else(|| {
+                        PyValueError::new_err(format!(
+                            "{path}: unknown export format (use .json, .obj, .gltf, .glb, .urdf, .usda, .tscn or .xml for MJCF)"
+                        ))
+                    })?,
+                };
+                let objs = primdecomp::export::read_objects(&json).map_err(PyValueError::new_err)?;
+                write_export(p, &objs, format, &ExportOptions::default())
+            }
+        }
+        .map_err(to_py_err)?;
+        Ok(written.iter().map(|w| w.display().to_string()).collect())
+    }
+}
+
+/// The native module; the public API is in python/primdecomp/__init__.py.
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(load, m)?)?;
+    m.add_function(wrap_pyfunction!(decompose, m)?)?;
+    m.add_function(wrap_pyfunction!(decompose_path, m)?)?;
+    m.add_class::<NativeResult>()?;
+    Ok(())
+}

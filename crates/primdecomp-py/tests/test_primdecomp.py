@@ -1,0 +1,136 @@
+"""pytest suite of the primdecomp Python package (issue 29). Needs the corpus at
+../shared/datasets/corpus relative to the repo root and the CLI binary
+target/release/primdecomp (scripts/test.sh builds both before running this)."""
+
+import json
+import os
+import signal
+import subprocess
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import primdecomp
+
+ROOT = Path(__file__).resolve().parents[3]
+CORPUS = ROOT.parent / "shared" / "datasets" / "corpus"
+CLI = ROOT / "target" / "release" / "primdecomp"
+MESH = CORPUS / "armadillo_libigl.obj"
+
+
+def need(p):
+    if not p.exists():
+        if os.environ.get("CI"):
+            pytest.fail(f"{p} missing under CI")
+        pytest.skip(f"{p} missing")
+
+
+def cube():
+    v = np.array([[x, y, z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=np.float64)
+    q = [[0, 1, 3, 2], [4, 6, 7, 5], [0, 4, 5, 1], [2, 3, 7, 6], [0, 2, 6, 4], [1, 5, 7, 3]]
+    return v, np.array(q)
+
+
+def test_dtypes_and_layouts_agree():
+    v, q = cube()
+    ref = primdecomp.decompose(v, q, targets=[4]).to_json()
+    wide = np.zeros((8, 6))
+    wide[:, ::2] = v
+    for vv in (v.astype(np.float32), np.asfortranarray(v), wide[:, ::2]):
+        assert primdecomp.decompose(vv, q, targets=[4]).to_json() == ref
+    tris = np.array([[p[0], p[k], p[k + 1]] for p in q for k in (1, 2)], dtype=np.int32)
+    r = primdecomp.decompose(v, tris, targets=[4])
+    assert len(r.levels) == 1 and r.levels[0].primitives
+    assert primdecomp.decompose(v, q.tolist(), targets=[4]).to_json() == ref
+
+
+def test_result_objects():
+    v, q = cube()
+    r = primdecomp.decompose(v, q, targets=[8, 2])
+    assert len(r.levels) == 2
+    p = r.levels[0].primitives[0]
+    assert p.transform.shape == (4, 4) and p.volume > 0 and p.kind in {
+        "box", "sphere", "capsule", "cylinder", "frustum", "prism"}
+    mv, mf = p.to_mesh()
+    assert mv.shape[1] == 3 and len(mf) >= 4
+    assert isinstance(r.stats, dict)
+
+
+@pytest.mark.parametrize("bad,msg", [
+    (lambda v, q: (v[:, :2], q), "(N,3)"),
+    (lambda v, q: (v.astype(str), q), "dtype"),
+    (lambda v, q: (np.where(v == 1, np.nan, v), q), "finite"),
+    (lambda v, q: (v, q + 100), "range"),
+    (lambda v, q: (v, -q), "range"),
+    (lambda v, q: (v, q.astype(float)), "integers"),
+])
+def test_bad_input_raises_value_error(bad, msg):
+    v, q = cube()
+    with pytest.raises(ValueError) as e:
+        primdecomp.decompose(*bad(v, q))
+    assert msg in str(e.value) or "non-finite" in str(e.value) or "NaN" in str(e.value)
+
+
+def test_bad_settings():
+    v, q = cube()
+    with pytest.raises(ValueError, match="bogus"):
+        primdecomp.decompose(v, q, bogus=1)
+    with pytest.raises(ValueError):
+        primdecomp.decompose(v, q, targets=[])
+
+
+def test_as_hulls_and_export(tmp_path):
+    v, q = cube()
+    hulls = primdecomp.as_hulls(v, q, targets=[3])
+    assert hulls and all(h[0].shape[1] == 3 and h[1].shape[1] == 3 for h in hulls)
+    r = primdecomp.decompose(v, q, targets=[3])
+    for ext in ("json", "obj", "glb", "urdf"):
+        out = r.export(tmp_path / f"c.{ext}")
+        assert out and Path(out[0]).stat().st_size > 0
+
+
+def test_same_primitives_as_cli(tmp_path):
+    need(MESH)
+    need(CLI)
+    subprocess.run([CLI, "decompose", MESH, "-n", "16", "-o", tmp_path / "c.json"],
+                   check=True, capture_output=True)
+    cli = json.loads((tmp_path / "c.json").read_text())["primitives"]
+    py = json.loads(primdecomp.decompose_file(MESH, targets=[16]).to_json())["primitives"]
+    assert json.dumps(cli) == json.dumps(py)
+
+
+def test_gil_released():
+    need(MESH)
+    v, f = primdecomp.load(MESH)
+    ticks = []
+    stop = threading.Event()
+
+    def tick():
+        while not stop.is_set():
+            ticks.append(1)
+            time.sleep(0.01)
+
+    t = threading.Thread(target=tick)
+    t.start()
+    t0 = time.time()
+    primdecomp.decompose(v, f, targets=[16])
+    dt = time.time() - t0
+    stop.set()
+    t.join()
+    assert len(ticks) > dt / 0.01 / 4
+
+
+def test_ctrl_c_interrupts_quickly():
+    need(MESH)
+    v, f = primdecomp.load(MESH)
+    seen = []
+    timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    t0 = time.time()
+    with pytest.raises(KeyboardInterrupt):
+        primdecomp.decompose(v, f, targets=[1], progress=lambda s, x: seen.append(s))
+    assert time.time() - t0 < 1.3
+    assert seen

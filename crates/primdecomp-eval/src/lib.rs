@@ -16,7 +16,7 @@
 //! parallel, and is the same for a seed whatever the thread count: samples come from
 //! per-chunk generators and every reduction runs in sample order.
 
-pub mod bvh;
+pub use primdecomp::math::bvh;
 pub mod collider;
 pub mod report;
 pub mod sample;

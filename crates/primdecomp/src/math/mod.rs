@@ -14,6 +14,7 @@
 //! assert_eq!(norm([3.0, 4.0, 0.0]), 5.0);
 //! ```
 
+pub mod bvh;
 pub(crate) mod eigen3;
 pub(crate) mod hull;
 pub(crate) mod quat;

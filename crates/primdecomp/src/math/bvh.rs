@@ -1,12 +1,13 @@
 //! A bounding-volume hierarchy over items with axis-aligned boxes (triangles,
 //! primitives, hulls), with exact nearest-item and containing-item queries, and the
-//! exact point-to-triangle distance the distance metrics rely on.
+//! exact point-to-triangle distance: the merge tree's node errors (`cut`) and
+//! `primdecomp-eval`'s distance metrics both stand on it.
 //!
 //! Built by median splits on the longest axis of the item centroids (ties broken by
 //! item index, so the tree is the same on every run); queried depth-first, nearer
 //! child first, pruning nodes whose box is farther than the best distance so far.
 
-use primdecomp::math::{add, dot, norm2, scale, sub, V3};
+use super::{add, dot, norm2, scale, sub, V3};
 
 const LEAF: usize = 4;
 
@@ -103,12 +104,23 @@ impl Bvh {
 
     /// The smallest `dist2(item)` over all items, with that item (or `u32::MAX` when
     /// empty). `dist2` must be at least the squared distance from `p` to the item's box.
-    pub fn nearest(&self, p: V3, mut dist2: impl FnMut(u32) -> f64) -> (f64, u32) {
+    pub fn nearest(&self, p: V3, dist2: impl FnMut(u32) -> f64) -> (f64, u32) {
+        self.nearest_with(p, &mut Vec::with_capacity(64), dist2)
+    }
+
+    /// [`Bvh::nearest`] with a reusable `stack` (scratch; its contents are replaced),
+    /// for callers that query in a loop.
+    pub fn nearest_with(
+        &self,
+        p: V3,
+        stack: &mut Vec<(f64, u32)>,
+        mut dist2: impl FnMut(u32) -> f64,
+    ) -> (f64, u32) {
         let mut best = (f64::INFINITY, u32::MAX);
         if self.nodes.is_empty() {
             return best;
         }
-        let mut stack: Vec<(f64, u32)> = Vec::with_capacity(64);
+        stack.clear();
         stack.push((0.0, 0));
         while let Some((d, n)) = stack.pop() {
             if d >= best.0 {

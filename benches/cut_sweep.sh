@@ -9,7 +9,7 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 corpus="$root/../shared/datasets/corpus"
 [[ -d "$corpus" ]] || { echo "CORPUS ABSENT: $corpus" >&2; exit 1; }
 out="$1"; shift
-target=${TARGET:-1%} samples=${SAMPLES:-30000} bin="$root/target/release/primdecomp"
+target=${TARGET:-1%} samples=${SAMPLES:-30000} bin="${BIN:-$root/target/release/primdecomp}"
 mkdir -p "$out"
 for m in "$@"; do
     for mode in greedy cut; do

@@ -12,6 +12,40 @@ use serde::{Deserialize, Serialize};
 /// are removed.
 pub const DEFAULT_TARGET: usize = 64;
 
+/// The farthest any primitive of a level may stand from the input: the one-way
+/// distance from each primitive's surface to the input's surface, the quantity
+/// `primdecomp eval` reports as Hausdorff, estimated by sampling (docs/decisions/0034).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Tolerance {
+    /// A distance in the input's units.
+    Units(f64),
+    /// A fraction of the input's bounding-box diagonal (0.01 = 1%).
+    Diagonal(f64),
+}
+
+impl Tolerance {
+    /// The distance in the input's units for an input whose diagonal is `diagonal`.
+    ///
+    /// ```
+    /// use primdecomp::Tolerance;
+    /// assert_eq!(Tolerance::Diagonal(0.01).in_units(200.0), 2.0);
+    /// assert_eq!(Tolerance::Units(0.5).in_units(200.0), 0.5);
+    /// ```
+    pub fn in_units(self, diagonal: f64) -> f64 {
+        match self {
+            Tolerance::Units(d) => d,
+            Tolerance::Diagonal(f) => f * diagonal,
+        }
+    }
+
+    fn value(self) -> f64 {
+        match self {
+            Tolerance::Units(d) | Tolerance::Diagonal(d) => d,
+        }
+    }
+}
+
 /// How vertices at (nearly) the same position are merged before building adjacency (§3.4).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -184,10 +218,23 @@ pub struct Params {
     /// four more merge passes (docs/decisions/0020).
     pub fill: bool,
     /// Each target is a cut of the pass's merge tree instead of the clusters alive when
-    /// N remain: from the roots, the node whose primitive stands farthest from the
-    /// input (sampled one-way distance) is split until N remain or none is worth
-    /// splitting (docs/decisions/0032).
+    /// N remain: the node whose primitive stands farthest from the input (sampled
+    /// one-way distance) is split until N remain or none is worth splitting, and of
+    /// the cuts reached, the one of at most N nodes whose worst node stands nearest
+    /// is kept, then filled to N (docs/decisions/0032 and 0034).
     pub cut: bool,
+    /// Each level's primitives within this distance of the input: the fewest
+    /// primitives of the merge tree's cuts whose every primitive is within it, its
+    /// target as a cap ([`Params::cut`] implied). Empty: none; one value applies to
+    /// every target; otherwise one per target (docs/decisions/0034).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub tolerance: Vec<Tolerance>,
+    /// Each level's storage at most this many bytes by the paper's Table 2 (4 bytes a
+    /// float), its target as a cap ([`Params::cut`] implied): the cut of least worst
+    /// distance that fits. Empty: none; one value applies to every target; otherwise
+    /// one per target (docs/decisions/0034).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub max_bytes: Vec<usize>,
 
     // --- Speed (same quality within measurement noise) ---
     /// When merged clusters' candidate merges are re-priced.
@@ -215,6 +262,8 @@ impl Default for Params {
             solid: false,
             fill: false,
             cut: false,
+            tolerance: Vec::new(),
+            max_bytes: Vec::new(),
             reprice: Reprice::Deferred { min_degree: 64 },
             partitions: Partitions::Auto,
         }
@@ -362,7 +411,56 @@ impl Params {
                 return bad(format!("remove_thin_boxes must be ≥ 0, got {t}"));
             }
         }
+        self.validate_cut()
+    }
+
+    /// The tolerance and byte targets: positive, one or one per target, not with fill.
+    fn validate_cut(&self) -> Result<()> {
+        let bad = |m: String| Err(Error::InvalidParams(m));
+        let n = self.targets.len();
+        for (name, len) in [
+            ("tolerance", self.tolerance.len()),
+            ("max_bytes", self.max_bytes.len()),
+        ] {
+            if len > 1 && len != n {
+                return bad(format!(
+                    "{name} has {len} values for {n} targets: give one value, or one per target"
+                ));
+            }
+        }
+        if let Some(t) = self
+            .tolerance
+            .iter()
+            .find(|t| !(t.value().is_finite() && t.value() > 0.0))
+        {
+            return bad(format!("tolerance must be a positive distance, got {t:?}"));
+        }
+        if self.max_bytes.contains(&0) {
+            return bad("max_bytes must be positive".into());
+        }
+        if self.fill && self.uses_cut() {
+            return bad(
+                "fill refines the greedy snapshot; cut, tolerance and max_bytes already fill \
+                 each target from the merge tree"
+                    .into(),
+            );
+        }
         Ok(())
+    }
+
+    /// Whether levels are cuts of the merge tree ([`Params::cut`], or a tolerance or
+    /// byte target).
+    pub(crate) fn uses_cut(&self) -> bool {
+        self.cut || !self.tolerance.is_empty() || !self.max_bytes.is_empty()
+    }
+
+    /// Level `i`'s tolerance and byte target (one value applies to every level).
+    pub(crate) fn level_limits(&self, i: usize) -> (Option<Tolerance>, Option<usize>) {
+        let pick = |len: usize| (len > 0).then_some(if len == 1 { 0 } else { i });
+        (
+            pick(self.tolerance.len()).map(|k| self.tolerance[k]),
+            pick(self.max_bytes.len()).map(|k| self.max_bytes[k]),
+        )
     }
 }
 

@@ -23,7 +23,7 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
     check_input(mesh)?;
     let mut clock = Clock::new(progress);
     let bounds = mesh.aabb();
-    let targets = if params.cut {
+    let targets = if params.uses_cut() {
         // The tree's leaves (a snapshot of a few times the largest target) up to its
         // roots (docs/decisions/0032).
         let largest = params.targets.iter().copied().max().unwrap_or(1);
@@ -72,22 +72,41 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
         partitions: first.parts(),
         ..Stats::default()
     };
+    // The merge tree's leaves keep their own operators (a cut of the tree).
+    let face_q = if params.uses_cut() {
+        q.clone()
+    } else {
+        Vec::new()
+    };
     // Greedy merging down through every target in one pass (Alg. 1's loop).
-    let input = MergeInput { q, volumes, pairs };
+    let input = MergeInput {
+        q,
+        volumes,
+        pairs,
+        tree: params.uses_cut(),
+    };
     let mut merged = clock.stage(Stage::Merge, "merge", |go_on, laps| {
         merge(&ev, input, first, &targets, &mut stats, go_on, laps)
     })?;
     // The cut of the merge tree at each target where the error is (issue 26).
-    if params.cut && !merged.stopped {
+    let cut_surface =
+        (params.uses_cut() && !merged.stopped).then(|| crate::cut::Surface::new(mesh));
+    if let Some(surface) = &cut_surface {
         merged.snapshots = clock.stage(Stage::Postprocess, "cut", |_, _| {
-            cut_tree(&ev, &merged, &params.targets)
+            cut_tree(&ev, &merged, &face_q, &requests(params, mesh), surface)
         })?;
     }
     // Plates joined, duplicates absorbed, nested primitives removed, back to world
     // coordinates (§3.4).
-    let levels = clock.stage(Stage::Postprocess, "postprocess", |_, _| {
+    let mut levels = clock.stage(Stage::Postprocess, "postprocess", |_, _| {
         postprocess::levels(&ev, merged, params)
     })?;
+    // What each cut's caller asked and how far its primitives stand from the input.
+    if let Some(surface) = &cut_surface {
+        clock.stage(Stage::Postprocess, "distance", |_, _| {
+            crate::cut::record_limits(&mut levels, params, mesh, surface)
+        })?;
+    }
     Ok(Decomposition {
         input: input_info(mesh, bounds),
         levels,
@@ -101,12 +120,37 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
 fn cut_tree(
     ev: &Evaluator,
     merged: &MergeOutput,
-    targets: &[usize],
+    face_q: &[Sym3],
+    requests: &[crate::cut::Request],
+    surface: &crate::cut::Surface,
 ) -> Vec<crate::merge::Snapshot> {
-    let leaves = &merged.snapshots[0];
-    let log = &merged.log[merged.log_at_first..];
-    let tree = crate::cut::MergeTree::build(&leaves.members, &leaves.q, log, ev.mesh.face_count());
-    crate::cut::Cutter::new(ev, &tree).snapshots(targets)
+    let faces = ev.mesh.face_count();
+    let tree = if merged.log_from_faces {
+        // Every merge is known: the leaves are single faces, so any cluster can be
+        // taken apart down to its faces.
+        let singles: Vec<Vec<u32>> = (0..faces as u32).map(|f| vec![f]).collect();
+        crate::cut::MergeTree::build(&singles, face_q, &merged.log, faces)
+    } else {
+        let leaves = &merged.snapshots[0];
+        let log = &merged.log[merged.log_at_first..];
+        crate::cut::MergeTree::build(&leaves.members, &leaves.q, log, faces)
+    };
+    crate::cut::Cutter::new(ev, &tree, surface).snapshots(requests)
+}
+
+/// Each target's request of the cut, its tolerance in the mesh's units.
+fn requests(params: &Params, mesh: &Mesh) -> Vec<crate::cut::Request> {
+    let diagonal = mesh.diagonal();
+    (0..params.targets.len())
+        .map(|i| {
+            let (tolerance, bytes) = params.level_limits(i);
+            crate::cut::Request {
+                count: params.targets[i],
+                bytes,
+                tolerance: tolerance.map(|t| t.in_units(diagonal)),
+            }
+        })
+        .collect()
 }
 
 /// Times each stage, reports it to the caller, and turns a cancellation into
@@ -256,6 +300,8 @@ struct MergeInput {
     q: Vec<Sym3>,
     volumes: Vec<f64>,
     pairs: Vec<(u32, u32)>,
+    /// Every merge is logged for the merge tree (`Params::cut`).
+    tree: bool,
 }
 
 /// How the merge loop starts, chosen once per run from the input and settings.
@@ -316,12 +362,18 @@ fn merge(
     go_on: GoOn,
     laps: &mut Laps,
 ) -> MergeOutput {
-    let MergeInput { q, volumes, pairs } = input;
+    let MergeInput {
+        q,
+        volumes,
+        pairs,
+        tree,
+    } = input;
     let last = *targets.last().expect("validated: one target or more");
     let total = ev.mesh.face_count().saturating_sub(last).max(1) as f64;
     let merged_so_far = |m: usize| go_on(m as f64 / total);
-    // The merges after the first snapshot that the replayed components did.
+    // Every merge the replayed components did, in the global order.
     let mut tree_log = Vec::new();
+    let from_faces = !matches!(first, FirstPhase::Parts(_));
     let (clusters, early) = match first {
         FirstPhase::Faces => (Some(Clusters::new(q, volumes, &pairs)), Vec::new()),
         FirstPhase::Parts(k) => {
@@ -339,9 +391,11 @@ fn merge(
         }
         FirstPhase::Components(comps) => {
             let count = comps.len();
+            // The merge tree needs every merge traced, whatever the targets.
+            let trace_from = if tree { usize::MAX } else { targets[0] };
             let p1 = laps.time("components", || {
                 let (q, v, p) = (&q, &volumes, &pairs);
-                components::merge_components(ev, q, v, p, comps, targets[0], &merged_so_far)
+                components::merge_components(ev, q, v, p, comps, trace_from, &merged_so_far)
             });
             stats.merges = p1.merges;
             add_fits(stats, p1.fits);
@@ -365,6 +419,7 @@ fn merge(
         return MergeOutput {
             snapshots: early,
             log: tree_log,
+            log_from_faces: true,
             ..MergeOutput::default()
         };
     };
@@ -372,11 +427,9 @@ fn merge(
     let rest = clusters.live.saturating_sub(last) as f64;
     let phase2 = |f: f64| go_on((done + f * rest) / total);
     let mut out = crate::merge::run(ev, clusters, &targets[early.len()..], &phase2);
-    if !early.is_empty() {
-        // The first snapshot was replayed: the tree takes every merge after it.
-        out.log.splice(0..0, tree_log);
-        out.log_at_first = 0;
-    }
+    // The components' merges come first in the global order.
+    out.log.splice(0..0, tree_log);
+    out.log_from_faces = from_faces;
     out.snapshots.splice(0..0, early);
     stats.bridge_edges = out.bridge_edges;
     stats.merges += out.merges;

@@ -20,6 +20,14 @@ pub struct InputInfo {
     pub aabb_max: V3,
 }
 
+impl InputInfo {
+    /// The length of the bounding box's diagonal (what relative settings such as
+    /// [`crate::Params::min_extent`] and [`crate::Tolerance::Diagonal`] scale by).
+    pub fn diagonal(&self) -> f64 {
+        crate::math::norm(crate::math::sub(self.aabb_max, self.aabb_min))
+    }
+}
+
 /// The result for one target count.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Level {
@@ -32,6 +40,16 @@ pub struct Level {
     pub primitives: Vec<Primitive>,
     /// For each primitive, how many input faces it was fitted to.
     pub faces: Vec<u32>,
+    /// The level's tolerance in the input's units, when one was asked for
+    /// ([`crate::Params::tolerance`]).
+    pub tolerance: Option<f64>,
+    /// The level's byte target, when one was asked for ([`crate::Params::max_bytes`]).
+    pub max_bytes: Option<usize>,
+    /// For a cut of the merge tree ([`crate::Params::cut`]): the estimated farthest
+    /// any primitive stands from the input, in its units (each primitive's
+    /// conservative tessellation sampled, every sample's nearest input triangle found
+    /// exactly: docs/decisions/0034).
+    pub distance: Option<f64>,
 }
 
 impl Level {

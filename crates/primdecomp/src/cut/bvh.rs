@@ -33,10 +33,25 @@ impl Surface {
 
     /// Distance from `p` to the nearest triangle (infinite for an empty surface);
     /// `stack` is scratch.
+    #[cfg(test)]
     pub(crate) fn distance(&self, p: V3, stack: &mut Vec<(f64, u32)>) -> f64 {
         let (d2, _) = self
             .bvh
             .nearest_with(p, stack, |i| point_tri_dist2(p, &self.tris[i as usize]));
+        d2.sqrt()
+    }
+
+    /// [`Surface::distance`] when it is more than `bound`, otherwise some distance
+    /// at most `bound` (found sooner): `bound.max(..)` is the same either way.
+    pub(crate) fn distance_beyond(&self, p: V3, bound: f64, stack: &mut Vec<(f64, u32)>) -> f64 {
+        let enough = if bound > 0.0 {
+            bound * bound
+        } else {
+            f64::NEG_INFINITY
+        };
+        let (d2, _) = self.bvh.nearest_until(p, enough, stack, |i| {
+            point_tri_dist2(p, &self.tris[i as usize])
+        });
         d2.sqrt()
     }
 }
@@ -65,6 +80,11 @@ mod tests {
                 .fold(f64::INFINITY, f64::min)
                 .sqrt();
             assert_eq!(s.distance(p, &mut stack), brute, "point {p:?}");
+            // A running maximum sees the same value through the early exit.
+            for bound in [0.0, 0.5 * brute, brute, 2.0 * brute] {
+                let d = s.distance_beyond(p, bound, &mut stack);
+                assert_eq!(bound.max(d), bound.max(brute), "point {p:?}, bound {bound}");
+            }
         }
     }
 

@@ -34,7 +34,7 @@ pub(crate) fn error_of(prim: &Primitive, surface: &Surface) -> f64 {
     let mut stack = Vec::new();
     let mut worst = 0.0f64;
     for &p in &tess.vertices {
-        worst = worst.max(surface.distance(p, &mut stack));
+        worst = worst.max(surface.distance_beyond(p, worst, &mut stack));
     }
     if !(total > 0.0 && total.is_finite()) {
         return worst;
@@ -42,7 +42,7 @@ pub(crate) fn error_of(prim: &Primitive, surface: &Surface) -> f64 {
     for t in &tris {
         let k = (SAMPLES as f64 * area(t) / total).ceil() as usize;
         for i in 0..k.min(SAMPLES) {
-            worst = worst.max(surface.distance(point_on(t, i), &mut stack));
+            worst = worst.max(surface.distance_beyond(point_on(t, i), worst, &mut stack));
         }
     }
     worst
@@ -64,7 +64,7 @@ fn point_on(t: &[V3; 3], i: usize) -> V3 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
     use crate::primitive::Primitive;
 

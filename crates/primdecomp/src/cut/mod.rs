@@ -1,10 +1,13 @@
 //! Cutting the merge tree where the error is (issue 26; a deviation from §3.3, which
-//! outputs the clusters alive when N remain: docs/decisions/0032). The pass's merges
-//! form a forest ([`tree`]); each node's primitive gets an error, the one-way distance
-//! from its surface to the input's (as `primdecomp eval` defines Hausdorff, estimated
-//! by sampling, [`error`]); a target of N primitives is the cut reached from the roots
-//! by splitting the worst node until N nodes remain, or until nothing is left worth
-//! splitting. Every node's primitive encloses its faces, so every cut encloses the mesh.
+//! outputs the clusters alive when N remain: docs/decisions/0032 and 0034). The pass's
+//! merges form a forest whose leaves are the faces ([`tree`]); each node's primitive
+//! gets an error, the one-way distance from its surface to the input's (as
+//! `primdecomp eval` defines Hausdorff, estimated by sampling, [`error`]). From the
+//! roots the worst node is split until the largest count is reached or every node is
+//! within the tolerance; each level then takes, of the cuts of the nodes reached, the
+//! fewest nodes within its tolerance, or the least worst error its count and bytes
+//! allow, filled up to its count. Every node's primitive encloses its faces, so every
+//! cut encloses the mesh.
 
 mod bvh;
 mod error;
@@ -13,15 +16,16 @@ pub(crate) mod tree;
 use crate::math::Sym3;
 use crate::merge::{Evaluator, Snapshot, Workspace};
 use crate::primitive::Primitive;
-use bvh::Surface;
+pub(crate) use bvh::Surface;
 use error::error_of;
 use rayon::prelude::*;
 use std::cmp::Ordering;
-use std::collections::{BTreeMap, BinaryHeap, HashMap};
+use std::collections::{BTreeSet, BinaryHeap, HashMap};
 pub(crate) use tree::MergeTree;
 
-/// The tree's leaves are the clusters of the snapshot at this many times the largest
-/// target (or every face): deep enough that a cut of N rarely reaches them.
+/// With spatial parts merged first (their merges are not logged), the tree's leaves
+/// are the clusters of the snapshot at this many times the largest target: deep
+/// enough that a cut of N rarely reaches them. Otherwise the leaves are the faces.
 pub(crate) const LEAVES_PER_TARGET: usize = 4;
 
 /// Nodes whose error is at most this many minimum half-extents are not split: a
@@ -29,12 +33,28 @@ pub(crate) const LEAVES_PER_TARGET: usize = 4;
 /// tessellation error is of that order.
 const FLOOR_HALVES: f64 = 4.0;
 
+/// What one level asks of the cut: at most `count` nodes and `bytes` bytes (the
+/// paper's Table 2), and with a `tolerance` (the mesh's units) the fewest nodes whose
+/// every primitive is within it; without one, the least worst error the caps allow.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Request {
+    pub count: usize,
+    pub bytes: Option<usize>,
+    pub tolerance: Option<f64>,
+}
+
 /// A node of the cut with its fitted primitive and estimated error.
 #[derive(Clone, Debug)]
 struct Entry {
     error: f64,
     node: u32,
     prim: Primitive,
+}
+
+impl Entry {
+    fn bytes(&self) -> usize {
+        self.prim.kind().bytes()
+    }
 }
 
 impl PartialEq for Entry {
@@ -55,20 +75,47 @@ impl Ord for Entry {
     }
 }
 
+/// The part of the tree the splits reached: its roots, every node fitted (roots and
+/// the children of split nodes), and the nodes split, in order.
+struct Explored {
+    roots: Vec<u32>,
+    fitted: HashMap<u32, Entry>,
+    splits: Vec<u32>,
+}
+
+impl Explored {
+    fn is_split(&self, tree: &MergeTree, n: u32) -> bool {
+        let node = &tree.nodes[n as usize];
+        !node.is_leaf() && self.fitted.contains_key(&node.children[0])
+    }
+}
+
+/// What the cut of a node's subtree costs under one error bound: its nodes and bytes,
+/// its worst error, the least worst error any cut of the subtree reaches, and whether
+/// the node itself is kept (else its two children's cuts).
+#[derive(Clone, Copy)]
+struct Cost {
+    count: usize,
+    bytes: usize,
+    worst: f64,
+    best: f64,
+    own: bool,
+}
+
 /// What a cut is made from: the fit settings, the tree and the input's surface.
 pub(crate) struct Cutter<'a> {
     ev: &'a Evaluator<'a>,
     tree: &'a MergeTree,
-    surface: Surface,
+    surface: &'a Surface,
     floor: f64,
 }
 
 impl<'a> Cutter<'a> {
-    pub(crate) fn new(ev: &'a Evaluator<'a>, tree: &'a MergeTree) -> Self {
+    pub(crate) fn new(ev: &'a Evaluator<'a>, tree: &'a MergeTree, surface: &'a Surface) -> Self {
         Cutter {
             ev,
             tree,
-            surface: Surface::new(ev.mesh),
+            surface,
             floor: FLOOR_HALVES * ev.cfg.min_half,
         }
     }
@@ -79,58 +126,59 @@ impl<'a> Cutter<'a> {
         let q = &self.tree.nodes[n as usize].q;
         let prim = self.ev.fit_output(faces.iter().copied(), q, ws).prim;
         Entry {
-            error: error_of(&prim, &self.surface),
+            error: error_of(&prim, self.surface),
             node: n,
             prim,
         }
     }
 
-    /// One snapshot per target of `targets` (any order), from one sequence of splits
-    /// (the worst node each time, until the largest target's count or nothing is left
-    /// worth splitting): the prefix of at most that many nodes whose worst error is the
-    /// least (the longest on ties). A larger target chooses among more prefixes, so
-    /// its estimated worst error is never above a smaller one's.
-    pub(crate) fn snapshots(&self, targets: &[usize]) -> Vec<Snapshot> {
-        let largest = targets.iter().copied().max().unwrap_or(1);
+    /// One snapshot per request, in order, from one sequence of splits: the worst node
+    /// each time, until the largest count is reached, every node is within the
+    /// smallest tolerance (when every request has one) or nothing is left worth
+    /// splitting. Each request then takes the best cut of the nodes reached
+    /// ([`Cutter::choose`]).
+    pub(crate) fn snapshots(&self, requests: &[Request]) -> Vec<Snapshot> {
+        let largest = requests.iter().map(|r| r.count).max().unwrap_or(1);
+        let enough = requests
+            .iter()
+            .map(|r| r.tolerance)
+            .try_fold(f64::INFINITY, |m, t| t.map(|t| m.min(t)))
+            .unwrap_or(0.0)
+            .max(self.floor);
+        let explored = self.explore(largest, enough);
+        requests
+            .iter()
+            .map(|r| {
+                let cut = self.choose(&explored, r);
+                let entries = cut.iter().map(|n| explored.fitted[n].clone()).collect();
+                self.snapshot(r.count, entries)
+            })
+            .collect()
+    }
+
+    /// Splits the worst node of the cut from the roots on until `largest` nodes
+    /// remain or every node is within `enough` or cannot be split.
+    fn explore(&self, largest: usize, enough: f64) -> Explored {
         let roots: Vec<Entry> = self
             .tree
             .roots
             .par_iter()
             .map_init(Workspace::default, |ws, &r| self.entry(r, ws))
             .collect();
-        let (splits, worst, fitted) = self.split_sequence(roots.clone(), largest);
-        targets
-            .iter()
-            .map(|&t| {
-                let most = t.saturating_sub(roots.len()).min(splits.len());
-                let k = best_prefix(&worst, most);
-                self.snapshot(t, cut_after(self.tree, &roots, &splits[..k], &fitted))
-            })
-            .collect()
-    }
-
-    /// Splits the worst node of the cut from `roots` on until `largest` nodes remain or
-    /// none is worth splitting; returns the nodes split in order, the worst error of
-    /// the cut before each split and after the last, and every child fitted.
-    fn split_sequence(
-        &self,
-        roots: Vec<Entry>,
-        largest: usize,
-    ) -> (Vec<u32>, Vec<f64>, HashMap<u32, Entry>) {
+        let mut ex = Explored {
+            roots: self.tree.roots.clone(),
+            fitted: roots.iter().map(|e| (e.node, e.clone())).collect(),
+            splits: Vec::new(),
+        };
         let mut count = roots.len();
         let mut heap: BinaryHeap<Entry> = roots.into_iter().collect();
-        // Worst error among nodes that will never be split (leaves, below the floor).
-        let mut kept = 0.0f64;
-        let mut splits = Vec::new();
-        let mut worst = Vec::new();
-        let mut fitted = HashMap::new();
-        let top = |h: &BinaryHeap<Entry>, kept: f64| h.peek().map_or(kept, |e| e.error.max(kept));
-        worst.push(top(&heap, kept));
         while count < largest {
             let Some(e) = heap.pop() else { break };
+            if e.error <= enough {
+                break;
+            }
             let node = self.tree.nodes[e.node as usize];
-            if node.is_leaf() || e.error <= self.floor {
-                kept = kept.max(e.error);
+            if node.is_leaf() {
                 continue;
             }
             let [a, b] = node.children;
@@ -138,14 +186,133 @@ impl<'a> Cutter<'a> {
                 || self.entry(a, &mut Workspace::default()),
                 || self.entry(b, &mut Workspace::default()),
             );
-            fitted.insert(a, ea.clone());
-            fitted.insert(b, eb.clone());
+            ex.fitted.insert(a, ea.clone());
+            ex.fitted.insert(b, eb.clone());
             heap.extend([ea, eb]);
-            splits.push(e.node);
+            ex.splits.push(e.node);
             count += 1;
-            worst.push(top(&heap, kept));
         }
-        (splits, worst, fitted)
+        ex
+    }
+
+    /// The cut for `r`: with a tolerance the fewest nodes within it if the caps allow,
+    /// else the least error bound the caps allow (searched over the nodes' errors),
+    /// then filled — splits in the order they were made, while both children stay
+    /// within the bound and the caps allow — so that the count is used.
+    fn choose(&self, ex: &Explored, r: &Request) -> Vec<u32> {
+        let fits = |c: (usize, usize)| c.0 <= r.count && r.bytes.is_none_or(|b| c.1 <= b);
+        if let Some(t) = r.tolerance {
+            let cut = self.cheapest(ex, t, r.bytes.is_some());
+            if fits(totals(ex, &cut)) {
+                return cut;
+            }
+        }
+        let mut bounds: Vec<f64> = ex.fitted.values().map(|e| e.error).collect();
+        bounds.push(0.0);
+        bounds.sort_unstable_by(f64::total_cmp);
+        bounds.dedup();
+        let ok = |i: usize| {
+            Some(self.cheapest(ex, bounds[i], r.bytes.is_some())).filter(|c| fits(totals(ex, c)))
+        };
+        // The least bound whose cheapest cut fits (feasibility only grows with it).
+        let (mut lo, mut hi) = (0, bounds.len().saturating_sub(1));
+        while lo < hi {
+            let mid = (lo + hi) / 2;
+            match ok(mid) {
+                Some(_) => hi = mid,
+                None => lo = mid + 1,
+            }
+        }
+        match ok(lo) {
+            Some(cut) => self.fill(ex, cut, bounds[lo], r),
+            // Nothing fits the caps (more roots than the count): the roots.
+            None => ex.roots.clone(),
+        }
+    }
+
+    /// The cut of fewest nodes (of least bytes with `by_bytes`) whose every node's
+    /// error is at most `bound`, or where no cut of its subtree is, the least reached
+    /// ([`Cutter::costs`]).
+    fn cheapest(&self, ex: &Explored, bound: f64, by_bytes: bool) -> Vec<u32> {
+        let table = self.costs(ex, bound, by_bytes);
+        collect(self.tree, &table, &ex.roots)
+    }
+
+    /// For every explored node, the cheapest cut of its subtree whose every node's
+    /// error is at most the node's bound: `bound`, or the least worst error any cut of
+    /// the explored subtree reaches if that is more (a leaf, or a split that does not
+    /// help, is kept rather than made worse). Nodes are numbered after their
+    /// children, so one pass in increasing order sees children first.
+    fn costs(&self, ex: &Explored, bound: f64, by_bytes: bool) -> HashMap<u32, Cost> {
+        let mut ids: Vec<u32> = ex.fitted.keys().copied().collect();
+        ids.sort_unstable();
+        let mut cost: HashMap<u32, Cost> = HashMap::with_capacity(ids.len());
+        let key = |c: &Cost| match by_bytes {
+            true => (c.bytes, c.count),
+            false => (c.count, c.bytes),
+        };
+        for &n in &ids {
+            let e = &ex.fitted[&n];
+            let kids = ex.is_split(self.tree, n).then(|| {
+                let [a, b] = self.tree.nodes[n as usize].children;
+                let (ca, cb) = (cost[&a], cost[&b]);
+                Cost {
+                    count: ca.count + cb.count,
+                    bytes: ca.bytes + cb.bytes,
+                    worst: ca.worst.max(cb.worst),
+                    best: ca.best.max(cb.best),
+                    own: false,
+                }
+            });
+            let best = kids.map_or(e.error, |k| k.best.min(e.error));
+            let limit = bound.max(best);
+            let own = Cost {
+                count: 1,
+                bytes: e.bytes(),
+                worst: e.error,
+                best,
+                own: true,
+            };
+            let chosen = match kids {
+                Some(k) if k.worst <= limit && (e.error > limit || key(&k) < key(&own)) => k,
+                _ => own,
+            };
+            cost.insert(n, Cost { best, ..chosen });
+        }
+        cost
+    }
+
+    /// `cut` with the splits of the sequence applied, in order, wherever the node is
+    /// in the cut, the cheapest cut of its two children stays within `bound` (or the
+    /// least the node's subtree reaches) and the caps still hold: the node is replaced
+    /// by that cut.
+    fn fill(&self, ex: &Explored, cut: Vec<u32>, bound: f64, r: &Request) -> Vec<u32> {
+        let table = self.costs(ex, bound, r.bytes.is_some());
+        let (mut count, mut bytes) = totals(ex, &cut);
+        let mut set: BTreeSet<u32> = cut.into_iter().collect();
+        for &n in &ex.splits {
+            if count >= r.count {
+                break;
+            }
+            if !set.contains(&n) {
+                continue;
+            }
+            let [a, b] = self.tree.nodes[n as usize].children;
+            if table[&a].worst.max(table[&b].worst) > bound.max(table[&n].best) {
+                continue;
+            }
+            let sub = collect(self.tree, &table, &[a, b]);
+            let (c, b) = totals(ex, &sub);
+            let more = bytes + b - ex.fitted[&n].bytes();
+            if count + c - 1 > r.count || r.bytes.is_some_and(|cap| more > cap) {
+                continue;
+            }
+            set.remove(&n);
+            set.extend(sub);
+            count += c - 1;
+            bytes = more;
+        }
+        set.into_iter().collect()
     }
 
     /// The snapshot of one cut, its nodes in order of their faces' ranges.
@@ -186,47 +353,131 @@ impl<'a> Cutter<'a> {
     }
 }
 
-/// The cut from `roots` after `splits` (each node replaced by its two children, both
-/// in `fitted`), in node order.
-fn cut_after(
-    tree: &MergeTree,
-    roots: &[Entry],
-    splits: &[u32],
-    fitted: &HashMap<u32, Entry>,
-) -> Vec<Entry> {
-    let mut cut: BTreeMap<u32, &Entry> = roots.iter().map(|e| (e.node, e)).collect();
-    for &n in splits {
-        cut.remove(&n);
-        for c in tree.nodes[n as usize].children {
-            cut.insert(c, &fitted[&c]);
-        }
+/// Records on each level its tolerance and byte target, and the estimated farthest
+/// its primitives stand from the input ([`error_of`] of each, in the input's frame).
+pub(crate) fn record_limits(
+    levels: &mut [crate::Level],
+    params: &crate::Params,
+    mesh: &crate::Mesh,
+    surface: &Surface,
+) {
+    let back = mesh.offset.map(|x| -x);
+    for (i, level) in levels.iter_mut().enumerate() {
+        let (tolerance, bytes) = params.level_limits(i);
+        level.tolerance = tolerance.map(|t| t.in_units(mesh.diagonal()));
+        level.max_bytes = bytes;
+        let worst = level
+            .primitives
+            .par_iter()
+            .map(|p| error_of(&p.translated(back), surface))
+            .reduce(|| 0.0, f64::max);
+        level.distance = Some(worst);
     }
-    cut.into_values().cloned().collect()
 }
 
-/// The number of splits, at most `most`, after which the worst error `worst[k]` is
-/// least (the most splits on ties).
-fn best_prefix(worst: &[f64], most: usize) -> usize {
-    (0..=most.min(worst.len().saturating_sub(1)))
-        .rev()
-        .min_by(|&a, &b| worst[a].total_cmp(&worst[b]))
-        .unwrap_or(0)
+/// The cheapest cuts of `from`'s subtrees by `table` ([`Cutter::costs`]), joined.
+fn collect(tree: &MergeTree, table: &HashMap<u32, Cost>, from: &[u32]) -> Vec<u32> {
+    let mut cut = Vec::new();
+    let mut stack: Vec<u32> = from.to_vec();
+    while let Some(n) = stack.pop() {
+        let c = table[&n];
+        if c.own {
+            cut.push(n);
+        } else {
+            stack.extend(tree.nodes[n as usize].children);
+        }
+    }
+    cut
+}
+
+/// The node count and bytes of `cut`.
+fn totals(ex: &Explored, cut: &[u32]) -> (usize, usize) {
+    (cut.len(), cut.iter().map(|n| ex.fitted[n].bytes()).sum())
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::{decompose, Params};
+    use crate::{decompose, Params, Tolerance};
 
-    /// A later prefix is chosen unless it is worse; a split that raised the worst
-    /// error is skipped back over until a later one brings it lower.
+    /// A closed cube within 1% of its diagonal is one box, whatever the cap; an
+    /// icosphere one round primitive; a tolerance tighter than the cube's faces allow
+    /// still gives the box (nothing is worth splitting), and the level records what
+    /// was asked and reached.
     #[test]
-    fn prefixes_never_get_worse_with_more_room() {
-        let worst = [5.0, 4.0, 4.5, 4.5, 3.0, 3.0, 3.5];
-        let picks: Vec<usize> = (0..8).map(|m| best_prefix(&worst, m)).collect();
-        assert_eq!(picks, vec![0, 1, 1, 1, 4, 5, 5, 5]);
-        let errs: Vec<f64> = picks.iter().map(|&k| worst[k]).collect();
-        assert!(errs.windows(2).all(|w| w[1] <= w[0]), "{errs:?}");
+    fn a_tolerance_needs_no_count() {
+        let cube = error::tests::cube_mesh(1.0);
+        for t in [Tolerance::Diagonal(0.01), Tolerance::Units(1e-6)] {
+            let p = Params {
+                targets: vec![64],
+                tolerance: vec![t],
+                ..Params::default()
+            };
+            let d = decompose(&cube, &p).expect("decomposes");
+            let level = &d.levels[0];
+            assert_eq!(level.primitives.len(), 1, "{t:?}");
+            assert_eq!(level.primitives[0].kind(), crate::Kind::Box);
+            assert_eq!(level.tolerance, Some(t.in_units(cube.diagonal())));
+            assert!(level.distance.expect("measured") < 1e-9);
+        }
+    }
+
+    /// A chain of tolerances from one pass: each level within its tolerance on the
+    /// demo scene (or at the least the tree reaches, which the distance says), a
+    /// tighter tolerance never fewer primitives, and a byte target kept.
+    #[test]
+    fn tolerance_chains_and_byte_targets() {
+        let mesh = crate::demo::demo_scene();
+        let p = Params {
+            targets: vec![400, 400, 400],
+            tolerance: vec![
+                Tolerance::Diagonal(0.05),
+                Tolerance::Diagonal(0.02),
+                Tolerance::Diagonal(0.01),
+            ],
+            ..Params::default()
+        };
+        let d = decompose(&mesh, &p).expect("decomposes");
+        let counts: Vec<usize> = d.levels.iter().map(|l| l.primitives.len()).collect();
+        assert!(counts.windows(2).all(|w| w[0] <= w[1]), "{counts:?}");
+        assert!(counts[0] < counts[2], "{counts:?}");
+        for l in &d.levels[..2] {
+            let (t, got) = (l.tolerance.expect("asked"), l.distance.expect("measured"));
+            assert!(got <= t, "distance {got} over the tolerance {t}");
+            assert_eq!(got, worst_error(&mesh, &l.primitives));
+        }
+        let small = Params {
+            targets: vec![400],
+            max_bytes: vec![600],
+            ..Params::default()
+        };
+        let d = decompose(&mesh, &small).expect("decomposes");
+        let l = &d.levels[0];
+        assert!(l.bytes() <= 600 && l.bytes() > 300, "{} bytes", l.bytes());
+        assert_eq!(l.max_bytes, Some(600));
+    }
+
+    /// Mismatched lists and fill with a cut are refused with a message naming them.
+    #[test]
+    fn limits_are_validated() {
+        let two = Params {
+            targets: vec![10, 20, 30],
+            tolerance: vec![Tolerance::Diagonal(0.01); 2],
+            ..Params::default()
+        };
+        let e = two.validate().unwrap_err().to_string();
+        assert!(e.contains("tolerance has 2 values for 3 targets"), "{e}");
+        let zero = Params {
+            tolerance: vec![Tolerance::Units(0.0)],
+            ..Params::default()
+        };
+        assert!(zero.validate().is_err());
+        let fill = Params {
+            max_bytes: vec![100],
+            fill: true,
+            ..Params::default()
+        };
+        assert!(fill.validate().unwrap_err().to_string().contains("fill"));
     }
 
     /// The worst sampled error of a level's primitives, in the input's frame.

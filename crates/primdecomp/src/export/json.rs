@@ -11,7 +11,7 @@ use crate::math::V3;
 use crate::objects::{ObjectTarget, Objects, SHARE_RULE};
 use crate::params::Params;
 use crate::primitive::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
-use crate::result::{Decomposition, Timings};
+use crate::result::{Decomposition, InputInfo, Level, Timings};
 use serde::ser::{SerializeMap, Serializer};
 use serde::{Deserialize, Serialize};
 
@@ -241,6 +241,49 @@ struct Stats<'a> {
     partitions: usize,
     #[serde(skip_serializing_if = "Option::is_none")]
     seconds: Option<Seconds<'a>>,
+    /// A cut's limits and the distance it reached (`Params::cut`, `tolerance`,
+    /// `max_bytes`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    distance: Option<Distance>,
+}
+
+/// How far a cut's primitives stand from the input, and what was asked.
+#[derive(Serialize)]
+struct Distance {
+    /// The estimated farthest any primitive stands from the input, input units.
+    worst: f64,
+    /// The same over the input's bounding-box diagonal.
+    of_diagonal: f64,
+    /// The level's tolerance, input units.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    tolerance: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    max_bytes: Option<usize>,
+    method: &'static str,
+}
+
+/// How [`Distance::worst`] is measured (`cut::error`).
+const DISTANCE_METHOD: &str = "one-way distance from each primitive's surface to the input's \
+     surface: every vertex of its conservative tessellation (24 segments around circles) and \
+     192 points spread over it by area, each measured exactly to its nearest input triangle; \
+     the largest over all primitives (a sampled lower bound of `primdecomp eval`'s Hausdorff)";
+
+impl Distance {
+    fn of(lv: &Level, input: &InputInfo) -> Option<Distance> {
+        let worst = lv.distance?;
+        let diagonal = input.diagonal();
+        Some(Distance {
+            worst,
+            of_diagonal: if diagonal > 0.0 {
+                worst / diagonal
+            } else {
+                0.0
+            },
+            tolerance: lv.tolerance,
+            max_bytes: lv.max_bytes,
+            method: DISTANCE_METHOD,
+        })
+    }
 }
 
 #[derive(Serialize)]
@@ -337,6 +380,7 @@ fn document(dec: &Decomposition, level: usize, params: &Params, timed: bool) -> 
             bytes: lv.bytes(),
             partitions: dec.stats.partitions,
             seconds: timed.then_some(Seconds(&dec.timings)),
+            distance: Distance::of(lv, &dec.input),
         },
         primitives,
         objects: None,
@@ -414,6 +458,7 @@ pub fn to_json_objects(objs: &Objects, level: usize, params: &Params) -> String 
             bytes,
             partitions: 1,
             seconds: None,
+            distance: None,
         },
         primitives,
         objects: Some(objects),

@@ -114,6 +114,20 @@ impl Bvh {
         &self,
         p: V3,
         stack: &mut Vec<(f64, u32)>,
+        dist2: impl FnMut(u32) -> f64,
+    ) -> (f64, u32) {
+        self.nearest_until(p, f64::NEG_INFINITY, stack, dist2)
+    }
+
+    /// [`Bvh::nearest_with`] that stops at the first item with `dist2` at most `enough`:
+    /// the exact nearest when it is farther than `enough`, otherwise some item within
+    /// it. For a running maximum of distances, where a point no farther than the
+    /// maximum so far cannot change it.
+    pub fn nearest_until(
+        &self,
+        p: V3,
+        enough: f64,
+        stack: &mut Vec<(f64, u32)>,
         mut dist2: impl FnMut(u32) -> f64,
     ) -> (f64, u32) {
         let mut best = (f64::INFINITY, u32::MAX);
@@ -134,6 +148,9 @@ impl Bvh {
                     if di < best.0 || (di == best.0 && i < best.1) {
                         best = (di, i);
                     }
+                }
+                if best.0 <= enough {
+                    return best;
                 }
                 continue;
             }

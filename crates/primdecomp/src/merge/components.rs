@@ -110,7 +110,8 @@ fn groups(comps: Vec<Vec<u32>>) -> (Vec<Vec<u32>>, Vec<usize>) {
 /// Merges every component into one cluster (or as far as its adjacency goes), groups
 /// of components in parallel; [`snapshots`] and phase 2 ([`partition::clusters`])
 /// continue from the result. The merges are traced only when [`snapshots`] will need
-/// them: when the largest target is at least the number of components.
+/// them: when the largest target is at least the number of components (`usize::MAX`
+/// traces them for the merge tree, `cut::tree`).
 pub fn merge_components(
     ev: &Evaluator,
     q: &[Sym3],
@@ -133,8 +134,8 @@ pub fn merge_components(
 /// are replayed through [`Clusters::merge`] in that order — each group's merges keep
 /// their own order and groups share no cluster, so the operators add up and the face
 /// lists splice as in the global loop — and fitted as it fits them. Also returns how
-/// many merges the last of them holds, and the merges of the global order after the
-/// first of them (the merge tree's, `cut::tree`).
+/// many merges the last of them holds, and every merge of the global order, each as a
+/// face of each merged cluster (the merge tree's from single faces, `cut::tree`).
 pub fn snapshots(
     ev: &Evaluator,
     p1: &Phase1,
@@ -144,17 +145,20 @@ pub fn snapshots(
     targets: &[usize],
     components: usize,
 ) -> (Vec<Snapshot>, usize, Vec<(u32, u32)>) {
-    if !targets.iter().any(|&t| t >= components) {
-        return (Vec::new(), 0, Vec::new());
-    }
     let traces = p1.traces();
     let order = global_order(&traces);
+    let pair = |&(g, i): &(u32, u32)| {
+        let t = &traces[g as usize][i as usize];
+        (t.a, t.b)
+    };
+    if !targets.iter().any(|&t| t >= components) {
+        return (Vec::new(), 0, order.iter().map(pair).collect());
+    }
     let mut cl = Clusters::new(q.to_vec(), volume.to_vec(), pairs);
     let faces = cl.len();
     // Merges of the global order replayed so far (targets decrease, so this grows).
     let mut done = 0;
     let mut out = Vec::new();
-    let mut after_first = Vec::new();
     for &target in targets.iter().filter(|&&t| t >= components) {
         let mut m = faces.saturating_sub(target).min(order.len()).max(done);
         // Then the free merges, as the global loop does (`driver::free`).
@@ -173,15 +177,8 @@ pub fn snapshots(
         done = m;
         // The components' loops ran to the end: replaying them is not cancelled.
         out.extend(snapshot(ev, &cl, target, Scope::Whole, &|| true));
-        if out.len() == 1 {
-            let pair = |&(g, i): &(u32, u32)| {
-                let t = &traces[g as usize][i as usize];
-                (t.a, t.b)
-            };
-            after_first = order[done..].iter().map(pair).collect();
-        }
     }
-    (out, done, after_first)
+    (out, done, order.iter().map(pair).collect())
 }
 
 /// Every merge of `traces` as (group, index), in the global loop's order: by key,

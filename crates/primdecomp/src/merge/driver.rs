@@ -68,6 +68,9 @@ pub struct MergeOutput {
     pub log: Vec<(u32, u32)>,
     /// How many of `log`'s merges came before the loop's first snapshot.
     pub log_at_first: usize,
+    /// `log` holds every merge from one cluster per face (no spatial parts first):
+    /// the merge tree's leaves are the faces.
+    pub log_from_faces: bool,
 }
 
 impl MergeOutput {

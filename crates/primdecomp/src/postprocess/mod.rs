@@ -29,6 +29,11 @@ pub(crate) fn levels(ev: &Evaluator, merged: MergeOutput, params: &Params) -> Ve
             plates::join(ev, snap, &mut q);
         }
     }
+    // A cut's snapshots are one per target, in order (targets may repeat with
+    // different tolerances); the greedy pass's are found by their count.
+    if params.uses_cut() && snaps.len() == params.targets.len() {
+        return snaps.iter().map(|s| finish(ev, s, params, diag)).collect();
+    }
     params
         .targets
         .iter()

@@ -1,0 +1,97 @@
+//! Tolerance and byte targets cut from the merge tree (issue 26,
+//! docs/decisions/0034): simple solids need no count, every level encloses the mesh
+//! (checked by testkit's independent containment routine), a chain of tolerances
+//! comes from one pass, and on a multi-part corpus mesh a larger count never stands
+//! farther from the input.
+
+use primdecomp::{decompose, Kind, Params, Tolerance};
+use primdecomp_testkit::check::assert_valid;
+use primdecomp_testkit::shapes::{cuboid, cylinder, join, mesh, uv_sphere};
+
+fn within(t: f64, cap: usize) -> Params {
+    Params {
+        targets: vec![cap],
+        tolerance: vec![Tolerance::Diagonal(t)],
+        ..Params::default()
+    }
+}
+
+/// What a user asking for "a collider for this mesh" at 1% of its size gets: one
+/// box for a box, one sphere for a sphere, one cylinder for a closed cylinder —
+/// where a count of 64 gives plates and slices.
+#[test]
+fn simple_solids_are_one_primitive() {
+    let cases = [
+        (
+            "box",
+            mesh(&cuboid([-1.0, -2.0, -0.5], [1.0, 2.0, 0.5])),
+            Kind::Box,
+        ),
+        ("sphere", mesh(&uv_sphere(1.0, 24, 48)), Kind::Sphere),
+        ("cylinder", mesh(&cylinder(0.5, 2.0, 48)), Kind::Cylinder),
+    ];
+    for (name, m, kind) in cases {
+        let p = within(0.01, 1024);
+        let d = decompose(&m, &p).expect("decomposes");
+        let l = &d.levels[0];
+        let kinds: Vec<Kind> = l.primitives.iter().map(|p| p.kind()).collect();
+        assert_eq!(kinds, vec![kind], "{name}");
+        assert!(l.distance.expect("measured") <= l.tolerance.expect("asked"));
+        assert_valid(&m, &d, &p);
+    }
+}
+
+/// Three separate solids side by side, with a tolerance chain and a byte target:
+/// every level encloses every face, tighter tolerances never give fewer primitives,
+/// each level is within its tolerance, and the byte target holds.
+#[test]
+fn chains_and_byte_targets_enclose() {
+    let scene = mesh(&join(&[
+        cuboid([0.0, 0.0, 0.0], [1.0, 0.2, 1.0]),
+        cylinder(0.3, 1.5, 32),
+        uv_sphere(0.4, 12, 24),
+    ]));
+    let p = Params {
+        targets: vec![200, 200, 200],
+        tolerance: vec![
+            Tolerance::Diagonal(0.05),
+            Tolerance::Diagonal(0.02),
+            Tolerance::Diagonal(0.005),
+        ],
+        max_bytes: vec![4096],
+        ..Params::default()
+    };
+    let d = decompose(&scene, &p).expect("decomposes");
+    assert_valid(&scene, &d, &p);
+    let counts: Vec<usize> = d.levels.iter().map(|l| l.primitives.len()).collect();
+    assert!(counts.windows(2).all(|w| w[0] <= w[1]), "{counts:?}");
+    for l in &d.levels {
+        assert!(l.bytes() <= 4096, "{} bytes", l.bytes());
+        let (got, t) = (l.distance.expect("measured"), l.tolerance.expect("asked"));
+        assert!(
+            got <= t,
+            "{got} over {t} ({} primitives)",
+            l.primitives.len()
+        );
+    }
+}
+
+/// engine_2cylinder (hundreds of separate parts) cut at 16, 64 and 256 from one
+/// pass: every level encloses the mesh and a larger count never stands farther from
+/// it (the recorded distance, the same estimate for every level).
+#[test]
+fn multi_part_mesh_improves_with_count() {
+    let Some(m) = primdecomp_testkit::corpus_mesh("engine_2cylinder.glb") else {
+        return;
+    };
+    let p = Params {
+        targets: vec![16, 64, 256],
+        cut: true,
+        ..Params::default()
+    };
+    let d = decompose(&m, &p).expect("decomposes");
+    assert_valid(&m, &d, &p);
+    let dist: Vec<f64> = d.levels.iter().map(|l| l.distance.expect("cut")).collect();
+    assert!(dist.windows(2).all(|w| w[1] <= w[0]), "{dist:?}");
+    assert!(dist[2] < dist[0], "{dist:?}");
+}

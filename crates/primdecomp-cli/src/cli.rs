@@ -4,11 +4,11 @@
 use crate::exit::BadArgs;
 use crate::manifest::{self, Manifest, Stamp};
 use crate::outputs::{check_batch_dir, check_stems, names_dir, Guard, Out};
-use crate::paths::output_path_for;
+use crate::paths::{level_labels, output_path_for};
 use anyhow::{anyhow, bail};
 use clap::{Args, Parser, Subcommand};
 use primdecomp::{export, write_atomic, LoadOptions, Stage};
-use primdecomp::{Decomposition, Dedup, Kind, Params, Partitions, Reprice};
+use primdecomp::{Decomposition, Dedup, Kind, Params, Partitions, Reprice, Tolerance};
 // `decompose --export` writes through export_cmd.
 use primdecomp_sim::{Entry, Geometry, Run as SimRun, Settings as SimSettings};
 use std::path::{Path, PathBuf};
@@ -179,10 +179,26 @@ struct DecomposeArgs {
     /// the merge stopped.
     #[arg(long)]
     fill: bool,
-    /// Cut the merge tree where the error is: split the primitive farthest from the
-    /// input until N remain, instead of the greedy pass's N clusters (docs/decisions/0032).
+    /// Cut the merge tree where the error is: of the cuts of at most N primitives, the
+    /// one whose farthest primitive stands nearest the input (then filled to N), instead
+    /// of the greedy pass's N clusters; lower Hausdorff distance, 2-3x the time
+    /// (docs/decisions/0032, 0034).
     #[arg(long)]
     cut: bool,
+    /// Keep every primitive within this distance of the input: the fewest primitives
+    /// whose every one stands at most D from the mesh's surface (the one-way distance
+    /// `eval` calls Hausdorff, estimated by sampling each primitive). D in input units,
+    /// or D% of the bounding-box diagonal; several (2%,0.5%) give one level each from
+    /// one pass. -n caps the count (without -n: at most 1024). Implies --cut. The JSON
+    /// records the tolerance and the distance reached (`stats.distance`).
+    #[arg(long, value_delimiter = ',')]
+    tolerance: Option<Vec<String>>,
+    /// Keep each level's storage within B bytes by the paper's Table 2 (4 bytes a
+    /// float: a box 60, a sphere 16), e.g. 4096 or 4K: the cut standing nearest the
+    /// input that fits. Several give one level each; combines with --tolerance and
+    /// with -n as caps (without -n: at most 1024 primitives). Implies --cut.
+    #[arg(long, value_delimiter = ',')]
+    max_bytes: Option<Vec<String>>,
     /// When merged clusters' pairs are re-priced: exact (at once, the paper's greedy
     /// order), deferred (each when popped: faster, approximate order), or a neighbour
     /// count N: merges of clusters with N or more neighbours are deferred, others
@@ -375,6 +391,18 @@ fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
     p.solid |= a.solid;
     p.fill |= a.fill;
     p.cut |= a.cut;
+    if let Some(t) = &a.tolerance {
+        p.tolerance = t
+            .iter()
+            .map(|t| parse_tolerance(t))
+            .collect::<anyhow::Result<_>>()?;
+    }
+    if let Some(b) = &a.max_bytes {
+        p.max_bytes = b
+            .iter()
+            .map(|b| parse_bytes(b))
+            .collect::<anyhow::Result<_>>()?;
+    }
     if let Some(k) = &a.partitions {
         p.partitions = match k.as_str() {
             "auto" => Partitions::Auto,
@@ -406,12 +434,47 @@ fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
         p.reprice = parse_reprice(r)?;
     }
     // Targets are resolved per input (percentages); validate with a stand-in.
+    let levels = p.tolerance.len().max(p.max_bytes.len()).max(1);
     let check = Params {
-        targets: vec![1],
+        // One -n value is the cap of every level of a chain (`decompose`).
+        targets: vec![1; a.targets.as_ref().map_or(1, Vec::len).max(1).max(levels)],
         ..p.clone()
     };
     check.validate().map_err(|e| BadArgs(e.to_string()))?;
     Ok(p)
+}
+
+/// `--tolerance`: a distance in input units, or a percentage of the diagonal.
+fn parse_tolerance(t: &str) -> anyhow::Result<Tolerance> {
+    let t = t.trim();
+    let bad = || {
+        BadArgs(format!(
+            "--tolerance: expected a positive distance (input units) or a percentage of \
+             the diagonal like 1%, got '{t}'"
+        ))
+    };
+    let (num, percent) = match t.strip_suffix('%') {
+        Some(p) => (p.trim(), true),
+        None => (t, false),
+    };
+    match num.parse::<f64>() {
+        Ok(v) if v.is_finite() && v > 0.0 && (!percent || v < 100.0) => Ok(match percent {
+            true => Tolerance::Diagonal(v / 100.0),
+            false => Tolerance::Units(v),
+        }),
+        _ => Err(bad().into()),
+    }
+}
+
+/// `--max-bytes`: a positive byte count, optionally with K, M or G.
+fn parse_bytes(b: &str) -> anyhow::Result<usize> {
+    match crate::paths::parse_size(b.trim()) {
+        Some(v) if v > 0 && v <= usize::MAX as u64 => Ok(v as usize),
+        _ => Err(BadArgs(format!(
+            "--max-bytes: expected a positive byte count such as 4096 or 4K, got '{b}'"
+        ))
+        .into()),
+    }
 }
 
 /// `--config FILE`: JSON (a result's settings or settings alone) or TOML settings.
@@ -493,6 +556,29 @@ fn parse_kind(k: &str) -> anyhow::Result<Kind> {
         BadArgs(format!("unknown primitive kind '{k}': expected box, sphere, capsule, cylinder, frustum or prism")).into()
     })
 }
+
+/// The output labels of a chain of tolerances or byte targets (from the flags or
+/// `--config`; empty without one: levels are named by their counts).
+fn chain_labels(p: &Params) -> Vec<String> {
+    let k = p.tolerance.len().max(p.max_bytes.len());
+    if k < 2 {
+        return Vec::new();
+    }
+    let short = |x: f64| format!("{}", (x * 1e10).round() / 1e10);
+    let tol: Vec<String> = p
+        .tolerance
+        .iter()
+        .map(|t| match *t {
+            Tolerance::Diagonal(f) => format!("{}%", short(100.0 * f)),
+            Tolerance::Units(u) => short(u),
+        })
+        .collect();
+    let bytes: Vec<String> = p.max_bytes.iter().map(|b| b.to_string()).collect();
+    level_labels(&vec![0; k], &tol, &bytes)
+}
+
+/// The count cap of `--tolerance` and `--max-bytes` without -n.
+const CUT_CAP: usize = 1024;
 
 /// A target as given: a count, or a percentage of the input's faces.
 #[derive(Clone, Copy, Debug)]
@@ -586,10 +672,24 @@ fn eval(a: EvalArgs) -> anyhow::Result<()> {
 
 fn decompose(a: DecomposeArgs) -> anyhow::Result<()> {
     let base = params_from(&a)?;
-    let targets = match &a.targets {
+    let mut targets = match &a.targets {
         Some(t) => parse_targets(t)?,
+        // A tolerance or byte target needs no count: it is only a cap.
+        None if a.tolerance.is_some() || a.max_bytes.is_some() => vec![Target::Count(CUT_CAP)],
         None => base.targets.iter().map(|&n| Target::Count(n)).collect(),
     };
+    // A chain of tolerances or byte targets under one cap: one level each.
+    let chain = base.tolerance.len().max(base.max_bytes.len());
+    if chain > 1 && targets.len() == 1 {
+        targets = vec![targets[0]; chain];
+    }
+    if chain > 1 && a.per_object {
+        bail!(BadArgs(
+            "--per-object takes one --tolerance and one --max-bytes value (a chain of \
+             levels names its levels by them)"
+                .into()
+        ));
+    }
     if a.obj_detail < 3 {
         bail!(BadArgs(format!(
             "--obj-detail must be at least 3, got {}",
@@ -631,6 +731,7 @@ fn decompose_one(
         exports: a.export.clone(),
         png: a.png.clone(),
         batch_input: None,
+        chain: chain_labels(base),
     };
     guard.check(&dest.up_front(targets))?;
     set_threads(a.threads)?;
@@ -670,6 +771,7 @@ fn decompose_batch(
             exports: Vec::new(),
             png: a.png.as_ref().map(|d| d.join(default_png(i))),
             batch_input: Some(i.clone()),
+            chain: chain_labels(base),
         })
         .collect();
     let known: Vec<Out> = dests.iter().flat_map(|d| d.up_front(targets)).collect();
@@ -779,18 +881,29 @@ struct Dest {
     /// The `--png` file (in a batch, inside the `--png` directory).
     png: Option<PathBuf>,
     batch_input: Option<PathBuf>,
+    /// The levels' labels of a chain of tolerances or byte targets (else empty: the
+    /// levels are named by their counts).
+    chain: Vec<String>,
 }
 
 impl Dest {
+    /// The labels of levels with these counts in output names.
+    fn labels(&self, counts: &[usize]) -> Vec<String> {
+        match self.chain.is_empty() {
+            true => level_labels(counts, &[], &[]),
+            false => self.chain.clone(),
+        }
+    }
+
     /// The files written for `levels`, the targets of the decomposition's levels.
     fn outs(&self, levels: &[usize]) -> Vec<Out> {
         let n = levels.len();
         let mut outs = Vec::new();
-        for &t in levels {
+        for t in self.labels(levels) {
             let files = std::iter::once((self.json_flag, &self.json))
                 .chain(self.obj.iter().map(|o| ("--obj", o)));
             for (flag, base) in files {
-                let path = output_path_for(base, t, n);
+                let path = output_path_for(base, &t, n);
                 outs.push(match &self.batch_input {
                     Some(input) => Out::of_input(path, input),
                     None => Out::flag(flag, base, path),
@@ -807,20 +920,24 @@ impl Dest {
         for t in targets {
             match *t {
                 Target::Count(c) => counts.push(c),
-                // One target: the name has no suffix, whatever the count.
-                Target::Percent(_) if targets.len() == 1 => counts.push(0),
+                // One target, or a chain named by its tolerances: whatever the count.
+                Target::Percent(_) if targets.len() == 1 || !self.chain.is_empty() => {
+                    counts.push(0)
+                }
                 Target::Percent(_) => return Vec::new(),
             }
         }
-        counts.sort_unstable_by(|a, b| b.cmp(a));
-        counts.dedup();
+        if self.chain.is_empty() {
+            counts.sort_unstable_by(|a, b| b.cmp(a));
+            counts.dedup();
+        }
         let mut outs = self.outs(&counts);
         for e in &self.exports {
-            for &t in &counts {
+            for t in self.labels(&counts) {
                 outs.push(Out::flag(
                     "--export",
                     e,
-                    output_path_for(e, t, counts.len()),
+                    output_path_for(e, &t, counts.len()),
                 ));
             }
         }
@@ -871,12 +988,13 @@ fn run_one(
     dec.timings.stages.insert(0, ("load".into(), load_s));
     let now = Instant::now();
     let mut written = write_outputs(&dec, &params, dest, guard, a.obj_detail, a.timings)?;
-    for level in &dec.levels {
+    let counts: Vec<usize> = dec.levels.iter().map(|l| l.target).collect();
+    for (level, label) in dec.levels.iter().zip(dest.labels(&counts)) {
         written.extend(crate::export_cmd::write_level_exports(
             &a.export,
             &a.export_opts,
             &crate::export_cmd::whole(level),
-            level.target,
+            &label,
             dec.levels.len(),
             &[input],
             Some(&mesh),
@@ -884,7 +1002,8 @@ fn run_one(
     }
     let write_s = now.elapsed().as_secs_f64();
     if let Some(png) = &dest.png {
-        written.push(decompose_png(&dest.json, &dec, input, &mesh, png)?);
+        let label = dest.labels(&[dec.levels[0].target]).swap_remove(0);
+        written.push(decompose_png(&dest.json, &label, &dec, input, &mesh, png)?);
     }
     let _out = PRINT.lock();
     if !a.quiet {
@@ -957,7 +1076,7 @@ fn run_objects(
             target,
             merged_to: target,
             primitives: objs.world_primitives(i),
-            faces: Vec::new(),
+            ..Default::default()
         };
         let json_out = &outs[i * per_level];
         write_atomic(&json_out.path, json.as_bytes())?;
@@ -976,7 +1095,7 @@ fn run_objects(
             &a.export,
             &a.export_opts,
             &crate::export_cmd::level_objects(&objs, i),
-            target,
+            &format!("n{target}"),
             n,
             &[input],
             Some(mesh),
@@ -1126,16 +1245,40 @@ fn print_summary(dec: &Decomposition, mesh: &primdecomp::Mesh, written: &[PathBu
             .map(|k| format!("{} {}", c[*k as usize], k.name()))
             .collect();
         println!(
-            "target {:>5} → {} primitives ({}), {} bytes",
+            "target {:>5} → {} primitives ({}), {} bytes{}",
             l.target,
             l.primitives.len(),
             kinds.join(", "),
-            l.bytes()
+            l.bytes(),
+            reach(l, dec.input.diagonal())
         );
     }
     for w in written {
         println!("wrote     {}", w.display());
     }
+}
+
+/// A cut's limits and the distance it reached, for the summary line ("" for a
+/// greedy snapshot).
+fn reach(l: &primdecomp::Level, diagonal: f64) -> String {
+    let Some(d) = l.distance else {
+        return String::new();
+    };
+    let pct = |x: f64| 100.0 * x / diagonal.max(f64::MIN_POSITIVE);
+    let mut s = format!(
+        "; farthest {d:.4} from the mesh ({:.2}% of the diagonal",
+        pct(d)
+    );
+    if let Some(t) = l.tolerance {
+        s += &match d <= t {
+            true => format!(", within the tolerance {t:.4}"),
+            false => format!(", over the tolerance {t:.4}: the nearest the merge tree reaches"),
+        };
+    }
+    if let Some(b) = l.max_bytes {
+        s += &format!(", byte target {b}");
+    }
+    s + ")"
 }
 
 /// The stage breakdown (load through write) and the process's peak resident memory.
@@ -1515,13 +1658,14 @@ fn recorded_input(result: &Path) -> Option<PathBuf> {
 /// the input; with several inputs `png` is a directory. Returns the file written.
 fn decompose_png(
     out: &Path,
+    label: &str,
     dec: &Decomposition,
     input: &Path,
     mesh: &primdecomp::Mesh,
     png: &Path,
 ) -> anyhow::Result<PathBuf> {
     use primdecomp_view::{scene, source};
-    let json = output_path_for(out, dec.levels[0].target, dec.levels.len());
+    let json = output_path_for(out, label, dec.levels.len());
     let opts = scene::Options::default();
     let s = scene::Scene {
         input: Some(scene::input_from(

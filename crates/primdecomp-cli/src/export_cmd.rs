@@ -180,14 +180,14 @@ pub fn write_level_exports(
     exports: &[PathBuf],
     args: &ExportArgs,
     objects: &[ResultObject],
-    target: usize,
+    label: &str,
     levels: usize,
     inputs: &[&Path],
     input_mesh: Option<&primdecomp::Mesh>,
 ) -> anyhow::Result<Vec<PathBuf>> {
     let mut written = Vec::new();
     for e in exports {
-        let path = crate::paths::output_path_for(e, target, levels);
+        let path = crate::paths::output_path_for(e, label, levels);
         let (format, mut opts) = args.resolve(e, &model_name(e))?;
         if let (true, Some(m)) = (args.preview, input_mesh) {
             opts.input_mesh = Some(mesh_polygons(m));

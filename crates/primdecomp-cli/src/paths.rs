@@ -3,25 +3,43 @@
 
 use std::path::{Path, PathBuf};
 
-/// The output file for `target` when a run has `n_targets` targets: `base` itself for
-/// a single target, otherwise `_n{target}` inserted before the extension
-/// (`out.json` → `out_n500.json`, `out` → `out_n500`).
-pub fn output_path_for(base: &Path, target: usize, n_targets: usize) -> PathBuf {
+/// The output file for the level labelled `label` when a run has `n_targets` levels:
+/// `base` itself for a single level, otherwise `_{label}` inserted before the
+/// extension (`n500`: `out.json` → `out_n500.json`, `out` → `out_n500`; see
+/// [`level_labels`]).
+pub fn output_path_for(base: &Path, label: &str, n_targets: usize) -> PathBuf {
     if n_targets <= 1 {
         return base.to_path_buf();
     }
     let Some(stem) = base.file_stem() else {
         let mut s = base.as_os_str().to_os_string();
-        s.push(format!("_n{target}"));
+        s.push(format!("_{label}"));
         return PathBuf::from(s);
     };
     let mut name = stem.to_os_string();
-    name.push(format!("_n{target}"));
+    name.push(format!("_{label}"));
     if let Some(ext) = base.extension() {
         name.push(".");
         name.push(ext);
     }
     base.with_file_name(name)
+}
+
+/// The labels of a run's levels in output names: `n{count}` for each target, or, for
+/// a chain of tolerances or byte targets, `t{tolerance as given}` (`%` as `pct`:
+/// `t2pct`) or `b{bytes}`, which tell levels of one count cap apart.
+pub fn level_labels(counts: &[usize], tolerance: &[String], bytes: &[String]) -> Vec<String> {
+    (0..counts.len())
+        .map(|i| {
+            if tolerance.len() > 1 {
+                format!("t{}", tolerance[i].trim().replace('%', "pct"))
+            } else if bytes.len() > 1 {
+                format!("b{}", bytes[i].trim())
+            } else {
+                format!("n{}", counts[i])
+            }
+        })
+        .collect()
 }
 
 /// `MemAvailable` from `/proc/meminfo`, in bytes; `None` where it cannot be read.
@@ -53,9 +71,24 @@ pub fn parse_size(s: &str) -> Option<u64> {
 mod tests {
     use super::*;
 
+    /// Chains of tolerances or byte targets name their levels by them.
+    #[test]
+    fn labels_tell_chained_levels_apart() {
+        let s = |v: &[&str]| v.iter().map(|x| x.to_string()).collect::<Vec<_>>();
+        assert_eq!(level_labels(&[64, 8], &[], &[]), s(&["n64", "n8"]));
+        assert_eq!(
+            level_labels(&[1024, 1024], &s(&["2%", "0.5"]), &[]),
+            s(&["t2pct", "t0.5"])
+        );
+        assert_eq!(
+            level_labels(&[1024, 1024], &s(&["1%"]), &s(&["4K", "800"])),
+            s(&["b4K", "b800"])
+        );
+    }
+
     #[test]
     fn output_paths_per_target() {
-        let p = |s: &str, t, n| output_path_for(Path::new(s), t, n);
+        let p = |s: &str, t: usize, n| output_path_for(Path::new(s), &format!("n{t}"), n);
         assert_eq!(p("out.json", 500, 1), PathBuf::from("out.json"));
         assert_eq!(p("out.json", 500, 3), PathBuf::from("out_n500.json"));
         assert_eq!(p("dir/out.obj", 40, 2), PathBuf::from("dir/out_n40.obj"));

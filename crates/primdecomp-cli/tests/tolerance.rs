@@ -1,0 +1,156 @@
+//! `decompose --tolerance` and `--max-bytes` as a user runs them (issue 26): a
+//! chain of tolerances writes one file per level named by its tolerance, the JSON
+//! records what was asked and the distance reached, a single closed box needs no
+//! count, and bad values are refused with exit 2 and a message naming the flag.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("primdecomp-tol-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn run(dir: &Path, args: &[&str]) -> (Option<i32>, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_primdecomp"))
+        .current_dir(dir)
+        .args(args)
+        .output()
+        .expect("runs");
+    let text =
+        String::from_utf8_lossy(&out.stdout).to_string() + &String::from_utf8_lossy(&out.stderr);
+    (out.status.code(), text)
+}
+
+fn json(path: &Path) -> serde_json::Value {
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+/// A closed box (12 triangles) within 1%: one box, where the default count gives a
+/// shell of plates; the summary and the JSON say how far it stands and what was asked.
+#[test]
+fn a_box_within_a_tolerance_is_one_box() {
+    let d = dir("box");
+    let cube = "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 0 1 0\nv 0 0 3\nv 2 0 3\nv 2 1 3\nv 0 1 3\n\
+                f 1 4 3\nf 1 3 2\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\n\
+                f 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
+    std::fs::write(d.join("cube.obj"), cube).unwrap();
+    let (code, out) = run(
+        &d,
+        &[
+            "decompose",
+            "cube.obj",
+            "--tolerance",
+            "1%",
+            "-o",
+            "cube.json",
+        ],
+    );
+    assert_eq!(code, Some(0), "{out}");
+    assert!(out.contains("1 primitives (1 box)"), "{out}");
+    assert!(out.contains("within the tolerance"), "{out}");
+    let v = json(&d.join("cube.json"));
+    assert_eq!(v["stats"]["primitives"], 1);
+    let dist = &v["stats"]["distance"];
+    assert!(dist["worst"].as_f64().unwrap() < 1e-9, "{dist}");
+    assert!((dist["tolerance"].as_f64().unwrap() - 0.01 * 14f64.sqrt()).abs() < 1e-12);
+    assert_eq!(v["settings"]["tolerance"][0]["diagonal"], 0.01);
+    let (code, out) = run(&d, &["decompose", "cube.obj", "-o", "cube64.json", "-q"]);
+    assert_eq!(code, Some(0), "{out}");
+    assert!(
+        json(&d.join("cube64.json"))["stats"]["primitives"]
+            .as_u64()
+            .unwrap()
+            > 1
+    );
+}
+
+/// `--tolerance 5%,2%,1% --max-bytes 2K` on the demo scene: three files named by the
+/// tolerances, more primitives for tighter ones, each within its tolerance and 2048
+/// bytes; the settings reproduce the run (`--config`).
+#[test]
+fn a_chain_writes_one_file_per_tolerance() {
+    let d = dir("chain");
+    assert_eq!(run(&d, &["demo-scene", "-o", "demo.obj"]).0, Some(0));
+    let args = [
+        "decompose",
+        "demo.obj",
+        "--tolerance",
+        "5%,2%,1%",
+        "--max-bytes",
+        "2048",
+        "-o",
+        "d.json",
+        "-q",
+    ];
+    let (code, out) = run(&d, &args);
+    assert_eq!(code, Some(0), "{out}");
+    let mut counts = Vec::new();
+    for t in ["5pct", "2pct", "1pct"] {
+        let v = json(&d.join(format!("d_t{t}.json")));
+        let dist = &v["stats"]["distance"];
+        assert!(
+            dist["worst"].as_f64() <= dist["tolerance"].as_f64(),
+            "{t}: {dist}"
+        );
+        assert!(v["stats"]["bytes"].as_u64().unwrap() <= 2048);
+        assert_eq!(v["settings"]["target"], 1024, "the cap without -n");
+        counts.push(v["stats"]["primitives"].as_u64().unwrap());
+    }
+    assert!(
+        counts.windows(2).all(|w| w[0] <= w[1]) && counts[0] < counts[2],
+        "{counts:?}"
+    );
+    let (code, out) = run(
+        &d,
+        &[
+            "decompose",
+            "demo.obj",
+            "--config",
+            "d_t2pct.json",
+            "-o",
+            "again/",
+            "-q",
+        ],
+    );
+    assert_eq!(code, Some(0), "{out}");
+    let again = json(&d.join("again/demo.primdecomp_t2pct.json"));
+    assert_eq!(
+        again["primitives"],
+        json(&d.join("d_t2pct.json"))["primitives"]
+    );
+}
+
+#[test]
+fn bad_values_are_refused() {
+    let d = dir("bad");
+    assert_eq!(run(&d, &["demo-scene", "-o", "demo.obj"]).0, Some(0));
+    for (args, want) in [
+        (
+            &["--tolerance", "1mm"][..],
+            "--tolerance: expected a positive distance",
+        ),
+        (
+            &["--tolerance=-1"][..],
+            "--tolerance: expected a positive distance",
+        ),
+        (
+            &["--tolerance", "2%,1%,0.5%", "-n", "8,4"][..],
+            "tolerance has 3 values for 2 targets",
+        ),
+        (
+            &["--max-bytes", "0"][..],
+            "--max-bytes: expected a positive byte count",
+        ),
+        (&["--max-bytes", "100", "--fill"][..], "fill"),
+    ] {
+        let mut all = vec!["decompose", "demo.obj", "-o", "x.json"];
+        all.extend_from_slice(args);
+        let (code, out) = run(&d, &all);
+        assert_eq!(code, Some(2), "{args:?}: {out}");
+        assert!(out.contains(want), "{args:?}: {out}");
+        assert!(!d.join("x.json").exists(), "{args:?} wrote an output");
+    }
+}

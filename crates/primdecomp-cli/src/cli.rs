@@ -173,6 +173,12 @@ struct DecomposeArgs {
     /// for colliders hit by fast bodies (docs/results/projectiles.md).
     #[arg(long)]
     solid: bool,
+    /// Thicken plates inward to this thickness (a fraction of the diagonal) where the
+    /// part is closed behind them: the outer surface stays, at most 0.6 of the part's
+    /// depth is filled, open sheets and holes are left as they are. 0 (default) = plates
+    /// 2 × --min-extent thick.
+    #[arg(long)]
+    min_thickness: Option<f64>,
     /// Fill each target: when removing nested primitives leaves fewer than N, merge
     /// less (search up to 8N) so the result has as many primitives as fit within N.
     /// Costs up to 4 more merge passes; the JSON's settings.merge_target says where
@@ -361,6 +367,7 @@ fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
     set(&mut p.tangent_eps, a.tangent_eps);
     set(&mut p.min_extent, a.min_extent);
     set(&mut p.open_holes, a.open_holes);
+    set(&mut p.min_thickness, a.min_thickness);
     set(&mut p.rim_weight, a.rim_weight);
     if let Some(m) = a.max_excess_volume {
         p.max_excess_volume = Some(m);

@@ -548,7 +548,7 @@ mod tests {
     /// frames without touching it. A shell of such plates (hand-made, and the
     /// default decomposition at N = 12 and 64, which is one) lets balls through; the
     /// option the README gives for closed parts hit by fast bodies,
-    /// `--min-thickness 0.1` (plates thickened inward, docs/decisions/0033), stops
+    /// `--min-thickness 0.3` (plates thickened inward, docs/decisions/0033), stops
     /// every one at N = 12 and 64, as does a solid box (the `--solid` decomposition
     /// at N = 3). `--solid` does not fill this box at N ≥ 6: its six faces are six
     /// plates before any merge (docs/decisions/sim-projectiles.md). Rapier's own sweep
@@ -584,7 +584,7 @@ mod tests {
                 head_on(&mesh, default, step, false) > 0,
                 "default shell, N = {n}"
             );
-            let thick = level(n, false, 0.1);
+            let thick = level(n, false, 0.3);
             assert_eq!(head_on(&mesh, thick, step, false), 0, "N = {n}");
         }
         let solid = level(3, true, 0.0);

@@ -386,4 +386,38 @@ mod tests {
         }
         assert_eq!(Bvh::build(&[]).nearest([0.0; 3], |_| 0.0).1, u32::MAX);
     }
+
+    /// The first hit along random rays through random triangles is the brute-force
+    /// least hit over all triangles, and a ray pointing away from them all meets none.
+    #[test]
+    fn first_ray_hits_match_brute_force() {
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
+        let mut pt = || -> V3 { std::array::from_fn(|_| rng.gen_range(-1.0..1.0)) };
+        let tris: Vec<[V3; 3]> = (0..200)
+            .map(|_| {
+                let c = pt();
+                let (a, b) = (pt(), pt());
+                [c, add(c, scale(a, 0.2)), add(c, scale(b, 0.2))]
+            })
+            .collect();
+        let bvh = Bvh::build(&tris.iter().map(tri_box).collect::<Vec<_>>());
+        let mut stack = Vec::new();
+        for k in 0..100 {
+            let o = scale(pt(), 3.0);
+            let c = scale(add(add(tris[k][0], tris[k][1]), tris[k][2]), 1.0 / 3.0);
+            let d = sub(c, o);
+            let (t, i) = bvh.ray_first(o, d, 10.0, &mut stack, |i| {
+                ray_tri(o, d, &tris[i as usize], 0.0)
+            });
+            let brute = (0..tris.len() as u32)
+                .filter_map(|i| ray_tri(o, d, &tris[i as usize], 0.0).map(|t| (t, i)))
+                .fold((10.0, u32::MAX), |b, x| if x.0 < b.0 { x } else { b });
+            assert_eq!((t, i), brute, "ray {k}");
+            assert!(t <= 1.0 + 1e-9, "ray {k} aims at a centroid: {t}");
+        }
+        let away = bvh.ray_first([0.0, 0.0, 5.0], [0.0, 0.0, 1.0], 10.0, &mut stack, |i| {
+            ray_tri([0.0, 0.0, 5.0], [0.0, 0.0, 1.0], &tris[i as usize], 0.0)
+        });
+        assert_eq!(away, (10.0, u32::MAX));
+    }
 }

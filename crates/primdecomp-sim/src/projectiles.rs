@@ -546,11 +546,13 @@ mod tests {
     /// The check: a closed box's collider stops a ball fired at 1.5 ball
     /// diameters per frame (CCD off), which crosses a 0.001·D plate between two
     /// frames without touching it. A shell of such plates (hand-made, and the
-    /// default decomposition at N = 12, which is one) lets balls through; a solid box
-    /// (the `--solid` decomposition at N = 3) stops every one. `--solid` does not
-    /// fill this box at N ≥ 6: its six faces are six plates before any merge
-    /// (docs/decisions/sim-projectiles.md). Rapier's own sweep of fixed colliders
-    /// (`ccd`) stops them at the shell too.
+    /// default decomposition at N = 12 and 64, which is one) lets balls through; the
+    /// option the README gives for closed parts hit by fast bodies,
+    /// `--min-thickness 0.3` (plates thickened inward, docs/decisions/0033), stops
+    /// every one at N = 12 and 64, as does a solid box (the `--solid` decomposition
+    /// at N = 3). `--solid` does not fill this box at N ≥ 6: its six faces are six
+    /// plates before any merge (docs/decisions/sim-projectiles.md). Rapier's own sweep
+    /// of fixed colliders (`ccd`) stops them at the shell too.
     #[test]
     fn solid_box_stops_balls_that_tunnel_through_plates() {
         let (lo, hi) = ([0.0; 3], [3.0, 1.0, 2.0]);
@@ -560,10 +562,11 @@ mod tests {
         let step = 1.5 * 2.0 * r;
         // Plates are 0.01 m thick in the 10 m scene: a step this long can skip one.
         assert!(step > 2.0 * r + 0.001 * crate::scene::SCENE_DIAGONAL);
-        let level = |n, solid| {
+        let level = |n, solid, min_thickness| {
             let p = primdecomp::Params {
                 targets: vec![n],
                 solid,
+                min_thickness,
                 ..Default::default()
             };
             primdecomp::decompose(&mesh, &p)
@@ -574,10 +577,17 @@ mod tests {
         };
         let shell = head_on(&mesh, plate_shell(lo, hi, thick), step, false);
         assert!(shell > 0, "hand-made shell");
-        let default = level(12, false);
-        assert!(default.len() >= 6, "default: {default:?}");
-        assert!(head_on(&mesh, default, step, false) > 0, "default shell");
-        let solid = level(3, true);
+        for n in [12, 64] {
+            let default = level(n, false, 0.0);
+            assert!(default.len() >= 6, "default: {default:?}");
+            assert!(
+                head_on(&mesh, default, step, false) > 0,
+                "default shell, N = {n}"
+            );
+            let thick = level(n, false, 0.3);
+            assert_eq!(head_on(&mesh, thick, step, false), 0, "N = {n}");
+        }
+        let solid = level(3, true, 0.0);
         assert_eq!(solid.len(), 1, "{solid:?}");
         assert_eq!(head_on(&mesh, solid, step, false), 0);
         assert_eq!(head_on(&mesh, plate_shell(lo, hi, thick), step, true), 0);

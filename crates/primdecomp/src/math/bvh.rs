@@ -7,7 +7,7 @@
 //! item index, so the tree is the same on every run); queried depth-first, nearer
 //! child first, pruning nodes whose box is farther than the best distance so far.
 
-use super::{add, dot, norm2, scale, sub, V3};
+use super::{add, cross, dot, norm2, scale, sub, V3};
 
 const LEAF: usize = 4;
 
@@ -196,6 +196,73 @@ impl Bvh {
         }
         false
     }
+    /// The least `hit(item)` (a distance along the ray `o + t·d`, `None` for a miss)
+    /// over the items whose box the ray meets for some `t` in `[0, tmax]`, capped at
+    /// `tmax`, with that item (`u32::MAX` when none is nearer). `stack` is scratch.
+    pub fn ray_first(
+        &self,
+        o: V3,
+        d: V3,
+        tmax: f64,
+        stack: &mut Vec<u32>,
+        mut hit: impl FnMut(u32) -> Option<f64>,
+    ) -> (f64, u32) {
+        let mut best = (tmax, u32::MAX);
+        if self.nodes.is_empty() {
+            return best;
+        }
+        let inv = d.map(|c| 1.0 / c);
+        stack.clear();
+        stack.push(0);
+        while let Some(n) = stack.pop() {
+            let node = self.nodes[n as usize];
+            if !ray_meets_box(o, inv, best.0, node.lo, node.hi) {
+                continue;
+            }
+            if node.count == 0 {
+                stack.extend([node.first, node.first + 1]);
+                continue;
+            }
+            let span = node.first as usize..(node.first + node.count) as usize;
+            for &i in &self.items[span] {
+                match hit(i) {
+                    Some(t) if t < best.0 || (t == best.0 && i < best.1) => best = (t, i),
+                    _ => {}
+                }
+            }
+        }
+        best
+    }
+}
+
+/// Whether the ray `o + t·d` (`inv` = 1/d componentwise) meets the box `lo..hi` for
+/// some `t` in `[0, tmax]` (slab test; a zero component of `d` gives ±inf in `inv`).
+fn ray_meets_box(o: V3, inv: V3, tmax: f64, lo: V3, hi: V3) -> bool {
+    let (mut t0, mut t1) = (0.0_f64, tmax);
+    for k in 0..3 {
+        let (a, b) = ((lo[k] - o[k]) * inv[k], (hi[k] - o[k]) * inv[k]);
+        let (a, b) = if a <= b { (a, b) } else { (b, a) };
+        // NaN (0 · inf: the ray in the slab's plane) keeps the bound as it is.
+        t0 = if a > t0 { a } else { t0 };
+        t1 = if b < t1 { b } else { t1 };
+    }
+    t0 <= t1
+}
+
+/// Where the ray `o + t·d` meets triangle `t` (Möller–Trumbore), if at some `t > tmin`.
+pub fn ray_tri(o: V3, d: V3, t: &[V3; 3], tmin: f64) -> Option<f64> {
+    let (e1, e2) = (sub(t[1], t[0]), sub(t[2], t[0]));
+    let p = cross(d, e2);
+    let det = dot(e1, p);
+    if det == 0.0 || !det.is_finite() {
+        return None;
+    }
+    let s = sub(o, t[0]);
+    let u = dot(s, p) / det;
+    let q = cross(s, e1);
+    let v = dot(d, q) / det;
+    let at = dot(e2, q) / det;
+    (u >= 0.0 && v >= 0.0 && u + v <= 1.0 && at > tmin).then_some(at)
 }
 
 /// Box of a triangle.
@@ -335,5 +402,39 @@ mod tests {
             assert_eq!(bvh.any_at(p, 0.1, near), want);
         }
         assert_eq!(Bvh::build(&[]).nearest([0.0; 3], |_| 0.0).1, u32::MAX);
+    }
+
+    /// The first hit along random rays through random triangles is the brute-force
+    /// least hit over all triangles, and a ray pointing away from them all meets none.
+    #[test]
+    fn first_ray_hits_match_brute_force() {
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
+        let mut pt = || -> V3 { std::array::from_fn(|_| rng.gen_range(-1.0..1.0)) };
+        let tris: Vec<[V3; 3]> = (0..200)
+            .map(|_| {
+                let c = pt();
+                let (a, b) = (pt(), pt());
+                [c, add(c, scale(a, 0.2)), add(c, scale(b, 0.2))]
+            })
+            .collect();
+        let bvh = Bvh::build(&tris.iter().map(tri_box).collect::<Vec<_>>());
+        let mut stack = Vec::new();
+        for k in 0..100 {
+            let o = scale(pt(), 3.0);
+            let c = scale(add(add(tris[k][0], tris[k][1]), tris[k][2]), 1.0 / 3.0);
+            let d = sub(c, o);
+            let (t, i) = bvh.ray_first(o, d, 10.0, &mut stack, |i| {
+                ray_tri(o, d, &tris[i as usize], 0.0)
+            });
+            let brute = (0..tris.len() as u32)
+                .filter_map(|i| ray_tri(o, d, &tris[i as usize], 0.0).map(|t| (t, i)))
+                .fold((10.0, u32::MAX), |b, x| if x.0 < b.0 { x } else { b });
+            assert_eq!((t, i), brute, "ray {k}");
+            assert!(t <= 1.0 + 1e-9, "ray {k} aims at a centroid: {t}");
+        }
+        let away = bvh.ray_first([0.0, 0.0, 5.0], [0.0, 0.0, 1.0], 10.0, &mut stack, |i| {
+            ray_tri([0.0, 0.0, 5.0], [0.0, 0.0, 1.0], &tris[i as usize], 0.0)
+        });
+        assert_eq!(away, (10.0, u32::MAX));
     }
 }

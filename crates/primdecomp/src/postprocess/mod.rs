@@ -1,11 +1,13 @@
 //! Post-processing (§3.4 "Removing Redundant Primitives"), after the merge loop: each
 //! target's snapshot has near-duplicate primitives absorbed (with solid pricing,
-//! [`absorb`]), coplanar plates joined ([`plates`]), nested primitives removed
+//! [`absorb`]), coplanar plates joined ([`plates`]), plates thickened inward
+//! ([`thicken`], opt-in), nested primitives removed
 //! ([`nested`]) and is moved back to world coordinates.
 
 pub(crate) mod absorb;
 pub(crate) mod nested;
 pub(crate) mod plates;
+pub(crate) mod thicken;
 
 use crate::merge::{Evaluator, MergeOutput, Snapshot};
 use crate::params::Params;
@@ -17,6 +19,8 @@ use nested::{keep_mask, Cleanup};
 pub(crate) fn levels(ev: &Evaluator, merged: MergeOutput, params: &Params) -> Vec<Level> {
     let diag = ev.mesh.diagonal();
     let mut snaps = merged.snapshots;
+    // The input as rays see it, for plates thickened inward (docs/decisions/0033).
+    let thick = (params.min_thickness > 0.0).then(|| thicken::Input::build(ev));
     for snap in &mut snaps {
         let mut q = std::mem::take(&mut snap.q);
         // Solid pricing: near-duplicate primitives become one (docs/decisions/0023).
@@ -27,6 +31,10 @@ pub(crate) fn levels(ev: &Evaluator, merged: MergeOutput, params: &Params) -> Ve
         // area (docs/decisions/0028).
         if ev.join_plates {
             plates::join(ev, snap, &mut q);
+        }
+        // Plates reach inward to the minimum thickness where the input is closed.
+        if let Some(input) = &thick {
+            thicken::thicken(ev, input, snap, params.min_thickness * diag);
         }
     }
     // A cut's snapshots are one per target, in order (targets may repeat with

@@ -1,6 +1,6 @@
 """The Python package against the CLI on corpus meshes, the coacd-style hulls against
 an independent containment check (trimesh), other input formats, zero-copy input,
-and the batch runner on a local Ray instance and on the process-pool fallback."""
+and the batch runner on a local Ray instance and on the thread-pool fallback."""
 
 import json
 import os
@@ -176,7 +176,7 @@ def test_batch_on_local_ray(cli, tmp_path):
         ray.shutdown()
 
 
-def test_batch_process_pool_fallback_and_folder(cli, tmp_path):
+def test_batch_thread_pool_fallback_and_folder(cli, tmp_path):
     folder = tmp_path / "meshes"
     folder.mkdir()
     for n in MESHES:

@@ -1,4 +1,4 @@
-"""Decompose many meshes on a Ray cluster (or, without Ray, a local process pool).
+"""Decompose many meshes on a Ray cluster (or, without Ray, a local thread pool).
 
     import ray, primdecomp.batch
     ray.init()                         # or ray.init(address="auto") / RAY_ADDRESS=...
@@ -15,7 +15,6 @@ requested settings is skipped; a failed input is reported and the others continu
 
 import concurrent.futures as _cf
 import json as _json
-import multiprocessing as _mp
 import os as _os
 import time as _time
 from pathlib import Path as _Path
@@ -100,15 +99,16 @@ def _run_ray(jobs, settings, ray):
 
 def _run_pool(jobs, settings, workers):
     rows = {}
-    # spawn, not fork: forking a process whose threads (Ray's, the engine's) hold
-    # locks can deadlock the children.
-    with _cf.ProcessPoolExecutor(max_workers=workers, mp_context=_mp.get_context("spawn")) as pool:
+    # Threads, not processes: the decomposition releases the GIL, so threads run in
+    # parallel, and there is no fork of a threaded process (which can deadlock) nor
+    # spawn's re-import of the caller's script (which needs a __main__ guard).
+    with _cf.ThreadPoolExecutor(max_workers=workers) as pool:
         futs = {pool.submit(decompose_one, i, o, settings): (i, o) for i, o in jobs}
         for fut in _cf.as_completed(futs):
             i, o = futs[fut]
             try:
                 rows[i] = fut.result()
-            except Exception as e:  # the worker process died
+            except Exception as e:  # decompose_one never raises; for safety
                 rows[i] = {"input": i, "output": o, "status": "error", "primitives": None,
                            "faces": None, "seconds": None, "error": f"{type(e).__name__}: {e}"}
     return rows
@@ -136,8 +136,8 @@ def run(inputs, out_dir, *, use_ray=None, workers=None, **settings):
     summary rows in input order.
 
     `settings`: as for `primdecomp.decompose` (targets, kinds, ...). `use_ray`: None
-    uses Ray when it is initialised (or RAY_ADDRESS is set), else a local process pool
-    of `workers` processes; True requires Ray; False never uses it. Two inputs with the
+    uses Ray when it is initialised (or RAY_ADDRESS is set), else a local pool
+    of `workers` threads (the GIL is released while decomposing); True requires Ray; False never uses it. Two inputs with the
     same file stem are refused (ValueError) before anything runs, as the CLI does.
     One target per batch (`targets=[n]`)."""
     if len(settings.get("targets", [64])) != 1:
@@ -177,7 +177,7 @@ def _main(argv=None):
     ap.add_argument("-o", "--out", required=True, help="output folder")
     ap.add_argument("-n", "--targets", default="64", help="comma-separated primitive counts")
     ap.add_argument("--ray", action="store_true", help="require Ray (ray.init(); RAY_ADDRESS names a cluster)")
-    ap.add_argument("--workers", type=int, default=None, help="local processes without Ray")
+    ap.add_argument("--workers", type=int, default=None, help="local threads without Ray")
     a = ap.parse_args(argv)
     inputs = a.inputs[0] if len(a.inputs) == 1 and _Path(a.inputs[0]).is_dir() else a.inputs
     rows = run(inputs, a.out, use_ray=True if a.ray else None, workers=a.workers,

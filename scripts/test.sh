@@ -84,9 +84,11 @@ if [ "$exports_ok" = 1 ]; then
 fi
 
 # The Python package (crates/primdecomp-py/README.md): a fresh venv (.venv-py), maturin,
-# numpy and pytest from PyPI, then a real `pip install ./crates/primdecomp-py` (the
-# wheel built by maturin into the venv) and its pytest suite, which also compares
-# with the release CLI's JSON. Under CI a missing piece fails; elsewhere it is skipped.
+# numpy, pytest, trimesh + scipy (the independent convexity/containment check) and ray
+# (the batch runner on a local Ray instance) from PyPI, then a real
+# `pip install ./crates/primdecomp-py` (the wheel built by maturin into the venv) and
+# its pytest suite, which compares with the release CLI's JSON (built first, below).
+# Under CI a missing piece fails; elsewhere it is skipped.
 py_fail_or_skip() {
   if in_ci; then
     echo "FATAL: $1 (required under CI)" >&2
@@ -101,7 +103,7 @@ if [ "$py_ok" = 1 ]; then
   echo "-- building the Python package into a fresh .venv-py"
   rm -rf .venv-py
   if ! { python3 -m venv .venv-py &&
-    .venv-py/bin/pip install --quiet --disable-pip-version-check maturin numpy pytest &&
+    .venv-py/bin/pip install --quiet --disable-pip-version-check maturin numpy pytest trimesh scipy ray &&
     CARGO_TARGET_DIR="$PWD/target" .venv-py/bin/pip install --quiet --disable-pip-version-check ./crates/primdecomp-py; }; then
     py_fail_or_skip "cannot pip install ./crates/primdecomp-py into .venv-py"
   fi

@@ -536,6 +536,7 @@ fn load_options(a: &DecomposeArgs) -> anyhow::Result<LoadOptions> {
     Ok(LoadOptions {
         max_memory: max_memory(a)?,
         allow_external_uris: a.load.allow_external_uris,
+        ..LoadOptions::default()
     })
 }
 

@@ -5,7 +5,9 @@
 //! released, watches for Ctrl-C and progress from the calling thread, and converts
 //! the library's errors into Python exceptions.
 
-use numpy::{PyArray2, PyReadonlyArray1, PyReadonlyArray2};
+use numpy::{
+    PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods,
+};
 use primdecomp::export::{write_export, ExportOptions, Format};
 use primdecomp::{Decomposition, Error, Mesh, Params, Primitive, Progress, Stage};
 use pyo3::exceptions::{PyKeyboardInterrupt, PyOSError, PyRuntimeError, PyValueError};
@@ -37,26 +39,36 @@ fn panic_message(p: Box<dyn std::any::Any + Send>) -> String {
         .unwrap_or_else(|| "unknown panic".into())
 }
 
-/// Loads a mesh file (every format the core reads): (vertices (N,3) float64, faces as
-/// a list of polygons), world coordinates.
+/// Loads a mesh file (every format the core reads): vertices (N,3) float64 exactly as
+/// the file gives them (not re-centred, so that `decompose(*load(path))` equals the
+/// CLI's output byte for byte), and faces: a (F,k) uint32 array when every face has
+/// k corners, else a list of polygons.
 #[pyfunction]
-fn load<'py>(py: Python<'py>, path: &str) -> PyResult<MeshArrays<'py>> {
+fn load<'py>(py: Python<'py>, path: &str) -> PyResult<(Bound<'py, PyArray2<f64>>, PyObject)> {
+    let options = primdecomp::LoadOptions {
+        keep_world_coordinates: true,
+        ..Default::default()
+    };
     let mesh = py
-        .allow_threads(|| catch_unwind(|| primdecomp::load(Path::new(path))))
+        .allow_threads(|| catch_unwind(|| primdecomp::load_with(Path::new(path), &options)))
         .map_err(|p| PyRuntimeError::new_err(panic_message(p)))?
         .map_err(to_py_err)?;
-    let verts: Vec<Vec<f64>> = (0..mesh.vertex_count() as u32)
-        .map(|v| mesh.world_pos(v).to_vec())
-        .collect();
-    let faces = (0..mesh.face_count())
-        .map(|f| mesh.face(f).to_vec())
-        .collect();
-    let arr = if verts.is_empty() {
-        PyArray2::zeros(py, [0, 3], false)
+    let n = mesh.vertex_count();
+    let flat: Vec<f64> = (0..n as u32).flat_map(|v| mesh.world_pos(v)).collect();
+    let verts = PyArray1::from_vec(py, flat).reshape([n, 3])?;
+    let nf = mesh.face_count();
+    let k = if nf > 0 { mesh.face(0).len() } else { 3 };
+    let faces = if (0..nf).all(|f| mesh.face(f).len() == k) {
+        let flat: Vec<u32> = (0..nf).flat_map(|f| mesh.face(f).iter().copied()).collect();
+        PyArray1::from_vec(py, flat)
+            .reshape([nf, k])?
+            .into_any()
+            .unbind()
     } else {
-        PyArray2::from_vec2(py, &verts)?
+        let polys: Vec<Vec<u32>> = (0..nf).map(|f| mesh.face(f).to_vec()).collect();
+        polys.into_pyobject(py)?.into_any().unbind()
     };
-    Ok((arr, faces))
+    Ok((verts, faces))
 }
 
 /// Progress shared between the worker thread (writes) and the Python thread (reads).
@@ -76,15 +88,25 @@ impl Progress for Shared {
     }
 }
 
-fn build_mesh(positions: &[f64], offsets: &[u32], indices: &[u32]) -> primdecomp::Result<Mesh> {
+/// The mesh from borrowed arrays: faces are `offsets` into `indices` (polygon lists)
+/// or, with no offsets, consecutive runs of `arity` indices (an (F,k) array).
+fn build_mesh(
+    positions: &[f64],
+    offsets: Option<&[u32]>,
+    arity: usize,
+    indices: &[u32],
+) -> primdecomp::Result<Mesh> {
     // SAFETY: [f64; 3] has the alignment of f64 and no padding; the Python side
     // passes a C-contiguous (N,3) array.
     let pos: &[[f64; 3]] =
         unsafe { std::slice::from_raw_parts(positions.as_ptr().cast(), positions.len() / 3) };
-    let faces: Vec<&[u32]> = offsets
-        .windows(2)
-        .map(|w| &indices[w[0] as usize..w[1] as usize])
-        .collect();
+    let faces: Vec<&[u32]> = match offsets {
+        Some(o) => o
+            .windows(2)
+            .map(|w| &indices[w[0] as usize..w[1] as usize])
+            .collect(),
+        None => indices.chunks_exact(arity.max(1)).collect(),
+    };
     Mesh::from_polygons(pos, &faces)
 }
 
@@ -143,27 +165,30 @@ fn run_watched(
     }
 }
 
-/// Decomposes vertices ((N,3) C-contiguous float64) and polygons (`offsets` into
-/// `indices`, uint32) with settings given as the JSON of `Params`.
+/// Decomposes vertices ((N,3) C-contiguous float64) and faces: an (F,k) C-contiguous
+/// uint32 array `faces`, or polygons as `offsets` into `indices` (uint32); settings
+/// given as the JSON of `Params`. The arrays are read in place, without a copy.
 #[pyfunction]
-#[pyo3(signature = (vertices, offsets, indices, settings_json, progress=None))]
+#[pyo3(signature = (vertices, faces, offsets, indices, settings_json, progress=None))]
 fn decompose(
     py: Python<'_>,
     vertices: PyReadonlyArray2<'_, f64>,
-    offsets: PyReadonlyArray1<'_, u32>,
-    indices: PyReadonlyArray1<'_, u32>,
+    faces: Option<PyReadonlyArray2<'_, u32>>,
+    offsets: Option<PyReadonlyArray1<'_, u32>>,
+    indices: Option<PyReadonlyArray1<'_, u32>>,
     settings_json: &str,
     progress: Option<PyObject>,
 ) -> PyResult<NativeResult> {
     let params = Params::from_json(settings_json).map_err(to_py_err)?;
     params.validate().map_err(to_py_err)?;
-    let (v, o, i) = (
-        vertices.as_slice()?,
-        offsets.as_slice()?,
-        indices.as_slice()?,
-    );
+    let v = vertices.as_slice()?;
+    let (o, k, i) = match (&faces, &offsets, &indices) {
+        (Some(f), _, _) => (None, f.shape()[1], f.as_slice()?),
+        (None, Some(o), Some(i)) => (Some(o.as_slice()?), 0, i.as_slice()?),
+        _ => return Err(PyValueError::new_err("faces missing")),
+    };
     let mesh = py
-        .allow_threads(|| catch_unwind(|| build_mesh(v, o, i)))
+        .allow_threads(|| catch_unwind(|| build_mesh(v, o, k, i)))
         .map_err(|p| PyRuntimeError::new_err(panic_message(p)))?
         .map_err(to_py_err)?;
     let dec = run_watched(py, &mesh, &params, progress.as_ref())?;
@@ -186,7 +211,9 @@ fn decompose_path(
         .allow_threads(|| catch_unwind(|| primdecomp::load(Path::new(path))))
         .map_err(|p| PyRuntimeError::new_err(panic_message(p)))?
         .map_err(to_py_err)?;
-    let dec = run_watched(py, &mesh, &params, progress.as_ref())?;
+    let mut dec = run_watched(py, &mesh, &params, progress.as_ref())?;
+    // As the CLI records it, so that to_json() is the CLI's file byte for byte.
+    dec.input.path = Some(Path::new(path).display().to_string());
     Ok(NativeResult { dec, params })
 }
 

@@ -134,3 +134,25 @@ def test_ctrl_c_interrupts_quickly():
         primdecomp.decompose(v, f, targets=[1], progress=lambda s, x: seen.append(s))
     assert time.time() - t0 < 1.3
     assert seen
+
+
+def test_tolerance_and_bytes(tmp_path):
+    """A closed cube within 1% is one box (the default count gives plates); a chain of
+    tolerances gives one level each; the same settings as the CLI give its primitives."""
+    v, f = cube()
+    one = primdecomp.decompose(v, f, tolerance="1%")
+    assert [p.kind for p in one.levels[0].primitives] == ["box"]
+    assert len(primdecomp.decompose(v, f).levels[0].primitives) > 1
+    dist = json.loads(one.to_json())["stats"]["distance"]
+    assert dist["worst"] <= dist["tolerance"]
+    with pytest.raises(ValueError, match="tolerance"):
+        primdecomp.decompose(v, f, tolerance="1mm%")
+    need(CLI)
+    mesh = ROOT / "datasets" / "demo_scene.obj"
+    chain = primdecomp.decompose_file(mesh, targets=[400, 400], tolerance=["5%", "2%"], max_bytes=2048)
+    counts = [len(l.primitives) for l in chain.levels]
+    assert len(counts) == 2 and counts[0] < counts[1]
+    subprocess.run([CLI, "decompose", mesh, "-n", "400", "--tolerance", "5%,2%", "--max-bytes", "2048",
+                    "-o", tmp_path / "d.json"], check=True, capture_output=True)
+    cli = json.loads((tmp_path / "d_t2pct.json").read_text())["primitives"]
+    assert json.dumps(cli) == json.dumps(json.loads(chain.to_json(1))["primitives"])

@@ -15,13 +15,15 @@ import numpy as _np
 
 from . import _native
 
-__all__ = ["load", "decompose", "decompose_file", "as_hulls", "Result", "Level", "Primitive"]
+__all__ = ["load", "decompose", "decompose_file", "as_hulls", "Result", "Level", "Primitive", "batch"]
 
 
 def load(path):
-    """Load a mesh file (every format the core reads).
+    """Load a mesh file (every format the core reads: OBJ, PLY, STL, OFF, glTF, GLB).
 
-    Returns (vertices (N,3) float64 array, faces as a list of polygons)."""
+    Returns (vertices, faces): vertices an (N,3) float64 array holding the file's
+    coordinates exactly; faces an (F,k) uint32 array when every face has k corners,
+    else a list of polygons. `decompose(*load(path))` equals the CLI's primitives."""
     return _native.load(str(path))
 
 
@@ -31,30 +33,36 @@ def _vertices(vertices):
         raise ValueError(f"vertices must be an (N,3) array, got shape {v.shape}")
     if v.dtype.kind not in "fiu":
         raise ValueError(f"vertices must be float32 or float64, got dtype {v.dtype}")
-    # No copy when already C-contiguous float64.
+    # No copy when already C-contiguous float64 (float32 widens exactly).
     return _np.ascontiguousarray(v, dtype=_np.float64)
 
 
+def _check_range(a):
+    if a.size and (a.min() < 0 or a.max() > 0xFFFFFFFF):
+        raise ValueError("faces: vertex index out of range (negative or above 2^32-1)")
+
+
 def _faces(faces):
+    """(faces (F,k) C-contiguous uint32, None, None) for an array, or
+    (None, offsets, indices) for a list of polygons."""
     if isinstance(faces, _np.ndarray):
         f = faces
         if f.ndim != 2 or f.shape[1] not in (3, 4):
             raise ValueError(f"faces must be an (F,3) or (F,4) integer array or a list of polygons, got shape {f.shape}")
         if f.dtype.kind not in "iu":
             raise ValueError(f"faces must be integers, got dtype {f.dtype}")
-        if f.size and (f.min() < 0 or f.max() > 0xFFFFFFFF):
-            raise ValueError("faces: vertex index out of range (negative or above 2^32-1)")
-        idx = _np.ascontiguousarray(f, dtype=_np.uint32).reshape(-1)
-        off = _np.arange(0, f.shape[0] * f.shape[1] + 1, f.shape[1], dtype=_np.uint32)
-        return off, idx
+        if f.dtype == _np.uint32:
+            return _np.ascontiguousarray(f), None, None
+        _check_range(f)
+        if f.dtype == _np.int32 and f.flags.c_contiguous:
+            return f.view(_np.uint32), None, None  # non-negative: the same bits, no copy
+        return _np.ascontiguousarray(f, dtype=_np.uint32), None, None
     polys = [list(p) for p in faces]
     lens = [len(p) for p in polys]
-    flat = [i for p in polys for i in p]
-    arr = _np.asarray(flat, dtype=_np.int64)
-    if arr.size and (arr.min() < 0 or arr.max() > 0xFFFFFFFF):
-        raise ValueError("faces: vertex index out of range (negative or above 2^32-1)")
+    arr = _np.asarray([i for p in polys for i in p], dtype=_np.int64)
+    _check_range(arr)
     off = _np.concatenate([[0], _np.cumsum(lens)]).astype(_np.uint32)
-    return off, arr.astype(_np.uint32)
+    return None, off, arr.astype(_np.uint32)
 
 
 class Primitive:
@@ -118,17 +126,37 @@ def decompose(vertices, faces, progress=None, **settings):
     """Decompose a mesh. `vertices`: (N,3) float array (float32/float64, any layout);
     `faces`: (F,3)/(F,4) integer array or list of polygons. `settings`: the library's
     `Params` fields (targets, kinds, weights, min_extent, ...), library defaults
-    otherwise. `progress(stage, fraction)` is called from the calling thread."""
+    otherwise; `tolerance="1%"` (or a distance in input units) gives the fewest
+    primitives all within it, `max_bytes=4096` the closest fit in that many bytes
+    (one value, or a list for one level each, with `targets` as the count cap).
+    `progress(stage, fraction)` is called from the calling thread."""
     v = _vertices(vertices)
-    off, idx = _faces(faces)
-    try:
-        text = _json.dumps(settings, allow_nan=False)
-    except (TypeError, ValueError) as e:
-        raise ValueError(f"invalid settings: {e}") from None
-    return Result(_native.decompose(v, off, idx, text, progress))
+    arr, off, idx = _faces(faces)
+    return Result(_native.decompose(v, arr, off, idx, _settings(settings), progress))
+
+
+def _tolerance(t):
+    """"1%" (of the bounding-box diagonal) or a distance in input units, as the
+    library's Tolerance; a dict ({"units": d} / {"diagonal": f}) is passed on."""
+    if isinstance(t, str) and t.strip().endswith("%"):
+        try:
+            return {"diagonal": float(t.strip()[:-1]) / 100.0}
+        except ValueError:
+            raise ValueError(f"tolerance: expected a distance or a percentage like '1%', got {t!r}") from None
+    if isinstance(t, (int, float)) and not isinstance(t, bool):
+        return {"units": float(t)}
+    return t
 
 
 def _settings(settings):
+    settings = dict(settings)
+    # Targets in the user's terms: one value or a list; tolerances as "1%" or units.
+    for key in ("targets", "tolerance", "max_bytes"):
+        v = settings.get(key)
+        if v is not None and (isinstance(v, (str, int, float, dict)) and not isinstance(v, bool)):
+            settings[key] = [v]
+    if "tolerance" in settings and isinstance(settings["tolerance"], (list, tuple)):
+        settings["tolerance"] = [_tolerance(t) for t in settings["tolerance"]]
     try:
         return _json.dumps(settings, allow_nan=False)
     except (TypeError, ValueError) as e:
@@ -137,9 +165,8 @@ def _settings(settings):
 
 def decompose_file(path, progress=None, **settings):
     """Decompose the mesh in a file with the CLI's own loader: the primitives equal
-    `primdecomp decompose PATH` byte for byte in to_json(). (decompose(*load(path))
-    may differ in the last bit: the loader keeps coordinates relative to the mesh's
-    centre, and load() returns them in world coordinates.)"""
+    `primdecomp decompose PATH` byte for byte in to_json(), as decompose(*load(path))
+    does, without handing the arrays to Python."""
     return Result(_native.decompose_path(str(path), _settings(settings), progress))
 
 

@@ -188,6 +188,15 @@ impl Mesh {
         }
     }
 
+    /// Replaces the re-centred coordinates by `world` (the same vertices as read), with
+    /// the origin as centre ([`crate::LoadOptions::keep_world_coordinates`]).
+    pub(crate) fn set_world_coordinates(&mut self, world: &[[f64; 3]]) {
+        self.x = world.iter().map(|p| p[0]).collect();
+        self.y = world.iter().map(|p| p[1]).collect();
+        self.z = world.iter().map(|p| p[2]).collect();
+        self.offset = [0.0; 3];
+    }
+
     /// A mesh of triangles: `positions` in world coordinates, `triangles` indexing
     /// them. Copies both once into the engine's layout (struct-of-arrays, re-centred).
     ///

@@ -103,6 +103,14 @@ pub struct LoadOptions {
     /// (`http:` …) are never read. Either way a buffer must be a regular file holding
     /// at least its declared `byteLength`, and only that many bytes are read.
     pub allow_external_uris: bool,
+    /// Keep the coordinates exactly as the file gives them instead of re-centring them
+    /// on their bounding box: [`Mesh::centre`] is the origin and [`Mesh::world_pos`]
+    /// returns the file's values bit for bit (re-centring and adding the centre back
+    /// can change the last bit). For handing a mesh's arrays to another program (the
+    /// Python package's `load`, whose arrays then decompose exactly as the file does);
+    /// [`load_with`] still refuses what it refuses with re-centring. Decomposing such a
+    /// mesh directly loses the precision re-centring keeps far from the origin.
+    pub keep_world_coordinates: bool,
 }
 
 /// Opens `path` for reading and returns it with its metadata, or refuses it with
@@ -502,12 +510,18 @@ pub fn load_with(path: &Path, options: &LoadOptions) -> Result<Mesh> {
         };
         crate::memory::check(path, counts, limit)?;
     }
-    let mesh = Mesh::from_builder(builder);
+    let world = options
+        .keep_world_coordinates
+        .then(|| builder.positions.clone());
+    let mut mesh = Mesh::from_builder(builder);
     if mesh.face_count() == 0 {
         return Err(Error::EmptyMesh {
             path: path.to_path_buf(),
         });
     }
     mesh.check_extent(path)?;
+    if let Some(world) = world {
+        mesh.set_world_coordinates(&world);
+    }
     Ok(mesh)
 }

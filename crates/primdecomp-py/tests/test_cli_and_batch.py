@@ -1,0 +1,195 @@
+"""The Python package against the CLI on corpus meshes, the coacd-style hulls against
+an independent containment check (trimesh), other input formats, zero-copy input,
+and the batch runner on a local Ray instance and on the thread-pool fallback."""
+
+import json
+import os
+import shutil
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import primdecomp
+import primdecomp.batch
+
+ROOT = Path(__file__).resolve().parents[3]
+CORPUS = ROOT.parent / "shared" / "datasets" / "corpus"
+# Small corpus meshes; the first two differed from the CLI in the last bit before
+# load() returned the file's coordinates unrounded.
+MESHES = ["coacd_bottle.obj", "parry_poly_cylinder.obj", "cad_featuretype.STL"]
+
+
+def corpus(name):
+    p = CORPUS / name
+    if not p.exists():
+        if os.environ.get("CI"):
+            pytest.fail(f"{p} missing under CI")
+        pytest.skip(f"{p} missing")
+    return p
+
+
+@pytest.fixture(scope="session")
+def cli():
+    """The release CLI: target/release/primdecomp, built with cargo when missing."""
+    exe = ROOT / "target" / "release" / "primdecomp"
+    if not exe.exists():
+        subprocess.run(["cargo", "build", "--release", "-q", "-p", "primdecomp-cli"], cwd=ROOT, check=True)
+    return exe
+
+
+def cli_json(cli, mesh, out, n=16):
+    subprocess.run([cli, "decompose", mesh, "-n", str(n), "-o", out], check=True, capture_output=True)
+    return Path(out).read_bytes()
+
+
+def prims(text):
+    return json.dumps(json.loads(text)["primitives"])
+
+
+@pytest.mark.parametrize("name", MESHES)
+def test_arrays_and_file_equal_cli(cli, tmp_path, name):
+    mesh = corpus(name)
+    want = cli_json(cli, mesh, tmp_path / "c.json")
+    v, f = primdecomp.load(mesh)
+    assert prims(primdecomp.decompose(v, f, targets=[16]).to_json()) == prims(want)
+    assert primdecomp.decompose_file(str(mesh), targets=[16]).to_json().encode() == want
+
+
+def inside_some_hull(points, hulls, tol):
+    """Independent of the engine: a point is inside a convex mesh when it is behind
+    every face plane (trimesh's face normals) within `tol`."""
+    covered = np.zeros(len(points), dtype=bool)
+    for h in hulls:
+        n = h.face_normals
+        d = np.einsum("ij,ij->i", n, h.triangles[:, 0, :])
+        covered |= np.all(points @ n.T - d <= tol, axis=1)
+    return covered
+
+
+def test_as_hulls_are_convex_and_contain_the_input():
+    trimesh = pytest.importorskip("trimesh")
+    v, f = primdecomp.load(corpus("coacd_bottle.obj"))
+    hulls = [trimesh.Trimesh(hv, hf) for hv, hf in primdecomp.as_hulls(v, f, targets=[12])]
+    assert 1 <= len(hulls) <= 12
+    assert all(h.is_convex and h.is_watertight for h in hulls)
+    tol = 1e-9 * np.linalg.norm(v.max(0) - v.min(0))
+    assert inside_some_hull(v, hulls, tol).all()
+    # The check can fail: a shrunken hull set misses vertices.
+    small = [trimesh.Trimesh(h.vertices * 0.9 + 0.1 * h.centroid, h.faces) for h in hulls]
+    assert not inside_some_hull(v, small, tol).all()
+
+
+def test_load_ply_stl_gltf(tmp_path):
+    trimesh = pytest.importorskip("trimesh")
+    v = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0], [0, 0, 1]], dtype=np.float64) + 0.1
+    f = np.array([[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])
+    tet = trimesh.Trimesh(v, f, process=False)
+    ply = tmp_path / "t.ply"
+    ply.write_text("ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
+                   "property float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n"
+                   + "".join(f"{a} {b} {c}\n" for a, b, c in v) + "".join(f"3 {a} {b} {c}\n" for a, b, c in f))
+    for path in (ply, tmp_path / "t.stl", tmp_path / "t.glb"):
+        if path.suffix != ".ply":
+            tet.export(path)
+        lv, lf = primdecomp.load(path)
+        assert lv.dtype == np.float64 and lv.shape[1] == 3
+        assert isinstance(lf, np.ndarray) and lf.shape == (4, 3)
+        tris = {tuple(np.round(lv[list(t)], 6).ravel()) for t in lf}
+        want = {tuple(np.round(v.astype(np.float32).astype(np.float64)[list(t)], 6).ravel()) for t in f}
+        assert tris == want, path
+        assert primdecomp.decompose(lv, lf, targets=[1]).levels[0].primitives
+    # Mixed polygons come back as a list.
+    obj = tmp_path / "m.obj"
+    obj.write_text("v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0.5 0.5 1\nf 1 4 3 2\nf 1 2 5\nf 2 3 5\nf 3 4 5\nf 4 1 5\n")
+    _, mf = primdecomp.load(obj)
+    assert isinstance(mf, list) and [len(p) for p in mf] == [4, 3, 3, 3, 3]
+    with pytest.raises(ValueError, match="bad.obj"):
+        (tmp_path / "bad.obj").write_text("v 0 0\nf 1 2 3\n")
+        primdecomp.load(tmp_path / "bad.obj")
+
+
+def test_input_arrays_are_not_copied():
+    """C-contiguous float64 vertices and uint32 / int32 faces reach Rust as they are:
+    the arrays handed to the native module are the caller's (same memory)."""
+    from primdecomp import _faces, _vertices
+
+    v = np.random.default_rng(1).random((10, 3))
+    assert _vertices(v) is v
+    for dt in (np.uint32, np.int32):
+        f = np.arange(12, dtype=dt).reshape(4, 3) % 10
+        assert np.shares_memory(_faces(f)[0], f)
+    # Other dtypes and layouts are converted (one copy), with the same result.
+    assert not np.shares_memory(_vertices(v.astype(np.float32)), v)
+    fs = (np.arange(24).reshape(4, 6) % 10)[:, ::2]
+    assert not fs.flags.c_contiguous and _faces(fs)[0].flags.c_contiguous
+
+
+def test_faces_dtypes_and_layouts_agree():
+    v, f = primdecomp.load(corpus("parry_poly_cylinder.obj"))
+    ref = primdecomp.decompose(v, f, targets=[6]).to_json()
+    f = np.asarray(f)
+    wide = np.zeros((len(f), 6), dtype=np.int64)
+    wide[:, ::2] = f
+    for ff in (f.astype(np.int32), f.astype(np.int64), f.astype(np.uint16), np.asfortranarray(f), wide[:, ::2]):
+        assert primdecomp.decompose(v, ff, targets=[6]).to_json() == ref
+
+
+def batch_inputs(tmp_path):
+    bad = tmp_path / "in" / "broken.obj"
+    bad.parent.mkdir()
+    bad.write_text("v 0 0 0\nf 1 2 3\n")
+    return [str(corpus(n)) for n in MESHES] + [str(bad)]
+
+
+def check_batch(cli, tmp_path, rows, inputs, out):
+    assert [r["input"] for r in rows] == inputs
+    for r in rows[:3]:
+        assert r["status"] in ("done", "skipped") and r["primitives"] and r["faces"], r
+        want = cli_json(cli, r["input"], tmp_path / "cli.json")
+        assert Path(r["output"]).read_bytes() == want, r["input"]
+    assert rows[3]["status"] == "error" and "broken.obj" in rows[3]["error"]
+    assert not Path(rows[3]["output"]).exists()
+    lines = (out / primdecomp.batch.SUMMARY).read_text().splitlines()
+    assert [json.loads(x) for x in lines] == rows
+
+
+def test_batch_on_local_ray(cli, tmp_path):
+    ray = pytest.importorskip("ray") if not os.environ.get("CI") else __import__("ray")
+    inputs = batch_inputs(tmp_path)
+    out = tmp_path / "out"
+    ray.init(num_cpus=2, include_dashboard=False, log_to_driver=False)
+    try:
+        rows = primdecomp.batch.run(inputs, out, use_ray=True, targets=[16])
+        assert [r["status"] for r in rows] == ["done"] * 3 + ["error"]
+        check_batch(cli, tmp_path, rows, inputs, out)
+        # Resumed: finished outputs are skipped, a missing one and the failure run again.
+        os.remove(rows[1]["output"])
+        again = primdecomp.batch.run(inputs, out, use_ray=True, targets=[16])
+        assert [r["status"] for r in again] == ["skipped", "done", "skipped", "error"]
+        check_batch(cli, tmp_path, again, inputs, out)
+        # Other settings are not "done": everything runs again.
+        other = primdecomp.batch.run(inputs, out, use_ray=True, targets=[8])
+        assert [r["status"] for r in other] == ["done"] * 3 + ["error"]
+    finally:
+        ray.shutdown()
+
+
+def test_batch_thread_pool_fallback_and_folder(cli, tmp_path):
+    folder = tmp_path / "meshes"
+    folder.mkdir()
+    for n in MESHES:
+        shutil.copy(corpus(n), folder / n)
+    (folder / "notes.txt").write_text("not a mesh")
+    inputs = primdecomp.batch.inputs_of(folder)
+    assert [Path(p).name for p in inputs] == sorted(MESHES)
+    rows = primdecomp.batch.run(folder, tmp_path / "out", use_ray=False, workers=2, targets=[16])
+    for r in rows:
+        assert r["status"] == "done"
+        assert Path(r["output"]).read_bytes() == cli_json(cli, r["input"], tmp_path / "c.json")
+    assert rows[0]["output"] == primdecomp.batch.output_of(inputs[0], tmp_path / "out")
+    with pytest.raises(ValueError, match="rename"):
+        primdecomp.batch.run([folder / MESHES[0], tmp_path / "x" / MESHES[0]], tmp_path / "o2", use_ray=False)
+    with pytest.raises(ValueError, match="one target"):
+        primdecomp.batch.run(folder, tmp_path / "o3", use_ray=False, targets=[8, 4])

@@ -204,7 +204,7 @@ struct DecomposeArgs {
     #[arg(long, value_delimiter = ',')]
     tolerance: Option<Vec<String>>,
     /// Keep each level's storage within B bytes by the paper's Table 2 (4 bytes a
-    /// float: a box 60, a sphere 16), e.g. 4096 or 4K: the cut standing nearest the
+    /// float: a box 40, a sphere 16, a prism 44), e.g. 4096 or 4K: the cut standing nearest the
     /// input that fits. Several give one level each; combines with --tolerance and
     /// with -n as caps (without -n: at most 1024 primitives). Implies --cut.
     #[arg(long, value_delimiter = ',')]

@@ -8,6 +8,7 @@ use crate::math::{Sym3, V3};
 use crate::merge::rim::FaceAdjacency;
 use crate::merge::{components, partition, Clusters, Evaluator, MergeOutput, Workspace};
 use crate::mesh::solid::{self, Solid};
+use crate::mesh::triangles::Triangles;
 use crate::mesh::{adjacency, dedup, orient, Mesh};
 use crate::params::{Params, Reprice};
 use crate::primitive::fit::{FitConfig, FrameSearch};
@@ -88,23 +89,25 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
     let mut merged = clock.stage(Stage::Merge, "merge", |go_on, laps| {
         merge(&ev, input, first, &targets, &mut stats, go_on, laps)
     })?;
+    // The input's triangles, once, for the cut's distances and thickened plates.
+    let cut = params.uses_cut() && !merged.stopped;
+    let tris = (cut || params.min_thickness > 0.0).then(|| Triangles::new(mesh));
+    let requests = requests(params, mesh);
     // The cut of the merge tree at each target where the error is (issue 26).
-    let cut_surface =
-        (params.uses_cut() && !merged.stopped).then(|| crate::cut::Surface::new(mesh));
-    if let Some(surface) = &cut_surface {
+    if let (true, Some(tris)) = (cut, &tris) {
         merged.snapshots = clock.stage(Stage::Postprocess, "cut", |_, _| {
-            cut_tree(&ev, &merged, &face_q, &requests(params, mesh), surface)
+            cut_tree(&ev, &merged, &face_q, &requests, tris)
         })?;
     }
     // Plates joined, duplicates absorbed, nested primitives removed, back to world
     // coordinates (§3.4).
     let mut levels = clock.stage(Stage::Postprocess, "postprocess", |_, _| {
-        postprocess::levels(&ev, merged, params)
+        postprocess::levels(&ev, merged, params, tris.as_ref())
     })?;
     // What each cut's caller asked and how far its primitives stand from the input.
-    if let Some(surface) = &cut_surface {
+    if let (true, Some(tris)) = (cut, &tris) {
         clock.stage(Stage::Postprocess, "distance", |_, _| {
-            crate::cut::record_limits(&mut levels, params, mesh, surface)
+            crate::cut::record_limits(&mut levels, &requests, mesh, tris)
         })?;
     }
     Ok(Decomposition {
@@ -122,7 +125,7 @@ fn cut_tree(
     merged: &MergeOutput,
     face_q: &[Sym3],
     requests: &[crate::cut::Request],
-    surface: &crate::cut::Surface,
+    tris: &Triangles,
 ) -> Vec<crate::merge::Snapshot> {
     let faces = ev.mesh.face_count();
     let tree = if merged.log_from_faces {
@@ -135,7 +138,7 @@ fn cut_tree(
         let log = &merged.log[merged.log_at_first..];
         crate::cut::MergeTree::build(&leaves.members, &leaves.q, log, faces)
     };
-    crate::cut::Cutter::new(ev, &tree, surface).snapshots(requests)
+    crate::cut::Cutter::new(ev, &tree, tris).snapshots(requests)
 }
 
 /// Each target's request of the cut, its tolerance in the mesh's units.

@@ -3,13 +3,13 @@
 //! of the output; here over one primitive, so an upper bound of its share). Estimated
 //! by sampling: the primitive's conservative tessellation (`export::tessellate`), its
 //! vertices and points on each triangle in proportion to area, each measured to the
-//! nearest input triangle anywhere in the mesh (`bvh::Surface`): the whole mesh, as
+//! nearest input triangle anywhere in the mesh (`mesh::triangles`): the whole mesh, as
 //! eval measures, not only the node's faces, so a primitive lying on another part's
 //! surface is not charged for it, and one hierarchy serves every node.
 
-use super::bvh::Surface;
 use crate::export::tessellate;
 use crate::math::{add, cross, norm, scale, sub, V3};
+use crate::mesh::triangles::Triangles;
 use crate::primitive::Primitive;
 
 /// Segments around circles of the tessellation (its polygons stand at most
@@ -20,7 +20,7 @@ const DETAIL: usize = 24;
 const SAMPLES: usize = 192;
 
 /// The estimated error of `prim` (0 for an empty surface).
-pub(crate) fn error_of(prim: &Primitive, surface: &Surface) -> f64 {
+pub(crate) fn error_of(prim: &Primitive, surface: &Triangles) -> f64 {
     let tess = tessellate(prim, DETAIL);
     let mut tris: Vec<[V3; 3]> = Vec::new();
     for f in &tess.faces {
@@ -80,7 +80,7 @@ pub(crate) mod tests {
     /// the distance of its farthest point (a corner: √3 × the gap).
     #[test]
     fn a_box_is_as_far_as_its_farthest_corner() {
-        let inner = Surface::new(&cube_mesh(1.0));
+        let inner = Triangles::new(&cube_mesh(1.0));
         assert!(error_of(&unit_box([1.0; 3]), &inner) < 1e-12);
         let e = error_of(&unit_box([1.5; 3]), &inner);
         assert!((e - 0.5 * 3f64.sqrt()).abs() < 1e-12, "{e}");

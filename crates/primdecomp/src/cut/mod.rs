@@ -9,14 +9,13 @@
 //! allow, filled up to its count. Every node's primitive encloses its faces, so every
 //! cut encloses the mesh.
 
-mod bvh;
 mod error;
 pub(crate) mod tree;
 
 use crate::math::Sym3;
 use crate::merge::{Evaluator, Snapshot, Workspace};
+use crate::mesh::triangles::Triangles;
 use crate::primitive::Primitive;
-pub(crate) use bvh::Surface;
 use error::error_of;
 use rayon::prelude::*;
 use std::cmp::Ordering;
@@ -76,10 +75,12 @@ impl Ord for Entry {
 }
 
 /// The part of the tree the splits reached: its roots, every node fitted (roots and
-/// the children of split nodes), and the nodes split, in order.
+/// the children of split nodes) and their ids in increasing order (children before
+/// parents: nodes are numbered after their children), and the nodes split, in order.
 struct Explored {
     roots: Vec<u32>,
     fitted: HashMap<u32, Entry>,
+    ids: Vec<u32>,
     splits: Vec<u32>,
 }
 
@@ -106,12 +107,12 @@ struct Cost {
 pub(crate) struct Cutter<'a> {
     ev: &'a Evaluator<'a>,
     tree: &'a MergeTree,
-    surface: &'a Surface,
+    surface: &'a Triangles,
     floor: f64,
 }
 
 impl<'a> Cutter<'a> {
-    pub(crate) fn new(ev: &'a Evaluator<'a>, tree: &'a MergeTree, surface: &'a Surface) -> Self {
+    pub(crate) fn new(ev: &'a Evaluator<'a>, tree: &'a MergeTree, surface: &'a Triangles) -> Self {
         Cutter {
             ev,
             tree,
@@ -168,6 +169,7 @@ impl<'a> Cutter<'a> {
         let mut ex = Explored {
             roots: self.tree.roots.clone(),
             fitted: roots.iter().map(|e| (e.node, e.clone())).collect(),
+            ids: Vec::new(),
             splits: Vec::new(),
         };
         let mut count = roots.len();
@@ -192,6 +194,8 @@ impl<'a> Cutter<'a> {
             ex.splits.push(e.node);
             count += 1;
         }
+        ex.ids = ex.fitted.keys().copied().collect();
+        ex.ids.sort_unstable();
         ex
     }
 
@@ -211,22 +215,22 @@ impl<'a> Cutter<'a> {
         bounds.push(0.0);
         bounds.sort_unstable_by(f64::total_cmp);
         bounds.dedup();
-        let ok = |i: usize| {
-            Some(self.cheapest(ex, bounds[i], r.bytes.is_some())).filter(|c| fits(totals(ex, c)))
-        };
+        let ok = |i: usize| fits(totals(ex, &self.cheapest(ex, bounds[i], r.bytes.is_some())));
         // The least bound whose cheapest cut fits (feasibility only grows with it).
         let (mut lo, mut hi) = (0, bounds.len().saturating_sub(1));
         while lo < hi {
             let mid = (lo + hi) / 2;
             match ok(mid) {
-                Some(_) => hi = mid,
-                None => lo = mid + 1,
+                true => hi = mid,
+                false => lo = mid + 1,
             }
         }
-        match ok(lo) {
-            Some(cut) => self.fill(ex, cut, bounds[lo], r),
+        let table = self.costs(ex, bounds[lo], r.bytes.is_some());
+        let cut = collect(self.tree, &table, &ex.roots);
+        match fits(totals(ex, &cut)) {
+            true => self.fill(ex, cut, &table, bounds[lo], r),
             // Nothing fits the caps (more roots than the count): the roots.
-            None => ex.roots.clone(),
+            false => ex.roots.clone(),
         }
     }
 
@@ -241,17 +245,15 @@ impl<'a> Cutter<'a> {
     /// For every explored node, the cheapest cut of its subtree whose every node's
     /// error is at most the node's bound: `bound`, or the least worst error any cut of
     /// the explored subtree reaches if that is more (a leaf, or a split that does not
-    /// help, is kept rather than made worse). Nodes are numbered after their
-    /// children, so one pass in increasing order sees children first.
+    /// help, is kept rather than made worse). One pass over the ids in increasing
+    /// order sees children first.
     fn costs(&self, ex: &Explored, bound: f64, by_bytes: bool) -> HashMap<u32, Cost> {
-        let mut ids: Vec<u32> = ex.fitted.keys().copied().collect();
-        ids.sort_unstable();
-        let mut cost: HashMap<u32, Cost> = HashMap::with_capacity(ids.len());
+        let mut cost: HashMap<u32, Cost> = HashMap::with_capacity(ex.ids.len());
         let key = |c: &Cost| match by_bytes {
             true => (c.bytes, c.count),
             false => (c.count, c.bytes),
         };
-        for &n in &ids {
+        for &n in &ex.ids {
             let e = &ex.fitted[&n];
             let kids = ex.is_split(self.tree, n).then(|| {
                 let [a, b] = self.tree.nodes[n as usize].children;
@@ -283,11 +285,17 @@ impl<'a> Cutter<'a> {
     }
 
     /// `cut` with the splits of the sequence applied, in order, wherever the node is
-    /// in the cut, the cheapest cut of its two children stays within `bound` (or the
-    /// least the node's subtree reaches) and the caps still hold: the node is replaced
-    /// by that cut.
-    fn fill(&self, ex: &Explored, cut: Vec<u32>, bound: f64, r: &Request) -> Vec<u32> {
-        let table = self.costs(ex, bound, r.bytes.is_some());
+    /// in the cut, the cheapest cut of its two children by `table` (`bound`'s costs)
+    /// stays within `bound` (or the least the node's subtree reaches) and the caps
+    /// still hold: the node is replaced by that cut.
+    fn fill(
+        &self,
+        ex: &Explored,
+        cut: Vec<u32>,
+        table: &HashMap<u32, Cost>,
+        bound: f64,
+        r: &Request,
+    ) -> Vec<u32> {
         let (mut count, mut bytes) = totals(ex, &cut);
         let mut set: BTreeSet<u32> = cut.into_iter().collect();
         for &n in &ex.splits {
@@ -301,7 +309,7 @@ impl<'a> Cutter<'a> {
             if table[&a].worst.max(table[&b].worst) > bound.max(table[&n].best) {
                 continue;
             }
-            let sub = collect(self.tree, &table, &[a, b]);
+            let sub = collect(self.tree, table, &[a, b]);
             let (c, b) = totals(ex, &sub);
             let more = bytes + b - ex.fitted[&n].bytes();
             if count + c - 1 > r.count || r.bytes.is_some_and(|cap| more > cap) {
@@ -353,19 +361,19 @@ impl<'a> Cutter<'a> {
     }
 }
 
-/// Records on each level its tolerance and byte target, and the estimated farthest
-/// its primitives stand from the input ([`error_of`] of each, in the input's frame).
+/// Records on each level what its request asked (tolerance, bytes) and the estimated
+/// farthest its primitives stand from the input ([`error_of`] of each, in the
+/// input's frame).
 pub(crate) fn record_limits(
     levels: &mut [crate::Level],
-    params: &crate::Params,
+    requests: &[Request],
     mesh: &crate::Mesh,
-    surface: &Surface,
+    surface: &Triangles,
 ) {
     let back = mesh.offset.map(|x| -x);
-    for (i, level) in levels.iter_mut().enumerate() {
-        let (tolerance, bytes) = params.level_limits(i);
-        level.tolerance = tolerance.map(|t| t.in_units(mesh.diagonal()));
-        level.max_bytes = bytes;
+    for (level, r) in levels.iter_mut().zip(requests) {
+        level.tolerance = r.tolerance;
+        level.max_bytes = r.bytes;
         let worst = level
             .primitives
             .par_iter()
@@ -482,7 +490,7 @@ mod tests {
 
     /// The worst sampled error of a level's primitives, in the input's frame.
     fn worst_error(mesh: &crate::Mesh, prims: &[Primitive]) -> f64 {
-        let surface = Surface::new(mesh);
+        let surface = Triangles::new(mesh);
         let back = mesh.offset.map(|x| -x);
         prims
             .iter()

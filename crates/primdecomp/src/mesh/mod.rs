@@ -7,6 +7,7 @@ pub(crate) mod dedup;
 pub(crate) mod io;
 pub(crate) mod orient;
 pub(crate) mod solid;
+pub(crate) mod triangles;
 pub(crate) mod visibility;
 
 use crate::math::V3;

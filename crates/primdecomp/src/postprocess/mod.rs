@@ -10,17 +10,26 @@ pub(crate) mod plates;
 pub(crate) mod thicken;
 
 use crate::merge::{Evaluator, MergeOutput, Snapshot};
+use crate::mesh::triangles::Triangles;
 use crate::params::Params;
 use crate::result::Level;
 use nested::{keep_mask, Cleanup};
 
 /// One level per target in `params.targets` (in the order given) from the merge
 /// loop's snapshots.
-pub(crate) fn levels(ev: &Evaluator, merged: MergeOutput, params: &Params) -> Vec<Level> {
+/// `tris`: the input's triangles, built by the run when a step needs them.
+pub(crate) fn levels(
+    ev: &Evaluator,
+    merged: MergeOutput,
+    params: &Params,
+    tris: Option<&Triangles>,
+) -> Vec<Level> {
     let diag = ev.mesh.diagonal();
     let mut snaps = merged.snapshots;
     // The input as rays see it, for plates thickened inward (docs/decisions/0033).
-    let thick = (params.min_thickness > 0.0).then(|| thicken::Input::build(ev));
+    let thick = tris
+        .filter(|_| params.min_thickness > 0.0)
+        .map(|t| thicken::Input::build(ev, t));
     for snap in &mut snaps {
         let mut q = std::mem::take(&mut snap.q);
         // Solid pricing: near-duplicate primitives become one (docs/decisions/0023).

@@ -18,11 +18,11 @@
 
 use rayon::prelude::*;
 
-use crate::math::bvh::{ray_tri, tri_box, Bvh};
 use crate::math::{dot, madd, V3};
 use crate::merge::{Evaluator, Snapshot};
 use crate::mesh::outward_normal;
 use crate::mesh::solid::{self, Solid};
+use crate::mesh::triangles::Triangles;
 use crate::primitive::Primitive;
 
 /// Share of the input's depth behind a plate (from its outer side along its inward
@@ -41,30 +41,19 @@ const INSET: f64 = 1e-3;
 /// Shifts of the grid along the footprint's two sides (shares of the half-extents).
 const SKEW: [f64; 2] = [0.0123, 0.0371];
 
-/// The input as rays see it: its triangles (polygons fanned) with their faces, a
-/// hierarchy over them, and its interior on the `--solid` voxel grid.
-pub(crate) struct Input {
-    tris: Vec<[V3; 3]>,
-    bvh: Bvh,
+/// The input as rays see it: its triangles (shared with the run, `mesh::triangles`)
+/// and its interior on the `--solid` voxel grid.
+pub(crate) struct Input<'a> {
+    tris: &'a Triangles,
     solid: Solid,
 }
 
-impl Input {
-    /// The triangles, hierarchy and interior of `ev`'s mesh.
-    pub fn build(ev: &Evaluator) -> Input {
-        let mesh = ev.mesh;
-        let mut tris = Vec::new();
-        for f in 0..mesh.face_count() {
-            let vs = mesh.face(f);
-            for k in 2..vs.len() {
-                tris.push([mesh.pos(vs[0]), mesh.pos(vs[k - 1]), mesh.pos(vs[k])]);
-            }
-        }
-        let boxes: Vec<(V3, V3)> = tris.iter().map(tri_box).collect();
+impl<'a> Input<'a> {
+    /// The interior of `ev`'s mesh beside its triangles `tris`.
+    pub fn build(ev: &Evaluator, tris: &'a Triangles) -> Input<'a> {
         Input {
-            bvh: Bvh::build(&boxes),
-            solid: Solid::build(mesh, solid::CELLS, solid::VOTES),
             tris,
+            solid: Solid::build(ev.mesh, solid::CELLS, solid::VOTES),
         }
     }
 }
@@ -192,13 +181,8 @@ fn allowed(
     let tmin = 1e-9 * diag;
     let mut depth = f64::INFINITY;
     for &o in samples {
-        let (t, tri) = input.bvh.ray_first(o, d, 4.0 * diag, stack, |i| {
-            ray_tri(o, d, &input.tris[i as usize], tmin)
-        });
-        // Nothing behind the plate: a sheet open on that side.
-        if tri == u32::MAX {
-            return None;
-        }
+        // Nothing behind the plate (`?`): a sheet open on that side.
+        let t = input.tris.ray_first(o, d, (tmin, 4.0 * diag), stack)?;
         depth = depth.min(slab.thick + t);
     }
     let target = thickness.min(DEPTH_SHARE * depth);

@@ -1,22 +1,23 @@
-//! The input's surface for the merge tree's node errors (`cut::error`): its
-//! triangles under the hierarchy of [`crate::math::bvh`], the same one
-//! `primdecomp eval` measures with, queried for the nearest triangle.
+//! The input's surface as triangles under the hierarchy of [`crate::math::bvh`] (the
+//! one `primdecomp eval` measures with), built once per run for whatever needs it:
+//! the merge tree's node errors (`cut::error`, nearest triangle) and plates thickened
+//! inward (`postprocess::thicken`, first triangle along a ray).
 
-use crate::math::bvh::{point_tri_dist2, tri_box, Bvh};
+use crate::math::bvh::{point_tri_dist2, ray_tri, tri_box, Bvh};
 use crate::math::V3;
 use crate::mesh::Mesh;
 
 /// The input's surface as triangles (fan-triangulated polygons, re-centred frame)
 /// with a hierarchy over them.
 #[derive(Clone, Debug, Default)]
-pub(crate) struct Surface {
+pub(crate) struct Triangles {
     tris: Vec<[V3; 3]>,
     bvh: Bvh,
 }
 
-impl Surface {
+impl Triangles {
     /// The surface of every face of `mesh`.
-    pub(crate) fn new(mesh: &Mesh) -> Surface {
+    pub(crate) fn new(mesh: &Mesh) -> Triangles {
         let mut tris = Vec::with_capacity(mesh.face_count());
         for f in 0..mesh.face_count() {
             let v = mesh.face(f);
@@ -25,7 +26,7 @@ impl Surface {
             }
         }
         let boxes: Vec<(V3, V3)> = tris.iter().map(tri_box).collect();
-        Surface {
+        Triangles {
             bvh: Bvh::build(&boxes),
             tris,
         }
@@ -41,7 +42,7 @@ impl Surface {
         d2.sqrt()
     }
 
-    /// [`Surface::distance`] when it is more than `bound`, otherwise some distance
+    /// [`Triangles::distance`] when it is more than `bound`, otherwise some distance
     /// at most `bound` (found sooner): `bound.max(..)` is the same either way.
     pub(crate) fn distance_beyond(&self, p: V3, bound: f64, stack: &mut Vec<(f64, u32)>) -> f64 {
         let enough = if bound > 0.0 {
@@ -54,6 +55,21 @@ impl Surface {
         });
         d2.sqrt()
     }
+
+    /// How far along the ray `o + t·d` (`t` in `(tmin, tmax]`) it first meets a
+    /// triangle, or `None` for a miss; `stack` is scratch.
+    pub(crate) fn ray_first(
+        &self,
+        o: V3,
+        d: V3,
+        (tmin, tmax): (f64, f64),
+        stack: &mut Vec<u32>,
+    ) -> Option<f64> {
+        let (t, tri) = self.bvh.ray_first(o, d, tmax, stack, |i| {
+            ray_tri(o, d, &self.tris[i as usize], tmin)
+        });
+        (tri != u32::MAX).then_some(t)
+    }
 }
 
 #[cfg(test)]
@@ -64,7 +80,7 @@ mod tests {
     #[test]
     fn nearest_matches_a_linear_scan() {
         let mesh = crate::demo::demo_scene();
-        let s = Surface::new(&mesh);
+        let s = Triangles::new(&mesh);
         let mut stack = Vec::new();
         for i in 0..200u32 {
             let t = i as f64;

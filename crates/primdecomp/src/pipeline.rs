@@ -24,9 +24,9 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
     check_input(mesh)?;
     let mut clock = Clock::new(progress);
     let bounds = mesh.aabb();
-    let targets = if params.uses_cut() {
-        // The tree's leaves (a snapshot of a few times the largest target) up to its
-        // roots (docs/decisions/0032).
+    let mut targets = if params.uses_cut() {
+        // The tree's leaves (a snapshot of a few times the largest target, needed only
+        // after spatial parts: below) up to its roots (docs/decisions/0032, 0034).
         let largest = params.targets.iter().copied().max().unwrap_or(1);
         let leaves = largest.saturating_mul(crate::cut::LEAVES_PER_TARGET);
         merge_order(&[leaves.min(mesh.face_count()).max(largest), 1])
@@ -67,6 +67,11 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
     let volumes = clock.stage(Stage::Seed, "seed", |go_on, _| seed_volumes(&ev, &q, go_on))?;
     // Where the merge loop starts: spatial parts, components, or the faces themselves.
     let first = FirstPhase::choose(mesh, params, &pairs, targets[0]);
+    // Without spatial parts every merge is logged and the tree's leaves are the faces:
+    // the leaf snapshot would be fitted for nothing.
+    if params.uses_cut() && !matches!(first, FirstPhase::Parts(_)) {
+        targets = vec![1];
+    }
     let mut stats = Stats {
         welded_vertices: distinct,
         adjacency_edges: pairs.len(),

@@ -569,26 +569,6 @@ fn parse_kind(k: &str) -> anyhow::Result<Kind> {
     })
 }
 
-/// The output labels of a chain of tolerances or byte targets (from the flags or
-/// `--config`; empty without one: levels are named by their counts).
-fn chain_labels(p: &Params) -> Vec<String> {
-    let k = p.tolerance.len().max(p.max_bytes.len());
-    if k < 2 {
-        return Vec::new();
-    }
-    let short = |x: f64| format!("{}", (x * 1e10).round() / 1e10);
-    let tol: Vec<String> = p
-        .tolerance
-        .iter()
-        .map(|t| match *t {
-            Tolerance::Diagonal(f) => format!("{}%", short(100.0 * f)),
-            Tolerance::Units(u) => short(u),
-        })
-        .collect();
-    let bytes: Vec<String> = p.max_bytes.iter().map(|b| b.to_string()).collect();
-    level_labels(&vec![0; k], &tol, &bytes)
-}
-
 /// The count cap of `--tolerance` and `--max-bytes` without -n.
 const CUT_CAP: usize = 1024;
 
@@ -743,7 +723,7 @@ fn decompose_one(
         exports: a.export.clone(),
         png: a.png.clone(),
         batch_input: None,
-        chain: chain_labels(base),
+        chain: Chain::of(base),
     };
     guard.check(&dest.up_front(targets))?;
     set_threads(a.threads)?;
@@ -783,7 +763,7 @@ fn decompose_batch(
             exports: Vec::new(),
             png: a.png.as_ref().map(|d| d.join(default_png(i))),
             batch_input: Some(i.clone()),
-            chain: chain_labels(base),
+            chain: Chain::of(base),
         })
         .collect();
     let known: Vec<Out> = dests.iter().flat_map(|d| d.up_front(targets)).collect();
@@ -878,6 +858,28 @@ fn clear_stale(a: &DecomposeArgs, dir: &Path) {
     }
 }
 
+/// A run's tolerances and byte targets: several of either name its levels
+/// ([`level_labels`]).
+#[derive(Clone, Debug, Default)]
+struct Chain {
+    tolerance: Vec<Tolerance>,
+    max_bytes: Vec<usize>,
+}
+
+impl Chain {
+    fn of(p: &Params) -> Chain {
+        Chain {
+            tolerance: p.tolerance.clone(),
+            max_bytes: p.max_bytes.clone(),
+        }
+    }
+
+    /// Whether the levels are named by tolerances or byte targets, not counts.
+    fn names_levels(&self) -> bool {
+        self.tolerance.len() > 1 || self.max_bytes.len() > 1
+    }
+}
+
 /// Keeps one input's messages together when several inputs run at once.
 static PRINT: std::sync::Mutex<()> = std::sync::Mutex::new(());
 
@@ -893,18 +895,14 @@ struct Dest {
     /// The `--png` file (in a batch, inside the `--png` directory).
     png: Option<PathBuf>,
     batch_input: Option<PathBuf>,
-    /// The levels' labels of a chain of tolerances or byte targets (else empty: the
-    /// levels are named by their counts).
-    chain: Vec<String>,
+    /// The tolerances and byte targets that name a chain's levels.
+    chain: Chain,
 }
 
 impl Dest {
     /// The labels of levels with these counts in output names.
     fn labels(&self, counts: &[usize]) -> Vec<String> {
-        match self.chain.is_empty() {
-            true => level_labels(counts, &[], &[]),
-            false => self.chain.clone(),
-        }
+        level_labels(counts, &self.chain.tolerance, &self.chain.max_bytes)
     }
 
     /// The files written for `levels`, the targets of the decomposition's levels.
@@ -933,13 +931,13 @@ impl Dest {
             match *t {
                 Target::Count(c) => counts.push(c),
                 // One target, or a chain named by its tolerances: whatever the count.
-                Target::Percent(_) if targets.len() == 1 || !self.chain.is_empty() => {
+                Target::Percent(_) if targets.len() == 1 || self.chain.names_levels() => {
                     counts.push(0)
                 }
                 Target::Percent(_) => return Vec::new(),
             }
         }
-        if self.chain.is_empty() {
+        if !self.chain.names_levels() {
             counts.sort_unstable_by(|a, b| b.cmp(a));
             counts.dedup();
         }

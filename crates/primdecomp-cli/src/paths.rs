@@ -1,6 +1,7 @@
 //! Output file names and the memory limit's settings: command-line policy, not the
 //! library's.
 
+use primdecomp::Tolerance;
 use std::path::{Path, PathBuf};
 
 /// The output file for the level labelled `label` when a run has `n_targets` levels:
@@ -26,18 +27,20 @@ pub fn output_path_for(base: &Path, label: &str, n_targets: usize) -> PathBuf {
 }
 
 /// The labels of a run's levels in output names: `n{count}` for each target, or, for
-/// a chain of tolerances or byte targets, `t{tolerance as given}` (`%` as `pct`:
-/// `t2pct`) or `b{bytes}`, which tell levels of one count cap apart.
-pub fn level_labels(counts: &[usize], tolerance: &[String], bytes: &[String]) -> Vec<String> {
+/// a chain of tolerances or byte targets, `t{tolerance}` (a percentage of the diagonal
+/// as `t2pct`, a distance as `t0.5`) or `b{bytes}`, which tell levels of one count cap
+/// apart.
+pub fn level_labels(counts: &[usize], tolerance: &[Tolerance], bytes: &[usize]) -> Vec<String> {
+    // The short decimal a value was parsed from (0.07 * 100 is 7.000000000000001).
+    let short = |x: f64| format!("{}", (x * 1e10).round() / 1e10);
     (0..counts.len())
-        .map(|i| {
-            if tolerance.len() > 1 {
-                format!("t{}", tolerance[i].trim().replace('%', "pct"))
-            } else if bytes.len() > 1 {
-                format!("b{}", bytes[i].trim())
-            } else {
-                format!("n{}", counts[i])
-            }
+        .map(|i| match (tolerance.len() > 1, bytes.len() > 1) {
+            (true, _) => match tolerance[i] {
+                Tolerance::Diagonal(f) => format!("t{}pct", short(100.0 * f)),
+                Tolerance::Units(u) => format!("t{}", short(u)),
+            },
+            (false, true) => format!("b{}", bytes[i]),
+            (false, false) => format!("n{}", counts[i]),
         })
         .collect()
 }
@@ -75,14 +78,16 @@ mod tests {
     #[test]
     fn labels_tell_chained_levels_apart() {
         let s = |v: &[&str]| v.iter().map(|x| x.to_string()).collect::<Vec<_>>();
+        let (pct, units) = (Tolerance::Diagonal(0.07), Tolerance::Units(0.5));
         assert_eq!(level_labels(&[64, 8], &[], &[]), s(&["n64", "n8"]));
+        assert_eq!(level_labels(&[64], &[pct], &[4096]), s(&["n64"]));
         assert_eq!(
-            level_labels(&[1024, 1024], &s(&["2%", "0.5"]), &[]),
-            s(&["t2pct", "t0.5"])
+            level_labels(&[1024, 1024], &[pct, units], &[]),
+            s(&["t7pct", "t0.5"])
         );
         assert_eq!(
-            level_labels(&[1024, 1024], &s(&["1%"]), &s(&["4K", "800"])),
-            s(&["b4K", "b800"])
+            level_labels(&[1024, 1024], &[pct], &[4096, 800]),
+            s(&["b4096", "b800"])
         );
     }
 

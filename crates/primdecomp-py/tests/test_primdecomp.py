@@ -156,3 +156,17 @@ def test_tolerance_and_bytes(tmp_path):
                     "-o", tmp_path / "d.json"], check=True, capture_output=True)
     cli = json.loads((tmp_path / "d_t2pct.json").read_text())["primitives"]
     assert json.dumps(cli) == json.dumps(json.loads(chain.to_json(1))["primitives"])
+
+
+def test_tolerance_without_count_matches_cli(tmp_path):
+    """`tolerance="1%"` alone is capped as `primdecomp decompose --tolerance 1%` is."""
+    need(CLI)
+    mesh = ROOT / "datasets" / "demo_scene.obj"
+    subprocess.run([CLI, "decompose", mesh, "--tolerance", "1%", "-o", tmp_path / "t.json"],
+                   check=True, capture_output=True)
+    cli = json.loads((tmp_path / "t.json").read_text())
+    py = json.loads(primdecomp.decompose_file(mesh, tolerance="1%").to_json())
+    assert py["settings"]["target"] == cli["settings"]["target"] == 1024
+    assert json.dumps(cli["primitives"]) == json.dumps(py["primitives"])
+    # One count caps every level of a chain, as `-n 400 --tolerance 5%,2%` does.
+    assert len(primdecomp.decompose_file(mesh, targets=[400], tolerance=["5%", "2%"]).levels) == 2

@@ -135,6 +135,10 @@ def decompose(vertices, faces, progress=None, **settings):
     return Result(_native.decompose(v, arr, off, idx, _settings(settings), progress))
 
 
+# The count cap of a tolerance or byte target without `targets` (the CLI's CUT_CAP).
+_CUT_CAP = 1024
+
+
 def _tolerance(t):
     """"1%" (of the bounding-box diagonal) or a distance in input units, as the
     library's Tolerance; a dict ({"units": d} / {"diagonal": f}) is passed on."""
@@ -157,6 +161,13 @@ def _settings(settings):
             settings[key] = [v]
     if "tolerance" in settings and isinstance(settings["tolerance"], (list, tuple)):
         settings["tolerance"] = [_tolerance(t) for t in settings["tolerance"]]
+    # As `primdecomp decompose` does: a tolerance or byte target without a count is
+    # capped at the CLI's 1024, and one count caps every level of a chain.
+    chain = max(len(settings.get(k) or []) for k in ("tolerance", "max_bytes"))
+    if chain and "targets" not in settings:
+        settings["targets"] = [_CUT_CAP]
+    if chain > 1 and len(settings.get("targets") or []) == 1:
+        settings["targets"] = settings["targets"] * chain
     try:
         return _json.dumps(settings, allow_nan=False)
     except (TypeError, ValueError) as e:

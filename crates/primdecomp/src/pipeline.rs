@@ -143,7 +143,8 @@ fn cut_tree(
         let log = &merged.log[merged.log_at_first..];
         crate::cut::MergeTree::build(&leaves.members, &leaves.q, log, faces)
     };
-    crate::cut::Cutter::new(ev, &tree, tris).snapshots(requests)
+    let largest = requests.iter().map(|r| r.count).max().unwrap_or(1);
+    crate::cut::Cutter::new(ev, &tree, tris, largest).snapshots(requests)
 }
 
 /// Each target's request of the cut, its tolerance in the mesh's units.

@@ -10,6 +10,7 @@
 //! cut encloses the mesh.
 
 mod error;
+mod hulls;
 pub(crate) mod tree;
 
 use crate::math::Sym3;
@@ -17,6 +18,7 @@ use crate::merge::{Evaluator, Snapshot, Workspace};
 use crate::mesh::triangles::Triangles;
 use crate::primitive::Primitive;
 use error::error_of;
+use hulls::{HullScratch, NodeHulls};
 use rayon::prelude::*;
 use std::cmp::Ordering;
 use std::collections::{BTreeSet, BinaryHeap, HashMap};
@@ -31,6 +33,10 @@ pub(crate) const LEAVES_PER_TARGET: usize = 4;
 /// flush plate already stands two of them off its faces, and the estimate's own
 /// tessellation error is of that order.
 const FLOOR_HALVES: f64 = 4.0;
+
+/// Nodes of fewer faces than a cut of the largest count holds on average, divided
+/// by this, have no hull kept ([`hulls`]): found from their faces when fitted.
+const STORED_BELOW_MEAN: usize = 4;
 
 /// What one level asks of the cut: at most `count` nodes and `bytes` bytes (the
 /// paper's Table 2), and with a `tolerance` (the mesh's units) the fewest nodes whose
@@ -103,32 +109,78 @@ struct Cost {
     own: bool,
 }
 
-/// What a cut is made from: the fit settings, the tree and the input's surface.
+/// What a cut is made from: the fit settings, the tree, its nodes' hulls and the
+/// input's surface.
 pub(crate) struct Cutter<'a> {
     ev: &'a Evaluator<'a>,
     tree: &'a MergeTree,
+    hulls: NodeHulls<'a>,
     surface: &'a Triangles,
     floor: f64,
 }
 
+/// One thread's buffers for fitting nodes.
+#[derive(Default)]
+struct Scratch {
+    ws: Workspace,
+    hull: HullScratch,
+}
+
 impl<'a> Cutter<'a> {
-    pub(crate) fn new(ev: &'a Evaluator<'a>, tree: &'a MergeTree, surface: &'a Triangles) -> Self {
+    /// The cutter of `tree` for cuts of at most `largest` nodes.
+    pub(crate) fn new(
+        ev: &'a Evaluator<'a>,
+        tree: &'a MergeTree,
+        surface: &'a Triangles,
+        largest: usize,
+    ) -> Self {
+        // Exploring rarely fits nodes much smaller than a cut of `largest` nodes
+        // holds on average; smaller ones are gathered from their faces when fitted.
+        let stored = tree.order.len() / largest.max(1) / STORED_BELOW_MEAN;
         Cutter {
             ev,
             tree,
+            hulls: NodeHulls::build(tree, ev.mesh, ev.face_adj, ev.hull_eps, stored),
             surface,
             floor: FLOOR_HALVES * ev.cfg.min_half,
         }
     }
 
-    /// Node `n`'s output primitive and its error.
-    fn entry(&self, n: u32, ws: &mut Workspace) -> Entry {
-        let faces = self.tree.faces(n);
+    /// Node `n`'s output fit on its hull's vertices and boundary faces, and its error:
+    /// what exploring needs, without gathering every face below the node again at
+    /// every level.
+    fn entry(&self, n: u32, s: &mut Scratch) -> Entry {
+        let sets = self.hulls.of(n, &mut s.hull);
+        let faces = self.tree.faces(n).iter().copied();
         let q = &self.tree.nodes[n as usize].q;
-        let prim = self.ev.fit_output(faces.iter().copied(), q, ws).prim;
+        let outside = |g| self.hulls.outside(n, g);
+        let prim = (self.ev)
+            .fit_on_vertices(faces, &sets.hull, &sets.boundary, outside, q, &mut s.ws)
+            .prim;
+        self.measured(n, prim)
+    }
+
+    /// `e`'s primitive if it encloses every point of its node's faces, else the node's
+    /// output fit on all of them.
+    fn enclosing(&self, e: &Entry, ws: &mut Workspace) -> Primitive {
+        let mesh = self.ev.mesh;
+        let faces = self.tree.faces(e.node);
+        let inside = |&f: &u32| {
+            mesh.face(f as usize)
+                .iter()
+                .all(|&v| e.prim.contains(mesh.pos(v), 0.0))
+        };
+        if faces.iter().all(inside) {
+            return e.prim;
+        }
+        let q = &self.tree.nodes[e.node as usize].q;
+        self.ev.fit_output(faces.iter().copied(), q, ws).prim
+    }
+
+    fn measured(&self, node: u32, prim: Primitive) -> Entry {
         Entry {
             error: error_of(&prim, self.surface),
-            node: n,
+            node,
             prim,
         }
     }
@@ -147,11 +199,31 @@ impl<'a> Cutter<'a> {
             .unwrap_or(0.0)
             .max(self.floor);
         let explored = self.explore(largest, enough);
+        let cuts: Vec<Vec<u32>> = requests.iter().map(|r| self.choose(&explored, r)).collect();
+        // A chosen node's fit on its hull's vertices, unless one of its faces' points
+        // (left out of the hull within its tolerance) is outside it: then its fit on
+        // every point, which encloses them exactly.
+        let mut chosen: Vec<u32> = cuts.iter().flatten().copied().collect();
+        chosen.sort_unstable();
+        chosen.dedup();
+        let output: HashMap<u32, Primitive> = chosen
+            .par_iter()
+            .map_init(Workspace::default, |ws, &n| {
+                let e = &explored.fitted[&n];
+                (n, self.enclosing(e, ws))
+            })
+            .collect();
         requests
             .iter()
-            .map(|r| {
-                let cut = self.choose(&explored, r);
-                let entries = cut.iter().map(|n| explored.fitted[n].clone()).collect();
+            .zip(cuts)
+            .map(|(r, cut)| {
+                let entries = cut
+                    .iter()
+                    .map(|n| Entry {
+                        prim: output[n],
+                        ..explored.fitted[n].clone()
+                    })
+                    .collect();
                 self.snapshot(r.count, entries)
             })
             .collect()
@@ -164,7 +236,7 @@ impl<'a> Cutter<'a> {
             .tree
             .roots
             .par_iter()
-            .map_init(Workspace::default, |ws, &r| self.entry(r, ws))
+            .map_init(Scratch::default, |s, &r| self.entry(r, s))
             .collect();
         let mut ex = Explored {
             roots: self.tree.roots.clone(),
@@ -185,8 +257,8 @@ impl<'a> Cutter<'a> {
             }
             let [a, b] = node.children;
             let (ea, eb) = rayon::join(
-                || self.entry(a, &mut Workspace::default()),
-                || self.entry(b, &mut Workspace::default()),
+                || self.entry(a, &mut Scratch::default()),
+                || self.entry(b, &mut Scratch::default()),
             );
             ex.fitted.insert(a, ea.clone());
             ex.fitted.insert(b, eb.clone());

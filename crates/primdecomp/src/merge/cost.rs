@@ -187,29 +187,72 @@ impl<'a> Evaluator<'a> {
         for f in faces.clone() {
             self.push_points(self.mesh.face(f as usize), ws);
         }
+        ws.rims.clear();
+        if self.prices_rims() {
+            ws.members.clear();
+            ws.members.extend(faces.clone());
+            ws.members.sort_unstable();
+            ws.members.dedup();
+            self.surroundings().rims(&ws.members, &mut ws.rims);
+        }
+        self.fit_gathered(faces, q, ws)
+    }
+
+    /// [`Self::fit_output`] on `hull`, the hull vertices of `faces` (their own vertex
+    /// indices, as `cut::hulls` keeps them), with the rims found from `boundary`, the
+    /// faces with a neighbour outside them (increasing), told by `outside`: the same
+    /// fit but for points within the hull's tolerance of it, which it may leave out,
+    /// without gathering every face below a node of the merge tree again at every
+    /// level (docs/decisions/0035).
+    pub fn fit_on_vertices(
+        &self,
+        faces: impl Iterator<Item = u32> + Clone,
+        hull: &[u32],
+        boundary: &[u32],
+        outside: impl Fn(u32) -> bool,
+        q: &Sym3,
+        ws: &mut Workspace,
+    ) -> Fit {
+        ws.clear();
+        self.push_points(hull, ws);
+        ws.rims.clear();
+        if self.prices_rims() {
+            self.surroundings()
+                .rims_where(boundary, outside, &mut ws.rims);
+        }
+        self.fit_gathered(faces, q, ws)
+    }
+
+    /// Whether output fits price the rim reach (`Params::rim_weight`).
+    pub fn prices_rims(&self) -> bool {
+        self.rim_weight > 0.0 && !self.face_adj.is_empty()
+    }
+
+    fn surroundings(&self) -> Surroundings<'a> {
+        Surroundings {
+            mesh: self.mesh,
+            welded: self.welded,
+            adj: self.face_adj,
+            signs: self.face_sign,
+        }
+    }
+
+    /// The output fit of the points gathered in `ws` for `faces`, with their rims in
+    /// `ws.rims`.
+    fn fit_gathered(
+        &self,
+        faces: impl Iterator<Item = u32> + Clone,
+        q: &Sym3,
+        ws: &mut Workspace,
+    ) -> Fit {
         // Output only: every cluster also tries the frames turned about each of its
         // axes and the input's axes (docs/decisions/0014-output-fits-turn-about-the-normal.md,
         // docs/decisions/0021-thorough-output-frame-search.md); merges
         // stay priced as before.
         let cfg = FitConfig {
             frames: FrameSearch::Thorough,
-            min_half: self.cfg.min_half,
             ..self.cfg
         };
-        ws.rims.clear();
-        if self.rim_weight > 0.0 && !self.face_adj.is_empty() {
-            ws.members.clear();
-            ws.members.extend(faces.clone());
-            ws.members.sort_unstable();
-            ws.members.dedup();
-            let around = Surroundings {
-                mesh: self.mesh,
-                welded: self.welded,
-                adj: self.face_adj,
-                signs: self.face_sign,
-            };
-            around.rims(&ws.members, &mut ws.rims);
-        }
         let mut fit = if ws.rims.is_empty() {
             self.fit_on_hull(q, &cfg, ws)
         } else {

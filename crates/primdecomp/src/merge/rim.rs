@@ -53,7 +53,8 @@ impl FaceAdjacency<'_> {
     pub fn is_empty(&self) -> bool {
         self.offsets.is_empty()
     }
-    fn of(&self, f: u32) -> &[u32] {
+    /// Face `f`'s neighbours.
+    pub fn of(&self, f: u32) -> &[u32] {
         let f = f as usize;
         match (self.offsets.get(f), self.offsets.get(f + 1)) {
             (Some(&a), Some(&b)) => &self.adj[a as usize..b as usize],
@@ -135,13 +136,19 @@ impl Surroundings<'_> {
     /// a primitive turned off f's edges can stand past a rim one face away (a sliver
     /// whose corner alone touches a wall's top).
     pub fn rims(&self, members: &[u32], out: &mut Vec<Rim>) {
+        self.rims_where(members, |g| members.binary_search(&g).is_err(), out);
+    }
+
+    /// [`Self::rims`] of a cluster told by `outside` (true for a face not in it), from
+    /// `faces`, its members with a neighbour outside it, in increasing order (the
+    /// others have no rims): the same rims in the same order.
+    pub fn rims_where(&self, faces: &[u32], outside: impl Fn(u32) -> bool, out: &mut Vec<Rim>) {
         out.clear();
         let cos_max = RIM_ANGLE_DEG.to_radians().cos();
         let cos_gentle = RIM_GENTLE_DEG.to_radians().cos();
-        let outside = |g: u32| members.binary_search(&g).is_err();
         let at =
             |f: u32| outward_normal_and_centre(self.mesh, self.signs, f).map(|(n, c, _)| (n, c));
-        for &f in members {
+        for &f in faces {
             let Some((nf, cf)) = at(f) else {
                 continue;
             };

@@ -1,0 +1,258 @@
+//! What refitting a node of the merge tree needs, found bottom-up once (§3.3 fits a
+//! cluster's primitive to its points): its hull vertices (a convex primitive encloses
+//! the points iff it encloses their hull; a node's hull is the hull of its two
+//! children's) and its boundary faces, those with a neighbour outside it (the only
+//! ones with rims, `merge::rim`; a node's are among its children's). Exploring the
+//! tree from its roots down then fits each node on a few points and faces instead of
+//! gathering every face below it again at every level (docs/decisions/0035).
+
+use super::tree::MergeTree;
+use crate::math::hull::{hull_vertices, HullWorkspace};
+use crate::merge::rim::FaceAdjacency;
+use crate::mesh::Mesh;
+use rayon::prelude::*;
+use std::collections::HashMap;
+
+/// Nodes of at most this many faces are never stored: their sets are found from
+/// their faces when asked, which costs about as much as reading stored ones.
+const SMALL: usize = 16;
+
+/// A node's hull vertices (the faces' own vertex indices) and boundary faces
+/// (increasing).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct NodeSets {
+    pub hull: Vec<u32>,
+    pub boundary: Vec<u32>,
+}
+
+/// The sets of every node with more than `small` faces (at least [`SMALL`]), and
+/// where each face sits in the tree's order (to tell whether a face is in a node).
+pub(crate) struct NodeHulls<'a> {
+    tree: &'a MergeTree,
+    mesh: &'a Mesh,
+    adj: FaceAdjacency<'a>,
+    eps: f64,
+    small: usize,
+    at: Vec<u32>,
+    stored: HashMap<u32, NodeSets>,
+}
+
+/// Reusable buffers for one thread.
+#[derive(Default)]
+pub(crate) struct HullScratch {
+    ids: Vec<u32>,
+    faces: Vec<u32>,
+    own: NodeSets,
+    x: Vec<f64>,
+    y: Vec<f64>,
+    z: Vec<f64>,
+    hull: HullWorkspace,
+    keep: Vec<u32>,
+}
+
+impl<'a> NodeHulls<'a> {
+    /// The sets of every node of more than `small` faces, each root's subtree on its
+    /// own thread (children before parents). Hull points within `eps` of a hull face
+    /// may be dropped (`math::hull`'s guarantee); boundaries are left empty when `adj`
+    /// is.
+    pub(crate) fn build(
+        tree: &'a MergeTree,
+        mesh: &'a Mesh,
+        adj: FaceAdjacency<'a>,
+        eps: f64,
+        small: usize,
+    ) -> Self {
+        let mut at = vec![0u32; mesh.face_count()];
+        for (i, &f) in tree.order.iter().enumerate() {
+            at[f as usize] = i as u32;
+        }
+        let mut sets = NodeHulls {
+            tree,
+            mesh,
+            adj,
+            eps,
+            small: small.max(SMALL),
+            at,
+            stored: HashMap::new(),
+        };
+        let stored: HashMap<u32, NodeSets> = tree
+            .roots
+            .par_iter()
+            .map_init(HullScratch::default, |s, &r| sets.subtree(r, s))
+            .flatten_iter()
+            .collect();
+        sets.stored = stored;
+        sets
+    }
+
+    /// Whether face `f` lies outside node `n`.
+    pub(crate) fn outside(&self, n: u32, f: u32) -> bool {
+        let node = &self.tree.nodes[n as usize];
+        let i = self.at[f as usize];
+        i < node.start || i >= node.end
+    }
+
+    /// Node `n`'s sets: stored, or found from its faces into `s`.
+    pub(crate) fn of<'s>(&'s self, n: u32, s: &'s mut HullScratch) -> &'s NodeSets {
+        match self.stored.get(&n) {
+            Some(sets) => sets,
+            None => {
+                let mut own = std::mem::take(&mut s.own);
+                self.gather(n, s, &mut own);
+                s.own = own;
+                &s.own
+            }
+        }
+    }
+
+    /// The sets of the large nodes under root `r`, in post-order.
+    fn subtree(&self, r: u32, s: &mut HullScratch) -> Vec<(u32, NodeSets)> {
+        let mut done: HashMap<u32, NodeSets> = HashMap::new();
+        let mut stack = vec![(r, false)];
+        while let Some((n, expanded)) = stack.pop() {
+            let node = self.tree.nodes[n as usize];
+            if (node.end - node.start) as usize <= self.small || node.is_leaf() {
+                continue;
+            }
+            if !expanded {
+                stack.push((n, true));
+                stack.extend(node.children.iter().map(|&c| (c, false)));
+                continue;
+            }
+            let kids = node.children.map(|c| {
+                done.remove(&c).unwrap_or_else(|| {
+                    let mut own = NodeSets::default();
+                    self.gather(c, s, &mut own);
+                    own
+                })
+            });
+            s.ids.clear();
+            s.faces.clear();
+            for (c, sets) in node.children.into_iter().zip(kids) {
+                s.ids.extend_from_slice(&sets.hull);
+                s.faces.extend_from_slice(&sets.boundary);
+                done.insert(c, sets);
+            }
+            let mut out = NodeSets::default();
+            self.reduce(s, &mut out.hull);
+            s.faces.sort_unstable();
+            out.boundary = self.on_boundary(n, &s.faces);
+            done.insert(n, out);
+        }
+        let mut all: Vec<(u32, NodeSets)> = done
+            .into_iter()
+            .filter(|(n, _)| self.tree.faces(*n).len() > self.small)
+            .collect();
+        all.sort_unstable_by_key(|(n, _)| *n);
+        all
+    }
+
+    /// Node `n`'s sets from its faces.
+    fn gather(&self, n: u32, s: &mut HullScratch, out: &mut NodeSets) {
+        s.ids.clear();
+        for &f in self.tree.faces(n) {
+            s.ids.extend_from_slice(self.mesh.face(f as usize));
+        }
+        s.ids.sort_unstable();
+        s.ids.dedup();
+        self.reduce(s, &mut out.hull);
+        s.faces.clear();
+        s.faces.extend_from_slice(self.tree.faces(n));
+        s.faces.sort_unstable();
+        out.boundary = self.on_boundary(n, &s.faces);
+    }
+
+    /// Those of `faces` (increasing) with a neighbour outside node `n`.
+    fn on_boundary(&self, n: u32, faces: &[u32]) -> Vec<u32> {
+        if self.adj.is_empty() {
+            return Vec::new();
+        }
+        faces
+            .iter()
+            .copied()
+            .filter(|&f| self.adj.of(f).iter().any(|&g| self.outside(n, g)))
+            .collect()
+    }
+
+    /// The hull vertices of the points `s.ids` into `out`.
+    fn reduce(&self, s: &mut HullScratch, out: &mut Vec<u32>) {
+        let m = self.mesh;
+        s.x.clear();
+        s.y.clear();
+        s.z.clear();
+        s.x.extend(s.ids.iter().map(|&v| m.x[v as usize]));
+        s.y.extend(s.ids.iter().map(|&v| m.y[v as usize]));
+        s.z.extend(s.ids.iter().map(|&v| m.z[v as usize]));
+        hull_vertices(&s.x, &s.y, &s.z, self.eps, &mut s.hull, &mut s.keep);
+        out.clear();
+        out.extend(s.keep.iter().map(|&i| s.ids[i as usize]));
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::math::Sym3;
+    use crate::mesh::adjacency::{face_pairs, neighbour_lists};
+
+    /// On the demo scene, faces merged into a tree: every stored node's hull reaches
+    /// as far in every direction as the points of its faces found directly (the same
+    /// convex hull; which of several coincident or coplanar points stands for it may
+    /// differ) and its boundary is the faces with a neighbour outside it, so the
+    /// bottom-up sets are what gathering every face would give.
+    #[test]
+    fn bottom_up_sets_equal_the_direct_ones() {
+        let mesh = crate::demo::demo_scene();
+        let faces = mesh.face_count() as u32;
+        let members: Vec<Vec<u32>> = (0..faces).map(|f| vec![f]).collect();
+        let q = vec![Sym3::ZERO; members.len()];
+        let log: Vec<(u32, u32)> = (1..faces).map(|f| (f / 2, f)).collect();
+        let tree = MergeTree::build(&members, &q, &log, faces as usize);
+        let pairs = face_pairs(&mesh.face_offsets, &mesh.face_indices);
+        let (offsets, adj) = neighbour_lists(mesh.face_count(), &pairs);
+        let adj = FaceAdjacency {
+            offsets: &offsets,
+            adj: &adj,
+        };
+        let tol = 1e-9 * mesh.diagonal();
+        let sets = NodeHulls::build(&tree, &mesh, adj, 1e-12 * mesh.diagonal(), 0);
+        assert!(sets.stored.len() > 10, "{} stored", sets.stored.len());
+        let reach = |ids: &[u32], d: [f64; 3]| {
+            ids.iter()
+                .map(|&v| crate::math::dot(d, mesh.pos(v)))
+                .fold(f64::NEG_INFINITY, f64::max)
+        };
+        let mut s = HullScratch::default();
+        for (&n, stored) in &sets.stored {
+            let mut all: Vec<u32> = tree
+                .faces(n)
+                .iter()
+                .flat_map(|&f| mesh.face(f as usize).iter().copied())
+                .collect();
+            all.sort_unstable();
+            all.dedup();
+            assert!(stored.hull.len() < all.len(), "node {n}: nothing dropped");
+            for k in 0..64 {
+                let (t, z) = (k as f64 * 2.399_963, 1.0 - (k as f64 + 0.5) / 32.0);
+                let r = (1.0 - z * z).sqrt();
+                let d = [r * t.cos(), r * t.sin(), z];
+                let (a, b) = (reach(&stored.hull, d), reach(&all, d));
+                assert!(
+                    (a - b).abs() <= tol,
+                    "node {n}, direction {d:?}: {a} vs {b}"
+                );
+            }
+            let mut direct = NodeSets::default();
+            sets.gather(n, &mut s, &mut direct);
+            assert_eq!(stored.boundary, direct.boundary, "node {n}'s boundary");
+            let mut own: Vec<u32> = tree.faces(n).to_vec();
+            own.sort_unstable();
+            let expected: Vec<u32> = own
+                .iter()
+                .copied()
+                .filter(|&f| adj.of(f).iter().any(|g| own.binary_search(g).is_err()))
+                .collect();
+            assert_eq!(stored.boundary, expected, "node {n}'s boundary");
+        }
+    }
+}

@@ -3,7 +3,10 @@
 Runs the peers (cached under benches/.cache by mesh sha256 + settings, one
 thread each, per-run timeout), primdecomp (release binary, one multi-target
 pass per mesh), evaluates every collider with `primdecomp eval`, and writes
-docs/results/compare.md with PNG plots beside it. `--sweep` runs our engine over
+docs/results/compare.md with PNG plots beside it. `--ours-mode cut` evaluates
+our engine a second way, the merge-tree cut of `--max-bytes` at a third of
+CoACD's bytes beside the byte rule's level, into docs/results/compare_cut.md
+(no pictures). `--sweep` runs our engine over
 targets and excess-volume caps on a few meshes and writes
 docs/results/tradeoff.md instead. See `benches/compare --help`.
 """
@@ -37,6 +40,15 @@ def parse_args(argv):
                     help="only draw the pictures (input, ours, CoACD, V-HACD per mesh; `primdecomp view --png`) into "
                          "OUT/thumbs and replace the pictures section of OUT/compare.md: ours decomposed again at the "
                          "report's target, peers' hulls from the cache where present (none is run); --meshes limits it")
+    ap.add_argument("--ours-mode", choices=["level", "cut"], default="level",
+                    help="level (default): our row is the level of one multi-target pass chosen by the byte rule; cut: our "
+                         "row is `decompose --max-bytes B` (the merge-tree cut of least worst distance that fits B = one "
+                         "third of CoACD's bytes, -n capped at the byte rule's top count), with the byte rule's level as a "
+                         "second row, into OUT/compare_cut.md unless --report-name says otherwise")
+    ap.add_argument("--report-name", default=None,
+                    help="stem of the report's files: OUT/NAME.md, OUT/NAME.json and the plots OUT/NAME_*.png (default: compare, "
+                         "with --ours-mode cut compare_cut); --ours-mode cut draws no pictures (OUT/thumbs belongs to compare.md)")
+    ap.add_argument("--note", default="", help="with --ours-mode cut: a line for the report's header (e.g. where the peer cache came from)")
     ap.add_argument("--sweep", action="store_true", help="the speed/accuracy sweep of our engine -> docs/results/tradeoff.md")
     ap.add_argument("--out", default=str(ROOT / "docs" / "results"), help="report directory (default: %(default)s)")
     ap.add_argument("--sim", default=str(CACHE / "sim" / "summary"), help="directory of simulation results, SIM/<mesh file name>.json = {method: {metric: value}}, as benches/sim_compare.py writes them (default: %(default)s)")
@@ -54,6 +66,8 @@ def fill_peer_cache(a, meshes, methods):
 
 def main(argv):
     a = parse_args(argv)
+    if a.report_name is None:
+        a.report_name = "compare_cut" if a.ours_mode == "cut" else "compare"
     methods = [m for m in a.methods.split(",") if m]
     bad = [m for m in methods if m not in peers.METHODS]
     if bad:

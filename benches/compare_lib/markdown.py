@@ -4,13 +4,14 @@ import datetime
 
 from . import peers
 from .noise import step_spread
-from .report import RULE, machine, mean, median, metrics_of, slot, summary_rows
+from .plots import OURS_RULE_LABEL
+from .report import CUT_RULE, RULE, machine, mean, median, metrics_of, slot, summary_rows
 
 KIND_LETTER = [("box", "b"), ("sphere", "s"), ("capsule", "c"), ("cylinder", "y"), ("frustum", "f"), ("prism", "p")]
 
 
 def label(m):
-    return "ours" if m == "ours" else peers.LABEL[m]
+    return {"ours": "ours", "ours-rule": OURS_RULE_LABEL}.get(m) or peers.LABEL[m]
 
 
 def fmt(x, spec):
@@ -66,20 +67,25 @@ def targets_check(records, rows, methods):
     return out + [""]
 
 
+def ours_cells(o):
+    """Our N, primitives (kinds), bytes and seconds, or the status."""
+    if o.get("primitives") is not None:
+        return [str(o["target"]), f"{o['primitives']} ({kinds(o['counts'])})", fmt(o.get("bytes"), ",d"), f"{o['seconds']:.2f}"]
+    return ["–", o.get("status", "–"), "–", "–"]
+
+
 def per_mesh_tables(records, methods):
     peers_ = [m for m in methods if m != "ours"]
-    head = "| mesh | faces | ours N | ours primitives | ours bytes | ours s |" + "".join(f" {label(m)} hulls | bytes | s |" for m in peers_)
+    head = "| mesh | faces | ours N | ours primitives | ours bytes | ours s |" + "".join(
+        f" {label(m)} primitives | bytes | s |" if m == "ours-rule" else f" {label(m)} hulls | bytes | s |" for m in peers_)
     lines = ["### Size and time", "", head, "|---|---:|---:|---|---:|---:|" + "---:|---:|---:|" * len(peers_)]
     for r in records:
-        o = r["ours"]
-        cells = [r["mesh"], fmt(r.get("faces"), "d")]
-        if o.get("primitives") is not None:
-            cells += [str(o["target"]), f"{o['primitives']} ({kinds(o['counts'])})", fmt(o.get("bytes"), ",d"), f"{o['seconds']:.2f}"]
-        else:
-            cells += ["–", o.get("status", "–"), "–", "–"]
+        cells = [r["mesh"], fmt(r.get("faces"), "d")] + ours_cells(r["ours"])
         for m in peers_:
-            p = r["peers"].get(m, {})
-            if p.get("status") == "ok" or p.get("hulls"):
+            p = slot(r, m)
+            if m == "ours-rule":
+                cells += ours_cells(p)[1:]
+            elif p.get("status") == "ok" or p.get("hulls"):
                 cells += [str(p["hulls"]), fmt(p.get("bytes"), ",d"), f"{p['seconds']:.1f}"]
             else:
                 cells += [p.get("status", "–"), "–", "–"]
@@ -240,6 +246,8 @@ def sim_table(records, note=None):
 
 
 def render(records, methods, a, cmd, commit, seconds):
+    if getattr(a, "ours_mode", "level") == "cut":
+        return render_cut(records, methods, a, cmd, commit, seconds)
     main3 = ["ours"] + [m for m in ("coacd", "vhacd") if m in methods]
     _, rows, table = summary_table(records, main3)
     text = [
@@ -252,12 +260,8 @@ def render(records, methods, a, cmd, commit, seconds):
         f"- Rule: {RULE}.",
         "- Our engine: the release binary, default settings, `--threads 1`; seconds are the whole multi-target "
         "pass (load to post-processing), so a single-target run is faster.",
-        f"- Peers (versions pinned in `benches/peers/requirements.txt`), one thread each (OMP_NUM_THREADS={a.threads}), "
-        f"timeout {a.timeout:.0f} s per run: CoACD with defaults; CoACD with the paper author's settings (threshold 0.08, "
-        "resolution 5000, preprocess_resolution 50, decimate on, merge off); V-HACD 4 (vhacdx) with defaults. "
-        "Seconds are the decomposition call's wall time.",
-        f"- Metrics: `primdecomp eval` with {a.samples or 'its default'} samples per surface (see "
-        "`primdecomp eval --help` for definitions and sampling error). Bytes by the paper's Table 2.",
+        peers_line(a),
+        metrics_line(a),
         "",
         "## Summary (as the paper's Table 3)",
         "",
@@ -269,10 +273,73 @@ def render(records, methods, a, cmd, commit, seconds):
         text += ["Against CoACD with the paper author's settings:", ""]
         text += [*t2, ""] if common2 else ["No mesh has a CoACD (paper settings) result yet.", ""]
     text += targets_check(records, rows, main3)
-    text += ["## Plots", "", "![distance per mesh](compare_distance.png)", "", "![bytes per mesh](compare_bytes.png)", "", "![seconds vs faces](compare_seconds.png)", ""]
+    text += plot_links("compare")
     text += pictures(records)
     text += ["## Per mesh (as the paper's appendix)", "", "Primitive letters: b box, s sphere, c capsule, y cylinder, f frustum, p prism.", ""]
     text += per_mesh_tables(records, ["ours"] + methods)
     text += failures(records, methods)
     text += sim_table(records)
+    return "\n".join(text)
+
+
+def peers_line(a):
+    return (f"- Peers (versions pinned in `benches/peers/requirements.txt`), one thread each (OMP_NUM_THREADS={a.threads}), "
+            f"timeout {a.timeout:.0f} s per run: CoACD with defaults; CoACD with the paper author's settings (threshold 0.08, "
+            "resolution 5000, preprocess_resolution 50, decimate on, merge off); V-HACD 4 (vhacdx) with defaults. "
+            "Seconds are the decomposition call's wall time.")
+
+
+def metrics_line(a):
+    return (f"- Metrics: `primdecomp eval` with {a.samples or 'its default'} samples per surface (see "
+            "`primdecomp eval --help` for definitions and sampling error). Bytes by the paper's Table 2.")
+
+
+def plot_links(name):
+    return ["## Plots", "", f"![distance per mesh]({name}_distance.png)", "", f"![bytes per mesh]({name}_bytes.png)", "",
+            f"![seconds vs faces]({name}_seconds.png)", ""]
+
+
+PEER_SETTINGS = {
+    "coacd": "CoACD with defaults",
+    "coacd-paper": "CoACD with the paper author's settings (threshold 0.08, resolution 5000, preprocess_resolution 50, "
+                   "decimate on, merge off)",
+    "vhacd": "V-HACD 4 (vhacdx) with defaults",
+}
+
+
+def render_cut(records, methods, a, cmd, commit, seconds):
+    """The `--ours-mode cut` report: our merge-tree cut at a third of CoACD's bytes,
+    the byte rule's level beside it, no pictures and no simulation section."""
+    peers_ = [m for m in ("coacd", "vhacd") if m in methods]
+    common, rows, table = summary_table(records, ["ours", "ours-rule"] + peers_)
+    note = getattr(a, "note", "")
+    text = [
+        "# primdecomp's merge-tree cut vs CoACD and V-HACD",
+        "",
+        f"Generated by `{cmd}` at commit `{commit}` on {datetime.date.today()} ({machine()}), "
+        f"in {seconds / 60:.1f} min. `docs/results/compare.md` is the default report (`--ours-mode level`).",
+        "",
+        *([note, ""] if note else []),
+        f"Meshes in the summary ({len(common)}, every method with results): {', '.join(r['mesh'] for r in common) or 'none'}.",
+        "",
+        f"- Rule: {CUT_RULE}.",
+        f"- Our engine: the release binary `{a.bin}`, default settings otherwise, `--threads 1`; our seconds are the "
+        "one `--max-bytes` run (load to post-processing, its cut and distance stages included); the byte rule's "
+        "seconds are its whole multi-target pass.",
+        f"- Peers (versions pinned in `benches/peers/requirements.txt`), one thread each (OMP_NUM_THREADS={a.threads}), "
+        f"timeout {a.timeout:.0f} s per run: " + "; ".join(PEER_SETTINGS[m] for m in methods) + ". Seconds are the "
+        "decomposition call's wall time.",
+        metrics_line(a),
+        "",
+        "## Summary (as the paper's Table 3)",
+        "",
+        *table,
+        "",
+    ]
+    text += targets_check(records, [r for r in rows if r["method"] != "ours-rule"], ["ours"] + peers_)
+    text += plot_links(getattr(a, "report_name", "compare_cut"))
+    text += ["## Per mesh (as the paper's appendix)", "", "Primitive letters: b box, s sphere, c capsule, y cylinder, f frustum, p prism. "
+             "ours N: the -n cap.", ""]
+    text += per_mesh_tables(records, ["ours", "ours-rule"] + methods)
+    text += failures(records, ["ours-rule"] + methods)
     return "\n".join(text)

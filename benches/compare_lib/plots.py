@@ -7,14 +7,18 @@ import matplotlib.pyplot as plt  # noqa: E402
 
 from . import peers  # noqa: E402
 
-COLORS = {"ours": "tab:red", "coacd": "tab:blue", "coacd-paper": "tab:cyan", "vhacd": "tab:green"}
+# The byte rule's level in a `--ours-mode cut` report, whose "ours" is the cut.
+OURS_RULE_LABEL = "ours (byte rule)"
+COLORS = {"ours": "tab:red", "ours-rule": "tab:orange", "coacd": "tab:blue", "coacd-paper": "tab:cyan", "vhacd": "tab:green"}
 
 
 def label(m):
-    return "ours" if m == "ours" else peers.LABEL[m]
+    return {"ours": "ours", "ours-rule": OURS_RULE_LABEL}.get(m) or peers.LABEL[m]
 
 
 def slot(r, m):
+    if m == "ours-rule":  # --ours-mode cut: the byte rule's level beside the cut
+        return r.get("ours_rule", {})
     return r["ours"] if m == "ours" else r["peers"].get(m, {})
 
 
@@ -41,7 +45,8 @@ def metric(key):
     return lambda s: (s.get("metrics") or {}).get(key)
 
 
-def compare_plots(records, methods, out):
+def compare_plots(records, methods, out, name="compare"):
+    """OUT/NAME_distance.png, OUT/NAME_bytes.png and OUT/NAME_seconds.png."""
     rs = [r for r in records if r["ours"].get("metrics")]
     if not rs:
         return
@@ -51,14 +56,14 @@ def compare_plots(records, methods, out):
     grouped_bars(axes[1], rs, methods, metric("chamfer"), "Chamfer / diagonal (floor 1e-7)", 1e-7)
     axes[0].legend(fontsize=8)
     axes[0].set_title("Distance from collider to input, per mesh (lower is closer)")
-    fig.savefig(out / "compare_distance.png", dpi=110)
+    fig.savefig(out / f"{name}_distance.png", dpi=110)
     plt.close(fig)
 
     fig, ax = plt.subplots(figsize=(w, 4.5), constrained_layout=True)
     grouped_bars(ax, rs, methods, lambda s: s.get("bytes"), "bytes (paper Table 2)")
     ax.legend(fontsize=8)
     ax.set_title("Collider size per mesh")
-    fig.savefig(out / "compare_bytes.png", dpi=110)
+    fig.savefig(out / f"{name}_bytes.png", dpi=110)
     plt.close(fig)
 
     fig, ax = plt.subplots(figsize=(7, 5), constrained_layout=True)
@@ -74,5 +79,5 @@ def compare_plots(records, methods, out):
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     ax.set_title("Time against input size (peers: 1 thread; ours: 1 thread)")
-    fig.savefig(out / "compare_seconds.png", dpi=110)
+    fig.savefig(out / f"{name}_seconds.png", dpi=110)
     plt.close(fig)

@@ -4,6 +4,7 @@ per-mesh tables, the Table-3-style summary, the failures and the plots."""
 
 import datetime
 import json
+import math
 import os
 import platform
 import statistics as st
@@ -19,6 +20,14 @@ RULE = (
     "that could fit the budget down to 1 (steps of about 7%), the level with the most primitives "
     "whose bytes stay at or below one third of CoACD's (default settings) on that mesh; "
     "where CoACD has no result, the 1% target (faces/100, at least 1)"
+)
+CUT_RULE = (
+    "our row per mesh (`--ours-mode cut`): one run of `primdecomp decompose MESH -n TOP --max-bytes B` with "
+    "B = floor(one third of CoACD's (default settings) bytes on that mesh), the merge-tree cut of least worst "
+    "distance whose bytes fit B, and TOP the byte rule's top count (the most primitives that could fit B, all "
+    "spheres; at most the faces) as a cap; where CoACD has no result, `-n T --cut` with T the 1% target "
+    "(faces/100, at least 1). The row 'ours (byte rule)' is the default report's rule on the same meshes: "
+    + RULE
 )
 
 
@@ -66,28 +75,57 @@ def run_mesh(a, mesh, methods, cache, work):
         budget = ours.byte_budget(c["hull_vertices"], c["hull_triangles"])
     faces = count_faces(mesh)
     targets = ours.candidate_targets(budget, faces or 100)
-    run = ours.decompose(a.bin, mesh, targets, mdir / "ours", a.timeout)
-    rec["ours"] = {"status": run["status"], "reason": run["reason"]}
-    if run["status"] == "ok":
-        pick = ours.choose(run["levels"], budget)
-        if pick is None:
-            rec["ours"] = {"status": "failed", "reason": "no level within one third of CoACD's bytes"}
-        else:
-            s = pick["stats"]
-            rec["faces"] = pick["input"]["faces"]
-            rec["ours"].update(
-                target=pick["settings"]["target"],
-                primitives=s["primitives"],
-                counts=s["counts"],
-                seconds=s["seconds"]["total"],
-                levels=len(run["levels"]),
-            )
-            colliders["ours"] = Path(pick["_path"])
+    cut = getattr(a, "ours_mode", "level") == "cut"
+    level, path, in_faces = ours_level(a, mesh, targets, budget, mdir / "ours")
+    if cut:
+        rec["ours_rule"] = level
+        if path:
+            colliders["ours-rule"] = path
+        level, path, cut_faces = ours_cut(a, mesh, targets[0], budget, mdir / "ours_cut")
+        in_faces = in_faces or cut_faces
+    rec["ours"] = level
+    if in_faces is not None:
+        rec["faces"] = in_faces
+    if path:
+        colliders["ours"] = path
     rec["budget_bytes"] = budget
     rec.setdefault("faces", faces)
     evaluate_all(a, mesh, rec, colliders, mdir)
-    draw_thumbs(a, mesh, rec, colliders)
+    if not cut:
+        draw_thumbs(a, mesh, rec, colliders)
     return rec
+
+
+def ours_level(a, mesh, targets, budget, out_dir):
+    """The byte rule (RULE): our slot, the chosen level's path and the input's faces."""
+    run = ours.decompose(a.bin, mesh, targets, out_dir, a.timeout)
+    slot_ = {"status": run["status"], "reason": run["reason"]}
+    if run["status"] != "ok":
+        return slot_, None, None
+    pick = ours.choose(run["levels"], budget)
+    if pick is None:
+        return {"status": "failed", "reason": "no level within one third of CoACD's bytes"}, None, None
+    s = pick["stats"]
+    slot_.update(target=pick["settings"]["target"], primitives=s["primitives"], counts=s["counts"],
+                 seconds=s["seconds"]["total"], levels=len(run["levels"]))
+    return slot_, Path(pick["_path"]), pick["input"]["faces"]
+
+
+def ours_cut(a, mesh, cap, budget, out_dir):
+    """CUT_RULE: `-n CAP --max-bytes floor(budget)` (the merge-tree cut of least worst
+    distance that fits), or `-n CAP --cut` without a budget. Returns as ours_level."""
+    extra = ["--max-bytes", str(math.floor(budget))] if budget is not None else ["--cut"]
+    run = ours.decompose(a.bin, mesh, [cap], out_dir, a.timeout, extra=extra)
+    slot_ = {"status": run["status"], "reason": run["reason"]}
+    if run["status"] != "ok":
+        return slot_, None, None
+    doc = run["levels"][0]
+    s = doc["stats"]
+    if budget is not None and s["bytes"] > budget:
+        return {"status": "failed", "reason": f"--max-bytes gave {s['bytes']} bytes, over {math.floor(budget)}"}, None, None
+    slot_.update(target=doc["settings"]["target"], primitives=s["primitives"], counts=s["counts"],
+                 seconds=s["seconds"]["total"], levels=len(run["levels"]), flags=extra)
+    return slot_, Path(doc["_path"]), doc["input"]["faces"]
 
 
 def draw_thumbs(a, mesh, rec, colliders):
@@ -113,14 +151,14 @@ def evaluate_all(a, mesh, rec, colliders, mdir):
     paths = list(colliders.values())
     res, errs = ours.evaluate(a.bin, mesh, paths, mdir / "eval.json", a.samples, a.timeout)
     for name, path in colliders.items():
-        slot = rec["ours"] if name == "ours" else rec["peers"][name]
+        s = slot(rec, name)
         m = res.get(str(path))
         if m is None:
-            slot["status"] = "eval failed"
-            slot["reason"] = errs.get(str(path), "no metrics")
+            s["status"] = "eval failed"
+            s["reason"] = errs.get(str(path), "no metrics")
             continue
-        slot["metrics"] = {k: m[k] for k in m if k not in ("collider", "counts")}
-        slot["bytes"] = m["bytes"]
+        s["metrics"] = {k: m[k] for k in m if k not in ("collider", "counts")}
+        s["bytes"] = m["bytes"]
 
 
 def load_sim(sim_dir, mesh_name):
@@ -146,16 +184,19 @@ def main(a, meshes, methods, cache):
         rec = run_mesh(a, mesh, methods, cache, work)
         rec["sim"] = load_sim(getattr(a, "sim", None), mesh.name)
         records.append(rec)
-    data = {"methods": ["ours"] + methods, "records": records, "rule": RULE}
-    (out / "compare.json").write_text(json.dumps(data, indent=1) + "\n")
-    plots.compare_plots(records, ["ours"] + methods, out)
+    cut = getattr(a, "ours_mode", "level") == "cut"
+    name = getattr(a, "report_name", None) or ("compare_cut" if cut else "compare")
+    ours_rows = ["ours", "ours-rule"] if cut else ["ours"]
+    data = {"methods": ours_rows + methods, "records": records, "rule": CUT_RULE if cut else RULE}
+    (out / f"{name}.json").write_text(json.dumps(data, indent=1) + "\n")
+    plots.compare_plots(records, ours_rows + methods, out, name)
     from . import markdown
 
     text = markdown.render(records, methods, a, argv_line(), git_commit(Path(__file__).resolve().parents[2]), time.time() - t0)
-    tmp = out / f".compare.md.tmp.{os.getpid()}"
+    tmp = out / f".{name}.md.tmp.{os.getpid()}"
     tmp.write_text(text)
-    os.replace(tmp, out / "compare.md")
-    print(f"wrote {out / 'compare.md'}", file=sys.stderr)
+    os.replace(tmp, out / f"{name}.md")
+    print(f"wrote {out / f'{name}.md'}", file=sys.stderr)
     return 0
 
 
@@ -268,6 +309,8 @@ def wins(r, m, methods, key):
 
 
 def slot(r, m):
+    if m == "ours-rule":  # --ours-mode cut: the byte rule's level beside the cut
+        return r.get("ours_rule", {})
     return r["ours"] if m == "ours" else r["peers"].get(m, {})
 
 

@@ -13,6 +13,8 @@ use crate::mesh::Mesh;
 pub(crate) struct Triangles {
     tris: Vec<[V3; 3]>,
     bvh: Bvh,
+    /// The mesh's bounding-box diagonal.
+    pub diagonal: f64,
 }
 
 impl Triangles {
@@ -29,6 +31,7 @@ impl Triangles {
         Triangles {
             bvh: Bvh::build(&boxes),
             tris,
+            diagonal: mesh.diagonal(),
         }
     }
 

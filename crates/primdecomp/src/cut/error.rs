@@ -23,6 +23,8 @@ const SAMPLES: usize = 192;
 /// plate, where the farthest point went unmeasured (docs/decisions/0036).
 const SPACING: f64 = 0.01;
 const MAX_SAMPLES: usize = 1024;
+/// Points along one edge of the tessellation's faces, at most (one per spacing).
+const EDGE_SAMPLES: usize = 64;
 
 /// The estimated error of `prim` (0 for an empty surface).
 pub(crate) fn error_of(prim: &Primitive, surface: &Triangles) -> f64 {
@@ -45,6 +47,21 @@ pub(crate) fn error_of(prim: &Primitive, surface: &Triangles) -> f64 {
         return worst;
     }
     let spacing = SPACING * surface.diagonal;
+    // Along every edge of the tessellation's faces, where a box stands farthest
+    // from a surface curving away under it (docs/decisions/0036).
+    for f in &tess.faces {
+        for i in 0..f.len() {
+            let (a, b) = (
+                tess.vertices[f[i] as usize],
+                tess.vertices[f[(i + 1) % f.len()] as usize],
+            );
+            let k = ((norm(sub(b, a)) / spacing).ceil() as usize).min(EDGE_SAMPLES);
+            for j in 0..k {
+                let p = add(a, scale(sub(b, a), (j as f64 + 0.5) / k as f64));
+                worst = worst.max(surface.distance_beyond(p, worst, &mut stack));
+            }
+        }
+    }
     let wanted = (total / (spacing * spacing)).ceil();
     let samples = wanted.clamp(SAMPLES as f64, MAX_SAMPLES as f64) as usize;
     for t in &tris {

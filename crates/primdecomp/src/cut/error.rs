@@ -22,7 +22,7 @@ const SAMPLES: usize = 192;
 /// [`MAX_SAMPLES`]: a fixed count left points 0.06 of the diagonal apart on a large
 /// plate, where the farthest point went unmeasured (docs/decisions/0036).
 const SPACING: f64 = 0.01;
-const MAX_SAMPLES: usize = 1024;
+const MAX_SAMPLES: usize = 4096;
 /// Points along one edge of the tessellation's faces, at most (one per spacing).
 const EDGE_SAMPLES: usize = 64;
 

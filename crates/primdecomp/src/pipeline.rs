@@ -143,8 +143,7 @@ fn cut_tree(
         let log = &merged.log[merged.log_at_first..];
         crate::cut::MergeTree::build(&leaves.members, &leaves.q, log, faces)
     };
-    let largest = requests.iter().map(|r| r.count).max().unwrap_or(1);
-    crate::cut::Cutter::new(ev, &tree, tris, largest).snapshots(requests)
+    crate::cut::Cutter::new(ev, &tree, tris, requests).snapshots()
 }
 
 /// Each target's request of the cut, its tolerance in the mesh's units.

@@ -2,7 +2,8 @@
 //! surface, the quantity `primdecomp eval` reports as Hausdorff (there over the union
 //! of the output; here over one primitive, so an upper bound of its share). Estimated
 //! by sampling: the primitive's conservative tessellation (`export::tessellate`), its
-//! vertices and points on each triangle in proportion to area, each measured to the
+//! vertices, points along its faces' edges and points on each triangle in proportion
+//! to area (the first at its centroid; docs/decisions/0036), each measured to the
 //! nearest input triangle anywhere in the mesh (`mesh::triangles`): the whole mesh, as
 //! eval measures, not only the node's faces, so a primitive lying on another part's
 //! surface is not charged for it, and one hierarchy serves every node.
@@ -47,19 +48,23 @@ pub(crate) fn error_of(prim: &Primitive, surface: &Triangles) -> f64 {
         return worst;
     }
     let spacing = SPACING * surface.diagonal;
-    // Along every edge of the tessellation's faces, where a box stands farthest
-    // from a surface curving away under it (docs/decisions/0036).
-    for f in &tess.faces {
-        for i in 0..f.len() {
-            let (a, b) = (
-                tess.vertices[f[i] as usize],
-                tess.vertices[f[(i + 1) % f.len()] as usize],
-            );
-            let k = ((norm(sub(b, a)) / spacing).ceil() as usize).min(EDGE_SAMPLES);
-            for j in 0..k {
-                let p = add(a, scale(sub(b, a), (j as f64 + 0.5) / k as f64));
-                worst = worst.max(surface.distance_beyond(p, worst, &mut stack));
-            }
+    // Along every edge of the tessellation's faces (once, though two faces share
+    // it), where a box stands farthest from a surface curving away under it
+    // (docs/decisions/0036).
+    let mut edges: Vec<(u32, u32)> = tess
+        .faces
+        .iter()
+        .flat_map(|f| (0..f.len()).map(|i| (f[i], f[(i + 1) % f.len()])))
+        .map(|(a, b)| (a.min(b), a.max(b)))
+        .collect();
+    edges.sort_unstable();
+    edges.dedup();
+    for (a, b) in edges {
+        let (a, b) = (tess.vertices[a as usize], tess.vertices[b as usize]);
+        let k = ((norm(sub(b, a)) / spacing).ceil() as usize).min(EDGE_SAMPLES);
+        for j in 0..k {
+            let p = add(a, scale(sub(b, a), (j as f64 + 0.5) / k as f64));
+            worst = worst.max(surface.distance_beyond(p, worst, &mut stack));
         }
     }
     let wanted = (total / (spacing * spacing)).ceil();

@@ -115,6 +115,7 @@ pub(crate) struct Cutter<'a> {
     ev: &'a Evaluator<'a>,
     tree: &'a MergeTree,
     hulls: NodeHulls<'a>,
+    requests: &'a [Request],
     surface: &'a Triangles,
     floor: f64,
 }
@@ -127,13 +128,14 @@ struct Scratch {
 }
 
 impl<'a> Cutter<'a> {
-    /// The cutter of `tree` for cuts of at most `largest` nodes.
+    /// The cutter of `tree` for `requests`.
     pub(crate) fn new(
         ev: &'a Evaluator<'a>,
         tree: &'a MergeTree,
         surface: &'a Triangles,
-        largest: usize,
+        requests: &'a [Request],
     ) -> Self {
+        let largest = largest(requests);
         // Exploring rarely fits nodes much smaller than a cut of `largest` nodes
         // holds on average; smaller ones are gathered from their faces when fitted.
         let stored = tree.order.len() / largest.max(1) / STORED_BELOW_MEAN;
@@ -141,6 +143,7 @@ impl<'a> Cutter<'a> {
             ev,
             tree,
             hulls: NodeHulls::build(tree, ev.mesh, ev.face_adj, ev.hull_eps, stored),
+            requests,
             surface,
             floor: FLOOR_HALVES * ev.cfg.min_half,
         }
@@ -190,8 +193,9 @@ impl<'a> Cutter<'a> {
     /// smallest tolerance (when every request has one) or nothing is left worth
     /// splitting. Each request then takes the best cut of the nodes reached
     /// ([`Cutter::choose`]).
-    pub(crate) fn snapshots(&self, requests: &[Request]) -> Vec<Snapshot> {
-        let largest = requests.iter().map(|r| r.count).max().unwrap_or(1);
+    pub(crate) fn snapshots(&self) -> Vec<Snapshot> {
+        let requests = self.requests;
+        let largest = largest(requests);
         let enough = requests
             .iter()
             .map(|r| r.tolerance)
@@ -246,6 +250,7 @@ impl<'a> Cutter<'a> {
         };
         let mut count = roots.len();
         let mut heap: BinaryHeap<Entry> = roots.into_iter().collect();
+        let (mut sa, mut sb) = (Scratch::default(), Scratch::default());
         while count < largest {
             let Some(e) = heap.pop() else { break };
             if e.error <= enough {
@@ -256,10 +261,7 @@ impl<'a> Cutter<'a> {
                 continue;
             }
             let [a, b] = node.children;
-            let (ea, eb) = rayon::join(
-                || self.entry(a, &mut Scratch::default()),
-                || self.entry(b, &mut Scratch::default()),
-            );
+            let (ea, eb) = rayon::join(|| self.entry(a, &mut sa), || self.entry(b, &mut sb));
             ex.fitted.insert(a, ea.clone());
             ex.fitted.insert(b, eb.clone());
             heap.extend([ea, eb]);
@@ -453,6 +455,11 @@ pub(crate) fn record_limits(
             .reduce(|| 0.0, f64::max);
         level.distance = Some(worst);
     }
+}
+
+/// The largest count the requests ask for.
+fn largest(requests: &[Request]) -> usize {
+    requests.iter().map(|r| r.count).max().unwrap_or(1)
 }
 
 /// The cheapest cuts of `from`'s subtrees by `table` ([`Cutter::costs`]), joined.

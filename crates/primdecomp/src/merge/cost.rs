@@ -195,7 +195,7 @@ impl<'a> Evaluator<'a> {
             ws.members.dedup();
             self.surroundings().rims(&ws.members, &mut ws.rims);
         }
-        self.fit_gathered(faces, q, ws)
+        self.fit_gathered(faces, q, ws, false)
     }
 
     /// [`Self::fit_output`] on `hull`, the hull vertices of `faces` (their own vertex
@@ -220,7 +220,7 @@ impl<'a> Evaluator<'a> {
             self.surroundings()
                 .rims_where(boundary, outside, &mut ws.rims);
         }
-        self.fit_gathered(faces, q, ws)
+        self.fit_gathered(faces, q, ws, true)
     }
 
     /// Whether output fits price the rim reach (`Params::rim_weight`).
@@ -238,12 +238,13 @@ impl<'a> Evaluator<'a> {
     }
 
     /// The output fit of the points gathered in `ws` for `faces`, with their rims in
-    /// `ws.rims`.
+    /// `ws.rims`; `on_hull`: the points are already their hull's vertices.
     fn fit_gathered(
         &self,
         faces: impl Iterator<Item = u32> + Clone,
         q: &Sym3,
         ws: &mut Workspace,
+        on_hull: bool,
     ) -> Fit {
         // Output only: every cluster also tries the frames turned about each of its
         // axes and the input's axes (docs/decisions/0014-output-fits-turn-about-the-normal.md,
@@ -254,9 +255,9 @@ impl<'a> Evaluator<'a> {
             ..self.cfg
         };
         let mut fit = if ws.rims.is_empty() {
-            self.fit_on_hull(q, &cfg, ws)
+            self.fit_on_hull(q, &cfg, ws, on_hull)
         } else {
-            self.fit_priced(q, &cfg, ws)
+            self.fit_priced(q, &cfg, ws, on_hull)
         };
         if self.flush_plates {
             self.flush(faces, ws, &mut fit.prim);
@@ -311,9 +312,10 @@ impl<'a> Evaluator<'a> {
     /// fitted on the points' hull vertices, every enabled kind in it compared by
     /// k·V + w·rim (the reach differs between kinds of one frame), the least kept (earlier frames win ties within [`frame::MARGIN`]) and
     /// its frame refitted on every point.
-    fn fit_priced(&self, q: &Sym3, cfg: &FitConfig, ws: &mut Workspace) -> Fit {
-        // The search runs on the hull's vertices, or on every point when all are.
-        let (x, y, z) = if self.gather_hull(ws) {
+    fn fit_priced(&self, q: &Sym3, cfg: &FitConfig, ws: &mut Workspace, on_hull: bool) -> Fit {
+        // The search runs on the hull's vertices, or on every point when all are (or
+        // `on_hull` says the points are their hull's vertices already).
+        let (x, y, z) = if !on_hull && self.gather_hull(ws) {
             (&ws.hx, &ws.hy, &ws.hz)
         } else {
             (&ws.x, &ws.y, &ws.z)
@@ -333,7 +335,7 @@ impl<'a> Evaluator<'a> {
         }
         // No finite score anywhere (a reach overflowing at an extreme weight): k·V alone.
         let Some((_, axes)) = best else {
-            return self.fit_on_hull(q, cfg, ws);
+            return self.fit_on_hull(q, cfg, ws, on_hull);
         };
         let all = Cloud {
             x: &ws.x,
@@ -374,9 +376,10 @@ impl<'a> Evaluator<'a> {
     /// [`fit_best`] of the gathered points, its frames tried on the points' hull
     /// vertices (a convex primitive encloses the points iff it encloses those) and only
     /// the winning frame refitted on every point: the same fit for ~20 frames at the
-    /// price of one on every point (docs/decisions/0021-thorough-output-frame-search.md).
-    fn fit_on_hull(&self, q: &Sym3, cfg: &FitConfig, ws: &mut Workspace) -> Fit {
-        if !self.gather_hull(ws) {
+    /// price of one on every point (docs/decisions/0021-thorough-output-frame-search.md);
+    /// `on_hull`: the gathered points are their hull's vertices already.
+    fn fit_on_hull(&self, q: &Sym3, cfg: &FitConfig, ws: &mut Workspace, on_hull: bool) -> Fit {
+        if on_hull || !self.gather_hull(ws) {
             return self.fit_points(q, cfg, ws);
         }
         let hull = Cloud {

@@ -52,30 +52,44 @@ def corners(p):
     return at
 
 
-def patches(p, g, d):
-    """Write G x G patches of each of the 6 faces as OBJs; returns (path, label) pairs."""
-    at, out = corners(p), []
-    lerp = lambda a, b, t: [a[i] + (b[i] - a[i]) * t for i in range(3)]
+def face_quads(p):
+    """The 6 faces of a box or prism: (axis, sign, corner(a, b)) with a, b in [-1, 1]
+    along the face's other two axes."""
+    at = corners(p)
     for ax in range(3):
         o = [k for k in range(3) if k != ax]
         for s in (-1, 1):
-            def pt(a, b):
+            def pt(a, b, ax=ax, o=o, s=s):
                 v = [0, 0, 0]
                 v[ax], v[o[0]], v[o[1]] = s, a, b
                 return at(*v)
-            q00, q10, q01, q11 = pt(-1, -1), pt(1, -1), pt(-1, 1), pt(1, 1)
-            bil = lambda u, v: lerp(lerp(q00, q10, u), lerp(q01, q11, u), v)
-            for i in range(g):
-                for j in range(g):
-                    vs = [bil(i / g, j / g), bil((i + 1) / g, j / g),
-                          bil((i + 1) / g, (j + 1) / g), bil(i / g, (j + 1) / g)]
-                    label = (f"face {'xyz'[ax]}{'-+'[s > 0]}, cell {i},{j} of {g}x{g} "
-                             f"(along {'xyz'[o[0]]}, {'xyz'[o[1]]})")
-                    path = os.path.join(d, f"patch_{ax}{s}_{i}_{j}.obj")
-                    with open(path, "w") as f:
-                        f.write("o patch\n" + "".join(f"v {a:.12g} {b:.12g} {e:.12g}\n" for a, b, e in vs))
-                        f.write("f 1 2 3\nf 1 3 4\n")
-                    out.append((path, label))
+            yield ax, s, pt
+
+
+def write_quad(path, vs):
+    """One flat quad as a two-triangle OBJ."""
+    with open(path, "w") as f:
+        f.write("o patch\n" + "".join(f"v {x:.12g} {y:.12g} {z:.12g}\n" for x, y, z in vs))
+        f.write("f 1 2 3\nf 1 3 4\n")
+
+
+def patches(p, g, d):
+    """Write G x G patches of each of the 6 faces as OBJs; returns (path, label) pairs."""
+    out = []
+    lerp = lambda a, b, t: [a[i] + (b[i] - a[i]) * t for i in range(3)]
+    for ax, s, pt in face_quads(p):
+        o = [k for k in range(3) if k != ax]
+        q00, q10, q01, q11 = pt(-1, -1), pt(1, -1), pt(-1, 1), pt(1, 1)
+        bil = lambda u, v: lerp(lerp(q00, q10, u), lerp(q01, q11, u), v)
+        for i in range(g):
+            for j in range(g):
+                vs = [bil(i / g, j / g), bil((i + 1) / g, j / g),
+                      bil((i + 1) / g, (j + 1) / g), bil(i / g, (j + 1) / g)]
+                label = (f"face {'xyz'[ax]}{'-+'[s > 0]}, cell {i},{j} of {g}x{g} "
+                         f"(along {'xyz'[o[0]]}, {'xyz'[o[1]]})")
+                path = os.path.join(d, f"patch_{ax}{s}_{i}_{j}.obj")
+                write_quad(path, vs)
+                out.append((path, label))
     return out
 
 
@@ -98,9 +112,7 @@ def round_patches(p, g, d, sectors=8):
     out = []
     def write(vs, label, name):
         path = os.path.join(d, name + ".obj")
-        with open(path, "w") as f:
-            f.write("o patch\n" + "".join(f"v {x:.12g} {y:.12g} {z:.12g}\n" for x, y, z in vs))
-            f.write("f 1 2 3\nf 1 3 4\n")
+        write_quad(path, vs)
         out.append((path, label))
     for k in range(sectors):
         f0, f1 = 2 * math.pi * k / sectors, 2 * math.pi * (k + 1) / sectors
@@ -126,34 +138,27 @@ def sizes(p, diag):
 
 
 def estimator_density(p, diag):
-    """How densely the cut's own estimate (crates/primdecomp/src/cut/error.rs: the
-    vertices of the 24-segment tessellation, then ceil(192 x area share) points per
-    triangle, the first of them the midpoint of the triangle's 2nd-3rd edge) samples
-    `p`: the mean spacing sqrt(area / 192) over the diagonal, and for round kinds the
-    most points any fan triangle of each cap gets (1: that cap is sampled on its rim
-    only)."""
+    """How densely the cut's own estimate samples `p` (crates/primdecomp/src/cut/error.rs,
+    docs/decisions/0036: the vertices of the 24-segment tessellation, points along its
+    faces' edges one per 1% of the diagonal, then ceil(N x area share) points per
+    triangle, the first at its centroid, N = area / (1% of the diagonal)^2 within
+    [192, 4096]): the mean spacing sqrt(area / N) over the diagonal, and for round kinds
+    the most points any fan triangle of each cap gets."""
+    count = lambda area: min(max(math.ceil(area / (0.01 * diag) ** 2), 192), 4096)
     k, circ = 24, 1 / math.cos(math.pi / 24)
     if p["kind"] in ("box", "prism"):
-        at = corners(p)
-        quads = []
-        for ax in range(3):
-            o = [i for i in range(3) if i != ax]
-            for sgn in (-1, 1):
-                def pt(a, b):
-                    v = [0, 0, 0]
-                    v[ax], v[o[0]], v[o[1]] = sgn, a, b
-                    return at(*v)
-                quads.append([pt(-1, -1), pt(1, -1), pt(1, 1), pt(-1, 1)])
+        quads = [[pt(-1, -1), pt(1, -1), pt(1, 1), pt(-1, 1)] for _, _, pt in face_quads(p)]
         area = sum(tri_area(q[0], q[1], q[2]) + tri_area(q[0], q[2], q[3]) for q in quads)
-        return f"estimate's spacing ~{math.sqrt(area / 192) / diag:.4f} of the diagonal"
+        return f"estimate's spacing ~{math.sqrt(area / count(area)) / diag:.4f} of the diagonal"
     r0, r1 = (p["radius"], p["radius"]) if p["kind"] == "cylinder" else (p["radius0"], p["radius1"])
     r0, r1, h = r0 * circ, r1 * circ, math.dist(p["p0"], p["p1"])
     poly = lambda r: [(r * math.cos(2 * math.pi * j / k), r * math.sin(2 * math.pi * j / k), 0.0) for j in range(k)]
     fans = lambda r: [tri_area(poly(r)[0], poly(r)[j - 1], poly(r)[j]) for j in range(2, k)]
     side = k * 0.5 * (r0 + r1) * 2 * math.sin(math.pi / k) * math.hypot(h, (r1 - r0) * math.cos(math.pi / k))
     area = side + sum(fans(r0)) + sum(fans(r1))
-    most = [max(math.ceil(192 * a / area) for a in fans(r)) for r in (r0, r1)]
-    return (f"estimate's spacing ~{math.sqrt(area / 192) / diag:.4f} of the diagonal; most points in a fan "
+    n = count(area)
+    most = [max(math.ceil(n * a / area) for a in fans(r)) for r in (r0, r1)]
+    return (f"estimate's spacing ~{math.sqrt(area / n) / diag:.4f} of the diagonal; most points in a fan "
             f"triangle of cap p0: {most[0]}, of cap p1: {most[1]}")
 
 

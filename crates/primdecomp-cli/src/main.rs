@@ -25,5 +25,12 @@ fn scratch_dir(tag: &str) -> std::path::PathBuf {
 }
 
 fn main() {
+    // Rust ignores SIGPIPE, so printing into a closed pipe (`primdecomp … | head`)
+    // would panic; with the default action the process ends quietly, as other tools.
+    #[cfg(unix)]
+    // SAFETY: set once at start-up, before any thread exists.
+    unsafe {
+        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
+    }
     std::process::exit(cli::main());
 }

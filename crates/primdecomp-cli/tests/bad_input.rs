@@ -562,8 +562,8 @@ fn run_in(dir: &Path, args: &[&str]) -> (Option<i32>, String) {
 #[test]
 fn memory_limit_refuses_up_front() {
     let dir = tempdir("memory");
-    // 2,000 triangles: 3 × 2,000 vertices. Estimate: 1.25 × (32 MiB + 100·6,000 +
-    // 150·2,000 + 40·6,000) = 41.4 MiB.
+    // 2,000 triangles: 3 × 2,000 vertices. Estimate: 1.25 × (32 MiB + 200·6,000 +
+    // 280·2,000 + 80·6,000) = 42.7 MiB.
     let mut obj = String::new();
     for t in 0..2000 {
         let z = t as f64;
@@ -585,7 +585,7 @@ fn memory_limit_refuses_up_front() {
     assert_eq!(code, Some(2), "{err}");
     assert_eq!(
         err,
-        "error: big.obj: decomposing this mesh (2000 faces, 6000 vertices) needs about 41.4 MiB, \
+        "error: big.obj: decomposing this mesh (2000 faces, 6000 vertices) needs about 42.7 MiB, \
          more than the memory limit of 40.0 MiB (default: the memory available now); raise \
          the limit with --max-memory SIZE, e.g. --max-memory 64G (in the library: the \
          max_memory of primdecomp::LoadOptions)"

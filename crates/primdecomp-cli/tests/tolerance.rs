@@ -28,8 +28,9 @@ fn json(path: &Path) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
 }
 
-/// A closed box (12 triangles) within 1%: one box, where the default count gives a
-/// shell of plates; the summary and the JSON say how far it stands and what was asked.
+/// A closed box (12 triangles) within 1%: one box, as without any target (the
+/// default tolerance), where a count of 64 gives a shell of plates; the summary and
+/// the JSON say how far it stands and what was asked.
 #[test]
 fn a_box_within_a_tolerance_is_one_box() {
     let d = dir("box");
@@ -57,7 +58,27 @@ fn a_box_within_a_tolerance_is_one_box() {
     assert!(dist["worst"].as_f64().unwrap() < 1e-9, "{dist}");
     assert!((dist["tolerance"].as_f64().unwrap() - 0.01 * 14f64.sqrt()).abs() < 1e-12);
     assert_eq!(v["settings"]["tolerance"][0]["diagonal"], 0.01);
-    let (code, out) = run(&d, &["decompose", "cube.obj", "-o", "cube64.json", "-q"]);
+    let (code, out) = run(&d, &["decompose", "cube.obj", "-o", "plain.json"]);
+    assert_eq!(code, Some(0), "{out}");
+    assert!(
+        out.contains("tolerance 2.00% (at most 1024) → 1 primitives (1 box)"),
+        "{out}"
+    );
+    let plain = std::fs::read(d.join("plain.json")).unwrap();
+    let (code, out) = run(
+        &d,
+        &["decompose", "cube.obj", "--tolerance", "2%", "-o", "t.json"],
+    );
+    assert_eq!(code, Some(0), "{out}");
+    assert_eq!(
+        plain,
+        std::fs::read(d.join("t.json")).unwrap(),
+        "default = 2%"
+    );
+    let (code, out) = run(
+        &d,
+        &["decompose", "cube.obj", "-n", "64", "-o", "cube64.json"],
+    );
     assert_eq!(code, Some(0), "{out}");
     assert!(
         json(&d.join("cube64.json"))["stats"]["primitives"]
@@ -65,6 +86,10 @@ fn a_box_within_a_tolerance_is_one_box() {
             .unwrap()
             > 1
     );
+    // Fill completes a count: without one it is refused, naming -n.
+    let (code, out) = run(&d, &["decompose", "cube.obj", "--fill", "-o", "f.json"]);
+    assert_eq!(code, Some(2), "{out}");
+    assert!(out.contains("--fill needs -n"), "{out}");
 }
 
 /// `--tolerance 5%,2%,1% --max-bytes 2K` on the demo scene: three files named by the

@@ -79,7 +79,9 @@ def test_bad_settings():
     with pytest.raises(ValueError, match="bogus"):
         primdecomp.decompose(v, q, bogus=1)
     with pytest.raises(ValueError):
-        primdecomp.decompose(v, q, targets=[])
+        primdecomp.decompose(v, q, targets=[0])
+    with pytest.raises(ValueError, match="fill needs targets"):
+        primdecomp.decompose(v, q, fill=True)
 
 
 def test_as_hulls_and_export(tmp_path):
@@ -137,12 +139,14 @@ def test_ctrl_c_interrupts_quickly():
 
 
 def test_tolerance_and_bytes(tmp_path):
-    """A closed cube within 1% is one box (the default count gives plates); a chain of
-    tolerances gives one level each; the same settings as the CLI give its primitives."""
+    """A closed cube within 1% is one box, as by default (a count of 64 gives plates);
+    a chain of tolerances gives one level each; the same settings as the CLI give its
+    primitives."""
     v, f = cube()
     one = primdecomp.decompose(v, f, tolerance="1%")
     assert [p.kind for p in one.levels[0].primitives] == ["box"]
-    assert len(primdecomp.decompose(v, f).levels[0].primitives) > 1
+    assert [p.kind for p in primdecomp.decompose(v, f).levels[0].primitives] == ["box"]
+    assert len(primdecomp.decompose(v, f, targets=64).levels[0].primitives) > 1
     dist = json.loads(one.to_json())["stats"]["distance"]
     assert dist["worst"] <= dist["tolerance"]
     with pytest.raises(ValueError, match="tolerance"):
@@ -168,5 +172,10 @@ def test_tolerance_without_count_matches_cli(tmp_path):
     py = json.loads(primdecomp.decompose_file(mesh, tolerance="1%").to_json())
     assert py["settings"]["target"] == cli["settings"]["target"] == 1024
     assert json.dumps(cli["primitives"]) == json.dumps(py["primitives"])
+    # No count, tolerance or byte target: the library's default tolerance, as the CLI's.
+    subprocess.run([CLI, "decompose", mesh, "-o", tmp_path / "d.json"], check=True, capture_output=True)
+    cli = (tmp_path / "d.json").read_bytes()
+    assert primdecomp.decompose_file(mesh).to_json().encode() == cli
+    assert json.loads(cli)["settings"]["tolerance"] == [{"diagonal": 0.02}]
     # One count caps every level of a chain, as `-n 400 --tolerance 5%,2%` does.
     assert len(primdecomp.decompose_file(mesh, targets=[400], tolerance=["5%", "2%"]).levels) == 2

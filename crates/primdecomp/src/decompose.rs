@@ -9,8 +9,8 @@ use crate::result::Decomposition;
 use crate::{budget, pipeline};
 
 /// Decomposes `mesh` into primitives, one [`crate::Level`] per target in
-/// `params.targets` (§3): every face lies inside at least one primitive of every
-/// level. Deterministic: the same mesh and settings give the same primitives whatever
+/// `params.targets` (§3), or per tolerance or byte target ([`Params::resolved`]):
+/// every face lies inside at least one primitive of every level. Deterministic: the same mesh and settings give the same primitives whatever
 /// the number of threads (rayon's global pool; run it inside your own pool to choose).
 ///
 /// ```
@@ -38,6 +38,8 @@ pub fn decompose_with(
     progress: &dyn Progress,
 ) -> Result<Decomposition> {
     params.validate()?;
+    // Without a count, the tolerance's levels under the cap (`Params::resolved`).
+    let params = &params.resolved();
     if params.fill {
         // Nested primitives removed leave room: merge less to fill it.
         return budget::fill(mesh, params, progress);

@@ -91,7 +91,9 @@ pub use mesh::io::{
 };
 pub use mesh::{Mesh, MeshObject, SkipCounts, Transform};
 pub use objects::{decompose_objects, ObjectResult, ObjectTarget, Objects};
-pub use params::{Dedup, Params, Partitions, Reprice, Tolerance};
+pub use params::{
+    Dedup, Params, Partitions, Reprice, Tolerance, DEFAULT_TOLERANCE, MAX_PRIMITIVES,
+};
 pub use primitive::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
 pub use progress::{Progress, Stage};
 pub use result::{Decomposition, InputInfo, Level, Stats, Timings};

@@ -23,16 +23,17 @@ pub(crate) struct Counts {
 
 /// Fixed cost of a run (binary, thread stacks, allocator arenas), bytes.
 const BASE: u64 = 32 << 20;
-/// Bytes per vertex, face and corner. Fitted on the peak resident memory of
-/// `primdecomp decompose FILE -n 1% --max-memory none` under `/usr/bin/time -v`:
-/// lucy_100k.obj (99,970 faces, 49,987 vertices) 64.8 MB and dragon_vrip_res2.ply
-/// (202,520 faces, 100,250 vertices) 97.5 MB, i.e. 32 MB + 320 bytes per triangle.
-/// Two triangle meshes cannot separate the three rates; the split below gives that
-/// slope for triangles (½ vertex + 1 face + 3 corners per triangle) and charges
-/// polygons by their corners.
-const PER_VERTEX: u64 = 100;
-const PER_FACE: u64 = 150;
-const PER_CORNER: u64 = 40;
+/// Bytes per vertex, face and corner. Fitted on the peak resident memory of the
+/// default run (the merge-tree cut within 2%, docs/decisions/0037),
+/// `primdecomp decompose FILE --max-memory none` under `/usr/bin/time -f %M`:
+/// lucy_100k.obj (99,970 faces) 67.5 MB, dragon_vrip_res2.ply (202,520 faces)
+/// 124.8 MB, dragon_vrip_full.ply (871,414 faces) 508 MB, i.e. about 9 MB + 590 bytes
+/// per triangle (a count's greedy run, `-n 1%`, needs about half). Three triangle
+/// meshes cannot separate the three rates; the split below gives 620 bytes a triangle
+/// (½ vertex + 1 face + 3 corners) and charges polygons by their corners.
+const PER_VERTEX: u64 = 200;
+const PER_FACE: u64 = 280;
+const PER_CORNER: u64 = 80;
 
 /// Peak bytes a run on an input of these counts is expected to need: the fitted model
 /// above plus 25% for what it does not capture (more targets, more threads).

@@ -8,9 +8,15 @@ use crate::error::{Error, Result};
 use crate::primitive::Kind;
 use serde::{Deserialize, Serialize};
 
-/// The target count when none is given: primitives per input, before nested ones
-/// are removed.
-pub const DEFAULT_TARGET: usize = 64;
+/// The tolerance of a run that gives no count, tolerance or byte target (empty
+/// [`Params::targets`], [`Params::tolerance`] and [`Params::max_bytes`]): every
+/// primitive within this much of the input's diagonal, chosen from measurements over
+/// the corpus (docs/decisions/0037).
+pub const DEFAULT_TOLERANCE: Tolerance = Tolerance::Diagonal(0.02);
+
+/// The most primitives a level holds when no count is given: the cap of a tolerance
+/// or byte target without [`Params::targets`].
+pub const MAX_PRIMITIVES: usize = 1024;
 
 /// The farthest any primitive of a level may stand from the input: the one-way
 /// distance from each primitive's surface to the input's surface, the quantity
@@ -142,12 +148,17 @@ impl<'de> Deserialize<'de> for Partitions {
     }
 }
 
-/// All settings of a run. `Params::default()` is the recommended configuration:
-/// change only what you need, as in `Params { targets: vec![200, 50], ..Params::default() }`.
+/// All settings of a run. `Params::default()` is the recommended configuration: the
+/// fewest primitives within [`DEFAULT_TOLERANCE`] of the input, at most
+/// [`MAX_PRIMITIVES`]. Change only what you need, as in
+/// `Params { targets: vec![200, 50], ..Params::default() }` (two levels of at most
+/// 200 and 50 primitives) or `Params { tolerance: vec![Tolerance::Diagonal(0.005)],
+/// ..Params::default() }`.
 ///
 /// | setting | default | raising it | lowering it |
 /// |---|---|---|---|
-/// | `targets` | `[64]` | more, smaller primitives: tighter fit, more bytes | coarser colliders |
+/// | `tolerance` | none given: 2% of the diagonal | fewer, larger primitives | tighter fit, more primitives |
+/// | `targets` | none: the tolerance decides | more, smaller primitives: tighter fit, more bytes | coarser colliders |
 /// | `weights[kind]` | box, sphere, capsule 1; cylinder 1.05; frustum 2.1; prism 1.4 | that kind is chosen less often | that kind is chosen more often |
 /// | `min_extent` | 5e-4 | thin parts get thicker primitives | flatter plates |
 /// | `open_holes` | 0.01 | holes and gaps in flat surfaces stay open at lower counts | 0: the paper's pricing (a roof's rim closes into a lid) |
@@ -159,6 +170,10 @@ pub struct Params {
     /// Target primitive counts, one [`crate::Level`] each from a single bottom-up pass
     /// (§3.3). A level has at most its target's count: fewer where nested primitives
     /// are removed and where coplanar faces merge for free ([`Params::join_coplanar`]).
+    /// With a [`Params::tolerance`] or [`Params::max_bytes`] each is that level's cap.
+    /// Empty (the default): one level per tolerance or byte target, each capped at
+    /// [`MAX_PRIMITIVES`]; with neither, one level within [`DEFAULT_TOLERANCE`]
+    /// ([`Params::resolved`]).
     pub targets: Vec<usize>,
     /// Which kinds may be fitted, indexed by `Kind as usize` ([`Kind::ALL`] order).
     #[serde(with = "by_kind")]
@@ -252,7 +267,7 @@ pub struct Params {
 impl Default for Params {
     fn default() -> Self {
         Params {
-            targets: vec![DEFAULT_TARGET],
+            targets: Vec::new(),
             kinds: [true; 6],
             weights: [1.0, 1.0, 1.0, 1.05, 2.1, 1.4],
             tangent_eps: 0.01,
@@ -358,8 +373,54 @@ impl Params {
         Ok(params)
     }
 
-    /// Checks every setting; [`crate::decompose`] calls this before any work.
+    /// The settings a run uses: without [`Params::targets`], one level per tolerance or
+    /// byte target capped at [`MAX_PRIMITIVES`] primitives, or with neither one level
+    /// within [`DEFAULT_TOLERANCE`]; one target and a chain of tolerances or byte
+    /// targets, that target as every level's cap. Results record these settings.
+    ///
+    /// ```
+    /// use primdecomp::{Params, Tolerance, DEFAULT_TOLERANCE, MAX_PRIMITIVES};
+    ///
+    /// let run = Params::default().resolved();
+    /// assert_eq!((run.targets, run.tolerance), (vec![MAX_PRIMITIVES], vec![DEFAULT_TOLERANCE]));
+    /// let chain = Params {
+    ///     targets: vec![300],
+    ///     tolerance: vec![Tolerance::Diagonal(0.02), Tolerance::Diagonal(0.005)],
+    ///     ..Params::default()
+    /// };
+    /// assert_eq!(chain.resolved().targets, vec![300, 300]);
+    /// let counts = Params { targets: vec![64], ..Params::default() }.resolved();
+    /// assert!(counts.tolerance.is_empty());
+    /// ```
+    pub fn resolved(&self) -> Params {
+        let mut p = self.clone();
+        let chain = p.tolerance.len().max(p.max_bytes.len());
+        match p.targets.len() {
+            // Fill completes a count: without one, validate says so.
+            0 if p.fill => {}
+            0 if chain == 0 => {
+                p.tolerance = vec![DEFAULT_TOLERANCE];
+                p.targets = vec![MAX_PRIMITIVES];
+            }
+            0 => p.targets = vec![MAX_PRIMITIVES; chain],
+            1 if chain > 1 => p.targets = vec![p.targets[0]; chain],
+            _ => {}
+        }
+        p
+    }
+
+    /// Checks every setting of the run [`Params::resolved`] makes of these;
+    /// [`crate::decompose`] calls this before any work.
     pub fn validate(&self) -> Result<()> {
+        if self.fill && self.targets.is_empty() {
+            return Err(Error::InvalidParams(
+                "fill needs targets: the counts whose levels it fills".into(),
+            ));
+        }
+        self.resolved().validate_resolved()
+    }
+
+    fn validate_resolved(&self) -> Result<()> {
         let bad = |m: String| Err(Error::InvalidParams(m));
         let fraction = |name: &str, x: f64, zero_ok: bool| {
             let ok = x.is_finite() && x < 1.0 && (x > 0.0 || (zero_ok && x == 0.0));

@@ -16,9 +16,10 @@ fn within(t: f64, cap: usize) -> Params {
     }
 }
 
-/// What a user asking for "a collider for this mesh" at 1% of its size gets: one
-/// box for a box, one sphere for a sphere, one cylinder for a closed cylinder —
-/// where a count of 64 gives plates and slices.
+/// What a user asking for "a collider for this mesh" gets, at 1% of its size and with
+/// no target at all (the default tolerance, docs/decisions/0037): one box for a box,
+/// one sphere for a sphere, one cylinder for a closed cylinder — where a count of 64
+/// gives plates and slices.
 #[test]
 fn simple_solids_are_one_primitive() {
     let cases = [
@@ -31,13 +32,20 @@ fn simple_solids_are_one_primitive() {
         ("cylinder", mesh(&cylinder(0.5, 2.0, 48)), Kind::Cylinder),
     ];
     for (name, m, kind) in cases {
-        let p = within(0.01, 1024);
-        let d = decompose(&m, &p).expect("decomposes");
-        let l = &d.levels[0];
-        let kinds: Vec<Kind> = l.primitives.iter().map(|p| p.kind()).collect();
-        assert_eq!(kinds, vec![kind], "{name}");
-        assert!(l.distance.expect("measured") <= l.tolerance.expect("asked"));
-        assert_valid(&m, &d, &p);
+        for p in [within(0.01, 1024), Params::default()] {
+            let d = decompose(&m, &p).expect("decomposes");
+            let l = &d.levels[0];
+            let kinds: Vec<Kind> = l.primitives.iter().map(|p| p.kind()).collect();
+            assert_eq!(kinds, vec![kind], "{name} {:?}", p.tolerance);
+            assert!(l.distance.expect("measured") <= l.tolerance.expect("asked"));
+            assert_valid(&m, &d, &p);
+        }
+        let counted = Params {
+            targets: vec![64],
+            ..Params::default()
+        };
+        let plates = decompose(&m, &counted).expect("decomposes");
+        assert!(plates.levels[0].primitives.len() > 1, "{name} at -n 64");
     }
 }
 

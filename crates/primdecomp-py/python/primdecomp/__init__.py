@@ -126,17 +126,15 @@ def decompose(vertices, faces, progress=None, **settings):
     """Decompose a mesh. `vertices`: (N,3) float array (float32/float64, any layout);
     `faces`: (F,3)/(F,4) integer array or list of polygons. `settings`: the library's
     `Params` fields (targets, kinds, weights, min_extent, ...), library defaults
-    otherwise; `tolerance="1%"` (or a distance in input units) gives the fewest
-    primitives all within it, `max_bytes=4096` the closest fit in that many bytes
-    (one value, or a list for one level each, with `targets` as the count cap).
+    otherwise: without `targets`, `tolerance` or `max_bytes`, the fewest primitives
+    within the default tolerance (as `primdecomp decompose`). `tolerance="1%"` (or a
+    distance in input units) gives the fewest primitives all within it,
+    `max_bytes=4096` the closest fit in that many bytes (one value, or a list for one
+    level each, with `targets` as the count cap); `targets=64` asks for a count.
     `progress(stage, fraction)` is called from the calling thread."""
     v = _vertices(vertices)
     arr, off, idx = _faces(faces)
     return Result(_native.decompose(v, arr, off, idx, _settings(settings), progress))
-
-
-# The count cap of a tolerance or byte target without `targets` (the CLI's CUT_CAP).
-_CUT_CAP = 1024
 
 
 def _tolerance(t):
@@ -161,13 +159,6 @@ def _settings(settings):
             settings[key] = [v]
     if "tolerance" in settings and isinstance(settings["tolerance"], (list, tuple)):
         settings["tolerance"] = [_tolerance(t) for t in settings["tolerance"]]
-    # As `primdecomp decompose` does: a tolerance or byte target without a count is
-    # capped at the CLI's 1024, and one count caps every level of a chain.
-    chain = max(len(settings.get(k) or []) for k in ("tolerance", "max_bytes"))
-    if chain and "targets" not in settings:
-        settings["targets"] = [_CUT_CAP]
-    if chain > 1 and len(settings.get("targets") or []) == 1:
-        settings["targets"] = settings["targets"] * chain
     try:
         return _json.dumps(settings, allow_nan=False)
     except (TypeError, ValueError) as e:

@@ -139,9 +139,12 @@ def run(inputs, out_dir, *, use_ray=None, workers=None, **settings):
     uses Ray when it is initialised (or RAY_ADDRESS is set), else a local pool
     of `workers` threads (the GIL is released while decomposing); True requires Ray; False never uses it. Two inputs with the
     same file stem are refused (ValueError) before anything runs, as the CLI does.
-    One target per batch (`targets=[n]`)."""
-    if len(settings.get("targets", [64])) != 1:
-        raise ValueError("batch.run writes one level per input: give one target")
+    One level per input: one target (`targets=[n]`) or tolerance, or none (the
+    default tolerance)."""
+    for key in ("targets", "tolerance", "max_bytes"):
+        v = settings.get(key)
+        if isinstance(v, (list, tuple)) and len(v) > 1:
+            raise ValueError(f"batch.run writes one level per input: give one value of {key}")
     paths = inputs_of(inputs)
     out = _Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
@@ -175,13 +178,14 @@ def _main(argv=None):
     ap = argparse.ArgumentParser(prog="python -m primdecomp.batch", description=__doc__.split("\n\n")[0])
     ap.add_argument("inputs", nargs="+", help="a folder of meshes, or mesh files")
     ap.add_argument("-o", "--out", required=True, help="output folder")
-    ap.add_argument("-n", "--targets", default="64", help="comma-separated primitive counts")
+    ap.add_argument("-n", "--targets", default=None,
+                    help="a primitive count (default: the fewest within the default tolerance)")
     ap.add_argument("--ray", action="store_true", help="require Ray (ray.init(); RAY_ADDRESS names a cluster)")
     ap.add_argument("--workers", type=int, default=None, help="local threads without Ray")
     a = ap.parse_args(argv)
     inputs = a.inputs[0] if len(a.inputs) == 1 and _Path(a.inputs[0]).is_dir() else a.inputs
-    rows = run(inputs, a.out, use_ray=True if a.ray else None, workers=a.workers,
-               targets=[int(t) for t in a.targets.split(",")])
+    counts = {} if a.targets is None else {"targets": [int(t) for t in a.targets.split(",")]}
+    rows = run(inputs, a.out, use_ray=True if a.ray else None, workers=a.workers, **counts)
     bad = [r for r in rows if r["status"] == "error"]
     for r in bad:
         print(f"{r['input']}: {r['error']}")

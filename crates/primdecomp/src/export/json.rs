@@ -336,6 +336,9 @@ pub fn to_json_timed(dec: &Decomposition, level: usize, params: &Params) -> Stri
 }
 
 fn document(dec: &Decomposition, level: usize, params: &Params, timed: bool) -> String {
+    // The settings the run used, so that the library's default run and the CLI's
+    // record the same (`Params::resolved`).
+    let params = &params.resolved();
     let lv = &dec.levels[level];
     debug_assert_eq!(
         lv.faces.len(),
@@ -675,7 +678,12 @@ mod tests {
         assert_eq!(v["input"]["path"], "scene \"1\".obj");
         assert_eq!(v["input"]["faces"], 28);
         assert_eq!(v["settings"]["target"], 7);
-        assert_eq!(v["settings"]["targets"], serde_json::json!([64]));
+        // The settings the run used: the default's tolerance under its cap.
+        assert_eq!(v["settings"]["targets"], serde_json::json!([1024]));
+        assert_eq!(
+            v["settings"]["tolerance"],
+            serde_json::json!([{"diagonal": 0.02}])
+        );
         assert_eq!(v["settings"]["dedup"], "exact");
         assert_eq!(v["settings"]["weights"]["prism"], 1.4);
         assert_eq!(v["settings"]["kinds"]["frustum"], true);

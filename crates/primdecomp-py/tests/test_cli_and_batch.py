@@ -191,5 +191,5 @@ def test_batch_thread_pool_fallback_and_folder(cli, tmp_path):
     assert rows[0]["output"] == primdecomp.batch.output_of(inputs[0], tmp_path / "out")
     with pytest.raises(ValueError, match="rename"):
         primdecomp.batch.run([folder / MESHES[0], tmp_path / "x" / MESHES[0]], tmp_path / "o2", use_ray=False)
-    with pytest.raises(ValueError, match="one target"):
+    with pytest.raises(ValueError, match="one value of targets"):
         primdecomp.batch.run(folder, tmp_path / "o3", use_ray=False, targets=[8, 4])

@@ -29,6 +29,13 @@ const EDGE_SAMPLES: usize = 64;
 
 /// The estimated error of `prim` (0 for an empty surface).
 pub(crate) fn error_of(prim: &Primitive, surface: &Triangles) -> f64 {
+    error_until(prim, surface, f64::INFINITY)
+}
+
+/// [`error_of`] while it is at most `above`; past that, the running maximum as soon
+/// as it exceeds `above`: a lower bound of the error, enough to know it is over.
+/// Either way the result is over `above` exactly when [`error_of`]'s is.
+pub(crate) fn error_until(prim: &Primitive, surface: &Triangles, above: f64) -> f64 {
     let tess = tessellate(prim, DETAIL);
     let mut tris: Vec<[V3; 3]> = Vec::new();
     for f in &tess.faces {
@@ -44,7 +51,7 @@ pub(crate) fn error_of(prim: &Primitive, surface: &Triangles) -> f64 {
     for &p in &tess.vertices {
         worst = worst.max(surface.distance_beyond(p, worst, &mut stack));
     }
-    if !(total > 0.0 && total.is_finite()) {
+    if !(total > 0.0 && total.is_finite()) || worst > above {
         return worst;
     }
     let spacing = SPACING * surface.diagonal;
@@ -66,6 +73,9 @@ pub(crate) fn error_of(prim: &Primitive, surface: &Triangles) -> f64 {
             let p = add(a, scale(sub(b, a), (j as f64 + 0.5) / k as f64));
             worst = worst.max(surface.distance_beyond(p, worst, &mut stack));
         }
+        if worst > above {
+            return worst;
+        }
     }
     let wanted = (total / (spacing * spacing)).ceil();
     let samples = wanted.clamp(SAMPLES as f64, MAX_SAMPLES as f64) as usize;
@@ -73,6 +83,9 @@ pub(crate) fn error_of(prim: &Primitive, surface: &Triangles) -> f64 {
         let k = (samples as f64 * area(t) / total).ceil() as usize;
         for i in 0..k.min(samples) {
             worst = worst.max(surface.distance_beyond(point_on(t, i), worst, &mut stack));
+        }
+        if worst > above {
+            return worst;
         }
     }
     worst
@@ -168,6 +181,26 @@ pub(crate) mod tests {
         });
         let e = error_of(&cyl, &Triangles::new(&tube));
         assert!(e >= 0.5 * r && e <= r * 1.01, "{e}");
+    }
+
+    /// The early exit the exploration uses: at or below `above` the error is exact,
+    /// over it only known to be over (a lower bound, never above the error itself),
+    /// for boxes of several sizes around a cube and levels below, at and above them.
+    #[test]
+    fn an_early_exit_is_exact_below_its_level_and_over_it_above() {
+        let inner = Triangles::new(&cube_mesh(1.0));
+        for half in [1.0, 1.01, 1.2, 1.5, 3.0] {
+            let prim = unit_box([half, 1.0, 2.0 * half - 1.0]);
+            let exact = error_of(&prim, &inner);
+            for above in [0.0, 0.5 * exact, exact, 2.0 * exact + 0.1] {
+                let e = error_until(&prim, &inner, above);
+                assert_eq!(e > above, exact > above, "{half} {above}");
+                match exact <= above {
+                    true => assert_eq!(e, exact),
+                    false => assert!(e <= exact, "{e} > {exact}"),
+                }
+            }
+        }
     }
 
     #[test]

@@ -17,7 +17,7 @@ use crate::math::Sym3;
 use crate::merge::{Evaluator, Snapshot, Workspace};
 use crate::mesh::triangles::Triangles;
 use crate::primitive::Primitive;
-use error::error_of;
+use error::{error_of, error_until};
 use hulls::{HullScratch, NodeHulls};
 use rayon::prelude::*;
 use std::cmp::Ordering;
@@ -48,12 +48,14 @@ pub(crate) struct Request {
     pub tolerance: Option<f64>,
 }
 
-/// A node of the cut with its fitted primitive and estimated error.
+/// A node of the cut with its fitted primitive and estimated error (`exact`: else
+/// only a lower bound, over the exploration's early-exit level).
 #[derive(Clone, Debug)]
 struct Entry {
     error: f64,
     node: u32,
     prim: Primitive,
+    exact: bool,
 }
 
 impl Entry {
@@ -82,12 +84,14 @@ impl Ord for Entry {
 
 /// The part of the tree the splits reached: its roots, every node fitted (roots and
 /// the children of split nodes) and their ids in increasing order (children before
-/// parents: nodes are numbered after their children), and the nodes split, in order.
+/// parents: nodes are numbered after their children), the nodes split, in order, and
+/// whether the count ran out while a node was still over the tolerance.
 struct Explored {
     roots: Vec<u32>,
     fitted: HashMap<u32, Entry>,
     ids: Vec<u32>,
     splits: Vec<u32>,
+    capped: bool,
 }
 
 impl Explored {
@@ -149,10 +153,16 @@ impl<'a> Cutter<'a> {
         }
     }
 
-    /// Node `n`'s output fit on its hull's vertices and boundary faces, and its error:
-    /// what exploring needs, without gathering every face below the node again at
-    /// every level.
-    fn entry(&self, n: u32, s: &mut Scratch) -> Entry {
+    /// Node `n`'s output fit on its hull's vertices and boundary faces, and its error
+    /// up to `above` ([`error_until`]): what exploring needs, without gathering every
+    /// face below the node again at every level. A node in `known` keeps its fit.
+    fn entry(&self, n: u32, s: &mut Scratch, above: f64, known: &HashMap<u32, Entry>) -> Entry {
+        if let Some(e) = known.get(&n) {
+            return match e.exact {
+                true => e.clone(),
+                false => self.measured(n, e.prim, above),
+            };
+        }
         let sets = self.hulls.of(n, &mut s.hull);
         let faces = self.tree.faces(n).iter().copied();
         let q = &self.tree.nodes[n as usize].q;
@@ -160,7 +170,7 @@ impl<'a> Cutter<'a> {
         let prim = (self.ev)
             .fit_on_vertices(faces, &sets.hull, &sets.boundary, outside, q, &mut s.ws)
             .prim;
-        self.measured(n, prim)
+        self.measured(n, prim, above)
     }
 
     /// `e`'s primitive if it encloses every point of its node's faces, else the node's
@@ -180,11 +190,13 @@ impl<'a> Cutter<'a> {
         self.ev.fit_output(faces.iter().copied(), q, ws).prim
     }
 
-    fn measured(&self, node: u32, prim: Primitive) -> Entry {
+    fn measured(&self, node: u32, prim: Primitive, above: f64) -> Entry {
+        let error = error_until(&prim, self.surface, above);
         Entry {
-            error: error_of(&prim, self.surface),
+            error,
             node,
             prim,
+            exact: error <= above,
         }
     }
 
@@ -202,8 +214,7 @@ impl<'a> Cutter<'a> {
             .try_fold(f64::INFINITY, |m, t| t.map(|t| m.min(t)))
             .unwrap_or(0.0)
             .max(self.floor);
-        let explored = self.explore(largest, enough);
-        let cuts: Vec<Vec<u32>> = requests.iter().map(|r| self.choose(&explored, r)).collect();
+        let (explored, cuts) = self.explore_and_choose(largest, enough);
         // A chosen node's fit on its hull's vertices, unless one of its faces' points
         // (left out of the hull within its tolerance) is outside it: then its fit on
         // every point, which encloses them exactly.
@@ -233,20 +244,86 @@ impl<'a> Cutter<'a> {
             .collect()
     }
 
+    /// The explored tree and each request's cut ([`Cutter::choose`]). When every
+    /// request has a tolerance and none a byte target, a node's error is measured only
+    /// until it is known to be over the loosest tolerance: such a node is split
+    /// whatever its error, so where the splits end within the tolerances and each
+    /// request's cut within its tolerance fits its count, the cuts are those exact
+    /// errors give. Otherwise the tree is explored again with exact errors, keeping
+    /// the fits.
+    fn explore_and_choose(&self, largest: usize, enough: f64) -> (Explored, Vec<Vec<u32>>) {
+        let above = self.requests.iter().try_fold(enough, |m, r| match r.bytes {
+            None => r.tolerance.map(|t| m.max(t)),
+            Some(_) => None,
+        });
+        let mut known = HashMap::new();
+        if let Some(above) = above {
+            let mut ex = self.explore(largest, enough, above, &known);
+            if !ex.capped {
+                self.refine(&mut ex, above);
+                let within: Option<Vec<Vec<u32>>> =
+                    self.requests.iter().map(|r| self.within(&ex, r)).collect();
+                if let Some(cuts) = within {
+                    return (ex, cuts);
+                }
+            }
+            known = ex.fitted;
+        }
+        let ex = self.explore(largest, enough, f64::INFINITY, &known);
+        let cuts = self.requests.iter().map(|r| self.choose(&ex, r)).collect();
+        (ex, cuts)
+    }
+
+    /// Exact errors where the cuts need them after an exploration whose errors over
+    /// `above` are lower bounds: the nodes not split, and split nodes whose subtree
+    /// reaches no cut within `above` (their error decides between them and their
+    /// subtree's best). Elsewhere a split node's error only has to be over `above`.
+    fn refine(&self, ex: &mut Explored, above: f64) {
+        let mut reach: HashMap<u32, bool> = HashMap::with_capacity(ex.ids.len());
+        let mut redo = Vec::new();
+        for &n in &ex.ids {
+            let e = &ex.fitted[&n];
+            let split = ex.is_split(self.tree, n);
+            let kids = split && {
+                let [a, b] = self.tree.nodes[n as usize].children;
+                reach[&a] && reach[&b]
+            };
+            if !(e.exact || kids) {
+                redo.push(n);
+            }
+            reach.insert(n, e.error <= above || kids);
+        }
+        let exact: Vec<Entry> = redo
+            .par_iter()
+            .map(|n| self.measured(*n, ex.fitted[n].prim, f64::INFINITY))
+            .collect();
+        for e in exact {
+            ex.fitted.insert(e.node, e);
+        }
+    }
+
     /// Splits the worst node of the cut from the roots on until `largest` nodes
-    /// remain or every node is within `enough` or cannot be split.
-    fn explore(&self, largest: usize, enough: f64) -> Explored {
+    /// remain or every node is within `enough` or cannot be split; errors up to
+    /// `above` ([`Cutter::entry`]), fits of the nodes in `known` kept.
+    fn explore(
+        &self,
+        largest: usize,
+        enough: f64,
+        above: f64,
+        known: &HashMap<u32, Entry>,
+    ) -> Explored {
         let roots: Vec<Entry> = self
             .tree
             .roots
             .par_iter()
-            .map_init(Scratch::default, |s, &r| self.entry(r, s))
+            .map_init(Scratch::default, |s, &r| self.entry(r, s, above, known))
             .collect();
         let mut ex = Explored {
             roots: self.tree.roots.clone(),
             fitted: roots.iter().map(|e| (e.node, e.clone())).collect(),
             ids: Vec::new(),
             splits: Vec::new(),
+            capped: false,
         };
         let mut count = roots.len();
         let mut heap: BinaryHeap<Entry> = roots.into_iter().collect();
@@ -261,16 +338,26 @@ impl<'a> Cutter<'a> {
                 continue;
             }
             let [a, b] = node.children;
-            let (ea, eb) = rayon::join(|| self.entry(a, &mut sa), || self.entry(b, &mut sb));
+            let (ea, eb) = rayon::join(
+                || self.entry(a, &mut sa, above, known),
+                || self.entry(b, &mut sb, above, known),
+            );
             ex.fitted.insert(a, ea.clone());
             ex.fitted.insert(b, eb.clone());
             heap.extend([ea, eb]);
             ex.splits.push(e.node);
             count += 1;
         }
+        ex.capped = count >= largest && heap.peek().is_some_and(|e| e.error > enough);
         ex.ids = ex.fitted.keys().copied().collect();
         ex.ids.sort_unstable();
         ex
+    }
+
+    /// With a tolerance, the cut of fewest nodes within it, if the caps allow it.
+    fn within(&self, ex: &Explored, r: &Request) -> Option<Vec<u32>> {
+        let cut = self.cheapest(ex, r.tolerance?, r.bytes.is_some());
+        fits(r, totals(ex, &cut)).then_some(cut)
     }
 
     /// The cut for `r`: with a tolerance the fewest nodes within it if the caps allow,
@@ -278,18 +365,19 @@ impl<'a> Cutter<'a> {
     /// then filled — splits in the order they were made, while both children stay
     /// within the bound and the caps allow — so that the count is used.
     fn choose(&self, ex: &Explored, r: &Request) -> Vec<u32> {
-        let fits = |c: (usize, usize)| c.0 <= r.count && r.bytes.is_none_or(|b| c.1 <= b);
-        if let Some(t) = r.tolerance {
-            let cut = self.cheapest(ex, t, r.bytes.is_some());
-            if fits(totals(ex, &cut)) {
-                return cut;
-            }
+        if let Some(cut) = self.within(ex, r) {
+            return cut;
         }
         let mut bounds: Vec<f64> = ex.fitted.values().map(|e| e.error).collect();
         bounds.push(0.0);
         bounds.sort_unstable_by(f64::total_cmp);
         bounds.dedup();
-        let ok = |i: usize| fits(totals(ex, &self.cheapest(ex, bounds[i], r.bytes.is_some())));
+        let ok = |i: usize| {
+            fits(
+                r,
+                totals(ex, &self.cheapest(ex, bounds[i], r.bytes.is_some())),
+            )
+        };
         // The least bound whose cheapest cut fits (feasibility only grows with it).
         let (mut lo, mut hi) = (0, bounds.len().saturating_sub(1));
         while lo < hi {
@@ -301,7 +389,7 @@ impl<'a> Cutter<'a> {
         }
         let table = self.costs(ex, bounds[lo], r.bytes.is_some());
         let cut = collect(self.tree, &table, &ex.roots);
-        match fits(totals(ex, &cut)) {
+        match fits(r, totals(ex, &cut)) {
             true => self.fill(ex, cut, &table, bounds[lo], r),
             // Nothing fits the caps (more roots than the count): the roots.
             false => ex.roots.clone(),
@@ -475,6 +563,11 @@ fn collect(tree: &MergeTree, table: &HashMap<u32, Cost>, from: &[u32]) -> Vec<u3
         }
     }
     cut
+}
+
+/// Whether a cut of `c` = (nodes, bytes) meets `r`'s caps.
+fn fits(r: &Request, c: (usize, usize)) -> bool {
+    c.0 <= r.count && r.bytes.is_none_or(|b| c.1 <= b)
 }
 
 /// The node count and bytes of `cut`.

@@ -9,7 +9,7 @@
 //! allow, filled up to its count. Every node's primitive encloses its faces, so every
 //! cut encloses the mesh.
 
-mod error;
+pub(crate) mod error;
 mod hulls;
 pub(crate) mod tree;
 
@@ -239,7 +239,7 @@ impl<'a> Cutter<'a> {
                         ..explored.fitted[n].clone()
                     })
                     .collect();
-                self.snapshot(r.count, entries)
+                self.snapshot(r, entries)
             })
             .collect()
     }
@@ -485,8 +485,10 @@ impl<'a> Cutter<'a> {
         set.into_iter().collect()
     }
 
-    /// The snapshot of one cut, its nodes in order of their faces' ranges.
-    fn snapshot(&self, target: usize, mut cut: Vec<Entry>) -> Snapshot {
+    /// The snapshot of one cut for `r`, its nodes in order of their faces' ranges; its
+    /// bound is `r`'s tolerance or the farthest its nodes stand, if farther.
+    fn snapshot(&self, r: &Request, mut cut: Vec<Entry>) -> Snapshot {
+        let worst = cut.iter().map(|e| e.error).fold(0.0, f64::max);
         cut.sort_unstable_by_key(|e| self.tree.nodes[e.node as usize].start);
         let mesh = self.ev.mesh;
         let verts = cut
@@ -504,7 +506,8 @@ impl<'a> Cutter<'a> {
             })
             .collect();
         Snapshot {
-            target,
+            target: r.count,
+            bound: Some(r.tolerance.map_or(worst, |t| t.max(worst))),
             prims: cut.iter().map(|e| e.prim).collect(),
             faces: cut
                 .iter()

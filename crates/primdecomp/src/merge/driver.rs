@@ -48,6 +48,10 @@ pub struct Snapshot {
     /// Each primitive's operator (the sum of its faces' quadrics), for refits after
     /// the loop (`postprocess`).
     pub q: Vec<crate::math::Sym3>,
+    /// For a cut of the merge tree: the farthest its primitives may stand from the
+    /// input (its tolerance, or the farthest its nodes stand), which post-processing
+    /// must keep (`postprocess::plates`); `None` for the greedy snapshot.
+    pub bound: Option<f64>,
 }
 
 #[derive(Clone, Debug, Default)]
@@ -656,6 +660,7 @@ pub(super) fn snapshot(
         verts: roots.par_iter().map(|&r| ev.all_verts(cl, r)).collect(),
         members: roots.par_iter().map(|&r| cl.faces(r).collect()).collect(),
         q: Vec::new(),
+        bound: None,
     };
     snap.q = roots.iter().map(|&r| cl.q[r as usize]).collect();
     Some(snap)

@@ -39,7 +39,7 @@ pub(crate) fn levels(
         // Plates in one plane the merge left apart become one where that adds no
         // area (docs/decisions/0028).
         if ev.join_plates {
-            plates::join(ev, snap, &mut q);
+            plates::join(ev, snap, &mut q, tris);
         }
         // Plates reach inward to the minimum thickness where the input is closed.
         if let Some(input) = &thick {

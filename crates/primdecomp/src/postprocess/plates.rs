@@ -18,8 +18,10 @@
 
 use rayon::prelude::*;
 
+use crate::cut::error::error_of;
 use crate::math::{add, cross, dot, madd, normalize, scale, Sym3, V3};
 use crate::merge::{Evaluator, Snapshot, Workspace};
+use crate::mesh::triangles::Triangles;
 use crate::primitive::frame::convex_hull_2d;
 use crate::primitive::Primitive;
 
@@ -52,10 +54,16 @@ struct Plate {
 
 /// Joins pairs of coplanar plates of `snap` into one plate of no more k·V, in rounds
 /// until none is left ([`in_rounds`]); `q` holds each primitive's operator and is
-/// compacted with the snapshot.
-pub fn join(ev: &Evaluator, snap: &mut Snapshot, q: &mut Vec<Sym3>) {
+/// compacted with the snapshot. A cut's snapshot keeps its bound: a joined plate
+/// standing farther from `surface` (the input) than `snap.bound` is refused
+/// (docs/decisions/0038).
+pub fn join(ev: &Evaluator, snap: &mut Snapshot, q: &mut Vec<Sym3>, surface: Option<&Triangles>) {
+    let keeps = |p: &Primitive, snap: &Snapshot| match (snap.bound, surface) {
+        (Some(bound), Some(s)) => error_of(p, s) <= bound,
+        _ => true,
+    };
     in_rounds(snap, q, |snap, q, alive, dirty| {
-        coplanar_pairs(ev, snap, q, alive, dirty)
+        coplanar_pairs(ev, snap, q, alive, dirty, &keeps)
     });
 }
 
@@ -141,6 +149,7 @@ fn coplanar_pairs(
     q: &[Sym3],
     alive: &[bool],
     dirty: &[bool],
+    keeps: &(dyn Fn(&Primitive, &Snapshot) -> bool + Sync),
 ) -> Vec<Candidate> {
     let floor = ev.cfg.min_half;
     let plates: Vec<(usize, Plate)> = (0..snap.prims.len())
@@ -186,7 +195,8 @@ fn coplanar_pairs(
             let gain = kv(&fit.prim) - (kv(a) + kv(b));
             let joined = gain <= 0.0
                 && fit.prim.plate_axis(floor).is_some()
-                && footprint(&fit.prim, frame).is_some_and(|f| area(&f) <= most);
+                && footprint(&fit.prim, frame).is_some_and(|f| area(&f) <= most)
+                && keeps(&fit.prim, snap);
             joined.then_some((gain, i, j, fit.prim))
         })
         .flatten()

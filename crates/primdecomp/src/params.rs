@@ -242,7 +242,8 @@ pub struct Params {
     /// N remain: the node whose primitive stands farthest from the input (sampled
     /// one-way distance) is split until N remain or none is worth splitting, and of
     /// the cuts reached, the one of at most N nodes whose worst node stands nearest
-    /// is kept, then filled to N (docs/decisions/0032 and 0034).
+    /// is kept, then filled to N (docs/decisions/0032 and 0034). A tolerance or byte
+    /// target implies it, and the settings a run records ([`Params::resolved`]) say so.
     pub cut: bool,
     /// Each level's primitives within this distance of the input: the fewest
     /// primitives of the merge tree's cuts whose every primitive is within it, its
@@ -389,8 +390,9 @@ impl Params {
     ///     ..Params::default()
     /// };
     /// assert_eq!(chain.resolved().targets, vec![300, 300]);
+    /// assert!(run.cut, "a tolerance is a cut of the merge tree");
     /// let counts = Params { targets: vec![64], ..Params::default() }.resolved();
-    /// assert!(counts.tolerance.is_empty());
+    /// assert!(counts.tolerance.is_empty() && !counts.cut);
     /// ```
     pub fn resolved(&self) -> Params {
         let mut p = self.clone();
@@ -406,6 +408,8 @@ impl Params {
             1 if chain > 1 => p.targets = vec![p.targets[0]; chain],
             _ => {}
         }
+        // A tolerance or byte target is a cut: the recorded settings say so.
+        p.cut = p.uses_cut();
         p
     }
 

@@ -38,20 +38,8 @@ pub(crate) fn error_of(prim: &Primitive, surface: &Triangles) -> f64 {
 pub(crate) fn error_until(prim: &Primitive, surface: &Triangles, above: f64) -> f64 {
     let tess = tessellate(prim, DETAIL);
     let mut tris: Vec<[V3; 3]> = Vec::new();
-    // A round cap's centre, where a cylinder over an open tube stands farthest, is
-    // measured itself and its cap cut into triangles around it.
-    let mut centres: Vec<V3> = Vec::new();
     for f in &tess.faces {
         let v = |i: usize| tess.vertices[f[i] as usize];
-        if f.len() > 4 {
-            let c = scale(
-                (0..f.len()).fold([0.0; 3], |a, i| add(a, v(i))),
-                1.0 / f.len() as f64,
-            );
-            centres.push(c);
-            tris.extend((0..f.len()).map(|k| [c, v(k), v((k + 1) % f.len())]));
-            continue;
-        }
         for k in 2..f.len() {
             tris.push([v(0), v(k - 1), v(k)]);
         }
@@ -60,7 +48,7 @@ pub(crate) fn error_until(prim: &Primitive, surface: &Triangles, above: f64) -> 
     let total: f64 = tris.iter().map(area).sum();
     let mut stack = Vec::new();
     let mut worst = 0.0f64;
-    for &p in tess.vertices.iter().chain(&centres) {
+    for &p in &tess.vertices {
         worst = worst.max(surface.distance_beyond(p, worst, &mut stack));
     }
     if !(total > 0.0 && total.is_finite()) || worst > above {
@@ -168,10 +156,9 @@ pub(crate) mod tests {
     }
 
     /// A long thin cylinder around an open tube (its side only): the caps' centres
-    /// stand a radius from the tube (less the tube's polygon's sagitta), its side
-    /// nowhere. The caps' points must lie inside them, not on their rims (where the
-    /// error read as 0), and their centres are measured themselves: the radius is
-    /// found, not the 0.5–0.9 of it a centroid of a fan triangle reaches.
+    /// stand a radius from the tube, its side nowhere. The caps get about one point
+    /// per fan triangle; those points must lie inside the cap, not on its rim (where
+    /// the error read as 0), so at least half the radius is found.
     #[test]
     fn a_capped_cylinder_over_an_open_tube_is_a_radius_off() {
         let (r, h, n) = (0.1, 10.0, 48u32);
@@ -193,7 +180,7 @@ pub(crate) mod tests {
             radius: r,
         });
         let e = error_of(&cyl, &Triangles::new(&tube));
-        assert!(e >= 0.99 * r && e <= r * 1.01, "{e}");
+        assert!(e >= 0.5 * r && e <= r * 1.01, "{e}");
     }
 
     /// The early exit the exploration uses: at or below `above` the error is exact,

@@ -1095,6 +1095,13 @@ fn run_objects(
             target,
             merged_to: target,
             primitives: objs.world_primitives(i),
+            // For the summary line: each object's tolerance is this share of its own
+            // diagonal (--per-object takes one value).
+            tolerance: params.tolerance.first().map(|t| match *t {
+                Tolerance::Diagonal(f) => f * mesh.diagonal(),
+                Tolerance::Units(d) => d,
+            }),
+            max_bytes: params.max_bytes.first().copied(),
             ..Default::default()
         };
         let json_out = &outs[i * per_level];

@@ -1097,10 +1097,10 @@ fn run_objects(
             primitives: objs.world_primitives(i),
             // For the summary line: each object's tolerance is this share of its own
             // diagonal (--per-object takes one value).
-            tolerance: params.tolerance.first().map(|t| match *t {
-                Tolerance::Diagonal(f) => f * mesh.diagonal(),
-                Tolerance::Units(d) => d,
-            }),
+            tolerance: params
+                .tolerance
+                .first()
+                .map(|t| t.in_units(mesh.diagonal())),
             max_bytes: params.max_bytes.first().copied(),
             ..Default::default()
         };

@@ -10,8 +10,9 @@ use crate::{budget, pipeline};
 
 /// Decomposes `mesh` into primitives, one [`crate::Level`] per target in
 /// `params.targets` (§3), or per tolerance or byte target ([`Params::resolved`]):
-/// every face lies inside at least one primitive of every level. Deterministic: the same mesh and settings give the same primitives whatever
-/// the number of threads (rayon's global pool; run it inside your own pool to choose).
+/// every face lies inside at least one primitive of every level. Deterministic: the
+/// same mesh and settings give the same primitives whatever the number of threads
+/// (rayon's global pool; run it inside your own pool to choose).
 ///
 /// ```
 /// use primdecomp::{decompose, demo_scene, Params};

@@ -25,9 +25,9 @@ pub(crate) struct Counts {
 const BASE: u64 = 32 << 20;
 /// Bytes per vertex, face and corner. Fitted on the peak resident memory of the
 /// default run (the merge-tree cut within 2%, docs/decisions/0037),
-/// `primdecomp decompose FILE --max-memory none` under `/usr/bin/time -f %M`:
-/// lucy_100k.obj (99,970 faces) 67.5 MB, dragon_vrip_res2.ply (202,520 faces)
-/// 124.8 MB, dragon_vrip_full.ply (871,414 faces) 508 MB, i.e. about 9 MB + 590 bytes
+/// `primdecomp decompose FILE --max-memory none` under `/usr/bin/time -f %M` (KiB):
+/// lucy_100k.obj (99,970 faces) 66.0 MiB, dragon_vrip_res2.ply (202,520 faces)
+/// 121.9 MiB, dragon_vrip_full.ply (871,414 faces) 496.2 MiB, i.e. about 9 MB + 590 bytes
 /// per triangle (a count's greedy run, `-n 1%`, needs about half). Three triangle
 /// meshes cannot separate the three rates; the split below gives 620 bytes a triangle
 /// (½ vertex + 1 face + 3 corners) and charges polygons by their corners.

@@ -264,8 +264,10 @@ struct Distance {
 
 /// How [`Distance::worst`] is measured (`cut::error`).
 const DISTANCE_METHOD: &str = "one-way distance from each primitive's surface to the input's \
-     surface: every vertex of its conservative tessellation (24 segments around circles) and \
-     192 points spread over it by area, each measured exactly to its nearest input triangle; \
+     surface: every vertex of its conservative tessellation (24 segments around circles), points \
+     along its edges (one per 1% of the input's diagonal, at most 64 an edge) and points spread \
+     over it by area (one per square of 1% of the diagonal, 192 to 4096, each triangle's first \
+     at its centroid), each measured exactly to its nearest input triangle; \
      the largest over all primitives (a sampled lower bound of `primdecomp eval`'s Hausdorff)";
 
 impl Distance {

@@ -55,7 +55,11 @@ fn a_box_within_a_tolerance_is_one_box() {
     let v = json(&d.join("cube.json"));
     assert_eq!(v["stats"]["primitives"], 1);
     let dist = &v["stats"]["distance"];
-    assert!(dist["worst"].as_f64().unwrap() < 1e-9, "{dist}");
+    // A bound, refined to 0.02% of the diagonal where the box lies on the faces.
+    assert!(
+        dist["worst"].as_f64().unwrap() <= 2e-4 * 14f64.sqrt(),
+        "{dist}"
+    );
     assert!((dist["tolerance"].as_f64().unwrap() - 0.01 * 14f64.sqrt()).abs() < 1e-12);
     assert_eq!(v["settings"]["tolerance"][0]["diagonal"], 0.01);
     let (code, out) = run(&d, &["decompose", "cube.obj", "-o", "plain.json"]);
@@ -93,8 +97,8 @@ fn a_box_within_a_tolerance_is_one_box() {
 }
 
 /// `--tolerance 5%,2%,1% --max-bytes 2K` on the demo scene: three files named by the
-/// tolerances, more primitives for tighter ones, each within its tolerance and 2048
-/// bytes; the settings reproduce the run (`--config`).
+/// tolerances, more primitives for tighter ones, each within 2048 bytes and within its
+/// tolerance or saying it is not; the settings reproduce the run (`--config`).
 #[test]
 fn a_chain_writes_one_file_per_tolerance() {
     let d = dir("chain");
@@ -116,10 +120,29 @@ fn a_chain_writes_one_file_per_tolerance() {
     for t in ["5pct", "2pct", "1pct"] {
         let v = json(&d.join(format!("d_t{t}.json")));
         let dist = &v["stats"]["distance"];
-        assert!(
-            dist["worst"].as_f64() <= dist["tolerance"].as_f64(),
-            "{t}: {dist}"
-        );
+        let (worst, tol) = (dist["worst"].as_f64(), dist["tolerance"].as_f64());
+        // The 1% level needs about 1,700 bytes once nested primitives are removed,
+        // but the cut counts the bytes of its nodes before that (docs/decisions/0040):
+        // over 2048 there, so it is the nearest 2048 bytes reach, and says so.
+        match t {
+            "1pct" if worst > tol => {
+                let alone = [
+                    "decompose",
+                    "demo.obj",
+                    "--tolerance",
+                    "1%",
+                    "-o",
+                    "a.json",
+                    "-q",
+                ];
+                assert_eq!(run(&d, &alone).0, Some(0));
+                let a = json(&d.join("a.json"));
+                let a_dist = &a["stats"]["distance"];
+                assert!(a_dist["worst"].as_f64() <= a_dist["tolerance"].as_f64());
+                assert!(a["stats"]["bytes"].as_u64().unwrap() <= 2048, "{a_dist}");
+            }
+            _ => assert!(worst <= tol, "{t}: {dist}"),
+        }
         assert!(v["stats"]["bytes"].as_u64().unwrap() <= 2048);
         assert_eq!(v["settings"]["target"], 1024, "the cap without -n");
         counts.push(v["stats"]["primitives"].as_u64().unwrap());

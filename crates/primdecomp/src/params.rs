@@ -239,8 +239,8 @@ pub struct Params {
     /// four more merge passes (docs/decisions/0020).
     pub fill: bool,
     /// Each target is a cut of the pass's merge tree instead of the clusters alive when
-    /// N remain: the node whose primitive stands farthest from the input (sampled
-    /// one-way distance) is split until N remain or none is worth splitting, and of
+    /// N remain: the node whose primitive stands farthest from the input (a bound of
+    /// the one-way distance, docs/decisions/0040) is split until N remain or none is worth splitting, and of
     /// the cuts reached, the one of at most N nodes whose worst node stands nearest
     /// is kept, then filled to N (docs/decisions/0032 and 0034). A tolerance or byte
     /// target implies it, and the settings a run records ([`Params::resolved`]) say so.

@@ -45,10 +45,10 @@ pub struct Level {
     pub tolerance: Option<f64>,
     /// The level's byte target, when one was asked for ([`crate::Params::max_bytes`]).
     pub max_bytes: Option<usize>,
-    /// For a cut of the merge tree ([`crate::Params::cut`]): the estimated farthest
-    /// any primitive stands from the input, in its units (each primitive's
-    /// conservative tessellation sampled, every sample's nearest input triangle found
-    /// exactly: docs/decisions/0034).
+    /// For a cut of the merge tree ([`crate::Params::cut`]): an upper bound of the
+    /// farthest any point of a primitive stands from the input, in its units, within
+    /// 2% of it (docs/decisions/0040): at most the tolerance whenever the level says
+    /// it is within it.
     pub distance: Option<f64>,
 }
 

@@ -1,121 +1,322 @@
 //! A node's error: the one-way distance from its primitive's surface to the input's
 //! surface, the quantity `primdecomp eval` reports as Hausdorff (there over the union
-//! of the output; here over one primitive, so an upper bound of its share). Estimated
-//! by sampling: the primitive's conservative tessellation (`export::tessellate`), its
-//! vertices, points along its faces' edges and points on each triangle in proportion
-//! to area (the first at its centroid; docs/decisions/0036), each measured to the
+//! of the output; here over one primitive, so an upper bound of its share). Bounded,
+//! not sampled (docs/decisions/0040): the primitive's conservative tessellation
+//! (`export::tessellate`) is cut into triangles and refined best-first, the triangle
+//! of largest bound cut in two across its longest edge. The distance to the input is
+//! 1-Lipschitz, so over a triangle it is at most its centroid's distance plus the
+//! centroid's farthest vertex; and the distance to one triangle is convex, so over a
+//! triangle it is at most the largest of its vertices' distances to the input
+//! triangle nearest its centroid (tight where a face lies flush on the input).
+//! Centroids and vertices measured give lower bounds; a round primitive's own surface
+//! lies within a known gap of its tessellation, which is added. Measured to the
 //! nearest input triangle anywhere in the mesh (`mesh::triangles`): the whole mesh, as
 //! eval measures, not only the node's faces, so a primitive lying on another part's
 //! surface is not charged for it, and one hierarchy serves every node.
 
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+use rayon::prelude::*;
+
 use crate::export::tessellate;
-use crate::math::{add, cross, norm, scale, sub, V3};
+use crate::math::bvh::point_segment_dist2;
+use crate::math::{add, norm, scale, sub, V3};
 use crate::mesh::triangles::Triangles;
 use crate::primitive::Primitive;
 
 /// Segments around circles of the tessellation (its polygons stand at most
-/// 1/cos(π/24) − 1 ≈ 0.9% of a radius outside a round primitive).
+/// 1/cos(π/24) − 1 ≈ 0.9% of a radius outside a round primitive, its balls' about
+/// 1.7%),
 const DETAIL: usize = 24;
-/// Points spread over the primitive's surface in proportion to area (plus every
-/// vertex of its tessellation): at least this many,
-const SAMPLES: usize = 192;
-/// and one per square of this fraction of the mesh's diagonal on a side, up to
-/// [`MAX_SAMPLES`]: a fixed count left points 0.06 of the diagonal apart on a large
-/// plate, where the farthest point went unmeasured (docs/decisions/0036).
-const SPACING: f64 = 0.01;
-const MAX_SAMPLES: usize = 4096;
-/// Points along one edge of the tessellation's faces, at most (one per spacing).
-const EDGE_SAMPLES: usize = 64;
+/// doubled (at most twice) until that is at most this fraction of the diagonal.
+const GAP: f64 = 1e-3;
+/// The bound is refined until it is within this fraction of the largest distance
+/// measured,
+const RELATIVE: f64 = 0.02;
+/// or within this fraction of the mesh's diagonal,
+const ABSOLUTE: f64 = 2e-4;
+/// or this many triangles have been split (then the bound, looser, stands).
+const MAX_SPLITS: usize = 16384;
+/// A level's search over all its primitives may split [`MAX_SPLITS`] times as many
+/// times as it has primitives (what deciding each of them may take), at least
+/// [`LEVEL_SPLITS`].0 and at most [`LEVEL_SPLITS`].1 times: each split keeps one more
+/// triangle (88 bytes) until the search ends, so at most about 90 MiB.
+const LEVEL_SPLITS: (usize, usize) = (4, 64);
 
-/// The estimated error of `prim` (0 for an empty surface).
+/// An upper bound of the error of `prim` (0 for an empty surface), within
+/// [`RELATIVE`] of it or [`ABSOLUTE`] of the diagonal.
+#[cfg(test)]
 pub(crate) fn error_of(prim: &Primitive, surface: &Triangles) -> f64 {
-    error_until(prim, surface, f64::INFINITY)
+    error_until(prim, surface, Ask::exact(0.0))
 }
 
-/// [`error_of`] while it is at most `above`; past that, the running maximum as soon
-/// as it exceeds `above`: a lower bound of the error, enough to know it is over.
-/// Either way the result is over `above` exactly when [`error_of`]'s is.
-pub(crate) fn error_until(prim: &Primitive, surface: &Triangles, above: f64) -> f64 {
-    let tess = tessellate(prim, DETAIL);
-    let mut tris: Vec<[V3; 3]> = Vec::new();
+/// Whether `prim` is certainly within `bound` of the input, found with no more
+/// refinement than that answer needs.
+pub(crate) fn is_within(prim: &Primitive, surface: &Triangles, bound: f64) -> bool {
+    let ask = Ask {
+        level: bound,
+        above: bound,
+        coarse: true,
+    };
+    error_until(prim, surface, ask) <= bound
+}
+
+/// How far to refine [`error_until`]'s bound.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Ask {
+    /// A bound near `level` is refined until it is on one side of it (or the
+    /// refinement runs out): at most `level` only if the error is, and over it only
+    /// if the error is over it or the error is within [`RELATIVE`] of `level` and
+    /// bounds could not tell.
+    pub level: f64,
+    /// Once a point is found over `above`, its distance is returned (a lower bound).
+    pub above: f64,
+    /// Once the bound is at most `level`, it is returned (some upper bound at most
+    /// `level`, not refined further).
+    pub coarse: bool,
+}
+
+impl Ask {
+    /// Refined to [`RELATIVE`] (and settled against `level`), no early exit.
+    pub(crate) fn exact(level: f64) -> Ask {
+        Ask {
+            level,
+            above: f64::INFINITY,
+            coarse: false,
+        }
+    }
+}
+
+/// An upper bound of the error of `prim`, refined best-first as `ask` says. Results
+/// at most `ask.level` mean the error is; results over `ask.above` mean it is over.
+pub(crate) fn error_until(prim: &Primitive, surface: &Triangles, ask: Ask) -> f64 {
+    let mut search = Search::new(surface);
+    let start = search.start(prim);
+    search.take(start);
+    search.run(ask, MAX_SPLITS)
+}
+
+/// The largest error of `prims` (0 for none), as [`error_of`] would give it for the
+/// worst of them, settled against `level` ([`Ask::exact`]): one search over all
+/// their surfaces, so that only the parts near the largest are refined.
+pub(crate) fn worst_error(prims: &[Primitive], surface: &Triangles, level: f64) -> f64 {
+    let starts: Vec<Start> = prims
+        .par_iter()
+        .map(|p| Search::new(surface).start(p))
+        .collect();
+    let mut search = Search::new(surface);
+    for s in starts {
+        search.take(s);
+    }
+    let times = prims.len().clamp(LEVEL_SPLITS.0, LEVEL_SPLITS.1);
+    search.run(Ask::exact(level), MAX_SPLITS * times)
+}
+
+/// A best-first search for the largest distance over a set of triangles: the cells
+/// by bound, the largest distance measured, the splits made.
+struct Search<'a> {
+    surface: &'a Triangles,
+    heap: BinaryHeap<Cell>,
+    low: f64,
+    splits: usize,
+    stack: Vec<(f64, u32)>,
+}
+
+/// A primitive's cells and the largest distance measured on them.
+struct Start {
+    cells: Vec<Cell>,
+    low: f64,
+}
+
+impl<'a> Search<'a> {
+    fn new(surface: &'a Triangles) -> Self {
+        Search {
+            surface,
+            heap: BinaryHeap::new(),
+            low: 0.0,
+            splits: 0,
+            stack: Vec::new(),
+        }
+    }
+
+    /// `prim`'s tessellation's vertices measured and its triangles as cells.
+    fn start(&mut self, prim: &Primitive) -> Start {
+        let (tess, gap) = tessellation(prim, self.surface.diagonal);
+        let mut low = 0.0f64;
+        for &p in &tess.vertices {
+            low = low.max(self.surface.distance_beyond(p, low, &mut self.stack) + gap);
+        }
+        let cells = triangles(&tess)
+            .into_iter()
+            .map(|t| {
+                let first = (f64::INFINITY, gap);
+                let (cell, d) = Cell::measure(t, first, self.surface, &mut self.stack);
+                low = low.max(d);
+                cell
+            })
+            .collect();
+        Start { cells, low }
+    }
+
+    fn take(&mut self, s: Start) {
+        self.low = self.low.max(s.low);
+        self.heap.extend(s.cells);
+    }
+
+    /// Splits the worst cell until `ask` is answered or `max_splits` are made; the
+    /// bound then (or the distance found over `ask.above`).
+    fn run(&mut self, ask: Ask, max_splits: usize) -> f64 {
+        let slack = ABSOLUTE * self.surface.diagonal;
+        while let Some(top) = self.heap.peek() {
+            let (low, bound) = (self.low, top.bound.max(self.low));
+            if low > ask.above {
+                return low;
+            }
+            if ask.coarse && bound <= ask.level {
+                return bound;
+            }
+            // Close enough, unless the bound is still undecided about `level`.
+            let undecided = low <= ask.level && ask.level < bound;
+            let close = bound <= low + slack.max(RELATIVE * low);
+            if (close && !undecided) || self.splits == max_splits {
+                return bound;
+            }
+            let Cell { bound, tri, gap } = self.heap.pop().expect("peeked");
+            self.splits += 1;
+            for t in halves(&tri) {
+                let from = (bound, gap);
+                let (cell, d) = Cell::measure(t, from, self.surface, &mut self.stack);
+                self.low = self.low.max(d);
+                self.heap.push(cell);
+            }
+        }
+        self.low
+    }
+}
+
+/// A triangle of the tessellation with an upper bound of the distance over it.
+struct Cell {
+    bound: f64,
+    tri: [V3; 3],
+    /// Added to its distances: how far the primitive's own surface may lie inside
+    /// its tessellation ([`rounding`]).
+    gap: f64,
+}
+
+impl Cell {
+    /// `t` with its bound (at most its parent's, `parent`) and its centroid's
+    /// distance to the input, each plus `gap`.
+    fn measure(
+        t: [V3; 3],
+        (parent, gap): (f64, f64),
+        surface: &Triangles,
+        stack: &mut Vec<(f64, u32)>,
+    ) -> (Cell, f64) {
+        let c = scale(add(add(t[0], t[1]), t[2]), 1.0 / 3.0);
+        let (d, nearest) = surface.nearest(c, stack);
+        let reach = t.iter().map(|&v| norm(sub(v, c))).fold(0.0, f64::max);
+        let flush = t
+            .iter()
+            .map(|&v| surface.distance_to(v, nearest))
+            .fold(0.0, f64::max);
+        let bound = ((d + reach).min(flush) + gap).min(parent);
+        (Cell { bound, tri: t, gap }, d + gap)
+    }
+}
+
+impl PartialEq for Cell {
+    fn eq(&self, o: &Self) -> bool {
+        self.cmp(o) == Ordering::Equal
+    }
+}
+impl Eq for Cell {}
+impl PartialOrd for Cell {
+    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
+        Some(self.cmp(o))
+    }
+}
+impl Ord for Cell {
+    /// The largest bound first (ties in insertion order's heap order: deterministic).
+    fn cmp(&self, o: &Self) -> Ordering {
+        self.bound.total_cmp(&o.bound)
+    }
+}
+
+/// `prim`'s tessellation fine enough that its [`rounding`] is at most [`GAP`] of the
+/// diagonal (or as fine as [`DETAIL`] × 4), and that rounding.
+fn tessellation(prim: &Primitive, diagonal: f64) -> (crate::export::Tess, f64) {
+    let mut k = DETAIL;
+    loop {
+        let tess = tessellate(prim, k);
+        let gap = rounding(prim, &tess, k);
+        if gap <= GAP * diagonal || k >= 4 * DETAIL {
+            return (tess, gap);
+        }
+        k *= 2;
+    }
+}
+
+/// How far a point of a round primitive's surface may be from its tessellation,
+/// which circumscribes it (0 for boxes and prisms, which it is): the surface `eval`
+/// samples is the primitive's own, and the distance is 1-Lipschitz, so adding this
+/// bounds that surface's distance too. Each point of a ball or capsule lies on the
+/// ray from its core out through the tessellation, which lies within its farthest
+/// vertex; a cylinder's or frustum's side within 1/cos(π/k) of its radius.
+fn rounding(prim: &Primitive, tess: &crate::export::Tess, k: usize) -> f64 {
+    let circ = 1.0 / (std::f64::consts::PI / k as f64).cos();
+    let beyond = |p0: V3, p1: V3, r: f64| {
+        let far = tess
+            .vertices
+            .iter()
+            .map(|&v| point_segment_dist2(v, p0, p1));
+        far.fold(0.0, f64::max).sqrt() - r
+    };
+    match *prim {
+        Primitive::Box(_) | Primitive::Prism(_) => 0.0,
+        Primitive::Sphere(s) => beyond(s.center, s.center, s.radius),
+        Primitive::Capsule(c) => beyond(c.p0, c.p1, c.radius),
+        Primitive::Cylinder(c) => c.radius * (circ - 1.0),
+        Primitive::Frustum(f) => f.r0.max(f.r1) * (circ - 1.0),
+    }
+    .max(0.0)
+}
+
+/// The tessellation's faces as triangles: quads and triangles fanned from their first
+/// vertex, larger polygons (round caps) from their centre, so that no triangle is a
+/// sliver across the cap.
+fn triangles(tess: &crate::export::Tess) -> Vec<[V3; 3]> {
+    let mut tris = Vec::new();
     for f in &tess.faces {
         let v = |i: usize| tess.vertices[f[i] as usize];
-        for k in 2..f.len() {
-            tris.push([v(0), v(k - 1), v(k)]);
+        if f.len() <= 4 {
+            tris.extend((2..f.len()).map(|k| [v(0), v(k - 1), v(k)]));
+            continue;
         }
+        let sum = (0..f.len()).fold([0.0; 3], |s, i| add(s, v(i)));
+        let centre = scale(sum, 1.0 / f.len() as f64);
+        tris.extend((0..f.len()).map(|i| [centre, v(i), v((i + 1) % f.len())]));
     }
-    let area = |t: &[V3; 3]| 0.5 * norm(cross(sub(t[1], t[0]), sub(t[2], t[0])));
-    let total: f64 = tris.iter().map(area).sum();
-    let mut stack = Vec::new();
-    let mut worst = 0.0f64;
-    for &p in &tess.vertices {
-        worst = worst.max(surface.distance_beyond(p, worst, &mut stack));
-    }
-    if !(total > 0.0 && total.is_finite()) || worst > above {
-        return worst;
-    }
-    let spacing = SPACING * surface.diagonal;
-    // Along every edge of the tessellation's faces (once, though two faces share
-    // it), where a box stands farthest from a surface curving away under it
-    // (docs/decisions/0036).
-    let mut edges: Vec<(u32, u32)> = tess
-        .faces
-        .iter()
-        .flat_map(|f| (0..f.len()).map(|i| (f[i], f[(i + 1) % f.len()])))
-        .map(|(a, b)| (a.min(b), a.max(b)))
-        .collect();
-    edges.sort_unstable();
-    edges.dedup();
-    for (a, b) in edges {
-        let (a, b) = (tess.vertices[a as usize], tess.vertices[b as usize]);
-        let k = ((norm(sub(b, a)) / spacing).ceil() as usize).min(EDGE_SAMPLES);
-        for j in 0..k {
-            let p = add(a, scale(sub(b, a), (j as f64 + 0.5) / k as f64));
-            worst = worst.max(surface.distance_beyond(p, worst, &mut stack));
-        }
-        if worst > above {
-            return worst;
-        }
-    }
-    let wanted = (total / (spacing * spacing)).ceil();
-    let samples = wanted.clamp(SAMPLES as f64, MAX_SAMPLES as f64) as usize;
-    for t in &tris {
-        let k = (samples as f64 * area(t) / total).ceil() as usize;
-        for i in 0..k.min(samples) {
-            worst = worst.max(surface.distance_beyond(point_on(t, i), worst, &mut stack));
-        }
-        if worst > above {
-            return worst;
-        }
-    }
-    worst
+    tris
 }
 
-/// The `i`-th point of a low-discrepancy sequence (Roberts' R2) on triangle `t`,
-/// folded into it, the first at its centroid (starting at (½, ½) put it on an edge:
-/// a cap's fan triangles given one point each left the cap's centre unmeasured);
-/// deterministic.
-fn point_on(t: &[V3; 3], i: usize) -> V3 {
-    const G1: f64 = 0.754_877_666_246_692_7;
-    const G2: f64 = 0.569_840_290_998_053_3;
-    const THIRD: f64 = 1.0 / 3.0;
-    let (mut u, mut v) = (
-        (THIRD + G1 * i as f64).fract(),
-        (THIRD + G2 * i as f64).fract(),
-    );
-    if u + v > 1.0 {
-        (u, v) = (1.0 - u, 1.0 - v);
-    }
-    add(
-        t[0],
-        add(scale(sub(t[1], t[0]), u), scale(sub(t[2], t[0]), v)),
-    )
+/// `t` cut in two across its longest edge, at its midpoint: slivers (a cylinder's
+/// side facets, fan triangles) become well-shaped as they are cut, instead of
+/// staying slivers four times as many.
+fn halves(t: &[V3; 3]) -> [[V3; 3]; 2] {
+    let len = |i: usize| norm(sub(t[(i + 1) % 3], t[i]));
+    let i = (0..3).fold(0, |b, i| if len(i) > len(b) { i } else { b });
+    let (a, b, c) = (t[i], t[(i + 1) % 3], t[(i + 2) % 3]);
+    let m = scale(add(a, b), 0.5);
+    [[a, m, c], [m, b, c]]
 }
 
 #[cfg(test)]
 pub(crate) mod tests {
     use super::*;
     use crate::primitive::Primitive;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
 
     fn unit_box(half: V3) -> Primitive {
         Primitive::Box(crate::primitive::obb::Obb {
@@ -125,14 +326,22 @@ pub(crate) mod tests {
         })
     }
 
+    /// The most a bound of a true error `e` may stand above it on `surface`.
+    fn loose(e: f64, surface: &Triangles) -> f64 {
+        e * (1.0 + RELATIVE) + ABSOLUTE * surface.diagonal + 1e-12
+    }
+
     /// A box's error against its own surface is 0; against a smaller box inside it,
-    /// the distance of its farthest point (a corner: √3 × the gap).
+    /// the distance of its farthest point (a corner: √3 × the gap). The bound is at
+    /// least that and within the refinement's precision of it.
     #[test]
     fn a_box_is_as_far_as_its_farthest_corner() {
         let inner = Triangles::new(&cube_mesh(1.0));
-        assert!(error_of(&unit_box([1.0; 3]), &inner) < 1e-12);
+        let e = error_of(&unit_box([1.0; 3]), &inner);
+        assert!(e <= loose(0.0, &inner), "{e}");
+        let truth = 0.5 * 3f64.sqrt();
         let e = error_of(&unit_box([1.5; 3]), &inner);
-        assert!((e - 0.5 * 3f64.sqrt()).abs() < 1e-12, "{e}");
+        assert!(e >= truth - 1e-12 && e <= loose(truth, &inner), "{e}");
     }
 
     /// A closed cube of half-extent `h` about the origin, as quads.
@@ -156,9 +365,9 @@ pub(crate) mod tests {
     }
 
     /// A long thin cylinder around an open tube (its side only): the caps' centres
-    /// stand a radius from the tube, its side nowhere. The caps get about one point
-    /// per fan triangle; those points must lie inside the cap, not on its rim (where
-    /// the error read as 0), so at least half the radius is found.
+    /// stand about a radius from the tube (r·cos(π/n) from its flat faces), its side
+    /// nowhere. A sampled estimate read 0.00086 here (docs/decisions/0036); the bound
+    /// must be at least that.
     #[test]
     fn a_capped_cylinder_over_an_open_tube_is_a_radius_off() {
         let (r, h, n) = (0.1, 10.0, 48u32);
@@ -179,36 +388,161 @@ pub(crate) mod tests {
             p1: [0.0, 0.0, h / 2.0],
             radius: r,
         });
-        let e = error_of(&cyl, &Triangles::new(&tube));
-        assert!(e >= 0.5 * r && e <= r * 1.01, "{e}");
+        let surface = Triangles::new(&tube);
+        let e = error_of(&cyl, &surface);
+        let truth = r * (std::f64::consts::PI / n as f64).cos();
+        assert!(
+            e >= truth && e <= loose(r, &surface) + GAP * surface.diagonal,
+            "{e}"
+        );
     }
 
-    /// The early exit the exploration uses: at or below `above` the error is exact,
-    /// over it only known to be over (a lower bound, never above the error itself),
-    /// for boxes of several sizes around a cube and levels below, at and above them.
+    /// What each `Ask` promises, for boxes of several sizes around a cube (the true
+    /// error is the corner's, |h − 1|·√5 for half extents (h, 1, 2h − 1)) and levels
+    /// below, at and above it: a result at most `level` means the error is, a result
+    /// over `above` that it is over, and otherwise the result bounds it from above.
     #[test]
-    fn an_early_exit_is_exact_below_its_level_and_over_it_above() {
+    fn each_ask_keeps_its_promise() {
         let inner = Triangles::new(&cube_mesh(1.0));
         for half in [1.0, 1.01, 1.2, 1.5, 3.0] {
             let prim = unit_box([half, 1.0, 2.0 * half - 1.0]);
-            let exact = error_of(&prim, &inner);
-            for above in [0.0, 0.5 * exact, exact, 2.0 * exact + 0.1] {
-                let e = error_until(&prim, &inner, above);
-                assert_eq!(e > above, exact > above, "{half} {above}");
-                match exact <= above {
-                    true => assert_eq!(e, exact),
-                    false => assert!(e <= exact, "{e} > {exact}"),
+            let truth = (half - 1.0).abs() * 5f64.sqrt();
+            let levels = [0.0, 0.5 * truth, truth, 1.001 * truth, 2.0 * truth + 0.1];
+            for level in levels {
+                for above in [level, 2.0 * level + 0.1, f64::INFINITY] {
+                    for coarse in [false, true] {
+                        let ask = Ask {
+                            level,
+                            above,
+                            coarse,
+                        };
+                        let e = error_until(&prim, &inner, ask);
+                        let at = format!("{half} {level} {above} {coarse}: {e} ({truth})");
+                        match e > above {
+                            true => assert!(truth > above, "{at}"),
+                            false => assert!(e >= truth - 1e-12, "{at}"),
+                        }
+                        if !coarse && e <= above {
+                            assert!(e <= loose(truth, &inner).max(level), "{at}");
+                        }
+                    }
                 }
             }
         }
     }
 
+    /// Independent of the bound's own reasoning: no point of the primitive's surface,
+    /// drawn at random on its analytic surface or the tessellation the bound refines
+    /// (`tessellation`), stands farther from
+    /// the demo scene than the bound says, for primitives of every kind placed about
+    /// the scene at random.
     #[test]
-    fn points_stay_on_the_triangle() {
-        let t = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
-        for i in 0..100 {
-            let p = point_on(&t, i);
-            assert!(p[0] >= 0.0 && p[1] >= 0.0 && p[0] + p[1] <= 1.0 + 1e-12);
+    fn no_sampled_point_is_beyond_the_bound() {
+        let mesh = crate::demo::demo_scene();
+        let surface = Triangles::new(&mesh);
+        let mut rng = ChaCha8Rng::seed_from_u64(7);
+        let mut stack = Vec::new();
+        let d = mesh.diagonal();
+        for i in 0..36 {
+            let mut v = || std::array::from_fn(|_| rng.gen_range(-0.3..0.3) * d);
+            let (p0, p1, size) = (v(), v(), [0.05 * d, 0.1 * d, 0.2 * d][i % 3]);
+            let prim = random_primitive(i % 6, p0, p1, size);
+            let bound = error_of(&prim, &surface);
+            let (tess, _) = tessellation(&prim, surface.diagonal);
+            for t in triangles(&tess) {
+                for _ in 0..64 {
+                    let (mut a, mut b): (f64, f64) = (rng.gen(), rng.gen());
+                    if a + b > 1.0 {
+                        (a, b) = (1.0 - a, 1.0 - b);
+                    }
+                    let p = add(
+                        t[0],
+                        add(scale(sub(t[1], t[0]), a), scale(sub(t[2], t[0]), b)),
+                    );
+                    let on = surface_point(&prim, p);
+                    for q in [p, on] {
+                        let dq = surface.distance(q, &mut stack);
+                        assert!(dq <= bound + 1e-9 * d, "{prim:?}: {dq} > {bound}");
+                    }
+                }
+            }
+        }
+    }
+
+    /// A primitive of kind `k` (box, sphere, capsule, cylinder, frustum, prism) from
+    /// two points and a size.
+    fn random_primitive(k: usize, p0: V3, p1: V3, size: f64) -> Primitive {
+        use crate::primitive::{capsule, cylinder, frustum, prism, sphere};
+        let q = [p0[0], p0[1], p1[0], p1[2]];
+        let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let axes = crate::math::quat::axes_from_quat(q.map(|x| x / n));
+        match k {
+            0 => Primitive::Box(crate::primitive::obb::Obb {
+                center: p0,
+                axes,
+                half: [size, 0.5 * size, 0.02 * size],
+            }),
+            1 => Primitive::Sphere(sphere::Sphere {
+                center: p0,
+                radius: size,
+            }),
+            2 => Primitive::Capsule(capsule::Capsule {
+                p0,
+                p1,
+                radius: size,
+            }),
+            3 => Primitive::Cylinder(cylinder::Cylinder {
+                p0,
+                p1,
+                radius: size,
+            }),
+            4 => Primitive::Frustum(frustum::Frustum {
+                p0,
+                p1,
+                r0: size,
+                r1: 0.3 * size,
+            }),
+            _ => Primitive::Prism(prism::Prism {
+                center: p0,
+                axes,
+                hx: size,
+                hy: 0.5 * size,
+                hz_top: 0.3 * size,
+                hz_bottom: 0.8 * size,
+            }),
+        }
+    }
+
+    /// The point of `prim`'s own surface nearest `p` (a point of its tessellation,
+    /// outside it): along the normal back from `p` for the round kinds, `p` itself
+    /// for boxes and prisms, whose tessellation is their surface.
+    fn surface_point(prim: &Primitive, p: V3) -> V3 {
+        let toward = |c: V3, r: f64| {
+            let v = sub(p, c);
+            let n = norm(v);
+            if n > 0.0 {
+                add(c, scale(v, r.min(n) / n))
+            } else {
+                p
+            }
+        };
+        let on_axis = |a: V3, b: V3| {
+            let ab = sub(b, a);
+            let t = (crate::math::dot(sub(p, a), ab) / crate::math::dot(ab, ab)).clamp(0.0, 1.0);
+            add(a, scale(ab, t))
+        };
+        match *prim {
+            Primitive::Sphere(s) => toward(s.center, s.radius),
+            Primitive::Capsule(c) => toward(on_axis(c.p0, c.p1), c.radius),
+            Primitive::Cylinder(c) => toward(on_axis(c.p0, c.p1), c.radius),
+            // A frustum's radius varies along it: the side's point at the same height.
+            Primitive::Frustum(f) => {
+                let a = on_axis(f.p0, f.p1);
+                let ab = sub(f.p1, f.p0);
+                let t = norm(sub(a, f.p0)) / norm(ab);
+                toward(a, f.r0 + (f.r1 - f.r0) * t)
+            }
+            Primitive::Box(_) | Primitive::Prism(_) => p,
         }
     }
 }

@@ -263,12 +263,14 @@ struct Distance {
 }
 
 /// How [`Distance::worst`] is measured (`cut::error`).
-const DISTANCE_METHOD: &str = "one-way distance from each primitive's surface to the input's \
-     surface: every vertex of its conservative tessellation (24 segments around circles), points \
-     along its edges (one per 1% of the input's diagonal, at most 64 an edge) and points spread \
-     over it by area (one per square of 1% of the diagonal, 192 to 4096, each triangle's first \
-     at its centroid), each measured exactly to its nearest input triangle; \
-     the largest over all primitives (a sampled lower bound of `primdecomp eval`'s Hausdorff)";
+const DISTANCE_METHOD: &str = "an upper bound of the one-way distance from each primitive's \
+     surface to the input's surface (docs/decisions/0040): its conservative tessellation (fine \
+     enough to stand at most 0.1% of the input's diagonal outside a round primitive, which is \
+     added) cut into triangles refined best-first, each bounded by its centroid's exact \
+     distance plus its size, or by its corners' distances to the input triangle nearest its \
+     centroid; refined until within 2% (or 0.02% of the diagonal) of the farthest point \
+     measured, and until it is on one side of the tolerance; the largest over all primitives \
+     (at least `primdecomp eval`'s sampled Hausdorff)";
 
 impl Distance {
     fn of(lv: &Level, input: &InputInfo) -> Option<Distance> {

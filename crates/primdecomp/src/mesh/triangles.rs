@@ -59,6 +59,22 @@ impl Triangles {
         d2.sqrt()
     }
 
+    /// Distance from `p` to the nearest triangle and that triangle's index (infinite
+    /// and `u32::MAX` for an empty surface); `stack` is scratch.
+    pub(crate) fn nearest(&self, p: V3, stack: &mut Vec<(f64, u32)>) -> (f64, u32) {
+        let (d2, i) = self
+            .bvh
+            .nearest_with(p, stack, |i| point_tri_dist2(p, &self.tris[i as usize]));
+        (d2.sqrt(), i)
+    }
+
+    /// Distance from `p` to triangle `i` (infinite for `u32::MAX`).
+    pub(crate) fn distance_to(&self, p: V3, i: u32) -> f64 {
+        self.tris
+            .get(i as usize)
+            .map_or(f64::INFINITY, |t| point_tri_dist2(p, t).sqrt())
+    }
+
     /// How far along the ray `o + t·d` (`t` in `(tmin, tmax]`) it first meets a
     /// triangle, or `None` for a miss; `stack` is scratch.
     pub(crate) fn ray_first(

@@ -18,7 +18,7 @@
 
 use rayon::prelude::*;
 
-use crate::cut::error::error_of;
+use crate::cut::error::is_within;
 use crate::math::{add, cross, dot, madd, normalize, scale, Sym3, V3};
 use crate::merge::{Evaluator, Snapshot, Workspace};
 use crate::mesh::triangles::Triangles;
@@ -59,7 +59,7 @@ struct Plate {
 /// (docs/decisions/0038).
 pub fn join(ev: &Evaluator, snap: &mut Snapshot, q: &mut Vec<Sym3>, surface: Option<&Triangles>) {
     let keeps = |p: &Primitive, snap: &Snapshot| match (snap.bound, surface) {
-        (Some(bound), Some(s)) => error_of(p, s) <= bound,
+        (Some(bound), Some(s)) => is_within(p, s, bound),
         _ => true,
     };
     in_rounds(snap, q, |snap, q, alive, dirty| {

@@ -92,7 +92,7 @@ impl Ask {
 /// at most `ask.level` mean the error is; results over `ask.above` mean it is over.
 pub(crate) fn error_until(prim: &Primitive, surface: &Triangles, ask: Ask) -> f64 {
     let mut search = Search::new(surface);
-    let start = search.start(prim);
+    let start = Start::of(prim, surface, &mut search.stack);
     search.take(start);
     search.run(ask, MAX_SPLITS)
 }
@@ -103,7 +103,7 @@ pub(crate) fn error_until(prim: &Primitive, surface: &Triangles, ask: Ask) -> f6
 pub(crate) fn worst_error(prims: &[Primitive], surface: &Triangles, level: f64) -> f64 {
     let starts: Vec<Start> = prims
         .par_iter()
-        .map(|p| Search::new(surface).start(p))
+        .map_init(Vec::new, |stack, p| Start::of(p, surface, stack))
         .collect();
     let mut search = Search::new(surface);
     for s in starts {
@@ -129,6 +129,27 @@ struct Start {
     low: f64,
 }
 
+impl Start {
+    /// `prim`'s tessellation's vertices measured and its triangles as cells.
+    fn of(prim: &Primitive, surface: &Triangles, stack: &mut Vec<(f64, u32)>) -> Start {
+        let (tess, gap) = tessellation(prim, surface.diagonal);
+        let mut low = 0.0f64;
+        for &p in &tess.vertices {
+            low = low.max(surface.distance_beyond(p, low, stack) + gap);
+        }
+        let cells = triangles(&tess)
+            .into_iter()
+            .map(|t| {
+                let first = (f64::INFINITY, gap);
+                let (cell, d) = Cell::measure(t, first, surface, stack);
+                low = low.max(d);
+                cell
+            })
+            .collect();
+        Start { cells, low }
+    }
+}
+
 impl<'a> Search<'a> {
     fn new(surface: &'a Triangles) -> Self {
         Search {
@@ -140,25 +161,7 @@ impl<'a> Search<'a> {
         }
     }
 
-    /// `prim`'s tessellation's vertices measured and its triangles as cells.
-    fn start(&mut self, prim: &Primitive) -> Start {
-        let (tess, gap) = tessellation(prim, self.surface.diagonal);
-        let mut low = 0.0f64;
-        for &p in &tess.vertices {
-            low = low.max(self.surface.distance_beyond(p, low, &mut self.stack) + gap);
-        }
-        let cells = triangles(&tess)
-            .into_iter()
-            .map(|t| {
-                let first = (f64::INFINITY, gap);
-                let (cell, d) = Cell::measure(t, first, self.surface, &mut self.stack);
-                low = low.max(d);
-                cell
-            })
-            .collect();
-        Start { cells, low }
-    }
-
+    /// Adds a primitive's cells to the search.
     fn take(&mut self, s: Start) {
         self.low = self.low.max(s.low);
         self.heap.extend(s.cells);

@@ -39,10 +39,7 @@ impl Triangles {
     /// `stack` is scratch.
     #[cfg(test)]
     pub(crate) fn distance(&self, p: V3, stack: &mut Vec<(f64, u32)>) -> f64 {
-        let (d2, _) = self
-            .bvh
-            .nearest_with(p, stack, |i| point_tri_dist2(p, &self.tris[i as usize]));
-        d2.sqrt()
+        self.nearest(p, stack).0
     }
 
     /// [`Triangles::distance`] when it is more than `bound`, otherwise some distance

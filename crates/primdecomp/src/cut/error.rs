@@ -92,7 +92,7 @@ impl Ask {
 /// at most `ask.level` mean the error is; results over `ask.above` mean it is over.
 pub(crate) fn error_until(prim: &Primitive, surface: &Triangles, ask: Ask) -> f64 {
     let mut search = Search::new(surface);
-    let start = Start::of(prim, surface, &mut search.stack);
+    let start = Start::of(prim, surface, ask.above, &mut search.stack);
     search.take(start);
     search.run(ask, MAX_SPLITS)
 }
@@ -103,7 +103,9 @@ pub(crate) fn error_until(prim: &Primitive, surface: &Triangles, ask: Ask) -> f6
 pub(crate) fn worst_error(prims: &[Primitive], surface: &Triangles, level: f64) -> f64 {
     let starts: Vec<Start> = prims
         .par_iter()
-        .map_init(Vec::new, |stack, p| Start::of(p, surface, stack))
+        .map_init(Vec::new, |stack, p| {
+            Start::of(p, surface, f64::INFINITY, stack)
+        })
         .collect();
     let mut search = Search::new(surface);
     for s in starts {
@@ -130,12 +132,19 @@ struct Start {
 }
 
 impl Start {
-    /// `prim`'s tessellation's vertices measured and its triangles as cells.
-    fn of(prim: &Primitive, surface: &Triangles, stack: &mut Vec<(f64, u32)>) -> Start {
+    /// `prim`'s tessellation's vertices measured and its triangles as cells; no
+    /// cells once a vertex is found over `above` (the search then answers at once).
+    fn of(prim: &Primitive, surface: &Triangles, above: f64, stack: &mut Vec<(f64, u32)>) -> Start {
         let (tess, gap) = tessellation(prim, surface.diagonal);
         let mut low = 0.0f64;
         for &p in &tess.vertices {
             low = low.max(surface.distance_beyond(p, low, stack) + gap);
+            if low > above {
+                return Start {
+                    cells: Vec::new(),
+                    low,
+                };
+            }
         }
         let cells = triangles(&tess)
             .into_iter()

@@ -2,15 +2,17 @@
 //! outputs the clusters alive when N remain: docs/decisions/0032 and 0034). The pass's
 //! merges form a forest whose leaves are the faces ([`tree`]); each node's primitive
 //! gets an error, the one-way distance from its surface to the input's (as
-//! `primdecomp eval` defines Hausdorff, estimated by sampling, [`error`]). From the
+//! `primdecomp eval` defines Hausdorff, bounded from above, [`error`]). From the
 //! roots the worst node is split until the largest count is reached or every node is
 //! within the tolerance; each level then takes, of the cuts of the nodes reached, the
 //! fewest nodes within its tolerance, or the least worst error its count and bytes
-//! allow, filled up to its count. Every node's primitive encloses its faces, so every
-//! cut encloses the mesh.
+//! allow, filled up to its count. A node over a tolerance that splitting cannot bring
+//! nearer gets its nearest fit instead of its least k·V ([`nearest`]). Every node's
+//! primitive encloses its faces, so every cut encloses the mesh.
 
 pub(crate) mod error;
 mod hulls;
+mod nearest;
 pub(crate) mod tree;
 
 use crate::math::Sym3;
@@ -51,13 +53,15 @@ pub(crate) struct Request {
 }
 
 /// A node of the cut with its fitted primitive and estimated error (`exact`: else
-/// only a lower bound, over the exploration's early-exit level).
+/// only a lower bound, over the exploration's early-exit level; `closest`: the
+/// primitive is the candidate of least error, [`Cutter::closest`]).
 #[derive(Clone, Debug)]
 struct Entry {
     error: f64,
     node: u32,
     prim: Primitive,
     exact: bool,
+    closest: bool,
 }
 
 impl Entry {
@@ -134,6 +138,7 @@ pub(crate) struct Cutter<'a> {
 struct Scratch {
     ws: Workspace,
     hull: HullScratch,
+    candidates: Vec<Primitive>,
 }
 
 impl<'a> Cutter<'a> {
@@ -185,6 +190,7 @@ impl<'a> Cutter<'a> {
 
     /// `e`'s primitive if it encloses every point of its node's faces, else the node's
     /// output fit on all of them.
+    /// A nearest fit ([`Cutter::closest`]) was made on every point already.
     fn enclosing(&self, e: &Entry, ws: &mut Workspace) -> Primitive {
         let mesh = self.ev.mesh;
         let faces = self.tree.faces(e.node);
@@ -193,7 +199,7 @@ impl<'a> Cutter<'a> {
                 .iter()
                 .all(|&v| e.prim.contains(mesh.pos(v), 0.0))
         };
-        if faces.iter().all(inside) {
+        if e.closest || faces.iter().all(inside) {
             return e.prim;
         }
         let q = &self.tree.nodes[e.node as usize].q;
@@ -212,6 +218,7 @@ impl<'a> Cutter<'a> {
             node,
             prim,
             exact: error <= above,
+            closest: false,
         }
     }
 
@@ -277,8 +284,11 @@ impl<'a> Cutter<'a> {
             }
             known = ex.fitted;
         }
-        let ex = self.explore(largest, enough, f64::INFINITY, &known);
-        let cuts = self.requests.iter().map(|r| self.choose(&ex, r)).collect();
+        let mut ex = self.explore(largest, enough, f64::INFINITY, &known);
+        let mut cuts: Vec<Vec<u32>> = self.requests.iter().map(|r| self.choose(&ex, r)).collect();
+        // Nodes kept over a tolerance because splitting them does not bring them
+        // nearer get their nearest fit, and the cuts are chosen again.
+        self.nearest_where_kept(&mut ex, &mut cuts);
         (ex, cuts)
     }
 
@@ -343,6 +353,10 @@ impl<'a> Cutter<'a> {
             }
             let node = self.tree.nodes[e.node as usize];
             if node.is_leaf() {
+                // A leaf cannot be split: its least-error fit is what its part can reach.
+                if !e.closest {
+                    ex.fitted.insert(e.node, self.closest(&e, &mut sa));
+                }
                 continue;
             }
             let [a, b] = node.children;
@@ -588,159 +602,4 @@ fn totals(ex: &Explored, cut: &[u32]) -> (usize, usize) {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::{decompose, Params, Tolerance};
-
-    /// A closed cube within 1% of its diagonal is one box, whatever the cap; an
-    /// icosphere one round primitive; a tolerance tighter than the cube's faces allow
-    /// still gives the box (nothing is worth splitting), and the level records what
-    /// was asked and reached.
-    #[test]
-    fn a_tolerance_needs_no_count() {
-        let cube = error::tests::cube_mesh(1.0);
-        for t in [Tolerance::Diagonal(0.01), Tolerance::Units(1e-6)] {
-            let p = Params {
-                targets: vec![64],
-                tolerance: vec![t],
-                ..Params::default()
-            };
-            let d = decompose(&cube, &p).expect("decomposes");
-            let level = &d.levels[0];
-            assert_eq!(level.primitives.len(), 1, "{t:?}");
-            assert_eq!(level.primitives[0].kind(), crate::Kind::Box);
-            assert_eq!(level.tolerance, Some(t.in_units(cube.diagonal())));
-            assert!(level.distance.expect("measured") < 1e-9);
-        }
-    }
-
-    /// A chain of tolerances from one pass: each level within its tolerance on the
-    /// demo scene (or at the least the tree reaches, which the distance says), a
-    /// tighter tolerance never fewer primitives, and a byte target kept.
-    #[test]
-    fn tolerance_chains_and_byte_targets() {
-        let mesh = crate::demo::demo_scene();
-        let p = Params {
-            targets: vec![400, 400, 400],
-            tolerance: vec![
-                Tolerance::Diagonal(0.05),
-                Tolerance::Diagonal(0.02),
-                Tolerance::Diagonal(0.01),
-            ],
-            ..Params::default()
-        };
-        let d = decompose(&mesh, &p).expect("decomposes");
-        let counts: Vec<usize> = d.levels.iter().map(|l| l.primitives.len()).collect();
-        assert!(counts.windows(2).all(|w| w[0] <= w[1]), "{counts:?}");
-        assert!(counts[0] < counts[2], "{counts:?}");
-        for l in &d.levels[..2] {
-            let (t, got) = (l.tolerance.expect("asked"), l.distance.expect("measured"));
-            assert!(got <= t, "distance {got} over the tolerance {t}");
-            // Each primitive's own bound, refined alone, is no tighter than 2% plus
-            // the refinement's floor below the level's.
-            let alone = worst_error(&mesh, &l.primitives);
-            assert!(
-                got >= alone / 1.02 - 2e-4 * mesh.diagonal(),
-                "{got} {alone}"
-            );
-        }
-        let small = Params {
-            targets: vec![400],
-            max_bytes: vec![600],
-            ..Params::default()
-        };
-        let d = decompose(&mesh, &small).expect("decomposes");
-        let l = &d.levels[0];
-        assert!(l.bytes() <= 600 && l.bytes() > 300, "{} bytes", l.bytes());
-        assert_eq!(l.max_bytes, Some(600));
-    }
-
-    /// Mismatched lists and fill with a cut are refused with a message naming them.
-    #[test]
-    fn limits_are_validated() {
-        let two = Params {
-            targets: vec![10, 20, 30],
-            tolerance: vec![Tolerance::Diagonal(0.01); 2],
-            ..Params::default()
-        };
-        let e = two.validate().unwrap_err().to_string();
-        assert!(e.contains("tolerance has 2 values for 3 targets"), "{e}");
-        let zero = Params {
-            tolerance: vec![Tolerance::Units(0.0)],
-            ..Params::default()
-        };
-        assert!(zero.validate().is_err());
-        let fill = Params {
-            max_bytes: vec![100],
-            fill: true,
-            ..Params::default()
-        };
-        assert!(fill.validate().unwrap_err().to_string().contains("fill"));
-    }
-
-    /// The largest of a level's primitives' bounds, each alone, in the input's frame.
-    fn worst_error(mesh: &crate::Mesh, prims: &[Primitive]) -> f64 {
-        let surface = Triangles::new(mesh);
-        let back = mesh.offset.map(|x| -x);
-        prims
-            .iter()
-            .map(|p| error_of(&p.translated(back), &surface))
-            .fold(0.0, f64::max)
-    }
-
-    /// On the demo scene (several separate objects) cut at 4, 16 and 64 from one pass:
-    /// at most N primitives each, every input vertex inside one of them (any cut
-    /// encloses the mesh), and a larger N never stands farther from the input than a
-    /// smaller one (up to the post-processing's plate joins, within the floor).
-    #[test]
-    fn cuts_enclose_and_improve_with_n() {
-        let mesh = crate::demo::demo_scene();
-        let p = Params {
-            targets: vec![4, 16, 64],
-            cut: true,
-            ..Params::default()
-        };
-        let d = decompose(&mesh, &p).expect("decomposes");
-        let tol = 1e-9 * mesh.diagonal();
-        let mut errors = Vec::new();
-        for level in &d.levels {
-            assert!(
-                level.primitives.len() <= level.target,
-                "{}",
-                level.primitives.len()
-            );
-            for v in 0..mesh.vertex_count() as u32 {
-                let w = crate::math::add(mesh.pos(v), mesh.offset);
-                assert!(
-                    level.primitives.iter().any(|q| q.contains(w, tol)),
-                    "vertex {v}"
-                );
-            }
-            errors.push(worst_error(&mesh, &level.primitives));
-        }
-        let floor = FLOOR_HALVES * p.min_extent * mesh.diagonal();
-        assert!(errors[0] > errors[2], "{errors:?}: the cut never helped");
-        assert!(
-            errors.windows(2).all(|w| w[1] <= w[0] + floor),
-            "{errors:?}"
-        );
-    }
-
-    /// The greedy snapshot and the cut agree at one primitive per tree root: with a
-    /// target of one, both are the whole scene's single primitive.
-    #[test]
-    fn one_target_is_the_root() {
-        let mesh = crate::demo::demo_scene();
-        let greedy = Params {
-            targets: vec![1],
-            ..Params::default()
-        };
-        let cut = Params {
-            cut: true,
-            ..greedy.clone()
-        };
-        let a = decompose(&mesh, &greedy).expect("greedy");
-        let b = decompose(&mesh, &cut).expect("cut");
-        assert_eq!(a.levels[0].primitives, b.levels[0].primitives);
-    }
-}
+mod tests;

@@ -15,7 +15,7 @@ use crate::primitive::fit::thorough_frames;
 use crate::primitive::fit::{
     fit_best_frame, fit_frame, fit_frame_priced, Fit, FitConfig, FrameSearch,
 };
-use crate::primitive::{fit_best, frame, Cloud, FitScratch, Primitive};
+use crate::primitive::{fit_best, frame, Cloud, FitScratch, Kind, Primitive};
 
 /// Faces whose outward normal is within about 0.8° of a plate's axis face along it
 /// ([`Evaluator::flush`]): a flat cluster's faces lie at round-off from it.
@@ -221,6 +221,49 @@ impl<'a> Evaluator<'a> {
                 .rims_where(boundary, outside, &mut ws.rims);
         }
         self.fit_gathered(faces, q, ws, true)
+    }
+
+    /// Every enabled kind fitted on every point of `faces` in every frame of the
+    /// thorough output search, plates laid flush as [`Self::fit_output`] lays them,
+    /// into `out`: output fits for a caller that chooses among them by another
+    /// measure than k·V (the merge tree's cut, by distance: docs/decisions/0041).
+    pub fn output_candidates(
+        &self,
+        faces: impl Iterator<Item = u32> + Clone,
+        q: &Sym3,
+        ws: &mut Workspace,
+        out: &mut Vec<Primitive>,
+    ) {
+        ws.clear();
+        for f in faces.clone() {
+            self.push_points(self.mesh.face(f as usize), ws);
+        }
+        out.clear();
+        let all = Cloud {
+            x: &ws.x,
+            y: &ws.y,
+            z: &ws.z,
+        };
+        thorough_frames(&all, q, &mut ws.fit, &mut ws.frames);
+        let kinds = Kind::ALL
+            .into_iter()
+            .filter(|&k| self.cfg.enabled[k as usize]);
+        for kind in kinds {
+            let mut enabled = [false; 6];
+            enabled[kind as usize] = true;
+            let cfg = FitConfig {
+                enabled,
+                ..self.cfg
+            };
+            for &axes in &ws.frames {
+                out.push(fit_frame(&all, axes, &cfg, &mut ws.fit).prim);
+            }
+        }
+        if self.flush_plates {
+            for p in out.iter_mut() {
+                self.flush(faces.clone(), ws, p);
+            }
+        }
     }
 
     /// Whether output fits price the rim reach (`Params::rim_weight`).

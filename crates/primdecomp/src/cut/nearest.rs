@@ -1,0 +1,102 @@
+//! Where the cut cannot split nearer: a node over a tolerance that is a leaf, or
+//! that no cut of its explored subtree brings nearer, gets the least-error fit of
+//! every kind in every frame instead of the least k·V (§3.2's fit chooses by volume,
+//! blind to how far a corner stands off a triangle; a deviation for the cut only:
+//! docs/decisions/0041).
+
+use super::error::{error_until, Ask};
+use super::{Cutter, Entry, Explored, Scratch};
+use rayon::prelude::*;
+use std::collections::HashMap;
+
+impl Cutter<'_> {
+    /// Refits the nodes of `cuts` kept over their tolerance that splitting does not
+    /// bring nearer ([`Cutter::kept_over`]) as their nearest fits and chooses the
+    /// cuts again, until every such node is its nearest fit.
+    pub(super) fn nearest_where_kept(&self, ex: &mut Explored, cuts: &mut Vec<Vec<u32>>) {
+        loop {
+            let over = self.kept_over(ex, cuts);
+            if over.is_empty() {
+                return;
+            }
+            let nearer: Vec<Entry> = over
+                .par_iter()
+                .map_init(Scratch::default, |s, n| self.closest(&ex.fitted[n], s))
+                .collect();
+            for e in nearer {
+                ex.fitted.insert(e.node, e);
+            }
+            *cuts = self.requests.iter().map(|r| self.choose(ex, r)).collect();
+        }
+    }
+
+    /// Node `e` refitted as the least-error candidate of every kind in every frame
+    /// ([`Evaluator::output_candidates`]), or kept if none is nearer: where the cut
+    /// cannot split, the fit's k·V (a volume, blind to how far a corner stands off a
+    /// triangle) no longer chooses (docs/decisions/0041).
+    pub(super) fn closest(&self, e: &Entry, s: &mut Scratch) -> Entry {
+        let q = &self.tree.nodes[e.node as usize].q;
+        let faces = self.tree.faces(e.node).iter().copied();
+        (self.ev).output_candidates(faces, q, &mut s.ws, &mut s.candidates);
+        let mut best = Entry {
+            closest: true,
+            ..self.measured(e.node, e.prim, f64::INFINITY)
+        };
+        for p in &s.candidates {
+            if best.error <= self.enough {
+                break;
+            }
+            let ask = Ask {
+                level: self.enough,
+                above: best.error,
+                coarse: true,
+            };
+            let error = error_until(p, self.surface, ask);
+            if error < best.error {
+                best = Entry {
+                    error,
+                    prim: *p,
+                    ..best
+                };
+            }
+        }
+        best
+    }
+
+    /// The nodes of `cuts` over their request's tolerance that splitting does not
+    /// bring nearer (no cut of their explored subtree is), not yet refitted nearest
+    /// ([`Cutter::closest`]), in increasing order. Nodes kept only because a cap
+    /// stopped the splits are left as they are: their subtrees reach nearer.
+    fn kept_over(&self, ex: &Explored, cuts: &[Vec<u32>]) -> Vec<u32> {
+        let floor = self.floors(ex);
+        let mut over = Vec::new();
+        for (r, cut) in self.requests.iter().zip(cuts) {
+            let Some(t) = r.tolerance else { continue };
+            over.extend(cut.iter().copied().filter(|n| {
+                let e = &ex.fitted[n];
+                e.error > t && !e.closest && floor[n]
+            }));
+        }
+        over.sort_unstable();
+        over.dedup();
+        over
+    }
+
+    /// For each explored node, whether it is as near as its subtree gets: a split
+    /// node whose error is at most the least worst error of its explored subtree's
+    /// cuts below it (the cuts of its two children).
+    fn floors(&self, ex: &Explored) -> HashMap<u32, bool> {
+        let mut best: HashMap<u32, f64> = HashMap::with_capacity(ex.ids.len());
+        let mut floor = HashMap::with_capacity(ex.ids.len());
+        for &n in &ex.ids {
+            let error = ex.fitted[&n].error;
+            let below = ex.is_split(self.tree, n).then(|| {
+                let [a, b] = self.tree.nodes[n as usize].children;
+                best[&a].max(best[&b])
+            });
+            floor.insert(n, below.is_some_and(|b| error <= b));
+            best.insert(n, below.map_or(error, |b| b.min(error)));
+        }
+        floor
+    }
+}

@@ -1312,13 +1312,30 @@ fn reach(l: &primdecomp::Level, diagonal: f64) -> String {
     if let Some(t) = l.tolerance {
         s += &match d <= t {
             true => format!(", within the tolerance {t:.4}"),
-            false => format!(", over the tolerance {t:.4}: the nearest the merge tree reaches"),
+            false => format!(", over the tolerance {t:.4}: {}", shortfall(l)),
         };
     }
     if let Some(b) = l.max_bytes {
         s += &format!(", byte target {b}");
     }
     s + ")"
+}
+
+/// What stopped a level short of its tolerance, for the summary line.
+fn shortfall(l: &primdecomp::Level) -> String {
+    match l.shortfall {
+        Some(primdecomp::Shortfall::Count) => format!(
+            "the cap of {} primitives comes first (-n raises it)",
+            l.target
+        ),
+        Some(primdecomp::Shortfall::Bytes) => {
+            "the bytes run out first (counted before nested primitives are removed)".into()
+        }
+        Some(primdecomp::Shortfall::Faces) => "the nearest the merge tree reaches: faces \
+            no enabled kind encloses nearer"
+            .into(),
+        None => "the nearest the merge tree reaches".into(),
+    }
 }
 
 /// The stage breakdown (load through write) and the process's peak resident memory.

@@ -126,6 +126,7 @@ fn a_chain_writes_one_file_per_tolerance() {
         // over 2048 there, so it is the nearest 2048 bytes reach, and says so.
         match t {
             "1pct" if worst > tol => {
+                assert_eq!(dist["limited_by"], "bytes", "{dist}");
                 let alone = [
                     "decompose",
                     "demo.obj",

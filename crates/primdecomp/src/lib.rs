@@ -96,7 +96,7 @@ pub use params::{
 };
 pub use primitive::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
 pub use progress::{Progress, Stage};
-pub use result::{Decomposition, InputInfo, Level, Stats, Timings};
+pub use result::{Decomposition, InputInfo, Level, Shortfall, Stats, Timings};
 
 /// The stages one by one, for the project's own tests and benchmarks (feature
 /// `test-internals`, which the workspace's test helpers turn on). Not part of the

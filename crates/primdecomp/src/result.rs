@@ -50,6 +50,35 @@ pub struct Level {
     /// 2% of it (docs/decisions/0040): at most the tolerance whenever the level says
     /// it is within it.
     pub distance: Option<f64>,
+    /// For a cut that stands farther than its tolerance: what stopped it nearer.
+    pub shortfall: Option<Shortfall>,
+}
+
+/// What keeps a cut of the merge tree from its tolerance ([`Level::shortfall`]).
+///
+/// ```
+/// use primdecomp::{decompose, Params, Shortfall, Tolerance};
+/// // Four primitives cannot stand within 0.5% of the demo scene's parts.
+/// let scene = primdecomp::demo_scene();
+/// let p = Params {
+///     targets: vec![4],
+///     tolerance: vec![Tolerance::Diagonal(0.005)],
+///     ..Params::default()
+/// };
+/// let level = &decompose(&scene, &p)?.levels[0];
+/// assert_eq!(level.shortfall, Some(Shortfall::Count));
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Shortfall {
+    /// The count ([`crate::Params::targets`], 1024 without one) ran out first.
+    Count,
+    /// The byte target ([`crate::Params::max_bytes`]) ran out first.
+    Bytes,
+    /// Nothing ran out: the farthest primitives enclose faces, alone or a few together,
+    /// that no enabled kind encloses nearer (every face must lie inside one primitive).
+    Faces,
 }
 
 impl Level {

@@ -19,6 +19,7 @@ use crate::math::Sym3;
 use crate::merge::{Evaluator, Snapshot, Workspace};
 use crate::mesh::triangles::Triangles;
 use crate::primitive::Primitive;
+use crate::Shortfall;
 #[cfg(test)]
 use error::error_of;
 use error::{error_until, worst_error, Ask};
@@ -247,6 +248,7 @@ impl<'a> Cutter<'a> {
             .iter()
             .zip(cuts)
             .map(|(r, cut)| {
+                let shortfall = self.shortfall(&explored, r, &cut);
                 let entries = cut
                     .iter()
                     .map(|n| Entry {
@@ -254,7 +256,10 @@ impl<'a> Cutter<'a> {
                         ..explored.fitted[n].clone()
                     })
                     .collect();
-                self.snapshot(r, entries)
+                Snapshot {
+                    shortfall,
+                    ..self.snapshot(r, entries)
+                }
             })
             .collect()
     }
@@ -507,6 +512,25 @@ impl<'a> Cutter<'a> {
         set.into_iter().collect()
     }
 
+    /// Why `cut` stands over `r`'s tolerance, if it does: the count, where the count
+    /// stopped the splits or a cut of the nodes reached is within it with more nodes;
+    /// the bytes, where that cut needs more; else the faces ([`Shortfall`]).
+    fn shortfall(&self, ex: &Explored, r: &Request, cut: &[u32]) -> Option<Shortfall> {
+        let t = r.tolerance?;
+        let worst = |c: &[u32]| c.iter().map(|n| ex.fitted[n].error).fold(0.0, f64::max);
+        if worst(cut) <= t {
+            return None;
+        }
+        let nearest = self.cheapest(ex, t, r.bytes.is_some());
+        let (count, _) = totals(ex, &nearest);
+        Some(match worst(&nearest) <= t {
+            true if count > r.count => Shortfall::Count,
+            true => Shortfall::Bytes,
+            false if ex.capped => Shortfall::Count,
+            false => Shortfall::Faces,
+        })
+    }
+
     /// The snapshot of one cut for `r`, its nodes in order of their faces' ranges; its
     /// bound is `r`'s tolerance or the farthest its nodes stand, if farther.
     fn snapshot(&self, r: &Request, mut cut: Vec<Entry>) -> Snapshot {
@@ -544,6 +568,7 @@ impl<'a> Cutter<'a> {
                 .iter()
                 .map(|e| self.tree.nodes[e.node as usize].q)
                 .collect::<Vec<Sym3>>(),
+            shortfall: None,
         }
     }
 }
@@ -568,6 +593,9 @@ pub(crate) fn record_limits(
             .collect();
         let worst = worst_error(&prims, surface, r.tolerance.unwrap_or(0.0));
         level.distance = Some(worst);
+        if r.tolerance.is_some_and(|t| worst <= t) {
+            level.shortfall = None;
+        }
     }
 }
 

@@ -64,6 +64,15 @@ fn tolerance_chains_and_byte_targets() {
     let l = &d.levels[0];
     assert!(l.bytes() <= 600 && l.bytes() > 300, "{} bytes", l.bytes());
     assert_eq!(l.max_bytes, Some(600));
+    assert_eq!(l.shortfall, None, "no tolerance asked");
+    // With a tolerance the 600 bytes cannot reach, the level says the bytes stopped it.
+    let tight = Params {
+        tolerance: vec![Tolerance::Diagonal(0.01)],
+        ..small
+    };
+    let l = &decompose(&mesh, &tight).expect("decomposes").levels[0];
+    assert!(l.distance.expect("measured") > l.tolerance.expect("asked"));
+    assert_eq!(l.shortfall, Some(crate::Shortfall::Bytes));
 }
 
 /// Two triangles folded along a shared edge (the corpus's tiny_2triangles): the
@@ -94,6 +103,7 @@ fn a_face_the_cut_cannot_split_gets_its_nearest_fit() {
     let got = level.distance.expect("measured");
     assert!(got < 0.34, "farthest {got}");
     assert!(got > level.tolerance.expect("asked"), "{got}");
+    assert_eq!(level.shortfall, Some(crate::Shortfall::Faces));
     for v in 0..mesh.vertex_count() as u32 {
         let w = crate::math::add(mesh.pos(v), mesh.offset);
         let inside = level.primitives.iter().any(|q| q.contains(w, 1e-9));

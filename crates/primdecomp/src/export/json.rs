@@ -259,6 +259,9 @@ struct Distance {
     tolerance: Option<f64>,
     #[serde(skip_serializing_if = "Option::is_none")]
     max_bytes: Option<usize>,
+    /// Over the tolerance: what stopped the cut nearer (`count`, `bytes` or `faces`).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    limited_by: Option<crate::Shortfall>,
     method: &'static str,
 }
 
@@ -285,6 +288,7 @@ impl Distance {
             },
             tolerance: lv.tolerance,
             max_bytes: lv.max_bytes,
+            limited_by: lv.shortfall,
             method: DISTANCE_METHOD,
         })
     }

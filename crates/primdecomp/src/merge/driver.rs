@@ -52,6 +52,8 @@ pub struct Snapshot {
     /// input (its tolerance, or the farthest its nodes stand), which post-processing
     /// must keep (`postprocess::plates`); `None` for the greedy snapshot.
     pub bound: Option<f64>,
+    /// For a cut over its tolerance: what stopped it nearer; `None` otherwise.
+    pub shortfall: Option<crate::Shortfall>,
 }
 
 #[derive(Clone, Debug, Default)]
@@ -661,6 +663,7 @@ pub(super) fn snapshot(
         members: roots.par_iter().map(|&r| cl.faces(r).collect()).collect(),
         q: Vec::new(),
         bound: None,
+        shortfall: None,
     };
     snap.q = roots.iter().map(|&r| cl.q[r as usize]).collect();
     Some(snap)

@@ -75,6 +75,7 @@ fn finish(ev: &Evaluator, snap: &Snapshot, params: &Params, diag: f64) -> Level 
     let mut level = Level {
         target: snap.target,
         merged_to: snap.target,
+        shortfall: snap.shortfall,
         ..Default::default()
     };
     for (i, p) in snap.prims.iter().enumerate() {

@@ -351,6 +351,7 @@ impl<'a> Cutter<'a> {
         let mut count = roots.len();
         let mut heap: BinaryHeap<Entry> = roots.into_iter().collect();
         let (mut sa, mut sb) = (Scratch::default(), Scratch::default());
+        let mut leaves = Vec::new();
         while count < largest {
             let Some(e) = heap.pop() else { break };
             if e.error <= enough {
@@ -358,9 +359,10 @@ impl<'a> Cutter<'a> {
             }
             let node = self.tree.nodes[e.node as usize];
             if node.is_leaf() {
-                // A leaf cannot be split: its least-error fit is what its part can reach.
+                // A leaf cannot be split: its least-error fit (below) is what its part
+                // can reach.
                 if !e.closest {
-                    ex.fitted.insert(e.node, self.closest(&e, &mut sa));
+                    leaves.push(e.node);
                 }
                 continue;
             }
@@ -376,6 +378,14 @@ impl<'a> Cutter<'a> {
             count += 1;
         }
         ex.capped = count >= largest && heap.peek().is_some_and(|e| e.error > enough);
+        // Refitted together: a leaf's fit changes nothing the splits above looked at.
+        let nearest: Vec<Entry> = leaves
+            .par_iter()
+            .map_init(Scratch::default, |s, n| self.closest(&ex.fitted[n], s))
+            .collect();
+        for e in nearest {
+            ex.fitted.insert(e.node, e);
+        }
         ex.ids = ex.fitted.keys().copied().collect();
         ex.ids.sort_unstable();
         ex

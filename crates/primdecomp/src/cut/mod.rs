@@ -189,9 +189,9 @@ impl<'a> Cutter<'a> {
         self.measured(n, prim, above)
     }
 
-    /// `e`'s primitive if it encloses every point of its node's faces, else the node's
-    /// output fit on all of them.
-    /// A nearest fit ([`Cutter::closest`]) was made on every point already.
+    /// `e`'s primitive if it encloses every point of its node's faces or is a nearest
+    /// fit ([`Cutter::closest`], made on every point already), else the node's output
+    /// fit on all of them.
     fn enclosing(&self, e: &Entry, ws: &mut Workspace) -> Primitive {
         let mesh = self.ev.mesh;
         let faces = self.tree.faces(e.node);
@@ -379,13 +379,7 @@ impl<'a> Cutter<'a> {
         }
         ex.capped = count >= largest && heap.peek().is_some_and(|e| e.error > enough);
         // Refitted together: a leaf's fit changes nothing the splits above looked at.
-        let nearest: Vec<Entry> = leaves
-            .par_iter()
-            .map_init(Scratch::default, |s, n| self.closest(&ex.fitted[n], s))
-            .collect();
-        for e in nearest {
-            ex.fitted.insert(e.node, e);
-        }
+        self.refit_nearest(&mut ex, &leaves);
         ex.ids = ex.fitted.keys().copied().collect();
         ex.ids.sort_unstable();
         ex

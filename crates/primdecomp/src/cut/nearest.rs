@@ -19,14 +19,19 @@ impl Cutter<'_> {
             if over.is_empty() {
                 return;
             }
-            let nearer: Vec<Entry> = over
-                .par_iter()
-                .map_init(Scratch::default, |s, n| self.closest(&ex.fitted[n], s))
-                .collect();
-            for e in nearer {
-                ex.fitted.insert(e.node, e);
-            }
+            self.refit_nearest(ex, &over);
             *cuts = self.requests.iter().map(|r| self.choose(ex, r)).collect();
+        }
+    }
+
+    /// `nodes` refitted as their nearest fits ([`Cutter::closest`]), in parallel.
+    pub(super) fn refit_nearest(&self, ex: &mut Explored, nodes: &[u32]) {
+        let nearer: Vec<Entry> = nodes
+            .par_iter()
+            .map_init(Scratch::default, |s, n| self.closest(&ex.fitted[n], s))
+            .collect();
+        for e in nearer {
+            ex.fitted.insert(e.node, e);
         }
     }
 
@@ -34,7 +39,7 @@ impl Cutter<'_> {
     /// ([`Evaluator::output_candidates`]), or kept if none is nearer: where the cut
     /// cannot split, the fit's k·V (a volume, blind to how far a corner stands off a
     /// triangle) no longer chooses (docs/decisions/0041).
-    pub(super) fn closest(&self, e: &Entry, s: &mut Scratch) -> Entry {
+    fn closest(&self, e: &Entry, s: &mut Scratch) -> Entry {
         let q = &self.tree.nodes[e.node as usize].q;
         let faces = self.tree.faces(e.node).iter().copied();
         (self.ev).output_candidates(faces, q, &mut s.ws, &mut s.candidates);

@@ -24,10 +24,12 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
     check_input(mesh)?;
     let mut clock = Clock::new(progress);
     let bounds = mesh.aabb();
+    // Spatial parts merge down to their share of the largest requested count's groups,
+    // the greedy's own; a cut's leaves come from the global loop after them (0042).
+    let largest = params.targets.iter().copied().max().unwrap_or(1);
     let mut targets = if params.uses_cut() {
         // The tree's leaves (a snapshot of a few times the largest target, needed only
         // after spatial parts: below) up to its roots (docs/decisions/0032, 0034).
-        let largest = params.targets.iter().copied().max().unwrap_or(1);
         let leaves = largest.saturating_mul(crate::cut::LEAVES_PER_TARGET);
         merge_order(&[leaves.min(mesh.face_count()).max(largest), 1])
     } else {
@@ -66,10 +68,10 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
     // One primitive per face seeds the volumes (Alg. 1, line 2).
     let volumes = clock.stage(Stage::Seed, "seed", |go_on, _| seed_volumes(&ev, &q, go_on))?;
     // Where the merge loop starts: spatial parts, components, or the faces themselves.
-    let first = FirstPhase::choose(mesh, params, &pairs, targets[0]);
+    let first = FirstPhase::choose(mesh, params, &pairs, targets[0], largest);
     // Without spatial parts every merge is logged and the tree's leaves are the faces:
     // the leaf snapshot would be fitted for nothing.
-    if params.uses_cut() && !matches!(first, FirstPhase::Parts(_)) {
+    if params.uses_cut() && !matches!(first, FirstPhase::Parts { .. }) {
         targets = vec![1];
     }
     let mut stats = Stats {
@@ -316,25 +318,35 @@ struct MergeInput {
 enum FirstPhase {
     /// Alg. 1 as is: one cluster per face.
     Faces,
-    /// `k` spatial parts merged in parallel first (`merge::partition`;
-    /// docs/decisions/0017 and 0019).
-    Parts(usize),
+    /// `parts` spatial parts merged in parallel first, down to their share of
+    /// `target`'s groups (`merge::partition`; docs/decisions/0017, 0019 and 0042).
+    Parts { parts: usize, target: usize },
     /// Each connected component merged whole first, groups of them in parallel
     /// (`merge::components`); the same clusters the global loop reaches.
     Components(Vec<Vec<u32>>),
 }
 
 impl FirstPhase {
-    fn choose(mesh: &Mesh, params: &Params, pairs: &[(u32, u32)], largest: usize) -> Self {
+    /// `first`: the loop's first target; `largest`: the largest count requested.
+    fn choose(
+        mesh: &Mesh,
+        params: &Params,
+        pairs: &[(u32, u32)],
+        first: usize,
+        largest: usize,
+    ) -> Self {
         let faces = mesh.face_count();
         // Parts only where the faces outnumber what phase 1 would leave.
-        let parts = if faces > partition::phase1_size(largest) {
+        let parts = if faces > partition::phase1_size(first) {
             params.partitions.parts(faces)
         } else {
             1
         };
         if parts > 1 {
-            return FirstPhase::Parts(parts);
+            return FirstPhase::Parts {
+                parts,
+                target: largest.min(first),
+            };
         }
         // A cap can refuse merges and leave a component in pieces, which the
         // components phase does not claim to reproduce.
@@ -353,7 +365,7 @@ impl FirstPhase {
     /// Spatial parts merged in parallel first (1 = none).
     fn parts(&self) -> usize {
         match self {
-            FirstPhase::Parts(k) => *k,
+            FirstPhase::Parts { parts, .. } => *parts,
             _ => 1,
         }
     }
@@ -381,12 +393,12 @@ fn merge(
     let merged_so_far = |m: usize| go_on(m as f64 / total);
     // Every merge the replayed components did, in the global order.
     let mut tree_log = Vec::new();
-    let from_faces = !matches!(first, FirstPhase::Parts(_));
+    let from_faces = !matches!(first, FirstPhase::Parts { .. });
     let (clusters, early) = match first {
         FirstPhase::Faces => (Some(Clusters::new(q, volumes, &pairs)), Vec::new()),
-        FirstPhase::Parts(k) => {
+        FirstPhase::Parts { parts, target } => {
             let p1 = laps.time("partitions", || {
-                partition::merge_parts(ev, &q, &volumes, &pairs, targets[0], k, &merged_so_far)
+                partition::merge_parts(ev, &q, &volumes, &pairs, target, parts, &merged_so_far)
             });
             stats.merges = p1.merges;
             add_fits(stats, p1.fits);
@@ -434,7 +446,11 @@ fn merge(
     let done = stats.merges as f64;
     let rest = clusters.live.saturating_sub(last) as f64;
     let phase2 = |f: f64| go_on((done + f * rest) / total);
-    let mut out = crate::merge::run(ev, clusters, &targets[early.len()..], &phase2);
+    let mut out = if tree {
+        crate::merge::run_for_tree(ev, clusters, &targets[early.len()..], &phase2)
+    } else {
+        crate::merge::run(ev, clusters, &targets[early.len()..], &phase2)
+    };
     // The components' merges come first in the global order.
     out.log.splice(0..0, tree_log);
     out.log_from_faces = from_faces;

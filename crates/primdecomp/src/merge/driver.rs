@@ -208,6 +208,15 @@ pub fn run(ev: &Evaluator, cl: Clusters, targets: &[usize], go_on: GoOn) -> Merg
     run_with::<RadixHeap>(ev, cl, targets, go_on)
 }
 
+/// [`run`] for the merge tree (`cut`): the same merges, but each target's snapshot
+/// holds only its clusters' faces and operators — the cut fits the nodes it keeps, so
+/// fitting the leaves and the root here would be thrown away.
+pub fn run_for_tree(ev: &Evaluator, cl: Clusters, targets: &[usize], go_on: GoOn) -> MergeOutput {
+    with_pricer(ev, |p| {
+        merge_loop::<RadixHeap>(ev, cl, targets, go_on, p, Scope::Tree).0
+    })
+}
+
 /// [`run`] with a chosen queue (the benchmarks compare them; the order is the same).
 pub fn run_with<Q: Queue>(
     ev: &Evaluator,
@@ -238,9 +247,18 @@ fn run_counted<Q: Queue>(
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum Scope {
     Whole,
+    /// The whole input for the merge tree: snapshots without fits ([`run_for_tree`]).
+    Tree,
     Part,
     /// A part that also records its merges (`MergeOutput::trace`).
     Traced,
+}
+
+impl Scope {
+    /// The loop runs on the whole input: it logs its merges and bridges components.
+    fn whole(self) -> bool {
+        matches!(self, Scope::Whole | Scope::Tree)
+    }
 }
 
 /// Phase 1 of `Params::partitions`: merges `cl` (one part's clusters) down to
@@ -362,7 +380,7 @@ fn merge_loop<Q: Queue>(
         };
         let root = cl.merge(c.a, c.b, verts, c.volume);
         out.merges += 1;
-        if scope == Scope::Whole {
+        if scope.whole() {
             out.log.push((c.a, c.b));
         }
         if !defer(ev, &mut cl, root) {
@@ -432,7 +450,7 @@ fn next_step<Q: Queue>(
     scope: Scope,
 ) -> Step {
     let Some(c) = heap.pop() else {
-        if scope != Scope::Whole {
+        if !scope.whole() {
             return Step::Stop;
         }
         let bridged = bridge(ev, cl);
@@ -624,7 +642,8 @@ fn centroid(ev: &Evaluator, cl: &Clusters, c: u32) -> [f64; 3] {
 }
 
 /// Fits every live cluster (in root order) on all of its faces' vertices, for output
-/// (a part's loop only records that the target was reached).
+/// (a part's loop only records that the target was reached; the tree's keeps each
+/// cluster's faces and operator, unfitted).
 /// `None` when `go_on` says stop while the output primitives are fitted (asked
 /// before every 64 clusters on each thread).
 pub(super) fn snapshot(
@@ -634,13 +653,24 @@ pub(super) fn snapshot(
     scope: Scope,
     go_on: &(dyn Fn() -> bool + Sync),
 ) -> Option<Snapshot> {
-    if scope != Scope::Whole {
-        return Some(Snapshot {
-            target,
-            ..Snapshot::default()
-        });
-    }
     let roots = cl.roots();
+    match scope {
+        Scope::Whole => {}
+        Scope::Tree => {
+            return Some(Snapshot {
+                target,
+                members: roots.par_iter().map(|&r| cl.faces(r).collect()).collect(),
+                q: roots.iter().map(|&r| cl.q[r as usize]).collect(),
+                ..Snapshot::default()
+            })
+        }
+        Scope::Part | Scope::Traced => {
+            return Some(Snapshot {
+                target,
+                ..Snapshot::default()
+            })
+        }
+    }
     let prims: Vec<Primitive> = roots
         .par_chunks(64)
         .map_init(Workspace::default, |ws, chunk| {
@@ -834,6 +864,26 @@ pub(super) mod tests {
                 assert_same(&a, &b);
             });
         }
+    }
+
+    /// The merge tree's loop does the merges the whole input's does, and its snapshots
+    /// hold the same clusters (faces and operators) with nothing fitted: the cut reads
+    /// only those, so fitting them would be thrown away.
+    #[test]
+    fn the_trees_loop_keeps_the_clusters_unfitted() {
+        with_demo(|ev, fresh| {
+            let targets = [400, 40, 1];
+            let whole = run(ev, fresh(), &targets, &|_| true);
+            let tree = run_for_tree(ev, fresh(), &targets, &|_| true);
+            assert_eq!(whole.log, tree.log);
+            assert_eq!(whole.log_at_first, tree.log_at_first);
+            assert_eq!(whole.snapshots.len(), tree.snapshots.len());
+            for (w, t) in whole.snapshots.iter().zip(&tree.snapshots) {
+                assert!(!w.prims.is_empty() && t.prims.is_empty() && t.verts.is_empty());
+                assert_eq!(w.members, t.members);
+                assert_eq!(w.q, t.q);
+            }
+        });
     }
 
     /// Re-pricing shared with the worker thread merges

@@ -191,14 +191,16 @@ impl<'a> Cutter<'a> {
 
     /// `e`'s primitive if it encloses every point of its node's faces or is a nearest
     /// fit ([`Cutter::closest`], made on every point already), else the node's output
-    /// fit on all of them.
+    /// fit on all of them. Enclosing is up to the point reduction's own tolerance
+    /// (`Evaluator::hull_eps`): a fit on every point is no nearer than that either
+    /// (its extreme points stand outside it by round-off), and would be the same.
     fn enclosing(&self, e: &Entry, ws: &mut Workspace) -> Primitive {
         let mesh = self.ev.mesh;
         let faces = self.tree.faces(e.node);
         let inside = |&f: &u32| {
             mesh.face(f as usize)
                 .iter()
-                .all(|&v| e.prim.contains(mesh.pos(v), 0.0))
+                .all(|&v| e.prim.contains(mesh.pos(v), self.ev.hull_eps))
         };
         if e.closest || faces.iter().all(inside) {
             return e.prim;
@@ -232,8 +234,8 @@ impl<'a> Cutter<'a> {
         let requests = self.requests;
         let (explored, cuts) = self.explore_and_choose(largest(requests), self.enough);
         // A chosen node's fit on its hull's vertices, unless one of its faces' points
-        // (left out of the hull within its tolerance) is outside it: then its fit on
-        // every point, which encloses them exactly.
+        // (left out of the hull within its tolerance) is outside it beyond round-off:
+        // then its fit on every point ([`Cutter::enclosing`]).
         let mut chosen: Vec<u32> = cuts.iter().flatten().copied().collect();
         chosen.sort_unstable();
         chosen.dedup();

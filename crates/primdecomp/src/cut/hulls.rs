@@ -17,6 +17,10 @@ use std::collections::HashMap;
 /// their faces when asked, which costs about as much as reading stored ones.
 const SMALL: usize = 16;
 
+/// The sets are found in about this many subtrees at once (more than threads, so
+/// that uneven subtrees even out).
+const TASKS: usize = 64;
+
 /// A node's hull vertices (the faces' own vertex indices) and boundary faces
 /// (increasing).
 #[derive(Clone, Debug, Default)]
@@ -75,14 +79,40 @@ impl<'a> NodeHulls<'a> {
             at,
             stored: HashMap::new(),
         };
-        let stored: HashMap<u32, NodeSets> = tree
-            .roots
+        // Subtrees of at most a share of the faces on their own threads, then the
+        // few nodes above them, children before parents.
+        let grain = (mesh.face_count() / TASKS).max(sets.small);
+        let (tasks, above) = sets.tasks(grain);
+        let mut stored: HashMap<u32, NodeSets> = tasks
             .par_iter()
             .map_init(HullScratch::default, |s, &r| sets.subtree(r, s))
             .flatten_iter()
             .collect();
+        let mut s = HullScratch::default();
+        for &n in above.iter().rev() {
+            let kids = tree.nodes[n as usize].children.map(|c| stored.get(&c));
+            let out = sets.joined(n, kids, &mut s);
+            stored.insert(n, out);
+        }
         sets.stored = stored;
         sets
+    }
+
+    /// The nodes of more than `grain` faces (pre-order: parents before children),
+    /// and the subtrees below them, each of at most `grain` faces or a leaf.
+    fn tasks(&self, grain: usize) -> (Vec<u32>, Vec<u32>) {
+        let (mut tasks, mut above) = (Vec::new(), Vec::new());
+        let mut stack: Vec<u32> = self.tree.roots.clone();
+        while let Some(n) = stack.pop() {
+            let node = self.tree.nodes[n as usize];
+            if self.tree.faces(n).len() <= grain || node.is_leaf() {
+                tasks.push(n);
+                continue;
+            }
+            above.push(n);
+            stack.extend(node.children);
+        }
+        (tasks, above)
     }
 
     /// Whether face `f` lies outside node `n`.
@@ -119,24 +149,7 @@ impl<'a> NodeHulls<'a> {
                 stack.extend(node.children.iter().map(|&c| (c, false)));
                 continue;
             }
-            let kids = node.children.map(|c| {
-                done.remove(&c).unwrap_or_else(|| {
-                    let mut own = NodeSets::default();
-                    self.gather(c, s, &mut own);
-                    own
-                })
-            });
-            s.ids.clear();
-            s.faces.clear();
-            for (c, sets) in node.children.into_iter().zip(kids) {
-                s.ids.extend_from_slice(&sets.hull);
-                s.faces.extend_from_slice(&sets.boundary);
-                done.insert(c, sets);
-            }
-            let mut out = NodeSets::default();
-            self.reduce(s, &mut out.hull);
-            s.faces.sort_unstable();
-            out.boundary = self.on_boundary(n, &s.faces);
+            let out = self.joined(n, node.children.map(|c| done.get(&c)), s);
             done.insert(n, out);
         }
         let mut all: Vec<(u32, NodeSets)> = done
@@ -145,6 +158,29 @@ impl<'a> NodeHulls<'a> {
             .collect();
         all.sort_unstable_by_key(|(n, _)| *n);
         all
+    }
+
+    /// Node `n`'s sets from its children's (`None`: a child's found from its faces).
+    fn joined(&self, n: u32, kids: [Option<&NodeSets>; 2], s: &mut HullScratch) -> NodeSets {
+        let mut own = NodeSets::default();
+        let (mut kid_ids, mut kid_faces) = (Vec::new(), Vec::new());
+        for (c, sets) in self.tree.nodes[n as usize].children.into_iter().zip(kids) {
+            let sets = match sets {
+                Some(sets) => sets,
+                None => {
+                    self.gather(c, s, &mut own);
+                    &own
+                }
+            };
+            kid_ids.extend_from_slice(&sets.hull);
+            kid_faces.extend_from_slice(&sets.boundary);
+        }
+        (s.ids, s.faces) = (kid_ids, kid_faces);
+        let mut out = NodeSets::default();
+        self.reduce(s, &mut out.hull);
+        s.faces.sort_unstable();
+        out.boundary = self.on_boundary(n, &s.faces);
+        out
     }
 
     /// Node `n`'s sets from its faces.
@@ -217,6 +253,16 @@ mod tests {
         let tol = 1e-9 * mesh.diagonal();
         let sets = NodeHulls::build(&tree, &mesh, adj, 1e-12 * mesh.diagonal(), 0);
         assert!(sets.stored.len() > 10, "{} stored", sets.stored.len());
+        // Every node over the size, those above the parallel subtrees too.
+        let (_, above) = sets.tasks((mesh.face_count() / TASKS).max(sets.small));
+        assert!(
+            !above.is_empty(),
+            "no node above the subtrees: the test is vacuous"
+        );
+        for n in 0..tree.nodes.len() as u32 {
+            let large = tree.faces(n).len() > sets.small && !tree.nodes[n as usize].is_leaf();
+            assert_eq!(sets.stored.contains_key(&n), large, "node {n}");
+        }
         let reach = |ids: &[u32], d: [f64; 3]| {
             ids.iter()
                 .map(|&v| crate::math::dot(d, mesh.pos(v)))

@@ -38,11 +38,9 @@ const RELATIVE: f64 = 0.02;
 const ABSOLUTE: f64 = 2e-4;
 /// or this many triangles have been split (then the bound, looser, stands).
 const MAX_SPLITS: usize = 16384;
-/// A level's search over all its primitives may split [`MAX_SPLITS`] times as many
-/// times as it has primitives (what deciding each of them may take), at least
-/// [`LEVEL_SPLITS`].0 and at most [`LEVEL_SPLITS`].1 times: each split keeps one more
-/// triangle (88 bytes) until the search ends, so at most about 90 MiB.
-const LEVEL_SPLITS: (usize, usize) = (4, 64);
+/// A level's search settles its primitives together in at most this many rounds
+/// ([`worst_error`]); then the bounds found stand.
+const ROUNDS: usize = 64;
 
 /// An upper bound of the error of `prim` (0 for an empty surface), within
 /// [`RELATIVE`] of it or [`ABSOLUTE`] of the diagonal.
@@ -79,6 +77,7 @@ pub(crate) struct Ask {
 
 impl Ask {
     /// Refined to [`RELATIVE`] (and settled against `level`), no early exit.
+    #[cfg(test)]
     pub(crate) fn exact(level: f64) -> Ask {
         Ask {
             level,
@@ -97,22 +96,64 @@ pub(crate) fn error_until(prim: &Primitive, surface: &Triangles, ask: Ask) -> f6
     search.run(ask, MAX_SPLITS)
 }
 
-/// The largest error of `prims` (0 for none), as [`error_of`] would give it for the
-/// worst of them, settled against `level` ([`Ask::exact`]): one search over all
-/// their surfaces, so that only the parts near the largest are refined.
+/// The largest error of `prims` (0 for none): an upper bound within [`RELATIVE`] (or
+/// [`ABSOLUTE`] of the diagonal) of the farthest point measured on any of them, and
+/// at most `level` only if every primitive is within it. Settled in rounds, each
+/// primitive's search on its own thread: a round refines every unsettled primitive
+/// until its bound is within the round's threshold (from the farthest point measured
+/// before it) or a point beyond that is found; then the threshold is raised from that
+/// point and the unsettled go on. Only the threshold is shared, so the answer does
+/// not depend on the threads, and only primitives near the largest are refined far.
 pub(crate) fn worst_error(prims: &[Primitive], surface: &Triangles, level: f64) -> f64 {
-    let starts: Vec<Start> = prims
+    let mut searches: Vec<(Search, Option<f64>)> = prims
         .par_iter()
-        .map_init(Vec::new, |stack, p| {
-            Start::of(p, surface, f64::INFINITY, stack)
+        .map(|p| {
+            let mut search = Search::new(surface);
+            let start = Start::of(p, surface, f64::INFINITY, &mut search.stack);
+            search.take(start);
+            (search, None)
         })
         .collect();
-    let mut search = Search::new(surface);
-    for s in starts {
-        search.take(s);
+    let mut low = searches.iter().map(|(s, _)| s.low).fold(0.0, f64::max);
+    for _ in 0..ROUNDS {
+        let t = threshold(low, level, ABSOLUTE * surface.diagonal);
+        let ask = Ask {
+            level: t,
+            above: t,
+            coarse: true,
+        };
+        searches
+            .par_iter_mut()
+            .filter(|(_, settled)| settled.is_none())
+            .for_each(|(search, settled)| {
+                let bound = search.run(ask, MAX_SPLITS);
+                // Over `t` only by a point found beyond it, unless the splits ran out.
+                if search.low <= t {
+                    *settled = Some(bound);
+                    search.heap = BinaryHeap::new();
+                }
+            });
+        let raised = searches.iter().map(|(s, _)| s.low).fold(low, f64::max);
+        if raised == low {
+            break;
+        }
+        low = raised;
     }
-    let times = prims.len().clamp(LEVEL_SPLITS.0, LEVEL_SPLITS.1);
-    search.run(Ask::exact(level), MAX_SPLITS * times)
+    searches
+        .iter()
+        .map(|(s, settled)| settled.unwrap_or_else(|| s.bound()))
+        .fold(low, f64::max)
+}
+
+/// The largest bound [`worst_error`] may answer with when the farthest point
+/// measured is `low`: within [`RELATIVE`] of it (or `slack`), and at most `level`
+/// while `low` is.
+fn threshold(low: f64, level: f64, slack: f64) -> f64 {
+    let close = low + slack.max(RELATIVE * low);
+    match low <= level {
+        true => close.min(level),
+        false => close,
+    }
 }
 
 /// A best-first search for the largest distance over a set of triangles: the cells
@@ -168,6 +209,11 @@ impl<'a> Search<'a> {
             splits: 0,
             stack: Vec::new(),
         }
+    }
+
+    /// The bound as it stands: the largest cell's, or the farthest point measured.
+    fn bound(&self) -> f64 {
+        self.heap.peek().map_or(self.low, |c| c.bound.max(self.low))
     }
 
     /// Adds a primitive's cells to the search.
@@ -478,6 +524,50 @@ pub(crate) mod tests {
                     }
                 }
             }
+        }
+    }
+
+    /// A level's bound over many primitives settled together in rounds is the worst
+    /// of their own bounds up to the refinement's precision, keeps the level's promise
+    /// (at most the level only if every primitive is within it), and is the same on
+    /// one thread and on two: 36 primitives of every kind about the demo scene.
+    #[test]
+    fn a_levels_bound_is_its_worst_primitives() {
+        let mesh = crate::demo::demo_scene();
+        let surface = Triangles::new(&mesh);
+        let mut rng = ChaCha8Rng::seed_from_u64(11);
+        let d = mesh.diagonal();
+        let prims: Vec<Primitive> = (0..36)
+            .map(|i| {
+                let mut v = || std::array::from_fn(|_| rng.gen_range(-0.3..0.3) * d);
+                let (p0, p1) = (v(), v());
+                random_primitive(i % 6, p0, p1, [0.05 * d, 0.1 * d, 0.2 * d][i % 3])
+            })
+            .collect();
+        let alone: Vec<f64> = prims.iter().map(|p| error_of(p, &surface)).collect();
+        let worst = alone.iter().copied().fold(0.0, f64::max);
+        let second = alone
+            .iter()
+            .copied()
+            .filter(|&e| e < worst)
+            .fold(0.0, f64::max);
+        for level in [0.0, 0.5 * (worst + second), 2.0 * worst] {
+            let pool = |n| {
+                rayon::ThreadPoolBuilder::new()
+                    .num_threads(n)
+                    .build()
+                    .unwrap()
+            };
+            let one = pool(1).install(|| worst_error(&prims, &surface, level));
+            let two = pool(2).install(|| worst_error(&prims, &surface, level));
+            let at = format!("level {level}: {one} {two} (alone {worst}, next {second})");
+            assert_eq!(one.to_bits(), two.to_bits(), "{at}");
+            assert!(
+                one >= worst / (1.0 + RELATIVE) - ABSOLUTE * d - 1e-12,
+                "{at}"
+            );
+            assert!(one <= loose(worst, &surface), "{at}");
+            assert_eq!(one <= level, worst <= level, "{at}");
         }
     }
 

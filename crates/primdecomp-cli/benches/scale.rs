@@ -6,8 +6,11 @@
 //! reference cost of a greedy QEM-style pass. Each input runs with the default
 //! settings (both inputs are large enough for `--partitions auto` to split them, into
 //! 16 and 54 parts: docs/decisions/0019-large-inputs-merged-in-parts.md), with `--partitions 1`
-//! (one global greedy, the paper's Alg. 1).
-//! Median of `RUNS` runs each.
+//! (one global greedy, the paper's Alg. 1). Median of `RUNS` runs each.
+//! Last, issue 26's cost target (at most 1.3×; docs/decisions/0042-the-cuts-cost.md):
+//! the dragon with `--tolerance 1%` (the merge-tree cut, capped at the same count)
+//! against the greedy, the two run in turn `RUNS` times so that both see the same
+//! machine, and the ratio of the least time of each.
 //!
 //! Run: `cargo bench --bench scale` (needs `../shared/datasets/corpus`; says so
 //! loudly and exits when it is absent). Prints a markdown table.
@@ -68,43 +71,63 @@ fn main() {
         "\ntime(3.5M) / time(871k) = {:.2} (default settings)",
         times[1] / times[0]
     );
+    let (mut greedy, mut cut) = (Vec::new(), Vec::new());
+    for _ in 0..RUNS {
+        greedy.push(cli_run(&bin, &dragon, &[]).0);
+        cut.push(cli_run(&bin, &dragon, &["--tolerance", "1%"]).0);
+    }
+    // The least of each: this machine's noise only ever adds time.
+    let least = |v: Vec<f64>| v.into_iter().fold(f64::INFINITY, f64::min);
+    let (greedy, cut) = (least(greedy), least(cut));
+    println!(
+        "dragon -n {TARGET}: greedy {greedy:.2} s, --tolerance 1% {cut:.2} s, ratio {:.2} \
+         (issue 26: at most 1.3)",
+        cut / greedy
+    );
     let _ = std::fs::remove_file(&big_path);
 }
 
 /// Median wall time and the largest peak RSS (MiB) of the CLI over `RUNS` runs, with
 /// `extra` arguments.
 fn cli_runs(bin: &Path, input: &Path, extra: &[&str]) -> (f64, f64) {
-    let out = std::env::temp_dir().join("primdecomp_scale_out.json");
     let mut t = Vec::new();
     let mut rss: f64 = 0.0;
     for _ in 0..RUNS {
-        let start = Instant::now();
-        let o = Command::new(bin)
-            .args([
-                "decompose",
-                "-n",
-                &TARGET.to_string(),
-                "--quiet",
-                "--timings",
-                "-o",
-            ])
-            .arg(&out)
-            .args(extra)
-            .arg(input)
-            .output()
-            .expect("run primdecomp");
-        t.push(start.elapsed().as_secs_f64());
-        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-        let text = String::from_utf8_lossy(&o.stdout);
-        let mib = text
-            .lines()
-            .find_map(|l| l.strip_prefix("memory    peak resident "))
-            .and_then(|l| l.trim_end_matches(" MiB").parse::<f64>().ok())
-            .expect("peak memory line");
+        let (secs, mib) = cli_run(bin, input, extra);
+        t.push(secs);
         rss = rss.max(mib);
     }
-    let _ = std::fs::remove_file(&out);
     (median(t), rss)
+}
+
+/// Wall time and peak RSS (MiB) of one CLI run to `TARGET` with `extra` arguments.
+fn cli_run(bin: &Path, input: &Path, extra: &[&str]) -> (f64, f64) {
+    let out = std::env::temp_dir().join("primdecomp_scale_out.json");
+    let start = Instant::now();
+    let o = Command::new(bin)
+        .args([
+            "decompose",
+            "-n",
+            &TARGET.to_string(),
+            "--quiet",
+            "--timings",
+            "-o",
+        ])
+        .arg(&out)
+        .args(extra)
+        .arg(input)
+        .output()
+        .expect("run primdecomp");
+    let secs = start.elapsed().as_secs_f64();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8_lossy(&o.stdout);
+    let mib = text
+        .lines()
+        .find_map(|l| l.strip_prefix("memory    peak resident "))
+        .and_then(|l| l.trim_end_matches(" MiB").parse::<f64>().ok())
+        .expect("peak memory line");
+    let _ = std::fs::remove_file(&out);
+    (secs, mib)
 }
 
 /// Median seconds of meshopt's simplifier down to `TARGET` triangles.

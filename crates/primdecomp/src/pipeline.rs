@@ -98,7 +98,9 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
     })?;
     // The input's triangles, once, for the cut's distances and thickened plates.
     let cut = params.uses_cut() && !merged.stopped;
-    let tris = (cut || params.min_thickness > 0.0).then(|| Triangles::new(mesh));
+    let tris = clock.step(Stage::Postprocess, "triangles", || {
+        (cut || params.min_thickness > 0.0).then(|| Triangles::new(mesh))
+    })?;
     let requests = requests(params, mesh);
     // The cut of the merge tree at each target where the error is (issue 26).
     if let (true, Some(tris)) = (cut, &tris) {

@@ -174,10 +174,7 @@ impl<'a> Cutter<'a> {
     /// face below the node again at every level. A node in `known` keeps its fit.
     fn entry(&self, n: u32, s: &mut Scratch, above: f64, known: &HashMap<u32, Entry>) -> Entry {
         if let Some(e) = known.get(&n) {
-            return match e.exact {
-                true => e.clone(),
-                false => self.measured(n, e.prim, above),
-            };
+            return self.remeasured(e, above);
         }
         let sets = self.hulls.of(n, &mut s.hull);
         let faces = self.tree.faces(n).iter().copied();
@@ -207,6 +204,14 @@ impl<'a> Cutter<'a> {
         }
         let q = &self.tree.nodes[e.node as usize].q;
         self.ev.fit_output(faces.iter().copied(), q, ws).prim
+    }
+
+    /// `e` with its error measured up to `above`, unless it is already exact.
+    fn remeasured(&self, e: &Entry, above: f64) -> Entry {
+        match e.exact {
+            true => e.clone(),
+            false => self.measured(e.node, e.prim, above),
+        }
     }
 
     fn measured(&self, node: u32, prim: Primitive, above: f64) -> Entry {

@@ -45,7 +45,7 @@ impl Cutter<'_> {
         (self.ev).output_candidates(faces, q, &mut s.ws, &mut s.candidates);
         let mut best = Entry {
             closest: true,
-            ..self.measured(e.node, e.prim, f64::INFINITY)
+            ..self.remeasured(e, f64::INFINITY)
         };
         for p in &s.candidates {
             if best.error <= self.enough {

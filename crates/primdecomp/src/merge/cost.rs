@@ -183,10 +183,7 @@ impl<'a> Evaluator<'a> {
         q: &Sym3,
         ws: &mut Workspace,
     ) -> Fit {
-        ws.clear();
-        for f in faces.clone() {
-            self.push_points(self.mesh.face(f as usize), ws);
-        }
+        self.gather(faces.clone(), ws);
         ws.rims.clear();
         if self.prices_rims() {
             ws.members.clear();
@@ -196,6 +193,14 @@ impl<'a> Evaluator<'a> {
             self.surroundings().rims(&ws.members, &mut ws.rims);
         }
         self.fit_gathered(faces, q, ws, false)
+    }
+
+    /// Every point of `faces` (their own vertices, repeats kept) into `ws`'s points.
+    fn gather(&self, faces: impl Iterator<Item = u32>, ws: &mut Workspace) {
+        ws.clear();
+        for f in faces {
+            self.push_points(self.mesh.face(f as usize), ws);
+        }
     }
 
     /// [`Self::fit_output`] on `hull`, the hull vertices of `faces` (their own vertex
@@ -234,10 +239,7 @@ impl<'a> Evaluator<'a> {
         ws: &mut Workspace,
         out: &mut Vec<Primitive>,
     ) {
-        ws.clear();
-        for f in faces.clone() {
-            self.push_points(self.mesh.face(f as usize), ws);
-        }
+        self.gather(faces.clone(), ws);
         out.clear();
         let all = Cloud {
             x: &ws.x,

@@ -40,66 +40,28 @@ pub fn box_dist2(p: V3, lo: V3, hi: V3) -> f64 {
 }
 
 impl Bvh {
-    /// Builds over `boxes[i] = (lo, hi)`.
+    /// Builds over `boxes[i] = (lo, hi)`, the two halves of large nodes in parallel
+    /// (the same hierarchy on any thread count).
     pub fn build(boxes: &[(V3, V3)]) -> Bvh {
-        let mut bvh = Bvh {
-            nodes: Vec::with_capacity(2 * boxes.len() / LEAF + 1),
-            items: (0..boxes.len() as u32).collect(),
-        };
+        let mut items: Vec<u32> = (0..boxes.len() as u32).collect();
         if boxes.is_empty() {
-            return bvh;
+            return Bvh {
+                nodes: Vec::new(),
+                items,
+            };
         }
-        let centroid = |i: u32| -> V3 {
-            let (lo, hi) = boxes[i as usize];
-            scale(add(lo, hi), 0.5)
-        };
-        bvh.nodes.push(Node {
+        let sizes = Sizes::new(boxes.len());
+        let empty = Node {
             lo: [0.0; 3],
             hi: [0.0; 3],
             first: 0,
-            count: boxes.len() as u32,
-        });
-        let mut stack = vec![0usize];
-        while let Some(n) = stack.pop() {
-            let (first, count) = (bvh.nodes[n].first as usize, bvh.nodes[n].count as usize);
-            let span = &mut bvh.items[first..first + count];
-            let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-            let (mut clo, mut chi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-            for &i in span.iter() {
-                let (blo, bhi) = boxes[i as usize];
-                let c = centroid(i);
-                for k in 0..3 {
-                    (lo[k], hi[k]) = (lo[k].min(blo[k]), hi[k].max(bhi[k]));
-                    (clo[k], chi[k]) = (clo[k].min(c[k]), chi[k].max(c[k]));
-                }
-            }
-            (bvh.nodes[n].lo, bvh.nodes[n].hi) = (lo, hi);
-            if count <= LEAF {
-                continue;
-            }
-            let axis = (0..3)
-                .max_by(|&a, &b| (chi[a] - clo[a]).total_cmp(&(chi[b] - clo[b])))
-                .unwrap_or(0);
-            let mid = count / 2;
-            span.select_nth_unstable_by(mid, |&a, &b| {
-                centroid(a)[axis]
-                    .total_cmp(&centroid(b)[axis])
-                    .then(a.cmp(&b))
-            });
-            let left = bvh.nodes.len();
-            for (f, c) in [(first, mid), (first + mid, count - mid)] {
-                bvh.nodes.push(Node {
-                    lo: [0.0; 3],
-                    hi: [0.0; 3],
-                    first: f as u32,
-                    count: c as u32,
-                });
-            }
-            bvh.nodes[n].first = left as u32;
-            bvh.nodes[n].count = 0;
-            stack.extend([left, left + 1]);
-        }
-        bvh
+            count: 0,
+        };
+        let mut nodes = vec![empty; sizes.nodes(boxes.len())];
+        let (root, below) = nodes.split_first_mut().expect("one node or more");
+        let build = Build { boxes, sizes };
+        build.subtree(root, below, 1, &mut items, 0);
+        Bvh { nodes, items }
     }
 
     /// The smallest `dist2(item)` over all items, with that item (or `u32::MAX` when
@@ -232,6 +194,94 @@ impl Bvh {
             }
         }
         best
+    }
+}
+
+/// Nodes of at least this many items build their two halves in parallel.
+const PARALLEL: usize = 4096;
+
+/// How many nodes the hierarchy over a count of items has: a median split halves
+/// it, so the count fixes the shape. Looked up below [`PARALLEL`] items.
+struct Sizes(Vec<usize>);
+
+impl Sizes {
+    fn new(items: usize) -> Sizes {
+        let mut table = vec![1; items.min(PARALLEL) + 1];
+        for c in LEAF + 1..table.len() {
+            table[c] = 1 + table[c / 2] + table[c - c / 2];
+        }
+        Sizes(table)
+    }
+
+    fn nodes(&self, count: usize) -> usize {
+        match self.0.get(count) {
+            Some(&n) => n,
+            None => 1 + self.nodes(count / 2) + self.nodes(count - count / 2),
+        }
+    }
+}
+
+/// What building a subtree reads.
+struct Build<'a> {
+    boxes: &'a [(V3, V3)],
+    sizes: Sizes,
+}
+
+impl Build<'_> {
+    fn centroid(&self, i: u32) -> V3 {
+        let (lo, hi) = self.boxes[i as usize];
+        scale(add(lo, hi), 0.5)
+    }
+
+    /// Builds the subtree over `span` (the item list's entries from `first` on) into
+    /// `node`, its descendants into `below` (whose first node has index `at`): a
+    /// node's children side by side, then the left child's descendants, then the
+    /// right's. Split at the median of the item centroids on their longest axis.
+    fn subtree(
+        &self,
+        node: &mut Node,
+        below: &mut [Node],
+        at: usize,
+        span: &mut [u32],
+        first: usize,
+    ) {
+        let (mut clo, mut chi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        (node.lo, node.hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for &i in span.iter() {
+            let (blo, bhi) = self.boxes[i as usize];
+            let c = self.centroid(i);
+            for k in 0..3 {
+                (node.lo[k], node.hi[k]) = (node.lo[k].min(blo[k]), node.hi[k].max(bhi[k]));
+                (clo[k], chi[k]) = (clo[k].min(c[k]), chi[k].max(c[k]));
+            }
+        }
+        let count = span.len();
+        if count <= LEAF {
+            (node.first, node.count) = (first as u32, count as u32);
+            return;
+        }
+        let axis = (0..3)
+            .max_by(|&a, &b| (chi[a] - clo[a]).total_cmp(&(chi[b] - clo[b])))
+            .unwrap_or(0);
+        let mid = count / 2;
+        span.select_nth_unstable_by(mid, |&a, &b| {
+            self.centroid(a)[axis]
+                .total_cmp(&self.centroid(b)[axis])
+                .then(a.cmp(&b))
+        });
+        (node.first, node.count) = (at as u32, 0);
+        let (kids, rest) = below.split_at_mut(2);
+        let (left, right) = kids.split_at_mut(1);
+        let left_below = self.sizes.nodes(mid) - 1;
+        let (below_l, below_r) = rest.split_at_mut(left_below);
+        let (span_l, span_r) = span.split_at_mut(mid);
+        let at_r = at + 2 + left_below;
+        let mut l = || self.subtree(&mut left[0], below_l, at + 2, span_l, first);
+        let mut r = || self.subtree(&mut right[0], below_r, at_r, span_r, first + mid);
+        match count >= PARALLEL {
+            true => rayon::join(l, r),
+            false => (l(), r()),
+        };
     }
 }
 
@@ -402,6 +452,50 @@ mod tests {
             assert_eq!(bvh.any_at(p, 0.1, near), want);
         }
         assert_eq!(Bvh::build(&[]).nearest([0.0; 3], |_| 0.0).1, u32::MAX);
+    }
+
+    /// A hierarchy large enough to build its halves in parallel: each item in one
+    /// leaf, each box holding its children's (and a leaf's its items'), nearest
+    /// queries the linear scan's, and the same nodes and items on one thread and two.
+    #[test]
+    fn a_parallel_build_is_whole_and_thread_independent() {
+        let mut rng = ChaCha8Rng::seed_from_u64(11);
+        let n = 3 * PARALLEL + 5;
+        let boxes: Vec<(V3, V3)> = (0..n)
+            .map(|_| {
+                let lo: V3 = std::array::from_fn(|_| rng.gen_range(-5.0..5.0));
+                (lo, lo.map(|x| x + rng.gen_range(0.0..0.2)))
+            })
+            .collect();
+        let on = |threads| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build();
+            pool.expect("pool").install(|| Bvh::build(&boxes))
+        };
+        let (one, bvh) = (on(1), on(2));
+        assert_eq!(format!("{one:?}"), format!("{bvh:?}"));
+        let mut seen = vec![0; n];
+        let holds =
+            |(lo, hi): (V3, V3), n: &Node| (0..3).all(|k| n.lo[k] <= lo[k] && hi[k] <= n.hi[k]);
+        for node in &bvh.nodes {
+            let span = node.first as usize..(node.first + node.count) as usize;
+            for &i in &bvh.items[span] {
+                seen[i as usize] += 1;
+                assert!(holds(boxes[i as usize], node));
+            }
+            if node.count == 0 {
+                for c in [node.first, node.first + 1] {
+                    let c = &bvh.nodes[c as usize];
+                    assert!(holds((c.lo, c.hi), node));
+                }
+            }
+        }
+        assert!(seen.iter().all(|&k| k == 1));
+        for _ in 0..200 {
+            let p: V3 = std::array::from_fn(|_| rng.gen_range(-6.0..6.0));
+            let d2 = |i: u32| box_dist2(p, boxes[i as usize].0, boxes[i as usize].1);
+            let lin = (0..n as u32).map(d2).fold(f64::INFINITY, f64::min);
+            assert_eq!(bvh.nearest(p, d2).0, lin);
+        }
     }
 
     /// The first hit along random rays through random triangles is the brute-force

@@ -39,6 +39,21 @@ pub(crate) const LEAVES_PER_TARGET: usize = 4;
 /// tessellation error is of that order.
 const FLOOR_HALVES: f64 = 4.0;
 
+/// [`Cutter::ahead`] lowers its threshold by this factor a step: the finer, the fewer
+/// fits wasted where the count runs out, the more rounds (docs/decisions/0043).
+const AHEAD_STEP: f64 = 0.85;
+
+/// The tests compare the cuts with [`Cutter::ahead`] fitting nothing.
+#[cfg(test)]
+static AHEAD_OFF: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+fn ahead_off() -> bool {
+    #[cfg(test)]
+    return AHEAD_OFF.load(std::sync::atomic::Ordering::Relaxed);
+    #[cfg(not(test))]
+    false
+}
+
 /// Nodes of fewer faces than a cut of the largest count holds on average, divided
 /// by this, have no hull kept ([`hulls`]): found from their faces when fitted.
 const STORED_BELOW_MEAN: usize = 4;
@@ -355,6 +370,7 @@ impl<'a> Cutter<'a> {
             splits: Vec::new(),
             capped: false,
         };
+        let ready = self.ahead(&roots, largest, enough, above, known);
         let mut count = roots.len();
         let mut heap: BinaryHeap<Entry> = roots.into_iter().collect();
         let (mut sa, mut sb) = (Scratch::default(), Scratch::default());
@@ -374,10 +390,13 @@ impl<'a> Cutter<'a> {
                 continue;
             }
             let [a, b] = node.children;
-            let (ea, eb) = rayon::join(
-                || self.entry(a, &mut sa, above, known),
-                || self.entry(b, &mut sb, above, known),
-            );
+            let (ea, eb) = match (ready.get(&a), ready.get(&b)) {
+                (Some(ea), Some(eb)) => (ea.clone(), eb.clone()),
+                _ => rayon::join(
+                    || self.entry(a, &mut sa, above, known),
+                    || self.entry(b, &mut sb, above, known),
+                ),
+            };
             ex.fitted.insert(a, ea.clone());
             ex.fitted.insert(b, eb.clone());
             heap.extend([ea, eb]);
@@ -390,6 +409,62 @@ impl<'a> Cutter<'a> {
         ex.ids = ex.fitted.keys().copied().collect();
         ex.ids.sort_unstable();
         ex
+    }
+
+    /// The children of nodes [`Cutter::explore`]'s worst-first splits will split,
+    /// fitted a batch at a time with every thread. Over any threshold, the nodes whose
+    /// ancestors are all over it are split by the worst-first order before any node
+    /// under it, whatever the order among them; so while the count allows all of them,
+    /// they are split here together, round after round until none is left over the
+    /// threshold, which is then lowered a step towards `enough`. Where the count runs
+    /// out first a round is not started: the splits then go on alone from what is
+    /// ready, and only the rounds of the last step may have fitted nodes they never
+    /// split (docs/decisions/0043).
+    fn ahead(
+        &self,
+        roots: &[Entry],
+        largest: usize,
+        enough: f64,
+        above: f64,
+        known: &HashMap<u32, Entry>,
+    ) -> HashMap<u32, Entry> {
+        let splits = |e: &Entry| e.error > enough && !self.tree.nodes[e.node as usize].is_leaf();
+        let mut frontier: Vec<(f64, u32)> = roots
+            .iter()
+            .filter(|e| splits(e))
+            .map(|e| (e.error, e.node))
+            .collect();
+        let top = frontier.iter().map(|f| f.0).fold(enough, f64::max);
+        let mut threshold = (top * AHEAD_STEP).max(enough);
+        let mut count = roots.len();
+        let mut ready = HashMap::new();
+        while !frontier.is_empty() {
+            let (batch, rest): (Vec<_>, Vec<_>) =
+                frontier.into_iter().partition(|f| f.0 > threshold);
+            frontier = rest;
+            if batch.is_empty() {
+                if threshold <= enough {
+                    break;
+                }
+                threshold = (threshold * AHEAD_STEP).max(enough);
+                continue;
+            }
+            if count + batch.len() > largest || ahead_off() {
+                break;
+            }
+            let kids: Vec<Entry> = batch
+                .par_iter()
+                .map_init(Scratch::default, |s, &(_, n)| {
+                    let [a, b] = self.tree.nodes[n as usize].children;
+                    [a, b].map(|c| self.entry(c, s, above, known))
+                })
+                .flatten_iter()
+                .collect();
+            count += batch.len();
+            frontier.extend(kids.iter().filter(|e| splits(e)).map(|e| (e.error, e.node)));
+            ready.extend(kids.into_iter().map(|e| (e.node, e)));
+        }
+        ready
     }
 
     /// With a tolerance, the cut of fewest nodes within it, if the caps allow it.

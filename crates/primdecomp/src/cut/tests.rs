@@ -199,3 +199,48 @@ fn one_target_is_the_root() {
     let b = decompose(&mesh, &cut).expect("cut");
     assert_eq!(a.levels[0].primitives, b.levels[0].primitives);
 }
+
+/// Fitting ahead of the worst-first splits ([`Cutter::ahead`]) changes no cut: the
+/// same levels with it and without it, on one thread and on two, where every node
+/// over the tolerance is split (2% at 400 nodes) and where the count runs out first
+/// (0.2% at 40: the rounds stop short, and the splits go on from what they fitted).
+#[test]
+fn fitting_ahead_changes_no_cut() {
+    for (targets, tolerance) in [(400, 0.02), (40, 0.002)] {
+        same_cuts_fitting_ahead(targets, tolerance);
+    }
+}
+
+fn same_cuts_fitting_ahead(count: usize, tolerance: f64) {
+    use std::sync::atomic::Ordering::Relaxed;
+    let mesh = crate::demo::demo_scene();
+    let p = Params {
+        targets: vec![count; 3],
+        tolerance: vec![
+            Tolerance::Diagonal(0.05),
+            Tolerance::Diagonal(tolerance * 2.0),
+            Tolerance::Diagonal(tolerance),
+        ],
+        ..Params::default()
+    };
+    let run = |threads: usize, off: bool| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .expect("pool");
+        AHEAD_OFF.store(off, Relaxed);
+        let d = pool.install(|| decompose(&mesh, &p)).expect("decomposes");
+        AHEAD_OFF.store(false, Relaxed);
+        d.levels
+    };
+    let serial = run(1, true);
+    let capped = (count < 400).then_some(crate::Shortfall::Count);
+    assert_eq!(serial[2].shortfall, capped, "{count}");
+    for (threads, off) in [(1, false), (2, false), (2, true)] {
+        let levels = run(threads, off);
+        for (a, b) in serial.iter().zip(&levels) {
+            assert_eq!(a.primitives, b.primitives, "{threads} threads, off {off}");
+            assert_eq!(a.distance, b.distance, "{threads} threads, off {off}");
+        }
+    }
+}

@@ -1329,7 +1329,7 @@ fn shortfall(l: &primdecomp::Level) -> String {
             l.target
         ),
         Some(primdecomp::Shortfall::Bytes) => {
-            "the bytes run out first (counted before nested primitives are removed)".into()
+            "the bytes run out first (--max-bytes raises them)".into()
         }
         Some(primdecomp::Shortfall::Faces) => "the nearest the merge tree reaches: faces \
             no enabled kind encloses nearer"

@@ -141,7 +141,10 @@ pub(crate) struct Cutter<'a> {
     ev: &'a Evaluator<'a>,
     tree: &'a MergeTree,
     hulls: NodeHulls<'a>,
-    requests: &'a [Request],
+    /// What [`Cutter::snapshots`] was last asked.
+    requests: Vec<Request>,
+    /// Every node fitted by the calls before, kept for the next.
+    fitted: HashMap<u32, Entry>,
     surface: &'a Triangles,
     /// Errors at most this are not split by any request: measured only as far as it
     /// takes to know that (the smallest tolerance when every request has one, else
@@ -158,12 +161,13 @@ struct Scratch {
 }
 
 impl<'a> Cutter<'a> {
-    /// The cutter of `tree` for `requests`.
+    /// The cutter of `tree` for `requests` (their counts and bytes may be raised
+    /// later, [`Cutter::snapshots`]; their tolerances stay).
     pub(crate) fn new(
         ev: &'a Evaluator<'a>,
         tree: &'a MergeTree,
         surface: &'a Triangles,
-        requests: &'a [Request],
+        requests: &[Request],
     ) -> Self {
         let largest = largest(requests);
         // Exploring rarely fits nodes much smaller than a cut of `largest` nodes
@@ -173,7 +177,8 @@ impl<'a> Cutter<'a> {
             ev,
             tree,
             hulls: NodeHulls::build(tree, ev.mesh, ev.face_adj, ev.hull_eps, stored),
-            requests,
+            requests: requests.to_vec(),
+            fitted: HashMap::new(),
             surface,
             enough: requests
                 .iter()
@@ -249,10 +254,20 @@ impl<'a> Cutter<'a> {
     /// each time, until the largest count is reached, every node is within the
     /// smallest tolerance (when every request has one) or nothing is left worth
     /// splitting. Each request then takes the best cut of the nodes reached
-    /// ([`Cutter::choose`]).
-    pub(crate) fn snapshots(&self) -> Vec<Snapshot> {
-        let requests = self.requests;
+    /// ([`Cutter::choose`]). `requests` are [`Cutter::new`]'s with the same
+    /// tolerances, their counts and bytes maybe raised; the nodes fitted for earlier
+    /// requests keep their fits.
+    pub(crate) fn snapshots(&mut self, requests: &[Request]) -> Vec<Snapshot> {
+        self.requests = requests.to_vec();
         let (explored, cuts) = self.explore_and_choose(largest(requests), self.enough);
+        let snaps = self.cut_snapshots(&explored, cuts);
+        self.fitted.extend(explored.fitted);
+        snaps
+    }
+
+    /// Each request's snapshot from its cut of `explored`.
+    fn cut_snapshots(&self, explored: &Explored, cuts: Vec<Vec<u32>>) -> Vec<Snapshot> {
+        let requests = &self.requests;
         // A chosen node's fit on its hull's vertices, unless one of its faces' points
         // (left out of the hull within its tolerance) is outside it beyond round-off:
         // then its fit on every point ([`Cutter::enclosing`]).
@@ -270,7 +285,7 @@ impl<'a> Cutter<'a> {
             .iter()
             .zip(cuts)
             .map(|(r, cut)| {
-                let shortfall = self.shortfall(&explored, r, &cut);
+                let shortfall = self.shortfall(explored, r, &cut);
                 let entries = cut
                     .iter()
                     .map(|n| Entry {
@@ -298,7 +313,7 @@ impl<'a> Cutter<'a> {
             None => r.tolerance.map(|t| m.max(t)),
             Some(_) => None,
         });
-        let mut known = HashMap::new();
+        let mut known = self.fitted.clone();
         if let Some(above) = above {
             let mut ex = self.explore(largest, enough, above, &known);
             if !ex.capped {

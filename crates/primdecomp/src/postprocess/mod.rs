@@ -9,7 +9,7 @@ pub(crate) mod nested;
 pub(crate) mod plates;
 pub(crate) mod thicken;
 
-use crate::merge::{Evaluator, MergeOutput, Snapshot};
+use crate::merge::{Evaluator, Snapshot};
 use crate::mesh::triangles::Triangles;
 use crate::params::Params;
 use crate::result::Level;
@@ -20,12 +20,11 @@ use nested::{keep_mask, Cleanup};
 /// `tris`: the input's triangles, built by the run when a step needs them.
 pub(crate) fn levels(
     ev: &Evaluator,
-    merged: MergeOutput,
+    mut snaps: Vec<Snapshot>,
     params: &Params,
     tris: Option<&Triangles>,
 ) -> Vec<Level> {
     let diag = ev.mesh.diagonal();
-    let mut snaps = merged.snapshots;
     // The input as rays see it, for plates thickened inward (docs/decisions/0033).
     let thick = tris
         .filter(|_| params.min_thickness > 0.0)

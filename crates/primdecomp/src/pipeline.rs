@@ -171,6 +171,8 @@ fn cut_tree(
     let mut over: Vec<Option<Request>> = vec![None; requests.len()];
     let mut settled = vec![false; requests.len()];
     let mut kept: Vec<Snapshot> = Vec::new();
+    // The primitives and bytes each kept cut's level holds.
+    let mut spent: Vec<(usize, usize)> = Vec::new();
     for round in 0..=RECUTS {
         let snaps = cutter.snapshots(&asked);
         if round == 0 && !snaps.iter().zip(requests).any(|(s, r)| capped(r, s)) {
@@ -194,13 +196,19 @@ fn cut_tree(
                 continue;
             }
             let raised = raise(r, &asked[i], &snap, level);
-            match round {
-                0 => kept.push(snap),
-                _ => kept[i] = snap,
+            let now = (level.primitives.len(), level.bytes());
+            // Most of the raise went to primitives post-processing drops again.
+            let slow = round > 0 && little(spent[i], now, &before[i], &asked[i]);
+            if round == 0 {
+                kept.push(snap);
+                spent.push(now);
+            } else {
+                (kept[i], spent[i]) = (snap, now);
             }
             before[i] = asked[i];
             asked[i] = match (raised, over[i]) {
                 (None, _) => asked[i],
+                _ if slow => asked[i],
                 (Some(a), None) => a,
                 (Some(_), Some(o)) => halfway(&asked[i], &o),
             };
@@ -224,6 +232,19 @@ fn halfway(lo: &Request, hi: &Request) -> Request {
         bytes: lo.bytes.zip(hi.bytes).map(|(a, b)| mid(a, b)),
         ..*lo
     }
+}
+
+/// Whether a cut for `now` (from `from`'s caps raised to `to`'s) holds less than a
+/// quarter of the raise more than the level of `from` held (`was`): where nested
+/// primitives eat the raise, rounds cost more than they bring.
+fn little(was: (usize, usize), now: (usize, usize), from: &Request, to: &Request) -> bool {
+    let gain = |a: usize, b: usize, raise: usize| raise > 0 && 4 * b.saturating_sub(a) < raise;
+    let bytes = to
+        .bytes
+        .unwrap_or(0)
+        .saturating_sub(from.bytes.unwrap_or(0));
+    gain(was.0, now.0, to.count.saturating_sub(from.count))
+        && (bytes == 0 || gain(was.1, now.1, bytes))
 }
 
 /// Whether `level` keeps to `r`'s count and bytes.

@@ -80,6 +80,7 @@ mod postprocess;
 mod primitive;
 mod progress;
 mod quadric;
+mod recut;
 mod result;
 
 pub use decompose::{decompose, decompose_with};

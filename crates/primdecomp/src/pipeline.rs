@@ -7,7 +7,7 @@ use crate::cut::Request;
 use crate::error::{Error, Result};
 use crate::math::{Sym3, V3};
 use crate::merge::rim::FaceAdjacency;
-use crate::merge::{components, partition, Clusters, Evaluator, MergeOutput, Snapshot, Workspace};
+use crate::merge::{components, partition, Clusters, Evaluator, MergeOutput, Workspace};
 use crate::mesh::solid::{self, Solid};
 use crate::mesh::triangles::Triangles;
 use crate::mesh::{adjacency, dedup, orient, Mesh};
@@ -15,7 +15,6 @@ use crate::params::{Params, Reprice};
 use crate::primitive::fit::{FitConfig, FrameSearch};
 use crate::progress::{GoOn, Progress, Stage};
 use crate::result::{Decomposition, InputInfo, Stats, Timings};
-use crate::Shortfall;
 use crate::{postprocess, quadric};
 use rayon::prelude::*;
 use std::time::Instant;
@@ -109,7 +108,7 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
     if let (true, Some(tris)) = (cut, &tris) {
         merged.snapshots = clock.stage(Stage::Postprocess, "cut", |_, _| {
             let tree = merge_tree(&ev, &merged, &face_q);
-            cut_tree(&ev, &tree, &requests, tris, params)
+            crate::recut::snapshots(&ev, &tree, &requests, tris, params)
         })?;
     }
     // Plates joined, duplicates absorbed, nested primitives removed, back to world
@@ -145,143 +144,6 @@ fn merge_tree(ev: &Evaluator, merged: &MergeOutput, face_q: &[Sym3]) -> crate::c
         let log = &merged.log[merged.log_at_first..];
         crate::cut::MergeTree::build(&leaves.members, &leaves.q, log, faces)
     }
-}
-
-/// A cut is made again at most this many times with counts and bytes raised.
-const RECUTS: usize = 4;
-
-/// One snapshot per request cut from `tree`, its count and bytes those of its level
-/// after post-processing: a level a count or byte cap stopped short of its
-/// tolerance (or of filling its count), whose post-processing then removed nested
-/// primitives or joined plates, is cut again with the cap raised by what was freed
-/// (halfway back where that went over), up to [`RECUTS`] times, and keeps the last
-/// cut whose level is within the request (docs/decisions/0044). The snapshots carry
-/// the requests' own counts.
-fn cut_tree(
-    ev: &Evaluator,
-    tree: &crate::cut::MergeTree,
-    requests: &[Request],
-    tris: &Triangles,
-    params: &Params,
-) -> Vec<Snapshot> {
-    let mut cutter = crate::cut::Cutter::new(ev, tree, tris, requests);
-    // Each level's request as the cutter gets it, the one its kept cut came from,
-    // the least found over the request, and whether it is settled.
-    let (mut asked, mut before) = (requests.to_vec(), requests.to_vec());
-    let mut over: Vec<Option<Request>> = vec![None; requests.len()];
-    let mut settled = vec![false; requests.len()];
-    let mut kept: Vec<Snapshot> = Vec::new();
-    // The primitives and bytes each kept cut's level holds.
-    let mut spent: Vec<(usize, usize)> = Vec::new();
-    for round in 0..=RECUTS {
-        let snaps = cutter.snapshots(&asked);
-        if round == 0 && !snaps.iter().zip(requests).any(|(s, r)| capped(r, s)) {
-            // Every level within its tolerance or stopped by its faces.
-            kept = snaps;
-            break;
-        }
-        let levels = postprocess::levels(ev, snaps.clone(), params, Some(tris));
-        for (i, (snap, level)) in snaps.into_iter().zip(&levels).enumerate() {
-            let r = &requests[i];
-            // No more nodes than the cut kept: raising the caps does not help.
-            let stuck = round > 0 && snap.prims.len() <= kept[i].prims.len();
-            if round > 0 && (settled[i] || stuck || !within(r, level)) {
-                if stuck {
-                    settled[i] = true;
-                } else if !settled[i] {
-                    over[i] = Some(asked[i]);
-                    asked[i] = halfway(&before[i], &asked[i]);
-                    settled[i] = asked[i] == before[i];
-                }
-                continue;
-            }
-            let raised = raise(r, &asked[i], &snap, level);
-            let now = (level.primitives.len(), level.bytes());
-            // Most of the raise went to primitives post-processing drops again.
-            let slow = round > 0 && little(spent[i], now, &before[i], &asked[i]);
-            if round == 0 {
-                kept.push(snap);
-                spent.push(now);
-            } else {
-                (kept[i], spent[i]) = (snap, now);
-            }
-            before[i] = asked[i];
-            asked[i] = match (raised, over[i]) {
-                (None, _) => asked[i],
-                _ if slow => asked[i],
-                (Some(a), None) => a,
-                (Some(_), Some(o)) => halfway(&asked[i], &o),
-            };
-            settled[i] = asked[i] == before[i];
-        }
-        if settled.iter().all(|&s| s) {
-            break;
-        }
-    }
-    for (snap, r) in kept.iter_mut().zip(requests) {
-        snap.target = r.count;
-    }
-    kept
-}
-
-/// The request halfway from `lo` to `hi` in count and bytes (`lo` once they meet).
-fn halfway(lo: &Request, hi: &Request) -> Request {
-    let mid = |a: usize, b: usize| a + b.saturating_sub(a) / 2;
-    Request {
-        count: mid(lo.count, hi.count),
-        bytes: lo.bytes.zip(hi.bytes).map(|(a, b)| mid(a, b)),
-        ..*lo
-    }
-}
-
-/// Whether a cut for `now` (from `from`'s caps raised to `to`'s) holds less than a
-/// quarter of the raise more than the level of `from` held (`was`): where nested
-/// primitives eat the raise, rounds cost more than they bring.
-fn little(was: (usize, usize), now: (usize, usize), from: &Request, to: &Request) -> bool {
-    let gain = |a: usize, b: usize, raise: usize| raise > 0 && 4 * b.saturating_sub(a) < raise;
-    let bytes = to
-        .bytes
-        .unwrap_or(0)
-        .saturating_sub(from.bytes.unwrap_or(0));
-    gain(was.0, now.0, to.count.saturating_sub(from.count))
-        && (bytes == 0 || gain(was.1, now.1, bytes))
-}
-
-/// Whether `level` keeps to `r`'s count and bytes.
-fn within(r: &Request, level: &crate::Level) -> bool {
-    level.primitives.len() <= r.count && r.bytes.is_none_or(|b| level.bytes() <= b)
-}
-
-/// Whether a cap stopped `snap`, the cut for `r`: it has no tolerance, or the count
-/// or the bytes came first.
-fn capped(r: &Request, snap: &Snapshot) -> bool {
-    r.tolerance.is_none() || matches!(snap.shortfall, Some(Shortfall::Count | Shortfall::Bytes))
-}
-
-/// `asked` (what the cutter got for `user`) with its count and bytes raised by what
-/// post-processing freed of `user`'s, where it freed some (`snap`'s nodes against
-/// `level`'s primitives) and the cut stopped short of its tolerance (or has none);
-/// `None` otherwise.
-fn raise(
-    user: &Request,
-    asked: &Request,
-    snap: &Snapshot,
-    level: &crate::Level,
-) -> Option<Request> {
-    if !capped(user, snap) {
-        return None;
-    }
-    let node_bytes: usize = snap.prims.iter().map(|p| p.kind().bytes()).sum();
-    if snap.prims.len() == level.primitives.len() && node_bytes == level.bytes() {
-        return None;
-    }
-    let free_count = user.count.saturating_sub(level.primitives.len());
-    let free_bytes = user.bytes.map_or(0, |b| b.saturating_sub(level.bytes()));
-    (free_count > 0 || free_bytes > 0).then(|| Request {
-        count: asked.count + free_count,
-        bytes: asked.bytes.map(|b| b + free_bytes),
-        ..*asked
-    })
 }
 
 /// Each target's request of the cut, its tolerance in the mesh's units.

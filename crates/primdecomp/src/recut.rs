@@ -1,0 +1,171 @@
+//! A cut's caps spent on what post-processing keeps (docs/decisions/0044). A cut of
+//! the merge tree counts its nodes against a level's count and bytes; post-processing
+//! (§3.4) then removes the primitives nested in others and joins coplanar plates, so
+//! the file holds less than the caps allowed. A level a cap stopped short of its
+//! tolerance (or that has none) is cut again with the cap raised by what was freed,
+//! halfway back where that goes over, until it settles.
+
+use crate::cut::{Cutter, MergeTree, Request};
+use crate::merge::{Evaluator, Snapshot};
+use crate::mesh::triangles::Triangles;
+use crate::params::Params;
+use crate::postprocess;
+use crate::{Level, Shortfall};
+
+/// A cut is made again at most this many times with counts and bytes raised.
+const RECUTS: usize = 4;
+
+/// One snapshot per request cut from `tree`, each kept from the last cut whose level
+/// is within the request, carrying the request's own count.
+pub(crate) fn snapshots(
+    ev: &Evaluator,
+    tree: &MergeTree,
+    requests: &[Request],
+    tris: &Triangles,
+    params: &Params,
+) -> Vec<Snapshot> {
+    let mut cutter = Cutter::new(ev, tree, tris, requests);
+    let first = cutter.snapshots(requests);
+    // Every level within its tolerance or stopped by its faces: cut once.
+    if !first.iter().zip(requests).any(|(s, r)| capped(r, s)) {
+        return first;
+    }
+    let levels = postprocess::levels(ev, first.clone(), params, Some(tris));
+    let mut searches: Vec<Search> = (first.into_iter().zip(&levels).zip(requests))
+        .map(|((snap, level), r)| Search::first(r, snap, level))
+        .collect();
+    for _ in 0..RECUTS {
+        if searches.iter().all(|s| s.settled) {
+            break;
+        }
+        let asked: Vec<Request> = searches.iter().map(|s| s.asked).collect();
+        let snaps = cutter.snapshots(&asked);
+        let levels = postprocess::levels(ev, snaps.clone(), params, Some(tris));
+        for ((s, snap), (level, r)) in searches
+            .iter_mut()
+            .zip(snaps)
+            .zip(levels.iter().zip(requests))
+        {
+            s.step(r, snap, level);
+        }
+    }
+    (searches.into_iter().zip(requests))
+        .map(|(s, r)| Snapshot {
+            target: r.count,
+            ..s.kept
+        })
+        .collect()
+}
+
+/// One level's search: the request the cutter gets next, the one its kept cut came
+/// from, the least found over the user's caps, whether it is settled, and the kept
+/// cut with the primitives and bytes its level holds.
+struct Search {
+    asked: Request,
+    before: Request,
+    over: Option<Request>,
+    settled: bool,
+    kept: Snapshot,
+    spent: (usize, usize),
+}
+
+impl Search {
+    /// The search after the cut for the user's request `r` itself.
+    fn first(r: &Request, snap: Snapshot, level: &Level) -> Search {
+        let asked = raise(r, r, &snap, level).unwrap_or(*r);
+        Search {
+            asked,
+            before: *r,
+            over: None,
+            settled: asked == *r,
+            spent: (level.primitives.len(), level.bytes()),
+            kept: snap,
+        }
+    }
+
+    /// Takes the cut for `self.asked` (`snap`, post-processed to `level`) and says
+    /// what to ask next.
+    fn step(&mut self, r: &Request, snap: Snapshot, level: &Level) {
+        if self.settled {
+            return;
+        }
+        // No more nodes than the cut kept: raising the caps does not help.
+        if snap.prims.len() <= self.kept.prims.len() {
+            self.settled = true;
+            return;
+        }
+        if !within(r, level) {
+            self.over = Some(self.asked);
+            self.asked = halfway(&self.before, &self.asked);
+            self.settled = self.asked == self.before;
+            return;
+        }
+        let raised = raise(r, &self.asked, &snap, level);
+        let now = (level.primitives.len(), level.bytes());
+        // Most of the raise went to primitives post-processing drops again.
+        let slow = little(self.spent, now, &self.before, &self.asked);
+        (self.kept, self.spent, self.before) = (snap, now, self.asked);
+        self.asked = match (raised, self.over) {
+            (None, _) => self.asked,
+            _ if slow => self.asked,
+            (Some(a), None) => a,
+            (Some(_), Some(o)) => halfway(&self.asked, &o),
+        };
+        self.settled = self.asked == self.before;
+    }
+}
+
+/// The request halfway from `lo` to `hi` in count and bytes (`lo` once they meet).
+fn halfway(lo: &Request, hi: &Request) -> Request {
+    let mid = |a: usize, b: usize| a + b.saturating_sub(a) / 2;
+    Request {
+        count: mid(lo.count, hi.count),
+        bytes: lo.bytes.zip(hi.bytes).map(|(a, b)| mid(a, b)),
+        ..*lo
+    }
+}
+
+/// Whether a cut for `now` (from `from`'s caps raised to `to`'s) holds less than a
+/// quarter of the raise more than the level of `from` held (`was`): where nested
+/// primitives eat the raise, rounds cost more than they bring.
+fn little(was: (usize, usize), now: (usize, usize), from: &Request, to: &Request) -> bool {
+    let gain = |a: usize, b: usize, raise: usize| raise > 0 && 4 * b.saturating_sub(a) < raise;
+    let bytes = to
+        .bytes
+        .unwrap_or(0)
+        .saturating_sub(from.bytes.unwrap_or(0));
+    gain(was.0, now.0, to.count.saturating_sub(from.count))
+        && (bytes == 0 || gain(was.1, now.1, bytes))
+}
+
+/// Whether `level` keeps to `r`'s count and bytes.
+fn within(r: &Request, level: &Level) -> bool {
+    level.primitives.len() <= r.count && r.bytes.is_none_or(|b| level.bytes() <= b)
+}
+
+/// Whether a cap stopped `snap`, the cut for `r`: it has no tolerance, or the count
+/// or the bytes came first.
+fn capped(r: &Request, snap: &Snapshot) -> bool {
+    r.tolerance.is_none() || matches!(snap.shortfall, Some(Shortfall::Count | Shortfall::Bytes))
+}
+
+/// `asked` (what the cutter got for `user`) with its count and bytes raised by what
+/// post-processing freed of `user`'s, where it freed some (`snap`'s nodes against
+/// `level`'s primitives) and the cut stopped short of its tolerance (or has none);
+/// `None` otherwise.
+fn raise(user: &Request, asked: &Request, snap: &Snapshot, level: &Level) -> Option<Request> {
+    if !capped(user, snap) {
+        return None;
+    }
+    let node_bytes: usize = snap.prims.iter().map(|p| p.kind().bytes()).sum();
+    if snap.prims.len() == level.primitives.len() && node_bytes == level.bytes() {
+        return None;
+    }
+    let free_count = user.count.saturating_sub(level.primitives.len());
+    let free_bytes = user.bytes.map_or(0, |b| b.saturating_sub(level.bytes()));
+    (free_count > 0 || free_bytes > 0).then(|| Request {
+        count: asked.count + free_count,
+        bytes: asked.bytes.map(|b| b + free_bytes),
+        ..*asked
+    })
+}

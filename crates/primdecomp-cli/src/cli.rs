@@ -1316,7 +1316,10 @@ fn reach(l: &primdecomp::Level, diagonal: f64) -> String {
         };
     }
     if let Some(b) = l.max_bytes {
-        s += &format!(", byte target {b}");
+        s += &match l.bytes() <= b {
+            true => format!(", byte target {b}"),
+            false => format!(", over the byte target {b}: no cut of the merge tree fits it"),
+        };
     }
     s + ")"
 }

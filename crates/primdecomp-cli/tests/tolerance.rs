@@ -24,6 +24,11 @@ fn run(dir: &Path, args: &[&str]) -> (Option<i32>, String) {
     (out.status.code(), text)
 }
 
+/// A closed 2 × 1 × 3 box of 12 triangles, as OBJ.
+const CUBE: &str = "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 0 1 0\nv 0 0 3\nv 2 0 3\nv 2 1 3\nv 0 1 3\n\
+                    f 1 4 3\nf 1 3 2\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\n\
+                    f 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
+
 fn json(path: &Path) -> serde_json::Value {
     serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
 }
@@ -34,10 +39,7 @@ fn json(path: &Path) -> serde_json::Value {
 #[test]
 fn a_box_within_a_tolerance_is_one_box() {
     let d = dir("box");
-    let cube = "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 0 1 0\nv 0 0 3\nv 2 0 3\nv 2 1 3\nv 0 1 3\n\
-                f 1 4 3\nf 1 3 2\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\n\
-                f 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
-    std::fs::write(d.join("cube.obj"), cube).unwrap();
+    std::fs::write(d.join("cube.obj"), CUBE).unwrap();
     let (code, out) = run(
         &d,
         &[
@@ -102,10 +104,7 @@ fn a_box_within_a_tolerance_is_one_box() {
 #[test]
 fn a_byte_target_nothing_fits_is_said_to_be_over() {
     let d = dir("bytes");
-    let cube = "v 0 0 0\nv 2 0 0\nv 2 1 0\nv 0 1 0\nv 0 0 3\nv 2 0 3\nv 2 1 3\nv 0 1 3\n\
-                f 1 4 3\nf 1 3 2\nf 5 6 7\nf 5 7 8\nf 1 2 6\nf 1 6 5\nf 2 3 7\nf 2 7 6\n\
-                f 3 4 8\nf 3 8 7\nf 4 1 5\nf 4 5 8\n";
-    std::fs::write(d.join("cube.obj"), cube).unwrap();
+    std::fs::write(d.join("cube.obj"), CUBE).unwrap();
     for (bytes, over) in [("10", true), ("40", false)] {
         let args = [
             "decompose",

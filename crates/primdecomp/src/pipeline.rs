@@ -102,19 +102,23 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
     let tris = clock.step(Stage::Postprocess, "triangles", || {
         (cut || params.min_thickness > 0.0).then(|| Triangles::new(mesh))
     })?;
+    // The input's interior, once, for plates thickened inward (--min-thickness).
+    let post = clock.step(Stage::Postprocess, "interior", || {
+        postprocess::Input::new(&ev, params, tris.as_ref())
+    })?;
     let requests = requests(params, mesh);
     // The cut of the merge tree at each target where the error is (issue 26), its
     // counts and bytes spent on what post-processing keeps.
     if let (true, Some(tris)) = (cut, &tris) {
         merged.snapshots = clock.stage(Stage::Postprocess, "cut", |_, _| {
             let tree = merge_tree(&ev, &merged, &face_q);
-            crate::recut::snapshots(&ev, &tree, &requests, tris, params)
+            crate::recut::snapshots(&ev, &tree, &requests, tris, params, &post)
         })?;
     }
     // Plates joined, duplicates absorbed, nested primitives removed, back to world
     // coordinates (§3.4).
     let mut levels = clock.stage(Stage::Postprocess, "postprocess", |_, _| {
-        postprocess::levels(&ev, merged.snapshots, params, tris.as_ref())
+        postprocess::levels(&ev, merged.snapshots, params, &post)
     })?;
     // What each cut's caller asked and how far its primitives stand from the input.
     if let (true, Some(tris)) = (cut, &tris) {

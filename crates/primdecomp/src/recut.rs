@@ -23,6 +23,7 @@ pub(crate) fn snapshots(
     requests: &[Request],
     tris: &Triangles,
     params: &Params,
+    post: &postprocess::Input,
 ) -> Vec<Snapshot> {
     let mut cutter = Cutter::new(ev, tree, tris, requests);
     let first = cutter.snapshots(requests);
@@ -30,7 +31,7 @@ pub(crate) fn snapshots(
     if !first.iter().zip(requests).any(|(s, r)| capped(r, s)) {
         return first;
     }
-    let levels = postprocess::levels(ev, first.clone(), params, Some(tris));
+    let levels = postprocess::levels(ev, first.clone(), params, post);
     let mut searches: Vec<Search> = (first.into_iter().zip(&levels).zip(requests))
         .map(|((snap, level), r)| Search::first(r, snap, level))
         .collect();
@@ -40,7 +41,7 @@ pub(crate) fn snapshots(
         }
         let asked: Vec<Request> = searches.iter().map(|s| s.asked).collect();
         let snaps = cutter.snapshots(&asked);
-        let levels = postprocess::levels(ev, snaps.clone(), params, Some(tris));
+        let levels = postprocess::levels(ev, snaps.clone(), params, post);
         for ((s, snap), (level, r)) in searches
             .iter_mut()
             .zip(snaps)
@@ -140,7 +141,7 @@ fn little(was: (usize, usize), now: (usize, usize), from: &Request, to: &Request
 
 /// Whether `level` keeps to `r`'s count and bytes.
 fn within(r: &Request, level: &Level) -> bool {
-    level.primitives.len() <= r.count && r.bytes.is_none_or(|b| level.bytes() <= b)
+    crate::cut::fits(r, (level.primitives.len(), level.bytes()))
 }
 
 /// Whether a cap stopped `snap`, the cut for `r`: it has no tolerance, or the count

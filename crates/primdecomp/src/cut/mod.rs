@@ -721,7 +721,7 @@ fn collect(tree: &MergeTree, table: &HashMap<u32, Cost>, from: &[u32]) -> Vec<u3
 }
 
 /// Whether a cut of `c` = (nodes, bytes) meets `r`'s caps.
-fn fits(r: &Request, c: (usize, usize)) -> bool {
+pub(crate) fn fits(r: &Request, c: (usize, usize)) -> bool {
     c.0 <= r.count && r.bytes.is_none_or(|b| c.1 <= b)
 }
 

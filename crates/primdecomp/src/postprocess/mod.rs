@@ -15,20 +15,35 @@ use crate::params::Params;
 use crate::result::Level;
 use nested::{keep_mask, Cleanup};
 
+/// What post-processing reads of the input besides the evaluator, made once per run
+/// (a cut may post-process its levels several times, `recut`): its triangles, built
+/// by the run when a step needs them, and with a minimum thickness the input as rays
+/// see it (its interior on a voxel grid), for plates thickened inward
+/// (docs/decisions/0033).
+pub(crate) struct Input<'a> {
+    tris: Option<&'a Triangles>,
+    thick: Option<thicken::Input<'a>>,
+}
+
+impl<'a> Input<'a> {
+    pub(crate) fn new(ev: &Evaluator, params: &Params, tris: Option<&'a Triangles>) -> Self {
+        let thick = tris
+            .filter(|_| params.min_thickness > 0.0)
+            .map(|t| thicken::Input::build(ev, t));
+        Input { tris, thick }
+    }
+}
+
 /// One level per target in `params.targets` (in the order given) from the merge
 /// loop's snapshots.
-/// `tris`: the input's triangles, built by the run when a step needs them.
 pub(crate) fn levels(
     ev: &Evaluator,
     mut snaps: Vec<Snapshot>,
     params: &Params,
-    tris: Option<&Triangles>,
+    input: &Input,
 ) -> Vec<Level> {
     let diag = ev.mesh.diagonal();
-    // The input as rays see it, for plates thickened inward (docs/decisions/0033).
-    let thick = tris
-        .filter(|_| params.min_thickness > 0.0)
-        .map(|t| thicken::Input::build(ev, t));
+    let (tris, thick) = (input.tris, &input.thick);
     for snap in &mut snaps {
         let mut q = std::mem::take(&mut snap.q);
         // Solid pricing: near-duplicate primitives become one (docs/decisions/0023).
@@ -41,7 +56,7 @@ pub(crate) fn levels(
             plates::join(ev, snap, &mut q, tris);
         }
         // Plates reach inward to the minimum thickness where the input is closed.
-        if let Some(input) = &thick {
+        if let Some(input) = thick {
             thicken::thicken(ev, input, snap, params.min_thickness * diag);
         }
     }

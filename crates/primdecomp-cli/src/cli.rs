@@ -735,6 +735,9 @@ fn decompose_one(
         chain: Chain::of(base),
     };
     guard.check(&dest.up_front(targets))?;
+    // An export whose format or options are wrong fails now, not after the
+    // decomposition has written the levels before it.
+    crate::export_cmd::check_exports(&a.export, &a.export_opts)?;
     set_threads(a.threads)?;
     run_one(a, input, base, targets, &dest, guard, false).map(|_| ())
 }

@@ -175,6 +175,15 @@ pub fn whole(level: &Level) -> Vec<ResultObject> {
     }]
 }
 
+/// Each of `exports` names a format with valid options (what
+/// [`write_level_exports`] will ask), or the first error.
+pub fn check_exports(exports: &[PathBuf], args: &ExportArgs) -> anyhow::Result<()> {
+    for e in exports {
+        args.resolve(e, &model_name(e))?;
+    }
+    Ok(())
+}
+
 /// Writes `decompose --export` files of one level; returns the paths.
 pub fn write_level_exports(
     exports: &[PathBuf],

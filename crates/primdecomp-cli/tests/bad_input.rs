@@ -447,6 +447,8 @@ fn clashes() -> Vec<Clash> {
         c(&["decompose", "m.obj", "-n", "4", "--quiet", "--export", "link.obj", "--format", "mjcf"], "--export is a link to the input", &["--export link.obj", SAME], &[]),
         c(&["decompose", "m.obj", "-n", "4", "--quiet", "--png", "hard.obj"], "--png is a hard link to the input", &["--png hard.obj", SAME], &[]),
         c(&["decompose", "a/x.obj", "b/y.obj", "-n", "4", "--quiet", "-o", "out/", "--export", "x.glb"], "--export with several inputs", &["--export writes one file per level of one input"], &[]),
+        // Refused before the run: no level's JSON or first export written.
+        c(&["decompose", "m.obj", "--tolerance", "1%,0.3%", "--quiet", "-o", "r.json", "--export", "r.glb", "--export", "r.xml"], "a second --export of no known format", &["r.xml: cannot tell the export format"], &[]),
     ]
 }
 

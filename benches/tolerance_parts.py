@@ -45,9 +45,10 @@ def corners(p):
         if p["kind"] == "box":
             h = p["half_extents"]
             loc = [sx * h[0], sy * h[1], sz * h[2]]
-        else:  # prism: z half-width hz_bottom at y = -hy, hz_top at y = +hy
+        else:  # prism: z half-width hz_bottom at y = -hy, hz_top at y = +hy, about
+            # z = -shift_z and +shift_z (absent: isosceles)
             hz = p["half_z_top"] if sy > 0 else p["half_z_bottom"]
-            loc = [sx * p["half_x"], sy * p["half_y"], sz * hz]
+            loc = [sx * p["half_x"], sy * p["half_y"], sy * p.get("shift_z", 0.0) + sz * hz]
         return [c[i] + sum(r[i][k] * loc[k] for k in range(3)) for i in range(3)]
     return at
 

@@ -15,10 +15,12 @@ CORPUS = Path(os.environ.get("PRIMDECOMP_CORPUS", ROOT.parent / "shared" / "data
 IN_CI = bool(os.environ.get("CI"))
 
 # The corpus cases: (name, input, decompose arguments). Together they hold all six
-# kinds (test_enclosure.py::test_all_six_kinds_present checks it); the two last are
-# per-object: a multi-node glTF with node transforms and a multi-group OBJ.
+# kinds (test_enclosure.py::test_all_six_kinds_present checks it) and a skewed prism
+# (the default run's nearest fit of a right triangle); the two last are per-object:
+# a multi-node glTF with node transforms and a multi-group OBJ.
 CASES = [
     ("stairs", "parry_stairs.obj", ["-n", "24", "--kinds", "box,prism"]),
+    ("wedges", "tiny_2triangles.off", []),
     ("bottle", "coacd_bottle.obj", ["-n", "24", "--kinds", "frustum,cylinder,sphere,capsule"]),
     ("spot", "spot.obj", ["-n", "24", "--kinds", "sphere,capsule,frustum"]),
     ("mixer", "kitchenaid_mixer.obj", ["-n", "48"]),

@@ -72,7 +72,9 @@ def inside(shape, P, tol):
         L = (P - np.asarray(shape["center"], float)) @ A.T
         hx, hy = shape["half_x"], shape["half_y"]
         zt, zb = shape["half_z_top"], shape["half_z_bottom"]
-        corners = np.array([[-hy, -zb], [hy, -zt], [hy, zt], [-hy, zb]])
+        # A skewed section: top side centred at z = shift_z, bottom at -shift_z.
+        t = shape.get("shift_z", 0.0)
+        corners = np.array([[-hy, -t - zb], [hy, t - zt], [hy, t + zt], [-hy, -t + zb]])
         ok = np.abs(L[:, 0]) <= hx + tol
         for i in range(4):
             p, q2 = corners[i], corners[(i + 1) % 4]
@@ -137,7 +139,8 @@ def aabb(shape):
         pts = np.asarray(shape["points"], float)
         return pts.min(axis=0), pts.max(axis=0)
     c = np.asarray(shape["center"], float)
-    r = np.linalg.norm([shape["half_x"], shape["half_y"], max(shape["half_z_top"], shape["half_z_bottom"])])
+    zmax = abs(shape.get("shift_z", 0.0)) + max(shape["half_z_top"], shape["half_z_bottom"])
+    r = np.linalg.norm([shape["half_x"], shape["half_y"], zmax])
     return c - r, c + r
 
 

@@ -25,6 +25,14 @@ def test_all_six_kinds_present(workdir):
     assert kinds == {"box", "sphere", "capsule", "cylinder", "frustum", "prism"}, kinds
 
 
+def test_a_skewed_prism_present(workdir):
+    """The exports' checks see a skewed prism's section (shift_z), not only the
+    paper's isosceles one (docs/decisions/0045)."""
+    doc = json.loads(result(workdir, "wedges")[0].read_text())
+    shifts = [p.get("shift_z", 0.0) for p in doc["primitives"] if p["kind"] == "prism"]
+    assert any(abs(s) > 0.1 for s in shifts), shifts
+
+
 @pytest.mark.parametrize("up,scale", FRAMES)
 @pytest.mark.parametrize("fmt", list(FORMATS))
 @pytest.mark.parametrize("case", [c[0] for c in CASES])

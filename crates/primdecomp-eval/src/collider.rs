@@ -40,7 +40,7 @@ impl Collider {
     /// Storage by the paper's Table 2 (4 bytes per float, 2 per triangle index).
     pub fn bytes(&self) -> usize {
         match self {
-            Collider::Primitives(p) => p.iter().map(|p| p.kind().bytes()).sum(),
+            Collider::Primitives(p) => p.iter().map(|p| p.bytes()).sum(),
             Collider::Hulls(h) => h.iter().map(Hull::bytes).sum(),
         }
     }

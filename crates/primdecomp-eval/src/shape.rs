@@ -121,7 +121,9 @@ pub fn frame(a: V3) -> (V3, V3) {
 
 /// Corners of a box-like solid: index `4·ix + 2·iy + iz` for the signs (−, +) of
 /// each local axis; the half-width along z is `hz[iy]` (a prism's trapezoid).
-fn corners(center: V3, axes: &[V3; 3], hx: f64, hy: f64, hz: [f64; 2]) -> [V3; 8] {
+/// Corners of a box-like solid: `hz[i]` the half-width along z at y = ∓hy, about
+/// `mid[i]` (a skewed prism's sides' midpoints; 0 for a box).
+fn corners(center: V3, axes: &[V3; 3], hx: f64, hy: f64, hz: [f64; 2], mid: [f64; 2]) -> [V3; 8] {
     std::array::from_fn(|i| {
         let (sx, iy, sz) = (
             if i & 4 != 0 { 1.0 } else { -1.0 },
@@ -131,7 +133,7 @@ fn corners(center: V3, axes: &[V3; 3], hx: f64, hy: f64, hz: [f64; 2]) -> [V3; 8
         let sy = if iy == 1 { 1.0 } else { -1.0 };
         let p = madd(center, axes[0], sx * hx);
         let p = madd(p, axes[1], sy * hy);
-        madd(p, axes[2], sz * hz[iy])
+        madd(p, axes[2], mid[iy] + sz * hz[iy])
     })
 }
 
@@ -165,6 +167,7 @@ pub fn box_triangles(b: &Obb) -> [[V3; 3]; 12] {
         b.half[0],
         b.half[1],
         [b.half[2]; 2],
+        [0.0; 2],
     ))
 }
 
@@ -175,6 +178,7 @@ fn prism_tris(p: &Prism) -> [[V3; 3]; 12] {
         p.hx,
         p.hy,
         [p.hz_bottom, p.hz_top],
+        [-p.shift, p.shift],
     ))
 }
 
@@ -335,6 +339,17 @@ mod tests {
                 hy: 0.5,
                 hz_top: 0.1,
                 hz_bottom: 0.6,
+                shift: 0.0,
+            }),
+            // Skewed: a scalene section, its top side's midpoint 0.7 along z.
+            Primitive::Prism(Prism {
+                center: [0.5, 1.0, -1.0],
+                axes,
+                hx: 0.2,
+                hy: 0.5,
+                hz_top: 0.1,
+                hz_bottom: 0.6,
+                shift: 0.7,
             }),
         ]
     }
@@ -361,9 +376,13 @@ mod tests {
                     + PI * (f.r0 * f.r0 + f.r1 * f.r1)
             }
             Primitive::Prism(q) => {
-                let slant = ((2.0 * q.hy).powi(2) + (q.hz_top - q.hz_bottom).powi(2)).sqrt();
+                let side = |dz: f64| ((2.0 * q.hy).powi(2) + dz.powi(2)).sqrt();
+                let (l, r) = (
+                    side(q.shift - q.hz_top + q.shift + q.hz_bottom),
+                    side(q.shift + q.hz_top + q.shift - q.hz_bottom),
+                );
                 4.0 * q.hy * (q.hz_top + q.hz_bottom)
-                    + 2.0 * q.hx * (2.0 * q.hz_top + 2.0 * q.hz_bottom + 2.0 * slant)
+                    + 2.0 * q.hx * (2.0 * q.hz_top + 2.0 * q.hz_bottom + l + r)
             }
         }
     }

@@ -49,6 +49,7 @@ fn cases() -> Vec<(&'static str, Placed)> {
         hy: 1.0,
         hz_top: 0.6,
         hz_bottom: 1.0,
+        shift: 0.0,
     });
     let frustum = Primitive::Frustum(Frustum {
         p0: [0.0, -1.0, 0.0],

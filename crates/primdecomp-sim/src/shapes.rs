@@ -103,6 +103,11 @@ pub fn primitive(p: &Primitive, frame: &Frame) -> Option<Placed> {
             let (pose, half) = y_axis_pose(frame.point(c.p0), frame.point(c.p1));
             (SharedShape::cylinder(half, (c.radius * s) as f32), pose)
         }
+        // A skewed prism (the cut's nearest fits) is its corners' hull: the analytic
+        // projection assumes the isosceles section's symmetry.
+        Primitive::Prism(q) if q.is_skewed() => {
+            return hull(&q.corners().map(|c| frame.point(c)));
+        }
         Primitive::Prism(q) => {
             let h = [q.hx, q.hy, q.hz_top, q.hz_bottom].map(|x| (x * s) as f32);
             let shape = PrismShape::new(h[0], h[1], h[2], h[3])?;
@@ -206,6 +211,7 @@ mod tests {
                 hy: 0.5,
                 hz_top: 0.1,
                 hz_bottom: 0.75,
+                shift: 0.0,
             }),
         ]
     }

@@ -1,6 +1,6 @@
 //! primdecomp turns any 3D mesh into a small set of tight convex primitives —
-//! oriented boxes, spheres, capsules, cylinders, frustums and isosceles trapezoidal
-//! prisms — for collision detection. It implements Knodt & Gao, "Convex Primitive
+//! oriented boxes, spheres, capsules, cylinders, frustums and trapezoidal prisms —
+//! for collision detection. It implements Knodt & Gao, "Convex Primitive
 //! Decomposition for Collision Detection" (the paper): every face becomes a
 //! primitive, and a greedy bottom-up pass merges neighbours, cheapest first, until as
 //! many primitives remain as asked for (§3). Every input face lies inside at least

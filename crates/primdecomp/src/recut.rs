@@ -158,7 +158,7 @@ fn raise(user: &Request, asked: &Request, snap: &Snapshot, level: &Level) -> Opt
     if !capped(user, snap) {
         return None;
     }
-    let node_bytes: usize = snap.prims.iter().map(|p| p.kind().bytes()).sum();
+    let node_bytes: usize = snap.prims.iter().map(|p| p.bytes()).sum();
     if snap.prims.len() == level.primitives.len() && node_bytes == level.bytes() {
         return None;
     }

@@ -93,7 +93,7 @@ impl Level {
 
     /// Storage by the paper's Table 2: 4 bytes per float of each primitive.
     pub fn bytes(&self) -> usize {
-        self.primitives.iter().map(|p| p.kind().bytes()).sum()
+        self.primitives.iter().map(|p| p.bytes()).sum()
     }
 }
 

@@ -244,8 +244,15 @@ fn prism(v: &Value) -> Geom {
     let hy = non_negative(v, "half_y");
     let a = non_negative(v, "half_z_top");
     let b = non_negative(v, "half_z_bottom");
+    // A skewed section's top side is centred at z = shift_z, its bottom at −shift_z
+    // (absent: the isosceles prism).
+    let t = if v.get("shift_z").is_some() {
+        number(v, "shift_z")
+    } else {
+        0.0
+    };
     // (y, z) corners, counter-clockwise: bottom-left, top-left, top-right, bottom-right.
-    let corners = [[-hy, -b], [hy, -a], [hy, a], [-hy, b]];
+    let corners = [[-hy, -t - b], [hy, t - a], [hy, t + a], [-hy, -t + b]];
     Geom::Prism {
         c: numbers(v, "center"),
         q: rotation(v),

@@ -611,6 +611,7 @@ pub(crate) mod tests {
                 hy: 0.5 * size,
                 hz_top: 0.3 * size,
                 hz_bottom: 0.8 * size,
+                shift: 0.4 * size,
             }),
         }
     }

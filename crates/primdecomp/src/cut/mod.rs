@@ -82,7 +82,7 @@ struct Entry {
 
 impl Entry {
     fn bytes(&self) -> usize {
-        self.prim.kind().bytes()
+        self.prim.bytes()
     }
 }
 

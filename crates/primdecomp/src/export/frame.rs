@@ -235,6 +235,7 @@ pub fn transform(p: &Primitive, f: &Frame) -> Primitive {
             hy: q.hy * s,
             hz_top: q.hz_top * s,
             hz_bottom: q.hz_bottom * s,
+            shift: q.shift * s,
         }),
     }
 }
@@ -313,29 +314,7 @@ pub fn grow(p: &Primitive, m: f64) -> Primitive {
                 })
             }
         }
-        Primitive::Prism(q) => {
-            let wide = q.hz_top.max(q.hz_bottom) + m;
-            let hy = q.hy + m;
-            let (top, bottom) = if q.hy > 0.0 {
-                let k = (q.hz_top - q.hz_bottom) / (2.0 * q.hy);
-                let out = m * (1.0 + k * k).sqrt();
-                let (t, b) = (q.hz_top + k * m + out, q.hz_bottom - k * m + out);
-                if t + b <= 2.0 * wide {
-                    (t, b)
-                } else {
-                    (wide, wide)
-                }
-            } else {
-                (wide, wide)
-            };
-            Primitive::Prism(Prism {
-                hx: q.hx + m,
-                hy,
-                hz_top: top,
-                hz_bottom: bottom,
-                ..q
-            })
-        }
+        Primitive::Prism(q) => Primitive::Prism(q.grown(m)),
     }
 }
 
@@ -426,6 +405,7 @@ mod tests {
                 hy: 0.5,
                 hz_top: 0.1,
                 hz_bottom: 0.9,
+                shift: 0.0,
             }),
             Primitive::Cylinder(Cylinder {
                 p0: [1.0; 3],

@@ -61,9 +61,17 @@ enum PrimJson {
         half_y: f64,
         half_z_top: f64,
         half_z_bottom: f64,
+        /// z of the top side's midpoint (the bottom's is −shift_z); absent for the
+        /// paper's isosceles prism.
+        #[serde(default, skip_serializing_if = "is_zero")]
+        shift_z: f64,
         #[serde(default)]
         faces: u32,
     },
+}
+
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }
 
 impl PrimJson {
@@ -106,6 +114,7 @@ impl PrimJson {
                 half_y: p.hy,
                 half_z_top: p.hz_top,
                 half_z_bottom: p.hz_bottom,
+                shift_z: p.shift,
                 faces,
             },
         }
@@ -149,6 +158,7 @@ impl PrimJson {
                 half_y,
                 half_z_top,
                 half_z_bottom,
+                shift_z,
                 ..
             } => Primitive::Prism(Prism {
                 center,
@@ -157,6 +167,7 @@ impl PrimJson {
                 hy: half_y,
                 hz_top: half_z_top,
                 hz_bottom: half_z_bottom,
+                shift: shift_z,
             }),
         };
         if sizes(&p).iter().any(|&x| x < 0.0) {
@@ -642,6 +653,7 @@ mod tests {
                 hy: 0.5,
                 hz_top: 0.01,
                 hz_bottom: 0.75,
+                shift: -0.3,
             }),
             Primitive::Box(Obb {
                 center: c1,
@@ -699,7 +711,8 @@ mod tests {
             serde_json::json!({"box":2,"sphere":1,"capsule":1,"cylinder":1,"frustum":1,"prism":1});
         assert_eq!(v["stats"]["counts"], counts);
         assert_eq!(v["stats"]["primitives"], 7);
-        assert_eq!(v["stats"]["bytes"], 4 * (10 * 2 + 4 + 7 + 7 + 8 + 11));
+        // The prism is skewed: 11 floats and its shift.
+        assert_eq!(v["stats"]["bytes"], 4 * (10 * 2 + 4 + 7 + 7 + 8 + 12));
         assert_eq!(v["stats"]["seconds"]["merge"], 1.5);
         assert_eq!(v["stats"]["seconds"]["total"], 1.75);
         let prims = v["primitives"].as_array().unwrap();
@@ -720,7 +733,7 @@ mod tests {
             r#""format"|"version"|"input"|"settings"|"stats"|"primitives": ["#,
             r#""path"|"aabb_min"|"aabb_max"|"tangent_eps"|"remove_thin_boxes"|"target""#,
             r#""counts"|"box":|"prism":|"bytes"|"seconds"|"load"|"merge"|"total""#,
-            r#""kind": "prism"|"center"|"rotation"|"half_x"|"half_y"|"half_z_top"|"half_z_bottom""#,
+            r#""kind": "prism"|"center"|"rotation"|"half_x"|"half_y"|"half_z_top"|"half_z_bottom"|"shift_z""#,
         ];
         for g in groups {
             let mut at = 0;

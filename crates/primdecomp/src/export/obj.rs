@@ -434,6 +434,7 @@ mod tests {
                     hy,
                     hz_top: s2,
                     hz_bottom: s3,
+                    shift: 0.5 * (s3 - s2),
                 })
             }
         };
@@ -478,7 +479,8 @@ mod tests {
                     1 => (x, if side { q.hy } else { -q.hy }, f * 2.0 - 1.0),
                     _ => (x, y, if side { 1.0 } else { -1.0 }),
                 };
-                let z = z * q.half_width_at(y);
+                let (mid, w) = q.section_at(y);
+                let z = mid + z * w;
                 madd(
                     madd(madd(q.center, q.axes[0], x), q.axes[1], y),
                     q.axes[2],
@@ -602,6 +604,7 @@ mod tests {
             hy: 1.0,
             hz_top: 0.0,
             hz_bottom: 1.0,
+            shift: 0.0,
         };
         assert_eq!(count(Primitive::Prism(wedge)), 5);
     }

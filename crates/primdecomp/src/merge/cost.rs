@@ -11,10 +11,10 @@ use crate::math::{dot, V3};
 use crate::mesh::outward_normal;
 use crate::mesh::solid::Solid;
 use crate::mesh::Mesh;
-use crate::primitive::fit::thorough_frames;
 use crate::primitive::fit::{
     fit_best_frame, fit_frame, fit_frame_priced, Fit, FitConfig, FrameSearch,
 };
+use crate::primitive::fit::{fit_skewed_prism, thorough_frames};
 use crate::primitive::{fit_best, frame, Cloud, FitScratch, Kind, Primitive};
 
 /// Faces whose outward normal is within about 0.8° of a plate's axis face along it
@@ -259,6 +259,12 @@ impl<'a> Evaluator<'a> {
             };
             for &axes in &ws.frames {
                 out.push(fit_frame(&all, axes, &cfg, &mut ws.fit).prim);
+                if kind == Kind::Prism {
+                    // The skewed section holds a scalene triangle the isosceles
+                    // mirrors a corner off (docs/decisions/0045).
+                    let skewed = fit_skewed_prism(&all, axes, cfg.min_half, &mut ws.fit);
+                    out.extend(skewed.map(Primitive::Prism));
+                }
             }
         }
         if self.flush_plates {

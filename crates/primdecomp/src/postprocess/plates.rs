@@ -272,11 +272,12 @@ fn footprint(p: &Primitive, frame: (V3, V3)) -> Option<Vec<[f64; 2]>> {
         }
         Primitive::Prism(q) if dot(q.axes[0], n).abs() >= CAST_COS => {
             let at = |y: f64, z: f64| madd(madd(q.center, q.axes[1], y), q.axes[2], z);
+            let (t, b) = (q.shift, -q.shift);
             [
-                at(q.hy, q.hz_top),
-                at(q.hy, -q.hz_top),
-                at(-q.hy, -q.hz_bottom),
-                at(-q.hy, q.hz_bottom),
+                at(q.hy, t + q.hz_top),
+                at(q.hy, t - q.hz_top),
+                at(-q.hy, b - q.hz_bottom),
+                at(-q.hy, b + q.hz_bottom),
             ]
         }
         _ => return None,
@@ -406,6 +407,7 @@ mod tests {
             hy: 0.5,
             hz_top: 0.0,
             hz_bottom: 1.0,
+            shift: 0.0,
         });
         let n = tri.plate_axis(FLOOR).unwrap();
         assert!((area(&footprint(&tri, plane_frame(n).unwrap()).unwrap()) - 1.0).abs() < 1e-12);

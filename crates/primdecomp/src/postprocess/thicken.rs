@@ -151,10 +151,11 @@ fn inner_grid(p: &Primitive, slab: &Slab) -> Vec<V3> {
                     madd(c, o.axes[v], b * o.half[v])
                 }
                 Primitive::Prism(q) => {
-                    // The trapezoid's half-width at height y runs from hz_bottom to hz_top.
+                    // The trapezoid's half-width at height y runs from hz_bottom to
+                    // hz_top, its middle from −shift to shift.
                     let w = q.hz_bottom + 0.5 * (a + 1.0) * (q.hz_top - q.hz_bottom);
                     let c = madd(q.center, q.axes[1], a * q.hy);
-                    madd(c, q.axes[2], b * w)
+                    madd(c, q.axes[2], a * q.shift + b * w)
                 }
                 _ => continue,
             };

@@ -4,6 +4,7 @@
 //! reusable [`FitScratch`], then passes over the local coordinates.
 
 use super::frame::{self, PlaneScratch};
+use super::prism::skewed_section;
 use super::profile::{fit_profile_sorted, sum_lower_bound, Objective, ProfileScratch};
 use super::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
 use crate::math::{eigen_sym3, fmax, fmin, madd, scale, Sym3, V3};
@@ -267,23 +268,7 @@ pub fn fit_frame_priced(
 /// Offers every enabled kind fitted in the frame `axes` to `best`.
 fn offer_all(cloud: &Cloud, axes: [V3; 3], s: &mut FitScratch, best: &mut Candidate) {
     let cfg = best.cfg;
-    let frame = project(cloud, axes, s);
-    // Explicit 3-element arrays, not `array::map`: its `try_map` is not always inlined
-    // (docs/decisions/perf-fit-loop.md).
-    let (lo, hi) = (frame.lo, frame.hi);
-    s.span = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
-    let obb = Obb::from_frame(&frame, cfg.min_half);
-
-    // Local coordinates relative to the OBB centre (§3.2: other primitives start there).
-    let mid = [
-        0.5 * (lo[0] + hi[0]),
-        0.5 * (lo[1] + hi[1]),
-        0.5 * (lo[2] + hi[2]),
-    ];
-    for k in 0..3 {
-        s.u[k].iter_mut().for_each(|v| *v -= mid[k]);
-    }
-    s.sorted = [false; 3];
+    let (frame, obb) = centred(cloud, axes, cfg.min_half, s);
     best.offer(Kind::Box, Primitive::Box(obb), obb.volume());
     let ext = Extents::of(s);
     if cfg.enabled[Kind::Sphere as usize] {
@@ -322,6 +307,69 @@ fn offer_all(cloud: &Cloud, axes: [V3; 3], s: &mut FitScratch, best: &mut Candid
         }
     }
     offer_profiles(s, &obb, &ext, best_cyl, best);
+}
+
+/// The points in the frame `axes`, their bounds and their box; the scratch holds
+/// their coordinates relative to the box's centre (§3.2: other primitives start
+/// there), none sorted yet.
+fn centred(cloud: &Cloud, axes: [V3; 3], min_half: f64, s: &mut FitScratch) -> (Frame, Obb) {
+    let frame = project(cloud, axes, s);
+    // Explicit 3-element arrays, not `array::map`: its `try_map` is not always inlined
+    // (docs/decisions/perf-fit-loop.md).
+    let (lo, hi) = (frame.lo, frame.hi);
+    s.span = [hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]];
+    let obb = Obb::from_frame(&frame, min_half);
+    let mid = [
+        0.5 * (lo[0] + hi[0]),
+        0.5 * (lo[1] + hi[1]),
+        0.5 * (lo[2] + hi[2]),
+    ];
+    for k in 0..3 {
+        s.u[k].iter_mut().for_each(|v| *v -= mid[k]);
+    }
+    s.sorted = [false; 3];
+    (frame, obb)
+}
+
+/// The least-volume skewed prism of the 6 orderings in the frame `axes`: the
+/// section's two slanted sides fitted each on its own, not mirrored ([`skewed_section`];
+/// a triangle in the y–z plane is then its own section). For the cut's nearest fits
+/// only (docs/decisions/0045-skewed-prisms-where-the-cut-cannot-split.md); `None`
+/// without points.
+pub fn fit_skewed_prism(
+    cloud: &Cloud,
+    axes: [V3; 3],
+    min_half: f64,
+    s: &mut FitScratch,
+) -> Option<Prism> {
+    if cloud.len() == 0 {
+        return None;
+    }
+    let (_, obb) = centred(cloud, axes, min_half, s);
+    let mut best: Option<Prism> = None;
+    for [x, y, z] in ORDERINGS {
+        s.sort_axis(y);
+        let hy = obb.half[y];
+        let Some(sec) = skewed_section(&s.u[y], &s.u[z], &s.order[y], hy, &mut s.profile) else {
+            continue;
+        };
+        // Odd permutations flip handedness: flip z, and the shift with it.
+        let even = matches!([x, y, z], [0, 1, 2] | [1, 2, 0] | [2, 0, 1]);
+        let sign = if even { 1.0 } else { -1.0 };
+        let p = Prism {
+            center: madd(obb.center, obb.axes[z], sec.middle),
+            axes: [obb.axes[x], obb.axes[y], scale(obb.axes[z], sign)],
+            hx: obb.half[x],
+            hy,
+            hz_top: sec.top.max(min_half),
+            hz_bottom: sec.bottom.max(min_half),
+            shift: sign * sec.shift,
+        };
+        if best.is_none_or(|b| p.volume() < b.volume()) {
+            best = Some(p);
+        }
+    }
+    best
 }
 
 /// The frustum on the best cylinder's axis and the prisms of the 6 orderings, each
@@ -635,6 +683,7 @@ fn fit_prism(s: &mut FitScratch, obb: &Obb, [x, y, z]: [usize; 3], min_half: f64
         hy,
         hz_top: a.max(min_half),
         hz_bottom: b.max(min_half),
+        shift: 0.0,
     }
 }
 

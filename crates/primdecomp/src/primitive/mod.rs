@@ -36,7 +36,8 @@ pub enum Kind {
     Cylinder = 3,
     /// Truncated cone ([`Frustum`]).
     Frustum = 4,
-    /// Isosceles trapezoidal prism ([`Prism`]).
+    /// Trapezoidal prism ([`Prism`]): isosceles, or skewed where the cut's nearest
+    /// fit makes it so.
     Prism = 5,
 }
 
@@ -96,7 +97,7 @@ pub enum Primitive {
     Cylinder(Cylinder),
     /// A truncated cone.
     Frustum(Frustum),
-    /// An isosceles trapezoidal prism.
+    /// A trapezoidal prism.
     Prism(Prism),
 }
 
@@ -111,6 +112,18 @@ impl Primitive {
             Primitive::Frustum(_) => Kind::Frustum,
             Primitive::Prism(_) => Kind::Prism,
         }
+    }
+    /// Bytes to store it at 4 bytes per float: its kind's ([`Kind::bytes`]), and 4
+    /// more for a skewed prism's shift ([`Prism::is_skewed`]).
+    ///
+    /// ```
+    /// use primdecomp::{Kind, Primitive, Sphere};
+    /// let ball = Primitive::Sphere(Sphere { center: [0.0; 3], radius: 1.0 });
+    /// assert_eq!(ball.bytes(), Kind::Sphere.bytes());
+    /// ```
+    pub fn bytes(&self) -> usize {
+        let skewed = matches!(self, Primitive::Prism(p) if p.is_skewed());
+        self.kind().bytes() + if skewed { 4 } else { 0 }
     }
     /// Its volume (§3.2's formulas).
     pub fn volume(&self) -> f64 {
@@ -312,6 +325,7 @@ mod support_tests {
                 hy: 0.3,
                 hz_top: 0.1,
                 hz_bottom: 0.9,
+                shift: 0.0,
             }),
         ]
     }

@@ -18,7 +18,7 @@ PRIMS = [
      "half_x": 1.0, "half_y": 0.5, "half_z_top": 0.01, "half_z_bottom": 0.75},
     # Skewed: the top side's midpoint 0.6 along z, the bottom's at -0.6.
     {"kind": "prism", "center": [-3, 1, 0], "rotation": [0.2, -0.1, 0.3, 0.9273618495495703],
-     "half_x": 0.3, "half_y": 0.8, "half_z_top": 0.05, "half_z_bottom": 0.5, "shift_z": 0.6},
+     "half_x": 1.0, "half_y": 0.8, "half_z_top": 0.3, "half_z_bottom": 0.7, "shift_z": 0.6},
 ]
 
 

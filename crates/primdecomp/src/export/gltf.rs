@@ -246,7 +246,13 @@ pub fn to_gltf(objects: &[ResultObject], opts: &ExportOptions, binary: bool) -> 
         Physics::Khr => ("KHR_implicit_shapes", "KHR_physics_rigid_bodies"),
         Physics::Omi => ("OMI_physics_shape", "OMI_physics_body"),
     };
-    root.extensions_used = vec![shape_ext.into(), body_ext.into()];
+    // A shape extension no collider uses is not listed (KHR: every collider a
+    // prism's or frustum's hull, which are meshes, not shapes).
+    root.extensions_used = if shapes.is_empty() {
+        vec![body_ext.into()]
+    } else {
+        vec![shape_ext.into(), body_ext.into()]
+    };
     if !shapes.is_empty() {
         let mut ext = json::extensions::root::Root::default();
         ext.others
@@ -486,5 +492,39 @@ mod tests {
         assert_eq!(base64(b"fo"), "Zm8=");
         assert_eq!(base64(b"foo"), "Zm9v");
         assert_eq!(base64(b"foobar"), "Zm9vYmFy");
+    }
+
+    /// Prisms alone are hulls (meshes), no implicit shape: `KHR_implicit_shapes` is
+    /// not listed as used (a skewed prism, as the cut's nearest fit makes one);
+    /// OMI lists its shape extension, whose shapes hold the hulls.
+    #[test]
+    fn an_unused_shape_extension_is_not_listed() {
+        let prism = crate::Primitive::Prism(crate::primitive::Prism {
+            center: [0.0; 3],
+            axes: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            hx: 0.01,
+            hy: 0.5,
+            hz_top: 0.01,
+            hz_bottom: 0.7,
+            shift: 0.3,
+        });
+        let objects = [ResultObject {
+            name: String::new(),
+            frame: Frame::IDENTITY,
+            primitives: vec![prism],
+        }];
+        let used = |physics| {
+            let opts = ExportOptions {
+                physics,
+                ..ExportOptions::default()
+            };
+            let doc: Value = serde_json::from_slice(&to_gltf(&objects, &opts, false)).unwrap();
+            doc["extensionsUsed"].clone()
+        };
+        assert_eq!(used(Physics::Khr), j!(["KHR_physics_rigid_bodies"]));
+        assert_eq!(
+            used(Physics::Omi),
+            j!(["OMI_physics_shape", "OMI_physics_body"])
+        );
     }
 }

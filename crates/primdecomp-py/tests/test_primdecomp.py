@@ -59,6 +59,26 @@ def test_result_objects():
     assert isinstance(r.stats, dict)
 
 
+def test_prisms_have_their_shift():
+    """A scalene triangle's prism is skewed (shift_z, docs/decisions/0045) and holds
+    the triangle; an isosceles prism reads shift_z 0.0 though its JSON omits it."""
+    v = np.array([[0, 0, 0], [3, 0, 0], [0.4, 1.3, 0.2]], dtype=np.float64)
+    p = primdecomp.decompose(v, np.array([[0, 1, 2]])).levels[0].primitives[0]
+    assert p.kind == "prism" and abs(p.shift_z) > 0.1, p.params
+    local = (np.linalg.inv(p.transform) @ np.c_[v, np.ones(3)].T).T[:, :3]
+    hy, zt, zb, s = p.half_y, p.half_z_top, p.half_z_bottom, p.shift_z
+    for x, y, z in local:
+        t = (y + hy) / (2 * hy)
+        mid, w = s * (2 * t - 1), zb + (zt - zb) * t
+        assert abs(x) <= p.half_x + 1e-9 and abs(y) <= hy + 1e-9 and abs(z - mid) <= w + 1e-9
+    c, q = cube()
+    only = {k: k == "prism" for k in ("box", "sphere", "capsule", "cylinder", "frustum", "prism")}
+    r = primdecomp.decompose(c, q, targets=[6], kinds=only)
+    prisms = r.levels[0].primitives
+    assert prisms and all(p.kind == "prism" and p.shift_z == 0.0 for p in prisms)
+    assert all("shift_z" not in pr for pr in json.loads(r.to_json())["primitives"])
+
+
 @pytest.mark.parametrize("bad,msg", [
     (lambda v, q: (v[:, :2], q), "(N,3)"),
     (lambda v, q: (v.astype(str), q), "dtype"),

@@ -67,12 +67,15 @@ def _faces(faces):
 
 class Primitive:
     """One primitive: `kind`, its parameters as in the JSON contract (`params`, also
-    as attributes), a 4x4 `transform` (local frame to world) and `volume`."""
+    as attributes; a prism's `shift_z`, which the JSON leaves out when it is zero, is
+    always there), a 4x4 `transform` (local frame to world) and `volume`."""
 
     def __init__(self, native, level, index, data, transform, volume):
         self._native, self._level, self._index = native, level, index
         self.params = dict(data)
         self.kind = self.params.get("kind")
+        if self.kind == "prism":
+            self.params.setdefault("shift_z", 0.0)
         self.transform = _np.asarray(transform, dtype=_np.float64)
         self.volume = volume
 

@@ -851,6 +851,21 @@ mod tests {
                     prop_assert!(f.prim.contains(*p, 1e-9 * s), "{:?} misses {:?}", f.prim, p);
                 }
             }
+            // The cut's skewed prism (docs/decisions/0045) in every frame of the
+            // thorough search: it too encloses every point, at every scale.
+            let (x, y, z) = cloud_of(&pts);
+            let cloud = Cloud { x: &x, y: &y, z: &z };
+            let (mut scratch, mut frames) = (FitScratch::default(), Vec::new());
+            thorough_frames(&cloud, &q, &mut scratch, &mut frames);
+            for axes in frames {
+                let Some(p) = fit_skewed_prism(&cloud, axes, 1e-6 * s, &mut scratch) else {
+                    continue;
+                };
+                prop_assert!(p.volume().is_finite() && p.volume() > 0.0);
+                for pt in &pts {
+                    prop_assert!(p.contains(*pt, 1e-9 * s), "{:?} misses {:?}", p, pt);
+                }
+            }
         }
     }
 

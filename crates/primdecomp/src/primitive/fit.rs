@@ -353,12 +353,11 @@ pub fn fit_skewed_prism(
         let Some(sec) = skewed_section(&s.u[y], &s.u[z], &s.order[y], hy, &mut s.profile) else {
             continue;
         };
-        // Odd permutations flip handedness: flip z, and the shift with it.
-        let even = matches!([x, y, z], [0, 1, 2] | [1, 2, 0] | [2, 0, 1]);
-        let sign = if even { 1.0 } else { -1.0 };
+        // A flipped z flips the shift with it.
+        let (axes, sign) = prism_axes(obb.axes, [x, y, z]);
         let p = Prism {
             center: madd(obb.center, obb.axes[z], sec.middle),
-            axes: [obb.axes[x], obb.axes[y], scale(obb.axes[z], sign)],
+            axes,
             hx: obb.half[x],
             hy,
             hz_top: sec.top.max(min_half),
@@ -663,22 +662,25 @@ const ORDERINGS: [[usize; 3]; 6] = [
     [2, 1, 0],
 ];
 
+/// The prism frame of the ordering `[x, y, z]` of `axes` (x = extrusion, y = height,
+/// z = width), right-handed: odd permutations flip z; with the sign z was given.
+fn prism_axes(axes: [V3; 3], [x, y, z]: [usize; 3]) -> ([V3; 3], f64) {
+    let even = matches!([x, y, z], [0, 1, 2] | [1, 2, 0] | [2, 0, 1]);
+    let sign = if even { 1.0 } else { -1.0 };
+    ([axes[x], axes[y], scale(axes[z], sign)], sign)
+}
+
 /// §3.2 "Isosceles Trapezoidal Prisms" for one axis ordering.
 fn fit_prism(s: &mut FitScratch, obb: &Obb, [x, y, z]: [usize; 3], min_half: f64) -> Prism {
     let hy = obb.half[y];
     let (uy, uz) = (&s.u[y], &s.u[z]);
     let pt = |i: usize| (((uy[i] + hy) / (2.0 * hy)).clamp(0.0, 1.0), uz[i].abs());
     let (b, a) = fit_profile_sorted(&s.order[y], pt, Objective::Sum, &mut s.profile);
-    // Odd permutations flip handedness; z enters only through |z|, so flip it back.
-    let even = matches!([x, y, z], [0, 1, 2] | [1, 2, 0] | [2, 0, 1]);
-    let az = if even {
-        obb.axes[z]
-    } else {
-        scale(obb.axes[z], -1.0)
-    };
+    // z enters only through |z|, so its flip changes nothing.
+    let (axes, _) = prism_axes(obb.axes, [x, y, z]);
     Prism {
         center: obb.center,
-        axes: [obb.axes[x], obb.axes[y], az],
+        axes,
         hx: obb.half[x],
         hy,
         hz_top: a.max(min_half),

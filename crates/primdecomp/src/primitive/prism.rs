@@ -45,12 +45,10 @@ impl Prism {
         } else {
             0.5
         };
-        let mid = if self.shift == 0.0 {
-            0.0
-        } else {
-            self.shift * (2.0 * s - 1.0)
-        };
-        (mid, self.hz_bottom + (self.hz_top - self.hz_bottom) * s)
+        (
+            self.shift * (2.0 * s - 1.0),
+            self.hz_bottom + (self.hz_top - self.hz_bottom) * s,
+        )
     }
     /// Whether the trapezoid is skewed (not the paper's isosceles one): it takes one
     /// float more to store.
@@ -92,11 +90,11 @@ impl Prism {
             }
         };
         let (lo, hi) = self.z_range();
-        let z = z - mid;
-        z - w <= slack(lean + widen)
-            && -z - w <= slack(lean - widen)
-            && z + mid <= hi + tol
-            && z + mid >= lo - tol
+        let off = z - mid;
+        off - w <= slack(lean + widen)
+            && -off - w <= slack(lean - widen)
+            && z <= hi + tol
+            && z >= lo - tol
     }
     /// Support function: the largest `n·x` over the prism (`n` a unit vector).
     pub fn support(&self, n: V3) -> f64 {

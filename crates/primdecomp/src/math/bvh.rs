@@ -8,6 +8,7 @@
 //! child first, pruning nodes whose box is farther than the best distance so far.
 
 use super::{add, cross, dot, norm2, scale, sub, V3};
+use rayon::prelude::*;
 
 const LEAF: usize = 4;
 
@@ -43,12 +44,8 @@ impl Bvh {
     /// Builds over `boxes[i] = (lo, hi)`, the two halves of large nodes in parallel
     /// (the same hierarchy on any thread count).
     pub fn build(boxes: &[(V3, V3)]) -> Bvh {
-        let mut items: Vec<u32> = (0..boxes.len() as u32).collect();
         if boxes.is_empty() {
-            return Bvh {
-                nodes: Vec::new(),
-                items,
-            };
+            return Bvh::default();
         }
         let sizes = Sizes::new(boxes.len());
         let empty = Node {
@@ -59,9 +56,22 @@ impl Bvh {
         };
         let mut nodes = vec![empty; sizes.nodes(boxes.len())];
         let (root, below) = nodes.split_first_mut().expect("one node or more");
+        // The splits move each item's centroid with its id, so that they read
+        // memory in order; the boxes are read once, for the leaves.
+        let mut span: Vec<Item> = boxes
+            .par_iter()
+            .enumerate()
+            .map(|(i, &(lo, hi))| Item {
+                c: scale(add(lo, hi), 0.5),
+                id: i as u32,
+            })
+            .collect();
         let build = Build { boxes, sizes };
-        build.subtree(root, below, 1, &mut items, 0);
-        Bvh { nodes, items }
+        build.subtree(root, below, 1, &mut span, 0);
+        Bvh {
+            nodes,
+            items: span.iter().map(|it| it.id).collect(),
+        }
     }
 
     /// The smallest `dist2(item)` over all items, with that item (or `u32::MAX` when
@@ -227,47 +237,51 @@ struct Build<'a> {
     sizes: Sizes,
 }
 
-impl Build<'_> {
-    fn centroid(&self, i: u32) -> V3 {
-        let (lo, hi) = self.boxes[i as usize];
-        scale(add(lo, hi), 0.5)
-    }
+/// An item being placed: its box's centroid and its id.
+#[derive(Clone, Copy)]
+struct Item {
+    c: V3,
+    id: u32,
+}
 
+impl Build<'_> {
     /// Builds the subtree over `span` (the item list's entries from `first` on) into
     /// `node`, its descendants into `below` (whose first node has index `at`): a
     /// node's children side by side, then the left child's descendants, then the
-    /// right's. Split at the median of the item centroids on their longest axis.
+    /// right's. Split at the median of the item centroids on their longest axis; a
+    /// node's box is its items' (a leaf) or its children's.
     fn subtree(
         &self,
         node: &mut Node,
         below: &mut [Node],
         at: usize,
-        span: &mut [u32],
+        span: &mut [Item],
         first: usize,
     ) {
-        let (mut clo, mut chi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-        (node.lo, node.hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-        for &i in span.iter() {
-            let (blo, bhi) = self.boxes[i as usize];
-            let c = self.centroid(i);
-            for k in 0..3 {
-                (node.lo[k], node.hi[k]) = (node.lo[k].min(blo[k]), node.hi[k].max(bhi[k]));
-                (clo[k], chi[k]) = (clo[k].min(c[k]), chi[k].max(c[k]));
-            }
-        }
         let count = span.len();
         if count <= LEAF {
+            (node.lo, node.hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+            for it in span.iter() {
+                let (blo, bhi) = self.boxes[it.id as usize];
+                for k in 0..3 {
+                    (node.lo[k], node.hi[k]) = (node.lo[k].min(blo[k]), node.hi[k].max(bhi[k]));
+                }
+            }
             (node.first, node.count) = (first as u32, count as u32);
             return;
+        }
+        let (mut clo, mut chi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for it in span.iter() {
+            for k in 0..3 {
+                (clo[k], chi[k]) = (clo[k].min(it.c[k]), chi[k].max(it.c[k]));
+            }
         }
         let axis = (0..3)
             .max_by(|&a, &b| (chi[a] - clo[a]).total_cmp(&(chi[b] - clo[b])))
             .unwrap_or(0);
         let mid = count / 2;
-        span.select_nth_unstable_by(mid, |&a, &b| {
-            self.centroid(a)[axis]
-                .total_cmp(&self.centroid(b)[axis])
-                .then(a.cmp(&b))
+        span.select_nth_unstable_by(mid, |a, b| {
+            a.c[axis].total_cmp(&b.c[axis]).then(a.id.cmp(&b.id))
         });
         (node.first, node.count) = (at as u32, 0);
         let (kids, rest) = below.split_at_mut(2);
@@ -276,12 +290,17 @@ impl Build<'_> {
         let (below_l, below_r) = rest.split_at_mut(left_below);
         let (span_l, span_r) = span.split_at_mut(mid);
         let at_r = at + 2 + left_below;
-        let mut l = || self.subtree(&mut left[0], below_l, at + 2, span_l, first);
-        let mut r = || self.subtree(&mut right[0], below_r, at_r, span_r, first + mid);
+        let (l, r) = (&mut left[0], &mut right[0]);
+        let mut build_l = || self.subtree(l, below_l, at + 2, span_l, first);
+        let mut build_r = || self.subtree(r, below_r, at_r, span_r, first + mid);
         match count >= PARALLEL {
-            true => rayon::join(l, r),
-            false => (l(), r()),
+            true => rayon::join(build_l, build_r),
+            false => (build_l(), build_r()),
         };
+        let (l, r) = (&left[0], &right[0]);
+        for k in 0..3 {
+            (node.lo[k], node.hi[k]) = (l.lo[k].min(r.lo[k]), l.hi[k].max(r.hi[k]));
+        }
     }
 }
 

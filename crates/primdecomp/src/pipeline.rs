@@ -115,6 +115,12 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
             crate::recut::snapshots(&ev, &tree, &requests, tris, params, &post)
         })?;
     }
+    // The bounds the cut proved, for the distances of what post-processing keeps.
+    let known: Vec<Vec<(crate::Primitive, f64)>> = merged
+        .snapshots
+        .iter_mut()
+        .map(|s| std::mem::take(&mut s.known))
+        .collect();
     // Plates joined, duplicates absorbed, nested primitives removed, back to world
     // coordinates (§3.4).
     let mut levels = clock.stage(Stage::Postprocess, "postprocess", |_, _| {
@@ -123,7 +129,7 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
     // What each cut's caller asked and how far its primitives stand from the input.
     if let (true, Some(tris)) = (cut, &tris) {
         clock.stage(Stage::Postprocess, "distance", |_, _| {
-            crate::cut::record_limits(&mut levels, &requests, mesh, tris)
+            crate::cut::record_limits(&mut levels, &requests, &known, mesh, tris)
         })?;
     }
     Ok(Decomposition {

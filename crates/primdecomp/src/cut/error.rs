@@ -98,13 +98,20 @@ pub(crate) fn error_until(prim: &Primitive, surface: &Triangles, ask: Ask) -> f6
 
 /// The largest error of `prims` (0 for none): an upper bound within [`RELATIVE`] (or
 /// [`ABSOLUTE`] of the diagonal) of the farthest point measured on any of them, and
-/// at most `level` only if every primitive is within it. Settled in rounds, each
+/// at most `level` only if every primitive is within it. `known[i]` is an upper bound
+/// of `prims[i]`'s error proved before (infinite where none was): a primitive is
+/// refined only while that is over the round's threshold. Settled in rounds, each
 /// primitive's search on its own thread: a round refines every unsettled primitive
 /// until its bound is within the round's threshold (from the farthest point measured
 /// before it) or a point beyond that is found; then the threshold is raised from that
 /// point and the unsettled go on. Only the threshold is shared, so the answer does
 /// not depend on the threads, and only primitives near the largest are refined far.
-pub(crate) fn worst_error(prims: &[Primitive], surface: &Triangles, level: f64) -> f64 {
+pub(crate) fn worst_error(
+    prims: &[Primitive],
+    known: &[f64],
+    surface: &Triangles,
+    level: f64,
+) -> f64 {
     let mut searches: Vec<(Search, Option<f64>)> = prims
         .par_iter()
         .map(|p| {
@@ -124,9 +131,14 @@ pub(crate) fn worst_error(prims: &[Primitive], surface: &Triangles, level: f64) 
         };
         searches
             .par_iter_mut()
-            .filter(|(_, settled)| settled.is_none())
-            .for_each(|(search, settled)| {
-                let bound = search.run(ask, MAX_SPLITS);
+            .zip(known)
+            .filter(|((_, settled), _)| settled.is_none())
+            .for_each(|((search, settled), &known)| {
+                // A bound proved before, within the threshold, settles it as it is.
+                let bound = match known <= t {
+                    true => known.max(search.low),
+                    false => search.run(ask, MAX_SPLITS),
+                };
                 // Over `t` only by a point found beyond it, unless the splits ran out.
                 if search.low <= t {
                     *settled = Some(bound);
@@ -530,7 +542,8 @@ pub(crate) mod tests {
     /// A level's bound over many primitives settled together in rounds is the worst
     /// of their own bounds up to the refinement's precision, keeps the level's promise
     /// (at most the level only if every primitive is within it), and is the same on
-    /// one thread and on two: 36 primitives of every kind about the demo scene.
+    /// one thread and on two: 36 primitives of every kind about the demo scene. The
+    /// same holds when each primitive's own bound is given as known beforehand.
     #[test]
     fn a_levels_bound_is_its_worst_primitives() {
         let mesh = crate::demo::demo_scene();
@@ -551,15 +564,20 @@ pub(crate) mod tests {
             .copied()
             .filter(|&e| e < worst)
             .fold(0.0, f64::max);
-        for level in [0.0, 0.5 * (worst + second), 2.0 * worst] {
+        let unknown = vec![f64::INFINITY; prims.len()];
+        let levels = [0.0, 0.5 * (worst + second), 2.0 * worst];
+        for (level, known) in levels
+            .into_iter()
+            .flat_map(|l| [(l, &unknown), (l, &alone)])
+        {
             let pool = |n| {
                 rayon::ThreadPoolBuilder::new()
                     .num_threads(n)
                     .build()
                     .unwrap()
             };
-            let one = pool(1).install(|| worst_error(&prims, &surface, level));
-            let two = pool(2).install(|| worst_error(&prims, &surface, level));
+            let one = pool(1).install(|| worst_error(&prims, known, &surface, level));
+            let two = pool(2).install(|| worst_error(&prims, known, &surface, level));
             let at = format!("level {level}: {one} {two} (alone {worst}, next {second})");
             assert_eq!(one.to_bits(), two.to_bits(), "{at}");
             assert!(

@@ -54,6 +54,10 @@ pub struct Snapshot {
     pub bound: Option<f64>,
     /// For a cut over its tolerance: what stopped it nearer; `None` otherwise.
     pub shortfall: Option<crate::Shortfall>,
+    /// For a cut: each primitive as the cut made it (the mesh's frame) with the upper
+    /// bound of its error the cut proved, where it proved one; post-processing leaves
+    /// it as it is, so `cut::record_limits` measures again only what it changed.
+    pub known: Vec<(Primitive, f64)>,
 }
 
 #[derive(Clone, Debug, Default)]
@@ -694,6 +698,7 @@ pub(super) fn snapshot(
         q: Vec::new(),
         bound: None,
         shortfall: None,
+        known: Vec::new(),
     };
     snap.q = roots.iter().map(|&r| cl.q[r as usize]).collect();
     Some(snap)

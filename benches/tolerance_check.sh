@@ -19,7 +19,8 @@
 # Usage: benches/tolerance_check.sh OUT [MESH...]   (names in the corpus; default:
 # every mesh of ../shared/datasets/CATALOG.tsv with at most MAX_TRIANGLES=200000
 # triangles, smallest first). Env: BIN (default target/release/primdecomp), TOLS
-# (default 1%,0.3%), SAMPLES, MARGIN, MAX_TRIANGLES. Resumable: a mesh whose files
+# (default 1%,0.3%), SAMPLES, MARGIN, MAX_TRIANGLES, ARGS (more decompose options,
+# e.g. ARGS="-n 16384" to lift the 1024 cap). Resumable: a mesh whose files
 # are all in OUT is not run again (delete them to re-run).
 set -euo pipefail
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
@@ -31,6 +32,7 @@ out="$1"; shift
 bin="${BIN:-$root/target/release/primdecomp}"
 tols="${TOLS:-1%,0.3%}" samples="${SAMPLES:-800000}" margin="${MARGIN:-0.064}"
 max_tri="${MAX_TRIANGLES:-200000}"
+read -ra extra <<< "${ARGS:-}"
 [[ -x "$bin" ]] || { echo "NO BINARY: $bin" >&2; exit 1; }
 if [[ $# -eq 0 ]]; then
     [[ -f "$catalog" ]] || { echo "CATALOG ABSENT: $catalog" >&2; exit 1; }
@@ -52,7 +54,7 @@ for m in "${meshes[@]}"; do
     echo "$(date -u +%T) $m" >&2
     if [[ ! -f "$out/$m.user" ]]; then
         if ! /usr/bin/time -f %U -o "$out/$m.user.tmp" "$bin" decompose "$corpus/$m" \
-            --tolerance "$tols" -o "$out/$m.json" --quiet 2> "$out/$m.stderr"; then
+            --tolerance "$tols" "${extra[@]}" -o "$out/$m.json" --quiet 2> "$out/$m.stderr"; then
             echo "decompose failed: $m (see $out/$m.stderr)" >&2
             cp "$out/$m.stderr" "$out/$m.error"; continue
         fi

@@ -102,7 +102,30 @@ impl Bvh {
         stack: &mut Vec<(f64, u32)>,
         mut dist2: impl FnMut(u32) -> f64,
     ) -> (f64, u32) {
+        let items = &self.items;
+        let (d, slot) = self.nearest_slot_until(p, enough, stack, |k| dist2(items[k as usize]));
+        (d, items.get(slot as usize).copied().unwrap_or(u32::MAX))
+    }
+
+    /// The items in the hierarchy's order: a leaf's items side by side. A caller
+    /// that stores its items in this order reads them in order
+    /// ([`Bvh::nearest_slot_until`]).
+    pub fn order(&self) -> &[u32] {
+        &self.items
+    }
+
+    /// [`Bvh::nearest_until`] with items named by their slot, their position in
+    /// [`Bvh::order`]: `dist2` gets a slot and the answer is one. The same item as
+    /// `nearest_until` finds (ties to the lower item id, in the same visiting order).
+    pub fn nearest_slot_until(
+        &self,
+        p: V3,
+        enough: f64,
+        stack: &mut Vec<(f64, u32)>,
+        mut dist2: impl FnMut(u32) -> f64,
+    ) -> (f64, u32) {
         let mut best = (f64::INFINITY, u32::MAX);
+        let mut best_id = u32::MAX;
         if self.nodes.is_empty() {
             return best;
         }
@@ -114,11 +137,10 @@ impl Bvh {
             }
             let node = self.nodes[n as usize];
             if node.count > 0 {
-                let span = node.first as usize..(node.first + node.count) as usize;
-                for &i in &self.items[span] {
-                    let di = dist2(i);
-                    if di < best.0 || (di == best.0 && i < best.1) {
-                        best = (di, i);
+                for k in node.first..node.first + node.count {
+                    let (di, i) = (dist2(k), self.items[k as usize]);
+                    if di < best.0 || (di == best.0 && i < best_id) {
+                        (best, best_id) = ((di, k), i);
                     }
                 }
                 if best.0 <= enough {
@@ -179,7 +201,23 @@ impl Bvh {
         stack: &mut Vec<u32>,
         mut hit: impl FnMut(u32) -> Option<f64>,
     ) -> (f64, u32) {
+        let items = &self.items;
+        let (t, slot) = self.ray_slot_first(o, d, tmax, stack, |k| hit(items[k as usize]));
+        (t, items.get(slot as usize).copied().unwrap_or(u32::MAX))
+    }
+
+    /// [`Bvh::ray_first`] with items named by their slot ([`Bvh::order`]), as
+    /// [`Bvh::nearest_slot_until`] names them.
+    pub fn ray_slot_first(
+        &self,
+        o: V3,
+        d: V3,
+        tmax: f64,
+        stack: &mut Vec<u32>,
+        mut hit: impl FnMut(u32) -> Option<f64>,
+    ) -> (f64, u32) {
         let mut best = (tmax, u32::MAX);
+        let mut best_id = u32::MAX;
         if self.nodes.is_empty() {
             return best;
         }
@@ -195,10 +233,12 @@ impl Bvh {
                 stack.extend([node.first, node.first + 1]);
                 continue;
             }
-            let span = node.first as usize..(node.first + node.count) as usize;
-            for &i in &self.items[span] {
-                match hit(i) {
-                    Some(t) if t < best.0 || (t == best.0 && i < best.1) => best = (t, i),
+            for k in node.first..node.first + node.count {
+                let i = self.items[k as usize];
+                match hit(k) {
+                    Some(t) if t < best.0 || (t == best.0 && i < best_id) => {
+                        (best, best_id) = ((t, k), i);
+                    }
                     _ => {}
                 }
             }

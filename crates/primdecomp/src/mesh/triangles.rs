@@ -8,7 +8,9 @@ use crate::math::V3;
 use crate::mesh::Mesh;
 
 /// The input's surface as triangles (fan-triangulated polygons, re-centred frame)
-/// with a hierarchy over them.
+/// with a hierarchy over them. The triangles are stored in the hierarchy's order
+/// (`Bvh::order`), so that a leaf's lie side by side; a triangle's index here is its
+/// place in that order.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct Triangles {
     tris: Vec<[V3; 3]>,
@@ -28,8 +30,10 @@ impl Triangles {
             }
         }
         let boxes: Vec<(V3, V3)> = tris.iter().map(tri_box).collect();
+        let bvh = Bvh::build(&boxes);
+        let tris = bvh.order().iter().map(|&i| tris[i as usize]).collect();
         Triangles {
-            bvh: Bvh::build(&boxes),
+            bvh,
             tris,
             diagonal: mesh.diagonal(),
         }
@@ -50,8 +54,8 @@ impl Triangles {
         } else {
             f64::NEG_INFINITY
         };
-        let (d2, _) = self.bvh.nearest_until(p, enough, stack, |i| {
-            point_tri_dist2(p, &self.tris[i as usize])
+        let (d2, _) = self.bvh.nearest_slot_until(p, enough, stack, |k| {
+            point_tri_dist2(p, &self.tris[k as usize])
         });
         d2.sqrt()
     }
@@ -59,10 +63,11 @@ impl Triangles {
     /// Distance from `p` to the nearest triangle and that triangle's index (infinite
     /// and `u32::MAX` for an empty surface); `stack` is scratch.
     pub(crate) fn nearest(&self, p: V3, stack: &mut Vec<(f64, u32)>) -> (f64, u32) {
-        let (d2, i) = self
+        let dist2 = |k: u32| point_tri_dist2(p, &self.tris[k as usize]);
+        let (d2, k) = self
             .bvh
-            .nearest_with(p, stack, |i| point_tri_dist2(p, &self.tris[i as usize]));
-        (d2.sqrt(), i)
+            .nearest_slot_until(p, f64::NEG_INFINITY, stack, dist2);
+        (d2.sqrt(), k)
     }
 
     /// Distance from `p` to triangle `i` (infinite for `u32::MAX`).
@@ -81,8 +86,8 @@ impl Triangles {
         (tmin, tmax): (f64, f64),
         stack: &mut Vec<u32>,
     ) -> Option<f64> {
-        let (t, tri) = self.bvh.ray_first(o, d, tmax, stack, |i| {
-            ray_tri(o, d, &self.tris[i as usize], tmin)
+        let (t, tri) = self.bvh.ray_slot_first(o, d, tmax, stack, |k| {
+            ray_tri(o, d, &self.tris[k as usize], tmin)
         });
         (tri != u32::MAX).then_some(t)
     }

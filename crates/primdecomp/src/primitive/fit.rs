@@ -542,6 +542,11 @@ impl<'a> Candidate<'a> {
             return;
         }
         let cost = self.cfg.weights[kind as usize] * volume;
+        // The penalty is ≥ 0: an offer whose k·V alone does not beat the best's score
+        // cannot win, whatever its penalty.
+        if self.fit.is_some() && cost >= self.score {
+            return;
+        }
         let score = cost + self.penalty.map_or(0.0, |p| p(&prim));
         if self.fit.is_none() || score < self.score {
             self.fit = Some(Fit { prim, volume, cost });

@@ -88,14 +88,41 @@ impl<'a> NodeHulls<'a> {
             .map_init(HullScratch::default, |s, &r| sets.subtree(r, s))
             .flatten_iter()
             .collect();
-        let mut s = HullScratch::default();
-        for &n in above.iter().rev() {
-            let kids = tree.nodes[n as usize].children.map(|c| stored.get(&c));
-            let out = sets.joined(n, kids, &mut s);
-            stored.insert(n, out);
-        }
+        let mut above: Vec<u32> = above;
+        above.sort_unstable();
+        let tops: Vec<(u32, NodeSets)> = (tree.roots.par_iter())
+            .flat_map_iter(|&r| sets.above(r, &above, &stored))
+            .collect();
+        stored.extend(tops);
         sets.stored = stored;
         sets
+    }
+
+    /// The sets of the nodes of `above` (sorted) from `n` down, children before
+    /// parents, the two halves of each on their own threads; the nodes below them
+    /// are in `stored`.
+    fn above(
+        &self,
+        n: u32,
+        above: &[u32],
+        stored: &HashMap<u32, NodeSets>,
+    ) -> Vec<(u32, NodeSets)> {
+        if above.binary_search(&n).is_err() {
+            return Vec::new();
+        }
+        let [a, b] = self.tree.nodes[n as usize].children;
+        let (mut found, more) = rayon::join(
+            || self.above(a, above, stored),
+            || self.above(b, above, stored),
+        );
+        found.extend(more);
+        let kid = |c: u32| {
+            let here = found.iter().rev().find(|(m, _)| *m == c).map(|(_, s)| s);
+            here.or_else(|| stored.get(&c))
+        };
+        let out = self.joined(n, [kid(a), kid(b)], &mut HullScratch::default());
+        found.push((n, out));
+        found
     }
 
     /// The nodes of more than `grain` faces (pre-order: parents before children),

@@ -54,10 +54,6 @@ fn ahead_off() -> bool {
     false
 }
 
-/// Nodes of fewer faces than a cut of the largest count holds on average, divided
-/// by this, have no hull kept ([`hulls`]): found from their faces when fitted.
-const STORED_BELOW_MEAN: usize = 4;
-
 /// What one level asks of the cut: at most `count` nodes and `bytes` bytes (the
 /// paper's Table 2), and with a `tolerance` (the mesh's units) the fewest nodes whose
 /// every primitive is within it; without one, the least worst error the caps allow.
@@ -170,9 +166,10 @@ impl<'a> Cutter<'a> {
         requests: &[Request],
     ) -> Self {
         let largest = largest(requests);
-        // Exploring rarely fits nodes much smaller than a cut of `largest` nodes
-        // holds on average; smaller ones are gathered from their faces when fitted.
-        let stored = tree.order.len() / largest.max(1) / STORED_BELOW_MEAN;
+        // Nodes of fewer faces than a cut of `largest` nodes holds on average have no
+        // hull kept: exploring fits few of them (a tolerance's cut is mostly smaller
+        // than its cap), and those are gathered from their faces when fitted.
+        let stored = tree.order.len() / largest.max(1);
         Cutter {
             ev,
             tree,

@@ -6,6 +6,7 @@
 use crate::math::bvh::{point_tri_dist2, ray_tri, tri_box, Bvh};
 use crate::math::V3;
 use crate::mesh::Mesh;
+use rayon::prelude::*;
 
 /// The input's surface as triangles (fan-triangulated polygons, re-centred frame)
 /// with a hierarchy over them. The triangles are stored in the hierarchy's order
@@ -22,16 +23,19 @@ pub(crate) struct Triangles {
 impl Triangles {
     /// The surface of every face of `mesh`.
     pub(crate) fn new(mesh: &Mesh) -> Triangles {
-        let mut tris = Vec::with_capacity(mesh.face_count());
+        // Each face's fan as vertex indices, then the triangles' corners written once,
+        // in the hierarchy's order, on every thread.
+        let mut fans: Vec<[u32; 3]> = Vec::with_capacity(mesh.face_count());
         for f in 0..mesh.face_count() {
             let v = mesh.face(f);
-            for k in 2..v.len() {
-                tris.push([mesh.pos(v[0]), mesh.pos(v[k - 1]), mesh.pos(v[k])]);
-            }
+            fans.extend((2..v.len()).map(|k| [v[0], v[k - 1], v[k]]));
         }
-        let boxes: Vec<(V3, V3)> = tris.iter().map(tri_box).collect();
+        let corners = |t: &[u32; 3]| t.map(|v| mesh.pos(v));
+        let boxes: Vec<(V3, V3)> = fans.par_iter().map(|t| tri_box(&corners(t))).collect();
         let bvh = Bvh::build(&boxes);
-        let tris = bvh.order().iter().map(|&i| tris[i as usize]).collect();
+        let tris = (bvh.order().par_iter())
+            .map(|&i| corners(&fans[i as usize]))
+            .collect();
         Triangles {
             bvh,
             tris,

@@ -199,12 +199,15 @@ impl Start {
                 };
             }
         }
+        // Each cell's search starts from the last one's nearest triangle: the
+        // tessellation's triangles follow each other around the primitive.
+        let mut near = u32::MAX;
         let cells = triangles(&tess)
             .into_iter()
             .map(|t| {
-                let first = (f64::INFINITY, gap);
+                let first = (f64::INFINITY, gap, near);
                 let (cell, d) = Cell::measure(t, first, surface, stack);
-                low = low.max(d);
+                (low, near) = (low.max(d), cell.near);
                 cell
             })
             .collect();
@@ -252,10 +255,15 @@ impl<'a> Search<'a> {
             if (close && !undecided) || self.splits == max_splits {
                 return bound;
             }
-            let Cell { bound, tri, gap } = self.heap.pop().expect("peeked");
+            let Cell {
+                bound,
+                tri,
+                gap,
+                near,
+            } = self.heap.pop().expect("peeked");
             self.splits += 1;
             for t in halves(&tri) {
-                let from = (bound, gap);
+                let from = (bound, gap, near);
                 let (cell, d) = Cell::measure(t, from, self.surface, &mut self.stack);
                 self.low = self.low.max(d);
                 self.heap.push(cell);
@@ -272,26 +280,38 @@ struct Cell {
     /// Added to its distances: how far the primitive's own surface may lie inside
     /// its tessellation ([`rounding`]).
     gap: f64,
+    /// The input triangle nearest its centroid (where its halves' searches start).
+    near: u32,
 }
 
 impl Cell {
     /// `t` with its bound (at most its parent's, `parent`) and its centroid's
-    /// distance to the input, each plus `gap`.
+    /// distance to the input, each plus `gap`; the nearest triangle searched from
+    /// `start` (a triangle near a point close by, or none), the same whatever it is.
     fn measure(
         t: [V3; 3],
-        (parent, gap): (f64, f64),
+        (parent, gap, start): (f64, f64, u32),
         surface: &Triangles,
         stack: &mut Vec<(f64, u32)>,
     ) -> (Cell, f64) {
         let c = scale(add(add(t[0], t[1]), t[2]), 1.0 / 3.0);
-        let (d, nearest) = surface.nearest(c, stack);
+        let (d, nearest) = surface.nearest_from(c, start, stack);
         let reach = t.iter().map(|&v| norm(sub(v, c))).fold(0.0, f64::max);
         let flush = t
             .iter()
             .map(|&v| surface.distance_to(v, nearest))
             .fold(0.0, f64::max);
         let bound = ((d + reach).min(flush) + gap).min(parent);
-        (Cell { bound, tri: t, gap }, d + gap)
+        let near = nearest;
+        (
+            Cell {
+                bound,
+                tri: t,
+                gap,
+                near,
+            },
+            d + gap,
+        )
     }
 }
 

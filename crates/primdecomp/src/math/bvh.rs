@@ -122,6 +122,34 @@ impl Bvh {
         p: V3,
         enough: f64,
         stack: &mut Vec<(f64, u32)>,
+        dist2: impl FnMut(u32) -> f64,
+    ) -> (f64, u32) {
+        self.nearest_slot_from(p, enough, None, stack, dist2)
+    }
+
+    /// The nearest item by slot, of least item id among the nearest whatever the
+    /// visiting order (a node as far as the best so far is still visited), searched
+    /// from the slot `start` (a guess: the nearer it is, the less is visited).
+    pub fn nearest_slot_near(
+        &self,
+        p: V3,
+        start: u32,
+        stack: &mut Vec<(f64, u32)>,
+        dist2: impl FnMut(u32) -> f64,
+    ) -> (f64, u32) {
+        self.nearest_slot_from(p, f64::NEG_INFINITY, Some(start), stack, dist2)
+    }
+
+    /// The search of [`Bvh::nearest_slot_until`] (`start` `None`: nodes as far as the
+    /// best so far are pruned, ties to the lower id among those visited) and of
+    /// [`Bvh::nearest_slot_near`] (`start` a slot: such nodes are visited, so every
+    /// nearest item is, and the least id among them is the answer).
+    fn nearest_slot_from(
+        &self,
+        p: V3,
+        enough: f64,
+        start: Option<u32>,
+        stack: &mut Vec<(f64, u32)>,
         mut dist2: impl FnMut(u32) -> f64,
     ) -> (f64, u32) {
         let mut best = (f64::INFINITY, u32::MAX);
@@ -129,10 +157,14 @@ impl Bvh {
         if self.nodes.is_empty() {
             return best;
         }
+        let all_ties = start.is_some();
+        if let Some(k) = start.filter(|&k| (k as usize) < self.items.len()) {
+            (best, best_id) = ((dist2(k), k), self.items[k as usize]);
+        }
         stack.clear();
         stack.push((0.0, 0));
         while let Some((d, n)) = stack.pop() {
-            if d >= best.0 {
+            if d > best.0 || (d == best.0 && !all_ties) {
                 continue;
             }
             let node = self.nodes[n as usize];
@@ -511,6 +543,40 @@ mod tests {
             assert_eq!(bvh.any_at(p, 0.1, near), want);
         }
         assert_eq!(Bvh::build(&[]).nearest([0.0; 3], |_| 0.0).1, u32::MAX);
+    }
+
+    /// Searched from any slot, the nearest item is the one of least id among all at
+    /// the least distance: triangles repeated three times over (so every nearest one
+    /// ties with two others in other leaves) and points on a triangle (distance 0
+    /// to it and to its copies), against a linear scan.
+    #[test]
+    fn a_search_from_any_slot_finds_the_least_id_among_the_nearest() {
+        let mut rng = ChaCha8Rng::seed_from_u64(5);
+        let base: Vec<[V3; 3]> = (0..200)
+            .map(|_| {
+                let c: V3 = std::array::from_fn(|_| rng.gen_range(-5.0..5.0));
+                std::array::from_fn(|_| add(c, std::array::from_fn(|_| rng.gen_range(-0.3..0.3))))
+            })
+            .collect();
+        let tris: Vec<[V3; 3]> = (0..3).flat_map(|_| base.iter().copied()).collect();
+        let bvh = Bvh::build(&tris.iter().map(tri_box).collect::<Vec<_>>());
+        let by_slot: Vec<[V3; 3]> = bvh.order().iter().map(|&i| tris[i as usize]).collect();
+        let mut stack = Vec::new();
+        for q in 0..300 {
+            let p: V3 = match q % 2 {
+                0 => std::array::from_fn(|_| rng.gen_range(-6.0..6.0)),
+                _ => base[q % base.len()][0],
+            };
+            let dist = |t: &[V3; 3]| point_tri_dist2(p, t);
+            let least = tris.iter().map(dist).fold(f64::INFINITY, f64::min);
+            let first = (0..tris.len()).find(|&i| dist(&tris[i]) == least);
+            for start in [0, 7, (q * 13) as u32 % 600, 599, u32::MAX] {
+                let (d, k) =
+                    bvh.nearest_slot_near(p, start, &mut stack, |k| dist(&by_slot[k as usize]));
+                assert_eq!(d, least, "point {q}, start {start}");
+                assert_eq!(Some(bvh.order()[k as usize] as usize), first, "point {q}");
+            }
+        }
     }
 
     /// A hierarchy large enough to build its halves in parallel: each item in one

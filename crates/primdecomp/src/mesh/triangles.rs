@@ -66,11 +66,26 @@ impl Triangles {
 
     /// Distance from `p` to the nearest triangle and that triangle's index (infinite
     /// and `u32::MAX` for an empty surface); `stack` is scratch.
+    #[cfg(test)]
     pub(crate) fn nearest(&self, p: V3, stack: &mut Vec<(f64, u32)>) -> (f64, u32) {
         let dist2 = |k: u32| point_tri_dist2(p, &self.tris[k as usize]);
         let (d2, k) = self
             .bvh
             .nearest_slot_until(p, f64::NEG_INFINITY, stack, dist2);
+        (d2.sqrt(), k)
+    }
+
+    /// [`Triangles::nearest`] searched from triangle `start` (a guess, such as the
+    /// nearest to a point close by), of least index in the input's order among the
+    /// nearest, whatever the guess.
+    pub(crate) fn nearest_from(
+        &self,
+        p: V3,
+        start: u32,
+        stack: &mut Vec<(f64, u32)>,
+    ) -> (f64, u32) {
+        let dist2 = |k: u32| point_tri_dist2(p, &self.tris[k as usize]);
+        let (d2, k) = self.bvh.nearest_slot_near(p, start, stack, dist2);
         (d2.sqrt(), k)
     }
 

@@ -96,7 +96,8 @@ for m in meshes:
         rows.append(dict(mesh=m, tol=tol, prims=lv["stats"]["primitives"], est=d["of_diagonal"], t=t,
                          met=met, h=h, ha=ha, ratio=h / t if t else float("inf"),
                          ratio_decl=h / d["of_diagonal"] if d["of_diagonal"] else float("inf"),
-                         ratio_all=ha / t if t else float("inf"), v=v, user=user, faces=lv["input"]["faces"]))
+                         ratio_all=ha / t if t else float("inf"), v=v, user=user, faces=lv["input"]["faces"],
+                         limited=d.get("limited_by") or "none"))
 print(f"meshes: {len(meshes)} ({len(errors)} failed to decompose); levels: {len(rows)}; "
       f"margin: tolerance x {1 + margin:.3f}")
 for tol in tols:
@@ -124,8 +125,12 @@ for tol in tols:
             sub[k] = sub.get(k, 0) + 1
         print(f"  - not met, declared: eval against the declared distance: "
               + ", ".join(f"{k} {sub[k]}" for k in ["within", "within margin", "over"] if k in sub))
+        stops = {}
+        for r in nm:
+            stops[r["limited"]] = stops.get(r["limited"], 0) + 1
         print(f"  - not met: worst eval/declared distance {w['ratio_decl']:.3f} ({w['mesh']}); "
-              f"{sum(r['prims'] >= 1000 for r in nm)} of {len(nm)} at 1000 or more primitives (cap 1024)")
+              "stopped by (the JSON's limited_by): "
+              + ", ".join(f"{k} {stops[k]}" for k in sorted(stops)))
 for m, msg in errors:
     print(f"\n- decompose failed: {m}: {' '.join(msg)}")
 print("\n| mesh | input faces | tolerance | primitives | own estimate | JSON: met | eval hausdorff | eval / tolerance "

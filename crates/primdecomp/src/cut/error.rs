@@ -302,16 +302,13 @@ impl Cell {
             .map(|&v| surface.distance_to(v, nearest))
             .fold(0.0, f64::max);
         let bound = ((d + reach).min(flush) + gap).min(parent);
-        let near = nearest;
-        (
-            Cell {
-                bound,
-                tri: t,
-                gap,
-                near,
-            },
-            d + gap,
-        )
+        let cell = Cell {
+            bound,
+            tri: t,
+            gap,
+            near: nearest,
+        };
+        (cell, d + gap)
     }
 }
 

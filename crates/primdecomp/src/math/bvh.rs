@@ -5,7 +5,9 @@
 //!
 //! Built by median splits on the longest axis of the item centroids (ties broken by
 //! item index, so the tree is the same on every run); queried depth-first, nearer
-//! child first, pruning nodes whose box is farther than the best distance so far.
+//! child first, pruning nodes whose box is farther than the best distance so far (a
+//! node exactly as far is visited, so the nearest item of least id is found whatever
+//! the visiting order or the starting guess).
 
 use super::{add, cross, dot, norm2, scale, sub, V3};
 use rayon::prelude::*;
@@ -103,52 +105,25 @@ impl Bvh {
         mut dist2: impl FnMut(u32) -> f64,
     ) -> (f64, u32) {
         let items = &self.items;
-        let (d, slot) = self.nearest_slot_until(p, enough, stack, |k| dist2(items[k as usize]));
+        let (d, slot) = self.nearest_slot(p, enough, u32::MAX, stack, |k| dist2(items[k as usize]));
         (d, items.get(slot as usize).copied().unwrap_or(u32::MAX))
     }
 
     /// The items in the hierarchy's order: a leaf's items side by side. A caller
-    /// that stores its items in this order reads them in order
-    /// ([`Bvh::nearest_slot_until`]).
+    /// that stores its items in this order reads them in order ([`Bvh::nearest_slot`]).
     pub fn order(&self) -> &[u32] {
         &self.items
     }
 
     /// [`Bvh::nearest_until`] with items named by their slot, their position in
-    /// [`Bvh::order`]: `dist2` gets a slot and the answer is one. The same item as
-    /// `nearest_until` finds (ties to the lower item id, in the same visiting order).
-    pub fn nearest_slot_until(
+    /// [`Bvh::order`] (`dist2` gets a slot and the answer is one), searched from the
+    /// slot `start` (a guess: the nearer it is, the less is visited; `u32::MAX` for
+    /// none). The nearest item of least id, whatever the guess.
+    pub fn nearest_slot(
         &self,
         p: V3,
         enough: f64,
-        stack: &mut Vec<(f64, u32)>,
-        dist2: impl FnMut(u32) -> f64,
-    ) -> (f64, u32) {
-        self.nearest_slot_from(p, enough, None, stack, dist2)
-    }
-
-    /// The nearest item by slot, of least item id among the nearest whatever the
-    /// visiting order (a node as far as the best so far is still visited), searched
-    /// from the slot `start` (a guess: the nearer it is, the less is visited).
-    pub fn nearest_slot_near(
-        &self,
-        p: V3,
         start: u32,
-        stack: &mut Vec<(f64, u32)>,
-        dist2: impl FnMut(u32) -> f64,
-    ) -> (f64, u32) {
-        self.nearest_slot_from(p, f64::NEG_INFINITY, Some(start), stack, dist2)
-    }
-
-    /// The search of [`Bvh::nearest_slot_until`] (`start` `None`: nodes as far as the
-    /// best so far are pruned, ties to the lower id among those visited) and of
-    /// [`Bvh::nearest_slot_near`] (`start` a slot: such nodes are visited, so every
-    /// nearest item is, and the least id among them is the answer).
-    fn nearest_slot_from(
-        &self,
-        p: V3,
-        enough: f64,
-        start: Option<u32>,
         stack: &mut Vec<(f64, u32)>,
         mut dist2: impl FnMut(u32) -> f64,
     ) -> (f64, u32) {
@@ -157,14 +132,13 @@ impl Bvh {
         if self.nodes.is_empty() {
             return best;
         }
-        let all_ties = start.is_some();
-        if let Some(k) = start.filter(|&k| (k as usize) < self.items.len()) {
-            (best, best_id) = ((dist2(k), k), self.items[k as usize]);
+        if let Some(&id) = self.items.get(start as usize) {
+            (best, best_id) = ((dist2(start), start), id);
         }
         stack.clear();
         stack.push((0.0, 0));
         while let Some((d, n)) = stack.pop() {
-            if d > best.0 || (d == best.0 && !all_ties) {
+            if d > best.0 {
                 continue;
             }
             let node = self.nodes[n as usize];
@@ -239,7 +213,7 @@ impl Bvh {
     }
 
     /// [`Bvh::ray_first`] with items named by their slot ([`Bvh::order`]), as
-    /// [`Bvh::nearest_slot_until`] names them.
+    /// [`Bvh::nearest_slot`] names them.
     pub fn ray_slot_first(
         &self,
         o: V3,
@@ -521,12 +495,7 @@ mod tests {
     #[test]
     fn nearest_and_any_at_match_linear_scans() {
         let mut rng = ChaCha8Rng::seed_from_u64(9);
-        let tris: Vec<[V3; 3]> = (0..500)
-            .map(|_| {
-                let c: V3 = std::array::from_fn(|_| rng.gen_range(-5.0..5.0));
-                std::array::from_fn(|_| add(c, std::array::from_fn(|_| rng.gen_range(-0.3..0.3))))
-            })
-            .collect();
+        let tris = small_triangles(&mut rng, 500);
         let boxes: Vec<_> = tris.iter().map(tri_box).collect();
         let bvh = Bvh::build(&boxes);
         for _ in 0..300 {
@@ -545,6 +514,16 @@ mod tests {
         assert_eq!(Bvh::build(&[]).nearest([0.0; 3], |_| 0.0).1, u32::MAX);
     }
 
+    /// `n` triangles of corners within 0.3 of a centre in the cube of half-side 5.
+    fn small_triangles(rng: &mut ChaCha8Rng, n: usize) -> Vec<[V3; 3]> {
+        (0..n)
+            .map(|_| {
+                let c: V3 = std::array::from_fn(|_| rng.gen_range(-5.0..5.0));
+                std::array::from_fn(|_| add(c, std::array::from_fn(|_| rng.gen_range(-0.3..0.3))))
+            })
+            .collect()
+    }
+
     /// Searched from any slot, the nearest item is the one of least id among all at
     /// the least distance: triangles repeated three times over (so every nearest one
     /// ties with two others in other leaves) and points on a triangle (distance 0
@@ -552,12 +531,7 @@ mod tests {
     #[test]
     fn a_search_from_any_slot_finds_the_least_id_among_the_nearest() {
         let mut rng = ChaCha8Rng::seed_from_u64(5);
-        let base: Vec<[V3; 3]> = (0..200)
-            .map(|_| {
-                let c: V3 = std::array::from_fn(|_| rng.gen_range(-5.0..5.0));
-                std::array::from_fn(|_| add(c, std::array::from_fn(|_| rng.gen_range(-0.3..0.3))))
-            })
-            .collect();
+        let base = small_triangles(&mut rng, 200);
         let tris: Vec<[V3; 3]> = (0..3).flat_map(|_| base.iter().copied()).collect();
         let bvh = Bvh::build(&tris.iter().map(tri_box).collect::<Vec<_>>());
         let by_slot: Vec<[V3; 3]> = bvh.order().iter().map(|&i| tris[i as usize]).collect();
@@ -571,8 +545,9 @@ mod tests {
             let least = tris.iter().map(dist).fold(f64::INFINITY, f64::min);
             let first = (0..tris.len()).find(|&i| dist(&tris[i]) == least);
             for start in [0, 7, (q * 13) as u32 % 600, 599, u32::MAX] {
-                let (d, k) =
-                    bvh.nearest_slot_near(p, start, &mut stack, |k| dist(&by_slot[k as usize]));
+                let (d, k) = bvh.nearest_slot(p, f64::NEG_INFINITY, start, &mut stack, |k| {
+                    dist(&by_slot[k as usize])
+                });
                 assert_eq!(d, least, "point {q}, start {start}");
                 assert_eq!(Some(bvh.order()[k as usize] as usize), first, "point {q}");
             }

@@ -58,21 +58,14 @@ impl Triangles {
         } else {
             f64::NEG_INFINITY
         };
-        let (d2, _) = self.bvh.nearest_slot_until(p, enough, stack, |k| {
-            point_tri_dist2(p, &self.tris[k as usize])
-        });
-        d2.sqrt()
+        self.search(p, enough, u32::MAX, stack).0
     }
 
     /// Distance from `p` to the nearest triangle and that triangle's index (infinite
     /// and `u32::MAX` for an empty surface); `stack` is scratch.
     #[cfg(test)]
     pub(crate) fn nearest(&self, p: V3, stack: &mut Vec<(f64, u32)>) -> (f64, u32) {
-        let dist2 = |k: u32| point_tri_dist2(p, &self.tris[k as usize]);
-        let (d2, k) = self
-            .bvh
-            .nearest_slot_until(p, f64::NEG_INFINITY, stack, dist2);
-        (d2.sqrt(), k)
+        self.nearest_from(p, u32::MAX, stack)
     }
 
     /// [`Triangles::nearest`] searched from triangle `start` (a guess, such as the
@@ -84,8 +77,13 @@ impl Triangles {
         start: u32,
         stack: &mut Vec<(f64, u32)>,
     ) -> (f64, u32) {
+        self.search(p, f64::NEG_INFINITY, start, stack)
+    }
+
+    /// `Bvh::nearest_slot` over the triangles, the distance not squared.
+    fn search(&self, p: V3, enough: f64, start: u32, stack: &mut Vec<(f64, u32)>) -> (f64, u32) {
         let dist2 = |k: u32| point_tri_dist2(p, &self.tris[k as usize]);
-        let (d2, k) = self.bvh.nearest_slot_near(p, start, stack, dist2);
+        let (d2, k) = self.bvh.nearest_slot(p, enough, start, stack, dist2);
         (d2.sqrt(), k)
     }
 

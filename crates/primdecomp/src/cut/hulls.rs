@@ -82,38 +82,31 @@ impl<'a> NodeHulls<'a> {
         // Subtrees of at most a share of the faces on their own threads, then the
         // few nodes above them, children before parents.
         let grain = (mesh.face_count() / TASKS).max(sets.small);
-        let (tasks, above) = sets.tasks(grain);
+        let tasks = sets.tasks(grain);
         let mut stored: HashMap<u32, NodeSets> = tasks
             .par_iter()
             .map_init(HullScratch::default, |s, &r| sets.subtree(r, s))
             .flatten_iter()
             .collect();
-        let mut above: Vec<u32> = above;
-        above.sort_unstable();
         let tops: Vec<(u32, NodeSets)> = (tree.roots.par_iter())
-            .flat_map_iter(|&r| sets.above(r, &above, &stored))
+            .flat_map_iter(|&r| sets.above(r, grain, &stored))
             .collect();
         stored.extend(tops);
         sets.stored = stored;
         sets
     }
 
-    /// The sets of the nodes of `above` (sorted) from `n` down, children before
-    /// parents, the two halves of each on their own threads; the nodes below them
-    /// are in `stored`.
-    fn above(
-        &self,
-        n: u32,
-        above: &[u32],
-        stored: &HashMap<u32, NodeSets>,
-    ) -> Vec<(u32, NodeSets)> {
-        if above.binary_search(&n).is_err() {
+    /// The sets of the nodes above the subtrees of `grain` faces ([`Self::splits`])
+    /// from `n` down, children before parents, the two halves of each on their own
+    /// threads; the nodes below them are in `stored`.
+    fn above(&self, n: u32, grain: usize, stored: &HashMap<u32, NodeSets>) -> Vec<(u32, NodeSets)> {
+        if !self.splits(n, grain) {
             return Vec::new();
         }
         let [a, b] = self.tree.nodes[n as usize].children;
         let (mut found, more) = rayon::join(
-            || self.above(a, above, stored),
-            || self.above(b, above, stored),
+            || self.above(a, grain, stored),
+            || self.above(b, grain, stored),
         );
         found.extend(more);
         let kid = |c: u32| {
@@ -125,21 +118,24 @@ impl<'a> NodeHulls<'a> {
         found
     }
 
-    /// The nodes of more than `grain` faces (pre-order: parents before children),
-    /// and the subtrees below them, each of at most `grain` faces or a leaf.
-    fn tasks(&self, grain: usize) -> (Vec<u32>, Vec<u32>) {
-        let (mut tasks, mut above) = (Vec::new(), Vec::new());
+    /// The subtrees below the nodes that [split](Self::splits), each of at most
+    /// `grain` faces or a leaf.
+    fn tasks(&self, grain: usize) -> Vec<u32> {
+        let mut tasks = Vec::new();
         let mut stack: Vec<u32> = self.tree.roots.clone();
         while let Some(n) = stack.pop() {
-            let node = self.tree.nodes[n as usize];
-            if self.tree.faces(n).len() <= grain || node.is_leaf() {
-                tasks.push(n);
-                continue;
+            match self.splits(n, grain) {
+                true => stack.extend(self.tree.nodes[n as usize].children),
+                false => tasks.push(n),
             }
-            above.push(n);
-            stack.extend(node.children);
         }
-        (tasks, above)
+        tasks
+    }
+
+    /// Whether node `n` lies above the subtrees of `grain` faces: an inner node of
+    /// more faces.
+    fn splits(&self, n: u32, grain: usize) -> bool {
+        self.tree.faces(n).len() > grain && !self.tree.nodes[n as usize].is_leaf()
     }
 
     /// Whether face `f` lies outside node `n`.
@@ -281,9 +277,9 @@ mod tests {
         let sets = NodeHulls::build(&tree, &mesh, adj, 1e-12 * mesh.diagonal(), 0);
         assert!(sets.stored.len() > 10, "{} stored", sets.stored.len());
         // Every node over the size, those above the parallel subtrees too.
-        let (_, above) = sets.tasks((mesh.face_count() / TASKS).max(sets.small));
+        let grain = (mesh.face_count() / TASKS).max(sets.small);
         assert!(
-            !above.is_empty(),
+            tree.roots.iter().any(|&r| sets.splits(r, grain)),
             "no node above the subtrees: the test is vacuous"
         );
         for n in 0..tree.nodes.len() as u32 {

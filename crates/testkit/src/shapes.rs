@@ -67,6 +67,74 @@ pub fn cylinder(radius: f64, height: f64, n: usize) -> Polys {
     (v, f)
 }
 
+/// Icosphere: an icosahedron's faces cut 1-to-4 `subdivisions` times, every vertex
+/// pushed out onto the sphere (so its facets lie inside it, none aligned with a UV
+/// grid).
+pub fn icosphere(radius: f64, subdivisions: usize) -> Polys {
+    let t = (1.0 + 5f64.sqrt()) / 2.0;
+    let mut v: Vec<[f64; 3]> = [
+        [-1.0, t, 0.0],
+        [1.0, t, 0.0],
+        [-1.0, -t, 0.0],
+        [1.0, -t, 0.0],
+        [0.0, -1.0, t],
+        [0.0, 1.0, t],
+        [0.0, -1.0, -t],
+        [0.0, 1.0, -t],
+        [t, 0.0, -1.0],
+        [t, 0.0, 1.0],
+        [-t, 0.0, -1.0],
+        [-t, 0.0, 1.0],
+    ]
+    .to_vec();
+    let mut f: Vec<[u32; 3]> = vec![
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
+    ];
+    for _ in 0..subdivisions {
+        let mut mids = std::collections::HashMap::new();
+        let mut mid = |a: u32, b: u32, v: &mut Vec<[f64; 3]>| {
+            *mids.entry((a.min(b), a.max(b))).or_insert_with(|| {
+                let (p, q) = (v[a as usize], v[b as usize]);
+                v.push(std::array::from_fn(|i| 0.5 * (p[i] + q[i])));
+                (v.len() - 1) as u32
+            })
+        };
+        let mut next = Vec::with_capacity(4 * f.len());
+        for [a, b, c] in f {
+            let (ab, bc, ca) = (mid(a, b, &mut v), mid(b, c, &mut v), mid(c, a, &mut v));
+            next.extend([[a, ab, ca], [b, bc, ab], [c, ca, bc], [ab, bc, ca]]);
+        }
+        f = next;
+    }
+    let on = |p: [f64; 3]| {
+        let n = (p[0] * p[0] + p[1] * p[1] + p[2] * p[2]).sqrt();
+        p.map(|x| radius * x / n)
+    };
+    (
+        v.into_iter().map(on).collect(),
+        f.into_iter().map(|t| t.to_vec()).collect(),
+    )
+}
+
 /// UV sphere: `rings` latitude bands, `segs` longitude segments, triangles at the poles.
 pub fn uv_sphere(radius: f64, rings: usize, segs: usize) -> Polys {
     let mut v = vec![[0.0, 0.0, radius]];

@@ -191,7 +191,7 @@ impl Start {
         let (tess, gap) = tessellation(prim, surface.diagonal);
         let mut low = 0.0f64;
         for &p in &tess.vertices {
-            low = low.max(surface.distance_beyond(p, low, stack) + gap);
+            low = low.max(surface.distance_beyond(p, low - gap, stack) + gap);
             if low > above {
                 return Start {
                     cells: Vec::new(),
@@ -482,6 +482,37 @@ pub(crate) mod tests {
             e >= truth && e <= loose(r, &surface) + GAP * surface.diagonal,
             "{e}"
         );
+    }
+
+    /// Regression: a ball over a finely faceted sphere (an icosphere, every vertex on
+    /// the ball) is within R + 2·gap − r_min of it, r_min the nearest facet plane's
+    /// distance from the centre (a ray from the centre meets the facets at least r_min
+    /// out; the tessellation stands at most gap outside the ball, and gap is added).
+    /// The search once added the ball's gap to a vertex distance found only up to the
+    /// farthest so far, so the farthest crept up by up to a gap per vertex, to 4.7×
+    /// that bound here: a distance said to be found that was not, and a ball said to be
+    /// over a tolerance it met. The refinement itself runs out of splits at 2.2×.
+    #[test]
+    fn a_ball_over_a_faceted_sphere_is_within_its_facets_depth() {
+        let (points, faces) = primdecomp_testkit::shapes::icosphere(1.0, 3);
+        let mesh = crate::mesh::Mesh::from_polygons(&points, &faces).expect("a sphere");
+        let surface = Triangles::new(&mesh);
+        let r_min = (0..mesh.face_count())
+            .map(|f| {
+                let n = mesh.newell(f);
+                let p = mesh.pos(mesh.face(f)[0]);
+                crate::math::dot(n, p).abs() / norm(n)
+            })
+            .fold(f64::INFINITY, f64::min);
+        let ball = Primitive::Sphere(crate::primitive::sphere::Sphere {
+            center: scale(mesh.centre(), -1.0),
+            radius: 1.0,
+        });
+        let (_, gap) = tessellation(&ball, surface.diagonal);
+        let most = 1.0 + 2.0 * gap - r_min;
+        assert!(is_within(&ball, &surface, 3.0 * most));
+        let e = error_until(&ball, &surface, Ask::exact(0.0));
+        assert!(e <= 3.0 * most, "{e} > 3 × {most}");
     }
 
     /// What each `Ask` promises, for boxes of several sizes around a cube (the true

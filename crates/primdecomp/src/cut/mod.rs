@@ -13,6 +13,7 @@
 pub(crate) mod error;
 mod hulls;
 mod nearest;
+mod shadow;
 pub(crate) mod tree;
 
 use crate::math::Sym3;

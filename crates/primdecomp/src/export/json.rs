@@ -282,9 +282,11 @@ const DISTANCE_METHOD: &str = "an upper bound of the one-way distance from each 
      enough to stand at most 0.1% of the input's diagonal outside a round primitive, which is \
      added) cut into triangles refined best-first, each bounded by its centroid's exact \
      distance plus its size, or by its corners' distances to the input triangle nearest its \
-     centroid; refined until within 2% (or 0.02% of the diagonal) of the farthest point \
-     measured, and until it is on one side of the tolerance; the largest over all primitives \
-     (at least `primdecomp eval`'s sampled Hausdorff)";
+     centroid, or (a round primitive's, once its search has run long) by the distances along \
+     its normal to the input triangles below it (docs/decisions/0047); refined until within \
+     2% (or 0.02% of the diagonal) of the farthest point measured, and until it is on one \
+     side of the tolerance; the largest over all primitives (at least `primdecomp eval`'s \
+     sampled Hausdorff)";
 
 impl Distance {
     fn of(lv: &Level, input: &InputInfo) -> Option<Distance> {

@@ -94,6 +94,23 @@ impl Triangles {
             .map_or(f64::INFINITY, |t| point_tri_dist2(p, t).sqrt())
     }
 
+    /// The triangles whose box meets the box `lo..hi` (and perhaps some more near
+    /// it), into `out` in index order; or `false` once there are more than `most`.
+    pub(crate) fn meeting(
+        &self,
+        lo_hi: (V3, V3),
+        most: usize,
+        stack: &mut Vec<u32>,
+        out: &mut Vec<u32>,
+    ) -> bool {
+        self.bvh.slots_meeting(lo_hi, most, stack, out)
+    }
+
+    /// Triangle `i`'s corners.
+    pub(crate) fn corners(&self, i: u32) -> &[V3; 3] {
+        &self.tris[i as usize]
+    }
+
     /// How far along the ray `o + t·d` (`t` in `(tmin, tmax]`) it first meets a
     /// triangle, or `None` for a miss; `stack` is scratch.
     pub(crate) fn ray_first(

@@ -50,12 +50,52 @@ pub(crate) fn snapshots(
             s.step(r, snap, level);
         }
     }
+    fill_short(&mut cutter, &mut searches, requests, ev, (params, post));
     (searches.into_iter().zip(requests))
         .map(|(s, r)| Snapshot {
             target: r.count,
             ..s.kept
         })
         .collect()
+}
+
+/// A level of a count alone that the raises left short of it (its worst node's
+/// subtree splits no nearer, and a larger exploration is spent there too) cut once
+/// more at its own count, the rest of the count spent on the cut's other nodes (`Cutter::spend`,
+/// docs/decisions/0048), and kept where its level holds more primitives within the
+/// count and its nodes stand no farther.
+fn fill_short(
+    cutter: &mut Cutter,
+    searches: &mut [Search],
+    requests: &[Request],
+    ev: &Evaluator,
+    (params, post): (&Params, &postprocess::Input),
+) {
+    let short =
+        |s: &Search, r: &Request| r.tolerance.is_none() && r.bytes.is_none() && s.spent.0 < r.count;
+    if !searches.iter().zip(requests).any(|(s, r)| short(s, r)) {
+        return;
+    }
+    let asked: Vec<Request> = searches
+        .iter()
+        .zip(requests)
+        .map(|(s, r)| if short(s, r) { *r } else { s.before })
+        .collect();
+    cutter.fill_short = true;
+    let snaps = cutter.snapshots(&asked);
+    cutter.fill_short = false;
+    let levels = postprocess::levels(ev, snaps.clone(), params, post);
+    for ((s, r), (snap, level)) in searches
+        .iter_mut()
+        .zip(requests)
+        .zip(snaps.into_iter().zip(&levels))
+    {
+        let nearer = snap.bound.unwrap_or(f64::INFINITY) <= s.kept.bound.unwrap_or(f64::INFINITY);
+        if short(s, r) && level.primitives.len() > s.spent.0 && nearer && within(r, level) {
+            s.spent = (level.primitives.len(), level.bytes());
+            s.kept = snap;
+        }
+    }
 }
 
 /// One level's search: the request the cutter gets next, the one its kept cut came

@@ -123,3 +123,29 @@ fn plate_joins_keep_the_tolerance() {
         assert_valid(&m, &d, &p);
     }
 }
+
+/// Regression (docs/decisions/0048): kitchenaid_mixer cut at 16 alone came back as 4
+/// primitives (7 nodes before nested ones were removed), 9.49% of the diagonal from
+/// it. The worst-first exploration spent its splits on the worst node's subtree, a
+/// chain that splits no nearer, raising the count explored the same chain, and the
+/// cut had no other split to fill the count with. The rest of the count must go to
+/// the cut's other nodes: now 15 nodes, 12 primitives once 3 nested in others are
+/// removed (that count is the pipeline's nested-removal, not the cut's), no farther.
+#[test]
+fn a_count_is_filled_where_the_worst_node_splits_no_nearer() {
+    let Some(m) = primdecomp_testkit::corpus_mesh("kitchenaid_mixer.obj") else {
+        return;
+    };
+    let p = Params {
+        targets: vec![16],
+        cut: true,
+        ..Params::default()
+    };
+    let d = decompose(&m, &p).expect("decomposes");
+    let l = &d.levels[0];
+    assert!(l.primitives.len() >= 12, "{}", l.primitives.len());
+    let diagonal = m.diagonal();
+    let got = l.distance.expect("measured") / diagonal;
+    assert!(got <= 0.0950, "{got}");
+    assert_valid(&m, &d, &p);
+}

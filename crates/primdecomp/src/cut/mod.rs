@@ -14,6 +14,7 @@ pub(crate) mod error;
 mod hulls;
 mod nearest;
 mod shadow;
+mod spend;
 pub(crate) mod tree;
 
 use crate::math::Sym3;
@@ -147,6 +148,9 @@ pub(crate) struct Cutter<'a> {
     /// takes to know that (the smallest tolerance when every request has one, else
     /// the floor).
     enough: f64,
+    /// Whether a count the cut falls short of goes to the cut's other nodes
+    /// ([`Cutter::spend`]).
+    pub(crate) fill_short: bool,
 }
 
 /// One thread's buffers for fitting nodes.
@@ -184,6 +188,7 @@ impl<'a> Cutter<'a> {
                 .try_fold(f64::INFINITY, |m, t| t.map(|t| m.min(t)))
                 .unwrap_or(0.0)
                 .max(FLOOR_HALVES * ev.cfg.min_half),
+            fill_short: false,
         }
     }
 
@@ -338,6 +343,18 @@ impl<'a> Cutter<'a> {
         // Nodes kept over a tolerance because splitting them does not bring them
         // nearer get their nearest fit, and the cuts are chosen again.
         self.nearest_where_kept(&mut ex, &mut cuts);
+        // A count the cut falls short of goes to its other nodes, where the cut then
+        // chosen has more nodes and stands no farther.
+        if self.fill_short && self.spend(&mut ex, &cuts) {
+            let worst = |c: &[u32]| c.iter().map(|n| ex.fitted[n].error).fold(0.0, f64::max);
+            let again: Vec<Vec<u32>> = self.requests.iter().map(|r| self.choose(&ex, r)).collect();
+            for (cut, new) in cuts.iter_mut().zip(again) {
+                if new.len() > cut.len() && worst(&new) <= worst(cut) {
+                    *cut = new;
+                }
+            }
+            self.nearest_where_kept(&mut ex, &mut cuts);
+        }
         (ex, cuts)
     }
 

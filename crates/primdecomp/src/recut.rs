@@ -61,7 +61,7 @@ pub(crate) fn snapshots(
 
 /// A level of a count alone that the raises left short of it (its worst node's
 /// subtree splits no nearer, and a larger exploration is spent there too) cut once
-/// more at its own count, the rest of the count spent on the cut's other nodes (`Cutter::spend`,
+/// more at its own count, the rest of the count spent on the cut's other nodes (`Cutter::snapshots_filled`,
 /// docs/decisions/0048), and kept where its level holds more primitives within the
 /// count and its nodes stand no farther.
 fn fill_short(
@@ -81,9 +81,7 @@ fn fill_short(
         .zip(requests)
         .map(|(s, r)| if short(s, r) { *r } else { s.before })
         .collect();
-    cutter.fill_short = true;
-    let snaps = cutter.snapshots(&asked);
-    cutter.fill_short = false;
+    let snaps = cutter.snapshots_filled(&asked);
     let levels = postprocess::levels(ev, snaps.clone(), params, post);
     for ((s, r), (snap, level)) in searches
         .iter_mut()

@@ -44,10 +44,14 @@ const MAX_SPLITS: usize = 16384;
 /// A search splits this many cells before it tries their shadows (`cut::shadow`).
 const SHADOW_AFTER: usize = 512;
 /// Shadows stop being tried in a search where fewer than one in this many gave a
-/// bound (after the first 64).
+/// bound (after the first [`SHADOW_TRIAL`]).
 const SHADOW_RATE: u32 = 8;
 /// A cell's [`Cell::shade`] when its shadow has nothing to add.
 const SHADED: u8 = u8::MAX;
+/// Where a cell's shadow gave nothing, its halves wait this many splits.
+const RETRY: u8 = 2;
+/// Shadows are tried this many times in a search before [`SHADOW_RATE`] may stop them.
+const SHADOW_TRIAL: u32 = 64;
 /// A level's search settles its primitives together in at most this many rounds
 /// ([`worst_error`]); then the bounds found stand.
 const ROUNDS: usize = 64;
@@ -200,7 +204,8 @@ impl Shadows {
     /// Whether to try another after `splits` splits: once the search has run long,
     /// and while one in [`SHADOW_RATE`] gives a bound.
     fn worth(&self, splits: usize) -> bool {
-        splits >= SHADOW_AFTER && (self.tried < 64 || self.helped * SHADOW_RATE >= self.tried)
+        splits >= SHADOW_AFTER
+            && (self.tried < SHADOW_TRIAL || self.helped * SHADOW_RATE >= self.tried)
     }
 
     fn count(&mut self, helped: bool) {
@@ -295,27 +300,10 @@ impl<'a> Search<'a> {
                 return bound;
             }
             let mut cell = self.heap.pop().expect("peeked");
-            // Before the worst cell is split, the bound of its shadow: tight over a
-            // few input facets, where its halves' would not be for long. Tried only
-            // on a round primitive's cells, once a search has run long (most end
-            // sooner without it, and flat faces lie flush sooner), while it helps
-            // often; where it gives nothing, next on the cell's grandchildren.
-            let mut next = cell.shade.saturating_sub(1);
-            if cell.shade == 0 && cell.gap > 0.0 && self.shadows.worth(self.splits) {
-                let shade = &mut self.scratch.shadow;
-                let below = cell.bound - cell.gap;
-                let tried = shadow::bound(&cell.tri, below, self.surface, shade);
-                self.shadows.count(tried.is_some());
-                if let Some(b) = tried {
-                    (cell.bound, cell.shade) = (b + cell.gap, SHADED);
-                    self.heap.push(cell);
-                    continue;
-                }
-                next = 2;
-            }
-            if cell.shade == SHADED {
-                next = 0;
-            }
+            let Some(next) = self.shade(&mut cell) else {
+                self.heap.push(cell);
+                continue;
+            };
             self.splits += 1;
             for t in halves(&cell.tri) {
                 let from = (cell.bound, cell.gap, cell.near, next);
@@ -325,6 +313,34 @@ impl<'a> Search<'a> {
             }
         }
         self.low
+    }
+}
+
+impl Search<'_> {
+    /// Before the worst cell is split, the bound of its shadow: tight over a few
+    /// input facets, where its halves' would not be for long. Tried only on a round
+    /// primitive's cells, once a search has run long (most end sooner without it,
+    /// and flat faces lie flush sooner), while it helps often. `None` where it
+    /// bounded `cell` anew; else the [`Cell::shade`] its halves get (where it gave
+    /// nothing, they wait for the grandchildren).
+    fn shade(&mut self, cell: &mut Cell) -> Option<u8> {
+        match cell.shade {
+            SHADED => Some(0),
+            0 if cell.gap > 0.0 && self.shadows.worth(self.splits) => {
+                let shade = &mut self.scratch.shadow;
+                let below = cell.bound - cell.gap;
+                let tried = shadow::bound(&cell.tri, below, self.surface, shade);
+                self.shadows.count(tried.is_some());
+                match tried {
+                    Some(b) => {
+                        (cell.bound, cell.shade) = (b + cell.gap, SHADED);
+                        None
+                    }
+                    None => Some(RETRY),
+                }
+            }
+            wait => Some(wait.saturating_sub(1)),
+        }
     }
 }
 
@@ -630,14 +646,7 @@ pub(crate) mod tests {
             let (tess, _) = tessellation(&prim, surface.diagonal);
             for t in triangles(&tess) {
                 for _ in 0..64 {
-                    let (mut a, mut b): (f64, f64) = (rng.gen(), rng.gen());
-                    if a + b > 1.0 {
-                        (a, b) = (1.0 - a, 1.0 - b);
-                    }
-                    let p = add(
-                        t[0],
-                        add(scale(sub(t[1], t[0]), a), scale(sub(t[2], t[0]), b)),
-                    );
+                    let p = point_on(&t, &mut rng);
                     let on = surface_point(&prim, p);
                     for q in [p, on] {
                         let dq = surface.distance(q, &mut stack);
@@ -696,6 +705,18 @@ pub(crate) mod tests {
             assert!(one <= loose(worst, &surface), "{at}");
             assert_eq!(one <= level, worst <= level, "{at}");
         }
+    }
+
+    /// A point drawn uniformly on triangle `t`.
+    pub(in crate::cut) fn point_on(t: &[V3; 3], rng: &mut ChaCha8Rng) -> V3 {
+        let (mut a, mut b): (f64, f64) = (rng.gen(), rng.gen());
+        if a + b > 1.0 {
+            (a, b) = (1.0 - a, 1.0 - b);
+        }
+        add(
+            t[0],
+            add(scale(sub(t[1], t[0]), a), scale(sub(t[2], t[0]), b)),
+        )
     }
 
     /// A primitive of kind `k` (box, sphere, capsule, cylinder, frustum, prism) from

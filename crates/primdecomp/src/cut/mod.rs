@@ -149,8 +149,8 @@ pub(crate) struct Cutter<'a> {
     /// the floor).
     enough: f64,
     /// Whether a count the cut falls short of goes to the cut's other nodes
-    /// ([`Cutter::spend`]).
-    pub(crate) fill_short: bool,
+    /// ([`Cutter::spend`], [`Cutter::snapshots_filled`]).
+    fill_short: bool,
 }
 
 /// One thread's buffers for fitting nodes.
@@ -268,6 +268,15 @@ impl<'a> Cutter<'a> {
         snaps
     }
 
+    /// [`Cutter::snapshots`] with the rest of a count alone its cut falls short of
+    /// spent on the cut's other nodes ([`Cutter::spend`]).
+    pub(crate) fn snapshots_filled(&mut self, requests: &[Request]) -> Vec<Snapshot> {
+        self.fill_short = true;
+        let snaps = self.snapshots(requests);
+        self.fill_short = false;
+        snaps
+    }
+
     /// Each request's snapshot from its cut of `explored`.
     fn cut_snapshots(&self, explored: &Explored, cuts: Vec<Vec<u32>>) -> Vec<Snapshot> {
         let requests = &self.requests;
@@ -346,10 +355,9 @@ impl<'a> Cutter<'a> {
         // A count the cut falls short of goes to its other nodes, where the cut then
         // chosen has more nodes and stands no farther.
         if self.fill_short && self.spend(&mut ex, &cuts) {
-            let worst = |c: &[u32]| c.iter().map(|n| ex.fitted[n].error).fold(0.0, f64::max);
             let again: Vec<Vec<u32>> = self.requests.iter().map(|r| self.choose(&ex, r)).collect();
             for (cut, new) in cuts.iter_mut().zip(again) {
-                if new.len() > cut.len() && worst(&new) <= worst(cut) {
+                if new.len() > cut.len() && worst(&ex, &new) <= worst(&ex, cut) {
                     *cut = new;
                 }
             }
@@ -642,13 +650,12 @@ impl<'a> Cutter<'a> {
     /// the bytes, where that cut needs more; else the faces ([`Shortfall`]).
     fn shortfall(&self, ex: &Explored, r: &Request, cut: &[u32]) -> Option<Shortfall> {
         let t = r.tolerance?;
-        let worst = |c: &[u32]| c.iter().map(|n| ex.fitted[n].error).fold(0.0, f64::max);
-        if worst(cut) <= t {
+        if worst(ex, cut) <= t {
             return None;
         }
         let nearest = self.cheapest(ex, t, r.bytes.is_some());
         let (count, _) = totals(ex, &nearest);
-        Some(match worst(&nearest) <= t {
+        Some(match worst(ex, &nearest) <= t {
             true if count > r.count => Shortfall::Count,
             true => Shortfall::Bytes,
             false if ex.capped => Shortfall::Count,
@@ -790,6 +797,11 @@ pub(crate) fn fits(r: &Request, c: (usize, usize)) -> bool {
 }
 
 /// The node count and bytes of `cut`.
+/// The largest error of the nodes of `cut`.
+fn worst(ex: &Explored, cut: &[u32]) -> f64 {
+    cut.iter().map(|n| ex.fitted[n].error).fold(0.0, f64::max)
+}
+
 fn totals(ex: &Explored, cut: &[u32]) -> (usize, usize) {
     (cut.len(), cut.iter().map(|n| ex.fitted[n].bytes()).sum())
 }

@@ -10,7 +10,9 @@
 //! is affine, so its largest is at the piece's corners, and it bounds the distance to
 //! the input (the line meets the triangle there). Only for cells over a few triangles.
 
-use crate::math::{cross, dot, norm, normalize, scale, sub, V3};
+use crate::math::bvh::tri_box;
+use crate::math::polygon::{clip_by, signed_area};
+use crate::math::{add, cross, dot, norm, normalize, scale, sub, V3};
 use crate::mesh::triangles::Triangles;
 
 /// Cells over more input triangles than this are left to the other bounds.
@@ -49,10 +51,16 @@ impl Pieces {
     }
 
     fn push(&mut self, poly: &[[f64; 2]]) {
-        if area(poly) > 0.0 {
+        if signed_area(poly) > 0.0 {
             self.points.extend_from_slice(poly);
             self.ends.push(self.points.len());
         }
+    }
+
+    /// Drops the polygons pushed after `count` of them.
+    fn truncate(&mut self, count: usize) {
+        self.ends.truncate(count);
+        self.points.truncate(self.ends.last().copied().unwrap_or(0));
     }
 
     fn get(&self, i: usize) -> &[[f64; 2]] {
@@ -71,17 +79,10 @@ pub(crate) fn bound(
     s: &mut Scratch,
 ) -> Option<f64> {
     let plane = Plane::of(cell)?;
-    let reach = scale(plane.n, below);
-    let mut lo = cell[0];
-    let mut hi = cell[0];
-    for p in cell
-        .iter()
-        .flat_map(|&c| [sub(c, reach), crate::math::add(c, reach)])
-    {
-        for k in 0..3 {
-            (lo[k], hi[k]) = (lo[k].min(p[k]), hi[k].max(p[k]));
-        }
-    }
+    // The cell swept along its normal by `below` each way.
+    let (lo, hi) = tri_box(cell);
+    let reach = plane.n.map(|c| (c * below).abs());
+    let (lo, hi) = (sub(lo, reach), add(hi, reach));
     if !surface.meeting((lo, hi), MOST, &mut s.stack, &mut s.slots) {
         return None;
     }
@@ -98,28 +99,25 @@ pub(crate) fn bound(
         s.next.clear();
         for i in 0..s.pieces.ends.len() {
             let piece = s.pieces.get(i);
+            let mark = s.next.ends.len();
             s.piece.clear();
             s.piece.extend_from_slice(piece);
+            // The piece's parts outside each edge (and inside the ones before) go on;
+            // what is inside all three is over the triangle.
             for e in over.edges {
-                clip(&s.piece, e, &mut s.clipped);
+                clip_by(&s.piece, half([-e[0], -e[1], -e[2]]), &mut s.clipped);
+                s.next.push(&s.clipped);
+                clip_by(&s.piece, half(e), &mut s.clipped);
                 std::mem::swap(&mut s.piece, &mut s.clipped);
             }
-            if area(&s.piece) <= 0.0 {
+            if signed_area(&s.piece) <= 0.0 {
                 // Not over the triangle: the piece goes on whole.
+                s.next.truncate(mark);
                 s.next.push(piece);
                 continue;
             }
             let far = s.piece.iter().map(|&q| over.along(q).abs());
             worst = worst.max(far.fold(0.0, f64::max) + over.slack);
-            // The piece's parts outside each edge (and inside the ones before) go on.
-            s.piece.clear();
-            s.piece.extend_from_slice(piece);
-            for e in over.edges {
-                clip(&s.piece, [-e[0], -e[1], -e[2]], &mut s.clipped);
-                s.next.push(&s.clipped);
-                clip(&s.piece, e, &mut s.clipped);
-                std::mem::swap(&mut s.piece, &mut s.clipped);
-            }
         }
         std::mem::swap(&mut s.pieces, &mut s.next);
         if worst >= below {
@@ -194,8 +192,8 @@ impl Plane {
 
     /// The point of the plane at `q`.
     fn at(&self, q: [f64; 2]) -> V3 {
-        let a = crate::math::add(self.o, scale(self.u, q[0]));
-        crate::math::add(a, scale(self.w, q[1]))
+        let a = add(self.o, scale(self.u, q[0]));
+        add(a, scale(self.w, q[1]))
     }
 }
 
@@ -249,40 +247,18 @@ impl Over {
     }
 }
 
+/// The half-plane `h[0]·x + h[1]·y + h[2] ≥ 0` as a side function for [`clip_by`].
+fn half(h: [f64; 3]) -> impl Fn([f64; 2]) -> f64 {
+    move |q| h[0] * q[0] + h[1] * q[1] + h[2]
+}
+
 fn cross2(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> f64 {
     (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
-}
-
-/// Twice the area of a convex polygon, counter-clockwise (0 for fewer than three
-/// points).
-fn area(p: &[[f64; 2]]) -> f64 {
-    if p.len() < 3 {
-        return 0.0;
-    }
-    (1..p.len() - 1).map(|i| cross2(p[0], p[i], p[i + 1])).sum()
-}
-
-/// The part of the convex polygon `p` where `h[0]·x + h[1]·y + h[2] ≥ 0`, into `out`.
-fn clip(p: &[[f64; 2]], h: [f64; 3], out: &mut Vec<[f64; 2]>) {
-    out.clear();
-    let side = |q: [f64; 2]| h[0] * q[0] + h[1] * q[1] + h[2];
-    for i in 0..p.len() {
-        let (a, b) = (p[i], p[(i + 1) % p.len()]);
-        let (sa, sb) = (side(a), side(b));
-        if sa >= 0.0 {
-            out.push(a);
-        }
-        if (sa >= 0.0) != (sb >= 0.0) {
-            let t = sa / (sa - sb);
-            out.push([a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]);
-        }
-    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::math::add;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
@@ -334,17 +310,7 @@ mod tests {
             };
             given += 1;
             for _ in 0..32 {
-                let (mut x, mut y): (f64, f64) = (rng.gen(), rng.gen());
-                if x + y > 1.0 {
-                    (x, y) = (1.0 - x, 1.0 - y);
-                }
-                let p = add(
-                    cell[0],
-                    add(
-                        scale(sub(cell[1], cell[0]), x),
-                        scale(sub(cell[2], cell[0]), y),
-                    ),
-                );
+                let p = crate::cut::error::tests::point_on(&cell, &mut rng);
                 let dp = surface.nearest_from(p, u32::MAX, &mut stack).0;
                 assert!(dp <= b + 1e-9 * d, "{cell:?}: {dp} > {b}");
             }

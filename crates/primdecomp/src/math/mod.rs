@@ -17,6 +17,7 @@
 pub mod bvh;
 pub(crate) mod eigen3;
 pub(crate) mod hull;
+pub(crate) mod polygon;
 pub(crate) mod quat;
 pub(crate) mod sym3;
 mod vec3;

@@ -19,6 +19,7 @@
 use rayon::prelude::*;
 
 use crate::cut::error::is_within;
+use crate::math::polygon::{clip, signed_area};
 use crate::math::{add, cross, dot, madd, normalize, scale, Sym3, V3};
 use crate::merge::{Evaluator, Snapshot, Workspace};
 use crate::mesh::triangles::Triangles;
@@ -298,44 +299,8 @@ fn hull_area(pts: &mut [[f64; 2]], hull: &mut Vec<[f64; 2]>) -> f64 {
     area(hull)
 }
 
-/// The shoelace area of a polygon, positive when counter-clockwise.
-fn signed_area(p: &[[f64; 2]]) -> f64 {
-    let n = p.len();
-    0.5 * (0..n)
-        .map(|i| {
-            let (a, b) = (p[i], p[(i + 1) % n]);
-            a[0] * b[1] - a[1] * b[0]
-        })
-        .sum::<f64>()
-}
-
 fn area(p: &[[f64; 2]]) -> f64 {
     signed_area(p).abs()
-}
-
-/// The intersection of two convex counter-clockwise polygons (Sutherland–Hodgman).
-fn clip(subject: &[[f64; 2]], by: &[[f64; 2]]) -> Vec<[f64; 2]> {
-    let mut out = subject.to_vec();
-    for i in 0..by.len() {
-        let (a, b) = (by[i], by[(i + 1) % by.len()]);
-        let side = |p: [f64; 2]| (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
-        let input = std::mem::take(&mut out);
-        for k in 0..input.len() {
-            let (p, q) = (input[k], input[(k + 1) % input.len()]);
-            let (sp, sq) = (side(p), side(q));
-            if sp >= 0.0 {
-                out.push(p);
-            }
-            if (sp >= 0.0) != (sq >= 0.0) {
-                let t = sp / (sp - sq);
-                out.push([p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])]);
-            }
-        }
-        if out.is_empty() {
-            break;
-        }
-    }
-    out
 }
 
 /// The sorted union of two sorted, distinct lists.

@@ -443,8 +443,12 @@ pub fn point_tri_dist2(p: V3, t: &[V3; 3]) -> f64 {
     if d3 >= 0.0 && d4 <= d3 {
         return norm2(bp);
     }
+    // An edge's region is taken only if the edge has length (d1 - d3 is its squared
+    // length, and so below): where two corners coincide its parameter would be 0/0,
+    // and a NaN distance passes every comparison. Such a triangle is its segment
+    // (the degenerate case at the end).
     let vc = d1 * d4 - d3 * d2;
-    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 && d1 - d3 > 0.0 {
         let v = d1 / (d1 - d3);
         return norm2(sub(ap, scale(ab, v)));
     }
@@ -454,13 +458,14 @@ pub fn point_tri_dist2(p: V3, t: &[V3; 3]) -> f64 {
         return norm2(cp);
     }
     let vb = d5 * d2 - d1 * d6;
-    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 && d2 - d6 > 0.0 {
         let w = d2 / (d2 - d6);
         return norm2(sub(ap, scale(ac, w)));
     }
     let va = d3 * d6 - d5 * d4;
-    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
-        let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+    let bc = (d4 - d3) + (d5 - d6);
+    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 && bc > 0.0 {
+        let w = (d4 - d3) / bc;
         return norm2(sub(bp, scale(sub(c, b), w)));
     }
     let denom = va + vb + vc;
@@ -526,6 +531,36 @@ mod tests {
         }
         let flat = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]];
         assert!((point_tri_dist2([1.0, 1.0, 0.0], &flat) - 1.0).abs() < 1e-15);
+    }
+
+    /// A triangle with two corners at one point is a segment: its distance is the
+    /// segment's, never NaN. Each edge's parameter divided 0 by 0 there, and a NaN
+    /// distance passed every comparison: nearest searches visited the whole tree for
+    /// each point (samurai_monastery's cut took minutes) and error bounds over such
+    /// triangles came out 0.
+    #[test]
+    fn a_triangle_with_coincident_corners_is_its_segment() {
+        let (a, b) = ([0.0, 0.0, 0.0], [2.0, 0.0, 0.0]);
+        let mut rng = ChaCha8Rng::seed_from_u64(11);
+        for _ in 0..200 {
+            let p: V3 = std::array::from_fn(|_| rng.gen_range(-3.0..3.0));
+            let want = point_segment_dist2(p, a, b);
+            for t in [
+                [a, a, b],
+                [a, b, a],
+                [b, a, a],
+                [a, b, b],
+                [b, b, a],
+                [a, a, a],
+            ] {
+                let want = if t == [a, a, a] { norm2(p) } else { want };
+                let got = point_tri_dist2(p, &t);
+                assert!(
+                    (got - want).abs() <= 1e-12 * (1.0 + want),
+                    "{t:?} {p:?}: {got} vs {want}"
+                );
+            }
+        }
     }
 
     #[test]

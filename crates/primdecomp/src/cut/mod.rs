@@ -10,6 +10,7 @@
 //! nearer gets its nearest fit instead of its least k·V ([`nearest`]). Every node's
 //! primitive encloses its faces, so every cut encloses the mesh.
 
+mod carry;
 pub(crate) mod error;
 mod hulls;
 mod nearest;
@@ -17,7 +18,7 @@ mod shadow;
 mod spend;
 pub(crate) mod tree;
 
-use crate::math::Sym3;
+use crate::math::{Sym3, V3};
 use crate::merge::{Evaluator, Snapshot, Workspace};
 use crate::mesh::triangles::Triangles;
 use crate::primitive::Primitive;
@@ -44,6 +45,10 @@ const FLOOR_HALVES: f64 = 4.0;
 /// [`Cutter::ahead`] lowers its threshold by this factor a step: the finer, the fewer
 /// fits wasted where the count runs out, the more rounds (docs/decisions/0043).
 const AHEAD_STEP: f64 = 0.85;
+
+/// [`Cutter::explore`] splits at most this many times the largest count: splits
+/// whose parts are carried add no node ([`carry`]).
+const SPLITS_PER_COUNT: usize = 8;
 
 /// The tests compare the cuts with [`Cutter::ahead`] fitting nothing.
 #[cfg(test)]
@@ -103,22 +108,22 @@ impl Ord for Entry {
 }
 
 /// The part of the tree the splits reached: its roots, every node fitted (roots and
-/// the children of split nodes) and their ids in increasing order (children before
-/// parents: nodes are numbered after their children), the nodes split, in order, and
-/// whether the count ran out while a node was still over the tolerance.
+/// the children of split nodes), the nodes a cut can take in post-order
+/// ([`Explored::post_order`]), the nodes split, in order, with their parts, the
+/// nodes each node carries, the groups' members and bounding boxes, the hull points
+/// of nodes tested for carrying ([`carry`]) and whether the count ran out while a node was
+/// still over the tolerance.
 struct Explored {
     roots: Vec<u32>,
     fitted: HashMap<u32, Entry>,
     ids: Vec<u32>,
     splits: Vec<u32>,
+    parts: HashMap<u32, Vec<u32>>,
+    carried: HashMap<u32, Vec<u32>>,
+    groups: HashMap<u32, Vec<u32>>,
+    bounds: HashMap<u32, (V3, V3)>,
+    points: HashMap<u32, Vec<V3>>,
     capped: bool,
-}
-
-impl Explored {
-    fn is_split(&self, tree: &MergeTree, n: u32) -> bool {
-        let node = &tree.nodes[n as usize];
-        !node.is_leaf() && self.fitted.contains_key(&node.children[0])
-    }
 }
 
 /// What the cut of a node's subtree costs under one error bound: its nodes and bytes,
@@ -151,6 +156,8 @@ pub(crate) struct Cutter<'a> {
     /// Whether a count the cut falls short of goes to the cut's other nodes
     /// ([`Cutter::spend`], [`Cutter::snapshots_filled`]).
     fill_short: bool,
+    /// Each node's bounding box ([`carry`]).
+    boxes: Vec<(V3, V3)>,
 }
 
 /// One thread's buffers for fitting nodes.
@@ -189,6 +196,7 @@ impl<'a> Cutter<'a> {
                 .unwrap_or(0.0)
                 .max(FLOOR_HALVES * ev.cfg.min_half),
             fill_short: false,
+            boxes: carry::node_boxes(tree, ev.mesh),
         }
     }
 
@@ -199,34 +207,44 @@ impl<'a> Cutter<'a> {
         if let Some(e) = known.get(&n) {
             return self.remeasured(e, above);
         }
+        let prim = self.fit(n, s);
+        self.measured(n, prim, above)
+    }
+
+    /// Node `n`'s output fit on its hull's vertices and boundary faces.
+    fn fit(&self, n: u32, s: &mut Scratch) -> Primitive {
         let sets = self.hulls.of(n, &mut s.hull);
         let faces = self.tree.faces(n).iter().copied();
         let q = &self.tree.nodes[n as usize].q;
         let outside = |g| self.hulls.outside(n, g);
-        let prim = (self.ev)
+        (self.ev)
             .fit_on_vertices(faces, &sets.hull, &sets.boundary, outside, q, &mut s.ws)
-            .prim;
-        self.measured(n, prim, above)
+            .prim
     }
 
-    /// `e`'s primitive if it encloses every point of its node's faces or is a nearest
-    /// fit ([`Cutter::closest`], made on every point already), else the node's output
-    /// fit on all of them. Enclosing is up to the point reduction's own tolerance
-    /// (`Evaluator::hull_eps`): a fit on every point is no nearer than that either
-    /// (its extreme points stand outside it by round-off), and would be the same.
-    fn enclosing(&self, e: &Entry, ws: &mut Workspace) -> Primitive {
+    /// `e`'s primitive if it encloses every point of its node's faces (a nearest fit,
+    /// [`Cutter::closest`], was made on every point of them already) and of the nodes
+    /// it carries ([`carry`]: a nearest fit kept from an earlier cut may not have
+    /// had them), else the output fit on all of them. Enclosing is up to the point
+    /// reduction's own tolerance (`Evaluator::hull_eps`): a fit on every point is no
+    /// nearer than that either (its extreme points stand outside it by round-off),
+    /// and would be the same.
+    fn enclosing(&self, ex: &Explored, e: &Entry, ws: &mut Workspace) -> Primitive {
         let mesh = self.ev.mesh;
-        let faces = self.tree.faces(e.node);
         let inside = |&f: &u32| {
             mesh.face(f as usize)
                 .iter()
                 .all(|&v| e.prim.contains(mesh.pos(v), self.ev.hull_eps))
         };
-        if e.closest || faces.iter().all(inside) {
+        let nodes = self.covered(ex, e.node);
+        let own = self.members(ex, e.node).len();
+        let (own, carried) = nodes.split_at(own);
+        let within = |nodes: &[u32]| nodes.iter().all(|&c| self.tree.faces(c).iter().all(inside));
+        if (e.closest || within(own)) && within(carried) {
             return e.prim;
         }
-        let q = &self.tree.nodes[e.node as usize].q;
-        self.ev.fit_output(faces.iter().copied(), q, ws).prim
+        let q = self.q_of(ex, e.node);
+        self.ev.fit_output(self.faces_of(ex, e.node), &q, ws).prim
     }
 
     /// `e` with its error measured up to `above`, unless it is already exact.
@@ -264,7 +282,10 @@ impl<'a> Cutter<'a> {
         self.requests = requests.to_vec();
         let (explored, cuts) = self.explore_and_choose(largest(requests), self.enough);
         let snaps = self.cut_snapshots(&explored, cuts);
-        self.fitted.extend(explored.fitted);
+        // Groups are numbered anew by each exploration.
+        let tree = self.tree.nodes.len() as u32;
+        self.fitted
+            .extend(explored.fitted.into_iter().filter(|(n, _)| *n < tree));
         snaps
     }
 
@@ -290,7 +311,7 @@ impl<'a> Cutter<'a> {
             .par_iter()
             .map_init(Workspace::default, |ws, &n| {
                 let e = &explored.fitted[&n];
-                (n, self.enclosing(e, ws))
+                (n, self.enclosing(explored, e, ws))
             })
             .collect();
         requests
@@ -316,7 +337,7 @@ impl<'a> Cutter<'a> {
                 Snapshot {
                     shortfall,
                     known,
-                    ..self.snapshot(r, entries)
+                    ..self.snapshot(explored, r, entries)
                 }
             })
             .collect()
@@ -375,11 +396,7 @@ impl<'a> Cutter<'a> {
         let mut redo = Vec::new();
         for &n in &ex.ids {
             let e = &ex.fitted[&n];
-            let split = ex.is_split(self.tree, n);
-            let kids = split && {
-                let [a, b] = self.tree.nodes[n as usize].children;
-                reach[&a] && reach[&b]
-            };
+            let kids = ex.parts.get(&n).is_some_and(|p| p.iter().all(|c| reach[c]));
             if !(e.exact || kids) {
                 redo.push(n);
             }
@@ -415,6 +432,11 @@ impl<'a> Cutter<'a> {
             fitted: roots.iter().map(|e| (e.node, e.clone())).collect(),
             ids: Vec::new(),
             splits: Vec::new(),
+            parts: HashMap::new(),
+            carried: HashMap::new(),
+            groups: HashMap::new(),
+            bounds: HashMap::new(),
+            points: HashMap::new(),
             capped: false,
         };
         let ready = self.ahead(&roots, largest, enough, above, known);
@@ -422,39 +444,31 @@ impl<'a> Cutter<'a> {
         let mut heap: BinaryHeap<Entry> = roots.into_iter().collect();
         let (mut sa, mut sb) = (Scratch::default(), Scratch::default());
         let mut leaves = Vec::new();
-        while count < largest {
+        // Splits whose parts are carried add no node; the chains they walk down are
+        // long but not endless.
+        let most = largest.saturating_mul(SPLITS_PER_COUNT);
+        while count < largest && ex.splits.len() < most {
             let Some(e) = heap.pop() else { break };
             if e.error <= enough {
                 break;
             }
-            let node = self.tree.nodes[e.node as usize];
-            if node.is_leaf() {
+            let split = (&mut sa, &mut sb);
+            let Some(parts) = self.divide(&mut ex, &e, &ready, split, (above, known)) else {
                 // A leaf cannot be split: its least-error fit (below) is what its part
                 // can reach.
                 if !e.closest {
                     leaves.push(e.node);
                 }
                 continue;
-            }
-            let [a, b] = node.children;
-            let (ea, eb) = match (ready.get(&a), ready.get(&b)) {
-                (Some(ea), Some(eb)) => (ea.clone(), eb.clone()),
-                _ => rayon::join(
-                    || self.entry(a, &mut sa, above, known),
-                    || self.entry(b, &mut sb, above, known),
-                ),
             };
-            ex.fitted.insert(a, ea.clone());
-            ex.fitted.insert(b, eb.clone());
-            heap.extend([ea, eb]);
-            ex.splits.push(e.node);
-            count += 1;
+            count += parts.len() - 1;
+            heap.extend(parts);
         }
-        ex.capped = count >= largest && heap.peek().is_some_and(|e| e.error > enough);
+        let stopped = count >= largest || ex.splits.len() >= most;
+        ex.capped = stopped && heap.peek().is_some_and(|e| e.error > enough);
         // Refitted together: a leaf's fit changes nothing the splits above looked at.
         self.refit_nearest(&mut ex, &leaves);
-        ex.ids = ex.fitted.keys().copied().collect();
-        ex.ids.sort_unstable();
+        ex.ids = ex.post_order();
         ex
     }
 
@@ -499,17 +513,20 @@ impl<'a> Cutter<'a> {
             if count + batch.len() > largest || ahead_off() {
                 break;
             }
-            let kids: Vec<Entry> = batch
+            let kids: Vec<([Entry; 2], bool)> = batch
                 .par_iter()
                 .map_init(Scratch::default, |s, &(_, n)| {
                     let [a, b] = self.tree.nodes[n as usize].children;
-                    [a, b].map(|c| self.entry(c, s, above, known))
+                    let kids = [a, b].map(|c| self.entry(c, s, above, known));
+                    let chain = self.carries([&kids[0], &kids[1]], &mut s.hull);
+                    (kids, chain)
                 })
-                .flatten_iter()
                 .collect();
             count += batch.len();
-            frontier.extend(kids.iter().filter(|e| splits(e)).map(|e| (e.error, e.node)));
-            ready.extend(kids.into_iter().map(|e| (e.node, e)));
+            // A chain's next nodes are found by [`Cutter::descend`], not one by one.
+            let next = kids.iter().filter(|k| !k.1).flat_map(|k| &k.0);
+            frontier.extend(next.filter(|e| splits(e)).map(|e| (e.error, e.node)));
+            ready.extend(kids.into_iter().flat_map(|k| k.0).map(|e| (e.node, e)));
         }
         ready
     }
@@ -528,7 +545,7 @@ impl<'a> Cutter<'a> {
         if let Some(cut) = self.within(ex, r) {
             return cut;
         }
-        let mut bounds: Vec<f64> = ex.fitted.values().map(|e| e.error).collect();
+        let mut bounds: Vec<f64> = ex.ids.iter().map(|n| ex.fitted[n].error).collect();
         bounds.push(0.0);
         bounds.sort_unstable_by(f64::total_cmp);
         bounds.dedup();
@@ -548,7 +565,7 @@ impl<'a> Cutter<'a> {
             }
         }
         let table = self.costs(ex, bounds[lo], r.bytes.is_some());
-        let cut = collect(self.tree, &table, &ex.roots);
+        let cut = collect(ex, &table, &ex.roots);
         match fits(r, totals(ex, &cut)) {
             true => self.fill(ex, cut, &table, bounds[lo], r),
             // Nothing fits the caps (more roots than the count): the roots.
@@ -561,7 +578,7 @@ impl<'a> Cutter<'a> {
     /// ([`Cutter::costs`]).
     fn cheapest(&self, ex: &Explored, bound: f64, by_bytes: bool) -> Vec<u32> {
         let table = self.costs(ex, bound, by_bytes);
-        collect(self.tree, &table, &ex.roots)
+        collect(ex, &table, &ex.roots)
     }
 
     /// For every explored node, the cheapest cut of its subtree whose every node's
@@ -577,16 +594,24 @@ impl<'a> Cutter<'a> {
         };
         for &n in &ex.ids {
             let e = &ex.fitted[&n];
-            let kids = ex.is_split(self.tree, n).then(|| {
-                let [a, b] = self.tree.nodes[n as usize].children;
-                let (ca, cb) = (cost[&a], cost[&b]);
-                Cost {
-                    count: ca.count + cb.count,
-                    bytes: ca.bytes + cb.bytes,
-                    worst: ca.worst.max(cb.worst),
-                    best: ca.best.max(cb.best),
+            let kids = ex.parts.get(&n).map(|parts| {
+                let none = Cost {
+                    count: 0,
+                    bytes: 0,
+                    worst: 0.0,
+                    best: 0.0,
                     own: false,
-                }
+                };
+                parts.iter().fold(none, |k, c| {
+                    let c = cost[c];
+                    Cost {
+                        count: k.count + c.count,
+                        bytes: k.bytes + c.bytes,
+                        worst: k.worst.max(c.worst),
+                        best: k.best.max(c.best),
+                        own: false,
+                    }
+                })
             });
             let best = kids.map_or(e.error, |k| k.best.min(e.error));
             let limit = bound.max(best);
@@ -607,7 +632,7 @@ impl<'a> Cutter<'a> {
     }
 
     /// `cut` with the splits of the sequence applied, in order, wherever the node is
-    /// in the cut, the cheapest cut of its two children by `table` (`bound`'s costs)
+    /// in the cut, the cheapest cut of its parts by `table` (`bound`'s costs)
     /// stays within `bound` (or the least the node's subtree reaches) and the caps
     /// still hold: the node is replaced by that cut.
     fn fill(
@@ -627,11 +652,12 @@ impl<'a> Cutter<'a> {
             if !set.contains(&n) {
                 continue;
             }
-            let [a, b] = self.tree.nodes[n as usize].children;
-            if table[&a].worst.max(table[&b].worst) > bound.max(table[&n].best) {
+            let parts = &ex.parts[&n];
+            let worst = parts.iter().map(|c| table[c].worst).fold(0.0, f64::max);
+            if worst > bound.max(table[&n].best) {
                 continue;
             }
-            let sub = collect(self.tree, table, &[a, b]);
+            let sub = collect(ex, table, parts);
             let (c, b) = totals(ex, &sub);
             let more = bytes + b - ex.fitted[&n].bytes();
             if count + c - 1 > r.count || r.bytes.is_some_and(|cap| more > cap) {
@@ -665,18 +691,16 @@ impl<'a> Cutter<'a> {
 
     /// The snapshot of one cut for `r`, its nodes in order of their faces' ranges; its
     /// bound is `r`'s tolerance or the farthest its nodes stand, if farther.
-    fn snapshot(&self, r: &Request, mut cut: Vec<Entry>) -> Snapshot {
+    fn snapshot(&self, ex: &Explored, r: &Request, mut cut: Vec<Entry>) -> Snapshot {
         let worst = cut.iter().map(|e| e.error).fold(0.0, f64::max);
-        cut.sort_unstable_by_key(|e| self.tree.nodes[e.node as usize].start);
+        cut.sort_unstable_by_key(|e| self.start(ex, e.node));
         let mesh = self.ev.mesh;
         let verts = cut
             .par_iter()
             .map(|e| {
                 let mut v: Vec<u32> = self
-                    .tree
-                    .faces(e.node)
-                    .iter()
-                    .flat_map(|&f| mesh.face(f as usize).iter().copied())
+                    .faces_of(ex, e.node)
+                    .flat_map(|f| mesh.face(f as usize).iter().copied())
                     .collect();
                 v.sort_unstable();
                 v.dedup();
@@ -689,16 +713,16 @@ impl<'a> Cutter<'a> {
             prims: cut.iter().map(|e| e.prim).collect(),
             faces: cut
                 .iter()
-                .map(|e| self.tree.faces(e.node).len() as u32)
+                .map(|e| self.faces_of(ex, e.node).count() as u32)
                 .collect(),
             verts,
             members: cut
                 .iter()
-                .map(|e| self.tree.faces(e.node).to_vec())
+                .map(|e| self.faces_of(ex, e.node).collect())
                 .collect(),
             q: cut
                 .iter()
-                .map(|e| self.tree.nodes[e.node as usize].q)
+                .map(|e| self.q_of(ex, e.node))
                 .collect::<Vec<Sym3>>(),
             shortfall: None,
             known: Vec::new(),
@@ -777,7 +801,7 @@ fn largest(requests: &[Request]) -> usize {
 }
 
 /// The cheapest cuts of `from`'s subtrees by `table` ([`Cutter::costs`]), joined.
-fn collect(tree: &MergeTree, table: &HashMap<u32, Cost>, from: &[u32]) -> Vec<u32> {
+fn collect(ex: &Explored, table: &HashMap<u32, Cost>, from: &[u32]) -> Vec<u32> {
     let mut cut = Vec::new();
     let mut stack: Vec<u32> = from.to_vec();
     while let Some(n) = stack.pop() {
@@ -785,7 +809,7 @@ fn collect(tree: &MergeTree, table: &HashMap<u32, Cost>, from: &[u32]) -> Vec<u3
         if c.own {
             cut.push(n);
         } else {
-            stack.extend(tree.nodes[n as usize].children);
+            stack.extend(&ex.parts[&n]);
         }
     }
     cut
@@ -796,12 +820,12 @@ pub(crate) fn fits(r: &Request, c: (usize, usize)) -> bool {
     c.0 <= r.count && r.bytes.is_none_or(|b| c.1 <= b)
 }
 
-/// The node count and bytes of `cut`.
 /// The largest error of the nodes of `cut`.
 fn worst(ex: &Explored, cut: &[u32]) -> f64 {
     cut.iter().map(|n| ex.fitted[n].error).fold(0.0, f64::max)
 }
 
+/// The node count and bytes of `cut`.
 fn totals(ex: &Explored, cut: &[u32]) -> (usize, usize) {
     (cut.len(), cut.iter().map(|n| ex.fitted[n].bytes()).sum())
 }

@@ -28,7 +28,7 @@ impl Cutter<'_> {
     pub(super) fn refit_nearest(&self, ex: &mut Explored, nodes: &[u32]) {
         let nearer: Vec<Entry> = nodes
             .par_iter()
-            .map_init(Scratch::default, |s, n| self.closest(&ex.fitted[n], s))
+            .map_init(Scratch::default, |s, n| self.closest(ex, &ex.fitted[n], s))
             .collect();
         for e in nearer {
             ex.fitted.insert(e.node, e);
@@ -38,11 +38,12 @@ impl Cutter<'_> {
     /// Node `e` refitted as the least-error candidate of every kind in every frame
     /// ([`Evaluator::output_candidates`]), or kept if none is nearer: where the cut
     /// cannot split, the fit's k·V (a volume, blind to how far a corner stands off a
-    /// triangle) no longer chooses (docs/decisions/0041).
-    fn closest(&self, e: &Entry, s: &mut Scratch) -> Entry {
-        let q = &self.tree.nodes[e.node as usize].q;
-        let faces = self.tree.faces(e.node).iter().copied();
-        (self.ev).output_candidates(faces, q, &mut s.ws, &mut s.candidates);
+    /// triangle) no longer chooses (docs/decisions/0041). The candidates enclose the
+    /// nodes it carries too.
+    fn closest(&self, ex: &Explored, e: &Entry, s: &mut Scratch) -> Entry {
+        let q = self.q_of(ex, e.node);
+        let faces = self.faces_of(ex, e.node);
+        (self.ev).output_candidates(faces, &q, &mut s.ws, &mut s.candidates);
         let mut best = Entry {
             closest: true,
             ..self.remeasured(e, f64::INFINITY)
@@ -89,16 +90,14 @@ impl Cutter<'_> {
 
     /// For each explored node, whether it is as near as its subtree gets: a split
     /// node whose error is at most the least worst error of its explored subtree's
-    /// cuts below it (the cuts of its two children).
+    /// cuts below it (the cuts of its parts).
     fn floors(&self, ex: &Explored) -> HashMap<u32, bool> {
         let mut best: HashMap<u32, f64> = HashMap::with_capacity(ex.ids.len());
         let mut floor = HashMap::with_capacity(ex.ids.len());
         for &n in &ex.ids {
             let error = ex.fitted[&n].error;
-            let below = ex.is_split(self.tree, n).then(|| {
-                let [a, b] = self.tree.nodes[n as usize].children;
-                best[&a].max(best[&b])
-            });
+            let below =
+                (ex.parts.get(&n)).map(|parts| parts.iter().map(|c| best[c]).fold(0.0, f64::max));
             floor.insert(n, below.is_some_and(|b| error <= b));
             best.insert(n, below.map_or(error, |b| b.min(error)));
         }

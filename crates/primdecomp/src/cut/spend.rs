@@ -8,7 +8,7 @@
 //! greedy pass takes a level of the merge order; docs/decisions/0048).
 
 use super::{Cutter, Entry, Explored, Scratch};
-use std::collections::BinaryHeap;
+use std::collections::{BinaryHeap, HashMap};
 
 impl Cutter<'_> {
     /// Splits, for each request of a count alone whose cut is short of it, as many
@@ -22,37 +22,33 @@ impl Cutter<'_> {
                 continue;
             }
             let mut short = r.count.saturating_sub(cut.len());
-            let open = |n: &u32| !ex.is_split(self.tree, *n);
+            let open = |n: &u32| !ex.is_split(*n);
             let mut heap: BinaryHeap<Entry> = cut
                 .iter()
                 .filter(|n| open(n))
                 .map(|n| ex.fitted[n].clone())
                 .collect();
-            while short > 0 {
+            // Splits whose parts are carried add no node ([`super::carry`]).
+            let mut most = short.saturating_mul(super::SPLITS_PER_COUNT);
+            while short > 0 && most > 0 {
+                most -= 1;
                 let Some(e) = heap.pop() else { break };
                 if e.error <= self.enough {
                     break;
                 }
-                let node = self.tree.nodes[e.node as usize];
-                if node.is_leaf() {
+                let none = HashMap::new();
+                let split = (&mut sa, &mut sb);
+                let at = (f64::INFINITY, &none);
+                let Some(parts) = self.divide(ex, &e, &none, split, at) else {
                     continue;
-                }
-                let [a, b] = node.children;
-                let known = &ex.fitted;
-                let (ea, eb): (Entry, Entry) = rayon::join(
-                    || self.entry(a, &mut sa, f64::INFINITY, known),
-                    || self.entry(b, &mut sb, f64::INFINITY, known),
-                );
-                ex.fitted.insert(a, ea.clone());
-                ex.fitted.insert(b, eb.clone());
-                heap.extend([ea, eb]);
-                ex.splits.push(e.node);
-                (short, spent) = (short - 1, true);
+                };
+                short = short.saturating_sub(parts.len() - 1);
+                heap.extend(parts);
+                spent = true;
             }
         }
         if spent {
-            ex.ids = ex.fitted.keys().copied().collect();
-            ex.ids.sort_unstable();
+            ex.ids = ex.post_order();
         }
         spent
     }

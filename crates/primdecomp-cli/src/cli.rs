@@ -203,7 +203,8 @@ struct DecomposeArgs {
     /// or D% of the bounding-box diagonal; several (2%,0.5%) give one level each from
     /// one pass. -n caps the count (without -n: at most 1024). Implies --cut. The JSON
     /// records the tolerance and the distance reached (`stats.distance`). Default
-    /// without -n and --max-bytes: 2% (a median 78 primitives on the corpus).
+    /// without -n and --max-bytes: 2% (a median 88.5 primitives on the corpus:
+    /// docs/results/default_tolerance.md).
     #[arg(long, value_delimiter = ',')]
     tolerance: Option<Vec<String>>,
     /// Keep each level's storage within B bytes by the paper's Table 2 (4 bytes a

@@ -78,6 +78,7 @@ impl Cutter<'_> {
         if leaf {
             return self.unload(ex, e, sa, above);
         }
+        ex.splits.push(e.node);
         let Some(node) = node else {
             let halves = self.halve(ex, e.node, sa, above);
             return Some(self.split(ex, e.node, halves, sa, above));
@@ -91,7 +92,6 @@ impl Cutter<'_> {
                 || self.entry(b, sb, above, known),
             ),
         };
-        ex.splits.push(e.node);
         let parts = self.split(ex, e.node, [ea, eb], sa, above);
         let [only] = &parts[..] else {
             return Some(parts);

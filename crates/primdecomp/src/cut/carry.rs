@@ -18,42 +18,34 @@ use super::hulls::HullScratch;
 use super::tree::MergeTree;
 use super::{Cutter, Entry, Explored, Scratch};
 use crate::math::{Sym3, V3};
-use crate::mesh::Mesh;
+use crate::mesh::{aabb_of, Mesh};
 use crate::primitive::Primitive;
 use rayon::prelude::*;
 use std::collections::HashMap;
 
-/// The bounding box of nothing.
-const EMPTY: (V3, V3) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-
-fn join((alo, ahi): (V3, V3), (blo, bhi): (V3, V3)) -> (V3, V3) {
-    (
-        std::array::from_fn(|k| alo[k].min(blo[k])),
-        std::array::from_fn(|k| ahi[k].max(bhi[k])),
-    )
-}
-
 /// Each node's bounding box, children before parents (a node is numbered after its
-/// children).
+/// children): a leaf's from its faces' corners, a merge's from its children's boxes.
 pub(super) fn node_boxes(tree: &MergeTree, mesh: &Mesh) -> Vec<(V3, V3)> {
-    let face = |f: u32| {
-        let b = (mesh.face(f as usize).iter()).map(|&v| mesh.pos(v));
-        b.fold(EMPTY, |b, p| join(b, (p, p)))
-    };
     let leaves: Vec<Option<(V3, V3)>> = (tree.nodes.par_iter().enumerate())
         .map(|(n, node)| {
             let faces = tree.faces(n as u32).iter();
-            node.is_leaf()
-                .then(|| faces.fold(EMPTY, |b, &f| join(b, face(f))))
+            let corners = faces
+                .flat_map(|&f| mesh.face(f as usize))
+                .map(|&v| mesh.pos(v));
+            node.is_leaf().then(|| aabb_of(corners))
         })
         .collect();
-    let mut boxes = Vec::with_capacity(tree.nodes.len());
+    let mut boxes: Vec<(V3, V3)> = Vec::with_capacity(tree.nodes.len());
     for (node, leaf) in tree.nodes.iter().zip(leaves) {
-        let [a, b] = node.children;
-        let joined = || join(boxes[a as usize], boxes[b as usize]);
+        let joined = || boxes_box(node.children.iter().map(|&c| boxes[c as usize]));
         boxes.push(leaf.unwrap_or_else(joined));
     }
     boxes
+}
+
+/// The bounding box of `boxes`.
+fn boxes_box(boxes: impl Iterator<Item = (V3, V3)>) -> (V3, V3) {
+    aabb_of(boxes.flat_map(|(lo, hi)| [lo, hi]))
 }
 
 impl Cutter<'_> {
@@ -118,9 +110,7 @@ impl Cutter<'_> {
         above: f64,
     ) -> Option<Vec<Entry>> {
         let carried = ex.carried.get(&e.node)?.clone();
-        let id = self.tree.nodes.len() as u32 + ex.groups.len() as u32;
-        ex.groups.insert(id, self.members(ex, e.node));
-        ex.bounds.insert(id, self.bounds(ex, e.node));
+        let id = self.group(ex, vec![e.node]);
         let alone = Entry {
             node: id,
             ..e.clone()
@@ -252,12 +242,18 @@ impl Cutter<'_> {
     /// parts that lay inside a large primitive would each count at once where their
     /// cut may want one primitive over several (a hall's crates).
     fn part(&self, ex: &mut Explored, members: Vec<u32>) -> u32 {
-        if let [one] = members[..] {
-            return one;
+        match members[..] {
+            [one] => one,
+            _ => self.group(ex, members),
         }
+    }
+
+    /// A new group standing for `nodes` (a group among them gives its members: a
+    /// group's members are nodes of the tree), its bounding box kept.
+    fn group(&self, ex: &mut Explored, nodes: Vec<u32>) -> u32 {
         let id = self.tree.nodes.len() as u32 + ex.groups.len() as u32;
-        let members: Vec<u32> = members.iter().flat_map(|&m| self.members(ex, m)).collect();
-        let b = (members.iter()).fold(EMPTY, |b, &m| join(b, self.boxes[m as usize]));
+        let members: Vec<u32> = nodes.iter().flat_map(|&m| self.members(ex, m)).collect();
+        let b = boxes_box(members.iter().map(|&m| self.boxes[m as usize]));
         ex.groups.insert(id, members);
         ex.bounds.insert(id, b);
         id

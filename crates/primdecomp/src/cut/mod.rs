@@ -113,6 +113,7 @@ impl Ord for Entry {
 /// nodes each node carries, the groups' members and bounding boxes, the hull points
 /// of nodes tested for carrying ([`carry`]) and whether the count ran out while a node was
 /// still over the tolerance.
+#[derive(Default)]
 struct Explored {
     roots: Vec<u32>,
     fitted: HashMap<u32, Entry>,
@@ -128,8 +129,8 @@ struct Explored {
 
 /// What the cut of a node's subtree costs under one error bound: its nodes and bytes,
 /// its worst error, the least worst error any cut of the subtree reaches, and whether
-/// the node itself is kept (else its two children's cuts).
-#[derive(Clone, Copy)]
+/// the node itself is kept (else its parts' cuts).
+#[derive(Clone, Copy, Default)]
 struct Cost {
     count: usize,
     bytes: usize,
@@ -430,14 +431,7 @@ impl<'a> Cutter<'a> {
         let mut ex = Explored {
             roots: self.tree.roots.clone(),
             fitted: roots.iter().map(|e| (e.node, e.clone())).collect(),
-            ids: Vec::new(),
-            splits: Vec::new(),
-            parts: HashMap::new(),
-            carried: HashMap::new(),
-            groups: HashMap::new(),
-            bounds: HashMap::new(),
-            points: HashMap::new(),
-            capped: false,
+            ..Explored::default()
         };
         let ready = self.ahead(&roots, largest, enough, above, known);
         let mut count = roots.len();
@@ -595,14 +589,7 @@ impl<'a> Cutter<'a> {
         for &n in &ex.ids {
             let e = &ex.fitted[&n];
             let kids = ex.parts.get(&n).map(|parts| {
-                let none = Cost {
-                    count: 0,
-                    bytes: 0,
-                    worst: 0.0,
-                    best: 0.0,
-                    own: false,
-                };
-                parts.iter().fold(none, |k, c| {
+                parts.iter().fold(Cost::default(), |k, c| {
                     let c = cost[c];
                     Cost {
                         count: k.count + c.count,
@@ -695,12 +682,15 @@ impl<'a> Cutter<'a> {
         let worst = cut.iter().map(|e| e.error).fold(0.0, f64::max);
         cut.sort_unstable_by_key(|e| self.start(ex, e.node));
         let mesh = self.ev.mesh;
-        let verts = cut
+        let members: Vec<Vec<u32>> = cut
+            .iter()
+            .map(|e| self.faces_of(ex, e.node).collect())
+            .collect();
+        let verts = members
             .par_iter()
-            .map(|e| {
-                let mut v: Vec<u32> = self
-                    .faces_of(ex, e.node)
-                    .flat_map(|f| mesh.face(f as usize).iter().copied())
+            .map(|faces| {
+                let mut v: Vec<u32> = (faces.iter())
+                    .flat_map(|&f| mesh.face(f as usize).iter().copied())
                     .collect();
                 v.sort_unstable();
                 v.dedup();
@@ -711,15 +701,9 @@ impl<'a> Cutter<'a> {
             target: r.count,
             bound: Some(r.tolerance.map_or(worst, |t| t.max(worst))),
             prims: cut.iter().map(|e| e.prim).collect(),
-            faces: cut
-                .iter()
-                .map(|e| self.faces_of(ex, e.node).count() as u32)
-                .collect(),
+            faces: members.iter().map(|m| m.len() as u32).collect(),
             verts,
-            members: cut
-                .iter()
-                .map(|e| self.faces_of(ex, e.node).collect())
-                .collect(),
+            members,
             q: cut
                 .iter()
                 .map(|e| self.q_of(ex, e.node))

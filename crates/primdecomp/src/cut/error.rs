@@ -721,7 +721,7 @@ pub(crate) mod tests {
 
     /// A primitive of kind `k` (box, sphere, capsule, cylinder, frustum, prism) from
     /// two points and a size.
-    fn random_primitive(k: usize, p0: V3, p1: V3, size: f64) -> Primitive {
+    pub(in crate::cut) fn random_primitive(k: usize, p0: V3, p1: V3, size: f64) -> Primitive {
         use crate::primitive::{capsule, cylinder, frustum, prism, sphere};
         let q = [p0[0], p0[1], p1[0], p1[2]];
         let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();

@@ -13,6 +13,7 @@
 mod carry;
 pub(crate) mod error;
 mod hulls;
+mod memo;
 mod nearest;
 mod shadow;
 mod spend;
@@ -159,6 +160,8 @@ pub(crate) struct Cutter<'a> {
     fill_short: bool,
     /// Each node's bounding box ([`carry`]).
     boxes: Vec<(V3, V3)>,
+    /// The errors measured so far ([`memo`]).
+    measures: memo::Measures,
 }
 
 /// One thread's buffers for fitting nodes.
@@ -198,6 +201,7 @@ impl<'a> Cutter<'a> {
                 .max(FLOOR_HALVES * ev.cfg.min_half),
             fill_short: false,
             boxes: carry::node_boxes(tree, ev.mesh),
+            measures: memo::Measures::default(),
         }
     }
 
@@ -262,7 +266,11 @@ impl<'a> Cutter<'a> {
             above,
             coarse: true,
         };
-        let error = error_until(&prim, self.surface, ask);
+        let error = self.measures.get(&prim, above).unwrap_or_else(|| {
+            let error = error_until(&prim, self.surface, ask);
+            self.measures.keep(&prim, above, error);
+            error
+        });
         Entry {
             error,
             node,

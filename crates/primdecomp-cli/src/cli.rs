@@ -199,7 +199,8 @@ struct DecomposeArgs {
     cut: bool,
     /// Keep every primitive within this distance of the input: the fewest primitives
     /// whose every one stands at most D from the mesh's surface (the one-way distance
-    /// `eval` calls Hausdorff, estimated by sampling each primitive). D in input units,
+    /// `eval` calls Hausdorff, bounded from above for each primitive, not sampled:
+    /// docs/decisions/0040). D in input units,
     /// or D% of the bounding-box diagonal; several (2%,0.5%) give one level each from
     /// one pass. -n caps the count (without -n: at most 1024). Implies --cut. The JSON
     /// records the tolerance and the distance reached (`stats.distance`). Default

@@ -15,8 +15,8 @@ use crate::{Level, Shortfall};
 /// A cut is made again at most this many times with counts and bytes raised.
 const RECUTS: usize = 4;
 
-/// A round that gains less than this fraction's inverse of its raise ends the
-/// raises ([`little`]; an eighth: docs/decisions/0044, amended).
+/// The raises end at a round that gains less than 1/`SLOW` of its raise
+/// ([`little`]; an eighth: docs/decisions/0044, amended).
 const SLOW: usize = 8;
 
 /// One snapshot per request cut from `tree`, each kept from the last cut whose level
@@ -169,7 +169,7 @@ fn halfway(lo: &Request, hi: &Request) -> Request {
 }
 
 /// Whether a cut for `now` (from `from`'s caps raised to `to`'s) holds less than
-/// [`SLOW`]'s share of the raise more than the level of `from` held (`was`): where nested
+/// 1/[`SLOW`] of the raise more than the level of `from` held (`was`): where nested
 /// primitives eat the raise, rounds cost more than they bring.
 fn little(was: (usize, usize), now: (usize, usize), from: &Request, to: &Request) -> bool {
     let gain = |a: usize, b: usize, raise: usize| raise > 0 && SLOW * b.saturating_sub(a) < raise;

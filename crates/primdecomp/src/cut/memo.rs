@@ -28,22 +28,28 @@ pub(super) struct Measures {
 }
 
 impl Measures {
+    /// The answer of `measure()`, a measure of `prim` with `above`: a kept one where
+    /// it tells, else measured and kept.
+    pub(super) fn of(&self, prim: &Primitive, above: f64, measure: impl FnOnce() -> f64) -> f64 {
+        if let Some(r) = self.get(prim, above) {
+            return r;
+        }
+        let r = measure();
+        let mut map = self.by_box.lock().unwrap_or_else(|e| e.into_inner());
+        map.entry(super::key(prim))
+            .or_default()
+            .push((*prim, above, r));
+        r
+    }
+
     /// The answer a measure of `prim` with `above` would give, if one kept tells.
-    pub(super) fn get(&self, prim: &Primitive, above: f64) -> Option<f64> {
+    fn get(&self, prim: &Primitive, above: f64) -> Option<f64> {
         let map = self.by_box.lock().unwrap_or_else(|e| e.into_inner());
         let kept = map.get(&super::key(prim))?;
         kept.iter()
             .filter(|(p, _, _)| p == prim)
             .find(|&&(_, a, r)| answers(a, r, above))
             .map(|m| m.2)
-    }
-
-    /// Keeps the answer `r` of a measure of `prim` with `above`.
-    pub(super) fn keep(&self, prim: &Primitive, above: f64, r: f64) {
-        let mut map = self.by_box.lock().unwrap_or_else(|e| e.into_inner());
-        map.entry(super::key(prim))
-            .or_default()
-            .push((*prim, above, r));
     }
 }
 
@@ -92,8 +98,7 @@ mod tests {
             let aboves = [0.0, 0.2, 0.5, 0.8, 0.95, 1.0, 1.5].map(|f| f * e);
             for a in aboves.into_iter().chain([f64::INFINITY]) {
                 let kept = Measures::default();
-                let r = measure(&prim, a);
-                kept.keep(&prim, a, r);
+                let r = kept.of(&prim, a, || measure(&prim, a));
                 for above in aboves.into_iter().chain([f64::INFINITY]) {
                     let Some(got) = kept.get(&prim, above) else {
                         continue;

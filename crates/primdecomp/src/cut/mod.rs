@@ -266,11 +266,7 @@ impl<'a> Cutter<'a> {
             above,
             coarse: true,
         };
-        let error = self.measures.get(&prim, above).unwrap_or_else(|| {
-            let error = error_until(&prim, self.surface, ask);
-            self.measures.keep(&prim, above, error);
-            error
-        });
+        let error = (self.measures).of(&prim, above, || error_until(&prim, self.surface, ask));
         Entry {
             error,
             node,

@@ -130,14 +130,17 @@ fn plate_joins_keep_the_tolerance() {
 /// chain that splits no nearer, raising the count explored the same chain, and the
 /// cut had no other split to fill the count with. The rest of the count must go to
 /// the cut's other nodes: now 15 nodes, 12 primitives once 3 nested in others are
-/// removed (that count is the pipeline's nested-removal, not the cut's), no farther.
+/// removed (that count is the pipeline's nested-removal, not the cut's), no farther
+/// than 1.25 times 9.49%: a count's cut may stand that much farther than its least
+/// worst error to spend the rest on the mean (docs/decisions/0051; here 16
+/// primitives at 10.09%).
 #[test]
 fn a_count_is_filled_where_the_worst_node_splits_no_nearer() {
     let Some(m) = primdecomp_testkit::corpus_mesh("kitchenaid_mixer.obj") else {
         return;
     };
     let got = cut_at(&m, &[16]);
-    assert!(got[0].0 >= 12 && got[0].1 <= 0.0950, "{got:?}");
+    assert!(got[0].0 >= 12 && got[0].1 <= 1.25 * 0.0950, "{got:?}");
 }
 
 /// `m` cut at `counts` from one pass, checked valid: each level's primitives and

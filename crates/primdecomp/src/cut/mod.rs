@@ -6,13 +6,16 @@
 //! roots the worst node is split until the largest count is reached or every node is
 //! within the tolerance; each level then takes, of the cuts of the nodes reached, the
 //! fewest nodes within its tolerance, or the least worst error its count and bytes
-//! allow, filled up to its count. A node over a tolerance that splitting cannot bring
-//! nearer gets its nearest fit instead of its least k·V ([`nearest`]). Every node's
-//! primitive encloses its faces, so every cut encloses the mesh.
+//! allow, filled up to its count; without a tolerance, the count that least worst
+//! error leaves goes to the mean distance ([`loose`]). A node over a tolerance that
+//! splitting cannot bring nearer gets its nearest fit instead of its least k·V
+//! ([`nearest`]). Every node's primitive encloses its faces, so every cut encloses
+//! the mesh.
 
 mod carry;
 pub(crate) mod error;
 mod hulls;
+mod loose;
 mod memo;
 mod nearest;
 mod shadow;
@@ -28,6 +31,7 @@ use crate::Shortfall;
 use error::error_of;
 use error::{error_until, worst_error, Ask};
 use hulls::{HullScratch, NodeHulls};
+use loose::{Order, Queued};
 use rayon::prelude::*;
 use std::cmp::Ordering;
 use std::collections::{BTreeSet, BinaryHeap, HashMap};
@@ -61,6 +65,11 @@ fn ahead_off() -> bool {
     #[cfg(not(test))]
     false
 }
+
+/// Nodes' fits by node id.
+type Fits = HashMap<u32, Entry>;
+/// Each request's cut: its nodes.
+type Cuts = Vec<Vec<u32>>;
 
 /// What one level asks of the cut: at most `count` nodes and `bytes` bytes (the
 /// paper's Table 2), and with a `tolerance` (the mesh's units) the fewest nodes whose
@@ -285,12 +294,12 @@ impl<'a> Cutter<'a> {
     /// requests keep their fits.
     pub(crate) fn snapshots(&mut self, requests: &[Request]) -> Vec<Snapshot> {
         self.requests = requests.to_vec();
-        let (explored, cuts) = self.explore_and_choose(largest(requests), self.enough);
+        let (explored, cuts, spare) = self.explore_and_choose(largest(requests), self.enough);
         let snaps = self.cut_snapshots(&explored, cuts);
         // Groups are numbered anew by each exploration.
         let tree = self.tree.nodes.len() as u32;
-        self.fitted
-            .extend(explored.fitted.into_iter().filter(|(n, _)| *n < tree));
+        let fits = spare.into_iter().chain(explored.fitted);
+        self.fitted.extend(fits.filter(|(n, _)| *n < tree));
         snaps
     }
 
@@ -355,26 +364,32 @@ impl<'a> Cutter<'a> {
     /// request's cut within its tolerance fits its count, the cuts are those exact
     /// errors give. Otherwise the tree is explored again with exact errors, keeping
     /// the fits.
-    fn explore_and_choose(&self, largest: usize, enough: f64) -> (Explored, Vec<Vec<u32>>) {
+    fn explore_and_choose(&self, largest: usize, enough: f64) -> (Explored, Cuts, Fits) {
         let above = self.requests.iter().try_fold(enough, |m, r| match r.bytes {
             None => r.tolerance.map(|t| m.max(t)),
             Some(_) => None,
         });
         let mut known = self.fitted.clone();
         if let Some(above) = above {
-            let mut ex = self.explore(largest, enough, above, &known);
+            let mut ex = self.explore(largest, enough, above, &known, Order::Worst);
             if !ex.capped {
                 self.refine(&mut ex, above);
                 let within: Option<Vec<Vec<u32>>> =
                     self.requests.iter().map(|r| self.within(&ex, r)).collect();
                 if let Some(cuts) = within {
-                    return (ex, cuts);
+                    return (ex, cuts, Fits::new());
                 }
             }
             known = ex.fitted;
         }
-        let mut ex = self.explore(largest, enough, f64::INFINITY, &known);
+        let mut ex = self.explore(largest, enough, f64::INFINITY, &known, Order::Worst);
         let mut cuts: Vec<Vec<u32>> = self.requests.iter().map(|r| self.choose(&ex, r)).collect();
+        // A count's cut spends what the worst error leaves on the mean ([`loose`]).
+        let mut spare = Fits::new();
+        if let Some((loose, again)) = self.loosened(&ex, &cuts, largest, enough) {
+            spare = std::mem::replace(&mut ex, loose).fitted;
+            cuts = again;
+        }
         // Nodes kept over a tolerance because splitting them does not bring them
         // nearer get their nearest fit, and the cuts are chosen again.
         self.nearest_where_kept(&mut ex, &mut cuts);
@@ -389,7 +404,7 @@ impl<'a> Cutter<'a> {
             }
             self.nearest_where_kept(&mut ex, &mut cuts);
         }
-        (ex, cuts)
+        (ex, cuts, spare)
     }
 
     /// Exact errors where the cuts need them after an exploration whose errors over
@@ -416,15 +431,17 @@ impl<'a> Cutter<'a> {
         }
     }
 
-    /// Splits the worst node of the cut from the roots on until `largest` nodes
-    /// remain or every node is within `enough` or cannot be split; errors up to
-    /// `above` ([`Cutter::entry`]), fits of the nodes in `known` kept.
+    /// Splits the node of the cut first in `order` (the worst, [`loose`]) from the
+    /// roots on until `largest` nodes remain or every node is within `enough` or
+    /// cannot be split; errors up to `above` ([`Cutter::entry`]), fits of the nodes
+    /// in `known` kept.
     fn explore(
         &self,
         largest: usize,
         enough: f64,
         above: f64,
         known: &HashMap<u32, Entry>,
+        order: Order,
     ) -> Explored {
         let roots: Vec<Entry> = self
             .tree
@@ -437,18 +454,30 @@ impl<'a> Cutter<'a> {
             fitted: roots.iter().map(|e| (e.node, e.clone())).collect(),
             ..Explored::default()
         };
-        let ready = self.ahead(&roots, largest, enough, above, known);
+        // Fitting ahead follows the worst-first order; a loose order's nodes are
+        // mostly known.
+        let ready = match order {
+            Order::Worst => self.ahead(&roots, largest, enough, above, known),
+            Order::Loose(_) => HashMap::new(),
+        };
         let mut count = roots.len();
-        let mut heap: BinaryHeap<Entry> = roots.into_iter().collect();
+        let tree = self.tree.nodes.len() as u32;
+        let queued = |e: Entry| order.queued(e, tree);
+        let mut heap: BinaryHeap<Queued> = roots.into_iter().map(queued).collect();
         let (mut sa, mut sb) = (Scratch::default(), Scratch::default());
         let mut leaves = Vec::new();
         // Splits whose parts are carried add no node; the chains they walk down are
         // long but not endless.
         let most = largest.saturating_mul(SPLITS_PER_COUNT);
         while count < largest && ex.splits.len() < most {
-            let Some(e) = heap.pop() else { break };
-            if e.error <= enough {
+            let Some(Queued { e, .. }) = heap.pop() else {
                 break;
+            };
+            if e.error <= enough {
+                match order {
+                    Order::Worst => break,
+                    Order::Loose(_) => continue,
+                }
             }
             let split = (&mut sa, &mut sb);
             let Some(parts) = self.divide(&mut ex, &e, &ready, split, (above, known)) else {
@@ -460,10 +489,10 @@ impl<'a> Cutter<'a> {
                 continue;
             };
             count += parts.len() - 1;
-            heap.extend(parts);
+            heap.extend(parts.into_iter().map(queued));
         }
         let stopped = count >= largest || ex.splits.len() >= most;
-        ex.capped = stopped && heap.peek().is_some_and(|e| e.error > enough);
+        ex.capped = stopped && heap.iter().any(|q| q.e.error > enough);
         // Refitted together: a leaf's fit changes nothing the splits above looked at.
         self.refit_nearest(&mut ex, &leaves);
         ex.ids = ex.post_order();

@@ -1,0 +1,142 @@
+//! The count past the least worst error (issue 26: the cut should lose little or
+//! nothing on Chamfer, the mean distance; beyond the paper, whose greedy pass takes a
+//! level of the merge order; docs/decisions/0051). The worst-first splits spend a
+//! count on the nodes that set the worst error, and the cut of the count is then the
+//! only cut of the nodes reached with that many nodes: nothing is left for the mean.
+//! So a cut of a count alone (and of bytes) is explored a second time: a node over
+//! [`SLACK`] times the least worst error the count allows is split first, worst
+//! first, and the rest of the count goes where the greedy pass would have put it, to
+//! the latest merges first (the pass merges the cheapest pairs first, §3.3, so its
+//! last merges added the most volume).
+
+use super::{worst, Cutter, Entry, Explored, Request};
+use std::cmp::Ordering;
+
+/// A cut of a count stands at most this many times the least worst error the count
+/// allows; within it the count goes to the latest merges.
+pub(super) const SLACK: f64 = 1.25;
+
+/// The order [`Cutter::explore`] splits in: the worst node first, or, with a bound,
+/// the worst of the nodes over it first and then the latest merge.
+#[derive(Clone, Copy)]
+pub(super) enum Order {
+    Worst,
+    Loose(f64),
+}
+
+/// A node waiting to be split, with its place in the order.
+pub(super) struct Queued {
+    key: (bool, f64, u32),
+    pub e: Entry,
+}
+
+impl Order {
+    /// `e` with its key; `tree` is the tree's node count (ids at or past it are
+    /// groups of spatial parts, [`super::carry`], merged before any logged merge
+    /// and so split first).
+    pub(super) fn queued(self, e: Entry, tree: u32) -> Queued {
+        let key = match self {
+            Order::Loose(bound) if e.error <= bound => {
+                let late = if e.node < tree {
+                    e.node as f64
+                } else {
+                    f64::INFINITY
+                };
+                (false, late, e.node)
+            }
+            // Worst error first; ties to the lower node id (as [`Entry`]'s order).
+            _ => (true, e.error, u32::MAX - e.node),
+        };
+        Queued { key, e }
+    }
+}
+
+impl PartialEq for Queued {
+    fn eq(&self, o: &Self) -> bool {
+        self.cmp(o) == Ordering::Equal
+    }
+}
+impl Eq for Queued {}
+impl PartialOrd for Queued {
+    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
+        Some(self.cmp(o))
+    }
+}
+impl Ord for Queued {
+    fn cmp(&self, o: &Self) -> Ordering {
+        let (a, b) = (self.key, o.key);
+        (a.0.cmp(&b.0))
+            .then(a.1.total_cmp(&b.1))
+            .then(a.2.cmp(&b.2))
+    }
+}
+
+impl Cutter<'_> {
+    /// With no request of a tolerance: the tree explored again in [`Order::Loose`]
+    /// under [`SLACK`] times the least worst error of the requests' `cuts` of `ex`
+    /// (but no farther than any other request's cut stands), the fits kept, and each
+    /// request's cut chosen from it — if every one stands within [`SLACK`] times its
+    /// cut in `ex`, and no cut stands farther than one that stood farther before (a
+    /// larger count never gives a worse cut than a smaller one of the same pass).
+    pub(super) fn loosened(
+        &self,
+        ex: &Explored,
+        cuts: &[Vec<u32>],
+        largest: usize,
+        enough: f64,
+    ) -> Option<(Explored, Vec<Vec<u32>>)> {
+        if self.requests.iter().any(|r| r.tolerance.is_some()) {
+            return None;
+        }
+        let old: Vec<f64> = cuts.iter().map(|c| worst(ex, c)).collect();
+        let least = (0..old.len()).min_by(|&a, &b| old[a].total_cmp(&old[b]))?;
+        let next = (old.iter().enumerate())
+            .filter(|&(i, _)| i != least)
+            .fold(f64::INFINITY, |m, (_, &w)| m.min(w));
+        let bound = (SLACK * old[least]).min(next);
+        // Groups are numbered anew by each exploration.
+        let tree = self.tree.nodes.len() as u32;
+        let mut known = self.fitted.clone();
+        known.extend(
+            (ex.fitted.iter())
+                .filter(|(n, _)| **n < tree)
+                .map(|(n, e)| (*n, e.clone())),
+        );
+        let loose = self.explore(largest, enough, f64::INFINITY, &known, Order::Loose(bound));
+        // The largest count's cut is where the loose splits stopped, within the
+        // bound: choosing would keep a node whose parts stand farther than it does,
+        // and leave the count unspent.
+        let ends = frontier(&loose);
+        let take = |r: &Request| {
+            r.bytes.is_none()
+                && r.count == largest
+                && ends.len() <= r.count
+                && worst(&loose, &ends) <= bound
+        };
+        let again: Vec<Vec<u32>> = (self.requests.iter())
+            .map(|r| match take(r) {
+                true => ends.clone(),
+                false => self.choose(&loose, r),
+            })
+            .collect();
+        let new: Vec<f64> = again.iter().map(|c| worst(&loose, c)).collect();
+        let near =
+            (0..old.len()).all(|i| new[i] <= SLACK * old[i] && again[i].len() >= cuts[i].len());
+        let ordered =
+            (0..old.len()).all(|i| (0..old.len()).all(|j| old[i] > old[j] || new[i] <= new[j]));
+        (near && ordered).then_some((loose, again))
+    }
+}
+
+/// The nodes where `ex`'s splits stopped: the cut of most nodes.
+fn frontier(ex: &Explored) -> Vec<u32> {
+    let mut cut = Vec::new();
+    let mut stack: Vec<u32> = ex.roots.clone();
+    while let Some(n) = stack.pop() {
+        match ex.parts.get(&n) {
+            Some(parts) => stack.extend(parts),
+            None => cut.push(n),
+        }
+    }
+    cut
+}

@@ -6,7 +6,7 @@
 //! roots the worst node is split until the largest count is reached or every node is
 //! within the tolerance; each level then takes, of the cuts of the nodes reached, the
 //! fewest nodes within its tolerance, or the least worst error its count and bytes
-//! allow, filled up to its count; without a tolerance, the count that least worst
+//! allow, filled up to its count; with counts alone, the count that least worst
 //! error leaves goes to the mean distance ([`loose`]). A node over a tolerance that
 //! splitting cannot bring nearer gets its nearest fit instead of its least k·V
 //! ([`nearest`]). Every node's primitive encloses its faces, so every cut encloses

@@ -9,8 +9,9 @@
 //! the latest merges first (the pass merges the cheapest pairs first, §3.3, so its
 //! last merges added the most volume).
 
-use super::{worst, Cutter, Entry, Explored, Request};
+use super::{worst, Cutter, Entry, Explored};
 use std::cmp::Ordering;
+use std::collections::HashMap;
 
 /// A cut of a count stands at most this many times the least worst error the count
 /// allows; within it the count goes to the latest merges.
@@ -74,17 +75,17 @@ impl Ord for Queued {
 impl Cutter<'_> {
     /// With no request of a tolerance or bytes (counts alone): the tree explored
     /// again in [`Order::Loose`] under [`SLACK`] times the least worst error of the
-    /// requests' `cuts` of `ex`
-    /// (but no farther than any other request's cut stands), the fits kept, and each
-    /// request's cut chosen from it — if every one stands within [`SLACK`] times its
-    /// cut in `ex`, and no cut stands farther than one that stood farther before (a
-    /// larger count never gives a worse cut than a smaller one of the same pass).
+    /// requests' `cuts` of `ex` (but no farther than any other request's cut
+    /// stands), the fits of `known` and `ex` kept, and each request's cut chosen from
+    /// it — if every one stands within [`SLACK`] times its cut in `ex`, and no cut
+    /// stands farther than one that stood farther before (a larger count never gives
+    /// a worse cut than a smaller one of the same pass).
     pub(super) fn loosened(
         &self,
-        ex: &Explored,
-        cuts: &[Vec<u32>],
+        (ex, cuts): (&Explored, &[Vec<u32>]),
         largest: usize,
         enough: f64,
+        mut known: HashMap<u32, Entry>,
     ) -> Option<(Explored, Vec<Vec<u32>>)> {
         // A byte target's cut is chosen by bytes: on 22 meshes the loose cut was
         // kept on 15 of 44 byte levels for no measured gain (0051).
@@ -99,7 +100,6 @@ impl Cutter<'_> {
         let bound = (SLACK * old[least]).min(next);
         // Groups are numbered anew by each exploration.
         let tree = self.tree.nodes.len() as u32;
-        let mut known = self.fitted.clone();
         known.extend(
             (ex.fitted.iter())
                 .filter(|(n, _)| **n < tree)
@@ -109,15 +109,17 @@ impl Cutter<'_> {
         // The largest count's cut is where the loose splits stopped, within the
         // bound: choosing would keep a node whose parts stand farther than it does,
         // and leave the count unspent.
-        let ends = frontier(&loose);
-        let take = |r: &Request| {
-            r.count == largest && ends.len() <= r.count && worst(&loose, &ends) <= bound
-        };
+        let ends: Vec<u32> = (loose.ids.iter().copied())
+            .filter(|&n| !loose.is_split(n))
+            .collect();
+        let within = worst(&loose, &ends) <= bound;
         let again: Vec<Vec<u32>> = (self.requests.iter())
-            .map(|r| match take(r) {
-                true => ends.clone(),
-                false => self.choose(&loose, r),
-            })
+            .map(
+                |r| match within && r.count == largest && ends.len() <= r.count {
+                    true => ends.clone(),
+                    false => self.choose(&loose, r),
+                },
+            )
             .collect();
         let new: Vec<f64> = again.iter().map(|c| worst(&loose, c)).collect();
         let near =
@@ -126,17 +128,4 @@ impl Cutter<'_> {
             (0..old.len()).all(|i| (0..old.len()).all(|j| old[i] > old[j] || new[i] <= new[j]));
         (near && ordered).then_some((loose, again))
     }
-}
-
-/// The nodes where `ex`'s splits stopped: the cut of most nodes.
-fn frontier(ex: &Explored) -> Vec<u32> {
-    let mut cut = Vec::new();
-    let mut stack: Vec<u32> = ex.roots.clone();
-    while let Some(n) = stack.pop() {
-        match ex.parts.get(&n) {
-            Some(parts) => stack.extend(parts),
-            None => cut.push(n),
-        }
-    }
-    cut
 }

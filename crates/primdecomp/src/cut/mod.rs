@@ -386,7 +386,7 @@ impl<'a> Cutter<'a> {
         let mut cuts: Vec<Vec<u32>> = self.requests.iter().map(|r| self.choose(&ex, r)).collect();
         // A count's cut spends what the worst error leaves on the mean ([`loose`]).
         let mut spare = Fits::new();
-        if let Some((loose, again)) = self.loosened(&ex, &cuts, largest, enough) {
+        if let Some((loose, again)) = self.loosened((&ex, &cuts), largest, enough, known) {
             spare = std::mem::replace(&mut ex, loose).fitted;
             cuts = again;
         }

@@ -193,10 +193,10 @@ struct DecomposeArgs {
     fill: bool,
     /// Cut the merge tree where the error is, instead of taking the greedy pass's N
     /// clusters: a cut of at most N primitives near the least worst distance N allows
-    /// (up to 1.25 times it, the rest of N spent where the greedy pass would, on the
-    /// mean distance; the level kept after nested primitives are removed can stand
-    /// farther); about half the greedy's Hausdorff distance on most meshes, the same
-    /// Chamfer, a median 3.5x the time (docs/decisions/0032, 0034, 0051).
+    /// (up to 1.25 times it, where that spends the rest of N where the greedy pass
+    /// would, on the mean distance); about half the greedy's Hausdorff distance on
+    /// most meshes, the same Chamfer, a median 3.5x the time (docs/decisions/0032,
+    /// 0034, 0051).
     #[arg(long)]
     cut: bool,
     /// Keep every primitive within this distance of the input: the fewest primitives

@@ -3,9 +3,12 @@
 //! (§3.4) then removes the primitives nested in others and joins coplanar plates, so
 //! the file holds less than the caps allowed. A level a cap stopped short of its
 //! tolerance (or that has none) is cut again with the cap raised by what was freed,
-//! halfway back where that goes over, until it settles.
+//! halfway back where that goes over, until it settles. Levels of counts alone are
+//! then cut once more with the count their worst error leaves spent on the mean,
+//! kept where their post-processed levels hold as many primitives no more than a
+//! quarter farther (docs/decisions/0051).
 
-use crate::cut::{Cutter, MergeTree, Request};
+use crate::cut::{Cutter, MergeTree, Request, SLACK};
 use crate::merge::{Evaluator, Snapshot};
 use crate::mesh::triangles::Triangles;
 use crate::params::Params;
@@ -55,6 +58,7 @@ pub(crate) fn snapshots(
         }
     }
     fill_short(&mut cutter, &mut searches, requests, ev, (params, post));
+    loosen(&mut cutter, &mut searches, requests, ev, (params, post));
     (searches.into_iter().zip(requests))
         .map(|(s, r)| Snapshot {
             target: r.count,
@@ -165,6 +169,46 @@ fn halfway(lo: &Request, hi: &Request) -> Request {
         count: mid(lo.count, hi.count),
         bytes: lo.bytes.zip(hi.bytes).map(|(a, b)| mid(a, b)),
         ..*lo
+    }
+}
+
+/// Levels of counts alone cut once more for the requests their kept cuts came from,
+/// the count the least worst error leaves spent on the mean
+/// (`Cutter::snapshots_loose`, docs/decisions/0051), and kept if every level is
+/// within its request, holds as many primitives as before, stands within [`SLACK`]
+/// times its kept cut, and no level stands farther than one that stood farther
+/// before. Compared after post-processing: a cut that loses fewer primitives to
+/// nesting is raised less, so comparing the cuts alone let levels stand farther.
+fn loosen(
+    cutter: &mut Cutter,
+    searches: &mut [Search],
+    requests: &[Request],
+    ev: &Evaluator,
+    (params, post): (&Params, &postprocess::Input),
+) {
+    if (requests.iter()).any(|r| r.tolerance.is_some() || r.bytes.is_some()) {
+        return;
+    }
+    let asked: Vec<Request> = searches.iter().map(|s| s.before).collect();
+    let snaps = cutter.snapshots_loose(&asked);
+    let levels = postprocess::levels(ev, snaps.clone(), params, post);
+    let bound = |s: &Snapshot| s.bound.unwrap_or(f64::INFINITY);
+    let old: Vec<f64> = searches.iter().map(|s| bound(&s.kept)).collect();
+    let new: Vec<f64> = snaps.iter().map(bound).collect();
+    let n = old.len();
+    let near = (0..n).all(|i| {
+        let (r, level) = (&requests[i], &levels[i]);
+        within(r, level)
+            && level.primitives.len() >= searches[i].spent.0
+            && new[i] <= SLACK * old[i]
+    });
+    let ordered = (0..n).all(|i| (0..n).all(|j| old[i] > old[j] || new[i] <= new[j]));
+    if !(near && ordered) {
+        return;
+    }
+    for ((s, snap), level) in searches.iter_mut().zip(snaps).zip(&levels) {
+        s.spent = (level.primitives.len(), level.bytes());
+        s.kept = snap;
     }
 }
 

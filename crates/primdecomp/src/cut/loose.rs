@@ -15,7 +15,7 @@ use std::collections::HashMap;
 
 /// A cut of a count stands at most this many times the least worst error the count
 /// allows; within it the count goes to the latest merges.
-pub(super) const SLACK: f64 = 1.25;
+pub(crate) const SLACK: f64 = 1.25;
 
 /// The order [`Cutter::explore`] splits in: the worst node first, or, with a bound,
 /// the worst of the nodes over it first and then the latest merge.

@@ -31,6 +31,7 @@ use crate::Shortfall;
 use error::error_of;
 use error::{error_until, worst_error, Ask};
 use hulls::{HullScratch, NodeHulls};
+pub(crate) use loose::SLACK;
 use loose::{Order, Queued};
 use rayon::prelude::*;
 use std::cmp::Ordering;
@@ -167,6 +168,9 @@ pub(crate) struct Cutter<'a> {
     /// Whether a count the cut falls short of goes to the cut's other nodes
     /// ([`Cutter::spend`], [`Cutter::snapshots_filled`]).
     fill_short: bool,
+    /// Whether a cut of counts alone is explored again in a loose order
+    /// ([`Cutter::snapshots_loose`]).
+    loose: bool,
     /// Each node's bounding box ([`carry`]).
     boxes: Vec<(V3, V3)>,
     /// The errors measured so far ([`memo`]).
@@ -209,6 +213,7 @@ impl<'a> Cutter<'a> {
                 .unwrap_or(0.0)
                 .max(FLOOR_HALVES * ev.cfg.min_half),
             fill_short: false,
+            loose: false,
             boxes: carry::node_boxes(tree, ev.mesh),
             measures: memo::Measures::default(),
         }
@@ -303,6 +308,15 @@ impl<'a> Cutter<'a> {
         snaps
     }
 
+    /// [`Cutter::snapshots`] with the count the least worst error leaves spent on
+    /// the mean, where the requests are counts alone ([`loose`]).
+    pub(crate) fn snapshots_loose(&mut self, requests: &[Request]) -> Vec<Snapshot> {
+        self.loose = true;
+        let snaps = self.snapshots(requests);
+        self.loose = false;
+        snaps
+    }
+
     /// [`Cutter::snapshots`] with the rest of a count alone its cut falls short of
     /// spent on the cut's other nodes ([`Cutter::spend`]).
     pub(crate) fn snapshots_filled(&mut self, requests: &[Request]) -> Vec<Snapshot> {
@@ -386,7 +400,10 @@ impl<'a> Cutter<'a> {
         let mut cuts: Vec<Vec<u32>> = self.requests.iter().map(|r| self.choose(&ex, r)).collect();
         // A count's cut spends what the worst error leaves on the mean ([`loose`]).
         let mut spare = Fits::new();
-        if let Some((loose, again)) = self.loosened((&ex, &cuts), largest, enough, known) {
+        let loosened = self
+            .loose
+            .then(|| self.loosened((&ex, &cuts), largest, enough, known));
+        if let Some((loose, again)) = loosened.flatten() {
             spare = std::mem::replace(&mut ex, loose).fitted;
             cuts = again;
         }

@@ -4,9 +4,9 @@
 //! the file holds less than the caps allowed. A level a cap stopped short of its
 //! tolerance (or that has none) is cut again with the cap raised by what was freed,
 //! halfway back where that goes over, until it settles. Levels of counts alone are
-//! then cut once more with the count their worst error leaves spent on the mean,
-//! kept where their post-processed levels hold as many primitives no more than a
-//! quarter farther (docs/decisions/0051).
+//! then cut once more, each on its own, with the count its worst error leaves spent
+//! on the mean, kept where its post-processed level holds as many primitives no more
+//! than a quarter farther (docs/decisions/0051).
 
 use crate::cut::{Cutter, MergeTree, Request, SLACK};
 use crate::merge::{Evaluator, Snapshot};
@@ -172,12 +172,13 @@ fn halfway(lo: &Request, hi: &Request) -> Request {
     }
 }
 
-/// Levels of counts alone cut once more for the requests their kept cuts came from,
-/// the count the least worst error leaves spent on the mean
-/// (`Cutter::snapshots_loose`, docs/decisions/0051), and kept if every level is
-/// within its request, holds as many primitives as before, stands within [`SLACK`]
-/// times its kept cut, and no level stands farther than one that stood farther
-/// before. Compared after post-processing: a cut that loses fewer primitives to
+/// Levels of counts alone cut once more, each for the request its kept cut came from
+/// on its own (as that count alone would be cut), the count the least worst error
+/// leaves spent on the mean (`Cutter::snapshot_loose`, docs/decisions/0051). A
+/// level takes its loose cut if that is within its request, holds as many
+/// primitives as before and stands within [`SLACK`] times its kept cut, and no
+/// level then stands farther than one that stood farther before (the largest counts
+/// first). Compared after post-processing: a cut that loses fewer primitives to
 /// nesting is raised less, so comparing the cuts alone let levels stand farther.
 fn loosen(
     cutter: &mut Cutter,
@@ -189,26 +190,29 @@ fn loosen(
     if (requests.iter()).any(|r| r.tolerance.is_some() || r.bytes.is_some()) {
         return;
     }
-    let asked: Vec<Request> = searches.iter().map(|s| s.before).collect();
-    let snaps = cutter.snapshots_loose(&asked);
+    let snaps: Vec<Snapshot> = (searches.iter())
+        .map(|s| cutter.snapshot_loose(&s.before))
+        .collect();
     let levels = postprocess::levels(ev, snaps.clone(), params, post);
     let bound = |s: &Snapshot| s.bound.unwrap_or(f64::INFINITY);
     let old: Vec<f64> = searches.iter().map(|s| bound(&s.kept)).collect();
-    let new: Vec<f64> = snaps.iter().map(bound).collect();
-    let n = old.len();
-    let near = (0..n).all(|i| {
-        let (r, level) = (&requests[i], &levels[i]);
-        within(r, level)
+    let mut now = old.clone();
+    let mut order: Vec<usize> = (0..old.len()).collect();
+    order.sort_by_key(|&i| std::cmp::Reverse((requests[i].count, i)));
+    for i in order {
+        let (r, level, new) = (&requests[i], &levels[i], bound(&snaps[i]));
+        let near = within(r, level)
             && level.primitives.len() >= searches[i].spent.0
-            && new[i] <= SLACK * old[i]
-    });
-    let ordered = (0..n).all(|i| (0..n).all(|j| old[i] > old[j] || new[i] <= new[j]));
-    if !(near && ordered) {
-        return;
-    }
-    for ((s, snap), level) in searches.iter_mut().zip(snaps).zip(&levels) {
-        s.spent = (level.primitives.len(), level.bytes());
-        s.kept = snap;
+            && new <= SLACK * old[i];
+        let was = std::mem::replace(&mut now[i], new);
+        let n = old.len();
+        let ordered = (0..n).all(|a| (0..n).all(|b| old[a] > old[b] || now[a] <= now[b]));
+        if !(near && ordered) {
+            now[i] = was;
+            continue;
+        }
+        searches[i].spent = (level.primitives.len(), level.bytes());
+        searches[i].kept = snaps[i].clone();
     }
 }
 

@@ -73,31 +73,27 @@ impl Ord for Queued {
 }
 
 impl Cutter<'_> {
-    /// With no request of a tolerance or bytes (counts alone): the tree explored
-    /// again in [`Order::Loose`] under [`SLACK`] times the least worst error of the
-    /// requests' `cuts` of `ex` (but no farther than any other request's cut
-    /// stands), the fits of `known` and `ex` kept, and each request's cut chosen from
-    /// it — if every one stands within [`SLACK`] times its cut in `ex`, and no cut
-    /// stands farther than one that stood farther before (a larger count never gives
-    /// a worse cut than a smaller one of the same pass).
+    /// With one request of a count alone (no tolerance, no bytes): the tree
+    /// explored again in [`Order::Loose`] under [`SLACK`] times the error of its
+    /// `cut` of `ex`, the fits of `known` and `ex` kept, and the cut where the loose
+    /// splits stopped (where that stands within the bound and the count; else the
+    /// one chosen from the nodes reached) — if it stands within the bound and holds
+    /// as many nodes as `cut`.
     pub(super) fn loosened(
         &self,
-        (ex, cuts): (&Explored, &[Vec<u32>]),
-        largest: usize,
+        (ex, cut): (&Explored, &[u32]),
         enough: f64,
         mut known: HashMap<u32, Entry>,
-    ) -> Option<(Explored, Vec<Vec<u32>>)> {
+    ) -> Option<(Explored, Vec<u32>)> {
+        let [r] = self.requests.as_slice() else {
+            return None;
+        };
         // A byte target's cut is chosen by bytes: on 22 meshes the loose cut was
         // kept on 15 of 44 byte levels for no measured gain (0051).
-        if (self.requests.iter()).any(|r| r.tolerance.is_some() || r.bytes.is_some()) {
+        if r.tolerance.is_some() || r.bytes.is_some() {
             return None;
         }
-        let old: Vec<f64> = cuts.iter().map(|c| worst(ex, c)).collect();
-        let least = (0..old.len()).min_by(|&a, &b| old[a].total_cmp(&old[b]))?;
-        let next = (old.iter().enumerate())
-            .filter(|&(i, _)| i != least)
-            .fold(f64::INFINITY, |m, (_, &w)| m.min(w));
-        let bound = (SLACK * old[least]).min(next);
+        let bound = SLACK * worst(ex, cut);
         // Groups are numbered anew by each exploration.
         let tree = self.tree.nodes.len() as u32;
         known.extend(
@@ -105,27 +101,18 @@ impl Cutter<'_> {
                 .filter(|(n, _)| **n < tree)
                 .map(|(n, e)| (*n, e.clone())),
         );
-        let loose = self.explore(largest, enough, f64::INFINITY, &known, Order::Loose(bound));
-        // The largest count's cut is where the loose splits stopped, within the
-        // bound: choosing would keep a node whose parts stand farther than it does,
-        // and leave the count unspent.
+        let loose = self.explore(r.count, enough, f64::INFINITY, &known, Order::Loose(bound));
+        // The cut is where the loose splits stopped, within the bound: choosing would
+        // keep a node whose parts stand farther than it does, and leave the count
+        // unspent.
         let ends: Vec<u32> = (loose.ids.iter().copied())
             .filter(|&n| !loose.is_split(n))
             .collect();
-        let within = worst(&loose, &ends) <= bound;
-        let again: Vec<Vec<u32>> = (self.requests.iter())
-            .map(
-                |r| match within && r.count == largest && ends.len() <= r.count {
-                    true => ends.clone(),
-                    false => self.choose(&loose, r),
-                },
-            )
-            .collect();
-        let new: Vec<f64> = again.iter().map(|c| worst(&loose, c)).collect();
-        let near =
-            (0..old.len()).all(|i| new[i] <= SLACK * old[i] && again[i].len() >= cuts[i].len());
-        let ordered =
-            (0..old.len()).all(|i| (0..old.len()).all(|j| old[i] > old[j] || new[i] <= new[j]));
-        (near && ordered).then_some((loose, again))
+        let again = match worst(&loose, &ends) <= bound && ends.len() <= r.count {
+            true => ends,
+            false => self.choose(&loose, r),
+        };
+        let near = worst(&loose, &again) <= bound && again.len() >= cut.len();
+        near.then_some((loose, again))
     }
 }

@@ -169,7 +169,7 @@ pub(crate) struct Cutter<'a> {
     /// ([`Cutter::spend`], [`Cutter::snapshots_filled`]).
     fill_short: bool,
     /// Whether a cut of counts alone is explored again in a loose order
-    /// ([`Cutter::snapshots_loose`]).
+    /// ([`Cutter::snapshot_loose`]).
     loose: bool,
     /// Each node's bounding box ([`carry`]).
     boxes: Vec<(V3, V3)>,
@@ -308,13 +308,13 @@ impl<'a> Cutter<'a> {
         snaps
     }
 
-    /// [`Cutter::snapshots`] with the count the least worst error leaves spent on
-    /// the mean, where the requests are counts alone ([`loose`]).
-    pub(crate) fn snapshots_loose(&mut self, requests: &[Request]) -> Vec<Snapshot> {
+    /// [`Cutter::snapshots`] of one request, with the count the least worst error
+    /// leaves spent on the mean where it is a count alone ([`loose`]).
+    pub(crate) fn snapshot_loose(&mut self, request: &Request) -> Snapshot {
         self.loose = true;
-        let snaps = self.snapshots(requests);
+        let snap = self.snapshots(std::slice::from_ref(request)).pop();
         self.loose = false;
-        snaps
+        snap.expect("one snapshot per request")
     }
 
     /// [`Cutter::snapshots`] with the rest of a count alone its cut falls short of
@@ -400,12 +400,11 @@ impl<'a> Cutter<'a> {
         let mut cuts: Vec<Vec<u32>> = self.requests.iter().map(|r| self.choose(&ex, r)).collect();
         // A count's cut spends what the worst error leaves on the mean ([`loose`]).
         let mut spare = Fits::new();
-        let loosened = self
-            .loose
-            .then(|| self.loosened((&ex, &cuts), largest, enough, known));
+        let loosened =
+            (self.loose && cuts.len() == 1).then(|| self.loosened((&ex, &cuts[0]), enough, known));
         if let Some((loose, again)) = loosened.flatten() {
             spare = std::mem::replace(&mut ex, loose).fitted;
-            cuts = again;
+            cuts = vec![again];
         }
         // Nodes kept over a tolerance because splitting them does not bring them
         // nearer get their nearest fit, and the cuts are chosen again.

@@ -8,11 +8,12 @@
 //! on the mean, kept where its post-processed level holds as many primitives no more
 //! than a quarter farther (docs/decisions/0051).
 
-use crate::cut::{Cutter, MergeTree, Request, SLACK};
+use crate::cut::{mean_distance, Cutter, MergeTree, Request, SLACK};
 use crate::merge::{Evaluator, Snapshot};
 use crate::mesh::triangles::Triangles;
 use crate::params::Params;
 use crate::postprocess;
+use crate::primitive::Primitive;
 use crate::{Level, Shortfall};
 
 /// A cut is made again at most this many times with counts and bytes raised.
@@ -58,7 +59,13 @@ pub(crate) fn snapshots(
         }
     }
     fill_short(&mut cutter, &mut searches, requests, ev, (params, post));
-    loosen(&mut cutter, &mut searches, requests, ev, (params, post));
+    loosen(
+        &mut cutter,
+        &mut searches,
+        requests,
+        (ev, tris),
+        (params, post),
+    );
     (searches.into_iter().zip(requests))
         .map(|(s, r)| Snapshot {
             target: r.count,
@@ -176,15 +183,15 @@ fn halfway(lo: &Request, hi: &Request) -> Request {
 /// on its own (as that count alone would be cut), the count the least worst error
 /// leaves spent on the mean (`Cutter::snapshot_loose`, docs/decisions/0051). A
 /// level takes its loose cut if that is within its request, holds as many
-/// primitives as before and stands within [`SLACK`] times its kept cut, and no
-/// level then stands farther than one that stood farther before (the largest counts
-/// first). Compared after post-processing: a cut that loses fewer primitives to
+/// primitives as before, stands within [`SLACK`] times its kept cut and nearer on
+/// the mean ([`mean_distance`]), and no level then stands farther than one that
+/// stood farther before (the largest counts first). Compared after post-processing: a cut that loses fewer primitives to
 /// nesting is raised less, so comparing the cuts alone let levels stand farther.
 fn loosen(
     cutter: &mut Cutter,
     searches: &mut [Search],
     requests: &[Request],
-    ev: &Evaluator,
+    (ev, tris): (&Evaluator, &Triangles),
     (params, post): (&Params, &postprocess::Input),
 ) {
     if (requests.iter()).any(|r| r.tolerance.is_some() || r.bytes.is_some()) {
@@ -194,6 +201,14 @@ fn loosen(
         .map(|s| cutter.snapshot_loose(&s.before))
         .collect();
     let levels = postprocess::levels(ev, snaps.clone(), params, post);
+    let kept: Vec<Snapshot> = searches.iter().map(|s| s.kept.clone()).collect();
+    let kept = postprocess::levels(ev, kept, params, post);
+    // Levels are in world coordinates, the input's triangles in its re-centred frame.
+    let back = ev.mesh.offset.map(|x| -x);
+    let mean = |l: &Level| {
+        let prims: Vec<Primitive> = l.primitives.iter().map(|p| p.translated(back)).collect();
+        mean_distance(&prims, tris)
+    };
     let bound = |s: &Snapshot| s.bound.unwrap_or(f64::INFINITY);
     let old: Vec<f64> = searches.iter().map(|s| bound(&s.kept)).collect();
     let mut now = old.clone();
@@ -203,7 +218,8 @@ fn loosen(
         let (r, level, new) = (&requests[i], &levels[i], bound(&snaps[i]));
         let near = within(r, level)
             && level.primitives.len() >= searches[i].spent.0
-            && new <= SLACK * old[i];
+            && new <= SLACK * old[i]
+            && mean(level) < mean(&kept[i]);
         let was = std::mem::replace(&mut now[i], new);
         let n = old.len();
         let ordered = (0..n).all(|a| (0..n).all(|b| old[a] > old[b] || now[a] <= now[b]));

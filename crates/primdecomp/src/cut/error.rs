@@ -447,7 +447,7 @@ fn rounding(prim: &Primitive, tess: &crate::export::Tess, k: usize) -> f64 {
 /// The tessellation's faces as triangles: quads and triangles fanned from their first
 /// vertex, larger polygons (round caps) from their centre, so that no triangle is a
 /// sliver across the cap.
-fn triangles(tess: &crate::export::Tess) -> Vec<[V3; 3]> {
+pub(super) fn triangles(tess: &crate::export::Tess) -> Vec<[V3; 3]> {
     let mut tris = Vec::new();
     for f in &tess.faces {
         let v = |i: usize| tess.vertices[f[i] as usize];
@@ -465,7 +465,7 @@ fn triangles(tess: &crate::export::Tess) -> Vec<[V3; 3]> {
 /// `t` cut in two across its longest edge, at its midpoint: slivers (a cylinder's
 /// side facets, fan triangles) become well-shaped as they are cut, instead of
 /// staying slivers four times as many.
-fn halves(t: &[V3; 3]) -> [[V3; 3]; 2] {
+pub(super) fn halves(t: &[V3; 3]) -> [[V3; 3]; 2] {
     let len = |i: usize| norm(sub(t[(i + 1) % 3], t[i]));
     let i = (0..3).fold(0, |b, i| if len(i) > len(b) { i } else { b });
     let (a, b, c) = (t[i], t[(i + 1) % 3], t[(i + 2) % 3]);

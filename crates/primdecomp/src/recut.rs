@@ -6,7 +6,7 @@
 //! halfway back where that goes over, until it settles. Levels of counts alone are
 //! then cut once more, each on its own, with the count its worst error leaves spent
 //! on the mean, kept where its post-processed level holds as many primitives no more
-//! than a quarter farther (docs/decisions/0051).
+//! than a quarter farther and nearer on the mean (docs/decisions/0051).
 
 use crate::cut::{mean_distance, Cutter, MergeTree, Request, SLACK};
 use crate::merge::{Evaluator, Snapshot};
@@ -76,8 +76,8 @@ pub(crate) fn snapshots(
 
 /// A level of a count alone that the raises left short of it (its worst node's
 /// subtree splits no nearer, and a larger exploration is spent there too) cut once
-/// more at its own count, the rest of the count spent on the cut's other nodes (`Cutter::snapshots_filled`,
-/// docs/decisions/0048), and kept where its level holds more primitives within the
+/// more at its own count, the rest of the count spent on the cut's other nodes
+/// (`Cutter::snapshots_filled`, docs/decisions/0048), and kept where its level holds more primitives within the
 /// count and its nodes stand no farther.
 fn fill_short(
     cutter: &mut Cutter,
@@ -86,8 +86,9 @@ fn fill_short(
     ev: &Evaluator,
     (params, post): (&Params, &postprocess::Input),
 ) {
-    let short =
-        |s: &Search, r: &Request| r.tolerance.is_none() && r.bytes.is_none() && s.spent.0 < r.count;
+    let short = |s: &Search, r: &Request| {
+        r.tolerance.is_none() && r.bytes.is_none() && s.level.primitives.len() < r.count
+    };
     if !searches.iter().zip(requests).any(|(s, r)| short(s, r)) {
         return;
     }
@@ -104,23 +105,23 @@ fn fill_short(
         .zip(snaps.into_iter().zip(&levels))
     {
         let nearer = snap.bound.unwrap_or(f64::INFINITY) <= s.kept.bound.unwrap_or(f64::INFINITY);
-        if short(s, r) && level.primitives.len() > s.spent.0 && nearer && within(r, level) {
-            s.spent = (level.primitives.len(), level.bytes());
-            s.kept = snap;
+        let more = level.primitives.len() > s.level.primitives.len();
+        if short(s, r) && more && nearer && within(r, level) {
+            (s.kept, s.level) = (snap, level.clone());
         }
     }
 }
 
 /// One level's search: the request the cutter gets next, the one its kept cut came
 /// from, the least found over the user's caps, whether it is settled, and the kept
-/// cut with the primitives and bytes its level holds.
+/// cut with its post-processed level.
 struct Search {
     asked: Request,
     before: Request,
     over: Option<Request>,
     settled: bool,
     kept: Snapshot,
-    spent: (usize, usize),
+    level: Level,
 }
 
 impl Search {
@@ -132,9 +133,14 @@ impl Search {
             before: *r,
             over: None,
             settled: asked == *r,
-            spent: (level.primitives.len(), level.bytes()),
             kept: snap,
+            level: level.clone(),
         }
+    }
+
+    /// The primitives and bytes the kept cut's level holds.
+    fn spent(&self) -> (usize, usize) {
+        (self.level.primitives.len(), self.level.bytes())
     }
 
     /// Takes the cut for `self.asked` (`snap`, post-processed to `level`) and says
@@ -157,8 +163,8 @@ impl Search {
         let raised = raise(r, &self.asked, &snap, level);
         let now = (level.primitives.len(), level.bytes());
         // Most of the raise went to primitives post-processing drops again.
-        let slow = little(self.spent, now, &self.before, &self.asked);
-        (self.kept, self.spent, self.before) = (snap, now, self.asked);
+        let slow = little(self.spent(), now, &self.before, &self.asked);
+        (self.kept, self.level, self.before) = (snap, level.clone(), self.asked);
         self.asked = match (raised, self.over) {
             (None, _) => self.asked,
             _ if slow => self.asked,
@@ -185,8 +191,9 @@ fn halfway(lo: &Request, hi: &Request) -> Request {
 /// level takes its loose cut if that is within its request, holds as many
 /// primitives as before, stands within [`SLACK`] times its kept cut and nearer on
 /// the mean ([`mean_distance`]), and no level then stands farther than one that
-/// stood farther before (the largest counts first). Compared after post-processing: a cut that loses fewer primitives to
-/// nesting is raised less, so comparing the cuts alone let levels stand farther.
+/// stood farther before (the largest counts first). Compared after post-processing:
+/// a cut that loses fewer primitives to nesting is raised less, so comparing the
+/// cuts alone let levels stand farther.
 fn loosen(
     cutter: &mut Cutter,
     searches: &mut [Search],
@@ -201,8 +208,6 @@ fn loosen(
         .map(|s| cutter.snapshot_loose(&s.before))
         .collect();
     let levels = postprocess::levels(ev, snaps.clone(), params, post);
-    let kept: Vec<Snapshot> = searches.iter().map(|s| s.kept.clone()).collect();
-    let kept = postprocess::levels(ev, kept, params, post);
     // Levels are in world coordinates, the input's triangles in its re-centred frame.
     let back = ev.mesh.offset.map(|x| -x);
     let mean = |l: &Level| {
@@ -211,24 +216,23 @@ fn loosen(
     };
     let bound = |s: &Snapshot| s.bound.unwrap_or(f64::INFINITY);
     let old: Vec<f64> = searches.iter().map(|s| bound(&s.kept)).collect();
+    let n = old.len();
     let mut now = old.clone();
-    let mut order: Vec<usize> = (0..old.len()).collect();
+    let mut order: Vec<usize> = (0..n).collect();
     order.sort_by_key(|&i| std::cmp::Reverse((requests[i].count, i)));
     for i in order {
-        let (r, level, new) = (&requests[i], &levels[i], bound(&snaps[i]));
-        let near = within(r, level)
-            && level.primitives.len() >= searches[i].spent.0
+        let (level, new, s) = (&levels[i], bound(&snaps[i]), &mut searches[i]);
+        let near = within(&requests[i], level)
+            && level.primitives.len() >= s.level.primitives.len()
             && new <= SLACK * old[i]
-            && mean(level) < mean(&kept[i]);
+            && mean(level) < mean(&s.level);
         let was = std::mem::replace(&mut now[i], new);
-        let n = old.len();
         let ordered = (0..n).all(|a| (0..n).all(|b| old[a] > old[b] || now[a] <= now[b]));
         if !(near && ordered) {
             now[i] = was;
             continue;
         }
-        searches[i].spent = (level.primitives.len(), level.bytes());
-        searches[i].kept = snaps[i].clone();
+        (s.kept, s.level) = (snaps[i].clone(), level.clone());
     }
 }
 

@@ -74,18 +74,18 @@ impl Ord for Queued {
 
 impl Cutter<'_> {
     /// With one request of a count alone (no tolerance, no bytes): the tree
-    /// explored again in [`Order::Loose`] under [`SLACK`] times the error of its
-    /// `cut` of `ex`, the fits of `known` and `ex` kept, and the cut where the loose
-    /// splits stopped (where that stands within the bound and the count; else the
-    /// one chosen from the nodes reached) — if it stands within the bound and holds
-    /// as many nodes as `cut`.
+    /// explored again in [`Order::Loose`] under [`SLACK`] times the error of its cut
+    /// of `ex` (the one of `cuts`), the fits of `known` and `ex` kept, and the cut
+    /// where the loose splits stopped (where that stands within the bound and the
+    /// count; else the one chosen from the nodes reached) — if it stands within the
+    /// bound and holds as many nodes as the first.
     pub(super) fn loosened(
         &self,
-        (ex, cut): (&Explored, &[u32]),
+        (ex, cuts): (&Explored, &[Vec<u32>]),
         enough: f64,
         mut known: HashMap<u32, Entry>,
     ) -> Option<(Explored, Vec<u32>)> {
-        let [r] = self.requests.as_slice() else {
+        let ([r], [cut]) = (self.requests.as_slice(), cuts) else {
             return None;
         };
         // A byte target's cut is chosen by bytes: on 22 meshes the loose cut was

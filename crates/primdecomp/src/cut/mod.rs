@@ -402,8 +402,9 @@ impl<'a> Cutter<'a> {
         let mut cuts: Vec<Vec<u32>> = self.requests.iter().map(|r| self.choose(&ex, r)).collect();
         // A count's cut spends what the worst error leaves on the mean ([`loose`]).
         let mut spare = Fits::new();
-        let loosened =
-            (self.loose && cuts.len() == 1).then(|| self.loosened((&ex, &cuts[0]), enough, known));
+        let loosened = self
+            .loose
+            .then(|| self.loosened((&ex, &cuts), enough, known));
         if let Some((loose, again)) = loosened.flatten() {
             spare = std::mem::replace(&mut ex, loose).fitted;
             cuts = vec![again];

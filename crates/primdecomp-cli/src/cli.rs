@@ -193,8 +193,8 @@ struct DecomposeArgs {
     fill: bool,
     /// Cut the merge tree where the error is, instead of taking the greedy pass's N
     /// clusters: a cut of at most N primitives near the least worst distance N allows
-    /// (up to 1.25 times it, where that spends the rest of N where the greedy pass
-    /// would, on the mean distance); about half the greedy's Hausdorff distance on
+    /// (up to 1.25 times it, where spending the rest of N where the greedy pass would
+    /// brings the mean distance nearer); about half the greedy's Hausdorff distance on
     /// most meshes, the same Chamfer, a median 3.5x the time (docs/decisions/0032,
     /// 0034, 0051).
     #[arg(long)]
@@ -1278,12 +1278,13 @@ fn print_summary(dec: &Decomposition, mesh: &primdecomp::Mesh, written: &[PathBu
             .map(|k| format!("{} {}", c[*k as usize], k.name()))
             .collect();
         println!(
-            "{} → {} primitives ({}), {} bytes{}",
+            "{} → {} primitives ({}), {} bytes{}{}",
             asked(l, dec.input.diagonal()),
             l.primitives.len(),
             kinds.join(", "),
             l.bytes(),
-            reach(l, dec.input.diagonal())
+            reach(l, dec.input.diagonal()),
+            few(l, dec.input.faces)
         );
     }
     for w in written {
@@ -1329,6 +1330,20 @@ fn reach(l: &primdecomp::Level, diagonal: f64) -> String {
         };
     }
     s + ")"
+}
+
+/// Why a greedy snapshot holds under half of its count although the input has the
+/// faces for it, for the summary line ("" otherwise): post-processing removed the
+/// clusters inside others and joined coplanar plates (§3.4), as where one part's
+/// primitive encloses the rest.
+fn few(l: &primdecomp::Level, faces: usize) -> &'static str {
+    match l.distance.is_none() && 2 * l.primitives.len() < l.target.min(faces) {
+        true => {
+            "; the other clusters lay inside those kept or were joined to them (--cut or \
+            --tolerance keeps parts apart)"
+        }
+        false => "",
+    }
 }
 
 /// What stopped a level short of its tolerance, for the summary line.

@@ -3,6 +3,7 @@
 //! records what was asked and the distance reached, a single closed box needs no
 //! count, and bad values are refused with exit 2 and a message naming the flag.
 
+use primdecomp_testkit::shapes::{cuboid, join, obj_text};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -244,4 +245,40 @@ fn bad_values_are_refused() {
         assert!(out.contains(want), "{args:?}: {out}");
         assert!(!d.join("x.json").exists(), "{args:?} wrote an output");
     }
+}
+
+/// A closed crate with eight blocks inside: the greedy level of 9 keeps the crate's
+/// box alone (the blocks lie inside it and post-processing removes them, §3.4), so
+/// the summary must say why the user got 1 of 9 and what keeps parts apart; a cut
+/// to a tolerance (which stands its distance) needs no such note.
+#[test]
+fn a_greedy_level_far_under_its_count_says_why() {
+    let d = dir("nested");
+    let mut parts = vec![cuboid([0.0; 3], [10.0; 3])];
+    for i in 0..8 {
+        let lo = [
+            1.0 + 4.0 * (i & 1) as f64,
+            1.0 + 4.0 * (i >> 1 & 1) as f64,
+            1.0 + 4.0 * (i >> 2) as f64,
+        ];
+        parts.push(cuboid(lo, lo.map(|x| x + 2.0)));
+    }
+    std::fs::write(d.join("crate.obj"), obj_text(&join(&parts))).unwrap();
+    let (code, out) = run(&d, &["decompose", "crate.obj", "-n", "9", "-o", "g.json"]);
+    assert_eq!(code, Some(0), "{out}");
+    assert!(out.contains("target     9 → 1 primitives (1 box)"), "{out}");
+    assert!(out.contains("lay inside those kept"), "{out}");
+    let (code, out) = run(
+        &d,
+        &[
+            "decompose",
+            "crate.obj",
+            "--tolerance",
+            "2%",
+            "-o",
+            "t.json",
+        ],
+    );
+    assert_eq!(code, Some(0), "{out}");
+    assert!(!out.contains("lay inside those kept"), "{out}");
 }

@@ -93,6 +93,7 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
         volumes,
         pairs,
         tree: params.uses_cut(),
+        hulls_over: tree_hulls_over(mesh, params, largest),
     };
     let mut merged = clock.stage(Stage::Merge, "merge", |go_on, laps| {
         merge(&ev, input, first, &targets, &mut stats, go_on, laps)
@@ -111,7 +112,7 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
     // counts and bytes spent on what post-processing keeps.
     if let (true, Some(tris)) = (cut, &tris) {
         merged.snapshots = clock.stage(Stage::Postprocess, "cut", |_, _| {
-            let tree = merge_tree(&ev, &merged, &face_q);
+            let tree = merge_tree(&ev, &mut merged, &face_q);
             crate::recut::snapshots(&ev, &tree, &requests, tris, params, &post)
         })?;
     }
@@ -141,19 +142,36 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
 }
 
 /// The tree of `merged`'s merges (leaves: its first snapshot's clusters, or the faces
-/// when every merge was logged).
-fn merge_tree(ev: &Evaluator, merged: &MergeOutput, face_q: &[Sym3]) -> crate::cut::MergeTree {
+/// when every merge was logged), with the points the loop kept for its nodes.
+fn merge_tree(ev: &Evaluator, merged: &mut MergeOutput, face_q: &[Sym3]) -> crate::cut::MergeTree {
     let faces = ev.mesh.face_count();
+    let hulls = std::mem::take(&mut merged.hulls);
     if merged.log_from_faces {
         // Every merge is known: the leaves are single faces, so any cluster can be
         // taken apart down to its faces.
         let singles: Vec<Vec<u32>> = (0..faces as u32).map(|f| vec![f]).collect();
-        crate::cut::MergeTree::build(&singles, face_q, &merged.log, faces)
+        let tree = crate::cut::MergeTree::build(&singles, face_q, &merged.log, faces);
+        // The loop's first snapshot is not the leaves here.
+        let merges = crate::merge::TreeHulls {
+            leaves: Vec::new(),
+            ..hulls
+        };
+        tree.with_hulls(merges, 0)
     } else {
         let leaves = &merged.snapshots[0];
         let log = &merged.log[merged.log_at_first..];
-        crate::cut::MergeTree::build(&leaves.members, &leaves.q, log, faces)
+        let tree = crate::cut::MergeTree::build(&leaves.members, &leaves.q, log, faces);
+        tree.with_hulls(hulls, merged.log_at_first)
     }
+}
+
+/// The face count over which the merge loop keeps a cluster's points for the merge
+/// tree: a cut's mean node's (the cut finds the hulls of larger nodes, `cut::hulls`).
+/// `None` (found from the faces) without a cut, or where the welded vertices (whose
+/// ids the loop keeps) may stand apart from the faces' own: a tolerance weld.
+fn tree_hulls_over(mesh: &Mesh, params: &Params, largest: usize) -> Option<usize> {
+    let welded_in_place = !matches!(params.dedup, crate::params::Dedup::Tolerance(t) if t > 0.0);
+    (params.uses_cut() && welded_in_place).then(|| mesh.face_count() / largest.max(1))
 }
 
 /// Each target's request of the cut, its tolerance in the mesh's units.
@@ -320,6 +338,9 @@ struct MergeInput {
     pairs: Vec<(u32, u32)>,
     /// Every merge is logged for the merge tree (`Params::cut`).
     tree: bool,
+    /// The clusters' points are kept for the tree's nodes of more faces
+    /// (`merge::TreeHulls`).
+    hulls_over: Option<usize>,
 }
 
 /// How the merge loop starts, chosen once per run from the input and settings.
@@ -395,6 +416,7 @@ fn merge(
         volumes,
         pairs,
         tree,
+        hulls_over,
     } = input;
     let last = *targets.last().expect("validated: one target or more");
     let total = ev.mesh.face_count().saturating_sub(last).max(1) as f64;
@@ -455,11 +477,16 @@ fn merge(
     let rest = clusters.live.saturating_sub(last) as f64;
     let phase2 = |f: f64| go_on((done + f * rest) / total);
     let mut out = if tree {
-        crate::merge::run_for_tree(ev, clusters, &targets[early.len()..], &phase2)
+        crate::merge::run_for_tree(ev, clusters, &targets[early.len()..], hulls_over, &phase2)
     } else {
         crate::merge::run(ev, clusters, &targets[early.len()..], &phase2)
     };
     // The components' merges come first in the global order.
+    let before = tree_log.len() as u32;
+    out.hulls
+        .merges
+        .iter_mut()
+        .for_each(|(at, _)| *at += before);
     out.log.splice(0..0, tree_log);
     out.log_from_faces = from_faces;
     out.snapshots.splice(0..0, early);

@@ -43,6 +43,13 @@ fn transitive_tolerance_weld_keeps_every_face_enclosed() {
             ..Default::default()
         };
         assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
+        // The merge tree's cut too, whose nodes' points must be the faces' own, not
+        // the welded ones the merge loop priced them by (docs/decisions/0052).
+        let cut = Params {
+            cut: true,
+            ..params
+        };
+        assert_valid(&mesh, &decompose(&mesh, &cut).unwrap(), &cut);
     }
 }
 

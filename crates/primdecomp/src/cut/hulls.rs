@@ -29,6 +29,12 @@ pub(crate) struct NodeSets {
     pub boundary: Vec<u32>,
 }
 
+/// A node's sets as [`NodeHulls::of`] finds them.
+pub(crate) struct Sets<'s> {
+    pub hull: &'s [u32],
+    pub boundary: &'s [u32],
+}
+
 /// The sets of every node with more than `small` faces (at least [`SMALL`]), and
 /// where each face sits in the tree's order (to tell whether a face is in a node).
 pub(crate) struct NodeHulls<'a> {
@@ -145,9 +151,10 @@ impl<'a> NodeHulls<'a> {
         i < node.start || i >= node.end
     }
 
-    /// Node `n`'s sets: stored, or found from its faces into `s`.
-    pub(crate) fn of<'s>(&'s self, n: u32, s: &'s mut HullScratch) -> &'s NodeSets {
-        match self.stored.get(&n) {
+    /// Node `n`'s sets: stored, or found from its faces into `s`; its hull the one
+    /// the merge loop kept, where it kept one.
+    pub(crate) fn of<'s>(&'s self, n: u32, s: &'s mut HullScratch) -> Sets<'s> {
+        let sets = match self.stored.get(&n) {
             Some(sets) => sets,
             None => {
                 let mut own = std::mem::take(&mut s.own);
@@ -155,6 +162,10 @@ impl<'a> NodeHulls<'a> {
                 s.own = own;
                 &s.own
             }
+        };
+        Sets {
+            hull: self.tree.hulls.get(&n).unwrap_or(&sets.hull),
+            boundary: &sets.boundary,
         }
     }
 
@@ -183,38 +194,56 @@ impl<'a> NodeHulls<'a> {
         all
     }
 
-    /// Node `n`'s sets from its children's (`None`: a child's found from its faces).
+    /// Node `n`'s sets from its children's (`None`: a child's found from its faces);
+    /// no hull where the merge loop kept one.
     fn joined(&self, n: u32, kids: [Option<&NodeSets>; 2], s: &mut HullScratch) -> NodeSets {
+        let kept = self.tree.hulls.contains_key(&n);
         let mut own = NodeSets::default();
         let (mut kid_ids, mut kid_faces) = (Vec::new(), Vec::new());
         for (c, sets) in self.tree.nodes[n as usize].children.into_iter().zip(kids) {
             let sets = match sets {
                 Some(sets) => sets,
+                None if kept => {
+                    self.gather_boundary(c, s, &mut own);
+                    &own
+                }
                 None => {
                     self.gather(c, s, &mut own);
                     &own
                 }
             };
-            kid_ids.extend_from_slice(&sets.hull);
+            if !kept {
+                kid_ids.extend_from_slice(self.tree.hulls.get(&c).unwrap_or(&sets.hull));
+            }
             kid_faces.extend_from_slice(&sets.boundary);
         }
         (s.ids, s.faces) = (kid_ids, kid_faces);
         let mut out = NodeSets::default();
-        self.reduce(s, &mut out.hull);
+        if !kept {
+            self.reduce(s, &mut out.hull);
+        }
         s.faces.sort_unstable();
         out.boundary = self.on_boundary(n, &s.faces);
         out
     }
 
-    /// Node `n`'s sets from its faces.
+    /// Node `n`'s sets from its faces (no hull where the merge loop kept one).
     fn gather(&self, n: u32, s: &mut HullScratch, out: &mut NodeSets) {
-        s.ids.clear();
-        for &f in self.tree.faces(n) {
-            s.ids.extend_from_slice(self.mesh.face(f as usize));
+        out.hull.clear();
+        if !self.tree.hulls.contains_key(&n) {
+            s.ids.clear();
+            for &f in self.tree.faces(n) {
+                s.ids.extend_from_slice(self.mesh.face(f as usize));
+            }
+            s.ids.sort_unstable();
+            s.ids.dedup();
+            self.reduce(s, &mut out.hull);
         }
-        s.ids.sort_unstable();
-        s.ids.dedup();
-        self.reduce(s, &mut out.hull);
+        self.gather_boundary(n, s, out);
+    }
+
+    /// Node `n`'s boundary from its faces.
+    fn gather_boundary(&self, n: u32, s: &mut HullScratch, out: &mut NodeSets) {
         s.faces.clear();
         s.faces.extend_from_slice(self.tree.faces(n));
         s.faces.sort_unstable();

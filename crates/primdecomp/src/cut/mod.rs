@@ -239,7 +239,7 @@ impl<'a> Cutter<'a> {
         let q = &self.tree.nodes[n as usize].q;
         let outside = |g| self.hulls.outside(n, g);
         (self.ev)
-            .fit_on_vertices(faces, &sets.hull, &sets.boundary, outside, q, &mut s.ws)
+            .fit_on_vertices(faces, sets.hull, sets.boundary, outside, q, &mut s.ws)
             .prim
     }
 

@@ -6,6 +6,8 @@
 //! node's primitive (`Evaluator::fit_output` on the range's faces and Q).
 
 use crate::math::Sym3;
+use crate::merge::TreeHulls;
+use std::collections::HashMap;
 
 /// No child: the node is a leaf (a cluster of the fine snapshot).
 const NONE: u32 = u32::MAX;
@@ -29,13 +31,19 @@ impl TreeNode {
 }
 
 /// The forest: nodes in merge order (leaves first), its roots (the clusters alive when
-/// merging stopped, in increasing order of their first leaf) and the faces permuted so
-/// that every node's faces are contiguous.
+/// merging stopped, in increasing order of their first leaf), the faces permuted so
+/// that every node's faces are contiguous, and the hull vertices the merge loop kept
+/// for some nodes ([`MergeTree::with_hulls`]).
 #[derive(Clone, Debug, Default)]
 pub(crate) struct MergeTree {
     pub nodes: Vec<TreeNode>,
     pub roots: Vec<u32>,
     pub order: Vec<u32>,
+    /// Nodes' hull vertices as the merge loop priced them: vertex ids whose positions
+    /// are the faces' own (`merge::TreeHulls`).
+    pub hulls: HashMap<u32, Vec<u32>>,
+    /// The node each merge of the log made ([`NONE`]: it joined no two nodes).
+    made: Vec<u32>,
 }
 
 impl MergeTree {
@@ -64,7 +72,8 @@ impl MergeTree {
         // Union-find over leaves; `top[r]` is the node a set rooted at leaf r is now.
         let mut parent: Vec<u32> = (0..members.len() as u32).collect();
         let mut top: Vec<u32> = parent.clone();
-        for &(a, b) in log {
+        let mut made = vec![NONE; log.len()];
+        for (i, &(a, b)) in log.iter().enumerate() {
             let (la, lb) = (leaf_of[a as usize], leaf_of[b as usize]);
             if la == NONE || lb == NONE {
                 continue;
@@ -73,6 +82,7 @@ impl MergeTree {
             if ra == rb {
                 continue;
             }
+            made[i] = nodes.len() as u32;
             let (na, nb) = (top[ra as usize], top[rb as usize]);
             let q = nodes[na as usize].q.add(&nodes[nb as usize].q);
             nodes.push(TreeNode {
@@ -93,9 +103,29 @@ impl MergeTree {
             nodes,
             roots,
             order: Vec::with_capacity(faces),
+            hulls: HashMap::new(),
+            made,
         };
         tree.lay_out(members);
         tree
+    }
+
+    /// The tree with the hulls the merge loop kept: `hulls.leaves` those of the leaves
+    /// (the clusters of [`Self::build`]'s `members`, in order; empty: none kept), and
+    /// `hulls.merges` those of the merges at their index in the loop's log, whose
+    /// entries from `log_from` on were [`Self::build`]'s `log`.
+    pub(crate) fn with_hulls(mut self, hulls: TreeHulls, log_from: usize) -> Self {
+        let TreeHulls { leaves, merges } = hulls;
+        self.hulls.extend((0..).zip(leaves));
+        for (at, hull) in merges {
+            let i = (at as usize).checked_sub(log_from);
+            match i.and_then(|i| self.made.get(i)) {
+                Some(&n) if n != NONE => self.hulls.insert(n, hull),
+                _ => None,
+            };
+        }
+        self.made = Vec::new();
+        self
     }
 
     /// Assigns each node its range of [`Self::order`], depth-first from each root.

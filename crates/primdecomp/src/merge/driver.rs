@@ -81,6 +81,19 @@ pub struct MergeOutput {
     /// `log` holds every merge from one cluster per face (no spatial parts first):
     /// the merge tree's leaves are the faces.
     pub log_from_faces: bool,
+    /// The points clusters were priced by, kept for the merge tree ([`run_for_tree`]).
+    pub hulls: TreeHulls,
+}
+
+/// The points the loop priced clusters by ([`Evaluator::verts`]: the hull vertices of
+/// their faces, as welded vertex ids), kept for the merge tree so that the cut need not
+/// find its nodes' hulls again (`cut::hulls`, docs/decisions/0052): those of the first
+/// snapshot's clusters, in its order, and of each logged merge's cluster of more than
+/// the asked faces, with its index in `log`.
+#[derive(Clone, Debug, Default)]
+pub struct TreeHulls {
+    pub leaves: Vec<Vec<u32>>,
+    pub merges: Vec<(u32, Vec<u32>)>,
 }
 
 impl MergeOutput {
@@ -214,10 +227,18 @@ pub fn run(ev: &Evaluator, cl: Clusters, targets: &[usize], go_on: GoOn) -> Merg
 
 /// [`run`] for the merge tree (`cut`): the same merges, but each target's snapshot
 /// holds only its clusters' faces and operators — the cut fits the nodes it keeps, so
-/// fitting the leaves and the root here would be thrown away.
-pub fn run_for_tree(ev: &Evaluator, cl: Clusters, targets: &[usize], go_on: GoOn) -> MergeOutput {
+/// fitting the leaves and the root here would be thrown away. With `hulls_over`, the
+/// points of the first snapshot's clusters and of merged clusters of more faces are
+/// kept too ([`TreeHulls`]).
+pub fn run_for_tree(
+    ev: &Evaluator,
+    cl: Clusters,
+    targets: &[usize],
+    hulls_over: Option<usize>,
+    go_on: GoOn,
+) -> MergeOutput {
     with_pricer(ev, |p| {
-        merge_loop::<RadixHeap>(ev, cl, targets, go_on, p, Scope::Tree).0
+        merge_loop::<RadixHeap>(ev, cl, targets, go_on, p, Scope::Tree(hulls_over)).0
     })
 }
 
@@ -251,8 +272,9 @@ fn run_counted<Q: Queue>(
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum Scope {
     Whole,
-    /// The whole input for the merge tree: snapshots without fits ([`run_for_tree`]).
-    Tree,
+    /// The whole input for the merge tree: snapshots without fits, and the clusters'
+    /// points kept above this many faces ([`run_for_tree`]).
+    Tree(Option<usize>),
     Part,
     /// A part that also records its merges (`MergeOutput::trace`).
     Traced,
@@ -261,7 +283,7 @@ pub(super) enum Scope {
 impl Scope {
     /// The loop runs on the whole input: it logs its merges and bridges components.
     fn whole(self) -> bool {
-        matches!(self, Scope::Whole | Scope::Tree)
+        matches!(self, Scope::Whole | Scope::Tree(_))
     }
 }
 
@@ -335,6 +357,9 @@ fn merge_loop<Q: Queue>(
                     out.stopped = true;
                     return (out, cl);
                 };
+                if next == 0 {
+                    keep_leaf_hulls(ev, &cl, scope, &mut out.hulls);
+                }
                 out.snapshots.push(snap);
                 next += 1;
             }
@@ -386,6 +411,7 @@ fn merge_loop<Q: Queue>(
         out.merges += 1;
         if scope.whole() {
             out.log.push((c.a, c.b));
+            keep_hull(ev, &cl, root, scope, out.log.len() - 1, &mut out.hulls);
         }
         if !defer(ev, &mut cl, root) {
             let nbrs = cl.resolved_neighbors(root);
@@ -412,10 +438,42 @@ fn merge_loop<Q: Queue>(
             out.stopped = true;
             return (out, cl);
         };
+        if next == 0 {
+            keep_leaf_hulls(ev, &cl, scope, &mut out.hulls);
+        }
         out.snapshots.push(snap);
         next += 1;
     }
     (out, cl)
+}
+
+/// The points of the live clusters, the first snapshot's (the merge tree's leaves),
+/// where `scope` keeps hulls.
+fn keep_leaf_hulls(ev: &Evaluator, cl: &Clusters, scope: Scope, hulls: &mut TreeHulls) {
+    if let Scope::Tree(Some(_)) = scope {
+        hulls.leaves = cl
+            .roots()
+            .iter()
+            .map(|&r| ev.verts(cl, r).to_vec())
+            .collect();
+    }
+}
+
+/// The points of `root`, just merged as `log[at]`, where `scope` keeps hulls of its
+/// size.
+fn keep_hull(
+    ev: &Evaluator,
+    cl: &Clusters,
+    root: u32,
+    scope: Scope,
+    at: usize,
+    hulls: &mut TreeHulls,
+) {
+    if let Scope::Tree(Some(over)) = scope {
+        if cl.face_count[root as usize] as usize > over {
+            hulls.merges.push((at as u32, ev.verts(cl, root).to_vec()));
+        }
+    }
 }
 
 /// Whether a merge is free: coplanar points (a plate) and no added volume (k·V of the
@@ -660,7 +718,7 @@ pub(super) fn snapshot(
     let roots = cl.roots();
     match scope {
         Scope::Whole => {}
-        Scope::Tree => {
+        Scope::Tree(_) => {
             return Some(Snapshot {
                 target,
                 members: roots.par_iter().map(|&r| cl.faces(r).collect()).collect(),
@@ -707,6 +765,7 @@ pub(super) fn snapshot(
 #[cfg(test)]
 pub(super) mod tests {
     use super::*;
+    use crate::math::{dot, V3};
     use crate::mesh::{adjacency, dedup};
     use crate::pipeline::evaluator;
     use crate::{quadric, Params, Reprice};
@@ -879,7 +938,7 @@ pub(super) mod tests {
         with_demo(|ev, fresh| {
             let targets = [400, 40, 1];
             let whole = run(ev, fresh(), &targets, &|_| true);
-            let tree = run_for_tree(ev, fresh(), &targets, &|_| true);
+            let tree = run_for_tree(ev, fresh(), &targets, None, &|_| true);
             assert_eq!(whole.log, tree.log);
             assert_eq!(whole.log_at_first, tree.log_at_first);
             assert_eq!(whole.snapshots.len(), tree.snapshots.len());
@@ -888,6 +947,57 @@ pub(super) mod tests {
                 assert_eq!(w.members, t.members);
                 assert_eq!(w.q, t.q);
             }
+        });
+    }
+
+    /// The tree's loop keeps, for the merge tree, the points it priced its clusters by:
+    /// the leaves' (the first snapshot's clusters) and every later merge's of more than
+    /// the asked faces, none else. Each reaches as far in every direction as its node's
+    /// faces' own vertices: the same convex hull, which the cut fits nodes on
+    /// (docs/decisions/0052).
+    #[test]
+    fn the_trees_loop_keeps_its_clusters_hulls() {
+        with_demo(|ev, fresh| {
+            let over = 8;
+            let out = run_for_tree(ev, fresh(), &[400, 1], Some(over), &|_| true);
+            let leaves = &out.snapshots[0];
+            assert_eq!(out.hulls.leaves.len(), leaves.members.len());
+            let log = &out.log[out.log_at_first..];
+            let faces = ev.mesh.face_count();
+            let tree = crate::cut::MergeTree::build(&leaves.members, &leaves.q, log, faces);
+            let tree = tree.with_hulls(out.hulls.clone(), out.log_at_first);
+            let tol = 1e-9 * ev.mesh.diagonal();
+            let reach = |ids: &mut dyn Iterator<Item = u32>, d: V3| {
+                ids.map(|v| dot(d, ev.mesh.pos(v)))
+                    .fold(f64::NEG_INFINITY, f64::max)
+            };
+            let mut inner = 0;
+            for n in 0..tree.nodes.len() as u32 {
+                let node = tree.nodes[n as usize];
+                let wanted = node.is_leaf() || tree.faces(n).len() > over;
+                assert_eq!(tree.hulls.contains_key(&n), wanted, "node {n}");
+                let Some(hull) = tree.hulls.get(&n) else {
+                    continue;
+                };
+                inner += usize::from(!node.is_leaf());
+                let own = || {
+                    tree.faces(n)
+                        .iter()
+                        .flat_map(|&f| ev.mesh.face(f as usize))
+                        .copied()
+                };
+                for k in 0..64 {
+                    let (t, z) = (k as f64 * 2.399_963, 1.0 - (k as f64 + 0.5) / 32.0);
+                    let r = (1.0 - z * z).sqrt();
+                    let d = [r * t.cos(), r * t.sin(), z];
+                    let (a, b) = (reach(&mut hull.iter().copied(), d), reach(&mut own(), d));
+                    assert!(
+                        (a - b).abs() <= tol,
+                        "node {n}, direction {d:?}: {a} vs {b}"
+                    );
+                }
+            }
+            assert!(inner > 10, "{inner} merges kept: the test is vacuous");
         });
     }
 

@@ -4,7 +4,7 @@
 
 use super::cluster::Clusters;
 use super::heap::Candidate;
-use super::rim::{clamp_to_points, rim_reach, FaceAdjacency, Rim, Surroundings};
+use super::rim::{clamp_to_points, rim_penalty, FaceAdjacency, Rim, Surroundings};
 use crate::math::hull::{hull_vertices, HullWorkspace};
 use crate::math::Sym3;
 use crate::math::{dot, V3};
@@ -375,7 +375,8 @@ impl<'a> Evaluator<'a> {
         let hull = Cloud { x, y, z };
         thorough_frames(&hull, q, &mut ws.fit, &mut ws.frames);
         let rims = &ws.rims;
-        let penalty = |p: &Primitive| self.rim_weight * rim_reach(p, rims);
+        let w = self.rim_weight;
+        let penalty = |p: &Primitive, cost, limit| rim_penalty(p, rims, w, cost, limit);
         let mut best: Option<(f64, [V3; 3])> = None;
         for &axes in &ws.frames {
             let bar = best.map_or(f64::INFINITY, |(b, _)| b * (1.0 - frame::MARGIN));

@@ -98,15 +98,26 @@ pub fn clamp_to_points(rims: &mut [Rim], x: &[f64], y: &[f64], z: &[f64]) {
     }
 }
 
-/// Σ len·(h(d) − offset)² over the rims, h the primitive's support function: zero when
-/// the primitive stays behind every rim plane.
-pub fn rim_reach(prim: &Primitive, rims: &[Rim]) -> f64 {
-    rims.iter()
-        .map(|r| {
-            let gap = (prim.support(r.d) - r.offset).max(0.0);
-            r.len * gap * gap
-        })
-        .sum()
+/// [`rim_penalty`]'s whole sum, unweighted.
+#[cfg(test)]
+fn rim_reach(prim: &Primitive, rims: &[Rim]) -> f64 {
+    rim_penalty(prim, rims, 1.0, 0.0, f64::INFINITY)
+}
+
+/// `weight` × Σ len·(h(d) − offset)² over the rims, h the primitive's support
+/// function (zero when the primitive stays behind every rim plane); or, once `cost`
+/// plus `weight` × the part summed reaches `limit`, `weight` × that part: the whole
+/// sum, of terms ≥ 0, is no less (a [`crate::primitive::fit::Penalty`]).
+pub fn rim_penalty(prim: &Primitive, rims: &[Rim], weight: f64, cost: f64, limit: f64) -> f64 {
+    let mut sum = 0.0;
+    for r in rims {
+        let gap = (prim.support(r.d) - r.offset).max(0.0);
+        sum += r.len * gap * gap;
+        if cost + weight * sum >= limit {
+            break;
+        }
+    }
+    weight * sum
 }
 
 /// The faces around one cluster and how to tell its rims: the input with its welded
@@ -385,5 +396,90 @@ mod tests {
         let mut out = vec![];
         s.rims(&[1], &mut out);
         assert!(out.is_empty());
+    }
+
+    /// A penalty that stops once its offer cannot win changes no fit: over random
+    /// clouds, rims and bars, every frame's fit and score with `rim_penalty` stopping
+    /// early are those with its whole sum, and a stopped sum is at most the whole and
+    /// reaches its limit.
+    #[test]
+    fn a_penalty_stopped_short_chooses_as_the_whole_one() {
+        use crate::primitive::fit::{fit_frame_priced, FitConfig, FrameSearch};
+        use crate::primitive::{Cloud, FitScratch};
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(26);
+        let cfg = FitConfig {
+            weights: [1.0, 1.0, 1.0, 1.05, 2.1, 1.4],
+            enabled: [true; 6],
+            min_half: 1e-6,
+            frames: FrameSearch::Degenerate,
+        };
+        let unit = |rng: &mut rand_chacha::ChaCha8Rng| loop {
+            let v = [0, 1, 2].map(|_| rng.gen_range(-1.0..1.0));
+            if let Some(u) = crate::math::normalize(v).filter(|_| crate::math::norm(v) > 0.1) {
+                break u;
+            }
+        };
+        let (stopped, mut s) = (std::cell::Cell::new(0), FitScratch::default());
+        for _ in 0..300 {
+            let n = rng.gen_range(4..40);
+            let h: V3 = [0, 1, 2].map(|_| rng.gen_range(0.01..1.0));
+            let pts: Vec<V3> = (0..n).map(|_| h.map(|h| rng.gen_range(-h..h))).collect();
+            let (x, y, z): (Vec<f64>, Vec<f64>, Vec<f64>) = (
+                pts.iter().map(|p| p[0]).collect(),
+                pts.iter().map(|p| p[1]).collect(),
+                pts.iter().map(|p| p[2]).collect(),
+            );
+            let cloud = Cloud {
+                x: &x,
+                y: &y,
+                z: &z,
+            };
+            let rims: Vec<Rim> = (0..rng.gen_range(0..30))
+                .map(|_| {
+                    let d = unit(&mut rng);
+                    let reach = (0..n).map(|i| dot(d, pts[i])).fold(f64::MIN, f64::max);
+                    Rim {
+                        d,
+                        offset: reach - rng.gen_range(0.0..0.3),
+                        len: rng.gen_range(0.01..1.0),
+                    }
+                })
+                .collect();
+            let w = [0.1, 1.0, 30.0][rng.gen_range(0..3)];
+            let whole =
+                |p: &Primitive, _: f64, _: f64| rim_penalty(p, &rims, w, 0.0, f64::INFINITY);
+            let short = |p: &Primitive, cost: f64, limit: f64| {
+                let got = rim_penalty(p, &rims, w, cost, limit);
+                let all = whole(p, cost, limit);
+                assert!(got <= all && (got == all || cost + got >= limit));
+                stopped.set(stopped.get() + usize::from(got < all));
+                got
+            };
+            let a = unit(&mut rng);
+            let b = crate::math::normalize(crate::math::cross(a, unit(&mut rng))).expect("apart");
+            let axes = [a, b, crate::math::cross(a, b)];
+            let free = fit_frame_priced(&cloud, axes, &cfg, &mut s, &whole, f64::INFINITY);
+            let (_, score) = free.expect("no bar");
+            for bar in [
+                f64::INFINITY,
+                score * 1.5,
+                score * 1.0001,
+                score,
+                score * 0.9,
+            ] {
+                let a = fit_frame_priced(&cloud, axes, &cfg, &mut s, &whole, bar);
+                let b = fit_frame_priced(&cloud, axes, &cfg, &mut s, &short, bar);
+                let key = |f: Option<(crate::primitive::fit::Fit, f64)>| {
+                    f.map(|(f, score)| format!("{:?} {} {score}", f.prim, f.cost))
+                };
+                assert_eq!(key(a), key(b), "bar {bar}");
+            }
+        }
+        let stopped = stopped.get();
+        assert!(
+            stopped > 100,
+            "only {stopped} sums stopped short: the test is vacuous"
+        );
     }
 }

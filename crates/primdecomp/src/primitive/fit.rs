@@ -245,6 +245,11 @@ fn fit_in_frame(
     }
 }
 
+/// A primitive's penalty ([`fit_frame_priced`]), ≥ 0, asked with the primitive's k·V
+/// and the score it must stay under: it may stop at a part of its sum once k·V plus
+/// that part reaches the score (the whole, no less, cannot win either).
+pub type Penalty<'a> = &'a dyn Fn(&Primitive, f64, f64) -> f64;
+
 /// The enabled kind in the frame `axes` with the least k·V + `penalty(primitive)`
 /// (`penalty` ≥ 0, so the kinds' lower bounds on k·V still prune), with that score;
 /// `None` unless the score is below `bar`. One projection of the points serves every
@@ -254,7 +259,7 @@ pub fn fit_frame_priced(
     axes: [V3; 3],
     cfg: &FitConfig,
     s: &mut FitScratch,
-    penalty: &dyn Fn(&Primitive) -> f64,
+    penalty: Penalty,
     bar: f64,
 ) -> Option<(Fit, f64)> {
     let mut best = Candidate::new(cfg, Some(penalty));
@@ -512,13 +517,13 @@ struct Candidate<'a> {
     fit: Option<Fit>,
     bar: f64,
     /// Added to each offer's k·V when comparing ([`fit_frame_priced`]); `None` = 0.
-    penalty: Option<&'a dyn Fn(&Primitive) -> f64>,
+    penalty: Option<Penalty<'a>>,
     /// The best offer's k·V plus its penalty.
     score: f64,
 }
 
 impl<'a> Candidate<'a> {
-    fn new(cfg: &'a FitConfig, penalty: Option<&'a dyn Fn(&Primitive) -> f64>) -> Self {
+    fn new(cfg: &'a FitConfig, penalty: Option<Penalty<'a>>) -> Self {
         Candidate {
             cfg,
             fit: None,
@@ -547,7 +552,20 @@ impl<'a> Candidate<'a> {
         if self.fit.is_some() && cost >= self.score {
             return;
         }
-        let score = cost + self.penalty.map_or(0.0, |p| p(&prim));
+        let score = match self.penalty {
+            None => cost,
+            Some(p) => {
+                // A priced offer at or over the bar never leaves `fit_frame_priced`,
+                // which keeps a best under it only; dropping it leaves the best under
+                // the bar, and `beats`, as they were. Its penalty, and one over the best
+                // so far, may stop short: it cannot win.
+                let score = cost + p(&prim, cost, self.score.min(self.bar));
+                if score >= self.bar {
+                    return;
+                }
+                score
+            }
+        };
         if self.fit.is_none() || score < self.score {
             self.fit = Some(Fit { prim, volume, cost });
             self.score = score;
@@ -777,14 +795,15 @@ mod tests {
             };
             let s = &mut FitScratch::default();
             let plain = fit_frame(&cloud, axes, &cfg, s);
-            let (zero, score) = fit_frame_priced(&cloud, axes, &cfg, s, &|_| 0.0, f64::INFINITY)
-                .expect("an unbounded bar");
+            let (zero, score) =
+                fit_frame_priced(&cloud, axes, &cfg, s, &|_, _, _| 0.0, f64::INFINITY)
+                    .expect("an unbounded bar");
             assert_eq!((zero.prim, zero.cost), (plain.prim, plain.cost));
             assert_eq!(score, plain.cost);
             // The plain winner's kind priced out: the winner is another kind, the best
             // of the rest by k·V.
             let winner = plain.prim.kind();
-            let away = |p: &Primitive| if p.kind() == winner { 1e30 } else { 0.0 };
+            let away = |p: &Primitive, _, _| if p.kind() == winner { 1e30 } else { 0.0 };
             let (other, _) = fit_frame_priced(&cloud, axes, &cfg, s, &away, f64::INFINITY)
                 .expect("an unbounded bar");
             assert_ne!(other.prim.kind(), winner);
@@ -793,7 +812,7 @@ mod tests {
                 ..cfg
             };
             assert_eq!(other.cost, fit_frame(&cloud, axes, &rest, s).cost);
-            assert!(fit_frame_priced(&cloud, axes, &cfg, s, &|_| 0.0, plain.cost).is_none());
+            assert!(fit_frame_priced(&cloud, axes, &cfg, s, &|_, _, _| 0.0, plain.cost).is_none());
         }
     }
 

@@ -14,7 +14,9 @@
 mod contain;
 
 use arbitrary::{Result, Unstructured};
-use primdecomp::{decompose, to_json, Dedup, Error, Mesh, Params, Partitions, Reprice};
+use primdecomp::{
+    decompose, to_json, Dedup, Error, Mesh, Params, Partitions, Reprice, Tolerance,
+};
 
 /// A number that is usually one of `typical` and sometimes any f64 at all.
 fn pick(u: &mut Unstructured, typical: &[f64]) -> Result<f64> {
@@ -106,7 +108,40 @@ fn params(u: &mut Unstructured) -> Result<Params> {
     // plates moved onto their faces' outer side, and centred
     // (docs/decisions/0026-output-plates-lie-flush.md).
     p.flush_plates = !u.arbitrary::<bool>()?;
+    // After that (an exhausted input reads 0: the greedy levels, as grown): the merge
+    // tree's cut (issue 26, docs/decisions/0032 to 0052), with counts alone, with a
+    // tolerance (one, or one per target), a byte target, both, or with no target at
+    // all (the default run: the cut at 2% of the diagonal, capped at 1024).
+    match u.int_in_range(0..=5)? {
+        0 => {}
+        1 => p.cut = true,
+        2 => {
+            let n = if u.arbitrary::<bool>()? { p.targets.len() } else { 1 };
+            p.tolerance = (0..n).map(|_| tolerance(u)).collect::<Result<_>>()?;
+        }
+        3 => p.max_bytes = vec![bytes(u)?],
+        4 => {
+            p.tolerance = vec![tolerance(u)?];
+            p.max_bytes = vec![bytes(u)?];
+        }
+        _ => p.targets.clear(),
+    }
     Ok(p)
+}
+
+/// A tolerance: a fraction of the diagonal or a distance in the input's units, usually
+/// a typical one (0 and non-finite values are refused by `Params::validate`).
+fn tolerance(u: &mut Unstructured) -> Result<Tolerance> {
+    let v = pick(u, &[0.02, 0.005, 0.3, 1e-9, 1e3, 0.0])?;
+    Ok(match u.arbitrary::<bool>()? {
+        true => Tolerance::Diagonal(v),
+        false => Tolerance::Units(v),
+    })
+}
+
+/// A byte target (the paper's Table 2), usually a typical one (0 is refused).
+fn bytes(u: &mut Unstructured) -> Result<usize> {
+    Ok(pick(u, &[40.0, 200.0, 1000.0, 1e5, 0.0])? as usize)
 }
 
 /// Up to 32 vertices on a small integer grid (many coincide, are collinear or

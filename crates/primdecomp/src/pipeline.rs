@@ -148,20 +148,18 @@ fn merge_tree(ev: &Evaluator, merged: &mut MergeOutput, face_q: &[Sym3]) -> crat
     let hulls = std::mem::take(&mut merged.hulls);
     if merged.log_from_faces {
         // Every merge is known: the leaves are single faces, so any cluster can be
-        // taken apart down to its faces.
+        // taken apart down to its faces (the loop's first snapshot is not the leaves).
         let singles: Vec<Vec<u32>> = (0..faces as u32).map(|f| vec![f]).collect();
-        let tree = crate::cut::MergeTree::build(&singles, face_q, &merged.log, faces);
-        // The loop's first snapshot is not the leaves here.
         let merges = crate::merge::TreeHulls {
             leaves: Vec::new(),
             ..hulls
         };
-        tree.with_hulls(merges, 0)
+        crate::cut::MergeTree::build(&singles, face_q, &merged.log, merges, faces)
     } else {
         let leaves = &merged.snapshots[0];
         let log = &merged.log[merged.log_at_first..];
-        let tree = crate::cut::MergeTree::build(&leaves.members, &leaves.q, log, faces);
-        tree.with_hulls(hulls, merged.log_at_first)
+        let hulls = hulls.after(merged.log_at_first);
+        crate::cut::MergeTree::build(&leaves.members, &leaves.q, log, hulls, faces)
     }
 }
 

@@ -295,7 +295,8 @@ mod tests {
         let members: Vec<Vec<u32>> = (0..faces).map(|f| vec![f]).collect();
         let q = vec![Sym3::ZERO; members.len()];
         let log: Vec<(u32, u32)> = (1..faces).map(|f| (f / 2, f)).collect();
-        let tree = MergeTree::build(&members, &q, &log, faces as usize);
+        let hulls = crate::merge::TreeHulls::default();
+        let tree = MergeTree::build(&members, &q, &log, hulls, faces as usize);
         let pairs = face_pairs(&mesh.face_offsets, &mesh.face_indices);
         let (offsets, adj) = neighbour_lists(mesh.face_count(), &pairs);
         let adj = FaceAdjacency {

@@ -33,7 +33,7 @@ impl TreeNode {
 /// The forest: nodes in merge order (leaves first), its roots (the clusters alive when
 /// merging stopped, in increasing order of their first leaf), the faces permuted so
 /// that every node's faces are contiguous, and the hull vertices the merge loop kept
-/// for some nodes ([`MergeTree::with_hulls`]).
+/// for some nodes.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct MergeTree {
     pub nodes: Vec<TreeNode>,
@@ -42,18 +42,18 @@ pub(crate) struct MergeTree {
     /// Nodes' hull vertices as the merge loop priced them: vertex ids whose positions
     /// are the faces' own (`merge::TreeHulls`).
     pub hulls: HashMap<u32, Vec<u32>>,
-    /// The node each merge of the log made ([`NONE`]: it joined no two nodes).
-    made: Vec<u32>,
 }
 
 impl MergeTree {
     /// The forest whose leaves are the clusters `members` (with operators `q`) and whose
     /// merges are `log`, in order: each a pair of faces, one in each merged cluster (the
-    /// merge loop names clusters by a face of theirs). `faces` is the input's face count.
+    /// merge loop names clusters by a face of theirs), with the `hulls` the loop kept
+    /// (its merges' indices into `log`). `faces` is the input's face count.
     pub(crate) fn build(
         members: &[Vec<u32>],
         q: &[Sym3],
         log: &[(u32, u32)],
+        hulls: TreeHulls,
         faces: usize,
     ) -> Self {
         let mut leaf_of = vec![NONE; faces];
@@ -72,8 +72,12 @@ impl MergeTree {
         // Union-find over leaves; `top[r]` is the node a set rooted at leaf r is now.
         let mut parent: Vec<u32> = (0..members.len() as u32).collect();
         let mut top: Vec<u32> = parent.clone();
-        let mut made = vec![NONE; log.len()];
+        let TreeHulls { leaves, merges } = hulls;
+        let mut kept: HashMap<u32, Vec<u32>> = (0..).zip(leaves).collect();
+        let mut merges = merges.into_iter().peekable();
         for (i, &(a, b)) in log.iter().enumerate() {
+            // A kept hull whose merge made no node (it joined no two) is dropped.
+            let hull = merges.next_if(|(at, _)| *at as usize == i).map(|(_, h)| h);
             let (la, lb) = (leaf_of[a as usize], leaf_of[b as usize]);
             if la == NONE || lb == NONE {
                 continue;
@@ -82,7 +86,9 @@ impl MergeTree {
             if ra == rb {
                 continue;
             }
-            made[i] = nodes.len() as u32;
+            if let Some(hull) = hull {
+                kept.insert(nodes.len() as u32, hull);
+            }
             let (na, nb) = (top[ra as usize], top[rb as usize]);
             let q = nodes[na as usize].q.add(&nodes[nb as usize].q);
             nodes.push(TreeNode {
@@ -103,29 +109,10 @@ impl MergeTree {
             nodes,
             roots,
             order: Vec::with_capacity(faces),
-            hulls: HashMap::new(),
-            made,
+            hulls: kept,
         };
         tree.lay_out(members);
         tree
-    }
-
-    /// The tree with the hulls the merge loop kept: `hulls.leaves` those of the leaves
-    /// (the clusters of [`Self::build`]'s `members`, in order; empty: none kept), and
-    /// `hulls.merges` those of the merges at their index in the loop's log, whose
-    /// entries from `log_from` on were [`Self::build`]'s `log`.
-    pub(crate) fn with_hulls(mut self, hulls: TreeHulls, log_from: usize) -> Self {
-        let TreeHulls { leaves, merges } = hulls;
-        self.hulls.extend((0..).zip(leaves));
-        for (at, hull) in merges {
-            let i = (at as usize).checked_sub(log_from);
-            match i.and_then(|i| self.made.get(i)) {
-                Some(&n) if n != NONE => self.hulls.insert(n, hull),
-                _ => None,
-            };
-        }
-        self.made = Vec::new();
-        self
     }
 
     /// Assigns each node its range of [`Self::order`], depth-first from each root.
@@ -182,7 +169,13 @@ mod tests {
     fn merges_make_nested_ranges_and_summed_operators() {
         let members = vec![vec![0, 1], vec![2], vec![4, 3], vec![5]];
         let qs = [q(1.0), q(2.0), q(4.0), q(8.0)];
-        let t = MergeTree::build(&members, &qs, &[(2, 3), (0, 2), (4, 2)], 6);
+        let t = MergeTree::build(
+            &members,
+            &qs,
+            &[(2, 3), (0, 2), (4, 2)],
+            TreeHulls::default(),
+            6,
+        );
         assert_eq!(t.nodes.len(), 6, "two merges; the third joins one cluster");
         assert_eq!(t.roots, vec![5, 3]);
         let mut all: Vec<u32> = t.faces(5).to_vec();

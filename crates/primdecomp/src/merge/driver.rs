@@ -96,6 +96,19 @@ pub struct TreeHulls {
     pub merges: Vec<(u32, Vec<u32>)>,
 }
 
+impl TreeHulls {
+    /// Those of the merges from `log[first]` on, their indices counted from there.
+    pub fn after(self, first: usize) -> TreeHulls {
+        let merges = self.merges.into_iter();
+        TreeHulls {
+            merges: merges
+                .filter_map(|(at, h)| Some((at.checked_sub(first as u32)?, h)))
+                .collect(),
+            ..self
+        }
+    }
+}
+
 impl MergeOutput {
     /// The output of a loop told to stop before its first target.
     pub(crate) fn stopped() -> MergeOutput {
@@ -964,8 +977,8 @@ pub(super) mod tests {
             assert_eq!(out.hulls.leaves.len(), leaves.members.len());
             let log = &out.log[out.log_at_first..];
             let faces = ev.mesh.face_count();
-            let tree = crate::cut::MergeTree::build(&leaves.members, &leaves.q, log, faces);
-            let tree = tree.with_hulls(out.hulls.clone(), out.log_at_first);
+            let hulls = out.hulls.clone().after(out.log_at_first);
+            let tree = crate::cut::MergeTree::build(&leaves.members, &leaves.q, log, hulls, faces);
             let tol = 1e-9 * ev.mesh.diagonal();
             let reach = |ids: &mut dyn Iterator<Item = u32>, d: V3| {
                 ids.map(|v| dot(d, ev.mesh.pos(v)))

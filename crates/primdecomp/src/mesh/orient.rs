@@ -9,7 +9,7 @@
 //! one by what rays from its faces see (`visibility`, docs/decisions/0027), and by its signed
 //! volume only when they cannot tell.
 
-use super::visibility::{self, RayGrid};
+use super::visibility::{self, RayTree};
 use super::Mesh;
 use crate::math::{cross, dot, sub, V3};
 use std::collections::VecDeque;
@@ -43,7 +43,7 @@ pub fn face_signs_of_lists(mesh: &Mesh, welded: &[u32], deg: &[u32], adj: &[u32]
     let mut sign = vec![0i8; n];
     let mut queue = VecDeque::new();
     let mut members = Vec::new();
-    let mut grid: Option<RayGrid> = None;
+    let mut grid: Option<RayTree> = None;
     for start in 0..n {
         if sign[start] != 0 {
             continue;
@@ -70,7 +70,7 @@ pub fn face_signs_of_lists(mesh: &Mesh, welded: &[u32], deg: &[u32], adj: &[u32]
         }
         let quota = visibility::SAMPLED_FACES * members.len() / n.max(1);
         let seen = if open && quota > 0 {
-            let grid = grid.get_or_insert_with(|| RayGrid::build(mesh, visibility::CELLS));
+            let grid = grid.get_or_insert_with(|| RayTree::build(mesh));
             visibility::vote(grid, &members, &sign, quota)
         } else {
             None

@@ -37,23 +37,29 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
         merge_order(&params.targets)
     };
     // Weld overlapping vertices so seams between parts become adjacency (§3.4).
-    let (welded, distinct) = clock.stage(Stage::Dedup, "dedup", |_, _| {
-        dedup::weld(mesh, params.dedup)
-    })?;
+    let (welded, distinct) = clock
+        .stage(Stage::Dedup, "dedup", |go_on, _| {
+            dedup::weld_checked(mesh, params.dedup, go_on)
+        })?
+        .ok_or(Error::Cancelled)?;
     // Faces sharing an edge form the merge graph (§3.3).
-    let pairs = clock.stage(Stage::Adjacency, "adjacency", |_, _| {
-        adjacency::face_pairs(&mesh.face_offsets, &welded)
-    })?;
+    let pairs = clock
+        .stage(Stage::Adjacency, "adjacency", |go_on, _| {
+            adjacency::face_pairs_checked(&mesh.face_offsets, &welded, go_on)
+        })?
+        .ok_or(Error::Cancelled)?;
     // One operator per face (§3.1).
-    let q = clock.stage(Stage::Quadrics, "quadrics", |_, _| {
+    let q = clock.stage(Stage::Quadrics, "quadrics", |go_on, _| {
         let mut q = Vec::new();
-        quadric::face_quadrics(mesh, params.tangent_eps, &mut q);
+        quadric::face_quadrics_checked(mesh, params.tangent_eps, &mut q, go_on);
         q
     })?;
     // Each face's neighbours and outer side: output fits keep off rims and lie flush.
-    let surface = clock.step(Stage::Seed, "surface", || {
-        Surface::build(mesh, &welded, &pairs, params)
-    })?;
+    let surface = clock
+        .step_checked(Stage::Seed, "surface", |go_on| {
+            Surface::build(mesh, &welded, &pairs, params, go_on)
+        })?
+        .ok_or(Error::Cancelled)?;
     // The input's interior, where merges are priced by the air they add (--solid).
     let solid = clock.step(Stage::Seed, "solid", || {
         params
@@ -218,6 +224,18 @@ impl<'p> Clock<'p> {
         }
     }
 
+    /// [`Clock::step`] whose `work` gets a callback that says whether to go on (it
+    /// reports no fraction: the step is part of a stage that reports its own).
+    fn step_checked<T>(
+        &mut self,
+        stage: Stage,
+        name: &str,
+        work: impl FnOnce(GoOn) -> T,
+    ) -> Result<T> {
+        let p = self.progress;
+        self.step(stage, name, || work(&|_| !p.cancelled()))
+    }
+
     /// Reports `stage`'s start unless it has started already; `Cancelled` first if so.
     fn start(&mut self, stage: Stage) -> Result<()> {
         if self.progress.cancelled() {
@@ -303,21 +321,28 @@ struct Surface {
 }
 
 impl Surface {
-    fn build(mesh: &Mesh, welded: &[u32], pairs: &[(u32, u32)], params: &Params) -> Surface {
+    /// `None` when `go_on` said stop.
+    fn build(
+        mesh: &Mesh,
+        welded: &[u32],
+        pairs: &[(u32, u32)],
+        params: &Params,
+        go_on: GoOn,
+    ) -> Option<Surface> {
         if params.rim_weight == 0.0 && !params.flush_plates {
-            return Surface {
+            return Some(Surface {
                 offsets: Vec::new(),
                 adj: Vec::new(),
                 signs: Vec::new(),
-            };
+            });
         }
         let (offsets, adj) = adjacency::neighbour_lists(mesh.face_count(), pairs);
-        let signs = orient::face_signs_of_lists(mesh, welded, &offsets, &adj);
-        Surface {
+        let signs = orient::face_signs_checked(mesh, welded, &offsets, &adj, go_on)?;
+        Some(Surface {
             offsets,
             adj,
             signs,
-        }
+        })
     }
 
     fn adjacency(&self) -> FaceAdjacency<'_> {

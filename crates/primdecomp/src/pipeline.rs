@@ -54,7 +54,8 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
         quadric::face_quadrics_checked(mesh, params.tangent_eps, &mut q, go_on);
         q
     })?;
-    // Each face's neighbours and outer side: output fits keep off rims and lie flush.
+    // Each face's neighbours (the clusters' adjacency too) and outer side: output
+    // fits keep off rims and lie flush.
     let surface = clock
         .step_checked(Stage::Seed, "surface", |go_on| {
             Surface::build(mesh, &welded, &pairs, params, go_on)
@@ -87,8 +88,9 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
         partitions: first.parts(),
         ..Stats::default()
     };
-    // The merge tree's leaves keep their own operators (a cut of the tree).
-    let face_q = if params.uses_cut() {
+    // The merge tree's leaves keep their own operators (a cut of the tree), when its
+    // leaves are faces (after spatial parts they are the first snapshot's clusters).
+    let face_q = if params.uses_cut() && !matches!(first, FirstPhase::Parts { .. }) {
         q.clone()
     } else {
         Vec::new()
@@ -98,6 +100,7 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
         q,
         volumes,
         pairs,
+        lists: (surface.offsets.clone(), surface.adj.clone()),
         tree: params.uses_cut(),
         hulls_over: tree_hulls_over(mesh, params, largest),
     };
@@ -315,9 +318,11 @@ fn merge_order(targets: &[usize]) -> Vec<usize> {
 /// What the output fits need of the faces around each cluster: the faces' neighbour
 /// lists and which side of each is outside (empty when no output fit reads them).
 struct Surface {
-    offsets: Vec<u32>,
-    adj: Vec<u32>,
+    offsets: std::sync::Arc<[u32]>,
+    adj: std::sync::Arc<[u32]>,
     signs: Vec<i8>,
+    /// Whether an output fit reads the surface (else only the clusters do).
+    used: bool,
 }
 
 impl Surface {
@@ -329,26 +334,27 @@ impl Surface {
         params: &Params,
         go_on: GoOn,
     ) -> Option<Surface> {
-        if params.rim_weight == 0.0 && !params.flush_plates {
-            return Some(Surface {
-                offsets: Vec::new(),
-                adj: Vec::new(),
-                signs: Vec::new(),
-            });
-        }
         let (offsets, adj) = adjacency::neighbour_lists(mesh.face_count(), pairs);
-        let signs = orient::face_signs_checked(mesh, welded, &offsets, &adj, go_on)?;
+        let used = params.rim_weight != 0.0 || params.flush_plates;
+        let signs = match used {
+            true => orient::face_signs_checked(mesh, welded, &offsets, &adj, go_on)?,
+            false => Vec::new(),
+        };
         Some(Surface {
-            offsets,
-            adj,
+            offsets: offsets.into(),
+            adj: adj.into(),
             signs,
+            used,
         })
     }
 
     fn adjacency(&self) -> FaceAdjacency<'_> {
-        FaceAdjacency {
-            offsets: &self.offsets,
-            adj: &self.adj,
+        match self.used {
+            true => FaceAdjacency {
+                offsets: &self.offsets,
+                adj: &self.adj,
+            },
+            false => FaceAdjacency::default(),
         }
     }
 }
@@ -359,6 +365,8 @@ struct MergeInput {
     q: Vec<Sym3>,
     volumes: Vec<f64>,
     pairs: Vec<(u32, u32)>,
+    /// The pairs as neighbour lists, shared with the surface.
+    lists: partition::Lists,
     /// Every merge is logged for the merge tree (`Params::cut`).
     tree: bool,
     /// The clusters' points are kept for the tree's nodes of more faces
@@ -438,6 +446,7 @@ fn merge(
         q,
         volumes,
         pairs,
+        lists,
         tree,
         hulls_over,
     } = input;
@@ -448,7 +457,7 @@ fn merge(
     let mut tree_log = Vec::new();
     let from_faces = !matches!(first, FirstPhase::Parts { .. });
     let (clusters, early) = match first {
-        FirstPhase::Faces => (Some(Clusters::new(q, volumes, &pairs)), Vec::new()),
+        FirstPhase::Faces => (Some(Clusters::with_lists(q, volumes, lists)), Vec::new()),
         FirstPhase::Parts { parts, target } => {
             let p1 = laps.time("partitions", || {
                 partition::merge_parts(ev, &q, &volumes, &pairs, target, parts, &merged_so_far)
@@ -459,7 +468,9 @@ fn merge(
                 return MergeOutput::stopped();
             }
             // Phase 2 starts from one cluster per group (serial, linear in the faces).
-            let clusters = laps.time("regroup", || partition::clusters(p1, q, volumes, &pairs));
+            // The pairs are done with: phase 2 reads the neighbour lists.
+            drop(pairs);
+            let clusters = laps.time("regroup", || partition::clusters(p1, q, volumes, lists));
             (Some(clusters), Vec::new())
         }
         FirstPhase::Components(comps) => {
@@ -484,7 +495,7 @@ fn merge(
                 (None, early)
             } else {
                 // The global loop goes on to the targets below the component count.
-                (Some(partition::clusters(p1, q, volumes, &pairs)), early)
+                (Some(partition::clusters(p1, q, volumes, lists)), early)
             }
         }
     };

@@ -27,6 +27,9 @@ use crate::mesh::Mesh;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 
+/// The input's adjacency as shared CSR neighbour lists (offsets, neighbours).
+pub type Lists = (std::sync::Arc<[u32]>, std::sync::Arc<[u32]>);
+
 /// Phase 1 stops at about this many clusters per unit of the largest target (F2 =
 /// 16 × N, never fewer than the target); the choice against 8× is measured in
 /// docs/results/partitions.md.
@@ -350,9 +353,10 @@ fn merge_one(
 /// Phase 2's starting clusters: one per group of phase 1 (named by its lowest face),
 /// with the group's operator, priced volume and hull-reduced points, and neighbours =
 /// the groups adjacent to it through `pairs`; the merge clock starts at 0 as for
-/// single faces. `q` and `volume` are the per-face arrays (reused as storage).
-pub fn clusters(p1: Phase1, q: Vec<Sym3>, volume: Vec<f64>, pairs: &[(u32, u32)]) -> Clusters {
-    let mut cl = Clusters::new(q, volume, pairs);
+/// single faces. `q` and `volume` are the per-face arrays (reused as storage),
+/// `lists` the input's adjacency as neighbour lists (shared).
+pub fn clusters(p1: Phase1, q: Vec<Sym3>, volume: Vec<f64>, lists: Lists) -> Clusters {
+    let mut cl = Clusters::with_lists(q, volume, lists);
     let mut unresolved = Vec::with_capacity(p1.groups());
     for mut g in p1.parts {
         let mut lists = std::mem::take(&mut g.neighbors).into_iter();

@@ -470,7 +470,13 @@ fn merge(
             // Phase 2 starts from one cluster per group (serial, linear in the faces).
             // The pairs are done with: phase 2 reads the neighbour lists.
             drop(pairs);
-            let clusters = laps.time("regroup", || partition::clusters(p1, q, volumes, lists));
+            let so_far = stats.merges;
+            let clusters = laps.time("regroup", || {
+                partition::clusters(p1, q, volumes, lists, &|_| merged_so_far(so_far))
+            });
+            let Some(clusters) = clusters else {
+                return MergeOutput::stopped();
+            };
             (Some(clusters), Vec::new())
         }
         FirstPhase::Components(comps) => {
@@ -495,7 +501,11 @@ fn merge(
                 (None, early)
             } else {
                 // The global loop goes on to the targets below the component count.
-                (Some(partition::clusters(p1, q, volumes, lists)), early)
+                let so_far = stats.merges;
+                match partition::clusters(p1, q, volumes, lists, &|_| merged_so_far(so_far)) {
+                    Some(cl) => (Some(cl), early),
+                    None => return MergeOutput::stopped(),
+                }
             }
         }
     };

@@ -8,28 +8,40 @@ use super::Mesh;
 use crate::params::Dedup;
 use crate::progress::GoOn;
 use rayon::prelude::*;
+use std::borrow::Cow;
 
 /// Face indices with duplicates welded, and the number of distinct vertices in use.
 #[cfg(any(test, feature = "test-internals"))]
 pub fn weld(mesh: &Mesh, mode: Dedup) -> (Vec<u32>, usize) {
-    weld_checked(mesh, mode, &|_| true).unwrap_or_default()
+    weld_checked(mesh, mode, &|_| true).map_or_else(Default::default, |(f, d)| (f.into_owned(), d))
 }
 
 /// [`weld`] that reports the fraction done to `go_on` (exact welding, by blocks)
-/// and stops (`None`) when it says so.
-pub fn weld_checked(mesh: &Mesh, mode: Dedup, go_on: GoOn) -> Option<(Vec<u32>, usize)> {
-    let remap = match mode {
-        Dedup::Off => (0..mesh.vertex_count() as u32).collect(),
+/// and stops (`None`) when it says so. Where no vertex moves (no duplicates, or
+/// welding off) the welded indices are the mesh's own, borrowed: no copy of 12
+/// bytes a face.
+pub fn weld_checked<'m>(
+    mesh: &'m Mesh,
+    mode: Dedup,
+    go_on: GoOn,
+) -> Option<(Cow<'m, [u32]>, usize)> {
+    let remap: Vec<u32> = match mode {
+        Dedup::Off => Vec::new(),
         Dedup::Exact => exact_remap(mesh, go_on)?,
         Dedup::Tolerance(t) if t > 0.0 => tolerance_remap(mesh, t),
         Dedup::Tolerance(_) => exact_remap(mesh, go_on)?,
     };
-    let faces: Vec<u32> = mesh
-        .face_indices
-        .par_iter()
-        .with_min_len(1 << 14)
-        .map(|&v| remap[v as usize])
-        .collect();
+    let moved = (remap.par_iter().enumerate()).any(|(v, &r)| r as usize != v);
+    let faces: Cow<'m, [u32]> = match moved {
+        true => Cow::Owned(
+            mesh.face_indices
+                .par_iter()
+                .with_min_len(1 << 14)
+                .map(|&v| remap[v as usize])
+                .collect(),
+        ),
+        false => Cow::Borrowed(&mesh.face_indices),
+    };
     let mut used = vec![false; mesh.vertex_count()];
     faces.iter().for_each(|&v| used[v as usize] = true);
     let distinct = used.iter().filter(|&&u| u).count();

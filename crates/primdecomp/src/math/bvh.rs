@@ -13,7 +13,7 @@ use super::{add, cross, dot, norm2, scale, sub, V3};
 use rayon::prelude::*;
 
 /// Items per leaf, at most, of [`Bvh::build`]'s hierarchies.
-const LEAF: usize = 4;
+pub const LEAF: usize = 4;
 
 #[derive(Clone, Copy, Debug)]
 struct Node {

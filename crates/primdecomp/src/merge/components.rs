@@ -222,7 +222,9 @@ mod tests {
             let rest = &targets[split.len()..];
             if !rest.is_empty() {
                 let (o, a) = crate::mesh::adjacency::neighbour_lists(q.len(), pairs);
-                let cl = partition::clusters(p1, q.to_vec(), vols.to_vec(), (o.into(), a.into()));
+                let lists = (o.into(), a.into());
+                let cl = partition::clusters(p1, q.to_vec(), vols.to_vec(), lists, &|_| true)
+                    .expect("not stopped");
                 split.extend(run(ev, cl, rest, &|_| true).snapshots);
             }
             assert_eq!(global.snapshots.len(), split.len());

@@ -355,10 +355,21 @@ fn merge_one(
 /// the groups adjacent to it through `pairs`; the merge clock starts at 0 as for
 /// single faces. `q` and `volume` are the per-face arrays (reused as storage),
 /// `lists` the input's adjacency as neighbour lists (shared).
-pub fn clusters(p1: Phase1, q: Vec<Sym3>, volume: Vec<f64>, lists: Lists) -> Clusters {
+///
+/// `go_on` is asked between parts (reporting no progress); `None` when it says stop.
+pub fn clusters(
+    p1: Phase1,
+    q: Vec<Sym3>,
+    volume: Vec<f64>,
+    lists: Lists,
+    go_on: crate::progress::GoOn,
+) -> Option<Clusters> {
     let mut cl = Clusters::with_lists(q, volume, lists);
     let mut unresolved = Vec::with_capacity(p1.groups());
     for mut g in p1.parts {
+        if !go_on(0.0) {
+            return None;
+        }
         let mut lists = std::mem::take(&mut g.neighbors).into_iter();
         for (i, verts) in g.verts.into_iter().enumerate() {
             let faces = &g.faces[g.offsets[i] as usize..g.offsets[i + 1] as usize];
@@ -383,11 +394,14 @@ pub fn clusters(p1: Phase1, q: Vec<Sym3>, volume: Vec<f64>, lists: Lists) -> Clu
     }
     // Seeding reads every root's neighbour list: resolve the spatial parts' lists to
     // groups, once every group is merged.
-    for r in unresolved {
+    for (i, r) in unresolved.into_iter().enumerate() {
+        if i % 4096 == 0 && !go_on(0.0) {
+            return None;
+        }
         cl.resolved_neighbors(r);
     }
     cl.reset_clock();
-    cl
+    Some(cl)
 }
 
 #[cfg(test)]

@@ -49,6 +49,9 @@ struct Run {
     peak: f64,
     primitives: usize,
     enclosed: Option<f64>,
+    /// Why the run failed (its first line on stderr), if it did: an input refused
+    /// for the memory available is a result too.
+    failed: Option<String>,
 }
 
 fn env_list(name: &str, default: &str) -> Vec<String> {
@@ -167,7 +170,14 @@ fn main() {
         if rung != "dragon" && !keep {
             let _ = std::fs::remove_file(&path);
         }
+        // The tables so far after every rung but the last: a long ladder stopped
+        // early keeps what it measured.
+        if rung != rungs.last().expect("a rung") {
+            println!("\n## After {rung}");
+            report(&table, meshopt);
+        }
     }
+    println!("\n## The ladder");
     report(&table, meshopt);
     if !answers.is_empty() {
         println!("\n| rung | mode | cancelled runs | longest wait, cancel to return (s) |");
@@ -243,7 +253,14 @@ fn cli_run(bin: &Path, input: &Path, mode: &str, threads: Option<&str>, samples:
     let start = Instant::now();
     let o = cmd.arg(input).output().expect("run primdecomp");
     let wall = start.elapsed().as_secs_f64();
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    if !o.status.success() {
+        let why = String::from_utf8_lossy(&o.stderr);
+        return Run {
+            wall,
+            failed: Some(why.lines().next().unwrap_or("failed").to_string()),
+            ..Run::default()
+        };
+    }
     let text = String::from_utf8_lossy(&o.stdout);
     let mut run = Run {
         wall,
@@ -364,6 +381,10 @@ fn report(table: &[(String, u64, String, String, Run)], meshopt: Option<f64>) {
     println!("\n| rung | faces | mode | threads | wall s | µs/face | peak MiB | B/face | primitives | enclosed |");
     println!("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|");
     for (rung, faces, mode, t, r) in table {
+        if let Some(why) = &r.failed {
+            println!("| {rung} | {faces} | {mode} | {t} | failed: {why} | | | | | |");
+            continue;
+        }
         println!(
             "| {rung} | {faces} | {mode} | {t} | {:.2} | {:.2} | {:.0} | {:.0} | {} | {} |",
             r.wall,
@@ -454,7 +475,10 @@ fn growth(table: &[(String, u64, String, String, Run)]) {
         names.join(" | ")
     );
     println!("|---|---|---|---:|{}", "---:|".repeat(names.len()));
-    for (rung, faces, mode, t, r) in table.iter().filter(|x| x.0 != "dragon") {
+    for (rung, faces, mode, t, r) in table
+        .iter()
+        .filter(|x| x.0 != "dragon" && x.4.failed.is_none())
+    {
         let Some(&(bf, b)) = base.get(&(mode.clone(), t.clone())) else {
             continue;
         };

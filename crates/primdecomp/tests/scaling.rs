@@ -59,8 +59,11 @@ fn cpu_seconds() -> f64 {
     ts.tv_sec as f64 + 1e-9 * ts.tv_nsec as f64
 }
 
+/// The stage running, the CPU seconds when it started, and each stage's before it.
+type Marks = (Option<Stage>, f64, Vec<(Stage, f64)>);
+
 /// CPU seconds per stage, read as each stage starts.
-struct StageClock(Mutex<(Option<Stage>, f64, Vec<(Stage, f64)>)>);
+struct StageClock(Mutex<Marks>);
 
 impl Progress for StageClock {
     fn update(&self, stage: Stage, _: f64) {

@@ -69,12 +69,10 @@ pub fn subdivided_ply(
             .map(|(p, q)| primdecomp::math::norm(primdecomp::math::sub(q, p)))
             .into_iter()
             .fold(0.0, f64::max);
-        let mut id = first_inner + f as u64 * inner;
-        for (i, j) in inner_points(s) {
+        for (id, (i, j)) in (first_inner + f as u64 * inner..).zip(inner_points(s)) {
             let (u, v) = (f64::from(i) / f64::from(s), f64::from(j) / f64::from(s));
             let p = std::array::from_fn(|k| a[k] + u * (b[k] - a[k]) + v * (c[k] - a[k]));
             point(&mut w, displaced(p, len / f64::from(s), seed, id))?;
-            id += 1;
         }
     }
     let edge_point = |x: u32, y: u32, k: u32| -> u64 {

@@ -502,7 +502,12 @@ mod tests {
             crate::merge::driver::tests::with_input(&mesh, &p, |ev, q, vols, pairs| {
                 let p1 = merge_parts(ev, q, vols, pairs, 4, 4, &|_| true);
                 (
-                    clusters(p1, q.to_vec(), vols.to_vec(), pairs),
+                    {
+                        let (o, a) = crate::mesh::adjacency::neighbour_lists(q.len(), pairs);
+                        let lists = (o.into(), a.into());
+                        clusters(p1, q.to_vec(), vols.to_vec(), lists, &|_| true)
+                            .expect("not stopped")
+                    },
                     pairs.to_vec(),
                 )
             });

@@ -6,10 +6,10 @@
 //! `--timings`, once to 2,000 primitives (`-n 2000`) and once by default (every
 //! primitive within 2%). Per rung and mode: every stage's seconds and microseconds
 //! per face, the peak resident memory of each stage and of the run, in MiB and bytes
-//! per input face; then each stage's time per face against the dragon's (the
-//! linearity the ladder is for). With the dragon, meshoptimizer's simplifier to
-//! 2,000 triangles is timed in the same run and our two modes are given as
-//! multiples of it.
+//! per input face, and its CPU seconds; then each stage's CPU time per face against
+//! the dragon's (the linearity the ladder is for; CPU time is what other jobs on a
+//! shared machine cannot add to). The dragon against meshoptimizer's simplifier in
+//! one run is the `scale` benchmark's.
 //!
 //! Run: `cargo bench -p primdecomp-cli --bench ladder` (needs
 //! `../shared/datasets/corpus`). Settings, by environment:
@@ -96,7 +96,6 @@ fn main() {
     let source = primdecomp::load(&dragon).expect("the dragon loads");
     println!("machine: {}", uptime());
     let mut table: Vec<(String, u64, String, String, Run)> = Vec::new();
-    let mut meshopt = None;
     for rung in &rungs {
         let (path, faces) = match rung.as_str() {
             "dragon" => (dragon.clone(), source.face_count() as u64),
@@ -125,9 +124,6 @@ fn main() {
             }
             other => panic!("unknown rung {other}: dragon, x1, x2, x3 or city"),
         };
-        if rung == "dragon" && modes.iter().any(|m| m == "n2000") {
-            meshopt = Some(meshopt_least(&source, runs.max(3)));
-        }
         for mode in &modes {
             for t in threads
                 .iter()
@@ -174,11 +170,11 @@ fn main() {
         // early keeps what it measured.
         if rung != rungs.last().expect("a rung") {
             println!("\n## After {rung}");
-            report(&table, meshopt);
+            report(&table);
         }
     }
     println!("\n## The ladder");
-    report(&table, meshopt);
+    report(&table);
     if !answers.is_empty() {
         println!("\n| rung | mode | cancelled runs | longest wait, cancel to return (s) |");
         println!("|---|---|---:|---:|");
@@ -335,31 +331,6 @@ fn find_number(v: &serde_json::Value, key: &str) -> Option<f64> {
     }
 }
 
-/// The least seconds of meshopt's simplifier taking `m` to `TARGET` triangles.
-fn meshopt_least(m: &primdecomp::Mesh, runs: usize) -> f64 {
-    let pos: Vec<[f32; 3]> = (0..m.vertex_count() as u32)
-        .map(|v| m.pos(v).map(|c| c as f32))
-        .collect();
-    let idx: Vec<u32> = (0..m.face_count())
-        .flat_map(|f| m.face(f).to_vec())
-        .collect();
-    (0..runs)
-        .map(|_| {
-            let start = Instant::now();
-            let out = meshopt::simplify_decoder(
-                &idx,
-                &pos,
-                3 * TARGET,
-                1.0,
-                meshopt::SimplifyOptions::None,
-                None,
-            );
-            std::hint::black_box(out);
-            start.elapsed().as_secs_f64()
-        })
-        .fold(f64::INFINITY, f64::min)
-}
-
 fn uptime() -> String {
     Command::new("uptime")
         .output()
@@ -368,16 +339,9 @@ fn uptime() -> String {
 }
 
 /// The markdown tables: per cell, time and memory; per stage, µs per face and its
-/// ratio to the dragon's; the thread speed-ups; the dragon against meshopt.
-fn report(table: &[(String, u64, String, String, Run)], meshopt: Option<f64>) {
-    let mut names: Vec<String> = Vec::new();
-    for (.., r) in table {
-        for (n, _) in &r.stages {
-            if !names.contains(n) {
-                names.push(n.clone());
-            }
-        }
-    }
+/// ratio to the dragon's; the thread speed-ups.
+fn report(table: &[(String, u64, String, String, Run)]) {
+    let names = names_of(table, |r| &r.stages);
     println!("\n| rung | faces | mode | threads | wall s | µs/face | peak MiB | B/face | primitives | enclosed |");
     println!("|---|---:|---|---:|---:|---:|---:|---:|---:|---:|");
     for (rung, faces, mode, t, r) in table {
@@ -409,14 +373,7 @@ fn report(table: &[(String, u64, String, String, Run)], meshopt: Option<f64>) {
         println!("| {rung} | {mode} | {t} | {} |", cells.join(" | "));
     }
     println!("\nPeak memory per stage, bytes per face:\n");
-    let mut mem_names: Vec<String> = Vec::new();
-    for (.., r) in table {
-        for (n, _) in &r.memory {
-            if !mem_names.contains(n) {
-                mem_names.push(n.clone());
-            }
-        }
-    }
+    let mem_names = names_of(table, |r| &r.memory);
     println!("| rung | mode | threads | {} |", mem_names.join(" | "));
     println!("|---|---|---|{}", "---:|".repeat(mem_names.len()));
     for (rung, faces, mode, t, r) in table {
@@ -432,35 +389,12 @@ fn report(table: &[(String, u64, String, String, Run)], meshopt: Option<f64>) {
     cpu_table(table);
     growth(table);
     speedups(table);
-    if let Some(m) = meshopt {
-        let least = |mode: &str| {
-            table
-                .iter()
-                .filter(|(rung, _, md, ..)| rung == "dragon" && md == mode)
-                .map(|(.., r)| r.wall)
-                .fold(f64::INFINITY, f64::min)
-        };
-        println!("\nmeshopt simplify, dragon to {TARGET} triangles: {m:.3} s (least of 3 or more)");
-        for mode in ["n2000", "default"] {
-            let t = least(mode);
-            if t.is_finite() {
-                println!("dragon {mode}: {t:.2} s = {:.1}× meshopt", t / m);
-            }
-        }
-    }
 }
 
 /// Each stage's CPU time per face at every rung over the dragon's (same mode and
 /// threads), and the whole run's.
 fn growth(table: &[(String, u64, String, String, Run)]) {
-    let mut names: Vec<String> = Vec::new();
-    for (.., r) in table {
-        for (n, _) in &r.cpu {
-            if !names.contains(n) {
-                names.push(n.clone());
-            }
-        }
-    }
+    let names = names_of(table, |r| &r.cpu);
     let base: BTreeMap<(String, String), (u64, &Run)> = table
         .iter()
         .filter(|(rung, ..)| rung == "dragon")
@@ -502,16 +436,25 @@ fn growth(table: &[(String, u64, String, String, Run)]) {
     }
 }
 
-/// CPU seconds per stage (µs per face in brackets).
-fn cpu_table(table: &[(String, u64, String, String, Run)]) {
+/// The stage names `field` holds over every run of `table`, in order of first use.
+fn names_of(
+    table: &[(String, u64, String, String, Run)],
+    field: impl Fn(&Run) -> &Vec<(String, f64)>,
+) -> Vec<String> {
     let mut names: Vec<String> = Vec::new();
     for (.., r) in table {
-        for (n, _) in &r.cpu {
+        for (n, _) in field(r) {
             if !names.contains(n) {
                 names.push(n.clone());
             }
         }
     }
+    names
+}
+
+/// CPU seconds per stage (µs per face in brackets).
+fn cpu_table(table: &[(String, u64, String, String, Run)]) {
+    let names = names_of(table, |r| &r.cpu);
     println!("\nCPU seconds per stage, every thread (µs per face in brackets):\n");
     println!("| rung | mode | threads | total | {} |", names.join(" | "));
     println!("|---|---|---|---:|{}", "---:|".repeat(names.len()));

@@ -274,6 +274,11 @@ struct DecomposeArgs {
     /// Print nothing but errors.
     #[arg(short, long)]
     quiet: bool,
+    /// Report progress (stage, percent, time left) on stderr even when it is not a
+    /// terminal: a line as each stage starts and every few seconds. On a terminal a bar shows it anyway for
+    /// inputs of 100,000 faces or more (not with --quiet or several inputs at once).
+    #[arg(long)]
+    progress: bool,
     /// Print the per-stage seconds and the peak memory even with --quiet, and write the
     /// seconds into the JSON (`stats.seconds`; without this flag the JSON is
     /// byte-identical across runs).
@@ -989,6 +994,8 @@ fn run_one(
     guard: &Guard,
     beside_others: bool,
 ) -> anyhow::Result<(Decomposition, Vec<PathBuf>)> {
+    // Peaks per stage only for a run alone in the process: the mark is process-wide.
+    let memory = (a.timings && !beside_others).then(|| StageMemory::new("load"));
     let now = Instant::now();
     let mesh = primdecomp::load_with(input, &load_options(a)?)?;
     let load_s = now.elapsed().as_secs_f64();
@@ -1001,15 +1008,14 @@ fn run_one(
         dec.timings.stages.insert(0, ("load".into(), load_s));
         return Ok((dec, written));
     }
-    let bar = progress_bar(mesh.face_count(), a.quiet || beside_others);
+    let shown = Shown::new(&params, mesh.face_count(), a, beside_others);
     let mut dec = primdecomp::decompose_with(&mesh, &params, &|stage: Stage, f: f64| {
-        if let (Some(b), Stage::Merge) = (&bar, stage) {
-            b.set_position((f * 1000.0) as u64);
+        if let Some(m) = &memory {
+            m.enter(stage.name());
         }
+        shown.update(stage, f);
     })?;
-    if let Some(b) = bar {
-        b.finish_and_clear();
-    }
+    shown.finish();
     dec.input.path = Some(input.display().to_string());
     dec.timings.stages.insert(0, ("load".into(), load_s));
     let now = Instant::now();
@@ -1027,6 +1033,7 @@ fn run_one(
         )?);
     }
     let write_s = now.elapsed().as_secs_f64();
+    let memory = memory.map(StageMemory::finish);
     if let Some(png) = &dest.png {
         let label = dest.labels(&[dec.levels[0].target]).swap_remove(0);
         written.push(decompose_png(&dest.json, &label, &dec, input, &mesh, png)?);
@@ -1036,7 +1043,7 @@ fn run_one(
         print_summary(&dec, &mesh, &written);
     }
     if !a.quiet || a.timings {
-        print_timings(&dec, write_s, a.inputs.len() > 1);
+        print_timings(&dec, write_s, a.inputs.len() > 1, memory.as_deref());
     }
     Ok((dec, written))
 }
@@ -1206,16 +1213,89 @@ fn named_after(input: &Path, ext: &str) -> PathBuf {
     PathBuf::from(format!("{stem}.primdecomp.{ext}"))
 }
 
-fn progress_bar(faces: usize, quiet: bool) -> Option<indicatif::ProgressBar> {
-    if quiet || faces < 100_000 {
-        return None;
+/// A run's progress as the user sees it: a bar on a terminal (stage, percent of the
+/// run, time left), lines on stderr every few seconds with `--progress` elsewhere,
+/// or nothing (quiet, several inputs at once, a small input, or stderr not a terminal
+/// without `--progress`).
+struct Shown {
+    eta: primdecomp::Eta,
+    bar: Option<indicatif::ProgressBar>,
+    /// `--progress` off a terminal: when the last line was printed, and its stage.
+    lines: Option<std::sync::Mutex<(Instant, Option<Stage>)>>,
+}
+
+/// Seconds between `--progress` lines off a terminal.
+const PROGRESS_EVERY: f64 = 5.0;
+
+impl Shown {
+    fn new(params: &Params, faces: usize, a: &DecomposeArgs, beside_others: bool) -> Shown {
+        use std::io::IsTerminal;
+        let eta = primdecomp::Eta::new(params);
+        let wanted = !a.quiet && !beside_others && (a.progress || faces >= 100_000);
+        let terminal = std::io::stderr().is_terminal();
+        let bar = (wanted && terminal).then(|| {
+            let b = indicatif::ProgressBar::new(1000);
+            b.set_style(
+                indicatif::ProgressStyle::with_template(
+                    "{msg:<24} {bar:30} {percent:>3}% {prefix}",
+                )
+                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+            );
+            b
+        });
+        let lines = (wanted && !terminal && a.progress)
+            .then(|| std::sync::Mutex::new((Instant::now(), None)));
+        Shown { eta, bar, lines }
     }
-    let b = indicatif::ProgressBar::new(1000);
-    b.set_style(
-        indicatif::ProgressStyle::with_template("merging {bar:40} {percent:>3}% {elapsed_precise}")
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-    );
-    Some(b)
+
+    fn update(&self, stage: Stage, fraction: f64) {
+        if self.bar.is_none() && self.lines.is_none() {
+            return;
+        }
+        let e = self.eta.update(stage, fraction);
+        let left = e
+            .seconds_left
+            .map_or(String::new(), |s| format!("about {} left", duration(s)));
+        if let Some(b) = &self.bar {
+            b.set_message(format!("{} {:.0}%", stage.name(), 100.0 * e.fraction));
+            b.set_prefix(left.clone());
+            b.set_position((e.overall * 1000.0) as u64);
+        }
+        if let Some(last) = &self.lines {
+            // A line as each stage starts, and every few seconds within one.
+            let mut last = last.lock().unwrap_or_else(|e| e.into_inner());
+            if last.1 != Some(stage) || last.0.elapsed().as_secs_f64() >= PROGRESS_EVERY {
+                *last = (Instant::now(), Some(stage));
+                eprintln!(
+                    "progress  {} {:.0}%, run {:.0}%{}",
+                    stage.name(),
+                    100.0 * e.fraction,
+                    100.0 * e.overall,
+                    if left.is_empty() {
+                        left
+                    } else {
+                        format!(", {left}")
+                    }
+                );
+            }
+        }
+    }
+
+    fn finish(self) {
+        if let Some(b) = self.bar {
+            b.finish_and_clear();
+        }
+    }
+}
+
+/// `s` seconds as `1h02m`, `3m05s` or `42s`.
+fn duration(s: f64) -> String {
+    let s = s.round() as u64;
+    match s {
+        0..=59 => format!("{s}s"),
+        60..=3599 => format!("{}m{:02}s", s / 60, s % 60),
+        _ => format!("{}h{:02}m", s / 3600, s % 3600 / 60),
+    }
 }
 
 /// Writes JSON (and OBJ) per level atomically, after checking that none of the files
@@ -1363,8 +1443,14 @@ fn shortfall(l: &primdecomp::Level) -> String {
     }
 }
 
-/// The stage breakdown (load through write) and the process's peak resident memory.
-fn print_timings(dec: &Decomposition, write_s: f64, several: bool) {
+/// The stage breakdown (load through write) and the process's peak resident memory
+/// (with `by_stage`, each stage's own peak, MiB, and the largest of them).
+fn print_timings(
+    dec: &Decomposition,
+    write_s: f64,
+    several: bool,
+    by_stage: Option<&[(String, f64, f64)]>,
+) {
     let stages: Vec<String> = dec
         .timings
         .stages
@@ -1390,7 +1476,20 @@ fn print_timings(dec: &Decomposition, write_s: f64, several: bool) {
         (st.fits_at_once + st.fits_when_popped) as f64 / st.merges.max(1) as f64,
         st.merges_ahead
     );
-    if let Some(kib) = peak_rss_kib() {
+    if let Some(stages) = by_stage.filter(|s| !s.is_empty()) {
+        let peak = stages.iter().map(|s| s.1).fold(0.0, f64::max);
+        let each: Vec<String> = stages
+            .iter()
+            .map(|(n, m, _)| format!("{n} {m:.1}"))
+            .collect();
+        let cpu: Vec<String> = stages
+            .iter()
+            .map(|(n, _, c)| format!("{n} {c:.3}"))
+            .collect();
+        println!("memory    peak resident {peak:.1} MiB");
+        println!("memory    by stage (MiB): {}", each.join(", "));
+        println!("cpu       by stage (s): {}", cpu.join(", "));
+    } else if let Some(kib) = peak_rss_kib() {
         // The process's peak so far: with several inputs, of all of them up to now.
         let whose = if several {
             " (the process's, all inputs so far)"
@@ -1402,6 +1501,68 @@ fn print_timings(dec: &Decomposition, write_s: f64, several: bool) {
             kib as f64 / 1024.0
         );
     }
+}
+
+/// Each stage's peak resident memory (`--timings` on a run alone): as a stage
+/// starts, the kernel's high-water mark is read for the stage before and reset
+/// (Linux `/proc/self/clear_refs`; where that cannot be written, each figure is the
+/// peak so far).
+/// Each stage's CPU seconds (every thread of the process) are read at the same
+/// moments: what other jobs on the machine cannot add to, for comparing stages
+/// between input sizes on a busy machine.
+struct StageMemory(std::sync::Mutex<StageMarks>);
+
+/// The stage running, the process's CPU seconds when it started, and per stage
+/// before it: (name, peak MiB, CPU seconds).
+type StageMarks = (&'static str, f64, Vec<(String, f64, f64)>);
+
+impl StageMemory {
+    fn new(first: &'static str) -> StageMemory {
+        reset_peak_rss();
+        StageMemory(std::sync::Mutex::new((first, cpu_seconds(), Vec::new())))
+    }
+
+    /// `stage` runs now (called often, from any thread).
+    fn enter(&self, stage: &'static str) {
+        let mut s = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        if s.0 != stage {
+            let mib = peak_rss_kib().unwrap_or(0) as f64 / 1024.0;
+            reset_peak_rss();
+            let cpu = cpu_seconds();
+            let before = std::mem::replace(&mut s.0, stage);
+            let spent = cpu - std::mem::replace(&mut s.1, cpu);
+            s.2.push((before.to_string(), mib, spent));
+        }
+    }
+
+    /// The stages' peaks and CPU seconds in order, the last one's (through writing)
+    /// included.
+    fn finish(self) -> Vec<(String, f64, f64)> {
+        self.enter("");
+        let s = self.0.into_inner().unwrap_or_else(|e| e.into_inner());
+        s.2
+    }
+}
+
+/// CPU seconds of this process (every thread) so far; 0 where unknown.
+fn cpu_seconds() -> f64 {
+    #[cfg(unix)]
+    {
+        let mut ts = libc::timespec {
+            tv_sec: 0,
+            tv_nsec: 0,
+        };
+        // SAFETY: `ts` is a valid timespec for the call to fill.
+        if unsafe { libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut ts) } == 0 {
+            return ts.tv_sec as f64 + 1e-9 * ts.tv_nsec as f64;
+        }
+    }
+    0.0
+}
+
+/// Resets the process's peak resident set size to its current one (Linux 4.0+).
+fn reset_peak_rss() {
+    let _ = std::fs::write("/proc/self/clear_refs", "5");
 }
 
 /// Peak resident set size of this process so far (Linux `VmHWM`), if known.

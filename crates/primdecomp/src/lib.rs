@@ -96,7 +96,7 @@ pub use params::{
     Dedup, Params, Partitions, Reprice, Tolerance, DEFAULT_TOLERANCE, MAX_PRIMITIVES,
 };
 pub use primitive::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
-pub use progress::{Progress, Stage};
+pub use progress::{Estimate, Eta, Progress, Stage};
 pub use result::{Decomposition, InputInfo, Level, Shortfall, Stats, Timings};
 
 /// The stages one by one, for the project's own tests and benchmarks (feature

@@ -93,7 +93,7 @@ pub(crate) fn bound(
     s.pieces.push(&plane.corners);
     let mut worst = 0.0f64;
     for &k in &s.slots {
-        let Some(over) = Over::of(&plane, surface.corners(k), grow) else {
+        let Some(over) = Over::of(&plane, &surface.corners(k), grow) else {
             continue;
         };
         s.next.clear();

@@ -52,24 +52,29 @@ impl Triangles {
         // triangle), the hierarchy `Bvh::build` makes.
         let bbox = |i: u32| tri_box(&fan(i).map(|v| mesh.pos(v)));
         let bvh = Bvh::build_by(count, crate::math::bvh::LEAF, &bbox);
-        // The corners' new numbers, by first use in the hierarchy's order.
+        // The corners' new numbers, by first use in the hierarchy's order; then their
+        // table, allocated once at its size (grown by doubling and shrunk, it would
+        // have held up to 2.2 times its size while copied).
         let mut local = vec![u32::MAX; mesh.vertex_count()];
-        let mut verts = Vec::new();
-        let tris = bvh
-            .order()
-            .iter()
+        let mut used = 0u32;
+        let tris: Vec<[u32; 3]> = (bvh.order().iter())
             .map(|&i| {
                 fan(i).map(|v| {
                     let l = &mut local[v as usize];
                     if *l == u32::MAX {
-                        *l = verts.len() as u32;
-                        verts.push(mesh.pos(v));
+                        (*l, used) = (used, used + 1);
                     }
                     *l
                 })
             })
             .collect();
-        verts.shrink_to_fit();
+        let mut verts = vec![[0.0; 3]; used as usize];
+        for (v, &l) in local.iter().enumerate() {
+            if l != u32::MAX {
+                verts[l as usize] = mesh.pos(v as u32);
+            }
+        }
+        drop(local);
         Triangles {
             bvh,
             tris,

@@ -10,22 +10,22 @@ use crate::mesh::Mesh;
 /// The input's surface as triangles (fan-triangulated polygons, re-centred frame)
 /// with a hierarchy over them. The triangles are stored in the hierarchy's order
 /// (`Bvh::order`), so that a leaf's lie side by side; a triangle's index here is its
-/// place in that order. Each triangle is three indices into a table of its corners'
-/// positions, numbered by first use in that order (so a leaf's corners lie side by
-/// side too): 24 bytes a triangle of an input with half as many vertices as faces,
-/// where its corners copied were 72.
-#[derive(Clone, Debug, Default)]
-pub(crate) struct Triangles {
+/// place in that order. Each triangle is its corners' vertex ids in the mesh, whose
+/// positions it reads: 12 bytes a triangle, where a table of the corners in the
+/// hierarchy's order cost 12 more (an input with half as many vertices as faces) and
+/// the corners copied 72.
+#[derive(Clone, Debug)]
+pub(crate) struct Triangles<'m> {
     tris: Vec<[u32; 3]>,
-    verts: Vec<V3>,
+    mesh: &'m Mesh,
     bvh: Bvh,
     /// The mesh's bounding-box diagonal.
     pub diagonal: f64,
 }
 
-impl Triangles {
+impl<'m> Triangles<'m> {
     /// The surface of every face of `mesh`.
-    pub(crate) fn new(mesh: &Mesh) -> Triangles {
+    pub(crate) fn new(mesh: &'m Mesh) -> Triangles<'m> {
         // Each face's fan as vertex indices (the faces themselves when all are
         // triangles), then the corners, in the hierarchy's order.
         let all_triangles = mesh.face_indices.len() == 3 * mesh.face_count();
@@ -52,33 +52,11 @@ impl Triangles {
         // triangle), the hierarchy `Bvh::build` makes.
         let bbox = |i: u32| tri_box(&fan(i).map(|v| mesh.pos(v)));
         let bvh = Bvh::build_by(count, crate::math::bvh::LEAF, &bbox);
-        // The corners' new numbers, by first use in the hierarchy's order; then their
-        // table, allocated once at its size (grown by doubling and shrunk, it would
-        // have held up to 2.2 times its size while copied).
-        let mut local = vec![u32::MAX; mesh.vertex_count()];
-        let mut used = 0u32;
-        let tris: Vec<[u32; 3]> = (bvh.order().iter())
-            .map(|&i| {
-                fan(i).map(|v| {
-                    let l = &mut local[v as usize];
-                    if *l == u32::MAX {
-                        (*l, used) = (used, used + 1);
-                    }
-                    *l
-                })
-            })
-            .collect();
-        let mut verts = vec![[0.0; 3]; used as usize];
-        for (v, &l) in local.iter().enumerate() {
-            if l != u32::MAX {
-                verts[l as usize] = mesh.pos(v as u32);
-            }
-        }
-        drop(local);
+        let tris = bvh.order().iter().map(|&i| fan(i)).collect();
         Triangles {
             bvh,
             tris,
-            verts,
+            mesh,
             diagonal: mesh.diagonal(),
         }
     }
@@ -86,7 +64,7 @@ impl Triangles {
     /// Triangle `k`'s corners (`k` in the hierarchy's order).
     #[inline]
     fn tri(&self, k: u32) -> [V3; 3] {
-        self.tris[k as usize].map(|v| self.verts[v as usize])
+        self.tris[k as usize].map(|v| self.mesh.pos(v))
     }
 
     /// Distance from `p` to the nearest triangle (infinite for an empty surface);

@@ -700,9 +700,10 @@ fn decompose(a: DecomposeArgs) -> anyhow::Result<()> {
                 .into()
         ));
     }
-    if a.obj_detail < 3 {
+    if !(3..=export::MAX_DETAIL).contains(&a.obj_detail) {
         bail!(BadArgs(format!(
-            "--obj-detail must be at least 3, got {}",
+            "--obj-detail must be from 3 to {}, got {}",
+            export::MAX_DETAIL,
             a.obj_detail
         )));
     }
@@ -1699,9 +1700,10 @@ fn view(a: ViewArgs) -> anyhow::Result<()> {
             a.png_size
         )));
     }
-    if a.detail < 3 {
+    if !(3..=primdecomp::export::MAX_DETAIL).contains(&a.detail) {
         bail!(BadArgs(format!(
-            "--detail must be at least 3, got {}",
+            "--detail must be from 3 to {}, got {}",
+            primdecomp::export::MAX_DETAIL,
             a.detail
         )));
     }

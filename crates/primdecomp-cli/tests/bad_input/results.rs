@@ -157,6 +157,9 @@ pub fn cases() -> Vec<Case> {
             let line = out.lines().next().unwrap_or_default();
             format!("exit 0, stdout: `{line}`")
         })),
+        case("export r.json -o o.glb --preview --export-detail 1000", "1,000 spheres previewed at 1,000 segments", |d| write(d, "r.json", result(&vec![SPHERE; 1000].join(","))), r(&["would hold 499002000 vertices", "lower --export-detail"])),
+        case("view r.json --no-input --detail 100000 -o v.html", "100,000 segments around circles", sphere, r(&["--detail must be from 3 to 1024"])),
+        case("decompose m.obj --obj-detail 100000 -o r.json --quiet", "the same for the OBJ", |d| write(d, "m.obj", format!("{TRI}f 1 2 3\n")), r(&["--obj-detail must be from 3 to 1024"])),
         case("decompose m.obj --config c.json -o r.json --quiet", "257 targets in a settings file", |d| {
             write(d, "m.obj", format!("{TRI}f 1 2 3\n"));
             write(d, "c.json", format!("{{\"targets\":[{}]}}", (1..=257).map(|i| i.to_string()).collect::<Vec<_>>().join(",")));

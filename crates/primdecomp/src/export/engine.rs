@@ -266,9 +266,10 @@ pub(crate) fn check_options(opts: &ExportOptions) -> Result<(), String> {
             opts.scale
         ));
     }
-    if opts.detail < 3 {
+    if !(3..=super::obj::MAX_DETAIL).contains(&opts.detail) {
         return Err(format!(
-            "--obj-detail must be at least 3, got {}",
+            "--export-detail must be from 3 to {}, got {}",
+            super::obj::MAX_DETAIL,
             opts.detail
         ));
     }
@@ -279,6 +280,29 @@ pub(crate) fn check_options(opts: &ExportOptions) -> Result<(), String> {
 /// the glTF writer holds about 6.5 KB per primitive (20 KB with `preview`; measured
 /// with 100,000 spheres: 657 MB and 1.98 GB peak), so 65,536 stay within about 1.3 GB.
 pub const MAX_PRIMITIVES: usize = 65_536;
+
+/// The most vertices of tessellated shapes (hulls, and previews) one export writes:
+/// 2²⁴, some hundreds of MB of geometry.
+pub const MAX_VERTICES: usize = 1 << 24;
+
+/// Vertices the export's tessellated shapes will have: the kinds written as hulls
+/// (every kind with a preview), counted once per kind at `detail`.
+fn tessellated_vertices(
+    objects: &[ResultObject],
+    native: [bool; 6],
+    preview: bool,
+    detail: usize,
+) -> usize {
+    let mut per_kind = [None; 6];
+    objects
+        .iter()
+        .flat_map(|o| &o.primitives)
+        .filter(|p| preview || !native[p.kind() as usize])
+        .map(|p| {
+            *per_kind[p.kind() as usize].get_or_insert_with(|| tessellate(p, detail).vertices.len())
+        })
+        .fold(0usize, usize::saturating_add)
+}
 
 /// The objects of a result in the format's frame. With `keep_scale` an object's
 /// frame keeps its own scale (glTF nodes) and `--scale` is baked into the shapes,
@@ -300,8 +324,19 @@ pub fn prepare(
              {MAX_PRIMITIVES}; export a coarser level (a smaller -n)"
         ));
     }
-    let to_format = format_frame(format, opts);
     let native = format.native(opts);
+    // Previews are glTF's alone.
+    let preview = opts.preview && matches!(format, Format::Gltf | Format::Glb);
+    let vertices = tessellated_vertices(objects, native, preview, opts.detail);
+    if vertices > MAX_VERTICES {
+        return Err(format!(
+            "its hulls{} would hold {vertices} vertices at {} segments around circles, more \
+             than the {MAX_VERTICES} an export writes; lower --export-detail",
+            if preview { " and previews" } else { "" },
+            opts.detail
+        ));
+    }
+    let to_format = format_frame(format, opts);
     let reserved: &[&str] = match format {
         Format::Mjcf => &["world"],
         _ => &[],

@@ -29,7 +29,7 @@ pub use json::{
     read_objects, read_primitives, to_json, to_json_objects, to_json_timed, ResultObject,
 };
 pub use names::visible;
-pub use obj::{circle_frame, tessellate, to_obj, Tess, DEFAULT_DETAIL};
+pub use obj::{circle_frame, tessellate, to_obj, Tess, DEFAULT_DETAIL, MAX_DETAIL};
 pub use write::{render, write_export};
 
 /// The largest result, evaluation or settings file the tools read ([`crate::read_regular`]):

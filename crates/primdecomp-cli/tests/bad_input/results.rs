@@ -150,6 +150,7 @@ pub fn cases() -> Vec<Case> {
             write(d, "e.json", r#"{"colliders":[{"collider":"r.json","hausdorff":0.1}]}"#);
         }, r(&["e.json: not an evaluation document"])),
         // Absurd counts and sizes.
+        case("export r.json -o o.glb", "no primitive", |d| write(d, "r.json", result("")), r(&["holds no primitive"])),
         case("export r.json -o o.glb", "65,537 primitives", |d| write(d, "r.json", result(&vec![SPHERE; 65_537].join(","))), r(&["an export takes at most 65536"])),
         case("view r.json --no-input -o v.html", "65,537 primitives to view", |d| write(d, "r.json", result(&vec![SPHERE; 65_537].join(","))), r(&["65537 parts", "more than the 65536 a page shows"])),
         case("view r.json --no-input -o v.html", "20,000 spheres: drawn coarser", |d| write(d, "r.json", result(&vec![SPHERE; 20_000].join(","))), done(|d, out| {

@@ -14,7 +14,7 @@
 //!   ([`super::frame::conservative`]) before it is written, so rounding in the
 //!   consumer cannot cut a face.
 
-use super::frame::{conservative, Frame};
+use super::frame::{conservative, Frame, MIN_AXIS_REL};
 use super::json::ResultObject;
 use super::names::{visible, Names};
 use super::obj::{tessellate, Tess};
@@ -318,6 +318,11 @@ pub fn prepare(
     keep_scale: bool,
 ) -> Result<Vec<Prepared>, String> {
     let total: usize = objects.iter().map(|o| o.primitives.len()).sum();
+    if total == 0 {
+        // glTF has no valid scene without nodes, and a collider file without a
+        // collider is a mistake upstream.
+        return Err("the result holds no primitive: there is nothing to export".into());
+    }
     if total > MAX_PRIMITIVES {
         return Err(format!(
             "the result holds {total} primitives, and an export takes at most \
@@ -372,6 +377,11 @@ pub fn prepare(
             (1, true) => format!("primitive {j} ({})", kind.name()),
             _ => format!("object {i} ({:?}), primitive {j} ({})", o.name, kind.name()),
         };
+        let this = match (objects.len(), o.name.is_empty()) {
+            (1, true) => "the result".to_string(),
+            _ => format!("object {i} ({:?})", o.name),
+        };
+        range::check_frame(&frame, keep_scale, &this)?;
         let mut shapes = Vec::with_capacity(o.primitives.len());
         for (j, p) in o.primitives.iter().enumerate() {
             let q = conservative(p, &inner, offset);
@@ -420,10 +430,15 @@ pub fn shape(p: &Primitive, native: [bool; 6], detail: usize) -> Shape {
             center: s.center,
             radius: s.radius,
         },
-        Primitive::Capsule(c) if c.p0 == c.p1 => Shape::Sphere {
-            center: c.p0,
-            radius: c.radius,
-        },
+        // A capsule whose segment is shorter than MIN_AXIS_REL of its radius (its half
+        // length may round to 0, which MuJoCo and URDF refuse): the sphere around it.
+        Primitive::Capsule(c) if norm(sub(c.p1, c.p0)) <= MIN_AXIS_REL * c.radius => {
+            let (center, _, h) = Shape::axis(c.p0, c.p1);
+            Shape::Sphere {
+                center,
+                radius: c.radius + h,
+            }
+        }
         Primitive::Capsule(c) => Shape::Capsule {
             p0: c.p0,
             p1: c.p1,

@@ -122,6 +122,37 @@ pub fn check_shape(
     Ok(())
 }
 
+/// Refuses an object's frame (written whatever its shapes) that is not finite or
+/// places its origin beyond [`MAX_LENGTH`], or whose written scale (`keep_scale`) is
+/// outside [`MIN_LENGTH`, `MAX_LENGTH`]; `what` names the object.
+pub fn check_frame(frame: &Frame, keep_scale: bool, what: &str) -> Result<(), String> {
+    let far = frame.translation.iter().fold(0.0f64, |m, x| {
+        if x.is_nan() || m.is_nan() {
+            f64::NAN
+        } else {
+            m.max(x.abs())
+        }
+    });
+    if far.is_nan() || far > MAX_LENGTH {
+        return Err(format!(
+            "{what}: its origin lies at {}, beyond the ±{} that the format's 32-bit readers \
+             load; {RESCALE}",
+            show(far),
+            show(MAX_LENGTH)
+        ));
+    }
+    let s = frame.scale;
+    if keep_scale && !(MIN_LENGTH..=MAX_LENGTH).contains(&s) {
+        return Err(format!(
+            "{what}: its scale {} is outside [{}, {}], what 32-bit readers keep; {RESCALE}",
+            show(s),
+            show(MIN_LENGTH),
+            show(MAX_LENGTH)
+        ));
+    }
+    Ok(())
+}
+
 /// Surface area of a hull's polygons.
 pub fn area(t: &Tess) -> f64 {
     t.faces

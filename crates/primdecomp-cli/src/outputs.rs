@@ -98,6 +98,15 @@ impl Guard {
         let mut seen: HashMap<PathBuf, &str> = HashMap::with_capacity(outs.len());
         let written = self.written.lock().unwrap_or_else(|e| e.into_inner());
         for o in outs {
+            // A name the file system cannot hold fails only when written: refuse it now.
+            let name = o.path.file_name().map_or(0, |n| n.len());
+            if name > 255 {
+                return Err(BadArgs(format!(
+                    "{}: the file name is {name} bytes long, more than the 255 a file system \
+                     takes; choose a shorter output path (or rename the input it is named after)",
+                    o.what
+                )));
+            }
             if let Some(id) = FileId::of(&o.path) {
                 if let Some(input) = self.inputs.get(&id) {
                     return Err(BadArgs(format!(

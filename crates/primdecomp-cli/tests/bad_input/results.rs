@@ -278,6 +278,14 @@ pub fn cases() -> Vec<Case> {
             c.show = c.show.replace("LONG", "r…r (250 r)");
             c
         },
+        {
+            let mut c = case("decompose LONG -n 2 -o out/ --quiet", "an input named in 250 bytes: its output's name would be 262", |d| {
+                write(d, &format!("{}.obj", "m".repeat(246)), format!("{TRI}f 1 2 3\n"));
+            }, r(&["the file name is 262 bytes long, more than the 255"]));
+            c.args[1] = format!("{}.obj", "m".repeat(246));
+            c.show = c.show.replace("LONG", "m…m.obj (250 bytes)");
+            c
+        },
         // Control characters reach the terminal escaped.
         {
             let mut c = case("decompose NAME -o r.json --quiet", "a file name with BEL and ESC", |d| write(d, "bell\u{7}\u{1b}[31m.obj", "v 0 0 0\n"), r(&["bell\\u{7}\\u{1b}[31m.obj: the mesh has no polygon faces"]));

@@ -4,7 +4,8 @@
 //! extensions' constraints for glTF, the USD text and `.tscn` grammars as the writers
 //! emit them). Inputs: up to 4 objects with random names (any string, a hostile one
 //! from a list, or a long one), frames and up to 6 primitives each, every number
-//! usually a typical value and sometimes any finite f64 (1e308, 1e-310, …); random
+//! either typical (a multiple of 1/64 within ±512) or any finite f64 (1e308, 1e-310,
+//! …), about half and half; random
 //! options (up axis, scale, detail, physics extensions, previews, URDF capsules) and
 //! a random model and output file name. Invariants:
 //! - no panic;
@@ -45,7 +46,7 @@ const HOSTILE: [&str; 14] = [
     "object0",
 ];
 
-/// A number: usually typical (`Typical`), sometimes any finite f64.
+/// A number: typical (a multiple of 1/64 within ±512) or any finite f64.
 #[derive(Arbitrary, Debug)]
 enum F {
     Typical(i16),

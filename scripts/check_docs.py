@@ -27,8 +27,14 @@ def documents():
     files = sorted((ROOT / "docs").rglob("*.md"))
     files += [ROOT / "README.md", ROOT / "ARCHITECTURE.md"]
     for sub in ("fuzz", "tests", "benches", "crates"):
-        files += sorted(p for p in (ROOT / sub).rglob("README.md") if "target" not in p.parts)
+        files += sorted(p for p in (ROOT / sub).rglob("README.md") if not skipped(p))
     return [f for f in files if f.exists()]
+
+
+def skipped(path):
+    """Build outputs and installed packages: not ours to check."""
+    rel = path.relative_to(ROOT).parts
+    return any(part in ("target", "node_modules") or part.startswith(".") for part in rel)
 
 
 def slug(heading):

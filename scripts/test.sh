@@ -9,6 +9,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+echo "== documents: every relative link resolves, every decision record has its header (scripts/check_docs.py)"
+python3 scripts/check_docs.py
+
 echo "== cargo test --release --workspace"
 cargo test --release --workspace "$@"
 

@@ -9,13 +9,18 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+echo "== documents: every relative link resolves, every decision record has its header (scripts/check_docs.py)"
+python3 scripts/check_docs.py
+
 echo "== cargo test --release --workspace"
 cargo test --release --workspace "$@"
 
 echo "== browser: the viewer page in a real headless Chromium (tests/browser)"
 # `primdecomp view`'s page opened from file:// with the network refused: it must
 # become ready, report the JSON's primitive counts, draw every kind in its colour,
-# switch levels and panes, and show a clicked primitive (tests/browser/view.test.mjs).
+# switch levels and panes, and show a clicked primitive (tests/browser/view.test.mjs);
+# built from hostile file and collider names, it must still start and run no injected
+# script (tests/browser/hostile.test.mjs).
 # Needs the release binary, Debian's chromium, Node and playwright-core (npm ci, from
 # tests/browser/package-lock.json); chromium is installed here with apt-get when
 # missing. Under CI a missing piece fails; elsewhere it is skipped, loudly.
@@ -40,10 +45,10 @@ elif ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
 else
   cargo build --release --quiet -p primdecomp-cli
   (cd tests/browser && npm ci --no-audit --no-fund --loglevel=error)
-  CHROMIUM="$chromium" node --test tests/browser/view.test.mjs
+  CHROMIUM="$chromium" node --test tests/browser/view.test.mjs tests/browser/hostile.test.mjs
 fi
 
-echo "== export consumers (issue 28): MuJoCo, yourdfpy, usd-core, glTF Validator, enclosure per format"
+echo "== export consumers: MuJoCo, yourdfpy, usd-core, glTF Validator, enclosure per format"
 # The engine exports are checked by the real consumers (tests/exports/README.md):
 # Python packages pinned in tests/exports/requirements.txt go into .venv, the Khronos
 # glTF Validator (npm) into tests/exports/node_modules. Installs are skipped when

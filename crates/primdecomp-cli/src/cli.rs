@@ -2,6 +2,7 @@
 //! bar and exit codes (0 ok, 2 bad input or settings, 1 anything else).
 
 use crate::exit::BadArgs;
+use crate::exit::{eprintln, print, println};
 use crate::manifest::{self, Manifest, Stamp};
 use crate::outputs::{check_batch_dir, check_stems, names_dir, Guard, Out};
 use crate::paths::{level_labels, output_path_for};
@@ -502,8 +503,7 @@ fn parse_bytes(b: &str) -> anyhow::Result<usize> {
 
 /// `--config FILE`: JSON (a result's settings or settings alone) or TOML settings.
 fn read_config(path: &Path) -> anyhow::Result<Params> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| BadArgs(format!("{}: cannot read the settings: {e}", path.display())))?;
+    let text = crate::paths::read_result(path)?;
     let toml = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("toml"));
@@ -564,7 +564,12 @@ impl LoadArgs {
 
 /// The memory limit in bytes from `--max-memory`; `None` for no limit.
 fn max_memory(a: &DecomposeArgs) -> anyhow::Result<Option<u64>> {
-    Ok(match a.max_memory.trim() {
+    memory_limit(&a.max_memory)
+}
+
+/// A `--max-memory` value in bytes: a size, `available` or `none` (`None`).
+fn memory_limit(s: &str) -> anyhow::Result<Option<u64>> {
+    Ok(match s.trim() {
         "none" => None,
         "available" => crate::paths::available_memory(),
         s => Some(crate::paths::parse_size(s).ok_or_else(|| {
@@ -700,9 +705,10 @@ fn decompose(a: DecomposeArgs) -> anyhow::Result<()> {
                 .into()
         ));
     }
-    if a.obj_detail < 3 {
+    if !(3..=export::MAX_DETAIL).contains(&a.obj_detail) {
         bail!(BadArgs(format!(
-            "--obj-detail must be at least 3, got {}",
+            "--obj-detail must be from 3 to {}, got {}",
+            export::MAX_DETAIL,
             a.obj_detail
         )));
     }
@@ -811,7 +817,16 @@ fn decompose_batch(
     let todo: Vec<usize> = (0..n)
         .filter(|&i| {
             let input = &a.inputs[i];
-            !(a.resume && manifest.done_before(input, Stamp::of(input), &settings))
+            !(a.resume && {
+                let (expected, could_write) = dests[i].resumable(targets, a.per_object);
+                manifest.done_before(
+                    input,
+                    Stamp::of(input),
+                    &settings,
+                    expected.as_deref(),
+                    &could_write,
+                )
+            })
         })
         .collect();
     if a.resume && !a.quiet {
@@ -942,6 +957,48 @@ impl Dest {
             }
         }
         outs
+    }
+
+    /// What `--resume` may take as this input's outputs (never what a manifest says):
+    /// the files it writes when their names are known before decomposing, else a test
+    /// that a file is one of them (`STEM.primdecomp_nCOUNT.json`, the same for --obj,
+    /// the --png file).
+    #[allow(clippy::type_complexity)]
+    fn resumable(
+        &self,
+        targets: &[Target],
+        per_object: bool,
+    ) -> (Option<Vec<PathBuf>>, Box<dyn Fn(&Path) -> bool + '_>) {
+        // --per-object writes no picture.
+        let png = self.png.as_ref().filter(|_| !per_object);
+        let known: Vec<PathBuf> = self
+            .up_front(targets)
+            .into_iter()
+            .map(|o| o.path)
+            .filter(|p| Some(p) != self.png.as_ref() || png.is_some())
+            .collect();
+        let abs = |p: &Path| std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf());
+        let named = move |p: &Path| {
+            let p = abs(p);
+            std::iter::once(&self.json)
+                .chain(self.obj.as_ref())
+                .any(|base| {
+                    let base = abs(base);
+                    let (Some(stem), Some(name)) = (base.file_stem(), p.file_stem()) else {
+                        return false;
+                    };
+                    let count = name
+                        .to_str()
+                        .and_then(|n| n.strip_prefix(&format!("{}_n", stem.to_string_lossy())));
+                    p.parent() == base.parent()
+                        && p.extension() == base.extension()
+                        && count
+                            .is_some_and(|c| !c.is_empty() && c.bytes().all(|b| b.is_ascii_digit()))
+                })
+                || png.is_some_and(|g| abs(g) == p)
+        };
+        let expected = (!known.is_empty()).then_some(known);
+        (expected, Box::new(named))
     }
 
     /// The files whose names are known before decomposing: all of them unless a
@@ -1075,7 +1132,10 @@ fn run_objects(
             Target::Percent(p) => ObjectTarget::Percent(p),
         })
         .collect();
-    let mut objs = decompose_objects(mesh, params, &wanted)?;
+    let mut objs = decompose_objects(mesh, params, &wanted).map_err(|e| match e {
+        primdecomp::Error::InvalidParams(m) => BadArgs(format!("{}: {m}", input.display())).into(),
+        e => anyhow::Error::from(e),
+    })?;
     objs.input.path = Some(input.display().to_string());
     let n = objs.levels();
     let mut written = Vec::new();
@@ -1768,9 +1828,17 @@ struct ViewArgs {
     /// Most input triangles shown; larger inputs are simplified (meshoptimizer) to this.
     #[arg(long, default_value_t = primdecomp_view::simplify::DISPLAY_TRIANGLES)]
     display_faces: usize,
-    /// Segments around circles in the primitives' shown tessellation.
+    /// Segments around circles in the primitives' shown tessellation (fewer where the
+    /// page would otherwise hold over 2 million triangles of parts).
     #[arg(long, default_value_t = 24)]
     detail: usize,
+    /// Refuse an input mesh (--input, or the result's input.path) whose reading needs
+    /// more memory than this, as decompose's --max-memory: a size like 8G, 'available'
+    /// (the memory available now) or 'none'.
+    #[arg(long, default_value = "available")]
+    max_memory: String,
+    #[command(flatten)]
+    load: LoadArgs,
 }
 
 /// Reads every file first (a bad one fails the run before anything is written), then
@@ -1793,9 +1861,10 @@ fn view(a: ViewArgs) -> anyhow::Result<()> {
             a.png_size
         )));
     }
-    if a.detail < 3 {
+    if !(3..=primdecomp::export::MAX_DETAIL).contains(&a.detail) {
         bail!(BadArgs(format!(
-            "--detail must be at least 3, got {}",
+            "--detail must be from 3 to {}, got {}",
+            primdecomp::export::MAX_DETAIL,
             a.detail
         )));
     }
@@ -1812,15 +1881,20 @@ fn view(a: ViewArgs) -> anyhow::Result<()> {
         .filter_map(|(flag, p)| p.as_ref().map(|p| Out::flag(flag, p, p.clone())))
         .collect();
     guard.check(&outs)?;
-    let opts = scene::Options {
+    let mut opts = scene::Options {
         detail: a.detail,
         display_triangles: a.display_faces.max(1),
         up_axis: if a.up == "z" { 2 } else { 1 },
+        load: LoadOptions {
+            max_memory: memory_limit(&a.max_memory)?,
+            allow_external_uris: a.load.allow_external_uris,
+            ..LoadOptions::default()
+        },
     };
-    let mut levels = Vec::new();
+    let mut docs = Vec::new();
     for r in &a.results {
         for f in scene::result_files(r) {
-            levels.extend(scene::load_levels(&f, &opts)?);
+            docs.extend(scene::read_levels(&f)?);
         }
     }
     let peers = a
@@ -1828,6 +1902,24 @@ fn view(a: ViewArgs) -> anyhow::Result<()> {
         .iter()
         .map(|p| scene::load_peer(p, None))
         .collect::<primdecomp::Result<Vec<_>>>()?;
+    // A page shows a bounded number of parts and triangles: coarser circles first.
+    let hulls = peers.iter().map(|c| c.parts.len()).sum();
+    let hull_triangles = peers.iter().map(|c| c.parts.triangles.len()).sum();
+    opts.detail = scene::fit_detail(&docs, hulls, hull_triangles, a.detail)
+        .map_err(|m| BadArgs(format!("view: {m}")))?;
+    if opts.detail < a.detail && !docs.is_empty() {
+        println!(
+            "levels    shown with {} segments around circles (of --detail {}), so the parts \
+             stay within {} triangles",
+            opts.detail,
+            a.detail,
+            scene::MAX_PART_TRIANGLES
+        );
+    }
+    let levels: Vec<_> = docs
+        .iter()
+        .map(|d| scene::build_level(d, opts.detail))
+        .collect();
     let input_path = match (&a.input, a.no_input) {
         (Some(p), _) => Some(p.clone()),
         (None, true) => None,
@@ -1860,10 +1952,18 @@ fn view(a: ViewArgs) -> anyhow::Result<()> {
         eval,
         up_axis: opts.up_axis,
     };
-    if s.aabb().is_none() {
+    let Some((lo, hi)) = s.aabb() else {
         bail!(BadArgs(
             "view: the files hold nothing to draw (no triangles)".into()
         ));
+    };
+    // The page draws in 32-bit floats relative to the scene's centre.
+    let span = (0..3).fold(0.0f64, |m, k| m.max(hi[k] - lo[k]));
+    if span.is_nan() || span > primdecomp_view::MAX_SPAN {
+        bail!(BadArgs(format!(
+            "view: the scene spans {span:e}, more than the {:e} a page draws in 32-bit floats",
+            primdecomp_view::MAX_SPAN
+        )));
     }
     if let Some(i) = &s.input {
         if i.display.simplified {
@@ -1890,7 +1990,7 @@ fn view(a: ViewArgs) -> anyhow::Result<()> {
 
 /// The input a result document names (`input.path`), if that file exists here.
 fn recorded_input(result: &Path) -> Option<PathBuf> {
-    let text = std::fs::read_to_string(result).ok()?;
+    let text = crate::paths::read_result(result).ok()?;
     let doc: serde_json::Value = serde_json::from_str(&text).ok()?;
     let doc = doc.get("levels").and_then(|l| l.get(0)).unwrap_or(&doc);
     let p = PathBuf::from(doc.get("input")?.get("path")?.as_str()?);

@@ -88,7 +88,8 @@ pub use demo::{demo_scene, demo_scene_obj};
 pub use error::{Error, FileKind, Result};
 pub use export::{read_primitives, tessellate, to_json, to_obj, write_atomic};
 pub use mesh::io::{
-    load, load_with, memory_needed, open_regular, parse_mesh, parse_mesh_with, Format, LoadOptions,
+    load, load_with, memory_needed, open_regular, parse_mesh, parse_mesh_with, read_regular,
+    Format, LoadOptions,
 };
 pub use mesh::{Mesh, MeshObject, SkipCounts, Transform};
 pub use objects::{decompose_objects, ObjectResult, ObjectTarget, Objects};

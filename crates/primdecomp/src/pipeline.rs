@@ -49,19 +49,33 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
             adjacency::face_pairs_checked(&mesh.face_offsets, &welded, go_on)
         })?
         .ok_or(Error::Cancelled)?;
+    // Where the merge loop starts: spatial parts, components, or the faces themselves.
+    let first = FirstPhase::choose(mesh, params, &pairs, targets[0], largest);
+    // Spatial parts compute their faces' operators and seed volumes themselves, and
+    // read the pairs from the surface's neighbour lists: none is held for every face.
+    let per_part = matches!(first, FirstPhase::Parts { .. });
     // One operator per face (§3.1).
     let q = clock.stage(Stage::Quadrics, "quadrics", |go_on, _| {
         let mut q = Vec::new();
-        quadric::face_quadrics_checked(mesh, params.tangent_eps, &mut q, go_on);
+        if !per_part {
+            quadric::face_quadrics_checked(mesh, params.tangent_eps, &mut q, go_on);
+        }
         q
     })?;
     // Each face's neighbours (the clusters' adjacency too) and outer side: output
     // fits keep off rims and lie flush.
+    let adjacency_edges = pairs.len();
+    let mut pairs = Some(pairs);
     let surface = clock
         .step_checked(Stage::Seed, "surface", |go_on| {
-            Surface::build(mesh, &welded, &pairs, params, go_on)
+            let lists = adjacency::neighbour_lists(mesh.face_count(), pairs.as_ref()?);
+            if per_part {
+                pairs = None;
+            }
+            Surface::build(mesh, &welded, lists, params, go_on)
         })?
         .ok_or(Error::Cancelled)?;
+    let pairs = pairs.unwrap_or_default();
     // The input's interior, where merges are priced by the air they add (--solid).
     let solid = clock.step(Stage::Seed, "solid", || {
         params
@@ -75,17 +89,18 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
         ..evaluator(mesh, &welded, params, bounds)
     };
     // One primitive per face seeds the volumes (Alg. 1, line 2).
-    let volumes = clock.stage(Stage::Seed, "seed", |go_on, _| seed_volumes(&ev, &q, go_on))?;
-    // Where the merge loop starts: spatial parts, components, or the faces themselves.
-    let first = FirstPhase::choose(mesh, params, &pairs, targets[0], largest);
+    let volumes = clock.stage(Stage::Seed, "seed", |go_on, _| match per_part {
+        true => Vec::new(),
+        false => seed_volumes(&ev, &q, go_on),
+    })?;
     // Without spatial parts every merge is logged and the tree's leaves are the faces:
     // the leaf snapshot would be fitted for nothing.
-    if params.uses_cut() && !matches!(first, FirstPhase::Parts { .. }) {
+    if params.uses_cut() && !per_part {
         targets = vec![1];
     }
     let mut stats = Stats {
         welded_vertices: distinct,
-        adjacency_edges: pairs.len(),
+        adjacency_edges,
         partitions: first.parts(),
         ..Stats::default()
     };
@@ -104,6 +119,7 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
         lists: (surface.offsets.clone(), surface.adj.clone()),
         tree: params.uses_cut(),
         hulls_over: tree_hulls_over(mesh, params, largest),
+        tangent_eps: params.tangent_eps,
     };
     let mut merged = clock.stage(Stage::Merge, "merge", |go_on, laps| {
         merge(&ev, input, first, &targets, &mut stats, go_on, laps)
@@ -327,15 +343,15 @@ struct Surface {
 }
 
 impl Surface {
-    /// `None` when `go_on` said stop.
+    /// From the faces' neighbour lists (`adjacency::neighbour_lists`); `None` when
+    /// `go_on` said stop.
     fn build(
         mesh: &Mesh,
         welded: &[u32],
-        pairs: &[(u32, u32)],
+        (offsets, adj): (Vec<u32>, Vec<u32>),
         params: &Params,
         go_on: GoOn,
     ) -> Option<Surface> {
-        let (offsets, adj) = adjacency::neighbour_lists(mesh.face_count(), pairs);
         let used = params.rim_weight != 0.0 || params.flush_plates;
         let signs = match used {
             true => orient::face_signs_checked(mesh, welded, &offsets, &adj, go_on)?,
@@ -373,6 +389,8 @@ struct MergeInput {
     /// The clusters' points are kept for the tree's nodes of more faces
     /// (`merge::TreeHulls`).
     hulls_over: Option<usize>,
+    /// `Params::tangent_eps`, for spatial parts' own operators.
+    tangent_eps: f64,
 }
 
 /// How the merge loop starts, chosen once per run from the input and settings.
@@ -450,6 +468,7 @@ fn merge(
         lists,
         tree,
         hulls_over,
+        tangent_eps,
     } = input;
     let last = *targets.last().expect("validated: one target or more");
     let total = ev.mesh.face_count().saturating_sub(last).max(1) as f64;
@@ -461,19 +480,24 @@ fn merge(
         FirstPhase::Faces => (Some(Clusters::with_lists(q, volumes, lists)), Vec::new()),
         FirstPhase::Parts { parts, target } => {
             let p1 = laps.time("partitions", || {
-                partition::merge_parts(ev, &q, &volumes, &pairs, target, parts, &merged_so_far)
+                let faces = partition::FaceData::PerPart {
+                    tangent_eps,
+                    lists: &lists,
+                };
+                partition::merge_parts(ev, faces, target, parts, &merged_so_far)
             });
             stats.merges = p1.merges;
             add_fits(stats, p1.fits);
             if p1.stopped {
                 return MergeOutput::stopped();
             }
-            // Phase 2 starts from one cluster per group (serial, linear in the faces).
-            // The pairs are done with: phase 2 reads the neighbour lists.
-            drop(pairs);
+            // Phase 2 starts from one cluster per group (linear in the faces). The
+            // faces' pairs, operators and volumes are done with: the groups hold theirs.
+            drop((pairs, q, volumes));
             let so_far = stats.merges;
+            let faces = ev.mesh.face_count();
             let clusters = laps.time("regroup", || {
-                partition::clusters(p1, q, volumes, lists, &|_| merged_so_far(so_far))
+                partition::group_clusters(p1, faces, &lists, &|_| merged_so_far(so_far))
             });
             let Some(clusters) = clusters else {
                 return MergeOutput::stopped();
@@ -633,8 +657,7 @@ pub(crate) fn seed_volumes(ev: &Evaluator, q: &[Sym3], go_on: GoOn) -> Vec<f64> 
             .with_min_len(1024)
             .for_each_init(Workspace::default, |ws, (i, v)| {
                 let f = start + i;
-                let fit = ev.fit_face(f as u32, &q[f], ws);
-                *v = fit.volume * ev.air(&fit.prim);
+                *v = ev.seed_volume(f as u32, &q[f], ws);
             });
         if !go_on((start + block.len()) as f64 / q.len().max(1) as f64) {
             break;

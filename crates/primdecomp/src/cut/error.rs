@@ -185,7 +185,7 @@ fn threshold(low: f64, level: f64, slack: f64) -> f64 {
 /// A best-first search for the largest distance over a set of triangles: the cells
 /// by bound, the largest distance measured, the splits made.
 struct Search<'a> {
-    surface: &'a Triangles,
+    surface: &'a Triangles<'a>,
     heap: BinaryHeap<Cell>,
     low: f64,
     splits: usize,
@@ -498,7 +498,8 @@ pub(crate) mod tests {
     /// least that and within the refinement's precision of it.
     #[test]
     fn a_box_is_as_far_as_its_farthest_corner() {
-        let inner = Triangles::new(&cube_mesh(1.0));
+        let cube = cube_mesh(1.0);
+        let inner = Triangles::new(&cube);
         let e = error_of(&unit_box([1.0; 3]), &inner);
         assert!(e <= loose(0.0, &inner), "{e}");
         let truth = 0.5 * 3f64.sqrt();
@@ -598,7 +599,8 @@ pub(crate) mod tests {
     /// over `above` that it is over, and otherwise the result bounds it from above.
     #[test]
     fn each_ask_keeps_its_promise() {
-        let inner = Triangles::new(&cube_mesh(1.0));
+        let cube = cube_mesh(1.0);
+        let inner = Triangles::new(&cube);
         for half in [1.0, 1.01, 1.2, 1.5, 3.0] {
             let prim = unit_box([half, 1.0, 2.0 * half - 1.0]);
             let truth = (half - 1.0).abs() * 5f64.sqrt();

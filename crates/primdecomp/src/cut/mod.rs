@@ -162,7 +162,7 @@ pub(crate) struct Cutter<'a> {
     requests: Vec<Request>,
     /// Every node fitted by the calls before, kept for the next.
     fitted: HashMap<u32, Entry>,
-    surface: &'a Triangles,
+    surface: &'a Triangles<'a>,
     /// Errors at most this are not split by any request: measured only as far as it
     /// takes to know that (the smallest tolerance when every request has one, else
     /// the floor).

@@ -93,7 +93,7 @@ pub(crate) fn bound(
     s.pieces.push(&plane.corners);
     let mut worst = 0.0f64;
     for &k in &s.slots {
-        let Some(over) = Over::of(&plane, surface.corners(k), grow) else {
+        let Some(over) = Over::of(&plane, &surface.corners(k), grow) else {
             continue;
         };
         s.next.clear();
@@ -263,10 +263,9 @@ mod tests {
     use rand_chacha::ChaCha8Rng;
 
     /// A flat square of 2·n² triangles in z = 0, side n, centred on the origin.
-    fn grid(n: u32) -> Triangles {
+    fn grid(n: u32) -> crate::mesh::Mesh {
         let (points, faces) = primdecomp_testkit::shapes::flat_grid(n);
-        let mesh = crate::mesh::Mesh::from_polygons(&points, &faces).expect("a grid");
-        Triangles::new(&mesh)
+        crate::mesh::Mesh::from_polygons(&points, &faces).expect("a grid")
     }
 
     /// A cell held level at height h over a grid of a few triangles is h from it at
@@ -274,7 +273,8 @@ mod tests {
     /// the corner's distance along the cell's normal (up to its growth).
     #[test]
     fn a_cell_over_a_few_facets_is_as_far_as_its_highest_corner() {
-        let surface = grid(4);
+        let mesh = grid(4);
+        let surface = Triangles::new(&mesh);
         let mut s = Scratch::default();
         let level = [[-0.3, -0.3, 0.05], [0.3, -0.2, 0.05], [0.0, 0.3, 0.05]];
         let b = bound(&level, 1.0, &surface, &mut s).expect("over the grid");

@@ -1,7 +1,10 @@
 //! Clusters of faces (§3.4 "Collapsible Primitive Data Structure"): a disjoint-set
 //! forest over faces, a cyclic linked list of each cluster's faces (O(1) splice), and
 //! per-cluster operator Q, volume, the merge-clock time it last changed (for lazy
-//! deletion), distinct vertices and neighbours. A cluster is named by its root face.
+//! deletion), distinct vertices and neighbours. A cluster is named by its root face,
+//! or, where the loop starts from groups of faces a first phase left
+//! ([`Clusters::of_groups`]), by its root group: the same order, for a group is named
+//! by its lowest face and ids follow them.
 
 use crate::math::Sym3;
 use std::sync::Arc;
@@ -37,12 +40,24 @@ struct Node {
     slot: u32,
 }
 
-/// Cluster state, indexed by face id (valid at roots): struct-of-arrays except for
-/// the hot [`Node`] fields.
+/// The faces of each group a loop starts from ([`Clusters::of_groups`]), in CSR: group
+/// `g`'s block is `faces[offsets[g]..offsets[g + 1]]`, its faces decreasing, so that
+/// its head (lowest face, the group's name in the input's ids) comes last. Merging
+/// the groups' blocks into one cyclic list by their heads, as [`Clusters::merge`]
+/// splices faces, lists a cluster's faces in the order one face at a time would.
+#[derive(Debug, Default)]
+struct Blocks {
+    faces: Vec<u32>,
+    offsets: Vec<u32>,
+}
+
+/// Cluster state, indexed by id (valid at roots): struct-of-arrays except for the hot
+/// [`Node`] fields. An id is a face, or a group of faces ([`Clusters::of_groups`]).
 ///
-/// Per face it stores only fixed-size fields (~76 bytes); vertex and neighbour lists
+/// Per id it stores only fixed-size fields (~76 bytes); vertex and neighbour lists
 /// live in a slab and exist only for clusters that merged or were bridged, so a
-/// million-face input does not pay for a million small allocations.
+/// million-face input does not pay for a million small allocations. Started from
+/// groups, it holds 4 bytes a face besides (their blocks).
 #[derive(Debug, Default)]
 pub struct Clusters {
     node: Vec<Node>,
@@ -51,9 +66,12 @@ pub struct Clusters {
     /// Merges done so far; a queue entry priced at `t` is stale once either cluster's
     /// last change (`changed`) is later than `t`.
     pub clock: u32,
-    /// Cyclic list: the next face of the same cluster.
-    pub next_face: Vec<u32>,
+    /// Cyclic list: the next id of the same cluster.
+    next_face: Vec<u32>,
+    /// Faces in each cluster.
     pub face_count: Vec<u32>,
+    /// The groups' faces, when ids are groups (empty when they are faces).
+    blocks: Blocks,
     /// The input's face adjacency as CSR (neighbours of never-merged faces), shared
     /// with whoever else reads it (the output fits' surface).
     adj_offsets: Arc<[u32]>,
@@ -90,6 +108,7 @@ impl Clusters {
             clock: 0,
             next_face: (0..n as u32).collect(),
             face_count: vec![1; n],
+            blocks: Blocks::default(),
             adj_offsets,
             adj,
             slab: Vec::new(),
@@ -98,7 +117,74 @@ impl Clusters {
         }
     }
 
-    /// Number of faces (cluster ids are `0..len()`).
+    /// Clusters started from `groups` of faces, each named by its lowest face: group
+    /// `g`'s faces (increasing), operator, volume, points (hull-reduced welded
+    /// vertices; empty for a single face) and neighbour list, as ids of groups with
+    /// its length when resolved. Groups must be ordered by their lowest faces: ids then
+    /// order clusters as their root faces would.
+    pub fn of_groups(groups: Vec<Group>) -> Clusters {
+        let n = groups.len();
+        let faces: usize = groups.iter().map(|g| g.faces.len()).sum();
+        let mut blocks = Blocks {
+            faces: Vec::with_capacity(faces),
+            offsets: Vec::with_capacity(n + 1),
+        };
+        blocks.offsets.push(0);
+        let mut cl = Clusters {
+            node: Vec::with_capacity(n),
+            q: Vec::with_capacity(n),
+            volume: Vec::with_capacity(n),
+            next_face: (0..n as u32).collect(),
+            face_count: Vec::with_capacity(n),
+            adj_offsets: vec![0u32; n + 1].into(),
+            live: n,
+            ..Clusters::default()
+        };
+        for (g, group) in groups.into_iter().enumerate() {
+            debug_assert!(group.faces.windows(2).all(|w| w[0] < w[1]));
+            blocks.faces.extend(group.faces.iter().rev());
+            blocks.offsets.push(blocks.faces.len() as u32);
+            cl.node.push(Node {
+                parent: g as u32,
+                changed: 0,
+                repriced: 0,
+                slot: cl.slab.len() as u32,
+            });
+            cl.q.push(group.q);
+            cl.volume.push(group.volume);
+            cl.face_count.push(group.faces.len() as u32);
+            cl.slab.push(Lists {
+                verts: group.verts,
+                neighbors: group.neighbors,
+                resolved: group.resolved,
+            });
+        }
+        cl.blocks = blocks;
+        cl
+    }
+
+    /// Faces in id `g`'s own block (1 for a face).
+    fn block_len(&self, g: u32) -> u32 {
+        match self.blocks.offsets.is_empty() {
+            true => 1,
+            false => self.blocks.offsets[g as usize + 1] - self.blocks.offsets[g as usize],
+        }
+    }
+
+    /// Face `k` of id `g`'s own block (the head last).
+    fn block_face(&self, g: u32, k: u32) -> u32 {
+        match self.blocks.offsets.is_empty() {
+            true => g,
+            false => self.blocks.faces[(self.blocks.offsets[g as usize] + k) as usize],
+        }
+    }
+
+    /// The face id `g` is named by: itself, or its group's lowest face.
+    pub fn head(&self, g: u32) -> u32 {
+        self.block_face(g, self.block_len(g) - 1)
+    }
+
+    /// Number of ids (cluster ids are `0..len()`): faces, or groups.
     pub fn len(&self) -> usize {
         self.node.len()
     }
@@ -161,19 +247,17 @@ impl Clusters {
             .collect()
     }
 
-    /// Faces of cluster `c` in list order.
-    pub fn faces(&self, c: u32) -> impl Iterator<Item = u32> + Clone + '_ {
-        let mut cur = c;
-        let mut first = true;
-        std::iter::from_fn(move || {
-            if !first && cur == c {
-                return None;
-            }
-            first = false;
-            let f = cur;
-            cur = self.next_face[cur as usize];
-            Some(f)
-        })
+    /// Faces of cluster `c` in list order: its head, the blocks of the ids after it in
+    /// its cyclic list, then the rest of its own block.
+    pub fn faces(&self, c: u32) -> Faces<'_> {
+        Faces {
+            cl: self,
+            root: c,
+            cur: c,
+            k: self.block_len(c) - 1,
+            end: self.block_len(c),
+            done: false,
+        }
     }
 
     /// Neighbours of face `f` in the input's adjacency graph, increasing.
@@ -319,6 +403,56 @@ impl Clusters {
         lists.neighbors.extend(moved.neighbors);
         self.live -= 1;
         root
+    }
+}
+
+/// One group of faces a loop starts from ([`Clusters::of_groups`]).
+#[derive(Debug, Default)]
+pub struct Group {
+    /// Its faces, increasing.
+    pub faces: Vec<u32>,
+    pub q: Sym3,
+    pub volume: f64,
+    /// Hull-reduced welded vertices; empty for a single face.
+    pub verts: Vec<u32>,
+    /// Neighbouring groups' ids, and the list's length when last resolved.
+    pub neighbors: Vec<u32>,
+    pub resolved: u32,
+}
+
+/// The faces of a cluster in list order ([`Clusters::faces`]).
+#[derive(Clone, Debug)]
+pub struct Faces<'a> {
+    cl: &'a Clusters,
+    root: u32,
+    /// The id whose block is being listed, the next face's place in it and its end.
+    cur: u32,
+    k: u32,
+    end: u32,
+    done: bool,
+}
+
+impl Iterator for Faces<'_> {
+    type Item = u32;
+
+    fn next(&mut self) -> Option<u32> {
+        while !self.done {
+            if self.k < self.end {
+                self.k += 1;
+                return Some(self.cl.block_face(self.cur, self.k - 1));
+            }
+            if self.cur == self.root && self.end < self.cl.block_len(self.root) {
+                // The root's block without its head, listed last.
+                self.done = true;
+                break;
+            }
+            self.cur = self.cl.next_face[self.cur as usize];
+            (self.k, self.end) = match self.cur == self.root {
+                true => (0, self.cl.block_len(self.root) - 1),
+                false => (0, self.cl.block_len(self.cur)),
+            };
+        }
+        None
     }
 }
 

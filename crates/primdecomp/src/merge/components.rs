@@ -124,7 +124,8 @@ pub fn merge_components(
     let traced = largest_target >= comps.len();
     let (parts, targets) = groups(comps);
     let kind = Kind::Components { traced };
-    partition::merge_groups(ev, q, volume, pairs, &parts, targets, kind, merged)
+    let faces = partition::FaceData::Given { q, volume, pairs };
+    partition::merge_groups(ev, faces, &parts, targets, kind, merged)
 }
 
 /// The global loop's snapshots at every target of `targets` (decreasing) that is at

@@ -115,7 +115,7 @@ impl<'a> Evaluator<'a> {
     pub fn verts<'b>(&'b self, cl: &'b Clusters, c: u32) -> &'b [u32] {
         let v = cl.verts(c);
         if v.is_empty() {
-            self.face(c)
+            self.face(cl.head(c))
         } else {
             v
         }
@@ -165,6 +165,13 @@ impl<'a> Evaluator<'a> {
             ..self.cfg
         };
         self.fit_points(q, &cfg, ws)
+    }
+
+    /// The volume face `f` seeds the loop with (Alg. 1, line 2): its own primitive's
+    /// ([`Self::fit_face`], operator `q`) times [`Self::air`].
+    pub fn seed_volume(&self, f: u32, q: &Sym3, ws: &mut Workspace) -> f64 {
+        let fit = self.fit_face(f, q, ws);
+        fit.volume * self.air(&fit.prim)
     }
 
     /// The primitive of one cluster fitted on every vertex of its faces (walking the

@@ -424,7 +424,7 @@ fn merge_loop<Q: Queue>(
         let root = cl.merge(c.a, c.b, verts, c.volume);
         out.merges += 1;
         if scope.whole() {
-            out.log.push((c.a, c.b));
+            out.log.push((cl.head(c.a), cl.head(c.b)));
             keep_hull(ev, &cl, root, scope, out.log.len() - 1, &mut out.hulls);
         }
         if !defer(ev, &mut cl, root) {

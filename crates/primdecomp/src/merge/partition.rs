@@ -19,7 +19,7 @@
 //! enclosure guarantee does not depend on this; only the merge order does (merges
 //! across part boundaries wait for phase 2).
 
-use super::cluster::Clusters;
+use super::cluster::{Clusters, Group};
 use super::cost::Evaluator;
 use super::driver::{merge_part, FitCounts, MergeOutput, Traced};
 use crate::math::Sym3;
@@ -151,21 +151,36 @@ pub fn phase1_size(largest_target: usize) -> usize {
 /// all parts have done so far (progress only).
 pub fn merge_parts(
     ev: &Evaluator,
-    q: &[Sym3],
-    volume: &[f64],
-    pairs: &[(u32, u32)],
+    faces: FaceData,
     largest_target: usize,
     k: usize,
     merged: &(dyn Fn(usize) -> bool + Sync),
 ) -> Phase1 {
     let parts = split(ev.mesh, k);
-    let faces = ev.mesh.face_count() as u128;
+    let all = ev.mesh.face_count() as u128;
     let size = phase1_size(largest_target) as u128;
     let targets = parts
         .iter()
-        .map(|part| (size * part.len() as u128).div_ceil(faces.max(1)).max(1) as usize)
+        .map(|part| (size * part.len() as u128).div_ceil(all.max(1)).max(1) as usize)
         .collect();
-    merge_groups(ev, q, volume, pairs, &parts, targets, Kind::Spatial, merged)
+    merge_groups(ev, faces, &parts, targets, Kind::Spatial, merged)
+}
+
+/// What phase 1 reads of each face: its operator, seed volume and adjacent pairs.
+#[derive(Clone, Copy)]
+pub enum FaceData<'a> {
+    /// Computed for the whole input already.
+    Given {
+        q: &'a [Sym3],
+        volume: &'a [f64],
+        pairs: &'a [(u32, u32)],
+    },
+    /// Computed by each part for its own faces, as the whole input's stages compute
+    /// them (`quadric::face_quadric` with this tangent weight,
+    /// [`Evaluator::seed_volume`], the pairs from `lists`): no per-face operator,
+    /// volume or pair outlives its part (56 bytes a face held through phase 1
+    /// before).
+    PerPart { tangent_eps: f64, lists: &'a Lists },
 }
 
 /// What phase 1's groups of faces are.
@@ -185,19 +200,20 @@ pub(super) enum Kind {
 #[allow(clippy::too_many_arguments)]
 pub(super) fn merge_groups(
     ev: &Evaluator,
-    q: &[Sym3],
-    volume: &[f64],
-    pairs: &[(u32, u32)],
+    faces: FaceData,
     parts: &[Vec<u32>],
     targets: Vec<usize>,
     kind: Kind,
     merged: &(dyn Fn(usize) -> bool + Sync),
 ) -> Phase1 {
-    let local_pairs = pairs_by_part(parts, pairs, ev.mesh.face_count());
+    let local_pairs = match faces {
+        FaceData::Given { pairs, .. } => pairs_by_part(parts, pairs, ev.mesh.face_count()),
+        FaceData::PerPart { .. } => vec![Vec::new(); parts.len()],
+    };
     let done: Vec<AtomicUsize> = parts.iter().map(|_| AtomicUsize::new(0)).collect();
     let results: Vec<(Groups, MergeOutput)> = parts
         .par_iter()
-        .zip(local_pairs.par_iter())
+        .zip(local_pairs.into_par_iter())
         .zip(targets.par_iter())
         .enumerate()
         .map(|(i, ((part, lp), &target))| {
@@ -211,7 +227,7 @@ pub(super) fn merge_groups(
             if !merged(done.iter().map(|d| d.load(Relaxed)).sum()) {
                 return (Groups::default(), MergeOutput::stopped());
             }
-            merge_one(ev, q, volume, part, lp, target, kind, &report)
+            merge_one(ev, faces, part, lp, target, kind, &report)
         })
         .collect();
     let mut out = Phase1::default();
@@ -282,18 +298,68 @@ fn sub_mesh(mesh: &Mesh, welded: &[u32], part: &[u32]) -> (Mesh, Vec<u32>, Vec<u
     (sub, sub_welded, global)
 }
 
-/// Runs the merge loop on one part down to `target` and returns its groups.
+/// The adjacent pairs of `part`'s faces (increasing) in its local ids, from the
+/// input's neighbour lists, in the order of the input's sorted pairs.
+fn part_pairs(part: &[u32], (offsets, adj): &Lists) -> Vec<(u32, u32)> {
+    let mut out = Vec::new();
+    for (i, &f) in part.iter().enumerate() {
+        let around = &adj[offsets[f as usize] as usize..offsets[f as usize + 1] as usize];
+        // A face's list is increasing: the faces after it, in the part, in order.
+        for &g in around.iter().filter(|&&g| g > f) {
+            if let Ok(j) = part.binary_search(&g) {
+                out.push((i as u32, j as u32));
+            }
+        }
+    }
+    out
+}
+
+/// `part`'s operators and seed volumes, from `faces` or computed for it.
+fn part_seeds(ev: &Evaluator, faces: FaceData, part: &[u32]) -> (Vec<Sym3>, Vec<f64>) {
+    match faces {
+        FaceData::Given { q, volume, .. } => (
+            part.iter().map(|&f| q[f as usize]).collect(),
+            part.iter().map(|&f| volume[f as usize]).collect(),
+        ),
+        FaceData::PerPart { tangent_eps, .. } => {
+            let mesh = ev.mesh;
+            let q: Vec<Sym3> = part
+                .iter()
+                .map(|&f| {
+                    crate::quadric::face_quadric(
+                        mesh.face(f as usize),
+                        |v| mesh.pos(v),
+                        tangent_eps,
+                    )
+                })
+                .collect();
+            let mut ws = super::Workspace::default();
+            let volume = part
+                .iter()
+                .zip(&q)
+                .map(|(&f, q)| ev.seed_volume(f, q, &mut ws))
+                .collect();
+            (q, volume)
+        }
+    }
+}
+
+/// Runs the merge loop on one part down to `target` and returns its groups; `pairs`
+/// are its adjacent pairs in local ids when `faces` gives them.
 #[allow(clippy::too_many_arguments)]
 fn merge_one(
     ev: &Evaluator,
-    q: &[Sym3],
-    volume: &[f64],
+    faces: FaceData,
     part: &[u32],
-    pairs: &[(u32, u32)],
+    mut pairs: Vec<(u32, u32)>,
     target: usize,
     kind: Kind,
     progress: crate::progress::GoOn,
 ) -> (Groups, MergeOutput) {
+    if let FaceData::PerPart { lists, .. } = faces {
+        pairs = part_pairs(part, lists);
+    }
+    let (q, volume) = part_seeds(ev, faces, part);
     let (sub, sub_welded, global) = sub_mesh(ev.mesh, ev.welded, part);
     // Same fit settings, cost grid and hull tolerance as the whole input's.
     let sub_ev = Evaluator {
@@ -311,11 +377,8 @@ fn merge_one(
         },
         ..*ev
     };
-    let cl = Clusters::new(
-        part.iter().map(|&f| q[f as usize]).collect(),
-        part.iter().map(|&f| volume[f as usize]).collect(),
-        pairs,
-    );
+    let cl = Clusters::new(q, volume, &pairs);
+    drop(pairs);
     let traced = kind == Kind::Components { traced: true };
     let (cl, mut out) = merge_part(&sub_ev, cl, target, traced, progress);
     // Face ids in the input's (increasing with the part's own, so the same order).
@@ -348,6 +411,76 @@ fn merge_one(
         }
     }
     (g, out)
+}
+
+/// Phase 2's starting clusters after spatial parts: one per group of phase 1, ids in
+/// the order of their lowest faces ([`Clusters::of_groups`]), with the group's
+/// operator, priced volume and hull-reduced points, and neighbours = the groups
+/// adjacent to it through `lists` (the input's adjacency as neighbour lists of its
+/// `faces` faces), resolved; the merge clock starts at 0 as for single faces. The
+/// same clusters, ids renamed in order, as [`clusters`] makes one face at a time, in
+/// memory for the groups and 8 bytes a face (4 for the loop, 4 while it is built).
+///
+/// `go_on` is asked between blocks of groups (reporting no progress); `None` when it
+/// says stop.
+pub fn group_clusters(
+    p1: Phase1,
+    faces: usize,
+    lists: &Lists,
+    go_on: crate::progress::GoOn,
+) -> Option<Clusters> {
+    // Every group as (its lowest face, its part, its index there), in face order.
+    let mut order: Vec<(u32, u32, u32)> = Vec::with_capacity(p1.groups());
+    for (p, g) in p1.parts.iter().enumerate() {
+        let heads = g.offsets[..g.offsets.len() - 1].iter();
+        order.extend((heads.enumerate()).map(|(i, &o)| (g.faces[o as usize], p as u32, i as u32)));
+    }
+    order.sort_unstable();
+    let mut group_of = vec![u32::MAX; faces];
+    for (id, &(_, p, i)) in order.iter().enumerate() {
+        let g = &p1.parts[p as usize];
+        let members = &g.faces[g.offsets[i as usize] as usize..g.offsets[i as usize + 1] as usize];
+        members
+            .iter()
+            .for_each(|&f| group_of[f as usize] = id as u32);
+    }
+    let (offsets, adj) = (&lists.0, &lists.1);
+    let mut groups = Vec::with_capacity(order.len());
+    for block in order.chunks(4096) {
+        if !go_on(0.0) {
+            return None;
+        }
+        let made: Vec<Group> = block
+            .par_iter()
+            .map(|&(_, p, i)| {
+                let g = &p1.parts[p as usize];
+                let i = i as usize;
+                let members = &g.faces[g.offsets[i] as usize..g.offsets[i + 1] as usize];
+                let own = group_of[members[0] as usize];
+                let mut neighbors: Vec<u32> = members
+                    .iter()
+                    .flat_map(|&f| {
+                        &adj[offsets[f as usize] as usize..offsets[f as usize + 1] as usize]
+                    })
+                    .map(|&n| group_of[n as usize])
+                    .filter(|&n| n != own)
+                    .collect();
+                neighbors.sort_unstable();
+                neighbors.dedup();
+                Group {
+                    faces: members.to_vec(),
+                    q: g.q[i],
+                    volume: g.volume[i],
+                    verts: g.verts[i].clone(),
+                    resolved: neighbors.len() as u32,
+                    neighbors,
+                }
+            })
+            .collect();
+        groups.extend(made);
+    }
+    drop((p1, group_of));
+    Some(Clusters::of_groups(groups))
 }
 
 /// Phase 2's starting clusters: one per group of phase 1 (named by its lowest face),
@@ -500,7 +633,12 @@ mod tests {
         let p = crate::Params::default();
         let (mut cl, pairs) =
             crate::merge::driver::tests::with_input(&mesh, &p, |ev, q, vols, pairs| {
-                let p1 = merge_parts(ev, q, vols, pairs, 4, 4, &|_| true);
+                let given = FaceData::Given {
+                    q,
+                    volume: vols,
+                    pairs,
+                };
+                let p1 = merge_parts(ev, given, 4, 4, &|_| true);
                 (
                     {
                         let (o, a) = crate::mesh::adjacency::neighbour_lists(q.len(), pairs);
@@ -526,5 +664,68 @@ mod tests {
                 assert!(cl.neighbors(ra).contains(&rb), "{ra} and {rb} adjacent");
             }
         }
+    }
+
+    /// Phase 1 computing each part's operators, seed volumes and pairs itself, then
+    /// phase 2 started from its groups (ids renamed by their lowest faces), holds the
+    /// clusters that the whole input's arrays and the face-by-face replay make: root
+    /// for root the same faces in the same list order, operator, volume, points and
+    /// neighbours (as groups' heads), so the loop after them merges alike.
+    #[test]
+    fn groups_start_phase_two_as_faces_do() {
+        let mesh = grid_z(24, |i, j| ((i * 7 + j * 13) % 5) as f64 * 0.3);
+        let p = crate::Params::default();
+        crate::merge::driver::tests::with_input(&mesh, &p, |ev, q, vols, pairs| {
+            let (o, a) = crate::mesh::adjacency::neighbour_lists(q.len(), pairs);
+            let lists: Lists = (o.into(), a.into());
+            let given = FaceData::Given {
+                q,
+                volume: vols,
+                pairs,
+            };
+            let own = FaceData::PerPart {
+                tangent_eps: p.tangent_eps,
+                lists: &lists,
+            };
+            let p1 = merge_parts(ev, given, 4, 4, &|_| true);
+            let old = clusters(p1, q.to_vec(), vols.to_vec(), lists.clone(), &|_| true);
+            let mut old = old.expect("not stopped");
+            let p1 = merge_parts(ev, own, 4, 4, &|_| true);
+            let mut new = group_clusters(p1, q.len(), &lists, &|_| true).expect("not stopped");
+            let (ro, rn) = (old.roots(), new.roots());
+            assert!(ro.len() > 4);
+            assert_eq!(ro, rn.iter().map(|&g| new.head(g)).collect::<Vec<_>>());
+            for (&a, &b) in ro.iter().zip(&rn) {
+                let faces: Vec<u32> = new.faces(b).collect();
+                assert_eq!(old.faces(a).collect::<Vec<_>>(), faces, "root {a}");
+                assert_eq!(old.face_count[a as usize] as usize, faces.len());
+                assert_eq!(old.q[a as usize], new.q[b as usize]);
+                assert_eq!(
+                    old.volume[a as usize].to_bits(),
+                    new.volume[b as usize].to_bits()
+                );
+                assert_eq!(old.verts(a), new.verts(b));
+                let heads: Vec<u32> = new.neighbors(b).iter().map(|&g| new.head(g)).collect();
+                assert_eq!(old.resolved_neighbors(a), heads, "root {a}");
+                assert_eq!(old.neighbor_list(a).1, new.neighbor_list(b).1);
+            }
+            // Merged groups list their faces as merged faces do (blocks spliced).
+            for k in 0..ro.len().min(12) {
+                let (a, b) = (old.find(ro[k]), new.find(rn[k]));
+                let Some(&n) = new.resolved_neighbors(b).first() else {
+                    continue;
+                };
+                let m = old.find(new.head(n));
+                let (ra, rb) = (
+                    old.merge(a, m, Vec::new(), 0.0),
+                    new.merge(b, n, Vec::new(), 0.0),
+                );
+                assert_eq!(ra, new.head(rb));
+                assert_eq!(
+                    old.faces(ra).collect::<Vec<_>>(),
+                    new.faces(rb).collect::<Vec<_>>()
+                );
+            }
+        });
     }
 }

@@ -58,19 +58,21 @@ pub fn face_signs_checked(
     let face = |f: usize| &welded[off[f] as usize..off[f + 1] as usize];
     let neighbours = |f: usize| &adj[deg[f] as usize..deg[f + 1] as usize];
     let mut sign = vec![0i8; n];
-    let mut queue = VecDeque::new();
-    let mut members = Vec::new();
+    // Face ids as u32 (the engine's), 4 bytes a face of a patch spanning the input.
+    let mut queue: VecDeque<u32> = VecDeque::new();
+    let mut members: Vec<u32> = Vec::new();
     let mut grid: Option<RayTree> = None;
     for start in 0..n {
         if sign[start] != 0 {
             continue;
         }
         sign[start] = 1;
-        queue.push_back(start);
+        queue.push_back(start as u32);
         members.clear();
         let mut open = false;
         while let Some(f) = queue.pop_front() {
             members.push(f);
+            let f = f as usize;
             next_check -= 1;
             if next_check == 0 {
                 next_check = CHECK_EVERY;
@@ -87,7 +89,7 @@ pub fn face_signs_checked(
                 if sign[g as usize] == 0 {
                     // Opposed windings flip; agreeing keep.
                     sign[g as usize] = rel * sign[f];
-                    queue.push_back(g as usize);
+                    queue.push_back(g);
                 }
             }
             open |= crossed < face(f).len();
@@ -104,7 +106,9 @@ pub fn face_signs_checked(
             _ => signed_volume(mesh, &members, &sign) < 0.0,
         };
         if inward {
-            members.iter().for_each(|&f| sign[f] = -sign[f]);
+            members
+                .iter()
+                .for_each(|&f| sign[f as usize] = -sign[f as usize]);
         }
     }
     Some(sign)
@@ -151,11 +155,15 @@ fn shared_edge(a: &[u32], b: &[u32]) -> Option<(u32, u32, i8)> {
 
 /// Signed volume of the faces `members` with the windings `sign`, about the centre
 /// of their first face (fan triangulation; exact for a closed surface anywhere).
-fn signed_volume(mesh: &Mesh, members: &[usize], sign: &[i8]) -> f64 {
+fn signed_volume(mesh: &Mesh, members: &[u32], sign: &[i8]) -> f64 {
     let pos = |v: u32| -> V3 { mesh.pos(v) };
-    let origin = mesh.face(members[0]).first().map_or([0.0; 3], |&v| pos(v));
+    let origin = mesh
+        .face(members[0] as usize)
+        .first()
+        .map_or([0.0; 3], |&v| pos(v));
     let mut vol = 0.0;
     for &f in members {
+        let f = f as usize;
         let vs = mesh.face(f);
         for i in 1..vs.len().saturating_sub(1) {
             let (a, b, c) = (pos(vs[0]), pos(vs[i]), pos(vs[i + 1]));

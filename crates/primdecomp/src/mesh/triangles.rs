@@ -6,43 +6,65 @@
 use crate::math::bvh::{point_tri_dist2, ray_tri, tri_box, Bvh};
 use crate::math::V3;
 use crate::mesh::Mesh;
-use rayon::prelude::*;
 
 /// The input's surface as triangles (fan-triangulated polygons, re-centred frame)
 /// with a hierarchy over them. The triangles are stored in the hierarchy's order
 /// (`Bvh::order`), so that a leaf's lie side by side; a triangle's index here is its
-/// place in that order.
-#[derive(Clone, Debug, Default)]
-pub(crate) struct Triangles {
-    tris: Vec<[V3; 3]>,
+/// place in that order. Each triangle is its corners' vertex ids in the mesh, whose
+/// positions it reads: 12 bytes a triangle, where a table of the corners in the
+/// hierarchy's order cost 12 more (an input with half as many vertices as faces) and
+/// the corners copied 72.
+#[derive(Clone, Debug)]
+pub(crate) struct Triangles<'m> {
+    tris: Vec<[u32; 3]>,
+    mesh: &'m Mesh,
     bvh: Bvh,
     /// The mesh's bounding-box diagonal.
     pub diagonal: f64,
 }
 
-impl Triangles {
+impl<'m> Triangles<'m> {
     /// The surface of every face of `mesh`.
-    pub(crate) fn new(mesh: &Mesh) -> Triangles {
-        // Each face's fan as vertex indices, then the triangles' corners written once,
-        // in the hierarchy's order, on every thread.
-        let mut fans: Vec<[u32; 3]> = Vec::with_capacity(mesh.face_count());
-        for f in 0..mesh.face_count() {
-            let v = mesh.face(f);
-            fans.extend((2..v.len()).map(|k| [v[0], v[k - 1], v[k]]));
+    pub(crate) fn new(mesh: &'m Mesh) -> Triangles<'m> {
+        // Each face's fan as vertex indices (the faces themselves when all are
+        // triangles), then the corners, in the hierarchy's order.
+        let all_triangles = mesh.face_indices.len() == 3 * mesh.face_count();
+        let mut fans: Vec<[u32; 3]> = Vec::new();
+        if !all_triangles {
+            for f in 0..mesh.face_count() {
+                let v = mesh.face(f);
+                fans.extend((2..v.len()).map(|k| [v[0], v[k - 1], v[k]]));
+            }
         }
-        let corners = |t: &[u32; 3]| t.map(|v| mesh.pos(v));
+        let fan = |i: u32| match all_triangles {
+            true => {
+                let v = mesh.face(i as usize);
+                [v[0], v[1], v[2]]
+            }
+            false => fans[i as usize],
+        };
+        let count = if all_triangles {
+            mesh.face_count()
+        } else {
+            fans.len()
+        };
         // Boxes from the corners as the build asks (no table of 48 bytes a
         // triangle), the hierarchy `Bvh::build` makes.
-        let bbox = |i: u32| tri_box(&corners(&fans[i as usize]));
-        let bvh = Bvh::build_by(fans.len(), crate::math::bvh::LEAF, &bbox);
-        let tris = (bvh.order().par_iter())
-            .map(|&i| corners(&fans[i as usize]))
-            .collect();
+        let bbox = |i: u32| tri_box(&fan(i).map(|v| mesh.pos(v)));
+        let bvh = Bvh::build_by(count, crate::math::bvh::LEAF, &bbox);
+        let tris = bvh.order().iter().map(|&i| fan(i)).collect();
         Triangles {
             bvh,
             tris,
+            mesh,
             diagonal: mesh.diagonal(),
         }
+    }
+
+    /// Triangle `k`'s corners (`k` in the hierarchy's order).
+    #[inline]
+    fn tri(&self, k: u32) -> [V3; 3] {
+        self.tris[k as usize].map(|v| self.mesh.pos(v))
     }
 
     /// Distance from `p` to the nearest triangle (infinite for an empty surface);
@@ -84,16 +106,17 @@ impl Triangles {
 
     /// `Bvh::nearest_slot` over the triangles, the distance not squared.
     fn search(&self, p: V3, enough: f64, start: u32, stack: &mut Vec<(f64, u32)>) -> (f64, u32) {
-        let dist2 = |k: u32| point_tri_dist2(p, &self.tris[k as usize]);
+        let dist2 = |k: u32| point_tri_dist2(p, &self.tri(k));
         let (d2, k) = self.bvh.nearest_slot(p, enough, start, stack, dist2);
         (d2.sqrt(), k)
     }
 
     /// Distance from `p` to triangle `i` (infinite for `u32::MAX`).
     pub(crate) fn distance_to(&self, p: V3, i: u32) -> f64 {
-        self.tris
-            .get(i as usize)
-            .map_or(f64::INFINITY, |t| point_tri_dist2(p, t).sqrt())
+        match (i as usize) < self.tris.len() {
+            true => point_tri_dist2(p, &self.tri(i)).sqrt(),
+            false => f64::INFINITY,
+        }
     }
 
     /// The triangles whose box meets the box `lo..hi` (and perhaps some more near
@@ -109,8 +132,8 @@ impl Triangles {
     }
 
     /// Triangle `i`'s corners.
-    pub(crate) fn corners(&self, i: u32) -> &[V3; 3] {
-        &self.tris[i as usize]
+    pub(crate) fn corners(&self, i: u32) -> [V3; 3] {
+        self.tri(i)
     }
 
     /// How far along the ray `o + t·d` (`t` in `(tmin, tmax]`) it first meets a
@@ -122,9 +145,9 @@ impl Triangles {
         (tmin, tmax): (f64, f64),
         stack: &mut Vec<u32>,
     ) -> Option<f64> {
-        let (t, tri) = self.bvh.ray_slot_first(o, d, tmax, stack, |k| {
-            ray_tri(o, d, &self.tris[k as usize], tmin)
-        });
+        let (t, tri) = self
+            .bvh
+            .ray_slot_first(o, d, tmax, stack, |k| ray_tri(o, d, &self.tri(k), tmin));
         (tri != u32::MAX).then_some(t)
     }
 }
@@ -146,10 +169,8 @@ mod tests {
                 (t * 0.11).cos() * 2.0,
                 (t * 0.05).sin(),
             ];
-            let brute = s
-                .tris
-                .iter()
-                .map(|t| point_tri_dist2(p, t))
+            let brute = (0..s.tris.len() as u32)
+                .map(|k| point_tri_dist2(p, &s.tri(k)))
                 .fold(f64::INFINITY, f64::min)
                 .sqrt();
             assert_eq!(s.distance(p, &mut stack), brute, "point {p:?}");

@@ -21,7 +21,7 @@ use nested::{keep_mask, Cleanup};
 /// see it (its interior on a voxel grid), for plates thickened inward
 /// (docs/decisions/0033).
 pub(crate) struct Input<'a> {
-    tris: Option<&'a Triangles>,
+    tris: Option<&'a Triangles<'a>>,
     thick: Option<thicken::Input<'a>>,
 }
 

@@ -44,7 +44,7 @@ const SKEW: [f64; 2] = [0.0123, 0.0371];
 /// The input as rays see it: its triangles (shared with the run, `mesh::triangles`)
 /// and its interior on the `--solid` voxel grid.
 pub(crate) struct Input<'a> {
-    tris: &'a Triangles,
+    tris: &'a Triangles<'a>,
     solid: Solid,
 }
 

@@ -6,7 +6,10 @@
 //! - `contain SHAPES.json POINTS.json TOL`: for each point, whether some primitive of
 //!   a primdecomp JSON document contains it within TOL, by the tests' independent
 //!   containment routine (`contain.rs`), printed as a JSON array of booleans; the
-//!   Python containment check is tested against it.
+//!   Python containment check is tested against it;
+//! - `ladder MESH LEVELS OUT.ply` / `city PARTS OUT.ply`: the scale ladder's inputs
+//!   (`primdecomp_testkit::ladder`): MESH subdivided LEVELS times, or a city block of
+//!   PARTS parts, streamed to a binary PLY file; prints the faces written.
 
 use primdecomp_testkit::contain::{parse_primitive, shape_contains};
 
@@ -15,8 +18,11 @@ fn main() {
     let res = match args.get(1).map(String::as_str) {
         Some("faces") if args.len() == 4 => faces(&args[2], &args[3]),
         Some("contain") if args.len() == 5 => contain(&args[2], &args[3], &args[4]),
+        Some("ladder") if args.len() == 5 => ladder(&args[2], &args[3], &args[4]),
+        Some("city") if args.len() == 4 => city(&args[2], &args[3]),
         _ => Err(
-            "usage: primdecomp-testkit faces MESH OUT.json | contain SHAPES.json POINTS.json TOL"
+            "usage: primdecomp-testkit faces MESH OUT.json | contain SHAPES.json POINTS.json TOL \
+             | ladder MESH LEVELS OUT.ply | city PARTS OUT.ply"
                 .into(),
         ),
     };
@@ -34,6 +40,23 @@ fn faces(mesh: &str, out: &str) -> Result<(), String> {
     let faces: Vec<&[u32]> = (0..m.face_count()).map(|f| m.face(f)).collect();
     let v = serde_json::json!({"vertices": vertices, "faces": faces});
     std::fs::write(out, v.to_string()).map_err(|e| format!("{out}: {e}"))
+}
+
+fn ladder(mesh: &str, levels: &str, out: &str) -> Result<(), String> {
+    let m = primdecomp::load(mesh.as_ref()).map_err(|e| e.to_string())?;
+    let levels: u32 = levels.parse().map_err(|e| format!("LEVELS: {e}"))?;
+    let (faces, _) = primdecomp_testkit::ladder::subdivided_ply(&m, levels, 49, out.as_ref())
+        .map_err(|e| format!("{out}: {e}"))?;
+    println!("{faces}");
+    Ok(())
+}
+
+fn city(parts: &str, out: &str) -> Result<(), String> {
+    let parts: u32 = parts.parse().map_err(|e| format!("PARTS: {e}"))?;
+    let (faces, _) = primdecomp_testkit::ladder::city_block_ply(parts, 1, out.as_ref())
+        .map_err(|e| format!("{out}: {e}"))?;
+    println!("{faces}");
+    Ok(())
 }
 
 fn contain(shapes: &str, points: &str, tol: &str) -> Result<(), String> {

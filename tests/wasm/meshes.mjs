@@ -53,20 +53,23 @@ function revolve(obj, name, cx, cz, profile, segments) {
   if (last.length > 1) obj.face(...[...last].reverse()); // top cap, facing up
 }
 
+/** A box's six quads, wound outward, over its corners c (bit 0: x, bit 1: y, bit 2:
+ * z; set = the high side). */
+export const BOX_QUADS = [
+  [0, 4, 6, 2],
+  [1, 3, 7, 5],
+  [0, 1, 5, 4],
+  [2, 6, 7, 3],
+  [0, 2, 3, 1],
+  [4, 5, 7, 6]
+];
+
 /** An axis-aligned box from lo to hi as six quads. */
 function box(obj, name, lo, hi) {
   obj.object(name);
   const v = [];
   for (let c = 0; c < 8; c++) v.push(obj.vertex(c & 1 ? hi[0] : lo[0], c & 2 ? hi[1] : lo[1], c & 4 ? hi[2] : lo[2]));
-  for (const q of [
-    [0, 4, 6, 2],
-    [1, 3, 7, 5],
-    [0, 1, 5, 4],
-    [2, 6, 7, 3],
-    [0, 2, 3, 1],
-    [4, 5, 7, 6]
-  ])
-    obj.face(...q.map((i) => v[i]));
+  for (const q of BOX_QUADS) obj.face(...q.map((i) => v[i]));
 }
 
 /** A hemisphere-capped profile: [radius, height] pairs of a capsule standing on y0. */

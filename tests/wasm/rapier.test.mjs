@@ -16,7 +16,7 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import RAPIER from '@dimforge/rapier3d-compat';
 import * as primdecomp from 'primdecomp';
-import { playground } from './meshes.mjs';
+import { BOX_QUADS, playground } from './meshes.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const root = path.resolve(here, '..', '..');
@@ -289,14 +289,7 @@ test('typed arrays in, typed primitives out; toGltf; errors', () => {
   // A unit cube as 12 triangles, in float and in double.
   const corners = [];
   for (let c = 0; c < 8; c++) corners.push(c & 1, (c >> 1) & 1, (c >> 2) & 1);
-  const quads = [
-    [0, 4, 6, 2],
-    [1, 3, 7, 5],
-    [0, 1, 5, 4],
-    [2, 6, 7, 3],
-    [0, 2, 3, 1],
-    [4, 5, 7, 6]
-  ];
+  const quads = BOX_QUADS;
   const tris = new Uint32Array(quads.flatMap((q) => [q[0], q[1], q[2], q[0], q[2], q[3]]));
   for (const Arr of [Float32Array, Float64Array]) {
     const r = primdecomp.decompose(new Arr(corners), tris, { targets: [1] });

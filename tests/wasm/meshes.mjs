@@ -118,6 +118,35 @@ export function playground() {
   return obj.text();
 }
 
+/** A trefoil knot's tube: `rings` rings of `around` vertices, quads between them (a
+ * curved shape whose count follows the tolerance). */
+export function knot(rings = 96, around = 12) {
+  const obj = new Obj();
+  obj.object('knot');
+  const curve = (t) => [Math.sin(t) + 2 * Math.sin(2 * t), Math.cos(t) - 2 * Math.cos(2 * t), -Math.sin(3 * t)];
+  for (let i = 0; i < rings; i++) {
+    const t = (2 * Math.PI * i) / rings;
+    const p = curve(t);
+    const q = curve(t + 1e-4);
+    const d = q.map((x, k) => x - p[k]);
+    const dl = Math.hypot(...d);
+    const u = d.map((x) => x / dl);
+    const nl = Math.hypot(u[1], u[0]);
+    const n = [u[1] / nl, -u[0] / nl, 0];
+    const b = [u[1] * n[2] - u[2] * n[1], u[2] * n[0] - u[0] * n[2], u[0] * n[1] - u[1] * n[0]];
+    for (let j = 0; j < around; j++) {
+      const a = (2 * Math.PI * j) / around;
+      obj.vertex(...[0, 1, 2].map((k) => p[k] + 0.45 * (Math.cos(a) * n[k] + Math.sin(a) * b[k])));
+    }
+  }
+  for (let i = 0; i < rings; i++)
+    for (let j = 0; j < around; j++) {
+      const id = (r, s) => 1 + (r % rings) * around + (s % around);
+      obj.face(id(i, j), id(i, j + 1), id(i + 1, j + 1), id(i + 1, j));
+    }
+  return obj.text();
+}
+
 /** A rolling terrain of 2·n² triangles (n = 224: 100,352 faces) on an integer grid,
  * heights on a 1/256 grid. */
 export function terrain(n = 224) {

@@ -61,7 +61,14 @@ async function handle(msg, reply) {
     } else if (msg.type === 'run') {
       if (!mesh) throw new Error('no mesh loaded');
       const t0 = performance.now();
-      const result = decompose(mesh, JSON.stringify(msg.settings), null);
+      let told = -1;
+      const progress = (stage, fraction) => {
+        // A report every 10% of the merge (the longest stage) and at each stage's start.
+        const step = stage === 'merge' ? Math.floor(10 * fraction) : -1;
+        if (stage !== 'merge' || step !== told) reply({ type: 'progress', stage, fraction });
+        told = step;
+      };
+      const result = decompose(mesh, JSON.stringify(msg.settings), progress);
       const seconds = (performance.now() - t0) / 1000;
       const json = result.json(0);
       const doc = JSON.parse(json);

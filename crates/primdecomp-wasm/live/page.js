@@ -31,7 +31,9 @@ const api = (window.primdecompLive = {
   mesh: null,
   result: null,
   runs: 0,
+  /** The settings of the last finished run, and those the sliders ask for now. */
   settings: null,
+  requested: null,
   cli: ''
 });
 
@@ -59,6 +61,10 @@ let nextId = 1;
 const waiting = new Map();
 
 function onReply(m) {
+  if (m.type === 'progress') {
+    status(`decomposing: ${m.stage} ${Math.round(100 * m.fraction)}%`);
+    return;
+  }
   const w = waiting.get(m.id);
   if (w) {
     waiting.delete(m.id);
@@ -132,12 +138,26 @@ function label(mode) {
   const v = stop(mode);
   return mode === 'tolerance' ? v + '%' : mode === 'bytes' ? showBytes(v) : String(v);
 }
+/** The kinds ticked, or null when all are (the default). */
+function kinds() {
+  const on = KINDS.filter((k) => $('kind-' + k).checked);
+  return on.length === KINDS.length ? null : on;
+}
 /** The run's settings (a result file's `settings`, in part) and the CLI's words. */
 function target() {
   const v = stop(api.mode);
-  if (api.mode === 'tolerance') return { settings: { tolerance: [{ diagonal: v / 100 }] }, cli: `--tolerance ${v}%` };
-  if (api.mode === 'count') return { settings: { targets: [v], cut: true }, cli: `-n ${v} --cut` };
-  return { settings: { max_bytes: [v] }, cli: `--max-bytes ${showBytes(v)}` };
+  const t =
+    api.mode === 'tolerance'
+      ? { settings: { tolerance: [{ diagonal: v / 100 }] }, cli: `--tolerance ${v}%` }
+      : api.mode === 'count'
+        ? { settings: { targets: [v], cut: true }, cli: `-n ${v} --cut` }
+        : { settings: { max_bytes: [v] }, cli: `--max-bytes ${showBytes(v)}` };
+  const only = kinds();
+  if (only) {
+    t.settings.kinds = Object.fromEntries(KINDS.map((k) => [k, only.includes(k)]));
+    t.cli += ` --kinds ${only.join(',')}`;
+  }
+  return t;
 }
 
 function setMode(mode) {
@@ -154,6 +174,7 @@ function changed() {
   const t = target();
   api.cli = `primdecomp decompose ${api.mesh ? api.mesh.name : 'MESH'} ${t.cli}`;
   $('cli').textContent = api.cli;
+  api.requested = t.settings;
   request(t.settings);
 }
 
@@ -327,10 +348,16 @@ function geometry(positions, indices, colourOf) {
   return { count: 3 * n, pos: upload(pos), nrm: upload(nrm), col: upload(col) };
 }
 
+const FOV_Y = (30 * Math.PI) / 180;
+
+/** The default view: from the front-right, above, near enough that the mesh's
+ * bounding sphere just fits the canvas. */
 function resetView() {
   scene.yaw = 0.7;
   scene.pitch = 0.45;
-  scene.dist = 2.6 * scene.radius;
+  const aspect = canvas.clientWidth / Math.max(1, canvas.clientHeight);
+  const half = Math.min(FOV_Y / 2, Math.atan(aspect * Math.tan(FOV_Y / 2)));
+  scene.dist = (1.05 * scene.radius) / Math.sin(half);
   draw();
 }
 
@@ -342,7 +369,7 @@ function matrices(aspect) {
   const eye = back.map((x) => x * scene.dist);
   const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
   const view = [right[0], up[0], back[0], 0, right[1], up[1], back[1], 0, right[2], up[2], back[2], 0, -dot(right, eye), -dot(up, eye), -dot(back, eye), 1];
-  const f = 1 / Math.tan((30 * Math.PI) / 180 / 2);
+  const f = 1 / Math.tan(FOV_Y / 2);
   const near = Math.max(scene.dist - 2 * scene.radius, scene.dist * 1e-3);
   const far = scene.dist + 2 * scene.radius;
   const proj = [f / aspect, 0, 0, 0, 0, f, 0, 0, 0, 0, (far + near) / (near - far), -1, 0, 0, (2 * far * near) / (near - far), 0];
@@ -371,9 +398,10 @@ function draw() {
     const m = matrices(w / h);
     gl.uniformMatrix4fv(loc.uView, false, m.view);
     gl.uniformMatrix4fv(loc.uProj, false, m.proj);
+    // The mesh first, opaque and pushed back; the colliders over it, see-through.
     for (const [g, alpha, offset] of [
-      [scene.input, 0.45, 2],
-      [scene.parts, 0.85, 1]
+      [$('show-mesh').checked ? scene.input : null, 1, 2],
+      [scene.parts, 0.55, 1]
     ]) {
       if (!g) continue;
       gl.enable(gl.POLYGON_OFFSET_FILL);
@@ -408,6 +436,16 @@ function wire() {
     document.querySelector(`input[name=mode][value=${m}]`).addEventListener('change', () => setMode(m));
   }
   $('file').addEventListener('change', (e) => loadFile(e.target.files[0]));
+  $('kinds').innerHTML = KINDS.map(
+    (k, i) => `<label title="${k}"><input type="checkbox" id="kind-${k}" checked><span class="swatch" style="background:${KIND_RGB[i]}"></span>${k}</label>`
+  ).join('');
+  for (const k of KINDS)
+    $('kind-' + k).addEventListener('change', () => {
+      // At least one kind: unticking the last one ticks it again.
+      if (!KINDS.some((x) => $('kind-' + x).checked)) $('kind-' + k).checked = true;
+      changed();
+    });
+  $('show-mesh').addEventListener('change', draw);
   window.addEventListener('dragover', (e) => {
     e.preventDefault();
     document.body.classList.add('dragging');

@@ -1,0 +1,216 @@
+// The live page (crates/primdecomp-wasm/pkg/primdecomp-live.html, built by
+// crates/primdecomp-wasm/build.sh) in a real headless Chromium, opened from file://
+// with every network request refused: the WebAssembly engine starts (in a Worker)
+// and decomposes the built-in demo scene; a made-up mesh given through the file
+// input (a knotted tube, as a binary STL) and another dropped on the page (an OBJ
+// with a part of every kind) are decomposed; the
+// count, tolerance and byte sliders are moved; after each, the page's count and
+// counts by kind equal the CLI's on the same file with the flags the page says it
+// used, and moving the count slider changes the count.
+//
+// Environment: PRIMDECOMP_BIN (default target/release/primdecomp), PRIMDECOMP_LIVE
+// (default crates/primdecomp-wasm/pkg/primdecomp-live.html), CHROMIUM (default
+// /usr/bin/chromium), CI (set: a missing piece fails instead of skipping).
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { execFileSync } from 'node:child_process';
+import fs from 'node:fs';
+import os from 'node:os';
+import path from 'node:path';
+import { fileURLToPath, pathToFileURL } from 'node:url';
+import { knot, playground } from '../wasm/meshes.mjs';
+
+const here = path.dirname(fileURLToPath(import.meta.url));
+const root = path.resolve(here, '..', '..');
+const bin = process.env.PRIMDECOMP_BIN || path.join(root, 'target', 'release', 'primdecomp');
+const live = process.env.PRIMDECOMP_LIVE || path.join(root, 'crates', 'primdecomp-wasm', 'pkg', 'primdecomp-live.html');
+const chromiumPath = process.env.CHROMIUM || '/usr/bin/chromium';
+const inCi = !!process.env.CI && process.env.CI !== 'false' && process.env.CI !== '0';
+const work = fs.mkdtempSync(path.join(os.tmpdir(), 'primdecomp-live-test-'));
+
+function missing(what) {
+  const msg = `${what}: live page test cannot run`;
+  if (inCi) throw new Error(`${msg} (under CI this is a failure)`);
+  console.error(`\n${'!'.repeat(72)}\nSKIPPED: ${msg}\n${'!'.repeat(72)}\n`);
+  return msg;
+}
+
+let skip = false;
+if (!fs.existsSync(live)) skip = missing(`no live page at ${live} (crates/primdecomp-wasm/build.sh)`);
+else if (!fs.existsSync(chromiumPath)) skip = missing(`no Chromium at ${chromiumPath} (apt-get install chromium)`);
+else if (!fs.existsSync(bin)) skip = missing(`no primdecomp binary at ${bin} (cargo build --release)`);
+
+/** The OBJ's polygons fanned into triangles, as a binary STL. */
+function stl(obj) {
+  const v = [];
+  const tris = [];
+  for (const line of obj.split('\n')) {
+    const w = line.trim().split(/\s+/);
+    if (w[0] === 'v') v.push(w.slice(1, 4).map(Number));
+    if (w[0] === 'f') {
+      const ids = w.slice(1).map((x) => parseInt(x, 10) - 1);
+      for (let k = 1; k + 1 < ids.length; k++) tris.push([ids[0], ids[k], ids[k + 1]]);
+    }
+  }
+  const buf = Buffer.alloc(84 + 50 * tris.length);
+  buf.write('primdecomp live test', 0);
+  buf.writeUInt32LE(tris.length, 80);
+  tris.forEach((t, i) => {
+    const o = 84 + 50 * i;
+    t.forEach((id, k) => v[id].forEach((x, d) => buf.writeFloatLE(x, o + 12 + 12 * k + 4 * d)));
+  });
+  return buf;
+}
+
+const stlPath = path.join(work, 'knot.stl');
+const objPath = path.join(work, 'playground.obj');
+let browser, page;
+const requests = [];
+const errors = [];
+
+before(async () => {
+  if (skip) return;
+  fs.writeFileSync(stlPath, stl(knot()));
+  fs.writeFileSync(objPath, playground());
+  const { chromium } = await import('playwright-core');
+  browser = await chromium.launch({
+    executablePath: chromiumPath,
+    headless: true,
+    args: ['--no-sandbox', '--disable-gpu', '--use-angle=swiftshader', '--enable-unsafe-swiftshader', '--disable-quic', '--no-first-run', '--disable-background-networking', '--disable-component-update', '--disable-sync']
+  });
+  const context = await browser.newContext({ viewport: { width: 1280, height: 800 }, deviceScaleFactor: 1 });
+  await context.route('**/*', (route) => {
+    const url = route.request().url();
+    if (url.startsWith('file://') || url.startsWith('blob:') || url.startsWith('data:')) return route.continue();
+    requests.push(url);
+    return route.abort();
+  });
+  page = await context.newPage();
+  page.on('pageerror', (e) => errors.push(String(e)));
+  page.on('console', (m) => {
+    if (m.type() === 'error') errors.push(m.text());
+  });
+  await page.goto(pathToFileURL(live).href);
+  await settled(0);
+});
+
+after(async () => {
+  if (browser) await browser.close();
+  fs.rmSync(work, { recursive: true, force: true });
+});
+
+const state = () => page.evaluate(() => JSON.parse(JSON.stringify(window.primdecompLive)));
+
+/** Waits until more than `runs` runs finished and the last one ran what the sliders ask. */
+async function settled(runs) {
+  await page.waitForFunction(
+    (n) => {
+      const a = window.primdecompLive;
+      return a && (a.error || (a.runs > n && !a.busy && JSON.stringify(a.settings) === JSON.stringify(a.requested)));
+    },
+    runs,
+    { timeout: 120000 }
+  );
+  const s = await state();
+  assert.equal(s.error, null, `the page reported an error: ${s.error}`);
+  return s;
+}
+
+/** The CLI on `file` with the flags the page shows for its run. */
+function cli(file, s) {
+  const flags = s.cli.split(' ').slice(3);
+  const out = path.join(work, 'cli.json');
+  execFileSync(bin, ['decompose', file, '-o', out, '--quiet', ...flags]);
+  return JSON.parse(fs.readFileSync(out, 'utf8'));
+}
+
+function sameAsCli(file, s, what) {
+  const doc = cli(file, s);
+  assert.equal(s.result.count, doc.primitives.length, `${what}: the page's count (${s.cli})`);
+  assert.deepEqual(s.result.counts, doc.stats.counts, `${what}: counts by kind (${s.cli})`);
+  assert.equal(s.result.bytes, doc.stats.bytes, `${what}: bytes`);
+  if (doc.stats.distance) assert.ok(Math.abs(s.result.distance - doc.stats.distance.worst) <= 1e-9 * doc.stats.distance.worst, `${what}: farthest distance`);
+  console.log(`  ${what}: ${s.result.count} primitives, ${s.result.bytes} bytes in ${(1000 * s.result.seconds).toFixed(0)} ms, as \`${s.cli}\` gives`);
+  return doc;
+}
+
+/** Presses `key` `times` times on a focused slider, then waits for the last run. */
+async function slide(id, key, times) {
+  const before = (await state()).runs;
+  await page.focus(`#${id}`);
+  for (let i = 0; i < times; i++) await page.keyboard.press(key);
+  return settled(before);
+}
+
+test('the engine starts in a Worker from file://, offline, and decomposes the demo scene as the CLI does', { skip }, async () => {
+  const s = await state();
+  assert.equal(s.worker, true, `the engine runs in a Worker (${s.workerError || ''})`);
+  assert.equal(s.mesh.name, 'demo_scene.obj');
+  sameAsCli(path.join(root, 'datasets', 'demo_scene.obj'), s, 'demo scene');
+  assert.deepEqual(requests, [], 'no network request');
+  assert.deepEqual(errors, [], 'no script errors');
+  // Something is drawn: the canvas is not all background.
+  const shot = await page.locator('#gl').screenshot();
+  assert.ok(shot.length > 5000, `a drawing (${shot.length} bytes of PNG)`);
+});
+
+test('a mesh through the file input, then the sliders: the count changes and matches the CLI at each setting', { skip }, async () => {
+  let runs = (await state()).runs;
+  await page.setInputFiles('#file', stlPath);
+  await page.waitForFunction(() => window.primdecompLive.mesh && window.primdecompLive.mesh.name === 'knot.stl');
+  let s = await settled(runs);
+  sameAsCli(stlPath, s, 'knot.stl, tolerance');
+
+  // The count slider, two stops down from 64: a cut at 40 primitives, then 1 (Home).
+  s = await slide('count', 'ArrowLeft', 2);
+  assert.equal(s.mode, 'count');
+  assert.match(s.cli, / -n 40 --cut$/);
+  const atForty = sameAsCli(stlPath, s, 'knot.stl, count slider');
+  s = await slide('count', 'Home', 1);
+  assert.match(s.cli, / -n 1 --cut$/);
+  sameAsCli(stlPath, s, 'knot.stl, count slider at 1');
+  assert.notEqual(s.result.count, atForty.primitives.length, 'moving the count slider changes the count');
+  assert.equal(s.result.count, 1);
+
+  // The tolerance slider, down to 0.5%, and the byte slider, down to 256 bytes.
+  s = await slide('tolerance', 'ArrowLeft', 4);
+  assert.match(s.cli, / --tolerance 0\.5%$/);
+  sameAsCli(stlPath, s, 'knot.stl, tolerance slider');
+  s = await slide('bytes', 'ArrowLeft', 8);
+  assert.match(s.cli, / --max-bytes 256$/);
+  sameAsCli(stlPath, s, 'knot.stl, byte slider');
+
+  // Without spheres: the kind toggles are settings too.
+  runs = s.runs;
+  await page.click('#kind-sphere');
+  s = await settled(runs);
+  assert.match(s.cli, / --kinds box,capsule,cylinder,frustum,prism$/);
+  assert.equal(s.result.counts.sphere, 0);
+  sameAsCli(stlPath, s, 'knot.stl, no spheres');
+  await page.click('#kind-sphere');
+  await settled(s.runs);
+});
+
+test('a mesh dropped on the page is decomposed', { skip }, async () => {
+  const runs = (await state()).runs;
+  const text = fs.readFileSync(objPath, 'utf8');
+  await page.evaluate((t) => {
+    const dt = new DataTransfer();
+    dt.items.add(new File([t], 'playground.obj', { type: 'model/obj' }));
+    window.dispatchEvent(new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
+  }, text);
+  await page.waitForFunction(() => window.primdecompLive.mesh && window.primdecompLive.mesh.name === 'playground.obj');
+  const s = await settled(runs);
+  sameAsCli(objPath, s, 'playground.obj');
+  assert.equal(new Set(Object.values(s.result.counts)).size > 0 && Object.values(s.result.counts).every((n) => n === 1), true, 'the playground: one primitive of each kind');
+  // A file the engine cannot read: the page says why and keeps working.
+  await page.evaluate(() => {
+    const dt = new DataTransfer();
+    dt.items.add(new File(['v 0 0 0\nf 1 2 x\n'], 'broken.obj'));
+    window.dispatchEvent(new DragEvent('drop', { dataTransfer: dt, bubbles: true, cancelable: true }));
+  });
+  await page.waitForFunction(() => window.primdecompLive.error);
+  const e = await state();
+  assert.match(e.error, /broken\.obj:2/);
+  assert.deepEqual(requests, [], 'no network request');
+});

@@ -114,6 +114,11 @@ typedef struct primdecomp_mesh primdecomp_mesh;
 // `primdecomp_result_free`.
 typedef struct primdecomp_result primdecomp_result;
 
+// Called with the stage running (`"dedup"`, `"adjacency"`, `"quadrics"`, `"seed"`,
+// `"merge"`, `"postprocess"`: a static string) and the fraction of it done (0 to 1).
+// Return 0 to go on, anything else to cancel the run.
+typedef int (*primdecomp_progress_fn)(void *user_data, const char *stage, double fraction);
+
 // A level's summary (the JSON's `stats`).
 typedef struct {
   // The target count asked for (the cap of a tolerance or byte target).
@@ -235,11 +240,6 @@ typedef struct {
   primdecomp_shape shape;
 } primdecomp_primitive;
 
-// Called with the stage running (`"dedup"`, `"adjacency"`, `"quadrics"`, `"seed"`,
-// `"merge"`, `"postprocess"`: a static string) and the fraction of it done (0 to 1).
-// Return 0 to go on, anything else to cancel the run.
-typedef int (*primdecomp_progress_fn)(void *user_data, const char *stage, double fraction);
-
 #ifdef __cplusplus
 extern "C" {
 #endif // __cplusplus
@@ -247,45 +247,10 @@ extern "C" {
 // The library's version, `"MAJOR.MINOR.PATCH"` (a static string).
 const char *primdecomp_version(void);
 
-// Writes a level to `path` (through a temporary file and a rename, as the CLI
-// does): the format follows the extension (`.json`, `.obj`, `.gltf`, `.glb`,
-// `.urdf`, `.usda`, `.tscn`, `.mjcf`) or `"format"` in `options_json` (`"mjcf"` for
-// MuJoCo's `.xml`). `options_json` (NULL for the defaults) holds the CLI's export
-// flags: `{"format": "mjcf", "up": "z", "scale": 0.01, "gltf_physics": "omi",
-// "preview": true, "urdf_capsule": true, "detail": 32, "model": "robot"}`. URDF
-// writes the meshes of frustums and prisms beside the file.
-//
-// # Safety
-// `result` is a live result of this library; `path` a NUL-terminated string;
-// `options_json` NULL or a NUL-terminated string.
-primdecomp_status primdecomp_result_export(const primdecomp_result *result,
-                                           size_t level,
-                                           const char *path,
-                                           const char *options_json);
-
-// A level in `format` (`"json"`, `"obj"`, `"gltf"`, `"glb"`, `"mjcf"`, `"urdf"`,
-// `"usda"`, `"tscn"`) in memory: `*out` is a new buffer of `*len` bytes (free it
-// with `primdecomp_bytes_free`). `options_json` as for `primdecomp_result_export`;
-// the model is named `"primdecomp"` unless it says otherwise. A URDF whose
-// frustums or prisms need mesh files beside it is refused: export it to a path.
-//
-// # Safety
-// `result` is a live result of this library; `format` a NUL-terminated string;
-// `options_json` NULL or a NUL-terminated string; `out` and `len` point to writable
-// storage.
-primdecomp_status primdecomp_result_export_to_memory(const primdecomp_result *result,
-                                                     size_t level,
-                                                     const char *format,
-                                                     const char *options_json,
-                                                     uint8_t **out,
-                                                     size_t *len);
-
-// Frees a buffer of `len` bytes this library returned (NULL is ignored).
-//
-// # Safety
-// `bytes` is NULL or a buffer from `primdecomp_result_export_to_memory` with the
-// `len` it gave, freed only once.
-void primdecomp_bytes_free(uint8_t *bytes, size_t len);
+// The message of the last call on this thread that failed, or an empty string when
+// the last call succeeded. Never NULL; valid until the next primdecomp call on this
+// thread.
+const char *primdecomp_last_error(void);
 
 // Reads the mesh file at `path` (OBJ, PLY, STL, OFF, glTF or GLB, by its extension),
 // exactly as `primdecomp decompose` does; results record `path` as the input's path.
@@ -297,7 +262,8 @@ primdecomp_status primdecomp_mesh_load(const char *path, primdecomp_mesh **out);
 
 // Parses a mesh file's `len` bytes already in memory; `name`'s extension says the
 // format (`"part.stl"`), names it in messages and is what results record as the
-// input's path. glTF buffers must be embedded (`data:` URIs) or in the GLB.
+// input's path. A `.gltf`'s buffers are `data:` URIs or files inside `name`'s
+// folder, as the CLI reads them.
 //
 // # Safety
 // `bytes` points to `len` readable bytes (NULL only when `len` is 0); `name` is a
@@ -365,6 +331,28 @@ size_t primdecomp_mesh_vertex_count(const primdecomp_mesh *mesh);
 // `mesh` is NULL or a mesh from this library, freed only once and not in use.
 void primdecomp_mesh_free(primdecomp_mesh *mesh);
 
+// Decomposes `mesh` with the settings in `settings_json` (the `settings` object of a
+// result file, a whole result file, or NULL for the defaults: the fewest primitives
+// within 2% of the mesh's diagonal). Deterministic: the CLI's JSON for the same file
+// and settings, byte for byte.
+//
+// `progress` (may be NULL) is called on this thread, about every 20 ms while the
+// run goes on and once at its end, with `user_data`; returning nonzero cancels.
+// `cancel` (may be NULL) is watched throughout: once the `int32_t` it points to is
+// nonzero (set from any thread, with an atomic store) the run stops and returns
+// `PRIMDECOMP_STATUS_CANCELLED`. On success `*out` holds a new result.
+//
+// # Safety
+// `mesh` is a live mesh of this library; `settings_json` is NULL or a NUL-terminated
+// string; `cancel` is NULL or points to a 4-byte-aligned `int32_t` that lives
+// through the call; `out` points to writable storage for a pointer.
+primdecomp_status primdecomp_decompose(const primdecomp_mesh *mesh,
+                                       const char *settings_json,
+                                       primdecomp_progress_fn progress,
+                                       void *user_data,
+                                       const int32_t *cancel,
+                                       primdecomp_result **out);
+
 // The result's levels, one per target (0 for NULL).
 //
 // # Safety
@@ -415,32 +403,45 @@ void primdecomp_result_free(primdecomp_result *result);
 // `s` is NULL or a string from this library, freed only once.
 void primdecomp_string_free(char *s);
 
-// Decomposes `mesh` with the settings in `settings_json` (the `settings` object of a
-// result file, a whole result file, or NULL for the defaults: the fewest primitives
-// within 2% of the mesh's diagonal). Deterministic: the CLI's JSON for the same file
-// and settings, byte for byte.
-//
-// `progress` (may be NULL) is called on this thread, about every 20 ms while the
-// run goes on and once at its end, with `user_data`; returning nonzero cancels.
-// `cancel` (may be NULL) is watched throughout: once the `int32_t` it points to is
-// nonzero (set from any thread, with an atomic store) the run stops and returns
-// `PRIMDECOMP_STATUS_CANCELLED`. On success `*out` holds a new result.
+// Writes a level to `path` (through a temporary file and a rename, as the CLI
+// does): the format follows the extension (`.json`, `.obj`, `.gltf`, `.glb`,
+// `.urdf`, `.usda`, `.tscn`, `.mjcf`) or `"format"` in `options_json` (`"mjcf"` for
+// MuJoCo's `.xml`). `options_json` (NULL for the defaults) holds the CLI's export
+// flags: `{"format": "mjcf", "up": "z", "scale": 0.01, "gltf_physics": "omi",
+// "preview": true, "urdf_capsule": true, "detail": 32, "model": "robot"}`. URDF
+// writes the meshes of frustums and prisms beside the file.
 //
 // # Safety
-// `mesh` is a live mesh of this library; `settings_json` is NULL or a NUL-terminated
-// string; `cancel` is NULL or points to a 4-byte-aligned `int32_t` that lives
-// through the call; `out` points to writable storage for a pointer.
-primdecomp_status primdecomp_decompose(const primdecomp_mesh *mesh,
-                                       const char *settings_json,
-                                       primdecomp_progress_fn progress,
-                                       void *user_data,
-                                       const int32_t *cancel,
-                                       primdecomp_result **out);
+// `result` is a live result of this library; `path` a NUL-terminated string;
+// `options_json` NULL or a NUL-terminated string.
+primdecomp_status primdecomp_result_export(const primdecomp_result *result,
+                                           size_t level,
+                                           const char *path,
+                                           const char *options_json);
 
-// The message of the last call on this thread that failed, or an empty string when
-// the last call succeeded. Never NULL; valid until the next primdecomp call on this
-// thread.
-const char *primdecomp_last_error(void);
+// A level in `format` (`"json"`, `"obj"`, `"gltf"`, `"glb"`, `"mjcf"`, `"urdf"`,
+// `"usda"`, `"tscn"`) in memory: `*out` is a new buffer of `*len` bytes (free it
+// with `primdecomp_bytes_free`). `options_json` as for `primdecomp_result_export`;
+// the model is named `"primdecomp"` unless it says otherwise. A URDF whose
+// frustums or prisms need mesh files beside it is refused: export it to a path.
+//
+// # Safety
+// `result` is a live result of this library; `format` a NUL-terminated string;
+// `options_json` NULL or a NUL-terminated string; `out` and `len` point to writable
+// storage.
+primdecomp_status primdecomp_result_export_to_memory(const primdecomp_result *result,
+                                                     size_t level,
+                                                     const char *format,
+                                                     const char *options_json,
+                                                     uint8_t **out,
+                                                     size_t *len);
+
+// Frees a buffer of `len` bytes this library returned (NULL is ignored).
+//
+// # Safety
+// `bytes` is NULL or a buffer from `primdecomp_result_export_to_memory` with the
+// `len` it gave, freed only once.
+void primdecomp_bytes_free(uint8_t *bytes, size_t len);
 
 #ifdef __cplusplus
 }  // extern "C"

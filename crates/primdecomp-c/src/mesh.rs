@@ -45,7 +45,8 @@ pub unsafe extern "C" fn primdecomp_mesh_load(
 
 /// Parses a mesh file's `len` bytes already in memory; `name`'s extension says the
 /// format (`"part.stl"`), names it in messages and is what results record as the
-/// input's path. glTF buffers must be embedded (`data:` URIs) or in the GLB.
+/// input's path. A `.gltf`'s buffers are `data:` URIs or files inside `name`'s
+/// folder, as the CLI reads them.
 ///
 /// # Safety
 /// `bytes` points to `len` readable bytes (NULL only when `len` is 0); `name` is a

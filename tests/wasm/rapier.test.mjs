@@ -118,9 +118,10 @@ for (const c of CASES) {
     const got = result.toJSON();
     const doc = JSON.parse(expect);
     const mine = JSON.parse(got);
-    // Byte for byte, or (where WebAssembly's libm and glibc round acos/cos apart in
-    // the eigen-solve, docs/decisions/0053) the same primitives, kinds and face
-    // counts, each the same shape within 1e-12 of the diagonal; the same statistics.
+    // Byte for byte, or (where WebAssembly's math library, musl's, and glibc's round
+    // a transcendental function a last bit apart: docs/decisions/limits-wasm-libm.md)
+    // the same primitives, kinds and face counts, each the same shape within 1e-12 of
+    // the diagonal; the same statistics.
     const scale = Math.hypot(...doc.input.aabb_max.map((x, k) => x - doc.input.aabb_min[k]));
     const { worst, differ } = compare(doc.primitives, mine.primitives);
     assert.ok(worst <= 1e-12 * scale, `largest difference between the shapes: ${worst} (diagonal ${scale})`);

@@ -6,7 +6,9 @@
 // with a part of every kind) are decomposed; the
 // count, tolerance and byte sliders are moved; after each, the page's count and
 // counts by kind equal the CLI's on the same file with the flags the page says it
-// used, and moving the count slider changes the count.
+// used, and moving the count slider changes the count. Then the npm package itself
+// (pkg/index.js, an ES module) is imported by a page served from 127.0.0.1 and
+// decomposes typed arrays in the browser.
 //
 // Environment: PRIMDECOMP_BIN (default target/release/primdecomp), PRIMDECOMP_LIVE
 // (default crates/primdecomp-wasm/pkg/primdecomp-live.html), CHROMIUM (default
@@ -189,6 +191,48 @@ test('a mesh through the file input, then the sliders: the count changes and mat
   sameAsCli(stlPath, s, 'knot.stl, no spheres');
   await page.click('#kind-sphere');
   await settled(s.runs);
+});
+
+test('the npm package as an ES module in the browser: import, decompose typed arrays, toJSON, toGltf', { skip }, async () => {
+  // Served over HTTP from the package's folder (a module cannot be imported from
+  // file://), as a bundler or a static server would.
+  const http = await import('node:http');
+  const pkg = path.dirname(live);
+  const types = { '.js': 'text/javascript', '.wasm': 'application/wasm', '.html': 'text/html' };
+  const page_ = `<!DOCTYPE html><script type="module">
+    import { decompose, version, KINDS } from './index.js';
+    const v = new Float32Array([0,0,0, 2,0,0, 0,1,0, 2,1,0, 0,0,3, 2,0,3, 0,1,3, 2,1,3]);
+    const quads = [[0,4,6,2],[1,3,7,5],[0,1,5,4],[2,6,7,3],[0,2,3,1],[4,5,7,6]];
+    const tris = new Uint32Array(quads.flatMap((q) => [q[0], q[1], q[2], q[0], q[2], q[3]]));
+    const r = decompose(v, tris, { targets: [1] });
+    const glb = r.toGltf();
+    window.out = { version, kinds: KINDS, primitive: r.primitives[0], json: JSON.parse(r.toJSON()).stats, glb: new TextDecoder().decode(glb.subarray(0, 4)) };
+  </script>`;
+  const server = http.createServer((req, res) => {
+    const name = decodeURIComponent(new URL(req.url, 'http://x').pathname);
+    if (name === '/test.html') return res.writeHead(200, { 'content-type': 'text/html' }).end(page_);
+    const file = path.join(pkg, path.normalize(name));
+    if (!file.startsWith(pkg) || !fs.existsSync(file)) return res.writeHead(404).end();
+    res.writeHead(200, { 'content-type': types[path.extname(file)] || 'application/octet-stream' }).end(fs.readFileSync(file));
+  });
+  await new Promise((r) => server.listen(0, '127.0.0.1', r));
+  const url = `http://127.0.0.1:${server.address().port}/test.html`;
+  try {
+    const p = await page.context().newPage();
+    await p.route('**/*', (route) => (route.request().url().startsWith('http://127.0.0.1:') ? route.continue() : route.abort()));
+    await p.goto(url);
+    await p.waitForFunction(() => window.out, null, { timeout: 60000 });
+    const out = await p.evaluate(() => window.out);
+    assert.match(out.version, /^\d+\.\d+\.\d+$/);
+    assert.equal(out.kinds.length, 6);
+    assert.equal(out.primitive.kind, 'box');
+    assert.deepEqual(out.primitive.half_extents.map((x) => Math.round(x * 1e6) / 1e6).sort(), [0.5, 1, 1.5]);
+    assert.equal(out.json.primitives, 1);
+    assert.equal(out.glb, 'glTF');
+    await p.close();
+  } finally {
+    server.close();
+  }
 });
 
 test('a mesh dropped on the page is decomposed', { skip }, async () => {

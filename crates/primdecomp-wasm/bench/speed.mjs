@@ -1,25 +1,28 @@
 // WebAssembly against native, one thread each: the time to decompose and whether the
-// primitives agree. For each mesh and settings, rounds alternate the native CLI
-// (`--threads 1 --timings`: its stages' seconds, the file's loading left out) and
-// the package's engine in this node process (the decomposition call alone; the
-// first call, which pays for compiling the module's code, is reported apart).
+// primitives agree. For each mesh and settings, the CLI gives the settings and the
+// JSON to compare with; then rounds alternate the native library
+// (examples/native_json, RAYON_NUM_THREADS=1, several decompositions in one
+// process) and the package's engine in this node process (as many calls, after
+// warming up), each timing the decomposition alone. The engine's very first call,
+// which pays for compiling the module's code, is reported apart.
 //
-//   node crates/primdecomp-wasm/bench/speed.mjs --cli target/release/primdecomp \
-//       [--rounds 5] [--musl NATIVE_JSON] [--out docs/results/wasm.md] MESH[=FLAGS] …
+//   cargo build --release -p primdecomp-wasm --example native_json
+//   node crates/primdecomp-wasm/bench/speed.mjs [--cli target/release/primdecomp] \
+//       [--native target/release/examples/native_json] [--rounds 5] \
+//       [--musl NATIVE_JSON_MUSL] [--out docs/results/wasm.md] [MESH[=FLAGS] …]
 //
-// --musl: the example native_json built for x86_64-unknown-linux-musl (the native
-// code with musl's math library, as WebAssembly has): its JSON is compared with the
-// engine's too (docs/decisions/limits-wasm-libm.md).
-//
-// FLAGS are the CLI's, comma-separated (`demo.obj=-n,150`); the same settings go to
-// the engine. Without MESH: the demo scene at `-n 150` and at the default, and the
-// made-up 100,352-face terrain of tests/wasm/meshes.mjs at `-n 200`.
+// FLAGS are the CLI's, comma-separated (`demo.obj=-n,150`). Without MESH: the demo
+// scene and the made-up 100,352-face terrain of tests/wasm/meshes.mjs, each at a
+// count (`-n 150`, `-n 200`) and at the default. --musl: native_json built for
+// x86_64-unknown-linux-musl (the native code on musl's math library, as WebAssembly
+// is): its JSON is compared with the engine's too (docs/decisions/limits-wasm-libm.md).
 import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import zlib from 'node:zlib';
 import { fileURLToPath } from 'node:url';
+import { parseArgs } from 'node:util';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const root = path.resolve(here, '..', '..', '..');
@@ -27,21 +30,22 @@ const pkg = path.join(here, '..', 'pkg');
 const engine = await import(path.join(pkg, 'primdecomp_wasm.js'));
 await engine.default({ module_or_path: fs.readFileSync(path.join(pkg, 'primdecomp_wasm_bg.wasm')) });
 
-const args = process.argv.slice(2);
-const opt = (name, fallback) => {
-  const i = args.indexOf(name);
-  if (i < 0) return fallback;
-  const v = args[i + 1];
-  args.splice(i, 2);
-  return v;
-};
-const cli = opt('--cli', path.join(root, 'target', 'release', 'primdecomp'));
-const rounds = +opt('--rounds', '5');
-const out = opt('--out', null);
-const musl = opt('--musl', null);
+const target = path.join(root, 'target', 'release');
+const { values: o, positionals } = parseArgs({
+  options: {
+    cli: { type: 'string', default: path.join(target, 'primdecomp') },
+    native: { type: 'string', default: path.join(target, 'examples', 'native_json') },
+    rounds: { type: 'string', default: '5' },
+    out: { type: 'string' },
+    musl: { type: 'string' }
+  },
+  allowPositionals: true
+});
+const { cli, native, out, musl } = o;
+const rounds = +o.rounds;
 const work = fs.mkdtempSync(path.join(os.tmpdir(), 'primdecomp-speed-'));
 
-let cases = args.map((a) => {
+let cases = positionals.map((a) => {
   const [file, flags = ''] = a.split('=');
   return { file, flags: flags ? flags.split(',') : [] };
 });
@@ -53,88 +57,109 @@ if (!cases.length) {
   cases = [
     { file: demo, flags: ['-n', '150'] },
     { file: demo, flags: [] },
-    { file: t, flags: ['-n', '200'] }
+    { file: t, flags: ['-n', '200'] },
+    { file: t, flags: [] }
   ];
-}
-
-/** The settings the CLI's flags give, read back from the file it writes. */
-function native(c) {
-  const json = path.join(work, 'native.json');
-  execFileSync(cli, ['decompose', c.file, '-o', json, '--quiet', '--timings', '--threads', '1', ...c.flags]);
-  const doc = JSON.parse(fs.readFileSync(json, 'utf8'));
-  const s = doc.stats.seconds;
-  execFileSync(cli, ['decompose', c.file, '-o', json, '--quiet', ...c.flags]);
-  return { seconds: s.total - (s.load || 0), settings: doc.settings, json: fs.readFileSync(json, 'utf8') };
 }
 
 const median = (xs) => {
   const s = [...xs].sort((a, b) => a - b);
   return s.length % 2 ? s[(s.length - 1) / 2] : 0.5 * (s[s.length / 2 - 1] + s[s.length / 2]);
 };
+const differ = (x, y) => {
+  const a = JSON.parse(x).primitives;
+  const b = JSON.parse(y).primitives;
+  if (a.length !== b.length) return `${b.length} primitives against ${a.length}`;
+  const n = a.filter((p, i) => JSON.stringify(p) !== JSON.stringify(b[i])).length;
+  return n ? `${n} of ${a.length} written a last bit apart` : 'byte-identical';
+};
+
+/** Native decompositions on one thread in one process: their seconds and the JSON. */
+function nativeRuns(bin, file, settings, repeat) {
+  const json = path.join(work, 'native.json');
+  const text = execFileSync(bin, [file, settings, json, ...(repeat > 1 ? [String(repeat)] : [])], { env: { ...process.env, RAYON_NUM_THREADS: '1' }, encoding: 'utf8' });
+  return { seconds: text.trim().split('\n').map(Number), json: fs.readFileSync(json, 'utf8') };
+}
 
 const rows = [];
 for (const c of cases) {
+  const cliJson = path.join(work, 'cli.json');
+  execFileSync(cli, ['decompose', c.file, '-o', cliJson, '--quiet', ...c.flags]);
+  const reference = fs.readFileSync(cliJson, 'utf8');
+  const settings = JSON.stringify(JSON.parse(reference).settings);
   const mesh = engine.parseMesh(fs.readFileSync(c.file), c.file);
+  const t0 = performance.now();
+  const firstResult = engine.decompose(mesh, settings, null);
+  const first = (performance.now() - t0) / 1000;
+  const same = differ(reference, firstResult.json(0));
+  firstResult.free();
+  // Warm up: V8 compiles the module's hot code with its optimising tier in the
+  // background over the first calls; then as many decompositions a round as fill
+  // about a second (at least one).
+  let warm = first;
+  for (let k = 0, spent = 0; k < 10 && spent < 3; k++) {
+    const t = performance.now();
+    engine.decompose(mesh, settings, null).free();
+    warm = (performance.now() - t) / 1000;
+    spent += warm;
+  }
+  const repeat = Math.max(1, Math.min(20, Math.round(1 / Math.max(warm, 1e-3))));
   const nat = [];
   const wasm = [];
-  let first = null;
-  let settings = null;
-  let same = '';
+  let nativeSame = '';
   for (let r = 0; r < rounds; r++) {
-    const n = native(c);
-    nat.push(n.seconds);
-    settings = JSON.stringify({ ...n.settings, target: undefined });
-    const t0 = performance.now();
+    const n = nativeRuns(native, c.file, settings, repeat);
+    nat.push(...n.seconds);
+    if (r === 0) nativeSame = n.json === reference ? 'the CLI' : 'not the CLI';
+    for (let k = 0; k < repeat; k++) {
+      const t = performance.now();
+      engine.decompose(mesh, settings, null).free();
+      wasm.push((performance.now() - t) / 1000);
+    }
+  }
+  if (nativeSame !== 'the CLI') console.error(`${c.file}: the native library's JSON is not the CLI's`);
+  let muslSame = '';
+  if (musl) {
     const result = engine.decompose(mesh, settings, null);
-    const s = (performance.now() - t0) / 1000;
-    if (first === null) {
-      first = s;
-      const j = result.json(0);
-      const a = JSON.parse(n.json).primitives;
-      const b = JSON.parse(j).primitives;
-      same =
-        j === n.json
-          ? 'byte-identical'
-          : a.length !== b.length
-            ? `${b.length} vs ${a.length} primitives`
-            : `${a.filter((p, i) => JSON.stringify(p) !== JSON.stringify(b[i])).length} of ${a.length} written differently`;
-      if (musl) {
-        const m = path.join(work, 'musl.json');
-        execFileSync(musl, [c.file, settings, m]);
-        same += fs.readFileSync(m, 'utf8') === j ? '; the musl build: byte-identical' : '; the musl build: differs';
-      }
-    } else wasm.push(s);
+    muslSame = nativeRuns(musl, c.file, settings, 1).json === result.json(0) ? 'byte-identical' : 'DIFFERS';
     result.free();
   }
   const row = {
     mesh: path.basename(c.file),
     faces: mesh.faceCount,
-    flags: c.flags.join(' ') || '(default: --tolerance 2%)',
+    flags: c.flags.join(' ') || '(default)',
+    runs: nat.length,
     native: median(nat),
-    nativeMin: Math.min(...nat),
-    first,
     wasm: median(wasm),
-    wasmMin: Math.min(...wasm),
-    same
+    first,
+    same,
+    muslSame
   };
   row.ratio = row.wasm / row.native;
-  row.ratioMin = row.wasmMin / row.nativeMin;
   rows.push(row);
   mesh.free();
-  console.error(`${row.mesh} ${row.flags}: native ${row.native.toFixed(3)} s, wasm ${row.wasm.toFixed(3)} s (first ${first.toFixed(3)} s), ${row.ratio.toFixed(2)}x (fastest ${row.ratioMin.toFixed(2)}x); ${same}`);
+  console.error(
+    `${row.mesh} ${row.flags}: native ${row.native.toFixed(4)} s, wasm ${row.wasm.toFixed(4)} s (${row.runs} each; first call ${first.toFixed(3)} s): ${row.ratio.toFixed(2)}x; ${same}${musl ? `; musl build vs wasm: ${muslSame}` : ''}`
+  );
 }
 
 const wasmFile = path.join(pkg, 'primdecomp_wasm_bg.wasm');
 const bytes = fs.statSync(wasmFile).size;
-const gz = zlib.gzipSync(fs.readFileSync(wasmFile), { level: 9 }).length;
+// gzip -9 where the tool is there (build.sh prints the same figure), else zlib's.
+let gz;
+try {
+  gz = execFileSync('gzip', ['-9', '-c', wasmFile]).length;
+} catch {
+  gz = zlib.gzipSync(fs.readFileSync(wasmFile), { level: 9 }).length;
+}
 const lines = [
-  `primdecomp_wasm_bg.wasm: ${bytes.toLocaleString('en-US')} bytes, ${gz.toLocaleString('en-US')} gzipped (-9); node ${process.version}, ${os.cpus()[0].model}, ${rounds} rounds alternating (median and fastest of each; the first wasm call apart)`,
+  `primdecomp_wasm_bg.wasm: ${bytes.toLocaleString('en-US')} bytes, ${gz.toLocaleString('en-US')} gzipped (gzip -9). node ${process.version}, ${os.cpus()[0].model}; ${rounds} rounds alternating native and WebAssembly, medians of every decomposition (warm); the first WebAssembly call apart.`,
   '',
-  '| mesh | faces | settings | native 1 thread (s): median, fastest | wasm (s): median, fastest | wasm / native: medians, fastest | wasm first call (s) | primitives vs native |',
-  '|---|---:|---|---:|---:|---:|---:|---|',
+  `| mesh | faces | CLI flags | native, 1 thread (s) | WebAssembly (s) | WebAssembly / native | first WebAssembly call (s) | primitives against the CLI's${musl ? ' | musl build against WebAssembly' : ''} |`,
+  `|---|---:|---|---:|---:|---:|---:|---|${musl ? '---|' : ''}`,
   ...rows.map(
     (r) =>
-      `| ${r.mesh} | ${r.faces.toLocaleString('en-US')} | \`${r.flags}\` | ${r.native.toFixed(3)}, ${r.nativeMin.toFixed(3)} | ${r.wasm.toFixed(3)}, ${r.wasmMin.toFixed(3)} | ${r.ratio.toFixed(2)}, ${r.ratioMin.toFixed(2)} | ${r.first.toFixed(3)} | ${r.same} |`
+      `| ${r.mesh} | ${r.faces.toLocaleString('en-US')} | \`${r.flags}\` | ${r.native.toFixed(4)} | ${r.wasm.toFixed(4)} | ${r.ratio.toFixed(2)} | ${r.first.toFixed(3)} | ${r.same}${musl ? ` | ${r.muslSame}` : ''} |`
   )
 ];
 console.log(lines.join('\n'));

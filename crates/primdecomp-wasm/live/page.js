@@ -169,10 +169,15 @@ function setMode(mode) {
   changed();
 }
 
+/** A file name as one shell word. */
+function shellWord(name) {
+  return /^[\w.\-/]+$/.test(name) ? name : `'${name.replace(/'/g, `'\\''`)}'`;
+}
+
 function changed() {
   for (const m of Object.keys(STOPS)) $(m + '-value').textContent = label(m);
   const t = target();
-  api.cli = `primdecomp decompose ${api.mesh ? api.mesh.name : 'MESH'} ${t.cli}`;
+  api.cli = `primdecomp decompose ${api.mesh ? shellWord(api.mesh.name) : 'MESH'} ${t.cli}`;
   $('cli').textContent = api.cli;
   api.requested = t.settings;
   request(t.settings);

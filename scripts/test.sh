@@ -15,7 +15,9 @@ cargo test --release --workspace "$@"
 echo "== browser: the viewer page in a real headless Chromium (tests/browser)"
 # `primdecomp view`'s page opened from file:// with the network refused: it must
 # become ready, report the JSON's primitive counts, draw every kind in its colour,
-# switch levels and panes, and show a clicked primitive (tests/browser/view.test.mjs).
+# switch levels and panes, and show a clicked primitive (tests/browser/view.test.mjs);
+# built from hostile file and collider names, it must still start and run no injected
+# script (tests/browser/hostile.test.mjs).
 # Needs the release binary, Debian's chromium, Node and playwright-core (npm ci, from
 # tests/browser/package-lock.json); chromium is installed here with apt-get when
 # missing. Under CI a missing piece fails; elsewhere it is skipped, loudly.
@@ -40,7 +42,7 @@ elif ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
 else
   cargo build --release --quiet -p primdecomp-cli
   (cd tests/browser && npm ci --no-audit --no-fund --loglevel=error)
-  CHROMIUM="$chromium" node --test tests/browser/view.test.mjs
+  CHROMIUM="$chromium" node --test tests/browser/view.test.mjs tests/browser/hostile.test.mjs
 fi
 
 echo "== export consumers (issue 28): MuJoCo, yourdfpy, usd-core, glTF Validator, enclosure per format"

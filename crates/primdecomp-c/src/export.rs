@@ -124,7 +124,8 @@ fn bytes_of(
         }
         Target::Engine(f) => {
             let opts = export_options(o, model)?;
-            let files = render(&objects(r, level)?, f, &opts, model);
+            // In memory the model's name stands for the path (it names files beside).
+            let files = render(&objects(r, level)?, f, &opts, Path::new(&opts.model))?;
             if let Some((name, _)) = files.beside.first() {
                 return Err(bad(format!(
                     "{} writes files beside the main one ({name}): export it to a path",

@@ -126,7 +126,8 @@ impl WasmResult {
             frame: Frame::IDENTITY,
             primitives: lv.primitives.clone(),
         }];
-        let files = render(&objects, f, &opts, model);
+        // In memory the model's name stands for the path (it names files beside).
+        let files = render(&objects, f, &opts, std::path::Path::new(model)).map_err(js_error)?;
         if let Some((name, _)) = files.beside.first() {
             return Err(js_error(format!(
                 "{} needs files beside the main one ({name}); in memory only single-file formats",

@@ -113,3 +113,38 @@ pub(crate) fn guard(body: impl FnOnce() -> Result<(), Failure>) -> PrimdecompSta
 pub extern "C" fn primdecomp_last_error() -> *const c_char {
     LAST_ERROR.with(|l| l.borrow().as_ptr())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::ffi::CStr;
+
+    fn last() -> String {
+        // SAFETY: never NULL, valid until the next call on this thread.
+        unsafe { CStr::from_ptr(primdecomp_last_error()) }
+            .to_string_lossy()
+            .into_owned()
+    }
+
+    #[test]
+    fn a_panic_becomes_a_status_and_a_message() {
+        let s = guard(|| panic!("a bug with \"quotes\" and a\nnewline"));
+        assert_eq!(s, PrimdecompStatus::Panic);
+        assert!(
+            last().starts_with("internal error in primdecomp"),
+            "{}",
+            last()
+        );
+        assert!(last().contains("a bug with"), "{}", last());
+        // The next call that succeeds clears the message; the library goes on working.
+        assert_eq!(guard(|| Ok(())), PrimdecompStatus::Ok);
+        assert_eq!(last(), "");
+    }
+
+    #[test]
+    fn a_message_holding_nul_is_still_a_c_string() {
+        let s = guard(|| Err(Failure::argument("before\0after")));
+        assert_eq!(s, PrimdecompStatus::InvalidArgument);
+        assert!(last().starts_with("before"), "{}", last());
+    }
+}

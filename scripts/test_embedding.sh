@@ -7,7 +7,8 @@
 #   wasm   crates/primdecomp-wasm/build.sh (the npm package and the live page), then
 #          tests/wasm in node: the package installed from the repository beside
 #          @dimforge/rapier3d-compat (Rapier.js), compared with the CLI, one collider
-#          per primitive, balls dropped;
+#          per primitive, balls dropped; bad input and hostile names across the
+#          boundary (tests/wasm/bad_input.test.mjs);
 #   live   tests/browser/live.test.mjs: the live page from file:// in headless Chromium.
 # Each installs what it needs: g++ and pkg-config with apt-get as root; the wasm32
 # target and wasm-bindgen-cli (build.sh, kept in ~/.cargo/bin for later runs); npm
@@ -61,7 +62,7 @@ else
   else
     wasm_built=1
     (cd tests/wasm && npm ci --no-audit --no-fund --loglevel=error)
-    node --test tests/wasm/rapier.test.mjs
+    node --test tests/wasm/rapier.test.mjs tests/wasm/bad_input.test.mjs
   fi
 fi
 

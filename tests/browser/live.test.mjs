@@ -6,7 +6,10 @@
 // with a part of every kind) are decomposed; the
 // count, tolerance and byte sliders are moved; after each, the page's count and
 // counts by kind equal the CLI's on the same file with the flags the page says it
-// used, and moving the count slider changes the count. Then the npm package itself
+// used, and moving the count slider changes the count. PLY, glTF and GLB files with
+// hostile names go through the file input: the name is shown as text, and the
+// command line the page shows, run by a shell, reads that file and gives the page's
+// count. Then the npm package itself
 // (pkg/index.js, an ES module) is imported by a page served from 127.0.0.1 and
 // decomposes typed arrays in the browser.
 //
@@ -256,5 +259,98 @@ test('a mesh dropped on the page is decomposed', { skip }, async () => {
   await page.waitForFunction(() => window.primdecompLive.error);
   const e = await state();
   assert.match(e.error, /broken\.obj:2/);
+  assert.deepEqual(requests, [], 'no network request');
+});
+
+/** The playground's triangles as glTF (a data: URI buffer), GLB and ASCII PLY. */
+function formats(obj) {
+  const v = [];
+  const faces = [];
+  for (const line of obj.split('\n')) {
+    const w = line.trim().split(/\s+/);
+    if (w[0] === 'v') v.push(w.slice(1, 4).map(Number));
+    if (w[0] === 'f') faces.push(w.slice(1).map((x) => parseInt(x, 10) - 1));
+  }
+  const tris = faces.flatMap((f) => f.slice(1, -1).map((_, k) => [f[0], f[k + 1], f[k + 2]]));
+  const bin = Buffer.alloc(12 * v.length + 12 * tris.length);
+  v.forEach((p, i) => p.forEach((x, d) => bin.writeFloatLE(x, 12 * i + 4 * d)));
+  tris.flat().forEach((id, i) => bin.writeUInt32LE(id, 12 * v.length + 4 * i));
+  const lo = [0, 1, 2].map((d) => Math.min(...v.map((p) => Math.fround(p[d]))));
+  const hi = [0, 1, 2].map((d) => Math.max(...v.map((p) => Math.fround(p[d]))));
+  const doc = (uri) => ({
+    asset: { version: '2.0' }, scene: 0, scenes: [{ nodes: [0] }], nodes: [{ mesh: 0, name: '</script><!--' }],
+    meshes: [{ primitives: [{ attributes: { POSITION: 0 }, indices: 1 }] }],
+    buffers: [{ byteLength: bin.length, ...(uri ? { uri } : {}) }],
+    bufferViews: [{ buffer: 0, byteOffset: 0, byteLength: 12 * v.length }, { buffer: 0, byteOffset: 12 * v.length, byteLength: 12 * tris.length }],
+    accessors: [{ bufferView: 0, componentType: 5126, count: v.length, type: 'VEC3', min: lo, max: hi }, { bufferView: 1, componentType: 5125, count: 3 * tris.length, type: 'SCALAR' }]
+  });
+  const gltf = Buffer.from(JSON.stringify(doc(`data:application/octet-stream;base64,${bin.toString('base64')}`)));
+  let json = Buffer.from(JSON.stringify(doc(null)));
+  json = Buffer.concat([json, Buffer.alloc((4 - (json.length % 4)) % 4, 0x20)]);
+  const head = Buffer.alloc(20);
+  head.write('glTF', 0);
+  head.writeUInt32LE(2, 4);
+  head.writeUInt32LE(12 + 8 + json.length + 8 + bin.length, 8);
+  head.writeUInt32LE(json.length, 12);
+  head.write('JSON', 16);
+  const binHead = Buffer.alloc(8);
+  binHead.writeUInt32LE(bin.length, 0);
+  binHead.write('BIN\0', 4);
+  const glb = Buffer.concat([head, json, binHead, bin]);
+  const ply = Buffer.from([
+    'ply', 'format ascii 1.0', `element vertex ${v.length}`, 'property float x', 'property float y', 'property float z',
+    `element face ${faces.length}`, 'property list uchar int vertex_indices', 'end_header',
+    ...v.map((p) => p.join(' ')), ...faces.map((f) => `${f.length} ${f.join(' ')}`), ''
+  ].join('\n'));
+  return { gltf, glb, ply };
+}
+
+test('PLY, glTF and GLB with hostile file names through the file input: shown as text, the command line runs as shown', { skip }, async () => {
+  const { gltf, glb, ply } = formats(fs.readFileSync(objPath, 'utf8'));
+  const files = [
+    ['<img src=x onerror="window.__pwned=1"><script>window.__pwned=2<.ply', ply],
+    ["-n 1 $(touch pwned) 'q' `x`.glb", glb],
+    ['a"b&c<!--\u202e\u0007 名前.gltf', gltf]
+  ];
+  for (const [name, buffer] of files) {
+    const runs = (await state()).runs;
+    await page.setInputFiles('#file', { name, mimeType: 'application/octet-stream', buffer });
+    await page.waitForFunction((n) => window.primdecompLive.mesh && window.primdecompLive.mesh.name === n, name);
+    const s = await settled(runs);
+    const shown = await page.evaluate(() => ({
+      text: document.getElementById('mesh').textContent,
+      elements: document.getElementById('mesh').children.length,
+      images: document.images.length,
+      scripts: document.scripts.length,
+      pwned: window.__pwned === undefined ? null : window.__pwned,
+      cli: document.getElementById('cli').textContent
+    }));
+    assert.ok(shown.text.startsWith(`${name}: `), `the name as text: ${JSON.stringify(shown.text)}`);
+    assert.deepEqual([shown.elements, shown.images, shown.scripts, shown.pwned], [0, 0, 3, null], 'no markup from the name');
+    assert.equal(shown.cli, s.cli);
+    // The command line the page shows, run by a shell in a folder holding the file
+    // under that name: it reads that file (not a flag, nothing substituted) and gives
+    // the page's count.
+    const dir = fs.mkdtempSync(path.join(work, 'shell-'));
+    fs.writeFileSync(path.join(dir, name), buffer);
+    const command = `"$PRIMDECOMP" ${s.cli.replace(/^primdecomp /, '')} -o out.json --quiet`;
+    execFileSync('/bin/sh', ['-c', command], { cwd: dir, env: { ...process.env, PRIMDECOMP: bin } });
+    assert.ok(!fs.existsSync(path.join(dir, 'pwned')), 'the shell substituted nothing');
+    const doc = JSON.parse(fs.readFileSync(path.join(dir, 'out.json'), 'utf8'));
+    assert.equal(doc.primitives.length, s.result.count, `${JSON.stringify(name)}: the page's count is the CLI's (${s.cli})`);
+    assert.deepEqual(doc.stats.counts, s.result.counts, `${JSON.stringify(name)}: counts by kind`);
+    console.log(`  ${path.extname(name)}: ${s.result.count} primitives, as \`${s.cli}\` gives in a shell`);
+    // Saved under a name any file system takes.
+    const [download] = await Promise.all([page.waitForEvent('download'), page.click('#save-json')]);
+    const saved = download.suggestedFilename();
+    assert.ok(saved.endsWith('.primdecomp.json') && !/[\u0000-\u001f/\\:*?"<>|]/.test(saved), `saved as ${JSON.stringify(saved)}`);
+  }
+  // A broken file with a hostile name: the message is text too.
+  await page.setInputFiles('#file', { name: '<b id="bold">x.obj', mimeType: 'text/plain', buffer: Buffer.from('v 0 0 0\nf 1 2 x\n') });
+  await page.waitForFunction(() => window.primdecompLive.error);
+  const status = await page.evaluate(() => ({ text: document.getElementById('status').textContent, bold: !!document.getElementById('bold') }));
+  assert.match(status.text, /<b id="bold">x\.obj:2/);
+  assert.equal(status.bold, false);
+  assert.deepEqual(errors, [], 'no script errors');
   assert.deepEqual(requests, [], 'no network request');
 });

@@ -169,9 +169,10 @@ function setMode(mode) {
   changed();
 }
 
-/** A file name as one shell word. */
+/** A file name as one shell word that the CLI reads as a file (not a flag). */
 function shellWord(name) {
-  return /^[\w.\-/]+$/.test(name) ? name : `'${name.replace(/'/g, `'\\''`)}'`;
+  const word = name.startsWith('-') ? `./${name}` : name;
+  return /^[\w.\-/]+$/.test(word) ? word : `'${word.replace(/'/g, `'\\''`)}'`;
 }
 
 function changed() {
@@ -279,8 +280,13 @@ function save(name, bytes, type) {
   setTimeout(() => URL.revokeObjectURL(a.href), 1000);
 }
 
+/** The mesh's file name without its extension, as a file name on any system: no
+ * separators, control or reserved characters, no leading dot, at most 200 characters. */
 function stem() {
-  return (api.mesh ? api.mesh.name : 'mesh').replace(/\.[^.]*$/, '');
+  const name = (api.mesh ? api.mesh.name : 'mesh').replace(/\.[^.]*$/, '');
+  // eslint-disable-next-line no-control-regex
+  const safe = name.replace(/[\u0000-\u001f\u007f/\\:*?"<>|]/g, '_').replace(/^[.\s]+/, '').slice(0, 200);
+  return safe || 'mesh';
 }
 
 // ---- drawing (WebGL 1) ----------------------------------------------------------

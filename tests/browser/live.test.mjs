@@ -23,7 +23,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
-import { knot, playground } from '../wasm/meshes.mjs';
+import { knot, parseObj, playground } from '../wasm/meshes.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const root = path.resolve(here, '..', '..');
@@ -47,16 +47,7 @@ else if (!fs.existsSync(bin)) skip = missing(`no primdecomp binary at ${bin} (ca
 
 /** The OBJ's polygons fanned into triangles, as a binary STL. */
 function stl(obj) {
-  const v = [];
-  const tris = [];
-  for (const line of obj.split('\n')) {
-    const w = line.trim().split(/\s+/);
-    if (w[0] === 'v') v.push(w.slice(1, 4).map(Number));
-    if (w[0] === 'f') {
-      const ids = w.slice(1).map((x) => parseInt(x, 10) - 1);
-      for (let k = 1; k + 1 < ids.length; k++) tris.push([ids[0], ids[k], ids[k + 1]]);
-    }
-  }
+  const { vertices: v, triangles: tris } = parseObj(obj);
   const buf = Buffer.alloc(84 + 50 * tris.length);
   buf.write('primdecomp live test', 0);
   buf.writeUInt32LE(tris.length, 80);
@@ -264,14 +255,7 @@ test('a mesh dropped on the page is decomposed', { skip }, async () => {
 
 /** The playground's triangles as glTF (a data: URI buffer), GLB and ASCII PLY. */
 function formats(obj) {
-  const v = [];
-  const faces = [];
-  for (const line of obj.split('\n')) {
-    const w = line.trim().split(/\s+/);
-    if (w[0] === 'v') v.push(w.slice(1, 4).map(Number));
-    if (w[0] === 'f') faces.push(w.slice(1).map((x) => parseInt(x, 10) - 1));
-  }
-  const tris = faces.flatMap((f) => f.slice(1, -1).map((_, k) => [f[0], f[k + 1], f[k + 2]]));
+  const { vertices: v, faces, triangles: tris } = parseObj(obj);
   const bin = Buffer.alloc(12 * v.length + 12 * tris.length);
   v.forEach((p, i) => p.forEach((x, d) => bin.writeFloatLE(x, 12 * i + 4 * d)));
   tris.flat().forEach((id, i) => bin.writeUInt32LE(id, 12 * v.length + 4 * i));

@@ -8,7 +8,7 @@
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
 import * as primdecomp from 'primdecomp';
-import { playground } from './meshes.mjs';
+import { parseObj, playground } from './meshes.mjs';
 
 /** A seeded generator of numbers in [0, 1) (mulberry32). */
 function random(seed) {
@@ -42,14 +42,7 @@ function attempt(what, f) {
 /** The playground's OBJ in every format the readers take. */
 function seeds() {
   const obj = playground();
-  const v = [];
-  const faces = [];
-  for (const line of obj.split('\n')) {
-    const w = line.trim().split(/\s+/);
-    if (w[0] === 'v') v.push(w.slice(1, 4).map(Number));
-    if (w[0] === 'f') faces.push(w.slice(1).map((x) => parseInt(x, 10) - 1));
-  }
-  const tris = faces.flatMap((f) => f.slice(1, -1).map((_, k) => [f[0], f[k + 1], f[k + 2]]));
+  const { vertices: v, faces, triangles: tris } = parseObj(obj);
   const stl = Buffer.alloc(84 + 50 * tris.length);
   stl.writeUInt32LE(tris.length, 80);
   tris.forEach((t, i) => t.forEach((id, k) => v[id].forEach((x, d) => stl.writeFloatLE(x, 84 + 50 * i + 12 + 12 * k + 4 * d))));

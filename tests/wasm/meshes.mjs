@@ -165,3 +165,17 @@ export function terrain(n = 224) {
     }
   return obj.text();
 }
+
+/** OBJ text's vertices ([x, y, z] each), polygons (0-based ids) and their triangle
+ * fans, for the tests that write the same mesh in other formats. */
+export function parseObj(text) {
+  const vertices = [];
+  const faces = [];
+  for (const line of text.split('\n')) {
+    const w = line.trim().split(/\s+/);
+    if (w[0] === 'v') vertices.push(w.slice(1, 4).map(Number));
+    if (w[0] === 'f') faces.push(w.slice(1).map((x) => parseInt(x, 10) - 1));
+  }
+  const triangles = faces.flatMap((f) => f.slice(1, -1).map((_, k) => [f[0], f[k + 1], f[k + 2]]));
+  return { vertices, faces, triangles };
+}

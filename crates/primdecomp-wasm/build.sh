@@ -27,14 +27,24 @@ fi
 # The CLI must be the crate's version exactly: the two halves share a private format.
 want=$(awk '/^name = "wasm-bindgen"$/ { getline; gsub(/version = |"/, ""); print; exit }' Cargo.lock)
 [ -n "$want" ] || missing "no wasm-bindgen in Cargo.lock"
-have=$(wasm-bindgen --version 2>/dev/null | awk '{print $2}' || true)
+# The one on PATH, else the one `cargo install` put in CARGO_HOME (not always on PATH).
+installed="${CARGO_HOME:-$HOME/.cargo}/bin/wasm-bindgen"
+version_of() { "$1" --version 2>/dev/null | awk '{print $2}' || true; }
+bindgen=wasm-bindgen
+have=$(version_of wasm-bindgen)
+if [ "$have" != "$want" ] && [ "$(version_of "$installed")" = "$want" ]; then
+  bindgen=$installed
+  have=$want
+fi
 if [ "$have" != "$want" ]; then
   echo "-- cargo install wasm-bindgen-cli --version $want (have: ${have:-none})"
   # --locked first; a registry mirror that lacks one of the lock's crates needs the
-  # resolver's choice instead.
-  cargo install --quiet wasm-bindgen-cli --version "=$want" --locked 2>/dev/null ||
-    cargo install --quiet wasm-bindgen-cli --version "=$want" ||
+  # resolver's choice instead. --force: replace another version CARGO_HOME holds.
+  cargo install --quiet --force wasm-bindgen-cli --version "=$want" --locked 2>/dev/null ||
+    cargo install --quiet --force wasm-bindgen-cli --version "=$want" ||
     missing "cargo install wasm-bindgen-cli --version $want failed"
+  bindgen=$installed
+  [ "$(version_of "$bindgen")" = "$want" ] || missing "cargo install put no wasm-bindgen $want at $bindgen"
 fi
 command -v node >/dev/null 2>&1 || missing "node is needed to assemble the live page"
 
@@ -47,7 +57,7 @@ rm -rf "$pkg"
 mkdir -p "$pkg"
 # The reset function lets the JavaScript side start a fresh instance after a trap
 # (a panic cannot unwind on this target).
-wasm-bindgen --target web --experimental-reset-state-function --remove-name-section \
+"$bindgen" --target web --experimental-reset-state-function --remove-name-section \
   --out-dir "$pkg" --out-name primdecomp_wasm "$target/wasm32-unknown-unknown/wasm/primdecomp_wasm.wasm"
 cp "$here/npm/index.js" "$here/npm/index.d.ts" "$here/npm/package.json" "$here/npm/README.md" "$pkg/"
 version=$(cargo metadata --format-version 1 --no-deps | python3 -c 'import json, sys; print(next(p["version"] for p in json.load(sys.stdin)["packages"] if p["name"] == "primdecomp-wasm"))')
@@ -56,7 +66,7 @@ node -e "const p = require('$pkg/package.json'); if (p.version !== '$version') {
 # start a module worker from a blob): the same .wasm with wasm-bindgen's classic-script glue.
 classic=$(mktemp -d)
 trap 'rm -rf "$classic"' EXIT
-wasm-bindgen --target no-modules --remove-name-section \
+"$bindgen" --target no-modules --remove-name-section \
   --out-dir "$classic" --out-name primdecomp_wasm "$target/wasm32-unknown-unknown/wasm/primdecomp_wasm.wasm"
 node "$here/live/build.mjs" "$classic" "$pkg" "$pkg/primdecomp-live.html"
 

@@ -9,6 +9,9 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+echo "== documents: every relative link resolves, every decision record has its header (scripts/check_docs.py)"
+python3 scripts/check_docs.py
+
 echo "== cargo test --release --workspace"
 cargo test --release --workspace "$@"
 
@@ -45,7 +48,7 @@ else
   CHROMIUM="$chromium" node --test tests/browser/view.test.mjs tests/browser/hostile.test.mjs
 fi
 
-echo "== export consumers (issue 28): MuJoCo, yourdfpy, usd-core, glTF Validator, enclosure per format"
+echo "== export consumers: MuJoCo, yourdfpy, usd-core, glTF Validator, enclosure per format"
 # The engine exports are checked by the real consumers (tests/exports/README.md):
 # Python packages pinned in tests/exports/requirements.txt go into .venv, the Khronos
 # glTF Validator (npm) into tests/exports/node_modules. Installs are skipped when

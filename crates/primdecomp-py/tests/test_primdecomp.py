@@ -1,4 +1,4 @@
-"""pytest suite of the primdecomp Python package (issue 29). Needs the corpus at
+"""pytest suite of the primdecomp Python package. Needs the corpus at
 ../shared/datasets/corpus relative to the repo root and the CLI binary
 target/release/primdecomp (scripts/test.sh builds both before running this)."""
 

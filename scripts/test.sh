@@ -119,4 +119,8 @@ if [ "$py_ok" = 1 ]; then
   (cd /tmp && "$root/.venv-py/bin/python" -m pytest -q -p no:cacheprovider "$root/crates/primdecomp-py/tests")
 fi
 
+echo "== embedding: the C ABI (cc, c++, AddressSanitizer), the npm package with Rapier.js in node, the live page in Chromium"
+# scripts/test_embedding.sh installs what it needs; under CI a missing piece fails.
+CHROMIUM="$chromium" scripts/test_embedding.sh
+
 echo "== all tests passed"

@@ -18,7 +18,7 @@ use crate::params::Params;
 use crate::pipeline;
 use crate::progress::{Progress, Stage};
 use crate::result::{Decomposition, Level};
-use std::time::Instant;
+use crate::wallclock::Instant;
 
 /// Candidate targets per round (one merge pass gives them all).
 const LADDER: usize = 12;

@@ -15,9 +15,9 @@ use crate::params::{Params, Reprice};
 use crate::primitive::fit::{FitConfig, FrameSearch};
 use crate::progress::{GoOn, Progress, Stage};
 use crate::result::{Decomposition, InputInfo, Stats, Timings};
+use crate::wallclock::Instant;
 use crate::{postprocess, quadric};
 use rayon::prelude::*;
-use std::time::Instant;
 
 /// One pass through `params.targets` (`params.fill` is the caller's: `budget`).
 pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Result<Decomposition> {

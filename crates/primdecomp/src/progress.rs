@@ -130,7 +130,7 @@ pub struct Estimate {
 /// ```
 #[derive(Debug)]
 pub struct Eta {
-    start: std::time::Instant,
+    start: crate::wallclock::Instant,
     /// Each stage's share of the run, in [`Stage::ALL`]'s order.
     shares: [f64; 6],
 }
@@ -145,7 +145,7 @@ impl Eta {
     /// An estimate for a run of `params`, starting now.
     pub fn new(params: &crate::Params) -> Eta {
         Eta {
-            start: std::time::Instant::now(),
+            start: crate::wallclock::Instant::now(),
             shares: if params.resolved().uses_cut() {
                 CUT_SHARES
             } else {

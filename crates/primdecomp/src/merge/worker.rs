@@ -28,10 +28,11 @@ use super::cluster::Clusters;
 use super::cost::{Evaluator, Side, Workspace};
 use super::heap::Candidate;
 use crate::math::Sym3;
+use crate::wallclock::Instant;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering::*};
 use std::sync::Mutex;
 use std::thread::{self, Thread};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// How long the idle worker spins for the next batch before it yields its core, and
 /// until when it keeps yielding before it parks: merges come every few microseconds,

@@ -14,31 +14,46 @@ use crate::outputs::{Guard, Out};
 /// The options every export takes (`export` and `decompose --export`).
 #[derive(Args, Debug, Clone)]
 pub struct ExportArgs {
-    /// Export format for outputs whose extension does not name one: gltf, glb, mjcf
-    /// (MuJoCo's .xml needs it), urdf, usda, tscn. An extension that names a format
-    /// (.gltf, .glb, .urdf, .usda, .tscn, .mjcf) always decides.
-    #[arg(long = "format")]
+    /// The format of exports whose extension names none: gltf, glb, mjcf, urdf,
+    /// usda, tscn.
+    ///
+    /// MuJoCo's .xml needs --format mjcf. An extension that names a format (.gltf,
+    /// .glb, .urdf, .usda, .tscn, .mjcf) always decides.
+    #[arg(long = "format", hide_short_help = true)]
     pub format: Option<String>,
-    /// Up axis of the result (the input's): y or z. glTF and Godot are +Y up, MJCF
-    /// and URDF +Z up: a result whose up differs is turned; USD declares it.
-    #[arg(long, default_value = "y")]
-    pub up: String,
-    /// Multiply every length by this (input units to metres).
-    #[arg(long, default_value_t = 1.0)]
+    /// Which axis points up in the mesh: y or z (default: what the file format says).
+    ///
+    /// decompose: glTF is +Y up by its specification; STL files say nothing and are
+    /// taken as +Z up (CAD and robot parts mostly are); OBJ, PLY and OFF say nothing
+    /// and are taken as +Y up (most modelling tools and scans write them so). The
+    /// result records it (input.up), and export and view use it: glTF and Godot are
+    /// +Y up and MJCF and URDF +Z up, so a mesh whose up differs is turned; USD
+    /// declares it. export: the result's axis (y for results that record none).
+    #[arg(long, value_parser = ["y", "z"], ignore_case = true)]
+    pub up: Option<String>,
+    /// Multiply every length by this (input units to metres; default 1).
+    #[arg(long, default_value_t = 1.0, hide_short_help = true)]
     pub scale: f64,
-    /// glTF physics extensions: khr (KHR_implicit_shapes + KHR_physics_rigid_bodies)
-    /// or omi (OMI_physics_shape + OMI_physics_body, imported by Godot 4).
-    #[arg(long, default_value = "khr")]
+    /// glTF physics extensions: khr (default) or omi.
+    ///
+    /// khr: KHR_implicit_shapes and KHR_physics_rigid_bodies (Khronos); omi:
+    /// OMI_physics_shape and OMI_physics_body, which Godot 4 imports.
+    #[arg(
+        long,
+        default_value = "khr",
+        value_name = "khr|omi",
+        hide_short_help = true
+    )]
     pub gltf_physics: String,
     /// glTF: also a coloured, half-transparent preview mesh of each collider.
-    #[arg(long)]
+    #[arg(long, hide_short_help = true)]
     pub preview: bool,
     /// URDF: write capsules as <capsule> (not in URDF 1.0) instead of a cylinder and
     /// two spheres.
-    #[arg(long)]
+    #[arg(long, hide_short_help = true)]
     pub urdf_capsule: bool,
-    /// Segments around circles of frustums (and of every preview) written as hulls.
-    #[arg(long, default_value_t = primdecomp::export::DEFAULT_DETAIL)]
+    /// Segments around circles of frustums (and of every preview) written as meshes.
+    #[arg(long, default_value_t = primdecomp::export::DEFAULT_DETAIL, hide_short_help = true)]
     pub export_detail: usize,
 }
 
@@ -59,8 +74,14 @@ pub struct ExportCmd {
 }
 
 impl ExportArgs {
-    /// Options and format for `out`.
-    pub fn resolve(&self, out: &Path, model: &str) -> anyhow::Result<(Format, ExportOptions)> {
+    /// Options and format for `out`; `up` is the result's up axis, which `--up`
+    /// overrides.
+    pub fn resolve(
+        &self,
+        out: &Path,
+        model: &str,
+        up: Up,
+    ) -> anyhow::Result<(Format, ExportOptions)> {
         // The extension decides where it names a format; --format covers the others
         // (MuJoCo's .xml), so `decompose --export a.glb --export b.xml --format mjcf`
         // writes both.
@@ -81,10 +102,10 @@ impl ExportArgs {
                 out.display()
             ))
         })?;
-        let up = match self.up.to_ascii_lowercase().as_str() {
-            "y" => Up::Y,
-            "z" => Up::Z,
-            u => bail!(BadArgs(format!("--up: expected y or z, got '{u}'"))),
+        let up = match self.up.as_deref() {
+            None => up,
+            Some(u) => Up::from_axis(u)
+                .ok_or_else(|| BadArgs(format!("--up: expected y or z, got '{u}'")))?,
         };
         let physics = match self.gltf_physics.to_ascii_lowercase().as_str() {
             "khr" => Physics::Khr,
@@ -143,13 +164,34 @@ pub fn export(a: ExportCmd) -> anyhow::Result<()> {
         .map_err(|e| BadArgs(format!("{}: cannot read: {e}", a.result.display())))?;
     let objects =
         read_objects(&text).map_err(|e| BadArgs(format!("{}: {e}", a.result.display())))?;
-    let (format, mut opts) = a.opts.resolve(&a.out, &model_name(&a.out))?;
+    // The result's up axis (results made before it was recorded: +Y, as then).
+    let recorded = serde_json::from_str::<serde_json::Value>(&text)
+        .ok()
+        .and_then(|d| Up::from_axis(d.get("input")?.get("up")?.as_str()?));
+    let up = recorded.unwrap_or(Up::Y);
+    let (format, mut opts) = a.opts.resolve(&a.out, &model_name(&a.out), up)?;
     if let Some(input) = &a.input {
         let mesh = primdecomp::load(input)?;
         opts.input_mesh = Some(mesh_polygons(&mesh));
     }
-    for w in write_export(&a.out, &objects, format, &opts)? {
-        println!("wrote     {}", w.display());
+    for line in wrote_lines(&write_export(&a.out, &objects, format, &opts)?) {
+        println!("{line}");
+    }
+    if let Some(native) = format.up().filter(|&n| n != opts.up) {
+        println!(
+            "up        {} in the result{}, turned to the format's {}{}",
+            opts.up.axis(),
+            match (a.opts.up.is_some(), recorded) {
+                (true, _) => " (--up)",
+                (false, Some(_)) => "",
+                (false, None) => " (assumed: the result records none)",
+            },
+            native.axis(),
+            match opts.up {
+                Up::Y => " (--up z if the mesh stands on z)",
+                Up::Z => " (--up y if the mesh stands on y)",
+            }
+        );
     }
     Ok(())
 }
@@ -179,9 +221,40 @@ pub fn whole(level: &Level) -> Vec<ResultObject> {
 /// [`write_level_exports`] will ask), or the first error.
 pub fn check_exports(exports: &[PathBuf], args: &ExportArgs) -> anyhow::Result<()> {
     for e in exports {
-        args.resolve(e, &model_name(e))?;
+        args.resolve(e, &model_name(e), Up::Y)?;
     }
     Ok(())
+}
+
+/// The files a run wrote, one line each, except that the files an export writes in a
+/// folder beside its main file (URDF's collision meshes) are one line with their
+/// count: `wrote     robot.urdf and 96 files in robot_meshes/`.
+pub fn wrote_lines(written: &[PathBuf]) -> Vec<String> {
+    let parent = |p: &Path| p.parent().map(Path::to_path_buf).unwrap_or_default();
+    let mut lines = Vec::new();
+    let mut i = 0;
+    while i < written.len() {
+        let head = &written[i];
+        let dir = written.get(i + 1).map(|p| parent(p));
+        let beside = match &dir {
+            Some(d) if *d != parent(head) => written[i + 1..]
+                .iter()
+                .take_while(|p| parent(p) == *d)
+                .count(),
+            _ => 0,
+        };
+        lines.push(match (beside, &dir) {
+            (0, _) | (_, None) => format!("wrote     {}", head.display()),
+            (n, Some(d)) => format!(
+                "wrote     {} and {n} file{} in {}/",
+                head.display(),
+                if n == 1 { "" } else { "s" },
+                d.display()
+            ),
+        });
+        i += 1 + beside;
+    }
+    lines
 }
 
 /// Writes `decompose --export` files of one level; returns the paths.
@@ -193,11 +266,12 @@ pub fn write_level_exports(
     levels: usize,
     inputs: &[&Path],
     input_mesh: Option<&primdecomp::Mesh>,
+    up: Up,
 ) -> anyhow::Result<Vec<PathBuf>> {
     let mut written = Vec::new();
     for e in exports {
         let path = crate::paths::output_path_for(e, label, levels);
-        let (format, mut opts) = args.resolve(e, &model_name(e))?;
+        let (format, mut opts) = args.resolve(e, &model_name(e), up)?;
         if let (true, Some(m)) = (args.preview, input_mesh) {
             opts.input_mesh = Some(mesh_polygons(m));
         }

@@ -24,11 +24,43 @@ type MeshArrays<'py> = (Bound<'py, PyArray2<f64>>, Vec<Vec<u32>>);
 /// How often the waiting Python thread checks for signals and reports progress.
 const POLL: Duration = Duration::from_millis(50);
 
+/// The library's errors in Python's vocabulary: the file system's as `OSError` with
+/// the errno and the file name, so Python raises its own subclass
+/// (`FileNotFoundError`, `PermissionError`, `IsADirectoryError`, …) with its usual
+/// message; bad input and settings as `ValueError` with the CLI's one-line message
+/// (without the "invalid setting: " prefix the CLI prints after "error: "); a
+/// cancellation as `KeyboardInterrupt`.
 fn to_py_err(e: Error) -> PyErr {
-    match e {
-        Error::Io { .. } => PyOSError::new_err(e.to_string()),
+    let os = |error: &std::io::Error, path: &Path| match error.raw_os_error() {
+        Some(code) => PyOSError::new_err((code, reason(error), path.display().to_string())),
+        None => PyOSError::new_err(e.to_string()),
+    };
+    match &e {
+        Error::Open { path, error } | Error::Io { path, error } | Error::Write { path, error } => {
+            os(error, path)
+        }
+        Error::NotAFile {
+            path,
+            kind: primdecomp::FileKind::Directory,
+        } => PyOSError::new_err((EISDIR, "Is a directory", path.display().to_string())),
+        Error::NotAFile { .. } => PyOSError::new_err(e.to_string()),
         Error::Cancelled => PyKeyboardInterrupt::new_err(e.to_string()),
+        Error::InvalidParams(m) => PyValueError::new_err(m.clone()),
         _ => PyValueError::new_err(e.to_string()),
+    }
+}
+
+/// `EISDIR`, the errno Python maps to `IsADirectoryError` (the same on Linux, macOS
+/// and the BSDs).
+const EISDIR: i32 = 21;
+
+/// The operating system's words for an error, without Rust's " (os error N)" suffix
+/// (Python prints the errno itself).
+fn reason(error: &std::io::Error) -> String {
+    let s = error.to_string();
+    match s.rfind(" (os error ") {
+        Some(i) => s[..i].to_string(),
+        None => s,
     }
 }
 

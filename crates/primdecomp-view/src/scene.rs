@@ -33,7 +33,8 @@ impl Default for Options {
 /// One collider: a level of our result or a peer's hulls.
 #[derive(Clone, Debug)]
 pub struct Collider {
-    /// Short label: `target 150` or the peer's name.
+    /// Short label: what the level asked for and reached (`count 150`, `tolerance 2%,
+    /// reached 1.31%`), or the peer's name.
     pub label: String,
     /// The file it came from, as given.
     pub file: String,
@@ -247,10 +248,7 @@ fn level(path: &Path, doc: &Value, opts: &Options) -> Result<Collider> {
         .get("settings")
         .and_then(|s| s.get("target"))
         .and_then(Value::as_u64);
-    let label = match target {
-        Some(t) => format!("target {t}"),
-        None => file_label(path),
-    };
+    let label = level_label(doc).unwrap_or_else(|| file_label(path));
     Ok(Collider {
         label,
         file: path.display().to_string(),
@@ -261,6 +259,61 @@ fn level(path: &Path, doc: &Value, opts: &Options) -> Result<Collider> {
             bytes,
         },
     })
+}
+
+/// A level's label: what was asked (a tolerance, a byte size, or a count) and, for a
+/// cut, what was reached (the farthest distance, or the bytes used); `None` for a
+/// document without `settings.target`.
+pub fn level_label(doc: &Value) -> Option<String> {
+    let target = doc.get("settings")?.get("target")?.as_u64()?;
+    let distance = doc.get("stats").and_then(|s| s.get("distance"));
+    let get = |k: &str| distance.and_then(|d| d.get(k)).and_then(Value::as_f64);
+    let diagonal = diagonal(doc);
+    // A distance as the user gives it: a percentage of the diagonal when the input's
+    // bounds are known, else in input units.
+    let show = |d: f64| match diagonal {
+        Some(g) if g > 0.0 => format!("{}%", short(100.0 * d / g)),
+        _ => short(d),
+    };
+    let worst = get("worst");
+    let label = match (get("tolerance"), get("max_bytes")) {
+        (Some(t), _) => format!("tolerance {}", show(t)),
+        (None, Some(b)) => format!("max {} bytes", b as u64),
+        (None, None) => format!("count {target}"),
+    };
+    Some(match worst {
+        Some(w) => format!("{label}, reached {}", show(w)),
+        None => label,
+    })
+}
+
+/// The input's bounding-box diagonal recorded in a result document.
+fn diagonal(doc: &Value) -> Option<f64> {
+    let input = doc.get("input")?;
+    let corner = |k: &str| -> Option<Vec<f64>> {
+        input
+            .get(k)?
+            .as_array()?
+            .iter()
+            .map(Value::as_f64)
+            .collect()
+    };
+    let (lo, hi) = (corner("aabb_min")?, corner("aabb_max")?);
+    (lo.len() == 3 && hi.len() == 3)
+        .then(|| (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt())
+}
+
+/// Three significant digits, without trailing zeros.
+fn short(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let digits = (2 - x.abs().log10().floor() as i32).max(0) as usize;
+    let s = format!("{x:.digits$}");
+    match s.contains('.') {
+        true => s.trim_end_matches('0').trim_end_matches('.').to_string(),
+        false => s,
+    }
 }
 
 fn file_label(path: &Path) -> String {

@@ -82,6 +82,7 @@ mod progress;
 mod quadric;
 mod recut;
 mod result;
+mod up;
 
 pub use decompose::{decompose, decompose_with};
 pub use demo::{demo_scene, demo_scene_obj};

@@ -508,6 +508,8 @@ pub(crate) fn input_info(mesh: &Mesh, (lo, hi): (V3, V3)) -> InputInfo {
         vertices: mesh.vertex_count(),
         aabb_min: crate::math::add(lo, mesh.offset),
         aabb_max: crate::math::add(hi, mesh.offset),
+        up: None,
+        up_from: None,
     }
 }
 

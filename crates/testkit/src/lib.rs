@@ -5,6 +5,7 @@ pub mod basin;
 pub mod check;
 pub mod contain;
 pub mod demo;
+pub mod inputs;
 pub mod shapes;
 
 /// Fan triangles of polygons (`faces` index `v`).

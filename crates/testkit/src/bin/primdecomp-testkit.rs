@@ -6,7 +6,9 @@
 //! - `contain SHAPES.json POINTS.json TOL`: for each point, whether some primitive of
 //!   a primdecomp JSON document contains it within TOL, by the tests' independent
 //!   containment routine (`contain.rs`), printed as a JSON array of booleans; the
-//!   Python containment check is tested against it.
+//!   Python containment check is tested against it;
+//! - `inputs DIR`: the made-up inputs every consumer check runs on (`inputs.rs`),
+//!   one file name per line on stdout.
 
 use primdecomp_testkit::contain::{parse_primitive, shape_contains};
 
@@ -15,10 +17,10 @@ fn main() {
     let res = match args.get(1).map(String::as_str) {
         Some("faces") if args.len() == 4 => faces(&args[2], &args[3]),
         Some("contain") if args.len() == 5 => contain(&args[2], &args[3], &args[4]),
-        _ => Err(
-            "usage: primdecomp-testkit faces MESH OUT.json | contain SHAPES.json POINTS.json TOL"
-                .into(),
-        ),
+        Some("inputs") if args.len() == 3 => inputs(&args[2]),
+        _ => Err("usage: primdecomp-testkit faces MESH OUT.json | \
+             contain SHAPES.json POINTS.json TOL | inputs DIR"
+            .into()),
     };
     if let Err(e) = res {
         eprintln!("error: {e}");
@@ -64,5 +66,14 @@ fn contain(shapes: &str, points: &str, tol: &str) -> Result<(), String> {
         "{}",
         serde_json::to_string(&out).map_err(|e| e.to_string())?
     );
+    Ok(())
+}
+
+fn inputs(dir: &str) -> Result<(), String> {
+    let names =
+        primdecomp_testkit::inputs::write_all(dir.as_ref()).map_err(|e| format!("{dir}: {e}"))?;
+    for n in names {
+        println!("{n}");
+    }
     Ok(())
 }

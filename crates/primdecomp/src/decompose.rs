@@ -3,9 +3,9 @@
 
 use crate::error::Result;
 use crate::mesh::Mesh;
-use crate::params::Params;
+use crate::params::{short_of, Params};
 use crate::progress::{Progress, Silent};
-use crate::result::Decomposition;
+use crate::result::{Decomposition, Level};
 use crate::{budget, pipeline};
 
 /// Decomposes `mesh` into primitives, one [`crate::Level`] per target in
@@ -45,5 +45,28 @@ pub fn decompose_with(
         // Nested primitives removed leave room: merge less to fill it.
         return budget::fill(mesh, params, progress);
     }
-    pipeline::run(mesh, params, progress)
+    let dec = pipeline::run(mesh, params, progress)?;
+    // A greedy level post-processing left short of its count: every level cut from
+    // the merge tree instead, as on several parts (docs/decisions/0054).
+    let faces = mesh.face_count();
+    let short = |l: &Level| l.distance.is_none() && short_of(l.primitives.len(), l.target, faces);
+    if !(params.count_cut() && dec.levels.iter().any(short)) {
+        return Ok(dec);
+    }
+    let mut cut = pipeline::run(
+        mesh,
+        &Params {
+            cut: true,
+            ..params.clone()
+        },
+        progress,
+    )?;
+    cut.timings.stages = (dec
+        .timings
+        .stages
+        .into_iter()
+        .map(|(s, t)| (format!("greedy {s}"), t)))
+    .chain(cut.timings.stages)
+    .collect();
+    Ok(cut)
 }

@@ -25,6 +25,28 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
     check_input(mesh)?;
     let mut clock = Clock::new(progress);
     let bounds = mesh.aabb();
+    // Weld overlapping vertices so seams between parts become adjacency (§3.4).
+    let (welded, distinct) = clock.stage(Stage::Dedup, "dedup", |_, _| {
+        dedup::weld(mesh, params.dedup)
+    })?;
+    // Faces sharing an edge form the merge graph (§3.3).
+    let pairs = clock.stage(Stage::Adjacency, "adjacency", |_, _| {
+        adjacency::face_pairs(&mesh.face_offsets, &welded)
+    })?;
+    // Counts on several separate parts are cuts of the merge tree: the greedy level
+    // drops the parts nested in one part's primitive (docs/decisions/0054).
+    let several = params.count_cut() && components::several(mesh.face_count(), &pairs);
+    let cut_params;
+    let params = match several {
+        true => {
+            cut_params = Params {
+                cut: true,
+                ..params.clone()
+            };
+            &cut_params
+        }
+        false => params,
+    };
     // Spatial parts merge down to their share of the largest requested count's groups,
     // the greedy's own; a cut's leaves come from the global loop after them (0042).
     let largest = params.targets.iter().copied().max().unwrap_or(1);
@@ -36,14 +58,6 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
     } else {
         merge_order(&params.targets)
     };
-    // Weld overlapping vertices so seams between parts become adjacency (§3.4).
-    let (welded, distinct) = clock.stage(Stage::Dedup, "dedup", |_, _| {
-        dedup::weld(mesh, params.dedup)
-    })?;
-    // Faces sharing an edge form the merge graph (§3.3).
-    let pairs = clock.stage(Stage::Adjacency, "adjacency", |_, _| {
-        adjacency::face_pairs(&mesh.face_offsets, &welded)
-    })?;
     // One operator per face (§3.1).
     let q = clock.stage(Stage::Quadrics, "quadrics", |_, _| {
         let mut q = Vec::new();

@@ -612,8 +612,24 @@ impl<'a> Cutter<'a> {
         }
         let table = self.costs(ex, bounds[lo], r.bytes.is_some());
         let cut = collect(ex, &table, &ex.roots);
+        // A count alone is filled within SLACK times the least worst error: where one
+        // feature no split brings nearer sets it, a bound a hair lower must not keep
+        // one primitive of the eight asked for (docs/decisions/0054).
+        let count_alone = r.tolerance.is_none() && r.bytes.is_none();
+        let filled = match count_alone {
+            true => SLACK * bounds[lo].max(worst(ex, &cut)),
+            false => bounds[lo],
+        };
+        let loose;
+        let table = match count_alone {
+            true => {
+                loose = self.costs(ex, filled, false);
+                &loose
+            }
+            false => &table,
+        };
         match fits(r, totals(ex, &cut)) {
-            true => self.fill(ex, cut, &table, bounds[lo], r),
+            true => self.fill(ex, cut, table, filled, r),
             // Nothing fits the caps (more roots than the count): the roots.
             false => ex.roots.clone(),
         }

@@ -197,6 +197,7 @@ fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
     p.solid |= a.solid;
     p.fill |= a.fill;
     p.cut |= a.cut;
+    p.greedy |= a.greedy;
     if let Some(t) = &a.tolerance {
         p.tolerance = t
             .iter()
@@ -263,6 +264,14 @@ fn parse_tolerance(t: &str) -> anyhow::Result<Tolerance> {
         Some(p) => (p.trim(), true),
         None => (t, false),
     };
+    if num.parse::<f64>().is_ok_and(|v| v <= 0.0) {
+        return Err(BadArgs(format!(
+            "--tolerance: '{t}' is not positive: a tolerance is how far every primitive may \
+             stand from the mesh, a distance (input units) or a percentage of the diagonal \
+             like 1%, greater than 0"
+        ))
+        .into());
+    }
     match num.parse::<f64>() {
         Ok(v) if v.is_finite() && v > 0.0 && (!percent || v < 100.0) => Ok(match percent {
             true => Tolerance::Diagonal(v / 100.0),

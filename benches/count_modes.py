@@ -12,6 +12,12 @@ Hausdorff, Chamfer and user seconds per mode. `--json OUT` keeps every row.
 
 Meshes: --mesh PATH (repeatable), or --multi-part for the corpus's meshes with more
 than one connected component (CATALOG.tsv), the largest left out with --max-faces.
+
+`--summary ROWS.json` reads what --json wrote and says, per mode, how many levels are
+short of their count (fewer than min(N, faces) less max(2, N/32) primitives while the
+Hausdorff is above 0.003, so distance was left to gain) and on how many meshes the
+Hausdorff does not fall as N grows (a level's above 1.05 times the previous one's plus
+0.001), listing them.
 """
 import argparse
 import csv
@@ -45,6 +51,33 @@ def user_seconds(cmd):
         return float(Path(t.name).read_text().split()[-1])
 
 
+FLOOR = 0.003
+
+
+def summary(path):
+    rows = json.loads(Path(path).read_text())
+    modes = [k for k in rows[0] if isinstance(rows[0][k], dict)]
+    meshes = sorted({r["mesh"] for r in rows})
+    print(f"{len(meshes)} meshes, {len(rows)} levels")
+    for mode in modes:
+        short = [(r["mesh"], r["n"], r[mode]["primitives"]) for r in rows
+                 if r[mode]["primitives"] + max(2, min(r["n"], r["faces"]) // 32) < min(r["n"], r["faces"])
+                 and r[mode]["hausdorff"] > FLOOR]
+        rising = []
+        for m in meshes:
+            hs = [r[mode]["hausdorff"] for r in sorted((r for r in rows if r["mesh"] == m), key=lambda r: r["n"])]
+            if any(b > 1.05 * a + 0.001 for a, b in zip(hs, hs[1:])):
+                rising.append((m, [round(h, 4) for h in hs]))
+        secs = sum(r[mode]["seconds"] for r in rows)
+        mean_h = sum(r[mode]["hausdorff"] for r in rows) / len(rows)
+        print(f"- {mode}: {len(short)} levels short, Hausdorff not falling on {len(rising)} meshes, "
+              f"mean Hausdorff {mean_h:.4f}, {secs:.1f} user s in all")
+        for m, n, p in short:
+            print(f"  short: {m} -n {n}: {p}")
+        for m, hs in rising:
+            print(f"  not falling: {m} {hs}")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--mesh", action="append", default=[])
@@ -55,7 +88,10 @@ def main():
     ap.add_argument("--bin", default=str(ROOT / "target" / "release" / "primdecomp"))
     ap.add_argument("--samples", type=int, default=20000)
     ap.add_argument("--json")
+    ap.add_argument("--summary", metavar="ROWS.json")
     a = ap.parse_args()
+    if a.summary:
+        return summary(a.summary)
     meshes = [Path(m) for m in a.mesh] + (multi_part(a.max_faces) if a.multi_part else [])
     modes = []
     for m in a.mode or ["greedy="]:

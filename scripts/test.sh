@@ -84,7 +84,8 @@ fi
 # ---------------------------------------------------------------- rust
 section "rust: cargo test --release --workspace (one build; the binaries below come from it)"
 : >"$PRIMDECOMP_SKIP_LOG"
-cargo test --release --workspace "$@" 2>&1 | tee "$work/rust.log"
+# --no-fail-fast: every test binary runs, so the summary counts all of them.
+cargo test --release --workspace --no-fail-fast "$@" 2>&1 | tee "$work/rust.log"
 rust_status=${PIPESTATUS[0]}
 read -r r_pass r_fail r_ign < <(awk '/^test result:/{
     for (i = 1; i <= NF; i++) { if ($(i+1) ~ /^passed/) p += $i; if ($(i+1) ~ /^failed/) f += $i; if ($(i+1) ~ /^ignored/) g += $i }

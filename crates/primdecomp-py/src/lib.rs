@@ -244,8 +244,12 @@ fn decompose_path(
         .map_err(|p| PyRuntimeError::new_err(panic_message(p)))?
         .map_err(to_py_err)?;
     let mut dec = run_watched(py, &mesh, &params, progress.as_ref())?;
-    // As the CLI records it, so that to_json() is the CLI's file byte for byte.
+    // As the CLI records them, so that to_json() is the CLI's file byte for byte.
     dec.input.path = Some(Path::new(path).display().to_string());
+    if let Some(format) = primdecomp::Format::from_path(Path::new(path)) {
+        let (up, why) = primdecomp::export::Up::of_format(format);
+        (dec.input.up, dec.input.up_from) = (Some(up), Some(why.to_string()));
+    }
     Ok(NativeResult { dec, params })
 }
 
@@ -394,7 +398,12 @@ impl NativeResult {
                     })?,
                 };
                 let objs = primdecomp::export::read_objects(&json).map_err(PyValueError::new_err)?;
-                write_export(p, &objs, format, &ExportOptions::default())
+                // The input's up axis where the result records it (+Y otherwise).
+                let opts = ExportOptions {
+                    up: self.dec.input.up.unwrap_or_default(),
+                    ..ExportOptions::default()
+                };
+                write_export(p, &objs, format, &opts)
             }
         }
         .map_err(to_py_err)?;

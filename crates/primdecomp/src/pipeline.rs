@@ -35,7 +35,11 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
     })?;
     // Counts on several separate parts are cuts of the merge tree: the greedy level
     // drops the parts nested in one part's primitive (docs/decisions/0054).
-    let several = params.count_cut() && components::several(mesh.face_count(), &pairs);
+    let point = |f: usize| {
+        let corners = &welded[mesh.face_offsets[f] as usize..mesh.face_offsets[f + 1] as usize];
+        corners.iter().all(|&v| v == corners[0])
+    };
+    let several = params.count_cut() && components::several(mesh.face_count(), &pairs, point);
     let cut_params;
     let params = match several {
         true => {

@@ -42,14 +42,23 @@ pub const MIN_FACES: usize = 4096;
 /// At most this many groups of components are merged side by side.
 const GROUPS: usize = 16;
 
-/// Whether the faces form more than one connected component (by shared edges).
-pub(crate) fn several(faces: usize, pairs: &[(u32, u32)]) -> bool {
+/// Whether the faces form more than one connected component (by shared edges),
+/// leaving out the faces `point` says are points (all corners welded into one
+/// vertex: no part of the surface, as the dragon's nine).
+pub(crate) fn several(faces: usize, pairs: &[(u32, u32)], point: impl Fn(usize) -> bool) -> bool {
     let mut parent: Vec<u32> = (0..faces as u32).collect();
     for &(a, b) in pairs {
         let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
         parent[ra.max(rb) as usize] = ra.min(rb);
     }
-    (0..faces as u32).any(|f| root(&mut parent, f) != 0)
+    let mut first = None;
+    for f in (0..faces).filter(|&f| !point(f)) {
+        let r = root(&mut parent, f as u32);
+        if *first.get_or_insert(r) != r {
+            return true;
+        }
+    }
+    false
 }
 
 /// The root of `x` in a union-find forest, halving the path on the way.

@@ -28,7 +28,7 @@ MADE_UP = [
     ("kinds", "kinds.obj", ["-n", "6"]),
     ("wedges", "wedges.off", []),
     ("robot", "robot.stl", ["-n", "12"]),
-    ("nodes", "nodes.gltf", ["-n", "12", "--per-object"]),
+    ("nodes", "nodes.glb", ["-n", "12", "--per-object"]),
     ("groups", "groups.obj", ["-n", "9", "--per-object"]),
 ]
 CORPUS_CASES = [

@@ -1,5 +1,5 @@
 """--per-object keeps names and transforms: on a multi-node glTF (the made-up
-nodes.gltf: five named mesh nodes under a moved and turned parent, one scaled, one
+nodes.glb: five named mesh nodes under a moved and turned parent, one scaled, one
 turned; and, with the corpus, kenney_character: six) each object has its node's name
 and world transform, the glTF export has one node per object with that transform (its
 colliders as children), and the target is shared exactly; on a multi-group OBJ (the

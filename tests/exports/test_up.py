@@ -29,7 +29,7 @@ def decompose(tmp_path, name, *args):
 
 def test_each_format_records_its_up_axis(tmp_path):
     _, stl = decompose(tmp_path, "robot.stl")
-    _, gltf = decompose(tmp_path, "nodes.gltf")
+    _, gltf = decompose(tmp_path, "nodes.glb")
     _, obj = decompose(tmp_path, "groups.obj")
     assert stl["input"]["up"] == "z" and "assumed" in stl["input"]["up_from"]
     assert gltf["input"]["up"] == "y" and "specification" in gltf["input"]["up_from"]
@@ -46,7 +46,7 @@ def test_export_stands_the_result_on_its_recorded_axis(tmp_path):
     assert "turned" not in out, out
     assert np.isclose(mjcf_top(xml), top_z, rtol=1e-3, atol=1e-3)
 
-    res, doc = decompose(tmp_path, "nodes.gltf")
+    res, doc = decompose(tmp_path, "nodes.glb")
     top_y = doc["input"]["aabb_max"][1]
     xml = tmp_path / "nodes.xml"
     out = run([BIN, "export", res, "-o", xml, "--format", "mjcf"]).stdout

@@ -1171,12 +1171,15 @@ fn reach(l: &primdecomp::Level, diagonal: f64) -> String {
 /// clusters inside others and joined coplanar plates (§3.4), as where one part's
 /// primitive encloses the rest.
 fn few(l: &primdecomp::Level, faces: usize) -> &'static str {
-    match l.distance.is_none() && 2 * l.primitives.len() < l.target.min(faces) {
-        true => {
-            "; the other clusters lay inside those kept or were joined to them (--cut or \
-            --tolerance keeps parts apart)"
+    let under = 2 * l.primitives.len() < l.target.min(faces);
+    let count_alone = l.tolerance.is_none() && l.max_bytes.is_none();
+    match (l.distance.is_some(), under && count_alone) {
+        (false, true) => {
+            "; the other clusters lay inside those kept or were joined to them (without \
+            --greedy, counts keep parts apart)"
         }
-        false => "",
+        (true, true) => "; no more primitives would stand nearer the mesh",
+        _ => "",
     }
 }
 

@@ -264,10 +264,27 @@ fn a_greedy_level_far_under_its_count_says_why() {
         parts.push(cuboid(lo, lo.map(|x| x + 2.0)));
     }
     std::fs::write(d.join("crate.obj"), obj_text(&join(&parts))).unwrap();
-    let (code, out) = run(&d, &["decompose", "crate.obj", "-n", "9", "-o", "g.json"]);
+    let (code, out) = run(
+        &d,
+        &[
+            "decompose",
+            "crate.obj",
+            "-n",
+            "9",
+            "--greedy",
+            "-o",
+            "g.json",
+        ],
+    );
     assert_eq!(code, Some(0), "{out}");
-    assert!(out.contains("target     9 → 1 primitives (1 box)"), "{out}");
+    assert!(out.contains("count     9 → 1 primitives (1 box)"), "{out}");
     assert!(out.contains("lay inside those kept"), "{out}");
+    // Without --greedy a count on several parts is a cut (docs/decisions/0054): the
+    // blocks are hidden in the closed crate, so no split stands nearer and no note.
+    let (code, out) = run(&d, &["decompose", "crate.obj", "-n", "9", "-o", "c.json"]);
+    assert_eq!(code, Some(0), "{out}");
+    assert!(out.contains("farthest"), "{out}");
+    assert!(!out.contains("lay inside those kept"), "{out}");
     let (code, out) = run(
         &d,
         &[

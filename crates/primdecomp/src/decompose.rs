@@ -5,7 +5,7 @@ use crate::error::Result;
 use crate::mesh::Mesh;
 use crate::params::{short_of, Params};
 use crate::progress::{Progress, Silent};
-use crate::result::{Decomposition, Level};
+use crate::result::Decomposition;
 use crate::{budget, pipeline};
 
 /// Decomposes `mesh` into primitives, one [`crate::Level`] per target in
@@ -45,28 +45,34 @@ pub fn decompose_with(
         // Nested primitives removed leave room: merge less to fill it.
         return budget::fill(mesh, params, progress);
     }
-    let dec = pipeline::run(mesh, params, progress)?;
-    // A greedy level post-processing left short of its count: every level cut from
-    // the merge tree instead, as on several parts (docs/decisions/0054).
+    let mut dec = pipeline::run(mesh, params, progress)?;
+    // A greedy level post-processing left short of its count is cut from the merge
+    // tree instead, as on several parts (docs/decisions/0054); the other levels stay
+    // the greedy's, so each level is what its own run gives.
     let faces = mesh.face_count();
-    let short = |l: &Level| l.distance.is_none() && short_of(l.primitives.len(), l.target, faces);
-    if !(params.count_cut() && dec.levels.iter().any(short)) {
+    let short: Vec<usize> = (0..dec.levels.len())
+        .filter(|&i| {
+            let l = &dec.levels[i];
+            params.count_cut()
+                && l.distance.is_none()
+                && short_of(l.primitives.len(), l.target, faces)
+        })
+        .collect();
+    if short.is_empty() {
         return Ok(dec);
     }
-    let mut cut = pipeline::run(
-        mesh,
-        &Params {
-            cut: true,
-            ..params.clone()
-        },
-        progress,
-    )?;
-    cut.timings.stages = (dec
-        .timings
+    let recut = Params {
+        cut: true,
+        targets: short.iter().map(|&i| params.targets[i]).collect(),
+        ..params.clone()
+    };
+    let cut = pipeline::run(mesh, &recut, progress)?;
+    for (&i, level) in short.iter().zip(cut.levels) {
+        dec.levels[i] = level;
+    }
+    let recut_stages = cut.timings.stages.into_iter();
+    dec.timings
         .stages
-        .into_iter()
-        .map(|(s, t)| (format!("greedy {s}"), t)))
-    .chain(cut.timings.stages)
-    .collect();
-    Ok(cut)
+        .extend(recut_stages.map(|(s, t)| (format!("recut {s}"), t)));
+    Ok(dec)
 }

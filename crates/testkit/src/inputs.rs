@@ -10,7 +10,7 @@
 //! | `wedges.off` | two scalene triangles | a skewed prism (docs/decisions/0045) |
 //! | `robot.stl` | a z-up arm on a base, binary STL, seven parts | a z-up input, multi-part |
 //! | `cabinet.obj` | an open cabinet holding 60 items, knobs and feet outside | a count on many parts inside one box |
-//! | `nodes.gltf` | five named mesh nodes under a turned, moved parent | per-object frames |
+//! | `nodes.glb` | five named mesh nodes under a turned, moved parent | per-object frames |
 //! | `groups.obj` | three named `g` groups | per-object names |
 //! | `lumpy.ply` | a bumpy sphere of 81,920 triangles, binary PLY | a run long enough to interrupt |
 
@@ -27,7 +27,7 @@ pub fn write_all(dir: &Path) -> std::io::Result<Vec<&'static str>> {
         ("wedges.off", off_text(&wedges()).into_bytes()),
         ("robot.stl", stl_binary(&robot())),
         ("cabinet.obj", obj_text(&cabinet()).into_bytes()),
-        ("nodes.gltf", nodes_gltf().into_bytes()),
+        ("nodes.glb", nodes_glb()),
         ("groups.obj", groups_obj().into_bytes()),
         ("lumpy.ply", ply_binary(&lumpy())),
     ];
@@ -248,10 +248,10 @@ fn groups_obj() -> String {
     out
 }
 
-/// A glTF 2.0 scene of five named mesh nodes (a base box, a column, a ball scaled by
-/// its node, an arm turned by its node and a lamp) under a parent node that is moved
-/// and turned, the buffer inline as a `data:` URI; +Y up as glTF says.
-fn nodes_gltf() -> String {
+/// A binary glTF 2.0 scene of five named mesh nodes (a base box, a column, a ball
+/// scaled by its node, an arm turned by its node and a lamp) under a parent node that
+/// is moved and turned; +Y up as glTF says.
+fn nodes_glb() -> Vec<u8> {
     let meshes: [(&str, Polys); 5] = [
         ("base", cuboid([-0.6, 0.0, -0.4], [0.6, 0.2, 0.4])),
         ("column", along(cylinder(0.12, 1.0, 24), 1)),
@@ -310,9 +310,28 @@ fn nodes_gltf() -> String {
         "meshes": gl_meshes,
         "accessors": accessors,
         "bufferViews": views,
-        "buffers": [{"byteLength": buf.len(), "uri": format!("data:application/octet-stream;base64,{}", base64(&buf))}],
+        "buffers": [{"byteLength": buf.len()}],
     });
-    serde_json::to_string_pretty(&doc).expect("plain data") + "\n"
+    glb(&serde_json::to_string(&doc).expect("plain data"), buf)
+}
+
+/// A GLB file: the 12-byte header, the JSON chunk (padded with spaces) and the binary
+/// chunk (padded with zeros), each 4-byte aligned as the specification asks.
+fn glb(json: &str, mut bin: Vec<u8>) -> Vec<u8> {
+    let mut json = json.as_bytes().to_vec();
+    json.resize(json.len().div_ceil(4) * 4, b' ');
+    bin.resize(bin.len().div_ceil(4) * 4, 0);
+    let total = 12 + 8 + json.len() + 8 + bin.len();
+    let mut out = Vec::with_capacity(total);
+    out.extend(b"glTF");
+    out.extend(2u32.to_le_bytes());
+    out.extend((total as u32).to_le_bytes());
+    for (kind, chunk) in [(*b"JSON", json), (*b"BIN\0", bin)] {
+        out.extend((chunk.len() as u32).to_le_bytes());
+        out.extend(kind);
+        out.extend(chunk);
+    }
+    out
 }
 
 /// A sphere of radius about 1 with smooth bumps, 81,920 triangles.
@@ -384,43 +403,9 @@ fn ply_binary((v, f): &Polys) -> Vec<u8> {
     out
 }
 
-/// Standard base64 with padding.
-fn base64(bytes: &[u8]) -> String {
-    const ABC: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-    let mut s = String::with_capacity(bytes.len().div_ceil(3) * 4);
-    for c in bytes.chunks(3) {
-        let n = (u32::from(c[0]) << 16)
-            | (u32::from(*c.get(1).unwrap_or(&0)) << 8)
-            | u32::from(*c.get(2).unwrap_or(&0));
-        for k in 0..4 {
-            if k <= c.len() {
-                s.push(ABC[(n >> (18 - 6 * k) & 63) as usize] as char);
-            } else {
-                s.push('=');
-            }
-        }
-    }
-    s
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn base64_matches_the_rfc_examples() {
-        for (raw, want) in [
-            ("", ""),
-            ("f", "Zg=="),
-            ("fo", "Zm8="),
-            ("foo", "Zm9v"),
-            ("foob", "Zm9vYg=="),
-            ("fooba", "Zm9vYmE="),
-            ("foobar", "Zm9vYmFy"),
-        ] {
-            assert_eq!(base64(raw.as_bytes()), want);
-        }
-    }
 
     #[test]
     fn every_input_loads_with_its_faces() {
@@ -430,7 +415,7 @@ mod tests {
             let m = primdecomp::load(&dir.join(name)).unwrap_or_else(|e| panic!("{e}"));
             assert!(m.face_count() > 0, "{name}");
         }
-        let glb = primdecomp::load(&dir.join("nodes.gltf")).unwrap();
+        let glb = primdecomp::load(&dir.join("nodes.glb")).unwrap();
         assert_eq!(glb.objects().len(), 5);
         std::fs::remove_dir_all(&dir).unwrap();
     }

@@ -540,10 +540,9 @@ impl Params {
         if self.max_bytes.contains(&0) {
             return bad("max_bytes must be positive".into());
         }
-        if self.greedy && (self.uses_cut() || self.fill) {
+        if self.greedy && self.uses_cut() {
             return bad(
-                "greedy takes the greedy pass's levels as they are: not with cut, fill, \
-                 tolerance or max_bytes"
+                "greedy takes the greedy pass's levels: not with cut, tolerance or max_bytes"
                     .into(),
             );
         }

@@ -215,7 +215,7 @@ _KINDS = ("box", "sphere", "capsule", "cylinder", "frustum", "prism")
 _WEIGHTS = {"box": 1.0, "sphere": 1.0, "capsule": 1.0, "cylinder": 1.05, "frustum": 2.1, "prism": 1.4}
 _NUMBERS = ("tangent_eps", "min_extent", "max_excess_volume", "remove_thin_boxes", "open_holes",
             "rim_weight", "min_thickness")
-_FLAGS = ("remove_nested", "flush_plates", "join_coplanar", "solid", "fill", "cut")
+_FLAGS = ("remove_nested", "flush_plates", "join_coplanar", "solid", "fill", "greedy", "cut")
 _OTHER = ("targets", "tolerance", "max_bytes", "kinds", "weights", "dedup", "reprice", "partitions")
 
 

@@ -226,33 +226,44 @@ pub fn check_exports(exports: &[PathBuf], args: &ExportArgs) -> anyhow::Result<(
     Ok(())
 }
 
-/// The files a run wrote, one line each, except that the files an export writes in a
-/// folder beside its main file (URDF's collision meshes) are one line with their
-/// count: `wrote     robot.urdf and 96 files in robot_meshes/`.
+/// The files a run wrote, one line each, except that the collision meshes a URDF
+/// writes into its `{stem}_meshes/` folder are counted on the URDF's line:
+/// `wrote     robot.urdf and 96 mesh files in robot_meshes/`.
 pub fn wrote_lines(written: &[PathBuf]) -> Vec<String> {
-    let parent = |p: &Path| p.parent().map(Path::to_path_buf).unwrap_or_default();
+    // The URDF whose meshes folder holds `f`, by its index in `written`.
+    let owner = |f: &PathBuf| -> Option<usize> {
+        let dir = f.parent()?;
+        let name = dir.file_name()?.to_str()?;
+        written.iter().position(|h| {
+            let urdf = h
+                .extension()
+                .is_some_and(|e| e.eq_ignore_ascii_case("urdf"));
+            let stem = h.file_stem().and_then(|s| s.to_str());
+            urdf && h.parent() == dir.parent()
+                && stem.is_some_and(|s| name == format!("{s}_meshes"))
+        })
+    };
+    let owners: Vec<Option<usize>> = written.iter().map(owner).collect();
     let mut lines = Vec::new();
-    let mut i = 0;
-    while i < written.len() {
-        let head = &written[i];
-        let dir = written.get(i + 1).map(|p| parent(p));
-        let beside = match &dir {
-            Some(d) if *d != parent(head) => written[i + 1..]
-                .iter()
-                .take_while(|p| parent(p) == *d)
-                .count(),
-            _ => 0,
-        };
-        lines.push(match (beside, &dir) {
-            (0, _) | (_, None) => format!("wrote     {}", head.display()),
-            (n, Some(d)) => format!(
-                "wrote     {} and {n} file{} in {}/",
-                head.display(),
-                if n == 1 { "" } else { "s" },
-                d.display()
+    for (i, f) in written
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| owners[*i].is_none())
+    {
+        let meshes: Vec<&PathBuf> = (written.iter().zip(&owners))
+            .filter(|(_, o)| **o == Some(i))
+            .map(|(m, _)| m)
+            .collect();
+        lines.push(match meshes.first().and_then(|m| m.parent()) {
+            None => format!("wrote     {}", f.display()),
+            Some(dir) => format!(
+                "wrote     {} and {} mesh file{} in {}/",
+                f.display(),
+                meshes.len(),
+                if meshes.len() == 1 { "" } else { "s" },
+                dir.display()
             ),
         });
-        i += 1 + beside;
     }
     lines
 }
@@ -279,4 +290,34 @@ pub fn write_level_exports(
         written.extend(write_export(&path, objects, format, &opts)?);
     }
     Ok(written)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::wrote_lines;
+    use std::path::PathBuf;
+
+    /// A URDF's mesh files are one count on its line, wherever they stand in the list;
+    /// other files (an MJCF of the same stem, the result) keep a line each.
+    #[test]
+    fn a_urdfs_meshes_are_counted_on_its_line() {
+        let p = |s: &str| PathBuf::from(s);
+        let written = [
+            p("out/r.json"),
+            p("out/r.xml"),
+            p("out/r_meshes/a.obj"),
+            p("out/r_meshes/b.obj"),
+            p("out/r.urdf"),
+            p("out/other/c.obj"),
+        ];
+        assert_eq!(
+            wrote_lines(&written),
+            [
+                "wrote     out/r.json",
+                "wrote     out/r.xml",
+                "wrote     out/r.urdf and 2 mesh files in out/r_meshes/",
+                "wrote     out/other/c.obj",
+            ]
+        );
+    }
 }

@@ -819,11 +819,12 @@ fn run_one(
             &a.export,
             &a.export_opts,
             &crate::export_cmd::whole(level),
-            &label,
-            dec.levels.len(),
-            &[input],
-            Some(&mesh),
-            up.0,
+            (&label, dec.levels.len()),
+            &crate::export_cmd::Source {
+                path: input,
+                mesh: &mesh,
+                up: up.0,
+            },
         )?);
     }
     let write_s = now.elapsed().as_secs_f64();
@@ -932,11 +933,12 @@ fn run_objects(
             &a.export,
             &a.export_opts,
             &crate::export_cmd::level_objects(&objs, i),
-            &format!("n{target}"),
-            n,
-            &[input],
-            Some(mesh),
-            up.0,
+            (&format!("n{target}"), n),
+            &crate::export_cmd::Source {
+                path: input,
+                mesh,
+                up: up.0,
+            },
         )?);
         dec.levels.push(level);
     }
@@ -963,7 +965,7 @@ fn input_up(a: &DecomposeArgs, input: &Path) -> (primdecomp::export::Up, String)
     match a.export_opts.up.as_deref().and_then(Up::from_axis) {
         Some(up) => (up, "given with --up".into()),
         None => primdecomp::Format::from_path(input)
-            .map(|f| Up::of_format(f))
+            .map(Up::of_format)
             .map_or((Up::Y, "assumed".into()), |(u, why)| (u, why.into())),
     }
 }

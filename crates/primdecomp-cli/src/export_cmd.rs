@@ -268,25 +268,30 @@ pub fn wrote_lines(written: &[PathBuf]) -> Vec<String> {
     lines
 }
 
+/// The input `decompose --export` writes a level of: its path (never to be
+/// overwritten), its mesh (for `--preview`) and its up axis.
+pub struct Source<'a> {
+    pub path: &'a Path,
+    pub mesh: &'a primdecomp::Mesh,
+    pub up: Up,
+}
+
 /// Writes `decompose --export` files of one level; returns the paths.
 pub fn write_level_exports(
     exports: &[PathBuf],
     args: &ExportArgs,
     objects: &[ResultObject],
-    label: &str,
-    levels: usize,
-    inputs: &[&Path],
-    input_mesh: Option<&primdecomp::Mesh>,
-    up: Up,
+    (label, levels): (&str, usize),
+    source: &Source,
 ) -> anyhow::Result<Vec<PathBuf>> {
     let mut written = Vec::new();
     for e in exports {
         let path = crate::paths::output_path_for(e, label, levels);
-        let (format, mut opts) = args.resolve(e, &model_name(e), up)?;
-        if let (true, Some(m)) = (args.preview, input_mesh) {
-            opts.input_mesh = Some(mesh_polygons(m));
+        let (format, mut opts) = args.resolve(e, &model_name(e), source.up)?;
+        if args.preview {
+            opts.input_mesh = Some(mesh_polygons(source.mesh));
         }
-        not_an_input("--export", &path, inputs)?;
+        not_an_input("--export", &path, &[source.path])?;
         written.extend(write_export(&path, objects, format, &opts)?);
     }
     Ok(written)

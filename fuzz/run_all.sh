@@ -5,7 +5,7 @@ set -u
 cd "$(dirname "$0")"
 secs=${1:-600}
 shift || true
-targets=${*:-decompose parse_obj parse_ply parse_stl parse_off parse_gltf load_mmap gltf_structured}
+targets=${*:-decompose parse_obj parse_ply parse_stl parse_off parse_gltf load_mmap gltf_structured exports}
 mkdir -p logs
 # Corpus meshes seed the parsers too; they are read from ../shared, never committed.
 shared=../../shared/datasets/corpus

@@ -145,6 +145,9 @@ fi
 
 # ---------------------------------------------------------------- browser
 section "browser: the viewer page in headless Chromium (tests/browser)"
+# view.test.mjs: the page becomes ready, draws every kind, switches levels and panes;
+# hostile.test.mjs: built from hostile file and collider names, it still starts and
+# runs no injected script.
 if [ "$built" = 0 ]; then
   cannot_run browser "the Rust build failed"
 elif [ ! -x "$chromium" ]; then
@@ -155,7 +158,7 @@ elif ! (cd tests/browser && npm ci --no-audit --no-fund --loglevel=error); then
   cannot_run browser "npm ci failed in tests/browser"
 else
   CHROMIUM="$chromium" node --test --test-reporter=spec --test-reporter-destination=stdout \
-    --test-reporter=tap --test-reporter-destination="$work/browser.tap" tests/browser/view.test.mjs
+    --test-reporter=tap --test-reporter-destination="$work/browser.tap" tests/browser/view.test.mjs tests/browser/hostile.test.mjs
   status=$?
   read -r p f s < <(node_counts "$work/browser.tap")
   [ "$status" = 0 ] || [ "$f" -gt 0 ] || f=1

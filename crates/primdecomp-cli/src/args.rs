@@ -144,6 +144,13 @@ pub(crate) struct DecomposeArgs {
     /// Without it a result file is the same byte for byte from run to run.
     #[arg(long, hide_short_help = true, help_heading = "Output")]
     pub timings: bool,
+    /// Report progress (stage, percent, time left) on stderr even when it is not a
+    /// terminal: a line as each stage starts and every few seconds.
+    ///
+    /// On a terminal a bar shows it anyway for inputs of 100,000 faces or more (not
+    /// with --quiet or several inputs at once).
+    #[arg(long, hide_short_help = true, help_heading = "Output")]
+    pub progress: bool,
 
     // --- Shape of the primitives ---
     /// Kinds allowed, e.g. box,sphere,capsule (default: all six).

@@ -3,6 +3,7 @@
 
 use crate::args::{DecomposeArgs, LoadArgs};
 use crate::exit::BadArgs;
+use crate::exit::{eprintln, print, println};
 use crate::manifest::{self, Manifest, Stamp};
 use crate::outputs::{check_batch_dir, check_stems, names_dir, Guard, Out};
 use crate::paths::{level_labels, output_path_for};
@@ -294,8 +295,7 @@ fn parse_bytes(b: &str) -> anyhow::Result<usize> {
 
 /// `--config FILE`: JSON (a result's settings or settings alone) or TOML settings.
 fn read_config(path: &Path) -> anyhow::Result<Params> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| BadArgs(format!("{}: cannot read the settings: {e}", path.display())))?;
+    let text = crate::paths::read_result(path)?;
     let toml = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("toml"));
@@ -356,7 +356,12 @@ impl LoadArgs {
 
 /// The memory limit in bytes from `--max-memory`; `None` for no limit.
 fn max_memory(a: &DecomposeArgs) -> anyhow::Result<Option<u64>> {
-    Ok(match a.max_memory.trim() {
+    memory_limit(&a.max_memory)
+}
+
+/// A `--max-memory` value in bytes: a size, `available` or `none` (`None`).
+fn memory_limit(s: &str) -> anyhow::Result<Option<u64>> {
+    Ok(match s.trim() {
         "none" => None,
         "available" => crate::paths::available_memory(),
         s => Some(crate::paths::parse_size(s).ok_or_else(|| {
@@ -492,9 +497,10 @@ fn decompose(a: DecomposeArgs) -> anyhow::Result<()> {
                 .into()
         ));
     }
-    if a.obj_detail < 3 {
+    if !(3..=export::MAX_DETAIL).contains(&a.obj_detail) {
         bail!(BadArgs(format!(
-            "--obj-detail must be at least 3, got {}",
+            "--obj-detail must be from 3 to {}, got {}",
+            export::MAX_DETAIL,
             a.obj_detail
         )));
     }
@@ -603,7 +609,16 @@ fn decompose_batch(
     let todo: Vec<usize> = (0..n)
         .filter(|&i| {
             let input = &a.inputs[i];
-            !(a.resume && manifest.done_before(input, Stamp::of(input), &settings))
+            !(a.resume && {
+                let (expected, could_write) = dests[i].resumable(targets, a.per_object);
+                manifest.done_before(
+                    input,
+                    Stamp::of(input),
+                    &settings,
+                    expected.as_deref(),
+                    &could_write,
+                )
+            })
         })
         .collect();
     if a.resume && !a.quiet {
@@ -736,6 +751,48 @@ impl Dest {
         outs
     }
 
+    /// What `--resume` may take as this input's outputs (never what a manifest says):
+    /// the files it writes when their names are known before decomposing, else a test
+    /// that a file is one of them (`STEM.primdecomp_nCOUNT.json`, the same for --obj,
+    /// the --png file).
+    #[allow(clippy::type_complexity)]
+    fn resumable(
+        &self,
+        targets: &[Target],
+        per_object: bool,
+    ) -> (Option<Vec<PathBuf>>, Box<dyn Fn(&Path) -> bool + '_>) {
+        // --per-object writes no picture.
+        let png = self.png.as_ref().filter(|_| !per_object);
+        let known: Vec<PathBuf> = self
+            .up_front(targets)
+            .into_iter()
+            .map(|o| o.path)
+            .filter(|p| Some(p) != self.png.as_ref() || png.is_some())
+            .collect();
+        let abs = |p: &Path| std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf());
+        let named = move |p: &Path| {
+            let p = abs(p);
+            std::iter::once(&self.json)
+                .chain(self.obj.as_ref())
+                .any(|base| {
+                    let base = abs(base);
+                    let (Some(stem), Some(name)) = (base.file_stem(), p.file_stem()) else {
+                        return false;
+                    };
+                    let count = name
+                        .to_str()
+                        .and_then(|n| n.strip_prefix(&format!("{}_n", stem.to_string_lossy())));
+                    p.parent() == base.parent()
+                        && p.extension() == base.extension()
+                        && count
+                            .is_some_and(|c| !c.is_empty() && c.bytes().all(|b| b.is_ascii_digit()))
+                })
+                || png.is_some_and(|g| abs(g) == p)
+        };
+        let expected = (!known.is_empty()).then_some(known);
+        (expected, Box::new(named))
+    }
+
     /// The files whose names are known before decomposing: all of them unless a
     /// percentage target among several makes the suffixes depend on the input.
     fn up_front(&self, targets: &[Target]) -> Vec<Out> {
@@ -786,6 +843,8 @@ fn run_one(
     guard: &Guard,
     beside_others: bool,
 ) -> anyhow::Result<(Decomposition, Vec<PathBuf>)> {
+    // Peaks per stage only for a run alone in the process: the mark is process-wide.
+    let memory = (a.timings && !beside_others).then(|| StageMemory::new("load"));
     let now = Instant::now();
     let mesh = primdecomp::load_with(input, &load_options(a)?)?;
     let load_s = now.elapsed().as_secs_f64();
@@ -798,15 +857,14 @@ fn run_one(
         dec.timings.stages.insert(0, ("load".into(), load_s));
         return Ok((dec, written));
     }
-    let bar = progress_bar(mesh.face_count(), a.quiet || beside_others);
+    let shown = Shown::new(&params, mesh.face_count(), a, beside_others);
     let mut dec = primdecomp::decompose_with(&mesh, &params, &|stage: Stage, f: f64| {
-        if let (Some(b), Stage::Merge) = (&bar, stage) {
-            b.set_position((f * 1000.0) as u64);
+        if let Some(m) = &memory {
+            m.enter(stage.name());
         }
+        shown.update(stage, f);
     })?;
-    if let Some(b) = bar {
-        b.finish_and_clear();
-    }
+    shown.finish();
     dec.input.path = Some(input.display().to_string());
     let up = input_up(a, input);
     (dec.input.up, dec.input.up_from) = (Some(up.0), Some(up.1));
@@ -828,6 +886,7 @@ fn run_one(
         )?);
     }
     let write_s = now.elapsed().as_secs_f64();
+    let memory = memory.map(StageMemory::finish);
     if let Some(png) = &dest.png {
         let label = dest.labels(&[dec.levels[0].target]).swap_remove(0);
         written.push(decompose_png(&dest.json, &label, &dec, input, &mesh, png)?);
@@ -837,7 +896,13 @@ fn run_one(
         print_summary(&dec, &mesh, &written, a.verbose);
     }
     if a.verbose || a.timings {
-        print_timings(&dec, write_s, a.inputs.len() > 1, a.verbose);
+        print_timings(
+            &dec,
+            write_s,
+            a.inputs.len() > 1,
+            a.verbose,
+            memory.as_deref(),
+        );
     } else if !a.quiet {
         println!("time      {:.2} s", dec.timings.total() + write_s);
     }
@@ -871,7 +936,10 @@ fn run_objects(
             Target::Percent(p) => ObjectTarget::Percent(p),
         })
         .collect();
-    let mut objs = decompose_objects(mesh, params, &wanted)?;
+    let mut objs = decompose_objects(mesh, params, &wanted).map_err(|e| match e {
+        primdecomp::Error::InvalidParams(m) => BadArgs(format!("{}: {m}", input.display())).into(),
+        e => anyhow::Error::from(e),
+    })?;
     objs.input.path = Some(input.display().to_string());
     let up = input_up(a, input);
     (objs.input.up, objs.input.up_from) = (Some(up.0), Some(up.1));
@@ -1025,16 +1093,89 @@ fn named_after(input: &Path, ext: &str) -> PathBuf {
     PathBuf::from(format!("{stem}.primdecomp.{ext}"))
 }
 
-fn progress_bar(faces: usize, quiet: bool) -> Option<indicatif::ProgressBar> {
-    if quiet || faces < 100_000 {
-        return None;
+/// A run's progress as the user sees it: a bar on a terminal (stage, percent of the
+/// run, time left), lines on stderr every few seconds with `--progress` elsewhere,
+/// or nothing (quiet, several inputs at once, a small input, or stderr not a terminal
+/// without `--progress`).
+struct Shown {
+    eta: primdecomp::Eta,
+    bar: Option<indicatif::ProgressBar>,
+    /// `--progress` off a terminal: when the last line was printed, and its stage.
+    lines: Option<std::sync::Mutex<(Instant, Option<Stage>)>>,
+}
+
+/// Seconds between `--progress` lines off a terminal.
+const PROGRESS_EVERY: f64 = 5.0;
+
+impl Shown {
+    fn new(params: &Params, faces: usize, a: &DecomposeArgs, beside_others: bool) -> Shown {
+        use std::io::IsTerminal;
+        let eta = primdecomp::Eta::new(params);
+        let wanted = !a.quiet && !beside_others && (a.progress || faces >= 100_000);
+        let terminal = std::io::stderr().is_terminal();
+        let bar = (wanted && terminal).then(|| {
+            let b = indicatif::ProgressBar::new(1000);
+            b.set_style(
+                indicatif::ProgressStyle::with_template(
+                    "{msg:<24} {bar:30} {percent:>3}% {prefix}",
+                )
+                .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+            );
+            b
+        });
+        let lines = (wanted && !terminal && a.progress)
+            .then(|| std::sync::Mutex::new((Instant::now(), None)));
+        Shown { eta, bar, lines }
     }
-    let b = indicatif::ProgressBar::new(1000);
-    b.set_style(
-        indicatif::ProgressStyle::with_template("merging {bar:40} {percent:>3}% {elapsed_precise}")
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-    );
-    Some(b)
+
+    fn update(&self, stage: Stage, fraction: f64) {
+        if self.bar.is_none() && self.lines.is_none() {
+            return;
+        }
+        let e = self.eta.update(stage, fraction);
+        let left = e
+            .seconds_left
+            .map_or(String::new(), |s| format!("about {} left", duration(s)));
+        if let Some(b) = &self.bar {
+            b.set_message(format!("{} {:.0}%", stage.name(), 100.0 * e.fraction));
+            b.set_prefix(left.clone());
+            b.set_position((e.overall * 1000.0) as u64);
+        }
+        if let Some(last) = &self.lines {
+            // A line as each stage starts, and every few seconds within one.
+            let mut last = last.lock().unwrap_or_else(|e| e.into_inner());
+            if last.1 != Some(stage) || last.0.elapsed().as_secs_f64() >= PROGRESS_EVERY {
+                *last = (Instant::now(), Some(stage));
+                eprintln!(
+                    "progress  {} {:.0}%, run {:.0}%{}",
+                    stage.name(),
+                    100.0 * e.fraction,
+                    100.0 * e.overall,
+                    if left.is_empty() {
+                        left
+                    } else {
+                        format!(", {left}")
+                    }
+                );
+            }
+        }
+    }
+
+    fn finish(self) {
+        if let Some(b) = self.bar {
+            b.finish_and_clear();
+        }
+    }
+}
+
+/// `s` seconds as `1h02m`, `3m05s` or `42s`.
+fn duration(s: f64) -> String {
+    let s = s.round() as u64;
+    match s {
+        0..=59 => format!("{s}s"),
+        60..=3599 => format!("{}m{:02}s", s / 60, s % 60),
+        _ => format!("{}h{:02}m", s / 3600, s % 3600 / 60),
+    }
 }
 
 /// Writes JSON (and OBJ) per level atomically, after checking that none of the files
@@ -1202,9 +1343,16 @@ fn shortfall(l: &primdecomp::Level) -> String {
     }
 }
 
-/// The stage breakdown (load through write) and the process's peak resident memory;
-/// with `verbose` also the merge loop's counters.
-fn print_timings(dec: &Decomposition, write_s: f64, several: bool, verbose: bool) {
+/// The stage breakdown (load through write) and the process's peak resident memory
+/// (with `by_stage`, each stage's own peak, MiB, and the largest of them); with
+/// `verbose` also the merge loop's counters.
+fn print_timings(
+    dec: &Decomposition,
+    write_s: f64,
+    several: bool,
+    verbose: bool,
+    by_stage: Option<&[(String, f64, f64)]>,
+) {
     let stages: Vec<String> = dec
         .timings
         .stages
@@ -1232,7 +1380,20 @@ fn print_timings(dec: &Decomposition, write_s: f64, several: bool, verbose: bool
         st.merges_ahead
     );
     }
-    if let Some(kib) = peak_rss_kib() {
+    if let Some(stages) = by_stage.filter(|s| !s.is_empty()) {
+        let peak = stages.iter().map(|s| s.1).fold(0.0, f64::max);
+        let each: Vec<String> = stages
+            .iter()
+            .map(|(n, m, _)| format!("{n} {m:.1}"))
+            .collect();
+        let cpu: Vec<String> = stages
+            .iter()
+            .map(|(n, _, c)| format!("{n} {c:.3}"))
+            .collect();
+        println!("memory    peak resident {peak:.1} MiB");
+        println!("memory    by stage (MiB): {}", each.join(", "));
+        println!("cpu       by stage (s): {}", cpu.join(", "));
+    } else if let Some(kib) = peak_rss_kib() {
         // The process's peak so far: with several inputs, of all of them up to now.
         let whose = if several {
             " (the process's, all inputs so far)"
@@ -1244,6 +1405,68 @@ fn print_timings(dec: &Decomposition, write_s: f64, several: bool, verbose: bool
             kib as f64 / 1024.0
         );
     }
+}
+
+/// Each stage's peak resident memory (`--timings` on a run alone): as a stage
+/// starts, the kernel's high-water mark is read for the stage before and reset
+/// (Linux `/proc/self/clear_refs`; where that cannot be written, each figure is the
+/// peak so far).
+/// Each stage's CPU seconds (every thread of the process) are read at the same
+/// moments: what other jobs on the machine cannot add to, for comparing stages
+/// between input sizes on a busy machine.
+struct StageMemory(std::sync::Mutex<StageMarks>);
+
+/// The stage running, the process's CPU seconds when it started, and per stage
+/// before it: (name, peak MiB, CPU seconds).
+type StageMarks = (&'static str, f64, Vec<(String, f64, f64)>);
+
+impl StageMemory {
+    fn new(first: &'static str) -> StageMemory {
+        reset_peak_rss();
+        StageMemory(std::sync::Mutex::new((first, cpu_seconds(), Vec::new())))
+    }
+
+    /// `stage` runs now (called often, from any thread).
+    fn enter(&self, stage: &'static str) {
+        let mut s = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        if s.0 != stage {
+            let mib = peak_rss_kib().unwrap_or(0) as f64 / 1024.0;
+            reset_peak_rss();
+            let cpu = cpu_seconds();
+            let before = std::mem::replace(&mut s.0, stage);
+            let spent = cpu - std::mem::replace(&mut s.1, cpu);
+            s.2.push((before.to_string(), mib, spent));
+        }
+    }
+
+    /// The stages' peaks and CPU seconds in order, the last one's (through writing)
+    /// included.
+    fn finish(self) -> Vec<(String, f64, f64)> {
+        self.enter("");
+        let s = self.0.into_inner().unwrap_or_else(|e| e.into_inner());
+        s.2
+    }
+}
+
+/// CPU seconds of this process (every thread) so far; 0 where unknown.
+fn cpu_seconds() -> f64 {
+    #[cfg(unix)]
+    {
+        let mut ts = libc::timespec {
+            tv_sec: 0,
+            tv_nsec: 0,
+        };
+        // SAFETY: `ts` is a valid timespec for the call to fill.
+        if unsafe { libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut ts) } == 0 {
+            return ts.tv_sec as f64 + 1e-9 * ts.tv_nsec as f64;
+        }
+    }
+    0.0
+}
+
+/// Resets the process's peak resident set size to its current one (Linux 4.0+).
+fn reset_peak_rss() {
+    let _ = std::fs::write("/proc/self/clear_refs", "5");
 }
 
 /// Peak resident set size of this process so far (Linux `VmHWM`), if known.
@@ -1452,9 +1675,17 @@ struct ViewArgs {
     /// Most input triangles shown; larger inputs are simplified (meshoptimizer) to this.
     #[arg(long, default_value_t = primdecomp_view::simplify::DISPLAY_TRIANGLES)]
     display_faces: usize,
-    /// Segments around circles in the primitives' shown tessellation.
+    /// Segments around circles in the primitives' shown tessellation (fewer where the
+    /// page would otherwise hold over 2 million triangles of parts).
     #[arg(long, default_value_t = 24)]
     detail: usize,
+    /// Refuse an input mesh (--input, or the result's input.path) whose reading needs
+    /// more memory than this, as decompose's --max-memory: a size like 8G, 'available'
+    /// (the memory available now) or 'none'.
+    #[arg(long, default_value = "available")]
+    max_memory: String,
+    #[command(flatten)]
+    load: LoadArgs,
 }
 
 /// Reads every file first (a bad one fails the run before anything is written), then
@@ -1477,9 +1708,10 @@ fn view(a: ViewArgs) -> anyhow::Result<()> {
             a.png_size
         )));
     }
-    if a.detail < 3 {
+    if !(3..=primdecomp::export::MAX_DETAIL).contains(&a.detail) {
         bail!(BadArgs(format!(
-            "--detail must be at least 3, got {}",
+            "--detail must be from 3 to {}, got {}",
+            primdecomp::export::MAX_DETAIL,
             a.detail
         )));
     }
@@ -1497,7 +1729,7 @@ fn view(a: ViewArgs) -> anyhow::Result<()> {
         .collect();
     guard.check(&outs)?;
     let up = view_up(&a);
-    let opts = scene::Options {
+    let mut opts = scene::Options {
         detail: a.detail,
         display_triangles: a.display_faces.max(1),
         up_axis: if up == primdecomp::export::Up::Z {
@@ -1505,11 +1737,16 @@ fn view(a: ViewArgs) -> anyhow::Result<()> {
         } else {
             1
         },
+        load: LoadOptions {
+            max_memory: memory_limit(&a.max_memory)?,
+            allow_external_uris: a.load.allow_external_uris,
+            ..LoadOptions::default()
+        },
     };
-    let mut levels = Vec::new();
+    let mut docs = Vec::new();
     for r in &a.results {
         for f in scene::result_files(r) {
-            levels.extend(scene::load_levels(&f, &opts)?);
+            docs.extend(scene::read_levels(&f)?);
         }
     }
     let peers = a
@@ -1517,6 +1754,24 @@ fn view(a: ViewArgs) -> anyhow::Result<()> {
         .iter()
         .map(|p| scene::load_peer(p, None))
         .collect::<primdecomp::Result<Vec<_>>>()?;
+    // A page shows a bounded number of parts and triangles: coarser circles first.
+    let hulls = peers.iter().map(|c| c.parts.len()).sum();
+    let hull_triangles = peers.iter().map(|c| c.parts.triangles.len()).sum();
+    opts.detail = scene::fit_detail(&docs, hulls, hull_triangles, a.detail)
+        .map_err(|m| BadArgs(format!("view: {m}")))?;
+    if opts.detail < a.detail && !docs.is_empty() {
+        println!(
+            "levels    shown with {} segments around circles (of --detail {}), so the parts \
+             stay within {} triangles",
+            opts.detail,
+            a.detail,
+            scene::MAX_PART_TRIANGLES
+        );
+    }
+    let levels: Vec<_> = docs
+        .iter()
+        .map(|d| scene::build_level(d, opts.detail))
+        .collect();
     let input_path = match (&a.input, a.no_input) {
         (Some(p), _) => Some(p.clone()),
         (None, true) => None,
@@ -1549,10 +1804,18 @@ fn view(a: ViewArgs) -> anyhow::Result<()> {
         eval,
         up_axis: opts.up_axis,
     };
-    if s.aabb().is_none() {
+    let Some((lo, hi)) = s.aabb() else {
         bail!(BadArgs(
             "view: the files hold nothing to draw (no triangles)".into()
         ));
+    };
+    // The page draws in 32-bit floats relative to the scene's centre.
+    let span = (0..3).fold(0.0f64, |m, k| m.max(hi[k] - lo[k]));
+    if span.is_nan() || span > primdecomp_view::MAX_SPAN {
+        bail!(BadArgs(format!(
+            "view: the scene spans {span:e}, more than the {:e} a page draws in 32-bit floats",
+            primdecomp_view::MAX_SPAN
+        )));
     }
     if let Some(i) = &s.input {
         if i.display.simplified {
@@ -1585,7 +1848,7 @@ fn view_up(a: &ViewArgs) -> primdecomp::export::Up {
         let first = a.results.first()?;
         let file = scene_first_file(first)?;
         let doc: serde_json::Value =
-            serde_json::from_str(&std::fs::read_to_string(file).ok()?).ok()?;
+            serde_json::from_str(&crate::paths::read_result(&file).ok()?).ok()?;
         let doc = doc.get("levels").and_then(|l| l.get(0)).unwrap_or(&doc);
         Up::from_axis(doc.get("input")?.get("up")?.as_str()?)
     };
@@ -1604,7 +1867,7 @@ fn scene_first_file(r: &Path) -> Option<PathBuf> {
 
 /// The input a result document names (`input.path`), if that file exists here.
 fn recorded_input(result: &Path) -> Option<PathBuf> {
-    let text = std::fs::read_to_string(result).ok()?;
+    let text = crate::paths::read_result(result).ok()?;
     let doc: serde_json::Value = serde_json::from_str(&text).ok()?;
     let doc = doc.get("levels").and_then(|l| l.get(0)).unwrap_or(&doc);
     let p = PathBuf::from(doc.get("input")?.get("path")?.as_str()?);

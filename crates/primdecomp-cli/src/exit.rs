@@ -21,3 +21,42 @@ pub fn report(e: &anyhow::Error) -> i32 {
     eprintln!("error: {e:#}");
     code(e)
 }
+
+/// Text as the terminal is shown it: control characters (ESC, BEL, a carriage
+/// return…) in file and object names, or in a file's bytes quoted by a message, are
+/// written as visible escapes (`\u{1b}`, `primdecomp::export::visible`) instead of
+/// acting on the terminal; line ends between lines stay.
+pub fn terminal(text: &str) -> String {
+    text.split('\n')
+        .map(primdecomp::export::visible)
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+// `println!`, `print!` and `eprintln!` through [`terminal`]: a module that prints
+// names or paths imports these (`use crate::exit::{eprintln, print, println};`),
+// which shadow the standard ones, so every line it prints is escaped.
+macro_rules! println {
+    () => { std::println!() };
+    ($($t:tt)*) => { std::println!("{}", $crate::exit::terminal(&format!($($t)*))) };
+}
+macro_rules! print {
+    ($($t:tt)*) => { std::print!("{}", $crate::exit::terminal(&format!($($t)*))) };
+}
+macro_rules! eprintln {
+    () => { std::eprintln!() };
+    ($($t:tt)*) => { std::eprintln!("{}", $crate::exit::terminal(&format!($($t)*))) };
+}
+pub(crate) use {eprintln, print, println};
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn control_characters_reach_the_terminal_escaped() {
+        let text = "error: a\u{1b}[31mb\u{7}.obj: bad\nsecond line\r";
+        assert_eq!(
+            super::terminal(text),
+            "error: a\\u{1b}[31mb\\u{7}.obj: bad\nsecond line\\u{d}"
+        );
+    }
+}

@@ -8,6 +8,7 @@ use primdecomp::export::{
 use primdecomp::{Level, Objects};
 use std::path::{Path, PathBuf};
 
+use crate::exit::println;
 use crate::exit::BadArgs;
 use crate::outputs::{Guard, Out};
 
@@ -160,8 +161,7 @@ pub fn export(a: ExportCmd) -> anyhow::Result<()> {
         .chain(a.input.as_deref())
         .collect();
     not_an_input("-o", &a.out, &inputs)?;
-    let text = std::fs::read_to_string(&a.result)
-        .map_err(|e| BadArgs(format!("{}: cannot read: {e}", a.result.display())))?;
+    let text = crate::paths::read_result(&a.result)?;
     let objects =
         read_objects(&text).map_err(|e| BadArgs(format!("{}: {e}", a.result.display())))?;
     // The result's up axis (results made before it was recorded: +Y, as then).

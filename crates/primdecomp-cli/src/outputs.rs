@@ -7,6 +7,7 @@
 //! depend on a percentage target are known only then).
 
 use crate::exit::BadArgs;
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 
@@ -68,34 +69,46 @@ impl Out {
 }
 
 /// The inputs of a run (every file it reads that the user named), and the files it
-/// has written so far.
+/// has written so far; both looked up by identity in hash maps, so checking n
+/// outputs takes time linear in n.
 pub struct Guard {
-    inputs: Vec<(PathBuf, FileId)>,
-    written: Mutex<Vec<(FileId, String)>>,
+    inputs: HashMap<FileId, PathBuf>,
+    written: Mutex<HashMap<FileId, String>>,
 }
 
 impl Guard {
     /// Identities of `inputs`; an input that cannot be found is left out (loading it
     /// fails with its own message).
     pub fn new<'a>(inputs: impl IntoIterator<Item = &'a Path>) -> Guard {
-        let inputs = inputs
-            .into_iter()
-            .filter_map(|p| Some((p.to_path_buf(), FileId::of(p)?)))
-            .collect();
+        let mut by_id = HashMap::new();
+        for p in inputs {
+            if let Some(id) = FileId::of(p) {
+                by_id.entry(id).or_insert_with(|| p.to_path_buf());
+            }
+        }
         Guard {
-            inputs,
-            written: Mutex::new(Vec::new()),
+            inputs: by_id,
+            written: Mutex::new(HashMap::new()),
         }
     }
 
     /// Refuses (exit 2) an output that is one of the inputs, or that is the same file
     /// as another of `outs`, or as a file this run already wrote.
     pub fn check(&self, outs: &[Out]) -> Result<(), BadArgs> {
-        let mut seen: Vec<(PathBuf, &str)> = Vec::with_capacity(outs.len());
+        let mut seen: HashMap<PathBuf, &str> = HashMap::with_capacity(outs.len());
         let written = self.written.lock().unwrap_or_else(|e| e.into_inner());
         for o in outs {
+            // A name the file system cannot hold fails only when written: refuse it now.
+            let name = o.path.file_name().map_or(0, |n| n.len());
+            if name > 255 {
+                return Err(BadArgs(format!(
+                    "{}: the file name is {name} bytes long, more than the 255 a file system \
+                     takes; choose a shorter output path (or rename the input it is named after)",
+                    o.what
+                )));
+            }
             if let Some(id) = FileId::of(&o.path) {
-                if let Some((input, _)) = self.inputs.iter().find(|(_, i)| *i == id) {
+                if let Some(input) = self.inputs.get(&id) {
                     return Err(BadArgs(format!(
                         "{} is the input {} (the same file): refusing to overwrite an input; \
                          choose another output path",
@@ -103,15 +116,13 @@ impl Guard {
                         input.display()
                     )));
                 }
-                if let Some((_, what)) = written.iter().find(|(w, _)| *w == id) {
+                if let Some(what) = written.get(&id) {
                     return Err(same_file(&o.what, what));
                 }
             }
-            let key = out_key(&o.path);
-            if let Some((_, what)) = seen.iter().find(|(k, _)| *k == key) {
+            if let Some(what) = seen.insert(out_key(&o.path), &o.what) {
                 return Err(same_file(what, &o.what));
             }
-            seen.push((key, &o.what));
         }
         Ok(())
     }
@@ -122,7 +133,7 @@ impl Guard {
     pub fn wrote(&self, out: &Out) {
         if let Some(id) = FileId::of(&out.path) {
             let mut w = self.written.lock().unwrap_or_else(|e| e.into_inner());
-            w.push((id, out.what.clone()));
+            w.entry(id).or_insert_with(|| out.what.clone());
         }
     }
 }

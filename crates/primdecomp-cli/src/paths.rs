@@ -45,6 +45,21 @@ pub fn level_labels(counts: &[usize], tolerance: &[Tolerance], bytes: &[usize]) 
         .collect()
 }
 
+/// The text of a result or settings file (JSON or TOML): a regular file of at most
+/// [`primdecomp::export::MAX_RESULT_BYTES`] (a pipe or device is refused before
+/// reading, a larger file from its size), in UTF-8.
+pub fn read_result(path: &Path) -> anyhow::Result<String> {
+    let bytes = primdecomp::read_regular(path, primdecomp::export::MAX_RESULT_BYTES)?;
+    String::from_utf8(bytes).map_err(|e| {
+        primdecomp::Error::ParseByte {
+            path: path.to_path_buf(),
+            offset: e.utf8_error().valid_up_to() as u64,
+            msg: "the file is not UTF-8 text".into(),
+        }
+        .into()
+    })
+}
+
 /// `MemAvailable` from `/proc/meminfo`, in bytes; `None` where it cannot be read.
 pub fn available_memory() -> Option<u64> {
     let info = std::fs::read_to_string("/proc/meminfo").ok()?;

@@ -12,6 +12,12 @@
 //! message fails the test until the tables are regenerated with
 //! `PRIMDECOMP_BLESS=1 cargo test --release --test bad_input`.
 
+// The later tables, in files of their own (not test crates: below tests/bad_input/).
+#[path = "bad_input/names.rs"]
+mod names;
+#[path = "bad_input/results.rs"]
+mod results;
+
 use std::collections::BTreeMap;
 use std::io::Read;
 use std::path::{Path, PathBuf};
@@ -390,6 +396,28 @@ fn hostile_inputs_table() {
         table += &format!("| `{cmd}` | {} | {outcome} | `{}` |\n", c.what, cell(&msg));
     }
     std::fs::remove_dir_all(&dir).unwrap();
+    table += "\n## Files that lie, absurd counts, planted links, terminals\n\n\
+              Result, evaluation and settings files read back by `export`, `view`, `eval`,\n\
+              `sim` and `--config`, a batch's manifest read by `--resume`, counts and sizes\n\
+              beyond what a run can use, links planted where an export writes, and names\n\
+              with control characters. Each command runs in a fresh directory its case sets\n\
+              up (`r.json` a result, `m.obj` a triangle, `a.obj`/`b.obj` a batch already run\n\
+              into `out/`); \"nothing written\" means every file there kept its bytes and\n\
+              none was added (`tests/bad_input/results.rs`).\n\n";
+    let dir = tempdir("results");
+    table += &results::table(&dir);
+    std::fs::remove_dir_all(&dir).unwrap();
+    table += "\n## Object names in the exports\n\n\
+              A per-object result whose objects carry these names (each with a prism and a\n\
+              sphere), exported as MJCF, URDF, USD, Godot and glTF; every file reads back\n\
+              with its format's reader (`primdecomp_testkit::exports`: quick-xml, the glTF\n\
+              schema, the USD and `.tscn` grammars) and the columns show the names as read\n\
+              (`tests/bad_input/names.rs`). Control characters and the non-characters are\n\
+              written as visible escapes, names are made unique (`_2`) and MuJoCo's\n\
+              `world` is avoided; identifiers keep `[A-Za-z0-9_]`.\n\n";
+    let dir = tempdir("names");
+    table += &names::table(&dir);
+    std::fs::remove_dir_all(&dir).unwrap();
     let doc = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../docs/bad_input.md");
     if std::env::var_os("PRIMDECOMP_BLESS").is_some() {
         std::fs::write(&doc, &table).unwrap();
@@ -465,14 +493,16 @@ fn make_clash_dir(dir: &Path) {
 }
 
 /// Every file and directory below `dir` (relative) with its bytes; a pipe is not
-/// read (that would block) and a link is its target.
+/// read (that would block), a link is its target, and a file over 1 MiB its size and
+/// modification time (a sparse file of gigabytes is not read).
 fn snapshot(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
     let mut out = BTreeMap::new();
     let mut todo = vec![dir.to_path_buf()];
     while let Some(d) = todo.pop() {
         for e in std::fs::read_dir(&d).unwrap() {
             let p = e.unwrap().path();
-            let t = std::fs::symlink_metadata(&p).unwrap().file_type();
+            let m = std::fs::symlink_metadata(&p).unwrap();
+            let t = m.file_type();
             let bytes = if t.is_symlink() {
                 std::fs::read_link(&p)
                     .unwrap()
@@ -481,6 +511,8 @@ fn snapshot(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
             } else if t.is_dir() {
                 todo.push(p.clone());
                 b"(directory)".to_vec()
+            } else if t.is_file() && m.len() > 1 << 20 {
+                format!("({} bytes, {:?})", m.len(), m.modified().unwrap()).into_bytes()
             } else if t.is_file() {
                 std::fs::read(&p).unwrap()
             } else {

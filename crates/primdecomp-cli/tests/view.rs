@@ -150,11 +150,16 @@ fn page_and_png_are_deterministic_and_hold_every_level() {
 fn bad_input_fails_naming_the_file_and_writes_nothing() {
     let dir = scratch("bad");
     std::fs::write(dir.join("broken.json"), b"{\"primitives\": [").unwrap();
-    std::fs::write(dir.join("empty.json"), b"{\"primitives\": []}").unwrap();
+    std::fs::write(
+        dir.join("empty.json"),
+        b"{\"format\": \"primdecomp\", \"version\": 1, \"primitives\": []}",
+    )
+    .unwrap();
     std::fs::write(dir.join("noeval.json"), b"{\"input\": 1}").unwrap();
     std::fs::write(
         dir.join("r.json"),
-        br#"{"primitives": [{"kind": "sphere", "center": [0, 0, 0], "radius": 1}]}"#,
+        br#"{"format": "primdecomp", "version": 1,
+            "primitives": [{"kind": "sphere", "center": [0, 0, 0], "radius": 1}]}"#,
     )
     .unwrap();
     std::fs::write(dir.join("bad.obj"), b"v 0 0 0\nf 1 2 3\n").unwrap();
@@ -171,8 +176,8 @@ fn bad_input_fails_naming_the_file_and_writes_nothing() {
         ),
         (
             &["view", "missing.json", "-o", "o.html"],
-            1,
-            &["missing.json"],
+            2,
+            &["missing.json", "cannot open"],
         ),
         (
             &["view", "r.json", "--compare", "r.json", "-o", "o.html"],
@@ -187,7 +192,7 @@ fn bad_input_fails_naming_the_file_and_writes_nothing() {
         (
             &["view", "r.json", "--eval", "noeval.json", "-o", "o.html"],
             2,
-            &["noeval.json", "colliders"],
+            &["noeval.json", "not an evaluation document"],
         ),
         (
             &["view", "r.json", "--input", "bad.obj", "-o", "o.html"],

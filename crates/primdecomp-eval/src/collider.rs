@@ -12,7 +12,6 @@ use primdecomp::math::V3;
 use primdecomp::{Error, Result};
 use primdecomp::{Kind, Primitive};
 use std::collections::HashMap;
-use std::io::Read;
 use std::path::Path;
 
 /// One convex hull as a triangle mesh: `triangles` index `positions`.
@@ -72,18 +71,11 @@ impl Collider {
 }
 
 /// Loads a collider: `.json` is a primdecomp document, `.obj` convex hulls. Like a
-/// mesh it must be a regular file ([`primdecomp::open_regular`]: a named
-/// pipe or device is refused before reading), and no more than its size is read.
+/// mesh it must be a regular file ([`primdecomp::read_regular`]: a named pipe or
+/// device is refused before reading), of at most
+/// [`primdecomp::export::MAX_RESULT_BYTES`].
 pub fn load(path: &Path) -> Result<Collider> {
-    let (file, meta) = primdecomp::open_regular(path)?;
-    let mut bytes = Vec::new();
-    (&file)
-        .take(meta.len())
-        .read_to_end(&mut bytes)
-        .map_err(|error| Error::Io {
-            path: path.to_path_buf(),
-            error,
-        })?;
+    let bytes = primdecomp::read_regular(path, primdecomp::export::MAX_RESULT_BYTES)?;
     let ext = path
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());
@@ -230,7 +222,8 @@ mod tests {
 
     #[test]
     fn json_primitives_and_counts() {
-        let ok = br#"{"primitives":[{"kind":"sphere","center":[1,2,3],"radius":0.5}]}"#;
+        let ok = br#"{"format":"primdecomp","version":1,
+            "primitives":[{"kind":"sphere","center":[1,2,3],"radius":0.5}]}"#;
         let c = parse_json(ok, Path::new("c.json")).unwrap();
         let want = Primitive::Sphere(Sphere {
             center: [1.0, 2.0, 3.0],
@@ -241,13 +234,17 @@ mod tests {
         assert_eq!(c.counts()[1], ("sphere", 1));
         assert_eq!(c.counts()[6], ("hull", 0));
         let e = parse_json(
-            b"{\"primitives\": [\n{\"kind\":\"cone\"}]}",
+            b"{\"format\":\"primdecomp\",\"version\":1,\"primitives\": [\n{\"kind\":\"cone\"}]}",
             Path::new("c.json"),
         )
         .unwrap_err()
         .to_string();
         assert!(e.starts_with("c.json:") && e.contains("line 2"), "{e}");
-        let e = parse_json(br#"{"primitives":[]}"#, Path::new("c.json")).unwrap_err();
+        let e = parse_json(
+            br#"{"format":"primdecomp","version":1,"primitives":[]}"#,
+            Path::new("c.json"),
+        )
+        .unwrap_err();
         assert!(e.to_string().contains("no primitives"), "{e}");
     }
 

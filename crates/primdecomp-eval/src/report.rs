@@ -30,8 +30,16 @@ struct Row<'a> {
     counts: Counts,
 }
 
+/// The `format` of an evaluation document (`primdecomp view --eval` checks it).
+pub const FORMAT: &str = "primdecomp-eval";
+
+/// The `version` of the evaluation document.
+pub const VERSION: u64 = 1;
+
 #[derive(Serialize)]
 struct Doc<'a> {
+    format: &'static str,
+    version: u64,
     input: &'a str,
     colliders: Vec<Row<'a>>,
 }
@@ -69,7 +77,12 @@ pub fn to_json(input: &str, rows: &[(String, Metrics)]) -> String {
             },
         })
         .collect();
-    let doc = Doc { input, colliders };
+    let doc = Doc {
+        format: FORMAT,
+        version: VERSION,
+        input,
+        colliders,
+    };
     let mut s = serde_json::to_string_pretty(&doc).expect("plain data serializes");
     s.push('\n');
     s

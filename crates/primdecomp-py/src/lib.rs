@@ -156,6 +156,7 @@ fn run_watched(
     };
     let mut raised: Option<PyErr> = None;
     let mut reported: Option<(Stage, f64)> = None;
+    let eta = primdecomp::Eta::new(params);
     let out = std::thread::scope(|s| {
         let worker = s.spawn(|| {
             catch_unwind(AssertUnwindSafe(|| {
@@ -172,7 +173,10 @@ fn run_watched(
                 py.check_signals()?;
                 if let (Some(cb), Some((stage, f))) = (callback, now) {
                     if reported != now {
-                        cb.call1(py, (stage.name(), f))?;
+                        // The Python side passes a callback of three arguments (it
+                        // wraps one of two): stage, its fraction, seconds left.
+                        let left = eta.update(stage, f).seconds_left;
+                        cb.call1(py, (stage.name(), f, left))?;
                     }
                 }
                 Ok(())

@@ -255,3 +255,15 @@ def test_tolerance_without_count_matches_cli(tmp_path):
     assert json.loads(cli)["settings"]["tolerance"] == [{"diagonal": 0.02}]
     # One count caps every level of a chain, as `-n 400 --tolerance 5%,2%` does.
     assert len(primdecomp.decompose_file(mesh, targets=[400], tolerance=["5%", "2%"]).levels) == 2
+
+
+def test_progress_with_time_left():
+    """A callback of three arguments also gets the whole run's seconds left (None
+    until known, then a number); one of two keeps its two."""
+    v, f = cube()
+    three, two = [], []
+    primdecomp.decompose(v, f, targets=[4], progress=lambda s, x, left: three.append((s, x, left)))
+    primdecomp.decompose(v, f, targets=[4], progress=lambda s, x: two.append((s, x)))
+    assert three and two
+    assert all(isinstance(s, str) and 0.0 <= x <= 1.0 for s, x, _ in three)
+    assert all(left is None or left >= 0.0 for _, _, left in three)

@@ -176,12 +176,37 @@ pub(crate) fn placed(
     let all: Vec<Option<Placed>> = match geometry {
         Geometry::Reference | Geometry::Perturbed => vec![shapes::trimesh(mesh, f)],
         Geometry::Collider(Collider::Primitives(p)) => {
+            // Rapier's f32 holds what reaches no farther than MAX_LENGTH.
+            for (i, p) in p.iter().enumerate() {
+                let far = shapes::reach(p, f);
+                if far.is_nan() || far > shapes::MAX_LENGTH {
+                    return Err(Error::InvalidParams(format!(
+                        "primitive {i} ({}) reaches {:.3e} input diagonals from the input's \
+                         centre; the simulation's 32-bit floats hold {:e}",
+                        p.kind().name(),
+                        far / scene::SCENE_DIAGONAL,
+                        shapes::MAX_LENGTH / scene::SCENE_DIAGONAL
+                    )));
+                }
+            }
             p.iter().map(|p| shapes::primitive(p, f)).collect()
         }
-        Geometry::Collider(Collider::Hulls(h)) => h
-            .iter()
-            .map(|h| shapes::hull(&h.positions.iter().map(|&p| f.point(p)).collect::<Vec<_>>()))
-            .collect(),
+        Geometry::Collider(Collider::Hulls(h)) => {
+            let far = h
+                .iter()
+                .flat_map(|h| &h.positions)
+                .flat_map(|&p| f.point(p));
+            if !far.clone().all(|x| x.abs() <= shapes::MAX_LENGTH) {
+                return Err(Error::InvalidParams(format!(
+                    "a hull vertex lies more than {:e} input diagonals from the input's \
+                     centre, beyond what the simulation's 32-bit floats hold",
+                    shapes::MAX_LENGTH / scene::SCENE_DIAGONAL
+                )));
+            }
+            h.iter()
+                .map(|h| shapes::hull(&h.positions.iter().map(|&p| f.point(p)).collect::<Vec<_>>()))
+                .collect()
+        }
     };
     let n = all.len();
     let kept: Vec<Placed> = all.into_iter().flatten().collect();
@@ -398,7 +423,7 @@ mod tests {
     #[test]
     fn json_box_and_obj_hull_box_rest_alike() {
         let (mesh, _) = box_mesh();
-        let json = br#"{"primitives":[{"kind":"box","center":[11,0.5,11],
+        let json = br#"{"format":"primdecomp","version":1,"primitives":[{"kind":"box","center":[11,0.5,11],
             "rotation":[0,0,0,1],"half_extents":[1,0.5,1]}]}"#;
         let obj = b"o hull_0\nv 10 0 10\nv 12 0 10\nv 10 1 10\nv 12 1 10\nv 10 0 12\n\
             v 12 0 12\nv 10 1 12\nv 12 1 12\nf 1 5 7 3\nf 2 4 8 6\nf 1 2 6 5\nf 3 7 8 4\n\

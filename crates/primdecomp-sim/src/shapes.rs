@@ -81,6 +81,28 @@ pub fn hull(points: &[V3]) -> Option<Placed> {
     Some((shape, Pose::from_translation(Frame::vector(c))))
 }
 
+/// The largest magnitude a shape may reach in the simulation frame: Rapier holds
+/// lengths in f32 and squares them (1e36 < f32's 3.4e38).
+pub const MAX_LENGTH: f64 = 1e18;
+
+/// How far a primitive reaches from the simulation frame's origin (the input's
+/// centre, scaled to the scene), in the simulation's units; NaN if a number is not
+/// finite.
+pub fn reach(p: &Primitive, frame: &Frame) -> f64 {
+    let (lo, hi) = p.aabb();
+    lo.iter()
+        .chain(&hi)
+        .enumerate()
+        .map(|(k, x)| ((x - frame.offset[k % 3]) * frame.scale).abs())
+        .fold(0.0f64, |m, x| {
+            if x.is_nan() || m.is_nan() {
+                f64::NAN
+            } else {
+                m.max(x)
+            }
+        })
+}
+
 /// One primitive (world coordinates) as a Rapier shape in the simulation frame.
 /// `None` only for a frustum or prism so flat that it has no volume.
 pub fn primitive(p: &Primitive, frame: &Frame) -> Option<Placed> {

@@ -14,14 +14,15 @@ const VIEWER_JS: &str = include_str!("../assets/viewer.js");
 
 /// The page for `scene`.
 pub fn page(scene: &Scene, title: &str) -> String {
-    let data = data(scene, title).to_string();
-    // Inside <script>, "</" could close the element: JSON allows "\/" for "/".
-    let data = data.replace("</", "<\\/");
+    let data = script_json(&data(scene, title).to_string());
     debug_assert!(!VIEWER_JS.contains("</script"));
     fill(
         TEMPLATE,
         &[
-            ("__PRIMDECOMP_TITLE__", &escape_html(title)),
+            (
+                "__PRIMDECOMP_TITLE__",
+                &escape_html(&primdecomp::export::visible(title)),
+            ),
             ("__PRIMDECOMP_VIEWER_JS__", VIEWER_JS),
             ("__PRIMDECOMP_DATA__", &data),
         ],
@@ -44,6 +45,28 @@ fn fill(template: &str, values: &[(&str, &str)]) -> String {
         rest = &rest[at + marker.len()..];
     }
     out.push_str(rest);
+    out
+}
+
+/// JSON text made safe as the content of a `<script>` element: `<`, `>` and `&` are
+/// written as `\u003c`, `\u003e` and `\u0026`. In JSON they occur only inside strings,
+/// where the escapes mean the same characters, so the data parses to the same values,
+/// and the element's content holds no `<` at all: no `</script`, `<!--` or `<script`
+/// in a file or collider name can end the element early or switch the HTML parser into
+/// its escaped states, which would swallow the viewer's own script. U+2028 and U+2029
+/// are escaped too, for readers that take the block as JavaScript.
+pub fn script_json(json: &str) -> String {
+    let mut out = String::with_capacity(json.len());
+    for c in json.chars() {
+        match c {
+            '<' => out.push_str("\\u003c"),
+            '>' => out.push_str("\\u003e"),
+            '&' => out.push_str("\\u0026"),
+            '\u{2028}' => out.push_str("\\u2028"),
+            '\u{2029}' => out.push_str("\\u2029"),
+            c => out.push(c),
+        }
+    }
     out
 }
 
@@ -218,6 +241,27 @@ mod tests {
             fill(t, &[("__X__", "__Y__"), ("__Y__", "y")]),
             "a __Y__ b y c __Y__"
         );
+    }
+
+    /// No string can end the data block or change how the page parses: the block
+    /// holds no `<`, and parses back to the same value.
+    #[test]
+    fn the_data_block_holds_no_markup() {
+        let hostile = [
+            "</script><script>alert(1)</script>",
+            "<!--<script>",
+            "a & b > c \u{2028} \u{2029}",
+            "</SCRIPT",
+            "\\u003c",
+        ];
+        let v = serde_json::json!({ "names": hostile, "<key>": 1 });
+        let block = script_json(&v.to_string());
+        assert!(
+            !block.contains(['<', '>', '&', '\u{2028}', '\u{2029}']),
+            "{block}"
+        );
+        let back: serde_json::Value = serde_json::from_str(&block).unwrap();
+        assert_eq!(back, v);
     }
 
     #[test]

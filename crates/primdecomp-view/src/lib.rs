@@ -23,6 +23,10 @@ pub use scene::{Options, Scene};
 /// Default PNG pane size in pixels (square).
 pub const PNG_SIZE: usize = 640;
 
+/// The widest scene a page draws: positions go into the page as 32-bit floats
+/// relative to the scene's centre, and the viewer squares them.
+pub const MAX_SPAN: f64 = 1e18;
+
 /// The panes of the default view, as the page lays them out: with two or more
 /// colliders (a level of ours and peers' hulls), the input alone first (if any), then
 /// each collider over the input, side by side; with one collider, that collider over

@@ -5,7 +5,7 @@ use crate::geometry::Parts;
 use crate::palette;
 use crate::simplify::{self, Display};
 use crate::source;
-use primdecomp::{Error, Result};
+use primdecomp::{Error, Primitive, Result};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 
@@ -18,6 +18,9 @@ pub struct Options {
     pub display_triangles: usize,
     /// World up axis: 1 (y) or 2 (z).
     pub up_axis: usize,
+    /// How the input mesh is read: the memory limit (an input whose decomposition
+    /// would need more is refused, as by `decompose`) and the glTF URI policy.
+    pub load: primdecomp::LoadOptions,
 }
 
 impl Default for Options {
@@ -26,6 +29,7 @@ impl Default for Options {
             detail: 24,
             display_triangles: simplify::DISPLAY_TRIANGLES,
             up_axis: 1,
+            load: primdecomp::LoadOptions::default(),
         }
     }
 }
@@ -143,11 +147,26 @@ impl Scene {
     }
 }
 
+/// The most parts (primitives and hulls, over every level and peer) one page or
+/// picture shows: a browser draws about that many without stalling, and the
+/// display geometry stays within [`MAX_PART_TRIANGLES`] at the coarsest detail.
+pub const MAX_PARTS: usize = 65_536;
+
+/// The most triangles the parts of a page may have: the primitives' tessellation is
+/// made coarser (fewer segments around circles) to stay within it ([`fit_detail`]),
+/// and peers' hulls beyond it are refused. With the input's display budget this
+/// keeps a page to some tens of MB.
+pub const MAX_PART_TRIANGLES: usize = 2_000_000;
+
+/// The coarsest tessellation [`fit_detail`] goes down to: segments around circles.
+pub const MIN_DETAIL: usize = 6;
+
+/// The most rows of an evaluation document the page takes (one per collider).
+pub const MAX_EVAL_ROWS: usize = 4096;
+
+/// A file read whole: a regular file of at most `MAX_RESULT_BYTES`, in UTF-8.
 fn read_text(path: &Path) -> Result<String> {
-    let bytes = std::fs::read(path).map_err(|error| Error::Io {
-        path: path.to_path_buf(),
-        error,
-    })?;
+    let bytes = primdecomp::read_regular(path, primdecomp::export::MAX_RESULT_BYTES)?;
     String::from_utf8(bytes).map_err(|e| {
         Error::byte(
             path,
@@ -200,9 +219,41 @@ pub fn result_files(path: &Path) -> Vec<PathBuf> {
         .collect()
 }
 
+/// One level of a result as read: its primitives (checked by the core's reader), each
+/// primitive's JSON object (only the contract's keys), its target and its label.
+#[derive(Clone, Debug)]
+pub struct LevelDoc {
+    pub path: PathBuf,
+    pub primitives: Vec<Primitive>,
+    pub json: Vec<Value>,
+    pub target: Option<u64>,
+    /// What was asked and reached ([`level_label`]), when the document says.
+    pub label: Option<String>,
+}
+
+/// The keys of a primitive's JSON object that the page shows (the result contract's):
+/// anything else a document carries stays out of the page.
+const PRIMITIVE_KEYS: [&str; 15] = [
+    "kind",
+    "center",
+    "rotation",
+    "half_extents",
+    "radius",
+    "p0",
+    "p1",
+    "radius0",
+    "radius1",
+    "half_x",
+    "half_y",
+    "half_z_top",
+    "half_z_bottom",
+    "shift_z",
+    "faces",
+];
+
 /// The levels of one result file: a primdecomp document, or a document whose
 /// `levels` array holds one such document per target.
-pub fn load_levels(path: &Path, opts: &Options) -> Result<Vec<Collider>> {
+pub fn read_levels(path: &Path) -> Result<Vec<LevelDoc>> {
     let text = read_text(path)?;
     let doc = parse_json(path, &text)?;
     let docs: Vec<&Value> = match doc.get("levels").and_then(Value::as_array) {
@@ -212,10 +263,11 @@ pub fn load_levels(path: &Path, opts: &Options) -> Result<Vec<Collider>> {
     if docs.is_empty() {
         return Err(Error::format(path, "the `levels` array is empty"));
     }
+    let wrapped = doc.get("levels").is_some();
     docs.into_iter()
         .enumerate()
         .map(|(i, d)| {
-            level(path, d, opts).map_err(|e| match (e, doc.get("levels").is_some()) {
+            read_level(path, d).map_err(|e| match (e, wrapped) {
                 (Error::Format { path, msg }, true) => Error::Format {
                     path,
                     msg: format!("level {i}: {msg}"),
@@ -226,39 +278,121 @@ pub fn load_levels(path: &Path, opts: &Options) -> Result<Vec<Collider>> {
         .collect()
 }
 
-fn level(path: &Path, doc: &Value, opts: &Options) -> Result<Collider> {
-    let prims = source::read_primitives(&doc.to_string(), path)?;
-    if prims.is_empty() {
+fn read_level(path: &Path, doc: &Value) -> Result<LevelDoc> {
+    let primitives = source::read_primitives(&doc.to_string(), path)?;
+    if primitives.is_empty() {
         return Err(Error::format(path, "the document has no primitives"));
     }
     let json = doc
         .get("primitives")
         .and_then(Value::as_array)
-        .cloned()
+        .map(|ps| {
+            ps.iter()
+                .map(|p| {
+                    let mut m = serde_json::Map::new();
+                    for k in PRIMITIVE_KEYS {
+                        if let Some(v) = p.get(k) {
+                            m.insert(k.into(), v.clone());
+                        }
+                    }
+                    Value::Object(m)
+                })
+                .collect()
+        })
         .unwrap_or_default();
-    let mut parts = Parts::new();
-    let mut bytes = 0;
-    for p in &prims {
-        let (v, f) = source::tessellate(p, opts.detail);
-        let kind = source::kind(p);
-        parts.push_polygons(&v, &f, kind as u8);
-        bytes += kind.bytes();
-    }
     let target = doc
         .get("settings")
         .and_then(|s| s.get("target"))
         .and_then(Value::as_u64);
-    let label = level_label(doc).unwrap_or_else(|| file_label(path));
-    Ok(Collider {
+    Ok(LevelDoc {
+        path: path.to_path_buf(),
+        primitives,
+        json,
+        target,
+        label: level_label(doc),
+    })
+}
+
+/// A level's parts tessellated with `detail` segments around circles.
+pub fn build_level(doc: &LevelDoc, detail: usize) -> Collider {
+    let mut parts = Parts::new();
+    let mut bytes = 0;
+    for p in &doc.primitives {
+        let (v, f) = source::tessellate(p, detail);
+        let kind = source::kind(p);
+        parts.push_polygons(&v, &f, kind as u8);
+        bytes += kind.bytes();
+    }
+    let label = doc.label.clone().unwrap_or_else(|| file_label(&doc.path));
+    Collider {
         label,
-        file: path.display().to_string(),
+        file: doc.path.display().to_string(),
         parts,
         detail: Detail::Primitives {
-            target,
-            json,
+            target: doc.target,
+            json: doc.json.clone(),
             bytes,
         },
-    })
+    }
+}
+
+/// The levels of one result file ([`read_levels`]) tessellated at `opts.detail`.
+pub fn load_levels(path: &Path, opts: &Options) -> Result<Vec<Collider>> {
+    Ok(read_levels(path)?
+        .iter()
+        .map(|d| build_level(d, opts.detail))
+        .collect())
+}
+
+/// Triangles of a primitive's tessellation at `detail`.
+fn triangles(p: &Primitive, detail: usize) -> usize {
+    let (_, f) = source::tessellate(p, detail);
+    f.iter().map(|f| f.len().saturating_sub(2)).sum()
+}
+
+/// The finest detail, at most `asked` and at least [`MIN_DETAIL`] (or `asked` if
+/// lower), at which `levels`' tessellations and `hull_triangles` more stay within
+/// [`MAX_PART_TRIANGLES`]; refuses more than [`MAX_PARTS`] parts, and peers' hulls over
+/// the budget on their own. Linear in the primitives: each kind is tessellated once
+/// per detail tried.
+pub fn fit_detail(
+    levels: &[LevelDoc],
+    hulls: usize,
+    hull_triangles: usize,
+    asked: usize,
+) -> std::result::Result<usize, String> {
+    let parts = levels.iter().map(|l| l.primitives.len()).sum::<usize>() + hulls;
+    if parts > MAX_PARTS {
+        return Err(format!(
+            "{parts} parts (primitives and hulls) to show, more than the {MAX_PARTS} a page \
+             shows; view fewer levels, or a coarser one"
+        ));
+    }
+    if hull_triangles > MAX_PART_TRIANGLES {
+        return Err(format!(
+            "the peers' hulls have {hull_triangles} triangles, more than the \
+             {MAX_PART_TRIANGLES} a page shows"
+        ));
+    }
+    // One primitive of each kind stands for all of its kind.
+    let mut by_kind: [(Option<&Primitive>, usize); 6] = [(None, 0); 6];
+    for p in levels.iter().flat_map(|l| &l.primitives) {
+        let e = &mut by_kind[source::kind(p) as usize];
+        e.0.get_or_insert(p);
+        e.1 += 1;
+    }
+    let total = |d: usize| -> usize {
+        by_kind
+            .iter()
+            .filter_map(|(p, n)| p.map(|p| triangles(p, d) * n))
+            .sum::<usize>()
+            + hull_triangles
+    };
+    let mut d = asked;
+    while d > MIN_DETAIL && total(d) > MAX_PART_TRIANGLES {
+        d -= 1;
+    }
+    Ok(d)
 }
 
 /// A level's label: what was asked (a tolerance, a byte size, or a count) and, for a
@@ -363,7 +497,7 @@ pub fn peer_label(path: &Path) -> String {
 
 /// The input mesh, loaded and prepared for display.
 pub fn load_input(path: &Path, opts: &Options) -> Result<Input> {
-    let mesh = source::load_input(path)?;
+    let mesh = source::load_input(path, &opts.load)?;
     Ok(input_from(path, &mesh, opts))
 }
 
@@ -375,10 +509,45 @@ pub fn input_from(path: &Path, mesh: &source::InputMesh, opts: &Options) -> Inpu
     }
 }
 
+/// A JSON value (or its absence) for a message, control characters made visible and
+/// cut to 40 characters.
+fn show(v: Option<&Value>) -> String {
+    let s = v.map_or("absent".to_string(), |v| {
+        primdecomp::export::visible(&v.to_string())
+    });
+    if s.chars().count() > 40 {
+        format!("{}…", s.chars().take(40).collect::<String>())
+    } else {
+        s
+    }
+}
+
 /// The rows of an evaluation document, matched to the scene's colliders by path.
 pub fn load_eval(path: &Path, levels: &[Collider], peers: &[Collider]) -> Result<Vec<EvalRow>> {
     let text = read_text(path)?;
     let doc = parse_json(path, &text)?;
+    let (format, version) = (doc.get("format"), doc.get("version"));
+    let want = "(write one with `primdecomp eval ... --json FILE`)";
+    if format.and_then(Value::as_str) != Some(primdecomp_eval::report::FORMAT) {
+        return Err(Error::format(
+            path,
+            format!(
+                "not an evaluation document: its \"format\" is {}, not \"{}\" {want}",
+                show(format),
+                primdecomp_eval::report::FORMAT
+            ),
+        ));
+    }
+    if version.and_then(Value::as_u64) != Some(primdecomp_eval::report::VERSION) {
+        return Err(Error::format(
+            path,
+            format!(
+                "the evaluation's \"version\" is {}; this primdecomp reads version {} {want}",
+                show(version),
+                primdecomp_eval::report::VERSION
+            ),
+        ));
+    }
     let rows = doc
         .get("colliders")
         .and_then(Value::as_array)
@@ -388,6 +557,15 @@ pub fn load_eval(path: &Path, levels: &[Collider], peers: &[Collider]) -> Result
                 "not an evaluation document: no `colliders` array (write one with `primdecomp eval ... --json FILE`)",
             )
         })?;
+    if rows.len() > MAX_EVAL_ROWS {
+        return Err(Error::format(
+            path,
+            format!(
+                "{} rows in `colliders`, more than the {MAX_EVAL_ROWS} a page shows",
+                rows.len()
+            ),
+        ));
+    }
     let same = |a: &str, b: &str| {
         a == b
             || match (Path::new(a).canonicalize(), Path::new(b).canonicalize()) {
@@ -398,10 +576,21 @@ pub fn load_eval(path: &Path, levels: &[Collider], peers: &[Collider]) -> Result
     rows.iter()
         .enumerate()
         .map(|(i, r)| {
-            let metrics = r
+            let row = r
                 .as_object()
-                .cloned()
                 .ok_or_else(|| Error::format(path, format!("colliders[{i}] is not an object")))?;
+            // Only what the page shows: the collider's name and the metrics' numbers.
+            let mut metrics = serde_json::Map::new();
+            for (k, v) in row {
+                let keep = match k.as_str() {
+                    "collider" => v.is_string(),
+                    "counts" | "matches" => false,
+                    _ => v.is_number(),
+                };
+                if keep {
+                    metrics.insert(k.clone(), v.clone());
+                }
+            }
             let collider = metrics
                 .get("collider")
                 .and_then(Value::as_str)

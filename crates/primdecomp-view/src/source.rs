@@ -14,9 +14,10 @@ pub struct InputMesh {
     pub polygons: Vec<Vec<u32>>,
 }
 
-/// Loads any input mesh the core reads (OBJ, PLY, STL, OFF, glTF/GLB).
-pub fn load_input(path: &Path) -> Result<InputMesh> {
-    Ok(from_core_mesh(&primdecomp::load(path)?))
+/// Loads any input mesh the core reads (OBJ, PLY, STL, OFF, glTF/GLB) with `options`
+/// (the memory limit, the glTF URI policy).
+pub fn load_input(path: &Path, options: &primdecomp::LoadOptions) -> Result<InputMesh> {
+    Ok(from_core_mesh(&primdecomp::load_with(path, options)?))
 }
 
 /// The world-coordinate polygons of a mesh the core loaded.

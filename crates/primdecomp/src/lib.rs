@@ -89,7 +89,8 @@ pub use demo::{demo_scene, demo_scene_obj};
 pub use error::{Error, FileKind, Result};
 pub use export::{read_primitives, tessellate, to_json, to_obj, write_atomic};
 pub use mesh::io::{
-    load, load_with, memory_needed, open_regular, parse_mesh, parse_mesh_with, Format, LoadOptions,
+    load, load_with, memory_needed, open_regular, parse_mesh, parse_mesh_with, read_regular,
+    Format, LoadOptions,
 };
 pub use mesh::{Mesh, MeshObject, SkipCounts, Transform};
 pub use objects::{decompose_objects, ObjectResult, ObjectTarget, Objects};
@@ -97,7 +98,7 @@ pub use params::{
     Dedup, Params, Partitions, Reprice, Tolerance, DEFAULT_TOLERANCE, MAX_PRIMITIVES,
 };
 pub use primitive::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
-pub use progress::{Progress, Stage};
+pub use progress::{Estimate, Eta, Progress, Stage};
 pub use result::{Decomposition, InputInfo, Level, Shortfall, Stats, Timings};
 
 /// The stages one by one, for the project's own tests and benchmarks (feature

@@ -131,6 +131,11 @@ fn area(mesh: &Mesh, faces: std::ops::Range<usize>) -> f64 {
     faces.map(|f| 0.5 * crate::math::norm(mesh.newell(f))).sum()
 }
 
+/// The most objects [`decompose_objects`] takes: each object is a decomposition of
+/// its own (about 0.3 ms of set-up each, measured on 40,000 one-triangle groups), so a
+/// million groups would run for minutes to give a million single primitives.
+pub(crate) const MAX_OBJECTS: usize = 65_536;
+
 /// Decomposes each object of `mesh` ([`Mesh::objects`]) on its own, with `params`
 /// but the targets of `targets` (shared or per object, see the module doc); levels
 /// come largest target first, as `decompose`'s. Deterministic: the objects run one
@@ -141,6 +146,13 @@ pub fn decompose_objects(
     targets: &[ObjectTarget],
 ) -> Result<Objects> {
     let parts = mesh.objects();
+    if parts.len() > MAX_OBJECTS {
+        return Err(crate::Error::InvalidParams(format!(
+            "the mesh has {} objects; per-object decomposition takes at most {MAX_OBJECTS} \
+             (each is decomposed on its own): decompose the mesh whole",
+            parts.len()
+        )));
+    }
     let areas: Vec<f64> = parts.iter().map(|o| area(mesh, o.faces.clone())).collect();
     // Levels in decompose's order: largest first (percentages by their value, counts
     // by theirs; a mix keeps the given order among equals).

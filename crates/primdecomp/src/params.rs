@@ -107,6 +107,12 @@ pub(crate) const AUTO_PART_FACES: usize = 1 << 16;
 /// The most parts [`Partitions::Fixed`] may ask for.
 pub(crate) const MAX_PARTITIONS: usize = 4096;
 
+/// The most levels (targets, tolerances or byte targets) one run makes: every level
+/// is a result of its own (a file each from the command line, every one recording
+/// all the targets), so thousands of levels cost time and files quadratic in their
+/// number for nothing a collider needs.
+pub(crate) const MAX_LEVELS: usize = 256;
+
 impl Partitions {
     /// The number of parts for an input of `faces` faces.
     pub(crate) fn parts(self, faces: usize) -> usize {
@@ -383,9 +389,17 @@ impl Params {
     pub fn from_json(text: &str) -> Result<Params> {
         let bad = |e: serde_json::Error| Error::InvalidParams(format!("settings: {e}"));
         let value: serde_json::Value = serde_json::from_str(text).map_err(bad)?;
-        let mut settings = match value.get("settings") {
-            Some(s) if value.get("format").is_some() => s.clone(),
-            _ => value,
+        // A result (it says which `format` it is) gives its `settings`; anything else
+        // is settings alone.
+        let mut settings = match value.get("format") {
+            Some(_) => {
+                crate::export::contract::check_header(value.get("format"), value.get("version"))
+                    .map_err(Error::InvalidParams)?;
+                value.get("settings").cloned().ok_or_else(|| {
+                    Error::InvalidParams("settings: the result has no \"settings\"".into())
+                })?
+            }
+            None => value,
         };
         // A result's settings also say which target its level is for.
         if let Some(obj) = settings.as_object_mut() {
@@ -460,6 +474,17 @@ impl Params {
         };
         if self.targets.is_empty() || self.targets.contains(&0) {
             return bad("targets must be one or more positive counts".into());
+        }
+        let levels = self
+            .targets
+            .len()
+            .max(self.tolerance.len())
+            .max(self.max_bytes.len());
+        if levels > MAX_LEVELS {
+            return bad(format!(
+                "{levels} levels (targets, tolerances or byte targets) asked for; a run makes \
+                 at most {MAX_LEVELS}, each a result of its own"
+            ));
         }
         if !self.kinds.iter().any(|&k| k) {
             return bad("at least one primitive kind must be enabled".into());

@@ -26,13 +26,17 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
     let mut clock = Clock::new(progress);
     let bounds = mesh.aabb();
     // Weld overlapping vertices so seams between parts become adjacency (§3.4).
-    let (welded, distinct) = clock.stage(Stage::Dedup, "dedup", |_, _| {
-        dedup::weld(mesh, params.dedup)
-    })?;
+    let (welded, distinct) = clock
+        .stage(Stage::Dedup, "dedup", |go_on, _| {
+            dedup::weld_checked(mesh, params.dedup, go_on)
+        })?
+        .ok_or(Error::Cancelled)?;
     // Faces sharing an edge form the merge graph (§3.3).
-    let pairs = clock.stage(Stage::Adjacency, "adjacency", |_, _| {
-        adjacency::face_pairs(&mesh.face_offsets, &welded)
-    })?;
+    let pairs = clock
+        .stage(Stage::Adjacency, "adjacency", |go_on, _| {
+            adjacency::face_pairs_checked(&mesh.face_offsets, &welded, go_on)
+        })?
+        .ok_or(Error::Cancelled)?;
     // Counts on several separate parts are cuts of the merge tree: the greedy level
     // drops the parts nested in one part's primitive (docs/decisions/0054).
     let point = |f: usize| {
@@ -63,15 +67,18 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
         merge_order(&params.targets)
     };
     // One operator per face (§3.1).
-    let q = clock.stage(Stage::Quadrics, "quadrics", |_, _| {
+    let q = clock.stage(Stage::Quadrics, "quadrics", |go_on, _| {
         let mut q = Vec::new();
-        quadric::face_quadrics(mesh, params.tangent_eps, &mut q);
+        quadric::face_quadrics_checked(mesh, params.tangent_eps, &mut q, go_on);
         q
     })?;
-    // Each face's neighbours and outer side: output fits keep off rims and lie flush.
-    let surface = clock.step(Stage::Seed, "surface", || {
-        Surface::build(mesh, &welded, &pairs, params)
-    })?;
+    // Each face's neighbours (the clusters' adjacency too) and outer side: output
+    // fits keep off rims and lie flush.
+    let surface = clock
+        .step_checked(Stage::Seed, "surface", |go_on| {
+            Surface::build(mesh, &welded, &pairs, params, go_on)
+        })?
+        .ok_or(Error::Cancelled)?;
     // The input's interior, where merges are priced by the air they add (--solid).
     let solid = clock.step(Stage::Seed, "solid", || {
         params
@@ -99,8 +106,9 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
         partitions: first.parts(),
         ..Stats::default()
     };
-    // The merge tree's leaves keep their own operators (a cut of the tree).
-    let face_q = if params.uses_cut() {
+    // The merge tree's leaves keep their own operators (a cut of the tree), when its
+    // leaves are faces (after spatial parts they are the first snapshot's clusters).
+    let face_q = if params.uses_cut() && !matches!(first, FirstPhase::Parts { .. }) {
         q.clone()
     } else {
         Vec::new()
@@ -110,6 +118,7 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
         q,
         volumes,
         pairs,
+        lists: (surface.offsets.clone(), surface.adj.clone()),
         tree: params.uses_cut(),
         hulls_over: tree_hulls_over(mesh, params, largest),
     };
@@ -236,6 +245,18 @@ impl<'p> Clock<'p> {
         }
     }
 
+    /// [`Clock::step`] whose `work` gets a callback that says whether to go on (it
+    /// reports no fraction: the step is part of a stage that reports its own).
+    fn step_checked<T>(
+        &mut self,
+        stage: Stage,
+        name: &str,
+        work: impl FnOnce(GoOn) -> T,
+    ) -> Result<T> {
+        let p = self.progress;
+        self.step(stage, name, || work(&|_| !p.cancelled()))
+    }
+
     /// Reports `stage`'s start unless it has started already; `Cancelled` first if so.
     fn start(&mut self, stage: Stage) -> Result<()> {
         if self.progress.cancelled() {
@@ -315,33 +336,43 @@ fn merge_order(targets: &[usize]) -> Vec<usize> {
 /// What the output fits need of the faces around each cluster: the faces' neighbour
 /// lists and which side of each is outside (empty when no output fit reads them).
 struct Surface {
-    offsets: Vec<u32>,
-    adj: Vec<u32>,
+    offsets: std::sync::Arc<[u32]>,
+    adj: std::sync::Arc<[u32]>,
     signs: Vec<i8>,
+    /// Whether an output fit reads the surface (else only the clusters do).
+    used: bool,
 }
 
 impl Surface {
-    fn build(mesh: &Mesh, welded: &[u32], pairs: &[(u32, u32)], params: &Params) -> Surface {
-        if params.rim_weight == 0.0 && !params.flush_plates {
-            return Surface {
-                offsets: Vec::new(),
-                adj: Vec::new(),
-                signs: Vec::new(),
-            };
-        }
+    /// `None` when `go_on` said stop.
+    fn build(
+        mesh: &Mesh,
+        welded: &[u32],
+        pairs: &[(u32, u32)],
+        params: &Params,
+        go_on: GoOn,
+    ) -> Option<Surface> {
         let (offsets, adj) = adjacency::neighbour_lists(mesh.face_count(), pairs);
-        let signs = orient::face_signs_of_lists(mesh, welded, &offsets, &adj);
-        Surface {
-            offsets,
-            adj,
+        let used = params.rim_weight != 0.0 || params.flush_plates;
+        let signs = match used {
+            true => orient::face_signs_checked(mesh, welded, &offsets, &adj, go_on)?,
+            false => Vec::new(),
+        };
+        Some(Surface {
+            offsets: offsets.into(),
+            adj: adj.into(),
             signs,
-        }
+            used,
+        })
     }
 
     fn adjacency(&self) -> FaceAdjacency<'_> {
-        FaceAdjacency {
-            offsets: &self.offsets,
-            adj: &self.adj,
+        match self.used {
+            true => FaceAdjacency {
+                offsets: &self.offsets,
+                adj: &self.adj,
+            },
+            false => FaceAdjacency::default(),
         }
     }
 }
@@ -352,6 +383,8 @@ struct MergeInput {
     q: Vec<Sym3>,
     volumes: Vec<f64>,
     pairs: Vec<(u32, u32)>,
+    /// The pairs as neighbour lists, shared with the surface.
+    lists: partition::Lists,
     /// Every merge is logged for the merge tree (`Params::cut`).
     tree: bool,
     /// The clusters' points are kept for the tree's nodes of more faces
@@ -431,6 +464,7 @@ fn merge(
         q,
         volumes,
         pairs,
+        lists,
         tree,
         hulls_over,
     } = input;
@@ -441,7 +475,7 @@ fn merge(
     let mut tree_log = Vec::new();
     let from_faces = !matches!(first, FirstPhase::Parts { .. });
     let (clusters, early) = match first {
-        FirstPhase::Faces => (Some(Clusters::new(q, volumes, &pairs)), Vec::new()),
+        FirstPhase::Faces => (Some(Clusters::with_lists(q, volumes, lists)), Vec::new()),
         FirstPhase::Parts { parts, target } => {
             let p1 = laps.time("partitions", || {
                 partition::merge_parts(ev, &q, &volumes, &pairs, target, parts, &merged_so_far)
@@ -452,7 +486,15 @@ fn merge(
                 return MergeOutput::stopped();
             }
             // Phase 2 starts from one cluster per group (serial, linear in the faces).
-            let clusters = laps.time("regroup", || partition::clusters(p1, q, volumes, &pairs));
+            // The pairs are done with: phase 2 reads the neighbour lists.
+            drop(pairs);
+            let so_far = stats.merges;
+            let clusters = laps.time("regroup", || {
+                partition::clusters(p1, q, volumes, lists, &|_| merged_so_far(so_far))
+            });
+            let Some(clusters) = clusters else {
+                return MergeOutput::stopped();
+            };
             (Some(clusters), Vec::new())
         }
         FirstPhase::Components(comps) => {
@@ -477,7 +519,11 @@ fn merge(
                 (None, early)
             } else {
                 // The global loop goes on to the targets below the component count.
-                (Some(partition::clusters(p1, q, volumes, &pairs)), early)
+                let so_far = stats.merges;
+                match partition::clusters(p1, q, volumes, lists, &|_| merged_so_far(so_far)) {
+                    Some(cl) => (Some(cl), early),
+                    None => return MergeOutput::stopped(),
+                }
             }
         }
     };

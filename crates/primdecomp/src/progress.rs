@@ -99,6 +99,79 @@ impl<F: Fn(Stage, f64) + Sync> Progress for F {
     }
 }
 
+/// Where a run stands, for a progress display: the stage running, the fraction of
+/// it done, the fraction of the whole run done, and the seconds left (estimated;
+/// `None` until a second has passed and a percent is done).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Estimate {
+    /// The stage running.
+    pub stage: Stage,
+    /// The fraction of `stage` done, 0 to 1.
+    pub fraction: f64,
+    /// The fraction of the whole run done, 0 to 1.
+    pub overall: f64,
+    /// The seconds left, extrapolated from the time spent on `overall`.
+    pub seconds_left: Option<f64>,
+}
+
+/// Turns the reports of a run ([`Progress::update`]) into [`Estimate`]s of the whole
+/// run: each stage counts for its share of a run's time, as the scale ladder
+/// measured it from 871k to 56M faces (`cargo bench -p primdecomp-cli --bench
+/// ladder`), a cut's share where the run cuts the merge tree (a tolerance, a byte
+/// target or the default run).
+///
+/// ```
+/// use primdecomp::{Eta, Params, Stage};
+///
+/// let eta = Eta::new(&Params { targets: vec![100], ..Params::default() });
+/// let e = eta.update(Stage::Merge, 0.5);
+/// assert!(e.overall > 0.3 && e.overall < 0.9);
+/// assert_eq!(e.seconds_left, None); // too early to say
+/// ```
+#[derive(Debug)]
+pub struct Eta {
+    start: std::time::Instant,
+    /// Each stage's share of the run, in [`Stage::ALL`]'s order.
+    shares: [f64; 6],
+}
+
+/// Shares of a greedy run (a count): dedup, adjacency, quadrics, seed, merge,
+/// post-processing.
+const GREEDY_SHARES: [f64; 6] = [0.02, 0.04, 0.02, 0.12, 0.78, 0.02];
+/// Shares of a run that cuts the merge tree (its cut is post-processing's).
+const CUT_SHARES: [f64; 6] = [0.02, 0.03, 0.01, 0.09, 0.55, 0.30];
+
+impl Eta {
+    /// An estimate for a run of `params`, starting now.
+    pub fn new(params: &crate::Params) -> Eta {
+        Eta {
+            start: std::time::Instant::now(),
+            shares: if params.resolved().uses_cut() {
+                CUT_SHARES
+            } else {
+                GREEDY_SHARES
+            },
+        }
+    }
+
+    /// The estimate when `stage` has done `fraction` of its work.
+    pub fn update(&self, stage: Stage, fraction: f64) -> Estimate {
+        let fraction = fraction.clamp(0.0, 1.0);
+        let i = Stage::ALL.iter().position(|&s| s == stage).unwrap_or(0);
+        let done: f64 = self.shares[..i].iter().sum::<f64>() + self.shares[i] * fraction;
+        let overall = (done / self.shares.iter().sum::<f64>()).clamp(0.0, 1.0);
+        let spent = self.start.elapsed().as_secs_f64();
+        let seconds_left =
+            (spent >= 1.0 && overall >= 0.01).then(|| spent * (1.0 - overall) / overall);
+        Estimate {
+            stage,
+            fraction,
+            overall,
+            seconds_left,
+        }
+    }
+}
+
 /// A [`Progress`] that reports nothing and never cancels.
 pub(crate) struct Silent;
 

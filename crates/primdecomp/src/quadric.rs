@@ -18,17 +18,39 @@ use rayon::prelude::*;
 const CHUNK: usize = 4096;
 
 /// Q of every face of `mesh` (with its own, un-welded indices), into `out`.
+#[cfg(any(test, feature = "test-internals"))]
 pub fn face_quadrics(mesh: &Mesh, tangent_eps: f64, out: &mut Vec<Sym3>) {
+    face_quadrics_checked(mesh, tangent_eps, out, &|_| true);
+}
+
+/// Faces per block between reports to `go_on` (a few milliseconds of work).
+const BLOCK: usize = 1 << 20;
+
+/// [`face_quadrics`] a block at a time, reporting the fraction done to `go_on` and
+/// stopping (the rest left zero; the caller then returns cancelled) when it says so.
+pub fn face_quadrics_checked(
+    mesh: &Mesh,
+    tangent_eps: f64,
+    out: &mut Vec<Sym3>,
+    go_on: crate::progress::GoOn,
+) {
     out.clear();
     out.resize(mesh.face_count(), Sym3::ZERO);
-    out.par_chunks_mut(CHUNK)
-        .enumerate()
-        .for_each(|(c, chunk)| {
-            for (j, q) in chunk.iter_mut().enumerate() {
-                let f = c * CHUNK + j;
-                *q = face_quadric(mesh.face(f), |v| mesh.pos(v), tangent_eps);
-            }
-        });
+    let n = out.len().max(1);
+    for (b, block) in out.chunks_mut(BLOCK).enumerate() {
+        block
+            .par_chunks_mut(CHUNK)
+            .enumerate()
+            .for_each(|(c, chunk)| {
+                for (j, q) in chunk.iter_mut().enumerate() {
+                    let f = b * BLOCK + c * CHUNK + j;
+                    *q = face_quadric(mesh.face(f), |v| mesh.pos(v), tangent_eps);
+                }
+            });
+        if !go_on(((b + 1) * BLOCK).min(n) as f64 / n as f64) {
+            return;
+        }
+    }
 }
 
 /// Q of one polygon given its vertex indices and a position lookup.

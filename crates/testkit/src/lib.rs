@@ -1,11 +1,14 @@
 //! Helpers shared by primdecomp's tests: test shapes, result checks, the corpus, and
-//! a containment routine independent of the fitting code (`contain`).
+//! a containment routine independent of the fitting code (`contain`), and readers
+//! that check the engine exports are well formed (`exports`).
 #![allow(dead_code)]
 pub mod basin;
 pub mod check;
 pub mod contain;
 pub mod demo;
+pub mod exports;
 pub mod inputs;
+pub mod ladder;
 pub mod shapes;
 
 /// Fan triangles of polygons (`faces` index `v`).

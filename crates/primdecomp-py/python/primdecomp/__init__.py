@@ -10,6 +10,7 @@ decomposition runs with the GIL released, Ctrl-C raises KeyboardInterrupt.
 """
 
 import json as _json
+import inspect as _inspect
 
 import numpy as _np
 
@@ -205,10 +206,27 @@ def decompose(vertices, faces, progress=None, **settings):
     distance in input units) gives the fewest primitives all within it,
     `max_bytes=4096` the closest fit in that many bytes (one value, or a list for one
     level each, with `targets` as the count cap); `targets=64` asks for a count.
-    `progress(stage, fraction)` is called from the calling thread."""
+    `progress(stage, fraction)` is called from the calling thread, or
+    `progress(stage, fraction, seconds_left)` when it takes three arguments
+    (`seconds_left`: the whole run's estimated time left, None until known)."""
     v = _vertices(vertices)
     arr, off, idx = _faces(faces)
-    return Result(_native.decompose(v, arr, off, idx, _settings(settings), progress))
+    return Result(_native.decompose(v, arr, off, idx, _settings(settings), _progress(progress)))
+
+
+def _progress(callback):
+    """The callback as the native side calls it, with three arguments (stage, the
+    stage's fraction, seconds left): one of two arguments is wrapped."""
+    if callback is None:
+        return None
+    try:
+        params = list(_inspect.signature(callback).parameters.values())
+    except (TypeError, ValueError):
+        return lambda stage, fraction, left: callback(stage, fraction)
+    positional = [p for p in params if p.kind in (p.POSITIONAL_ONLY, p.POSITIONAL_OR_KEYWORD)]
+    if any(p.kind == p.VAR_POSITIONAL for p in params) or len(positional) >= 3:
+        return callback
+    return lambda stage, fraction, left: callback(stage, fraction)
 
 
 _KINDS = ("box", "sphere", "capsule", "cylinder", "frustum", "prism")
@@ -352,7 +370,7 @@ def decompose_file(path, progress=None, **settings):
     """Decompose the mesh in a file with the CLI's own loader: the primitives equal
     `primdecomp decompose PATH` byte for byte in to_json(), as decompose(*load(path))
     does, without handing the arrays to Python."""
-    return Result(_native.decompose_path(_path(path), _settings(settings, "decompose_file"), progress))
+    return Result(_native.decompose_path(_path(path), _settings(settings, "decompose_file"), _progress(progress)))
 
 
 def as_hulls(vertices, faces, progress=None, **settings):

@@ -5,7 +5,7 @@ import numpy as np
 import numpy.typing as npt
 
 _Faces = Union[npt.NDArray[np.integer], Sequence[Sequence[int]]]
-_Progress = Optional[Callable[[str, float], Any]]
+_Progress = Optional[Union[Callable[[str, float], Any], Callable[[str, float, Optional[float]], Any]]]
 _Path = Union[str, PathLike]
 
 class Primitive:

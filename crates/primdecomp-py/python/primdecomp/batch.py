@@ -48,7 +48,8 @@ def _complete(output, settings):
             doc = _json.loads(f.read())
     except (OSError, ValueError):
         return None
-    if not isinstance(doc, dict) or doc.get("format") != "primdecomp" or "primitives" not in doc:
+    if (not isinstance(doc, dict) or doc.get("format") != "primdecomp" or doc.get("version") != 1
+            or "primitives" not in doc):
         return None
     recorded = doc.get("settings", {})
     if any(recorded.get(k) != _json.loads(_json.dumps(v)) for k, v in settings.items()):

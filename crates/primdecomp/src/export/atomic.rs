@@ -33,9 +33,11 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
+    // A name near the file system's limit of 255 bytes is cut (with a hash of the
+    // whole) so the temporary name fits too.
     let tmp = dir.join(format!(
         ".{}.tmp.{}.{}",
-        name.to_string_lossy(),
+        super::names::file_name(&name.to_string_lossy(), super::names::MAX_FILE_NAME),
         std::process::id(),
         COUNTER.fetch_add(1, Ordering::Relaxed)
     ));
@@ -106,6 +108,18 @@ mod tests {
         write_atomic(&p, b"").unwrap();
         assert_eq!(fs::read(&p).unwrap(), b"");
         assert_eq!(entries(&d), vec!["out.json".to_string()]);
+        fs::remove_dir_all(&d).unwrap();
+    }
+
+    /// A file name of 255 bytes, the file system's limit, is written: its temporary
+    /// name is cut to fit.
+    #[test]
+    fn the_longest_file_name_is_written() {
+        let d = scratch_dir("long");
+        let name = format!("{}.json", "é".repeat(125));
+        assert_eq!(name.len(), 255);
+        write_atomic(&d.join(&name), b"x").unwrap();
+        assert_eq!(entries(&d), vec![name]);
         fs::remove_dir_all(&d).unwrap();
     }
 

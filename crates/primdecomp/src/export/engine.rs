@@ -14,9 +14,11 @@
 //!   ([`super::frame::conservative`]) before it is written, so rounding in the
 //!   consumer cannot cut a face.
 
-use super::frame::{conservative, Frame};
+use super::frame::{conservative, Frame, MIN_AXIS_REL};
 use super::json::ResultObject;
+use super::names::{visible, Names};
 use super::obj::{tessellate, Tess};
+use super::range;
 use crate::math::{add, norm, normalize, scale, sub, V3};
 use crate::primitive::{Kind, Primitive};
 use crate::up::Up;
@@ -245,82 +247,152 @@ pub(crate) fn check_options(opts: &ExportOptions) -> Result<(), String> {
             opts.scale
         ));
     }
-    if opts.detail < 3 {
+    if !(3..=super::obj::MAX_DETAIL).contains(&opts.detail) {
         return Err(format!(
-            "--obj-detail must be at least 3, got {}",
+            "--export-detail must be from 3 to {}, got {}",
+            super::obj::MAX_DETAIL,
             opts.detail
         ));
     }
     Ok(())
 }
 
+/// The most primitives one export writes: engines load colliders shape by shape, and
+/// the glTF writer holds about 6.5 KB per primitive (20 KB with `preview`; measured
+/// with 100,000 spheres: 657 MB and 1.98 GB peak), so 65,536 stay within about 1.3 GB.
+pub const MAX_PRIMITIVES: usize = 65_536;
+
+/// The most vertices of tessellated shapes (hulls, and previews) one export writes:
+/// 2²⁴, some hundreds of MB of geometry.
+pub const MAX_VERTICES: usize = 1 << 24;
+
+/// Vertices the export's tessellated shapes will have: the kinds written as hulls
+/// (every kind with a preview), counted once per kind at `detail`.
+fn tessellated_vertices(
+    objects: &[ResultObject],
+    native: [bool; 6],
+    preview: bool,
+    detail: usize,
+) -> usize {
+    let mut per_kind = [None; 6];
+    objects
+        .iter()
+        .flat_map(|o| &o.primitives)
+        .filter(|p| preview || !native[p.kind() as usize])
+        .map(|p| {
+            *per_kind[p.kind() as usize].get_or_insert_with(|| tessellate(p, detail).vertices.len())
+        })
+        .fold(0usize, usize::saturating_add)
+}
+
 /// The objects of a result in the format's frame. With `keep_scale` an object's
-/// frame keeps its scale (glTF nodes), otherwise the scale is baked into the shapes
-/// and the frame is rigid (scale 1). Names are made unique and non-empty (`object`,
-/// then `name_2`, …) before the writer sanitizes them further.
+/// frame keeps its own scale (glTF nodes) and `--scale` is baked into the shapes,
+/// otherwise every scale is baked into the shapes and the frame is rigid (scale 1). Names are made visible ([`visible`]: control
+/// characters escaped), non-empty (`object`, then `name_2`, …) and unique, clear of
+/// the format's reserved names (MuJoCo's `world`), before the writer escapes them for
+/// its syntax. Refuses (one sentence naming the object and primitive) a shape whose
+/// numbers the format's readers could not load ([`super::range`]).
 pub fn prepare(
     objects: &[ResultObject],
     format: Format,
     opts: &ExportOptions,
     keep_scale: bool,
-) -> Vec<Prepared> {
-    let to_format = format_frame(format, opts);
-    let native = format.native(opts);
-    let mut seen = std::collections::HashSet::new();
-    objects
-        .iter()
-        .enumerate()
-        .map(|(i, o)| {
-            let full = o.frame.then(&to_format);
-            let (frame, inner) = if keep_scale {
-                (full, Frame::IDENTITY)
-            } else {
-                let rigid = Frame { scale: 1.0, ..full };
-                let inner = Frame {
-                    scale: full.scale,
-                    ..Frame::IDENTITY
-                };
-                (rigid, inner)
-            };
-            // The consumer adds the frame's translation: its rounding counts too,
-            // relative to the local units.
-            let offset = norm(frame.translation) / frame.scale;
-            let shapes = o
-                .primitives
-                .iter()
-                .map(|p| {
-                    let q = conservative(p, &inner, offset);
-                    (p.kind(), shape(&q, native, opts.detail))
-                })
-                .collect();
-            let base = if o.name.is_empty() {
-                if objects.len() == 1 {
-                    opts.model.clone()
-                } else {
-                    format!("object{i}")
-                }
-            } else {
-                o.name.clone()
-            };
-            let name = unique(&mut seen, base);
-            Prepared {
-                name,
-                frame,
-                shapes,
-            }
-        })
-        .collect()
-}
-
-/// `base`, or `base_2`, `base_3`, … : the first not in `used` (then added to it).
-pub fn unique(used: &mut std::collections::HashSet<String>, base: String) -> String {
-    let mut name = base.clone();
-    let mut k = 2;
-    while !used.insert(name.clone()) {
-        name = format!("{base}_{k}");
-        k += 1;
+) -> Result<Vec<Prepared>, String> {
+    let total: usize = objects.iter().map(|o| o.primitives.len()).sum();
+    if total == 0 {
+        // glTF has no valid scene without nodes, and a collider file without a
+        // collider is a mistake upstream.
+        return Err("the result holds no primitive: there is nothing to export".into());
     }
-    name
+    if total > MAX_PRIMITIVES {
+        return Err(format!(
+            "the result holds {total} primitives, and an export takes at most \
+             {MAX_PRIMITIVES}; export a coarser level (a smaller -n)"
+        ));
+    }
+    let native = format.native(opts);
+    // Previews are glTF's alone.
+    let preview = opts.preview && matches!(format, Format::Gltf | Format::Glb);
+    let vertices = tessellated_vertices(objects, native, preview, opts.detail);
+    if vertices > MAX_VERTICES {
+        return Err(format!(
+            "its hulls{} would hold {vertices} vertices at {} segments around circles, more \
+             than the {MAX_VERTICES} an export writes; lower --export-detail",
+            if preview { " and previews" } else { "" },
+            opts.detail
+        ));
+    }
+    let to_format = format_frame(format, opts);
+    let reserved: &[&str] = match format {
+        Format::Mjcf => &["world"],
+        _ => &[],
+    };
+    let mut names = Names::with_reserved(reserved);
+    let mut out = Vec::with_capacity(objects.len());
+    for (i, o) in objects.iter().enumerate() {
+        let full = o.frame.then(&to_format);
+        let (frame, inner) = if keep_scale {
+            // The object's own scale stays on its node; `--scale` goes into the shapes,
+            // so a result beyond 32-bit range can be scaled into it.
+            let node = Frame {
+                scale: o.frame.scale,
+                ..full
+            };
+            let inner = Frame {
+                scale: opts.scale,
+                ..Frame::IDENTITY
+            };
+            (node, inner)
+        } else {
+            let rigid = Frame { scale: 1.0, ..full };
+            let inner = Frame {
+                scale: full.scale,
+                ..Frame::IDENTITY
+            };
+            (rigid, inner)
+        };
+        // The consumer adds the frame's translation: its rounding counts too,
+        // relative to the local units.
+        let offset = norm(frame.translation) / frame.scale;
+        let object = |j: usize, kind: Kind| match (objects.len(), o.name.is_empty()) {
+            (1, true) => format!("primitive {j} ({})", kind.name()),
+            _ => format!("object {i} ({:?}), primitive {j} ({})", o.name, kind.name()),
+        };
+        let this = match (objects.len(), o.name.is_empty()) {
+            (1, true) => "the result".to_string(),
+            _ => format!("object {i} ({:?})", o.name),
+        };
+        range::check_frame(&frame, keep_scale, &this)?;
+        let mut shapes = Vec::with_capacity(o.primitives.len());
+        for (j, p) in o.primitives.iter().enumerate() {
+            let q = conservative(p, &inner, offset);
+            let what = object(j, p.kind());
+            range::check_shape(&q, &frame, keep_scale, &what)?;
+            let s = shape(&q, native, opts.detail);
+            if let (Format::Mjcf, Shape::Hull(t)) = (format, &s) {
+                range::check_mjcf(t, &what)?;
+            }
+            shapes.push((p.kind(), s));
+        }
+        let base = if o.name.is_empty() {
+            if objects.len() == 1 {
+                visible(&opts.model)
+            } else {
+                format!("object{i}")
+            }
+        } else {
+            visible(&o.name)
+        };
+        out.push(Prepared {
+            name: names.unique(base),
+            frame,
+            shapes,
+        });
+    }
+    if let Some((points, _)) = &opts.input_mesh {
+        range::check_points(points, &to_format)?;
+    }
+    Ok(out)
 }
 
 /// The writer's shape of an (already grown) primitive: native where `native` says
@@ -339,10 +411,15 @@ pub fn shape(p: &Primitive, native: [bool; 6], detail: usize) -> Shape {
             center: s.center,
             radius: s.radius,
         },
-        Primitive::Capsule(c) if c.p0 == c.p1 => Shape::Sphere {
-            center: c.p0,
-            radius: c.radius,
-        },
+        // A capsule whose segment is shorter than MIN_AXIS_REL of its radius (its half
+        // length may round to 0, which MuJoCo and URDF refuse): the sphere around it.
+        Primitive::Capsule(c) if norm(sub(c.p1, c.p0)) <= MIN_AXIS_REL * c.radius => {
+            let (center, _, h) = Shape::axis(c.p0, c.p1);
+            Shape::Sphere {
+                center,
+                radius: c.radius + h,
+            }
+        }
         Primitive::Capsule(c) => Shape::Capsule {
             p0: c.p0,
             p1: c.p1,
@@ -397,26 +474,6 @@ pub fn num(x: f64) -> String {
     format!("{x:?}")
 }
 
-/// Names: characters outside `[A-Za-z0-9_-]` become `_`; empty gives `_`. For
-/// formats whose names are identifiers (USD prims) pass `ident` to also avoid a
-/// leading digit or `-`.
-pub fn sanitize(name: &str, ident: bool) -> String {
-    let mut s: String = name
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '_' || (!ident && c == '-') {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect();
-    if s.is_empty() || (ident && s.starts_with(|c: char| c.is_ascii_digit())) {
-        s.insert(0, '_');
-    }
-    s
-}
-
 /// Files an export writes: the main file's bytes, and files beside it (relative
 /// path, bytes), e.g. URDF meshes.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -463,10 +520,7 @@ mod tests {
     }
 
     #[test]
-    fn names_are_sanitized() {
-        assert_eq!(sanitize("a \"b\" <c>", false), "a__b___c_");
-        assert_eq!(sanitize("1x-y", true), "_1x_y");
-        assert_eq!(sanitize("", false), "_");
+    fn numbers_are_short() {
         assert_eq!(num(-0.0), "0.0");
         assert_eq!(num(0.1), "0.1");
         assert_eq!(num(1e-20), "1e-20");

@@ -218,9 +218,14 @@ fn implicit(shape: &Shape) -> Option<(Frame, Value)> {
     }
 }
 
-/// The glTF document (`.gltf` text with the buffer as a data URI, or `.glb` bytes).
-pub fn to_gltf(objects: &[ResultObject], opts: &ExportOptions, binary: bool) -> Vec<u8> {
-    let prepared = prepare(objects, Format::Gltf, opts, true);
+/// The glTF document (`.gltf` text with the buffer as a data URI, or `.glb` bytes), or
+/// why it cannot be written ([`prepare`]).
+pub fn to_gltf(
+    objects: &[ResultObject],
+    opts: &ExportOptions,
+    binary: bool,
+) -> Result<Vec<u8>, String> {
+    let prepared = prepare(objects, Format::Gltf, opts, true)?;
     let mut root = json::Root {
         asset: json::Asset {
             copyright: None,
@@ -238,7 +243,7 @@ pub fn to_gltf(objects: &[ResultObject], opts: &ExportOptions, binary: bool) -> 
     root.push(json::Scene {
         extensions: None,
         extras: Default::default(),
-        name: Some(opts.model.clone()),
+        name: Some(super::names::visible(&opts.model)),
         nodes,
     });
     root.scene = Some(Index::new(0));
@@ -280,7 +285,7 @@ pub fn to_gltf(objects: &[ResultObject], opts: &ExportOptions, binary: bool) -> 
     } else {
         let mut t = text.into_bytes();
         t.push(b'\n');
-        t
+        Ok(t)
     }
 }
 
@@ -456,8 +461,9 @@ fn base64(b: &[u8]) -> String {
     s
 }
 
-/// A GLB container: header, JSON chunk (space-padded), BIN chunk (zero-padded).
-fn glb(json: &[u8], bin: &[u8]) -> Vec<u8> {
+/// A GLB container: header, JSON chunk (space-padded), BIN chunk (zero-padded); or
+/// why not (its header declares the length in 32 bits).
+fn glb(json: &[u8], bin: &[u8]) -> Result<Vec<u8>, String> {
     let mut j = json.to_vec();
     while j.len() % 4 != 0 {
         j.push(b' ');
@@ -465,6 +471,12 @@ fn glb(json: &[u8], bin: &[u8]) -> Vec<u8> {
     let mut total = 12 + 8 + j.len();
     if !bin.is_empty() {
         total += 8 + bin.len();
+    }
+    if total > u32::MAX as usize {
+        return Err(format!(
+            "the GLB would hold {total} bytes, more than the 4 GiB its header can declare \
+             (leave out --input or --preview)"
+        ));
     }
     let mut v = Vec::with_capacity(total);
     v.extend_from_slice(b"glTF");
@@ -478,7 +490,7 @@ fn glb(json: &[u8], bin: &[u8]) -> Vec<u8> {
         v.extend_from_slice(b"BIN\0");
         v.extend_from_slice(bin);
     }
-    v
+    Ok(v)
 }
 
 #[cfg(test)]
@@ -518,7 +530,8 @@ mod tests {
                 physics,
                 ..ExportOptions::default()
             };
-            let doc: Value = serde_json::from_slice(&to_gltf(&objects, &opts, false)).unwrap();
+            let doc: Value =
+                serde_json::from_slice(&to_gltf(&objects, &opts, false).unwrap()).unwrap();
             doc["extensionsUsed"].clone()
         };
         assert_eq!(used(Physics::Khr), j!(["KHR_physics_rigid_bodies"]));

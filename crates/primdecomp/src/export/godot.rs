@@ -9,20 +9,21 @@
 //! as Godot writes it. Node names lose the characters Godot forbids; strings are
 //! escaped.
 
-use super::engine::{num, prepare, quat_between, sanitize, unique, ExportOptions, Format, Shape};
+use super::engine::{num, prepare, quat_between, ExportOptions, Format, Shape};
 use super::json::ResultObject;
+use super::names::{ident, visible, Names};
 use crate::math::quat::axes_from_quat;
 use crate::math::V3;
 use std::fmt::Write;
 
-/// A Godot string literal: quoted, `\` and `"` escaped, newlines as `\n`.
+/// A Godot string literal: quoted, `\` and `"` escaped; control characters (which
+/// Godot's strings cannot all hold: a NUL ends them) first made [`visible`].
 pub fn quote(s: &str) -> String {
     let mut out = String::from("\"");
-    for c in s.chars() {
+    for c in visible(s).chars() {
         match c {
             '\\' => out.push_str("\\\\"),
             '"' => out.push_str("\\\""),
-            '\n' => out.push_str("\\n"),
             c => out.push(c),
         }
     }
@@ -48,20 +49,20 @@ fn vec3(v: V3) -> String {
     format!("Vector3({}, {}, {})", num(v[0]), num(v[1]), num(v[2]))
 }
 
-/// The `.tscn` text.
-pub fn to_tscn(objects: &[ResultObject], opts: &ExportOptions) -> String {
-    let prepared = prepare(objects, Format::Tscn, opts, false);
+/// The `.tscn` text, or why it cannot be written ([`prepare`]).
+pub fn to_tscn(objects: &[ResultObject], opts: &ExportOptions) -> Result<String, String> {
+    let prepared = prepare(objects, Format::Tscn, opts, false)?;
     let y = [0.0, 1.0, 0.0];
     let id = [0.0, 0.0, 0.0, 1.0];
     // Sub-resources first (one per shape), then the nodes.
     let mut res = String::new();
     let mut nodes = String::new();
-    let root = sanitize(&opts.model, false);
+    let root = ident(&visible(&opts.model), false);
     let _ = writeln!(nodes, "[node name={} type=\"Node3D\"]", quote(&root));
     let mut count = 0usize;
-    let mut used = std::collections::HashSet::new();
+    let mut used = Names::default();
     for o in &prepared {
-        let name = unique(&mut used, sanitize(&o.name, false));
+        let name = used.unique(ident(&o.name, false));
         let _ = writeln!(nodes);
         let _ = writeln!(
             nodes,
@@ -143,7 +144,7 @@ pub fn to_tscn(objects: &[ResultObject], opts: &ExportOptions) -> String {
     let mut out = format!("[gd_scene load_steps={} format=3]\n\n", count + 1);
     out.push_str(&res);
     out.push_str(&nodes);
-    out
+    Ok(out)
 }
 
 #[cfg(test)]

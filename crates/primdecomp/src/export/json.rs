@@ -130,15 +130,22 @@ impl PrimJson {
             } => Primitive::Box(Obb {
                 center,
                 axes: rotation_axes(rotation)?,
-                half: half_extents,
+                half: half_extents.map(plus_zero),
             }),
-            PrimJson::Sphere { center, radius, .. } => Primitive::Sphere(Sphere { center, radius }),
-            PrimJson::Capsule { p0, p1, radius, .. } => {
-                Primitive::Capsule(Capsule { p0, p1, radius })
-            }
-            PrimJson::Cylinder { p0, p1, radius, .. } => {
-                Primitive::Cylinder(Cylinder { p0, p1, radius })
-            }
+            PrimJson::Sphere { center, radius, .. } => Primitive::Sphere(Sphere {
+                center,
+                radius: plus_zero(radius),
+            }),
+            PrimJson::Capsule { p0, p1, radius, .. } => Primitive::Capsule(Capsule {
+                p0,
+                p1,
+                radius: plus_zero(radius),
+            }),
+            PrimJson::Cylinder { p0, p1, radius, .. } => Primitive::Cylinder(Cylinder {
+                p0,
+                p1,
+                radius: plus_zero(radius),
+            }),
             PrimJson::Frustum {
                 p0,
                 p1,
@@ -148,8 +155,8 @@ impl PrimJson {
             } => Primitive::Frustum(Frustum {
                 p0,
                 p1,
-                r0: radius0,
-                r1: radius1,
+                r0: plus_zero(radius0),
+                r1: plus_zero(radius1),
             }),
             PrimJson::Prism {
                 center,
@@ -163,10 +170,10 @@ impl PrimJson {
             } => Primitive::Prism(Prism {
                 center,
                 axes: rotation_axes(rotation)?,
-                hx: half_x,
-                hy: half_y,
-                hz_top: half_z_top,
-                hz_bottom: half_z_bottom,
+                hx: plus_zero(half_x),
+                hy: plus_zero(half_y),
+                hz_top: plus_zero(half_z_top),
+                hz_bottom: plus_zero(half_z_bottom),
                 shift: shift_z,
             }),
         };
@@ -175,6 +182,12 @@ impl PrimJson {
         }
         Ok(p)
     }
+}
+
+/// A size as read, `-0.0` made `0.0` (a negative zero passes the sign check but makes
+/// engines' positive-size assertions fail).
+fn plus_zero(x: f64) -> f64 {
+    x + 0.0
 }
 
 /// Axes of a stored rotation; refuses quaternions too short to be unit ones.
@@ -338,9 +351,55 @@ struct ObjectJson {
 
 #[derive(Deserialize)]
 struct DocumentIn {
+    #[serde(default)]
+    format: Option<serde_json::Value>,
+    #[serde(default)]
+    version: Option<serde_json::Value>,
     primitives: Vec<PrimJson>,
     #[serde(default)]
     objects: Option<Vec<ObjectJson>>,
+}
+
+/// Farthest coordinate and largest size a result may hold: the limits of input
+/// meshes (`mesh::MAX_POSITION`, `mesh::MAX_EXTENT`), so whatever a decomposition
+/// writes reads back, and nothing read overflows the arithmetic of the tools that
+/// use it.
+fn check_values(p: &Primitive, scale: f64, offset: f64) -> Result<(), String> {
+    use crate::mesh::{MAX_EXTENT, MAX_POSITION};
+    let coords: Vec<f64> = match *p {
+        Primitive::Box(Obb { center, .. })
+        | Primitive::Sphere(Sphere { center, .. })
+        | Primitive::Prism(Prism { center, .. }) => center.to_vec(),
+        Primitive::Capsule(Capsule { p0, p1, .. })
+        | Primitive::Cylinder(Cylinder { p0, p1, .. })
+        | Primitive::Frustum(Frustum { p0, p1, .. }) => [p0, p1].concat(),
+    };
+    let mut sz = sizes(p);
+    if let Primitive::Prism(q) = p {
+        sz.push(q.shift.abs());
+    }
+    let show = crate::export::range::show;
+    if let Some(x) = coords.iter().chain(&sz).find(|x| !x.is_finite()) {
+        return Err(format!("a number is {x}, not finite"));
+    }
+    let size = sz.iter().fold(0.0f64, |m, x| m.max(*x));
+    let far = coords.iter().fold(0.0f64, |m, x| m.max(x.abs())) + size;
+    if scale * size > MAX_EXTENT {
+        return Err(format!(
+            "a radius or half-extent of {} is beyond {}, the largest a result may hold",
+            show(scale * size),
+            show(MAX_EXTENT)
+        ));
+    }
+    if offset + scale * far > MAX_POSITION {
+        return Err(format!(
+            "it reaches {} from the origin, beyond ±{}, the farthest a result may place a \
+             primitive",
+            show(offset + scale * far),
+            show(MAX_POSITION)
+        ));
+    }
+    Ok(())
 }
 
 /// The JSON document of `dec.levels[level]` (panics if `level` is out of range):
@@ -388,8 +447,8 @@ fn document(dec: &Decomposition, level: usize, params: &Params, timed: bool) -> 
         "non-finite input bounds"
     );
     let doc = Document {
-        format: "primdecomp",
-        version: 1,
+        format: super::contract::FORMAT,
+        version: super::contract::VERSION as u32,
         input: &dec.input,
         settings: Settings {
             params,
@@ -466,8 +525,8 @@ pub fn to_json_objects(objs: &Objects, level: usize, params: &Params) -> String 
         ObjectTarget::Percent(p) => (objects.iter().map(|o| o.target).sum(), None, Some(p)),
     };
     let doc = Document {
-        format: "primdecomp",
-        version: 1,
+        format: super::contract::FORMAT,
+        version: super::contract::VERSION as u32,
         input: &objs.input,
         settings: Settings {
             params,
@@ -502,56 +561,79 @@ pub struct ResultObject {
     pub primitives: Vec<Primitive>,
 }
 
-/// Parses a primdecomp JSON document into its objects ([`ResultObject`]).
+/// Parses a primdecomp JSON document into its objects ([`ResultObject`]). Refuses a
+/// document whose `format` is not `"primdecomp"` or whose `version` is not 1, and
+/// primitives or object frames with numbers that are not finite or beyond the
+/// limits of input meshes (coordinates within ±1e70, sizes up to 1e60, in world
+/// coordinates).
 pub fn read_objects(json: &str) -> Result<Vec<ResultObject>, String> {
     let doc: DocumentIn =
         serde_json::from_str(json).map_err(|e| format!("invalid primdecomp JSON: {e}"))?;
-    let prims = |v: Vec<PrimJson>, what: &str| -> Result<Vec<Primitive>, String> {
+    super::contract::check_header(doc.format.as_ref(), doc.version.as_ref())?;
+    let prims = |v: Vec<PrimJson>, what: &str, scale: f64, offset: f64| {
         v.into_iter()
             .enumerate()
             .map(|(i, p)| {
+                let kind = kind_name(&p);
                 p.into_primitive()
-                    .map_err(|e| format!("{what}primitive {i}: {e}"))
+                    .and_then(|p| check_values(&p, scale, offset).map(|()| p))
+                    .map_err(|e| format!("{what}primitive {i} ({kind}): {e}"))
             })
-            .collect()
+            .collect::<Result<Vec<Primitive>, String>>()
     };
     match doc.objects {
         None => Ok(vec![ResultObject {
             name: String::new(),
             frame: Frame::IDENTITY,
-            primitives: prims(doc.primitives, "")?,
+            primitives: prims(doc.primitives, "", 1.0, 0.0)?,
         }]),
-        Some(objs) => objs
-            .into_iter()
-            .enumerate()
-            .map(|(i, o)| {
-                let what = format!("object {i} ({:?}): ", o.name);
-                let finite = o.translation.iter().all(|x| x.is_finite())
-                    && o.scale.is_finite()
-                    && o.scale > 0.0;
-                if !finite {
-                    return Err(format!(
-                        "{what}translation or scale is not finite and positive"
-                    ));
-                }
-                let n = o.rotation.iter().map(|x| x * x).sum::<f64>().sqrt();
-                if !(n.is_finite() && (n - 1.0).abs() < 1e-6) {
-                    return Err(format!(
-                        "{what}rotation {:?} is not a unit quaternion",
-                        o.rotation
-                    ));
-                }
-                Ok(ResultObject {
-                    frame: Frame {
-                        translation: o.translation,
-                        rotation: o.rotation.map(|x| x / n),
-                        scale: o.scale,
-                    },
-                    primitives: prims(o.primitives, &what)?,
-                    name: o.name,
+        Some(objs) => {
+            // The world primitives are checked too: every tool may read them.
+            prims(doc.primitives, "", 1.0, 0.0)?;
+            objs.into_iter()
+                .enumerate()
+                .map(|(i, o)| {
+                    let what = format!("object {i} ({:?}): ", o.name);
+                    let finite = o.translation.iter().all(|x| x.is_finite())
+                        && o.scale.is_finite()
+                        && o.scale > 0.0;
+                    if !finite {
+                        return Err(format!(
+                            "{what}translation or scale is not finite and positive"
+                        ));
+                    }
+                    let n = o.rotation.iter().map(|x| x * x).sum::<f64>().sqrt();
+                    if !(n.is_finite() && (n - 1.0).abs() < 1e-6) {
+                        return Err(format!(
+                            "{what}rotation {:?} is not a unit quaternion",
+                            o.rotation
+                        ));
+                    }
+                    let offset = o.translation.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                    Ok(ResultObject {
+                        frame: Frame {
+                            translation: o.translation,
+                            rotation: o.rotation.map(|x| x / n),
+                            scale: o.scale,
+                        },
+                        primitives: prims(o.primitives, &what, o.scale, offset)?,
+                        name: o.name,
+                    })
                 })
-            })
-            .collect(),
+                .collect()
+        }
+    }
+}
+
+/// The `kind` of a primitive as the document names it.
+fn kind_name(p: &PrimJson) -> &'static str {
+    match p {
+        PrimJson::Box { .. } => "box",
+        PrimJson::Sphere { .. } => "sphere",
+        PrimJson::Capsule { .. } => "capsule",
+        PrimJson::Cylinder { .. } => "cylinder",
+        PrimJson::Frustum { .. } => "frustum",
+        PrimJson::Prism { .. } => "prism",
     }
 }
 
@@ -591,16 +673,30 @@ fn inline_scalar_arrays(pretty: &str) -> String {
 
 /// Parses the `primitives` array of a primdecomp JSON document back into
 /// primitives (other keys are ignored; `faces` is optional). Errors name the
-/// offending primitive or the JSON position.
+/// offending primitive or the JSON position; as [`read_objects`], a document whose
+/// `format` is not `"primdecomp"` or whose `version` is not 1 is refused, and so are
+/// numbers that are not finite or beyond the limits of input meshes.
+///
+/// ```
+/// let doc = r#"{"format": "primdecomp", "version": 1,
+///   "primitives": [{"kind": "sphere", "center": [1, 2, 3], "radius": 0.5}]}"#;
+/// assert_eq!(primdecomp::read_primitives(doc)?.len(), 1);
+/// let newer = doc.replace(r#""version": 1"#, r#""version": 2"#);
+/// assert!(primdecomp::read_primitives(&newer).is_err());
+/// # Ok::<(), String>(())
+/// ```
 pub fn read_primitives(json: &str) -> Result<Vec<Primitive>, String> {
     let doc: DocumentIn =
         serde_json::from_str(json).map_err(|e| format!("invalid primdecomp JSON: {e}"))?;
+    super::contract::check_header(doc.format.as_ref(), doc.version.as_ref())?;
     doc.primitives
         .into_iter()
         .enumerate()
         .map(|(i, p)| {
+            let kind = kind_name(&p);
             p.into_primitive()
-                .map_err(|e| format!("primitive {i}: {e}"))
+                .and_then(|p| check_values(&p, 1.0, 0.0).map(|()| p))
+                .map_err(|e| format!("primitive {i} ({kind}): {e}"))
         })
         .collect()
 }
@@ -801,14 +897,18 @@ mod tests {
 
     #[test]
     fn read_rejects_bad_input() {
+        let doc = |prims: &str| {
+            format!(r#"{{"format":"primdecomp","version":1,"primitives":[{prims}]}}"#)
+        };
         assert!(read_primitives("not json").is_err());
-        assert!(read_primitives(r#"{"primitives":[{"kind":"cone"}]}"#).is_err());
-        let neg = r#"{"primitives":[{"kind":"sphere","center":[0,0,0],"radius":-1}]}"#;
-        assert!(read_primitives(neg).unwrap_err().contains("primitive 0"));
-        let zero_q = r#"{"primitives":[{"kind":"box","center":[0,0,0],"rotation":[0,0,0,0],"half_extents":[1,1,1]}]}"#;
-        assert!(read_primitives(zero_q).is_err());
-        let ok = r#"{"primitives":[{"kind":"sphere","center":[1,2,3],"radius":0.5}]}"#;
-        let p = read_primitives(ok).unwrap();
+        assert!(read_primitives(&doc(r#"{"kind":"cone"}"#)).is_err());
+        let neg = doc(r#"{"kind":"sphere","center":[0,0,0],"radius":-1}"#);
+        assert!(read_primitives(&neg).unwrap_err().contains("primitive 0"));
+        let zero_q =
+            doc(r#"{"kind":"box","center":[0,0,0],"rotation":[0,0,0,0],"half_extents":[1,1,1]}"#);
+        assert!(read_primitives(&zero_q).is_err());
+        let ok = doc(r#"{"kind":"sphere","center":[1,2,3],"radius":0.5}"#);
+        let p = read_primitives(&ok).unwrap();
         assert_eq!(
             p,
             vec![Primitive::Sphere(Sphere {
@@ -816,6 +916,72 @@ mod tests {
                 radius: 0.5
             })]
         );
+        // Numbers beyond the limits of input meshes, and a negative zero made zero.
+        let far = doc(r#"{"kind":"sphere","center":[1e308,0,0],"radius":1}"#);
+        let e = read_primitives(&far).unwrap_err();
+        assert!(
+            e.starts_with("primitive 0 (sphere): it reaches 1e308"),
+            "{e}"
+        );
+        let big = doc(r#"{"kind":"sphere","center":[0,0,0],"radius":1e65}"#);
+        assert!(read_primitives(&big).unwrap_err().contains("beyond 1e60"));
+        let nz = doc(r#"{"kind":"sphere","center":[0,0,0],"radius":-0.0}"#);
+        match read_primitives(&nz).unwrap()[0] {
+            Primitive::Sphere(s) => assert!(s.radius.is_sign_positive()),
+            ref p => panic!("{p:?}"),
+        }
+    }
+
+    /// `format` and `version` are checked strictly wherever a result is read.
+    #[test]
+    fn format_and_version_are_checked() {
+        let body = r#""primitives":[{"kind":"sphere","center":[0,0,0],"radius":1}]"#;
+        let with = |head: &str| format!("{{{head}{body}}}");
+        let cases = [
+            ("", "not a primdecomp result: it has no \"format\""),
+            (
+                r#""format":"other","version":1,"#,
+                r#"its "format" is "other", not "primdecomp""#,
+            ),
+            (r#""format":7,"version":1,"#, r#"its "format" is 7"#),
+            (
+                r#""format":"primdecomp","#,
+                r#"the result has no "version""#,
+            ),
+            (
+                r#""format":"primdecomp","version":2,"#,
+                r#""version" is 2; this primdecomp reads version 1"#,
+            ),
+            (
+                r#""format":"primdecomp","version":"1","#,
+                r#""version" is "1", not the integer 1"#,
+            ),
+            (
+                r#""format":"primdecomp","version":-1,"#,
+                r#""version" is -1, not the integer 1"#,
+            ),
+            (
+                r#""format":"primdecomp","version":1.5,"#,
+                r#""version" is 1.5, not the integer 1"#,
+            ),
+            (
+                r#""format":"primdecomp","version":1.0,"#,
+                r#""version" is 1.0, not the integer 1"#,
+            ),
+            (
+                r#""format":"primdecomp","version":1e400,"#,
+                "number out of range",
+            ),
+        ];
+        for (head, want) in cases {
+            for e in [
+                read_primitives(&with(head)).unwrap_err(),
+                read_objects(&with(head)).unwrap_err(),
+            ] {
+                assert!(e.contains(want), "{head}: {e}");
+            }
+        }
+        assert!(read_primitives(&with(r#""format":"primdecomp","version":1,"#)).is_ok());
     }
 
     #[test]

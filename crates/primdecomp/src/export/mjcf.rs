@@ -9,6 +9,7 @@
 
 use super::engine::{prepare, quat_between, ExportOptions, Format, Shape};
 use super::json::ResultObject;
+use super::names::visible;
 use super::xml::{nums, Xml};
 use crate::math::V3;
 
@@ -47,11 +48,11 @@ fn segment(x: &mut Xml, name: &str, ty: &str, p0: V3, p1: V3, r: f64) {
     }
 }
 
-/// The MJCF document.
-pub fn to_mjcf(objects: &[ResultObject], opts: &ExportOptions) -> String {
-    let prepared = prepare(objects, Format::Mjcf, opts, false);
+/// The MJCF document, or why it cannot be written ([`prepare`]).
+pub fn to_mjcf(objects: &[ResultObject], opts: &ExportOptions) -> Result<String, String> {
+    let prepared = prepare(objects, Format::Mjcf, opts, false)?;
     let mut x = Xml::new();
-    x.open("mujoco", &[("model", &opts.model)]);
+    x.open("mujoco", &[("model", &visible(&opts.model))]);
     x.comment(
         "primdecomp colliders: one static body per object (docs/decisions/exports-engine-conventions.md)",
     );
@@ -132,5 +133,5 @@ pub fn to_mjcf(objects: &[ResultObject], opts: &ExportOptions) -> String {
     }
     x.close("worldbody");
     x.close("mujoco");
-    x.finish()
+    Ok(x.finish())
 }

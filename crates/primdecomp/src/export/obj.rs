@@ -15,6 +15,11 @@ use std::fmt::Write;
 /// Segments around each circle when the caller has no preference.
 pub const DEFAULT_DETAIL: usize = 16;
 
+/// The most segments around a circle [`tessellate`] makes (a larger `detail` is
+/// taken as this): a sphere at 1024 segments already has about half a million
+/// vertices, and a detail of millions would ask for more memory than any machine has.
+pub const MAX_DETAIL: usize = 1024;
+
 /// A closed convex polyhedron: vertices and polygons (0-based indices) wound
 /// counter-clockwise seen from outside.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -198,7 +203,7 @@ fn right_handed(axes: &[V3; 3]) -> bool {
 /// Conservative closed tessellation of one primitive with `detail` segments around
 /// circles (at least 3); latitude bands per hemisphere: `max(1, detail / 4)`.
 pub fn tessellate(p: &Primitive, detail: usize) -> Tess {
-    let k = detail.max(3);
+    let k = detail.clamp(3, MAX_DETAIL);
     let h = (k / 4).max(1);
     let circ = 1.0 / (PI / k as f64).cos();
     match *p {

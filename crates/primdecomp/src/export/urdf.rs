@@ -8,8 +8,9 @@
 //! tessellation) written beside the URDF, referred to by relative paths. URDF is
 //! +Z up: `--up y` results are turned.
 
-use super::engine::{prepare, quat_between, sanitize, ExportOptions, Files, Format, Shape};
+use super::engine::{prepare, quat_between, ExportOptions, Files, Format, Shape};
 use super::json::ResultObject;
+use super::names::{file_name, ident, visible, MAX_FILE_NAME};
 use super::obj::Tess;
 use super::xml::{nums, Xml};
 use crate::math::quat::axes_from_quat;
@@ -47,21 +48,38 @@ fn obj(t: &Tess) -> String {
     s
 }
 
-/// The URDF and its mesh files (`{stem}_meshes/…obj`, relative to the URDF).
-pub fn to_urdf(objects: &[ResultObject], opts: &ExportOptions, stem: &str) -> Files {
-    let prepared = prepare(objects, Format::Urdf, opts, false);
+/// The folder of the URDF's mesh files for an output of stem `stem`: `{stem}_meshes`,
+/// the stem as an identifier and cut ([`file_name`]) so the name stays a valid file
+/// name.
+pub fn mesh_dir(stem: &str) -> String {
+    format!(
+        "{}_meshes",
+        file_name(&ident(stem, false), MAX_FILE_NAME - "_meshes".len())
+    )
+}
+
+/// The URDF and its mesh files (`{stem}_meshes/…obj`, relative to the URDF), or why it
+/// cannot be written ([`prepare`]).
+pub fn to_urdf(
+    objects: &[ResultObject],
+    opts: &ExportOptions,
+    stem: &str,
+) -> Result<Files, String> {
+    let prepared = prepare(objects, Format::Urdf, opts, false)?;
     let mut files = Files::default();
     let mut x = Xml::new();
-    x.open("robot", &[("name", &opts.model)]);
+    let robot = visible(&opts.model);
+    x.open("robot", &[("name", &robot)]);
     x.comment(
         "primdecomp colliders: one link per object (docs/decisions/exports-engine-conventions.md)",
     );
-    let mut base = format!("{}_root", opts.model);
-    while prepared.iter().any(|o| o.name == base) {
+    let links: std::collections::HashSet<&str> = prepared.iter().map(|o| o.name.as_str()).collect();
+    let mut base = format!("{robot}_root");
+    while links.contains(base.as_str()) {
         base.push('_');
     }
     x.empty("link", &[("name", &base)]);
-    let dir = format!("{}_meshes", sanitize(stem, false));
+    let dir = mesh_dir(stem);
     let z = [0.0, 0.0, 1.0];
     let id = [0.0, 0.0, 0.0, 1.0];
     for (oi, o) in prepared.iter().enumerate() {
@@ -138,9 +156,10 @@ pub fn to_urdf(objects: &[ResultObject], opts: &ExportOptions, stem: &str) -> Fi
                     collision(&mut x, &name, c, q, "cylinder", &attrs);
                 }
                 Shape::Hull(t) => {
+                    // At most 64 bytes of the name: the index keeps files apart.
                     let file = format!(
                         "{dir}/{oi}_{}_{}_{i}.obj",
-                        sanitize(&o.name, false),
+                        file_name(&ident(&o.name, false), 64),
                         kind.name()
                     );
                     files.beside.push((file.clone(), obj(t).into_bytes()));
@@ -160,7 +179,7 @@ pub fn to_urdf(objects: &[ResultObject], opts: &ExportOptions, stem: &str) -> Fi
     }
     x.close("robot");
     files.main = x.finish().into_bytes();
-    files
+    Ok(files)
 }
 
 #[cfg(test)]

@@ -9,25 +9,21 @@
 //! names are identifiers (other characters become `_`, made unique); the original
 //! name is kept in a `primdecomp:name` string, escaped.
 
-use super::engine::{prepare, quat_between, sanitize, unique, ExportOptions, Format, Shape};
+use super::engine::{prepare, quat_between, ExportOptions, Format, Shape};
 use super::json::ResultObject;
+use super::names::{ident, visible, Names};
 use crate::math::V3;
 use std::fmt::Write;
 
-/// A USD string literal: quoted, with `\`, `"` and control characters escaped.
+/// A USD string literal: quoted, `\` and `"` escaped; control characters first made
+/// [`visible`] (USD strings are C strings underneath: a NUL would end them).
 pub fn quote(s: &str) -> String {
     let mut out = String::with_capacity(s.len() + 2);
     out.push('"');
-    for c in s.chars() {
+    for c in visible(s).chars() {
         match c {
             '\\' => out.push_str("\\\\"),
             '"' => out.push_str("\\\""),
-            '\n' => out.push_str("\\n"),
-            '\r' => out.push_str("\\r"),
-            '\t' => out.push_str("\\t"),
-            c if (c as u32) < 0x20 => {
-                let _ = write!(out, "\\x{:02x}", c as u32);
-            }
             c => out.push(c),
         }
     }
@@ -57,10 +53,10 @@ fn xform(out: &mut String, ind: &str, t: V3, q: [f64; 4], scale: Option<V3>) {
     );
 }
 
-/// The `.usda` text.
-pub fn to_usda(objects: &[ResultObject], opts: &ExportOptions) -> String {
-    let prepared = prepare(objects, Format::Usda, opts, false);
-    let root = sanitize(&opts.model, true);
+/// The `.usda` text, or why it cannot be written ([`prepare`]).
+pub fn to_usda(objects: &[ResultObject], opts: &ExportOptions) -> Result<String, String> {
+    let prepared = prepare(objects, Format::Usda, opts, false)?;
+    let root = ident(&visible(&opts.model), true);
     let mut out = String::new();
     let _ = writeln!(out, "#usda 1.0");
     let _ = writeln!(out, "(");
@@ -75,11 +71,11 @@ pub fn to_usda(objects: &[ResultObject], opts: &ExportOptions) -> String {
     let _ = writeln!(out);
     let _ = writeln!(out, "def Xform {}", quote(&root));
     let _ = writeln!(out, "{{");
-    let mut used = std::collections::HashSet::new();
+    let mut used = Names::default();
     let z = [0.0, 0.0, 1.0];
     let id = [0.0, 0.0, 0.0, 1.0];
     for o in &prepared {
-        let name = unique(&mut used, sanitize(&o.name, true));
+        let name = used.unique(ident(&o.name, true));
         let _ = writeln!(out, "    def Xform {}", quote(&name));
         let _ = writeln!(out, "    {{");
         let _ = writeln!(
@@ -163,7 +159,7 @@ pub fn to_usda(objects: &[ResultObject], opts: &ExportOptions) -> String {
         let _ = writeln!(out, "    }}");
     }
     let _ = writeln!(out, "}}");
-    out
+    Ok(out)
 }
 
 #[cfg(test)]
@@ -172,6 +168,6 @@ mod tests {
 
     #[test]
     fn strings_are_escaped() {
-        assert_eq!(quote("a\"b\\c\nd<e>"), "\"a\\\"b\\\\c\\nd<e>\"");
+        assert_eq!(quote("a\"b\\c\nd<e>"), "\"a\\\"b\\\\c\\\\u{a}d<e>\"");
     }
 }

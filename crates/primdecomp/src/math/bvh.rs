@@ -12,7 +12,8 @@
 use super::{add, cross, dot, norm2, scale, sub, V3};
 use rayon::prelude::*;
 
-const LEAF: usize = 4;
+/// Items per leaf, at most, of [`Bvh::build`]'s hierarchies.
+pub const LEAF: usize = 4;
 
 #[derive(Clone, Copy, Debug)]
 struct Node {
@@ -46,29 +47,40 @@ impl Bvh {
     /// Builds over `boxes[i] = (lo, hi)`, the two halves of large nodes in parallel
     /// (the same hierarchy on any thread count).
     pub fn build(boxes: &[(V3, V3)]) -> Bvh {
-        if boxes.is_empty() {
+        Bvh::build_by(boxes.len(), LEAF, &|i| boxes[i as usize])
+    }
+
+    /// [`Bvh::build`] over `count` items whose boxes `bbox` gives, up to `leaf` items
+    /// per leaf, with no table of boxes: each item's box is asked for twice (its
+    /// centre, then its leaf's box). For large inputs queried a few times, where a
+    /// table of boxes and small leaves would cost more memory than the queries save.
+    pub fn build_by(count: usize, leaf: usize, bbox: &(dyn Fn(u32) -> (V3, V3) + Sync)) -> Bvh {
+        if count == 0 {
             return Bvh::default();
         }
-        let sizes = Sizes::new(boxes.len());
+        let leaf = leaf.max(1);
+        let sizes = Sizes::new(count, leaf);
         let empty = Node {
             lo: [0.0; 3],
             hi: [0.0; 3],
             first: 0,
             count: 0,
         };
-        let mut nodes = vec![empty; sizes.nodes(boxes.len())];
+        let mut nodes = vec![empty; sizes.nodes(count)];
         let (root, below) = nodes.split_first_mut().expect("one node or more");
         // The splits move each item's centroid with its id, so that they read
-        // memory in order; the boxes are read once, for the leaves.
-        let mut span: Vec<Item> = boxes
-            .par_iter()
-            .enumerate()
-            .map(|(i, &(lo, hi))| Item {
-                c: scale(add(lo, hi), 0.5),
-                id: i as u32,
+        // memory in order; the boxes are read again for the leaves.
+        let mut span: Vec<Item> = (0..count as u32)
+            .into_par_iter()
+            .map(|i| {
+                let (lo, hi) = bbox(i);
+                Item {
+                    c: scale(add(lo, hi), 0.5),
+                    id: i,
+                }
             })
             .collect();
-        let build = Build { boxes, sizes };
+        let build = Build { bbox, sizes };
         build.subtree(root, below, 1, &mut span, 0);
         Bvh {
             nodes,
@@ -289,24 +301,63 @@ impl Bvh {
     }
 }
 
+impl Bvh {
+    /// Whether `hit(item)` holds for some item whose box the ray `o + t·d` meets for
+    /// some `t` in `[0, tmax]`; stops at the first. `stack` is scratch.
+    pub fn ray_any(
+        &self,
+        o: V3,
+        d: V3,
+        tmax: f64,
+        stack: &mut Vec<u32>,
+        mut hit: impl FnMut(u32) -> bool,
+    ) -> bool {
+        if self.nodes.is_empty() {
+            return false;
+        }
+        let inv = d.map(|c| 1.0 / c);
+        stack.clear();
+        stack.push(0);
+        while let Some(n) = stack.pop() {
+            let node = self.nodes[n as usize];
+            if !ray_meets_box(o, inv, tmax, node.lo, node.hi) {
+                continue;
+            }
+            if node.count == 0 {
+                stack.extend([node.first, node.first + 1]);
+                continue;
+            }
+            let span = node.first as usize..(node.first + node.count) as usize;
+            if self.items[span].iter().any(|&i| hit(i)) {
+                return true;
+            }
+        }
+        false
+    }
+}
+
 /// Nodes of at least this many items build their two halves in parallel.
 const PARALLEL: usize = 4096;
 
 /// How many nodes the hierarchy over a count of items has: a median split halves
 /// it, so the count fixes the shape. Looked up below [`PARALLEL`] items.
-struct Sizes(Vec<usize>);
+struct Sizes {
+    table: Vec<usize>,
+    /// Items per leaf, at most.
+    leaf: usize,
+}
 
 impl Sizes {
-    fn new(items: usize) -> Sizes {
+    fn new(items: usize, leaf: usize) -> Sizes {
         let mut table = vec![1; items.min(PARALLEL) + 1];
-        for c in LEAF + 1..table.len() {
+        for c in leaf + 1..table.len() {
             table[c] = 1 + table[c / 2] + table[c - c / 2];
         }
-        Sizes(table)
+        Sizes { table, leaf }
     }
 
     fn nodes(&self, count: usize) -> usize {
-        match self.0.get(count) {
+        match self.table.get(count) {
             Some(&n) => n,
             None => 1 + self.nodes(count / 2) + self.nodes(count - count / 2),
         }
@@ -315,7 +366,7 @@ impl Sizes {
 
 /// What building a subtree reads.
 struct Build<'a> {
-    boxes: &'a [(V3, V3)],
+    bbox: &'a (dyn Fn(u32) -> (V3, V3) + Sync),
     sizes: Sizes,
 }
 
@@ -341,10 +392,10 @@ impl Build<'_> {
         first: usize,
     ) {
         let count = span.len();
-        if count <= LEAF {
+        if count <= self.sizes.leaf {
             (node.lo, node.hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
             for it in span.iter() {
-                let (blo, bhi) = self.boxes[it.id as usize];
+                let (blo, bhi) = (self.bbox)(it.id);
                 for k in 0..3 {
                     (node.lo[k], node.hi[k]) = (node.lo[k].min(blo[k]), node.hi[k].max(bhi[k]));
                 }

@@ -4,6 +4,7 @@
 //! deletion), distinct vertices and neighbours. A cluster is named by its root face.
 
 use crate::math::Sym3;
+use std::sync::Arc;
 
 /// Lists owned by a cluster once it stops being a single face.
 #[derive(Debug, Default)]
@@ -53,9 +54,10 @@ pub struct Clusters {
     /// Cyclic list: the next face of the same cluster.
     pub next_face: Vec<u32>,
     pub face_count: Vec<u32>,
-    /// The input's face adjacency as CSR (neighbours of never-merged faces).
-    adj_offsets: Vec<u32>,
-    adj: Vec<u32>,
+    /// The input's face adjacency as CSR (neighbours of never-merged faces), shared
+    /// with whoever else reads it (the output fits' surface).
+    adj_offsets: Arc<[u32]>,
+    adj: Arc<[u32]>,
     slab: Vec<Lists>,
     free: Vec<u32>,
     /// Number of live clusters.
@@ -65,8 +67,15 @@ pub struct Clusters {
 impl Clusters {
     /// One cluster per face, with the given per-face operators and volumes.
     pub fn new(q: Vec<Sym3>, volume: Vec<f64>, pairs: &[(u32, u32)]) -> Clusters {
+        let (adj_offsets, adj) = crate::mesh::adjacency::neighbour_lists(q.len(), pairs);
+        Clusters::with_lists(q, volume, (adj_offsets.into(), adj.into()))
+    }
+
+    /// [`Clusters::new`] with the adjacency as neighbour lists already built
+    /// ([`crate::mesh::adjacency::neighbour_lists`] of the pairs), shared.
+    pub fn with_lists(q: Vec<Sym3>, volume: Vec<f64>, lists: (Arc<[u32]>, Arc<[u32]>)) -> Clusters {
         let n = q.len();
-        let (adj_offsets, adj) = crate::mesh::adjacency::neighbour_lists(n, pairs);
+        let (adj_offsets, adj) = lists;
         Clusters {
             node: (0..n as u32)
                 .map(|c| Node {

@@ -242,7 +242,10 @@ mod tests {
             let mut split = snapshots(ev, &p1, q, vols, pairs, targets, count).0;
             let rest = &targets[split.len()..];
             if !rest.is_empty() {
-                let cl = partition::clusters(p1, q.to_vec(), vols.to_vec(), pairs);
+                let (o, a) = crate::mesh::adjacency::neighbour_lists(q.len(), pairs);
+                let lists = (o.into(), a.into());
+                let cl = partition::clusters(p1, q.to_vec(), vols.to_vec(), lists, &|_| true)
+                    .expect("not stopped");
                 split.extend(run(ev, cl, rest, &|_| true).snapshots);
             }
             assert_eq!(global.snapshots.len(), split.len());

@@ -27,6 +27,9 @@ use crate::mesh::Mesh;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 
+/// The input's adjacency as shared CSR neighbour lists (offsets, neighbours).
+pub type Lists = (std::sync::Arc<[u32]>, std::sync::Arc<[u32]>);
+
 /// Phase 1 stops at about this many clusters per unit of the largest target (F2 =
 /// 16 × N, never fewer than the target); the choice against 8× is measured in
 /// docs/results/partitions.md.
@@ -243,16 +246,21 @@ fn pairs_by_part(parts: &[Vec<u32>], pairs: &[(u32, u32)], faces: usize) -> Vec<
 /// The faces `part` (increasing) as a mesh of their own: local face ids in order,
 /// local vertex ids for the faces' own and welded vertices (same positions and
 /// offset); returns it with its welded indices and each local vertex's input id.
+///
+/// Local ids are given in order of first use. A table by the part's own vertices,
+/// not one over the whole input's: a part per 65,536 faces each clearing a table of
+/// every input vertex grew as the square of the input (56M faces: 855 parts × 28M
+/// vertices).
 fn sub_mesh(mesh: &Mesh, welded: &[u32], part: &[u32]) -> (Mesh, Vec<u32>, Vec<u32>) {
-    let mut local = vec![u32::MAX; mesh.vertex_count()];
+    let corners: usize = part.iter().map(|&f| mesh.face(f as usize).len()).sum();
+    let mut local: rustc_hash::FxHashMap<u32, u32> = Default::default();
+    local.reserve(corners);
     let mut global = Vec::new();
     let mut id = |v: u32| {
-        let l = &mut local[v as usize];
-        if *l == u32::MAX {
-            *l = global.len() as u32;
+        *local.entry(v).or_insert_with(|| {
             global.push(v);
-        }
-        *l
+            (global.len() - 1) as u32
+        })
     };
     let mut sub = Mesh {
         offset: mesh.offset,
@@ -345,11 +353,23 @@ fn merge_one(
 /// Phase 2's starting clusters: one per group of phase 1 (named by its lowest face),
 /// with the group's operator, priced volume and hull-reduced points, and neighbours =
 /// the groups adjacent to it through `pairs`; the merge clock starts at 0 as for
-/// single faces. `q` and `volume` are the per-face arrays (reused as storage).
-pub fn clusters(p1: Phase1, q: Vec<Sym3>, volume: Vec<f64>, pairs: &[(u32, u32)]) -> Clusters {
-    let mut cl = Clusters::new(q, volume, pairs);
+/// single faces. `q` and `volume` are the per-face arrays (reused as storage),
+/// `lists` the input's adjacency as neighbour lists (shared).
+///
+/// `go_on` is asked between parts (reporting no progress); `None` when it says stop.
+pub fn clusters(
+    p1: Phase1,
+    q: Vec<Sym3>,
+    volume: Vec<f64>,
+    lists: Lists,
+    go_on: crate::progress::GoOn,
+) -> Option<Clusters> {
+    let mut cl = Clusters::with_lists(q, volume, lists);
     let mut unresolved = Vec::with_capacity(p1.groups());
     for mut g in p1.parts {
+        if !go_on(0.0) {
+            return None;
+        }
         let mut lists = std::mem::take(&mut g.neighbors).into_iter();
         for (i, verts) in g.verts.into_iter().enumerate() {
             let faces = &g.faces[g.offsets[i] as usize..g.offsets[i + 1] as usize];
@@ -374,11 +394,14 @@ pub fn clusters(p1: Phase1, q: Vec<Sym3>, volume: Vec<f64>, pairs: &[(u32, u32)]
     }
     // Seeding reads every root's neighbour list: resolve the spatial parts' lists to
     // groups, once every group is merged.
-    for r in unresolved {
+    for (i, r) in unresolved.into_iter().enumerate() {
+        if i % 4096 == 0 && !go_on(0.0) {
+            return None;
+        }
         cl.resolved_neighbors(r);
     }
     cl.reset_clock();
-    cl
+    Some(cl)
 }
 
 #[cfg(test)]
@@ -479,7 +502,12 @@ mod tests {
             crate::merge::driver::tests::with_input(&mesh, &p, |ev, q, vols, pairs| {
                 let p1 = merge_parts(ev, q, vols, pairs, 4, 4, &|_| true);
                 (
-                    clusters(p1, q.to_vec(), vols.to_vec(), pairs),
+                    {
+                        let (o, a) = crate::mesh::adjacency::neighbour_lists(q.len(), pairs);
+                        let lists = (o.into(), a.into());
+                        clusters(p1, q.to_vec(), vols.to_vec(), lists, &|_| true)
+                            .expect("not stopped")
+                    },
                     pairs.to_vec(),
                 )
             });

@@ -32,73 +32,120 @@ pub fn neighbour_lists(n: usize, pairs: &[(u32, u32)]) -> (Vec<u32>, Vec<u32>) {
 
 /// Sorted, unique pairs `(a, b)` with `a < b` of faces sharing an edge. `offsets` and
 /// `indices` are the CSR polygons (indices already welded).
-///
-/// One (edge, face) record per polygon side, written in place at the side's CSR slot
-/// (no intermediate lists: the records are the stage's only large buffer).
+#[cfg(any(test, feature = "test-internals"))]
 pub fn face_pairs(offsets: &[u32], indices: &[u32]) -> Vec<(u32, u32)> {
-    let mut records = vec![(u64::MAX, u32::MAX); indices.len()];
+    face_pairs_checked(offsets, indices, &|_| true).unwrap_or_default()
+}
+
+/// Vertices per block of the edge lists (a parallel task, and a check of `go_on`).
+const BLOCK: usize = 1 << 14;
+
+/// [`face_pairs`] that reports the fraction done to `go_on` between blocks of
+/// vertices and stops (`None`) when it says so.
+///
+/// The sides are bucketed by their lower vertex (a counting sort: one 8-byte record
+/// per side, the other vertex and the face, and a start per vertex), and each
+/// vertex's few records sorted on their own: the same order as one sort of (edge,
+/// face) records, in a third less memory and linear time, a block of vertices at a
+/// time.
+pub fn face_pairs_checked(
+    offsets: &[u32],
+    indices: &[u32],
+    go_on: crate::progress::GoOn,
+) -> Option<Vec<(u32, u32)>> {
+    use std::sync::atomic::{AtomicU32, AtomicU64, Ordering::Relaxed};
     let faces = offsets.len().saturating_sub(1);
     debug_assert!(
         offsets.first().is_none_or(|&o| o == 0),
         "CSR offsets start at 0"
     );
-    // Split the record buffer at face boundaries so each task owns whole faces.
-    let mut slices = Vec::new();
-    let mut rest = &mut records[..];
-    let mut f0 = 0;
-    while f0 < faces {
-        let f1 = (f0 + 4096).min(faces);
-        let len = (offsets[f1] - offsets[f0]) as usize;
-        let (head, tail) = rest.split_at_mut(len);
-        slices.push((f0, f1, head));
-        rest = tail;
-        f0 = f1;
-    }
-    slices.into_par_iter().for_each(|(f0, f1, out)| {
-        let start = offsets[f0] as usize;
-        for f in f0..f1 {
-            let (lo, hi) = (offsets[f] as usize, offsets[f + 1] as usize);
-            let idx = &indices[lo..hi];
+    let verts = indices.par_iter().max().map_or(0, |&m| m as usize + 1);
+    // Each face's sides (a, b), a ≠ b, by chunks of faces.
+    let sides = |visit: &(dyn Fn(u32, u32, u32) + Sync)| {
+        (0..faces).into_par_iter().with_min_len(4096).for_each(|f| {
+            let idx = &indices[offsets[f] as usize..offsets[f + 1] as usize];
             for i in 0..idx.len() {
                 let (a, b) = (idx[i], idx[(i + 1) % idx.len()]);
                 if a != b {
-                    let key = ((a.min(b) as u64) << 32) | a.max(b) as u64;
-                    out[lo - start + i] = (key, f as u32);
+                    visit(a.min(b), a.max(b), f as u32);
                 }
             }
-        }
+        })
+    };
+    let count: Vec<AtomicU32> = (0..verts + 1).map(|_| AtomicU32::new(0)).collect();
+    sides(&|lo, _, _| {
+        count[lo as usize + 1].fetch_add(1, Relaxed);
     });
-    records.par_sort_unstable();
-    // Degenerate sides kept the sentinel key and sorted last.
-    let used = records.partition_point(|r| r.0 != u64::MAX);
-    let records = &records[..used];
-    let mut pairs = Vec::new();
-    let mut start = 0;
-    while start < records.len() {
-        let mut end = start + 1;
-        while end < records.len() && records[end].0 == records[start].0 {
-            end += 1;
-        }
-        push_edge_pairs(&records[start..end], &mut pairs);
-        start = end;
+    let mut start: Vec<u32> = count.into_iter().map(AtomicU32::into_inner).collect();
+    for v in 0..verts {
+        start[v + 1] += start[v];
+    }
+    if !go_on(0.25) {
+        return None;
+    }
+    // The records in their vertex's bucket, in any order (sorted below).
+    let next: Vec<AtomicU32> = start[..verts].iter().map(|&s| AtomicU32::new(s)).collect();
+    let records: Vec<AtomicU64> = (0..start[verts]).map(|_| AtomicU64::new(0)).collect();
+    sides(&|lo, hi, f| {
+        let at = next[lo as usize].fetch_add(1, Relaxed);
+        records[at as usize].store((u64::from(hi) << 32) | u64::from(f), Relaxed);
+    });
+    drop(next);
+    let mut records: Vec<u64> = records.into_iter().map(AtomicU64::into_inner).collect();
+    if !go_on(0.5) {
+        return None;
+    }
+    // Blocks of vertices own disjoint runs of records.
+    let mut blocks = Vec::new();
+    let mut rest = &mut records[..];
+    for v0 in (0..verts).step_by(BLOCK) {
+        let v1 = (v0 + BLOCK).min(verts);
+        let (head, tail) = rest.split_at_mut((start[v1] - start[v0]) as usize);
+        blocks.push((v0, v1, head));
+        rest = tail;
+    }
+    let total = blocks.len().max(1);
+    let done = AtomicU32::new(0);
+    let lists: Vec<Option<Vec<(u32, u32)>>> = blocks
+        .into_par_iter()
+        .map(|(v0, v1, recs)| {
+            let mut pairs = Vec::new();
+            let base = start[v0] as usize;
+            for v in v0..v1 {
+                let run = &mut recs[start[v] as usize - base..start[v + 1] as usize - base];
+                run.sort_unstable();
+                for edge in run.chunk_by(|x, y| x >> 32 == y >> 32) {
+                    push_edge_pairs(edge, &mut pairs);
+                }
+            }
+            let k = done.fetch_add(1, Relaxed) + 1;
+            go_on(0.5 + 0.4 * f64::from(k) / total as f64).then_some(pairs)
+        })
+        .collect();
+    drop(records);
+    let mut pairs = Vec::with_capacity(lists.iter().flatten().map(Vec::len).sum());
+    for l in lists {
+        pairs.extend(l?);
     }
     pairs.par_sort_unstable();
     pairs.dedup();
     pairs.shrink_to_fit();
-    pairs
+    Some(pairs)
 }
 
-/// Pairs of the distinct faces around one edge (records are sorted by face): all of
-/// them for up to [`ALL_PAIRS_UP_TO`] faces, a chain beyond. No allocation.
-fn push_edge_pairs(run: &[(u64, u32)], pairs: &mut Vec<(u32, u32)>) {
-    let steps = || run.windows(2).filter(|w| w[0].1 != w[1].1);
+/// Pairs of the distinct faces around one edge (records `other vertex << 32 | face`
+/// of one edge, sorted by face): all of them for up to [`ALL_PAIRS_UP_TO`] faces, a
+/// chain beyond. No allocation.
+fn push_edge_pairs(run: &[u64], pairs: &mut Vec<(u32, u32)>) {
+    let face = |r: u64| r as u32;
+    let steps = || run.windows(2).filter(|w| face(w[0]) != face(w[1]));
     if 1 + steps().count() > ALL_PAIRS_UP_TO {
-        pairs.extend(steps().map(|w| (w[0].1, w[1].1)));
+        pairs.extend(steps().map(|w| (face(w[0]), face(w[1]))));
         return;
     }
     let mut fs = [0u32; ALL_PAIRS_UP_TO];
     let mut n = 0;
-    for &(_, f) in run {
+    for f in run.iter().map(|&r| face(r)) {
         if n == 0 || fs[n - 1] != f {
             fs[n] = f;
             n += 1;

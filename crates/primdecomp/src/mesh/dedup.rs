@@ -6,26 +6,46 @@
 
 use super::Mesh;
 use crate::params::Dedup;
+use crate::progress::GoOn;
 use rayon::prelude::*;
+use std::borrow::Cow;
 
 /// Face indices with duplicates welded, and the number of distinct vertices in use.
+#[cfg(any(test, feature = "test-internals"))]
 pub fn weld(mesh: &Mesh, mode: Dedup) -> (Vec<u32>, usize) {
-    let remap = match mode {
-        Dedup::Off => (0..mesh.vertex_count() as u32).collect(),
-        Dedup::Exact => exact_remap(mesh),
+    weld_checked(mesh, mode, &|_| true).map_or_else(Default::default, |(f, d)| (f.into_owned(), d))
+}
+
+/// [`weld`] that reports the fraction done to `go_on` (exact welding, by blocks)
+/// and stops (`None`) when it says so. Where no vertex moves (no duplicates, or
+/// welding off) the welded indices are the mesh's own, borrowed: no copy of 12
+/// bytes a face.
+pub fn weld_checked<'m>(
+    mesh: &'m Mesh,
+    mode: Dedup,
+    go_on: GoOn,
+) -> Option<(Cow<'m, [u32]>, usize)> {
+    let remap: Vec<u32> = match mode {
+        Dedup::Off => Vec::new(),
+        Dedup::Exact => exact_remap(mesh, go_on)?,
         Dedup::Tolerance(t) if t > 0.0 => tolerance_remap(mesh, t),
-        Dedup::Tolerance(_) => exact_remap(mesh),
+        Dedup::Tolerance(_) => exact_remap(mesh, go_on)?,
     };
-    let faces: Vec<u32> = mesh
-        .face_indices
-        .par_iter()
-        .with_min_len(1 << 14)
-        .map(|&v| remap[v as usize])
-        .collect();
+    let moved = (remap.par_iter().enumerate()).any(|(v, &r)| r as usize != v);
+    let faces: Cow<'m, [u32]> = match moved {
+        true => Cow::Owned(
+            mesh.face_indices
+                .par_iter()
+                .with_min_len(1 << 14)
+                .map(|&v| remap[v as usize])
+                .collect(),
+        ),
+        false => Cow::Borrowed(&mesh.face_indices),
+    };
     let mut used = vec![false; mesh.vertex_count()];
     faces.iter().for_each(|&v| used[v as usize] = true);
     let distinct = used.iter().filter(|&&u| u).count();
-    (faces, distinct)
+    Some((faces, distinct))
 }
 
 /// Bit pattern of a coordinate with −0 folded onto +0.
@@ -34,32 +54,85 @@ fn key(v: f64) -> u64 {
     (v + 0.0).to_bits()
 }
 
+/// Vertices per bucket of the exact weld, about (a parallel task's sort, in cache).
+const BUCKET: usize = 1 << 10;
+
 /// Each vertex → the lowest index with bit-identical (re-centred) coordinates.
-fn exact_remap(mesh: &Mesh) -> Vec<u32> {
+///
+/// The vertices are bucketed by a hash of their coordinates (a counting sort: equal
+/// coordinates share a bucket) and each bucket sorted on its own by (coordinates,
+/// index): the groups and leaders one sort of every vertex finds, in linear time,
+/// reading the coordinates of a bucket from cache, a block of buckets at a time.
+fn exact_remap(mesh: &Mesh, go_on: GoOn) -> Option<Vec<u32>> {
+    use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
     let n = mesh.vertex_count();
-    let mut order: Vec<u32> = (0..n as u32).collect();
     let k = |i: u32| {
         let i = i as usize;
-        (key(mesh.x[i]), key(mesh.y[i]), key(mesh.z[i]), i)
+        (key(mesh.x[i]), key(mesh.y[i]), key(mesh.z[i]))
     };
-    order.par_sort_unstable_by_key(|&i| k(i));
-    let mut remap = vec![0u32; n];
-    let mut start = 0;
-    while start < n {
-        let lead = order[start];
-        let kl = k(lead);
-        let mut end = start;
-        while end < n
-            && k(order[end]).0 == kl.0
-            && k(order[end]).1 == kl.1
-            && k(order[end]).2 == kl.2
-        {
-            remap[order[end] as usize] = lead;
-            end += 1;
-        }
-        start = end;
+    let buckets = (n / BUCKET).max(1).next_power_of_two();
+    let bucket = |i: u32| {
+        let (x, y, z) = k(i);
+        let h = (x.wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ y).wrapping_mul(0xC2B2_AE3D_27D4_EB4F)
+            ^ z.wrapping_mul(0x1656_67B1_9E37_79F9);
+        (h.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 32) as usize & (buckets - 1)
+    };
+    let count: Vec<AtomicU32> = (0..buckets + 1).map(|_| AtomicU32::new(0)).collect();
+    (0..n as u32)
+        .into_par_iter()
+        .with_min_len(1 << 14)
+        .for_each(|i| {
+            count[bucket(i) + 1].fetch_add(1, Relaxed);
+        });
+    let mut start: Vec<u32> = count.into_iter().map(AtomicU32::into_inner).collect();
+    for b in 0..buckets {
+        start[b + 1] += start[b];
     }
-    remap
+    let next: Vec<AtomicU32> = start[..buckets]
+        .iter()
+        .map(|&s| AtomicU32::new(s))
+        .collect();
+    let order: Vec<AtomicU32> = (0..n).map(|_| AtomicU32::new(0)).collect();
+    (0..n as u32)
+        .into_par_iter()
+        .with_min_len(1 << 14)
+        .for_each(|i| {
+            let at = next[bucket(i)].fetch_add(1, Relaxed);
+            order[at as usize].store(i, Relaxed);
+        });
+    drop(next);
+    let mut order: Vec<u32> = order.into_iter().map(AtomicU32::into_inner).collect();
+    if !go_on(0.4) {
+        return None;
+    }
+    let remap: Vec<AtomicU32> = (0..n).map(|_| AtomicU32::new(0)).collect();
+    // Blocks of buckets own disjoint runs of `order`.
+    let per_block = (buckets / 64).max(1);
+    let mut blocks = Vec::new();
+    let mut rest = &mut order[..];
+    for b0 in (0..buckets).step_by(per_block) {
+        let b1 = (b0 + per_block).min(buckets);
+        let (head, tail) = rest.split_at_mut((start[b1] - start[b0]) as usize);
+        blocks.push((b0, b1, head));
+        rest = tail;
+    }
+    let total = blocks.len();
+    let done = AtomicU32::new(0);
+    let finished = blocks.into_par_iter().all(|(b0, b1, ids)| {
+        let base = start[b0] as usize;
+        for b in b0..b1 {
+            let run = &mut ids[start[b] as usize - base..start[b + 1] as usize - base];
+            run.sort_unstable_by_key(|&i| (k(i), i));
+            for group in run.chunk_by(|&a, &b| k(a) == k(b)) {
+                group
+                    .iter()
+                    .for_each(|&i| remap[i as usize].store(group[0], Relaxed));
+            }
+        }
+        let d = done.fetch_add(1, Relaxed) + 1;
+        go_on(0.4 + 0.5 * f64::from(d) / total as f64)
+    });
+    finished.then(|| remap.into_iter().map(AtomicU32::into_inner).collect())
 }
 
 /// Vertices closer than `tol` are merged transitively (union-find over a grid of cell

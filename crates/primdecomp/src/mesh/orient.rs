@@ -9,7 +9,7 @@
 //! one by what rays from its faces see (`visibility`, docs/decisions/0027), and by its signed
 //! volume only when they cannot tell.
 
-use super::visibility::{self, RayGrid};
+use super::visibility::{self, RayTree};
 use super::Mesh;
 use crate::math::{cross, dot, sub, V3};
 use std::collections::VecDeque;
@@ -35,15 +35,32 @@ pub(crate) fn face_signs(mesh: &Mesh, welded: &[u32], pairs: &[(u32, u32)]) -> V
 /// through such edges (54 of its 7,822) into one component, came
 /// out with its hood facing down and its fenders out. Each patch so found is turned
 /// on its own.
+#[cfg(any(test, feature = "test-internals"))]
 pub fn face_signs_of_lists(mesh: &Mesh, welded: &[u32], deg: &[u32], adj: &[u32]) -> Vec<i8> {
+    face_signs_checked(mesh, welded, deg, adj, &|_| true).unwrap_or_default()
+}
+
+/// Faces between checks of `go_on` in [`face_signs_checked`].
+const CHECK_EVERY: usize = 1 << 16;
+
+/// [`face_signs_of_lists`] that asks `go_on` whether to go on every
+/// [`CHECK_EVERY`] faces and stops (`None`) when it says no.
+pub fn face_signs_checked(
+    mesh: &Mesh,
+    welded: &[u32],
+    deg: &[u32],
+    adj: &[u32],
+    go_on: crate::progress::GoOn,
+) -> Option<Vec<i8>> {
     let n = mesh.face_count();
+    let mut next_check = CHECK_EVERY;
     let off = &mesh.face_offsets;
     let face = |f: usize| &welded[off[f] as usize..off[f + 1] as usize];
     let neighbours = |f: usize| &adj[deg[f] as usize..deg[f + 1] as usize];
     let mut sign = vec![0i8; n];
     let mut queue = VecDeque::new();
     let mut members = Vec::new();
-    let mut grid: Option<RayGrid> = None;
+    let mut grid: Option<RayTree> = None;
     for start in 0..n {
         if sign[start] != 0 {
             continue;
@@ -54,6 +71,13 @@ pub fn face_signs_of_lists(mesh: &Mesh, welded: &[u32], deg: &[u32], adj: &[u32]
         let mut open = false;
         while let Some(f) = queue.pop_front() {
             members.push(f);
+            next_check -= 1;
+            if next_check == 0 {
+                next_check = CHECK_EVERY;
+                if !go_on(0.0) {
+                    return None;
+                }
+            }
             let mut crossed = 0;
             for &g in neighbours(f) {
                 let Some(rel) = manifold_relation(face(f), g, neighbours(f), &face) else {
@@ -70,7 +94,7 @@ pub fn face_signs_of_lists(mesh: &Mesh, welded: &[u32], deg: &[u32], adj: &[u32]
         }
         let quota = visibility::SAMPLED_FACES * members.len() / n.max(1);
         let seen = if open && quota > 0 {
-            let grid = grid.get_or_insert_with(|| RayGrid::build(mesh, visibility::CELLS));
+            let grid = grid.get_or_insert_with(|| RayTree::build(mesh));
             visibility::vote(grid, &members, &sign, quota)
         } else {
             None
@@ -83,7 +107,7 @@ pub fn face_signs_of_lists(mesh: &Mesh, welded: &[u32], deg: &[u32], adj: &[u32]
             members.iter().for_each(|&f| sign[f] = -sign[f]);
         }
     }
-    sign
+    Some(sign)
 }
 
 /// Whether polygon `a` (welded indices) and face `g` agree across their shared edge

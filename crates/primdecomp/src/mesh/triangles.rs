@@ -31,8 +31,10 @@ impl Triangles {
             fans.extend((2..v.len()).map(|k| [v[0], v[k - 1], v[k]]));
         }
         let corners = |t: &[u32; 3]| t.map(|v| mesh.pos(v));
-        let boxes: Vec<(V3, V3)> = fans.par_iter().map(|t| tri_box(&corners(t))).collect();
-        let bvh = Bvh::build(&boxes);
+        // Boxes from the corners as the build asks (no table of 48 bytes a
+        // triangle), the hierarchy `Bvh::build` makes.
+        let bbox = |i: u32| tri_box(&corners(&fans[i as usize]));
+        let bvh = Bvh::build_by(fans.len(), crate::math::bvh::LEAF, &bbox);
         let tris = (bvh.order().par_iter())
             .map(|&i| corners(&fans[i as usize]))
             .collect();

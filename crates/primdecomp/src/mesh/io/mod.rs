@@ -139,6 +139,50 @@ pub fn open_regular(path: &Path) -> Result<(File, Metadata)> {
     }
 }
 
+/// Reads all of `path`, which must be a regular file ([`open_regular`]: a pipe or
+/// device is refused before anything is read) of at most `max_bytes` bytes: a larger
+/// file (a sparse file of terabytes, say) is refused from its size before reading,
+/// and no more than `max_bytes + 1` bytes are ever read, should it grow meanwhile.
+/// For the small documents the tools read whole: results, settings, evaluations.
+///
+/// ```
+/// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../datasets/demo_scene.obj");
+/// assert!(primdecomp::read_regular(path.as_ref(), 1 << 30)?.starts_with(b"#"));
+/// let refused = primdecomp::read_regular(path.as_ref(), 1000).unwrap_err();
+/// assert!(refused.to_string().contains("more than the 1000 bytes"), "{refused}");
+/// assert!(primdecomp::read_regular("/dev/zero".as_ref(), 1000).is_err());
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
+pub fn read_regular(path: &Path, max_bytes: u64) -> Result<Vec<u8>> {
+    use std::io::Read;
+    let (file, meta) = open_regular(path)?;
+    let too_large = |size: u64| {
+        Error::format(
+            path,
+            format!(
+                "the file holds {}, more than the {} read from a file of this kind",
+                crate::error::show_bytes(size),
+                crate::error::show_bytes(max_bytes)
+            ),
+        )
+    };
+    if meta.len() > max_bytes {
+        return Err(too_large(meta.len()));
+    }
+    let mut bytes = Vec::with_capacity(meta.len() as usize);
+    (&file)
+        .take(max_bytes.saturating_add(1))
+        .read_to_end(&mut bytes)
+        .map_err(|error| Error::Io {
+            path: path.to_path_buf(),
+            error,
+        })?;
+    if bytes.len() as u64 > max_bytes {
+        return Err(too_large(bytes.len() as u64));
+    }
+    Ok(bytes)
+}
+
 /// Why [`open_checked`] failed, without a path: the glTF reader words these as
 /// reasons a buffer URI is unusable.
 pub(crate) enum OpenFail {
@@ -437,7 +481,8 @@ pub fn memory_needed(path: &Path) -> Option<u64> {
     }
     // SAFETY: as in `load_with`: a read-only map living only for this call.
     let map = unsafe { memmap2::Mmap::map(&file) }.ok()?;
-    declared::declared_counts(&map, format).map(crate::memory::estimate)
+    // Reading maps the whole file: its size is a floor of the need.
+    declared::declared_counts(&map, format).map(|c| crate::memory::estimate(c).max(meta.len()))
 }
 
 /// Reads the mesh in `path` (OBJ, PLY, STL, OFF, glTF/GLB, by its extension):
@@ -487,6 +532,21 @@ pub fn load_with(path: &Path, options: &LoadOptions) -> Result<Mesh> {
         )
     })?;
     let max_memory = options.max_memory;
+    if let Some(limit) = max_memory.filter(|&l| meta.len() > l) {
+        // The mapped file becomes resident as it is read: a file larger than the limit
+        // (a sparse file of zeros, say) cannot be read within it.
+        return Err(Error::format(
+            path,
+            format!(
+                "the file holds {}, more than the memory limit of {} (default: the memory \
+                 available now), and reading it maps it into memory whole; raise the limit \
+                 with --max-memory SIZE (in the library: the max_memory of \
+                 primdecomp::LoadOptions)",
+                crate::error::show_bytes(meta.len()),
+                crate::error::show_bytes(limit)
+            ),
+        ));
+    }
     let builder = if meta.len() == 0 {
         parse_bytes_with(&[], format, path, options)?
     } else {

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# benches/default_compare.sh: the default tolerance against a fixed count (issue 26,
-# docs/decisions/0037). Reads the level files of a benches/tolerance_check.sh run
+# benches/default_compare.sh: the default tolerance against a fixed count
+# (docs/decisions/0037). Reads the level files of a benches/tolerance_check.sh run
 # (TOL_DIR, run with TOLS="4%,2%,1%,0.5%" SAMPLES=200000), runs
 # `decompose -n COUNT` (default 64) and `eval --samples SAMPLES` (default 200000) on
 # the same meshes into N_DIR, and prints a markdown summary (primitives, eval

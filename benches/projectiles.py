@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""benches/projectiles: the tunnelling benchmark (issue 31) -> docs/results/projectiles.md.
+"""benches/projectiles: the tunnelling benchmark -> docs/results/projectiles.md.
 
 For each mesh: ours = `primdecomp decompose MESH` (default settings, N = 64) and the
 variants in VARIANTS (`--solid`, `--min-thickness T`), each timed (least of --runs
@@ -170,7 +170,7 @@ def main():
     cmd = "python3 benches/projectiles.py" + (" --shots %d" % a.shots if a.shots != 256 else "")
     dhead = shead + ["Hausdorff", "Chamfer", "time / default"]
     thead = ["mesh"] + ours_names + [f"{l} / default" for l in ours_names[1:]]
-    text = f"""# Projectiles: pass-through of fast balls (issue 31)
+    text = f"""# Projectiles: pass-through of fast balls
 
 {a.shots} shots per collider and speed (Fibonacci-sphere directions, each aimed at a
 seeded area-sampled surface point), no gravity, fixed steps of 1/60 s, balls of radius

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""What calling primdecomp from Python costs over the CLI (issue 29): the same mesh
+"""What calling primdecomp from Python costs over the CLI: the same mesh
 and target through `primdecomp decompose IN -n N -o OUT.json`, through
 `primdecomp.decompose_file(IN, targets=[N]).export(OUT.json)` and through
 `primdecomp.decompose(*primdecomp.load(IN), targets=[N]).export(OUT.json)`, each a

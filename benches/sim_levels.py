@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """benches/sim_levels: our collider at a ladder of shape counts against CoACD, V-HACD
 and the mesh itself, all in one `primdecomp sim` run per mesh and seed
--> docs/results/sim_levels.md. It answers issue 4's question for the meshes where
+-> docs/results/sim_levels.md. It answers the simulation benchmark's question for the meshes where
 docs/results/sim.md leaves ours slower than a peer: is there a shape count at which
 our physics step is no slower than the peer's with a similarity no lower, and how do
 step time and behaviour move with the count (the speed/fidelity trade a user picks N by)?
@@ -197,7 +197,7 @@ def main(argv):
     if not ms:
         print("no mesh could be run", file=sys.stderr)
         return 1
-    head = ["# Simulation at a ladder of shape counts (issue 4)", "",
+    head = ["# Simulation at a ladder of shape counts", "",
             f"{a.balls} balls, {a.frames} frames at 1/60 s, seeds {', '.join(map(str, a.seeds))}, Rapier "
             "single-threaded; per mesh and seed one `primdecomp sim` run holds every level, both peers' "
             "hulls and the mesh (and its perturbed copy), interleaved frame by frame, so the ratios hold "

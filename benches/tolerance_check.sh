@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # benches/tolerance_check.sh: does `decompose --tolerance` keep its promise when
-# `primdecomp eval` measures it? (issue 26: "on every corpus mesh up to 200k faces
+# `primdecomp eval` measures it? (the tolerance target: "on every corpus mesh up to 200k faces
 # at 1% and 0.3%, eval with 4x the default samples finds the result within the
 # tolerance, allowing the documented sampling margin").
 # Per mesh: one `decompose MESH --tolerance TOLS -o OUT/MESH.json --quiet` (one

@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
 # The test command (README.md). Runs, each in its own section:
+#   documents every relative link resolves, every decision record opens with its
+#            header and the records' index matches them (scripts/check_docs.py);
 #   rust     every Rust test of the workspace (unit, property, paper-claim, corpus-wide
 #            and CLI tests, doctests), built once: the consumer checks below use the
 #            binaries this build makes, so nothing is compiled twice;
@@ -62,6 +64,14 @@ node_counts() {
 pip_install() { # VENV ARGS...: pip without its progress bar, one line per package
   "$1/bin/pip" install --disable-pip-version-check --progress-bar off "${@:2}" | grep -E "^(Collecting|Successfully)" || true
 }
+
+# ---------------------------------------------------------------- documents
+section "documents: every relative link resolves, every decision record has its header (scripts/check_docs.py)"
+if python3 scripts/check_docs.py; then
+  row documents 1 0 0 "links and decision records"
+else
+  row documents 0 1 0 "scripts/check_docs.py found problems (above)"
+fi
 
 # ---------------------------------------------------------------- system packages
 section "system packages: chromium (the browser test), fonts (the sim plot test)"
@@ -211,10 +221,10 @@ fi
 # ---------------------------------------------------------------- summary
 section "summary"
 total_p=0 total_f=0 total_s=0
-printf '%-8s %8s %8s %8s  %s\n' section passed failed skipped notes
+printf '%-9s %8s %8s %8s  %s\n' section passed failed skipped notes
 for r in "${rows[@]}"; do
   IFS='|' read -r name p f s note <<<"$r"
-  printf '%-8s %8s %8s %8s  %s\n' "$name" "$p" "$f" "$s" "$note"
+  printf '%-9s %8s %8s %8s  %s\n' "$name" "$p" "$f" "$s" "$note"
   total_p=$(( total_p + p )) total_f=$(( total_f + f )) total_s=$(( total_s + s ))
 done
 if [ "$total_s" -gt 0 ] && in_ci; then

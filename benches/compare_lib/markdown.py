@@ -177,7 +177,7 @@ SIM_HEADING = "## Simulation"
 
 
 def sim_table(records, note=None):
-    """Issue 4's columns: our median physics step as a ratio to each peer's (wall and
+    """The step-time columns: our median physics step as a ratio to each peer's (wall and
     CPU time), and every collider's similarity to the run on the mesh itself; `note`, a
     line under the heading (where the section came from, when refreshed alone)."""
     rows = [r for r in records if r.get("sim") and r["sim"].get("ours")]

@@ -109,7 +109,7 @@ fn params(u: &mut Unstructured) -> Result<Params> {
     // (docs/decisions/0026-output-plates-lie-flush.md).
     p.flush_plates = !u.arbitrary::<bool>()?;
     // After that (an exhausted input reads 0: the greedy levels, as grown): the merge
-    // tree's cut (issue 26, docs/decisions/0032 to 0052), with counts alone, with a
+    // tree's cut (docs/decisions/0032), with counts alone, with a
     // tolerance (one, or one per target), a byte target, both, or with no target at
     // all (the default run: the cut at 2% of the diagonal, capped at 1024).
     match u.int_in_range(0..=5)? {

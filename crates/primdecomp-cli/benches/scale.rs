@@ -1,4 +1,4 @@
-//! Issue 5's scale benchmark: the 871k-face dragon from the corpus and the same
+//! The scale benchmark: the 871k-face dragon from the corpus and the same
 //! dragon subdivided 1-to-4 (3.5M faces, built here, never committed), each decomposed
 //! to 2,000 primitives by the release CLI (wall time load → written JSON, and the
 //! process's peak resident memory from its `--timings` line), with meshopt's
@@ -7,7 +7,7 @@
 //! settings (both inputs are large enough for `--partitions auto` to split them, into
 //! 16 and 54 parts: docs/decisions/0019-large-inputs-merged-in-parts.md), with `--partitions 1`
 //! (one global greedy, the paper's Alg. 1). Median of `RUNS` runs each.
-//! Last, issue 26's cost target (at most 1.3×; docs/decisions/0042-the-cuts-cost.md):
+//! Last, the cut's cost target (at most 1.3×; docs/decisions/0032-merge-tree-cut.md):
 //! the dragon with `--tolerance 1%` (the merge-tree cut, capped at the same count)
 //! against the greedy, the two run in turn `RUNS` times so that both see the same
 //! machine, and the ratio of the least time of each.
@@ -81,7 +81,7 @@ fn main() {
     let (greedy, cut) = (least(greedy), least(cut));
     println!(
         "dragon -n {TARGET}: greedy {greedy:.2} s, --tolerance 1% {cut:.2} s, ratio {:.2} \
-         (issue 26: at most 1.3)",
+         (the target: at most 1.3)",
         cut / greedy
     );
     let _ = std::fs::remove_file(&big_path);

@@ -1,4 +1,4 @@
-//! `primdecomp export` and `decompose --export` / `--per-object` (issue 28).
+//! `primdecomp export` and `decompose --export` / `--per-object`.
 
 use anyhow::bail;
 use clap::Args;

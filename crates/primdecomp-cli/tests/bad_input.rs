@@ -1,4 +1,4 @@
-//! Hostile input through the real binary (issues 6 and 27): every case either succeeds
+//! Hostile input through the real binary (docs/decisions/hostile-input-limits.md): every case either succeeds
 //! with a valid result or fails with exit code 2 and a message naming the file and the
 //! line or byte offset, never panics, never hangs (each run has a time limit), and
 //! never creates or modifies the output file. Inputs that are not regular files

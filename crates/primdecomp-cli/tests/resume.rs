@@ -1,4 +1,4 @@
-//! Batches that survive a kill (issue 27, item 5): a batch killed with SIGKILL
+//! Batches that survive a kill: a batch killed with SIGKILL
 //! halfway and re-run with `--resume` finishes only what is missing and ends with the
 //! same files, byte for byte, as a clean run; what the kill left half-done (a
 //! temporary file, an output without its manifest line) and an output damaged since

@@ -1,4 +1,4 @@
-//! `decompose --tolerance` and `--max-bytes` as a user runs them (issue 26): a
+//! `decompose --tolerance` and `--max-bytes` as a user runs them: a
 //! chain of tolerances writes one file per level named by its tolerance, the JSON
 //! records what was asked and the distance reached, a single closed box needs no
 //! count, and bad values are refused with exit 2 and a message naming the flag.

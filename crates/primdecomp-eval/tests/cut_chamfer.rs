@@ -25,7 +25,7 @@ fn measured(m: &Mesh, counts: &[usize], cut: bool) -> Metrics {
     evaluate(&Input::new(m), &Collider::Primitives(prims), 30_000, 0)
 }
 
-/// Issue 26's target for one cut level against the greedy level of the same count.
+/// The cut's target for one cut level against the greedy level of the same count.
 fn nearer_with_the_greedy_mean(name: &str, cut: &Metrics, greedy: &Metrics) {
     assert!(
         cut.hausdorff < greedy.hausdorff,

@@ -1,4 +1,4 @@
-//! The native half of the `primdecomp` Python package (issue 29): a thin layer over
+//! The native half of the `primdecomp` Python package: a thin layer over
 //! the core library's public API. The Python half (python/primdecomp/__init__.py)
 //! checks shapes and dtypes and turns arrays into the contiguous float64 / uint32
 //! buffers read here without a copy; this file runs the decomposition with the GIL

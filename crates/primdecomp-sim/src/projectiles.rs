@@ -3,7 +3,7 @@
 //! collision detection; counts the balls that tunnel — end
 //! inside the input's closed volume or beyond the object along their path. The
 //! paper's §4.1 measures frame time with slow balls; this measures what a thin
-//! collider (a plate, a triangle mesh) does to a fast body (issue 31).
+//! collider (a plate, a triangle mesh) does to a fast body (docs/results/projectiles.md).
 //!
 //! # Scene
 //! - **Frame, ball.** As the drop scenario ([`super::scene`]): the input scaled to an

@@ -1,4 +1,4 @@
-//! The simulation's outputs as text: the JSON report (issue 4's keys, one entry
+//! The simulation's outputs as text: the JSON report (its keys, one entry
 //! per collider with the reference first), the per-frame CSV and the balls' end
 //! points CSV.
 

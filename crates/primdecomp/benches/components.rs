@@ -1,4 +1,4 @@
-//! Many disjoint components (issue 6, "Limits"): C small tetrahedra on a jittered
+//! Many disjoint components (docs/decisions/hostile-input-limits.md, "Many components"): C small tetrahedra on a jittered
 //! 3D grid (4 faces each, no shared vertices), decomposed to N = C/10 and to N = 1, for
 //! C = 1,000, 3,000 and 10,000. Adjacency runs out at N = C, so every further merge
 //! goes through the bridging step (docs/decisions/0006-component-bridging-nearest-12.md); a

@@ -1,4 +1,4 @@
-//! Memory limit (issue 6, "Limits"): an input whose decomposition would need more memory
+//! Memory limit (docs/decisions/limits-memory-estimate.md): an input whose decomposition would need more memory
 //! than allowed is refused up front with [`Error::TooLarge`], instead of being killed by
 //! the operating system halfway through a batch.
 //!

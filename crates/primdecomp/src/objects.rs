@@ -1,4 +1,4 @@
-//! Per-object decomposition (`--per-object`, issue 28): each named part of the input
+//! Per-object decomposition (`--per-object`): each named part of the input
 //! (a glTF mesh node, an OBJ `o`/`g` group) is decomposed on its own with
 //! [`decompose`](crate::decompose()) and keeps its name. A glTF node's faces are
 //! decomposed in the node's own frame (its world transform's similarity part, see

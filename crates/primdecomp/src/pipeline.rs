@@ -21,7 +21,8 @@ use std::time::Instant;
 
 /// One pass through `params.targets` (`params.fill` is the caller's: `budget`).
 pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Result<Decomposition> {
-    // Far-flung vertices would overflow volumes to inf and NaN (issue 6).
+    // Far-flung vertices would overflow volumes to inf and NaN
+    // (docs/decisions/hostile-input-limits.md).
     check_input(mesh)?;
     let mut clock = Clock::new(progress);
     let bounds = mesh.aabb();
@@ -135,7 +136,7 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
         postprocess::Input::new(&ev, params, tris.as_ref())
     })?;
     let requests = requests(params, mesh);
-    // The cut of the merge tree at each target where the error is (issue 26), its
+    // The cut of the merge tree at each target where the error is (docs/decisions/0032), its
     // counts and bytes spent on what post-processing keeps.
     if let (true, Some(tris)) = (cut, &tris) {
         merged.snapshots = clock.stage(Stage::Postprocess, "cut", |_, _| {

@@ -1,4 +1,4 @@
-//! The fit kernels allocate nothing per candidate (issue 5): once a `Workspace` has
+//! The fit kernels allocate nothing per candidate: once a `Workspace` has
 //! grown to the largest point set it has seen, pricing merges — gathering points,
 //! the eigen-solve, every kind's fit, the sorts and profile hulls — makes no heap
 //! allocation. A counting global allocator proves it; it counts this thread only, so

@@ -1,5 +1,5 @@
 //! Re-pricing shared with the worker thread (`merge::worker`) allocates nothing per
-//! batch or candidate once warm (issue 5): neither the main thread (the job snapshot,
+//! batch or candidate once warm: neither the main thread (the job snapshot,
 //! the result slots) nor the worker (its workspace, its result list). The allocator
 //! here counts every thread, so this file holds this one test only: the harness's main
 //! thread just waits for it.

@@ -1,4 +1,4 @@
-//! Numerically extreme input (issue 6, item 3): degenerate geometry — one quad, a
+//! Numerically extreme input: degenerate geometry — one quad, a
 //! million-quad flat grid, collinear-only and zero-area-only faces, identical faces, a
 //! needle of aspect 1e-6 : 1 : 1, coordinates of 1e38 — must give a valid result: finite
 //! JSON and every face enclosed (`primdecomp_testkit::check`, the independent oracle). Coordinates
@@ -311,7 +311,7 @@ fn tightness(prims: &[Primitive], mesh_tris: &[[[f64; 3]; 3]]) -> f64 {
 
 /// The demo scene under 4 seeded random rotations, at N = 40 and 120: the primitive
 /// count stays within 10% of the unrotated run's and the tightness (a one-way mean
-/// surface distance, see [`tightness`]) within 10% — issue 6's bounds. Measured with
+/// surface distance, see [`tightness`]) within 10% (docs/decisions/limits-rotations.md). Measured with
 /// `cargo test --release --test extremes random -- --nocapture`: counts identical (120
 /// and 39); tightness 0.01797 → 0.01861, 0.01750, 0.01793, 0.01864 at N = 120 and
 /// 0.02352 → 0.02385, 0.02362, 0.02369, 0.02354 at N = 40 (−2.6% … +3.7%). Before the

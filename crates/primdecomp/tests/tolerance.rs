@@ -1,5 +1,5 @@
-//! Tolerance and byte targets cut from the merge tree (issue 26,
-//! docs/decisions/0034): simple solids need no count, every level encloses the mesh
+//! Tolerance and byte targets cut from the merge tree
+//! (docs/decisions/0032): simple solids need no count, every level encloses the mesh
 //! (checked by testkit's independent containment routine), a chain of tolerances
 //! comes from one pass, and on a multi-part corpus mesh a larger count never stands
 //! farther from the input.

@@ -1,4 +1,4 @@
-//! Parts carried by the primitive they lie in (issue 26; beyond the paper, whose
+//! Parts carried by the primitive they lie in (beyond the paper, whose
 //! §3.4 removes nested primitives after the pass: docs/decisions/0049). The greedy
 //! pass (§3.3, Alg. 1) merges a part lying inside a cluster's primitive at no cost,
 //! so a large cluster's subtree is often a chain that peels one such part at a time:

@@ -1,4 +1,4 @@
-//! The count past the least worst error (issue 26: the cut should lose little or
+//! The count past the least worst error (the cut's target: it should lose little or
 //! nothing on Chamfer, the mean distance; beyond the paper, whose greedy pass takes a
 //! level of the merge order; docs/decisions/0051). The worst-first splits spend a
 //! count on the nodes that set the worst error, and the cut of the count is then the

@@ -1,4 +1,4 @@
-//! Cutting the merge tree where the error is (issue 26; a deviation from §3.3, which
+//! Cutting the merge tree where the error is (a deviation from §3.3, which
 //! outputs the clusters alive when N remain: docs/decisions/0032 and 0034). The pass's
 //! merges form a forest whose leaves are the faces ([`tree`]); each node's primitive
 //! gets an error, the one-way distance from its surface to the input's (as

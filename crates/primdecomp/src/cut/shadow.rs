@@ -1,7 +1,7 @@
 //! A cell's shadow: a bound of the error over one triangle of a primitive's
 //! tessellation (`cut::error`'s cells) from the input triangles that the lines through
 //! the cell, along its normal, meet. The error bound of docs/decisions/0040 (part of
-//! the node error of issue 26's cut, beyond the paper) bounds a cell by its centroid's
+//! the node error of the cut, beyond the paper) bounds a cell by its centroid's
 //! distance plus its size, or by its corners' distances to one input triangle; over a
 //! curved input made of many small facets neither is tight until the cells are far
 //! smaller than the facets, and a round primitive runs out of splits

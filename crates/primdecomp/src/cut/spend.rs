@@ -3,7 +3,7 @@
 //! exploration spends the count on that subtree, and the chosen cut, which only
 //! splits a node while its children stay within the cut's worst error, comes back
 //! with fewer nodes than asked. The rest of the count is then spent on the cut's
-//! other nodes, worst first, and the cut is chosen again (issue 26: a target is left
+//! other nodes, worst first, and the cut is chosen again (the cut's target: a target is left
 //! unfilled only where nothing is left worth splitting; beyond the paper, whose
 //! greedy pass takes a level of the merge order; docs/decisions/0048).
 

@@ -1,4 +1,4 @@
-//! What the engine exports share (issue 28): the formats, the options (`--up`,
+//! What the engine exports share: the formats, the options (`--up`,
 //! `--scale`), the conversion of a result into the format's frame, and the mapping of
 //! each primitive kind to a native shape or to the conservative tessellation of
 //! [`tessellate`].

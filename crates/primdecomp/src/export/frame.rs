@@ -1,4 +1,5 @@
-//! Object frames and the conservative margin of the engine exports (issue 28).
+//! Object frames and the conservative margin of the engine exports
+//! (docs/decisions/exports-engine-conventions.md).
 //!
 //! A [`Frame`] is a similarity: `x ↦ translation + scale · R(rotation) · x`, the
 //! placement of a per-object result (a glTF mesh node's transform, or the identity)

@@ -1,4 +1,4 @@
-//! glTF 2.0 / GLB export with physics colliders (issue 28), written with `gltf-json`.
+//! glTF 2.0 / GLB export with physics colliders, written with `gltf-json`.
 //!
 //! Khronos form (default): `KHR_implicit_shapes` (document-level `shapes`: box with
 //! full `size`, sphere `radius`, capsule `height` between the cap centres with

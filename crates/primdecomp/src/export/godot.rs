@@ -1,4 +1,4 @@
-//! Godot 4 text scene (`.tscn`, format 3) export (issue 28): a `Node3D` root with
+//! Godot 4 text scene (`.tscn`, format 3) export: a `Node3D` root with
 //! one `StaticBody3D` per object (its transform; the original name in
 //! `metadata/primdecomp_name`), whose children are `CollisionShape3D`s with
 //! `BoxShape3D` (full `size`), `SphereShape3D`, `CapsuleShape3D` (`height` includes

@@ -1,4 +1,4 @@
-//! MuJoCo MJCF export (issue 28): one `<body>` per object (no joint: welded to the
+//! MuJoCo MJCF export: one `<body>` per object (no joint: welded to the
 //! world, i.e. static) placed by `pos` and a scalar-first `quat` (MJCF's order:
 //! w x y z), holding one `<geom>` per primitive: `box` with half sizes, `sphere`,
 //! `capsule` and `cylinder` by `fromto` (the segment's or axis' ends) with the

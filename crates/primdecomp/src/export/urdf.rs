@@ -1,4 +1,4 @@
-//! URDF export (issue 28): a root link, and one link per object joined to it by a
+//! URDF export: a root link, and one link per object joined to it by a
 //! fixed joint at the object's frame (`xyz`, and `rpy` = fixed-axis roll, pitch,
 //! yaw: R = Rz(yaw)·Ry(pitch)·Rx(roll)). Each primitive is a `<collision>`: `box`
 //! with full sizes, `sphere`, `cylinder` along its local z with full length; a

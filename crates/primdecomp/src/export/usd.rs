@@ -1,4 +1,4 @@
-//! USD text (`.usda`) export (issue 28) with UsdPhysics colliders: the stage's
+//! USD text (`.usda`) export with UsdPhysics colliders: the stage's
 //! `upAxis` is the result's own (`--up`; nothing is turned) and `metersPerUnit = 1`
 //! (`--scale` converts to metres). One `Xform` per object (translate, orient),
 //! holding per primitive a `Cube` (size 2, scaled by the half extents), `Sphere`,

@@ -1,4 +1,4 @@
-//! Writing an export (issue 28): renders a result in the chosen format with that
+//! Writing an export: renders a result in the chosen format with that
 //! format's writer, then puts the files in place through temporary files and renames.
 //! Shared conventions live in [`super::engine`]; each writer in its own module.
 //!

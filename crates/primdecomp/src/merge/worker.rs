@@ -1,4 +1,4 @@
-//! Re-pricing a merged cluster's neighbours on two cores (issue 5). After each merge of
+//! Re-pricing a merged cluster's neighbours on two cores. After each merge of
 //! Alg. 1 the new cluster's merges with its 4–16 neighbours are re-priced: a few
 //! microseconds of fits per neighbour, too little to pay for a rayon task
 //! (docs/decisions/perf-repricing-worker-and-look-ahead.md). Here one persistent worker thread

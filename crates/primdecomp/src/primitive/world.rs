@@ -1,5 +1,5 @@
 //! Moving a fitted primitive from the engine's re-centred frame to world coordinates
-//! without losing enclosure (issue 6, fuzz finding 3).
+//! without losing enclosure (fuzz finding 3).
 //!
 //! Boxes, spheres, capsules and prisms move by a centre or two end points: rounding
 //! moves every point of their surface by at most that rounding, an ulp or so of the

@@ -1,0 +1,139 @@
+#!/usr/bin/env python3
+"""Checks the documents: every relative link resolves, every decision record opens
+with its five-line header, and docs/decisions/README.md's table matches the headers.
+
+    python3 scripts/check_docs.py           # check; exit 1 with one line per problem
+    python3 scripts/check_docs.py --write   # rewrite the README's table from the headers
+
+A link resolves when its file exists (relative to the linking file) and, for an
+anchor into a Markdown file, a heading of that file has the anchor's GitHub slug.
+A record's header is lines 3 to 7: `Decision:`, `Status:`, `Effect:`, `Code:`,
+`Measurements:` (line 1 its title, line 2 blank).
+"""
+import re
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent.parent
+DECISIONS = ROOT / "docs" / "decisions"
+FIELDS = ("Decision:", "Status:", "Effect:", "Code:", "Measurements:")
+TABLE_HEAD = "| record | decision | status |\n|---|---|---|\n"
+LINK = re.compile(r"\[[^\]]*\]\(([^)\s]+)\)")
+FENCE = re.compile(r"^(```|~~~)")
+
+
+def documents():
+    """The Markdown files a reader opens: docs/, the top-level and per-folder READMEs."""
+    files = sorted((ROOT / "docs").rglob("*.md"))
+    files += [ROOT / "README.md", ROOT / "ARCHITECTURE.md"]
+    for sub in ("fuzz", "tests", "benches", "crates"):
+        files += sorted(p for p in (ROOT / sub).rglob("README.md") if not skipped(p))
+    return [f for f in files if f.exists()]
+
+
+def skipped(path):
+    """Build outputs and installed packages: not ours to check."""
+    rel = path.relative_to(ROOT).parts
+    return any(part in ("target", "node_modules") or part.startswith(".") for part in rel)
+
+
+def slug(heading):
+    """GitHub's anchor for a heading: lower case, punctuation dropped, spaces to hyphens."""
+    text = heading.strip().lower()
+    text = re.sub(r"[^\w\- ]", "", text)
+    return text.replace(" ", "-")
+
+
+def anchors(path, cache={}):
+    if path not in cache:
+        seen, out, fenced = {}, set(), False
+        for line in path.read_text(encoding="utf-8").splitlines():
+            if FENCE.match(line):
+                fenced = not fenced
+            if fenced or not line.startswith("#"):
+                continue
+            base = slug(line.lstrip("#"))
+            n = seen.get(base, 0)
+            seen[base] = n + 1
+            out.add(base if n == 0 else f"{base}-{n}")
+        cache[path] = out
+    return cache[path]
+
+
+def link_problems(path):
+    problems, fenced = [], False
+    for no, line in enumerate(path.read_text(encoding="utf-8").splitlines(), 1):
+        if FENCE.match(line):
+            fenced = not fenced
+        if fenced:
+            continue
+        for target in LINK.findall(line):
+            if re.match(r"[a-z]+:", target):
+                continue
+            file, _, anchor = target.partition("#")
+            dest = (path.parent / file).resolve() if file else path
+            where = f"{path.relative_to(ROOT)}:{no}: {target}"
+            if not dest.exists():
+                problems.append(f"{where}: no such file")
+            elif anchor and dest.suffix == ".md" and anchor not in anchors(dest):
+                problems.append(f"{where}: no heading with that anchor")
+    return problems
+
+
+def header(path):
+    """The five header values of a record, or None where it has none."""
+    lines = path.read_text(encoding="utf-8").splitlines()
+    if len(lines) < 7 or lines[1] != "":
+        return None
+    values = []
+    for field, line in zip(FIELDS, lines[2:7]):
+        if not line.startswith(field + " "):
+            return None
+        values.append(line[len(field) + 1 :].strip())
+    return lines[0].lstrip("# ").strip(), values
+
+
+def records():
+    """Every record: the top-level ones the table lists, and the cut's steps."""
+    top = sorted(p for p in DECISIONS.glob("*.md") if p.name != "README.md")
+    return top, sorted((DECISIONS / "cut-steps").glob("*.md"))
+
+
+def table(top):
+    cell = lambda s: s.replace("|", "\\|")
+    rows = []
+    for p in top:
+        title, (decision, status, *_) = header(p)
+        rows.append(f"| [{cell(title)}]({p.name}) | {cell(decision)} | {cell(status)} |\n")
+    return TABLE_HEAD + "".join(rows)
+
+
+def main():
+    problems = []
+    for doc in documents():
+        problems += link_problems(doc)
+    top, steps = records()
+    for p in top + steps:
+        if header(p) is None:
+            problems.append(f"{p.relative_to(ROOT)}: no five-line header ({', '.join(FIELDS)})")
+    readme = DECISIONS / "README.md"
+    text = readme.read_text(encoding="utf-8")
+    start = text.find(TABLE_HEAD)
+    if not problems or "--write" in sys.argv:
+        if all(header(p) for p in top):
+            want = table(top)
+            if "--write" in sys.argv:
+                body = text[:start] if start >= 0 else text.rstrip("\n") + "\n\n"
+                readme.write_text(body + want, encoding="utf-8")
+            elif start < 0 or text[start:] != want:
+                problems.append("docs/decisions/README.md: the table does not match the records' "
+                                "headers (run scripts/check_docs.py --write)")
+    for p in problems:
+        print(p)
+    print(f"check_docs: {len(documents())} documents, {len(top) + len(steps)} records, "
+          f"{len(problems)} problems")
+    return 1 if problems else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1309,19 +1309,24 @@ fn reach(l: &primdecomp::Level, diagonal: f64) -> String {
     s + ")"
 }
 
-/// Why a greedy snapshot holds under half of its count although the input has the
-/// faces for it, for the summary line ("" otherwise): post-processing removed the
-/// clusters inside others and joined coplanar plates (§3.4), as where one part's
-/// primitive encloses the rest.
+/// Why a level of a count alone holds fewer primitives than asked, for the summary
+/// line ("" otherwise): a greedy snapshot under half of its count, where
+/// post-processing removed the clusters inside others and joined coplanar plates
+/// (§3.4); a cut short by more than a few (2, or 1/32 of the count: the rule that
+/// makes a greedy level a cut, docs/decisions/0054), where no split of the merge tree
+/// stands nearer the mesh than the primitives kept.
 fn few(l: &primdecomp::Level, faces: usize) -> &'static str {
-    let under = 2 * l.primitives.len() < l.target.min(faces);
+    let want = l.target.min(faces);
+    let n = l.primitives.len();
     let count_alone = l.tolerance.is_none() && l.max_bytes.is_none();
-    match (l.distance.is_some(), under && count_alone) {
-        (false, true) => {
+    match (l.distance.is_some(), count_alone) {
+        (false, true) if 2 * n < want => {
             "; the other clusters lay inside those kept or were joined to them (without \
             --greedy, counts keep parts apart)"
         }
-        (true, true) => "; no more primitives would stand nearer the mesh",
+        (true, true) if n + (want / 32).max(2) < want => {
+            "; no more primitives would stand nearer the mesh"
+        }
         _ => "",
     }
 }

@@ -322,3 +322,29 @@ fn a_greedy_level_far_under_its_count_says_why() {
     assert_eq!(code, Some(0), "{out}");
     assert!(!out.contains("lay inside those kept"), "{out}");
 }
+
+/// Six separate cubes at -n 10: six boxes stand on the faces exactly, so the cut
+/// keeps six, and the summary says why a user asking for ten got six (short by more
+/// than a few, not under half).
+#[test]
+fn a_cut_short_of_its_count_says_why() {
+    let d = dir("six");
+    let parts: Vec<_> = (0..6)
+        .map(|i| {
+            let lo = [3.0 * i as f64, 0.0, 0.0];
+            cuboid(lo, lo.map(|x| x + 1.0))
+        })
+        .collect();
+    std::fs::write(d.join("six.obj"), obj_text(&join(&parts))).unwrap();
+    let (code, out) = run(&d, &["decompose", "six.obj", "-n", "10", "-o", "s.json"]);
+    assert_eq!(code, Some(0), "{out}");
+    assert!(out.contains("count    10 → 6 primitives (6 box)"), "{out}");
+    assert!(
+        out.contains("no more primitives would stand nearer"),
+        "{out}"
+    );
+    // Asking for what the parts hold says nothing more.
+    let (code, out) = run(&d, &["decompose", "six.obj", "-n", "6", "-o", "e.json"]);
+    assert_eq!(code, Some(0), "{out}");
+    assert!(!out.contains("no more primitives"), "{out}");
+}

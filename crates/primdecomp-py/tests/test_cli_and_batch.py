@@ -120,7 +120,8 @@ def test_input_arrays_are_not_copied():
 
 
 def test_faces_dtypes_and_layouts_agree():
-    v, f = primdecomp.load(made_up("kinds.obj"))
+    # Triangles (an STL), so the faces are one (F, 3) array in every dtype and layout.
+    v, f = primdecomp.load(made_up("robot.stl"))
     ref = primdecomp.decompose(v, f, targets=[6]).to_json()
     f = np.asarray(f)
     wide = np.zeros((len(f), 6), dtype=np.int64)

@@ -51,6 +51,14 @@ def corpus(name):
     return p
 
 
+def collected(names):
+    """`made-up/…` and `corpus/…` test parameters as collected here: the corpus ones
+    where the corpus is, and under CI (where its absence fails them); elsewhere a clone
+    without ../shared runs the made-up ones, none skipped."""
+    keep = CORPUS.is_dir() or IN_CI
+    return [n for n in names if keep or not n.startswith("corpus/")]
+
+
 def mesh(name):
     """`made-up/NAME` or `corpus/NAME`, as test parameters name them."""
     where, _, file = name.partition("/")

@@ -15,13 +15,13 @@ import pytest
 import primdecomp
 import primdecomp.batch
 
-from conftest import CLI, ROOT, made_up, mesh, need
+from conftest import CLI, ROOT, collected, made_up, mesh, need
 
 # Made-up meshes of three formats (kinds of every primitive, a scalene pair, a z-up
 # STL), then small corpus meshes, the first two of which differed from the CLI in the
 # last bit before load() returned the file's coordinates unrounded.
-MESHES = ["made-up/kinds.obj", "made-up/wedges.off", "made-up/robot.stl",
-          "corpus/coacd_bottle.obj", "corpus/parry_poly_cylinder.obj", "corpus/cad_featuretype.STL"]
+MESHES = collected(["made-up/kinds.obj", "made-up/wedges.off", "made-up/robot.stl", "corpus/coacd_bottle.obj",
+                    "corpus/parry_poly_cylinder.obj", "corpus/cad_featuretype.STL"])
 BATCH = ["kinds.obj", "wedges.off", "robot.stl"]
 
 

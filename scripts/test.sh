@@ -1,126 +1,253 @@
 #!/usr/bin/env bash
-# The test command (README.md): every Rust test of the workspace (unit, property,
-# paper-claim, corpus-wide and CLI tests, and the doctests), then the checks that
-# need a real consumer outside Rust, each in its own section below. Each section
-# installs what it needs itself (Python packages into .venv, npm packages into
-# node_modules, Debian packages with apt-get) and fails loudly; under CI (`CI` set)
-# a consumer that cannot be installed is a failure, never a skip.
-# Extra arguments go to `cargo test` (e.g. a test name filter).
-set -euo pipefail
+# The test command (README.md). Runs, each in its own section:
+#   documents every relative link resolves, every decision record opens with its
+#            header and the records' index matches them (scripts/check_docs.py);
+#   rust     every Rust test of the workspace (unit, property, paper-claim, corpus-wide
+#            and CLI tests, doctests), built once: the consumer checks below use the
+#            binaries this build makes, so nothing is compiled twice;
+#   exports  every engine export loaded by its real consumer (MuJoCo, yourdfpy and
+#            pybullet, usd-core, the Khronos glTF Validator; Godot's scene parsed back)
+#            with enclosure checked per format (tests/exports);
+#   browser  the viewer page in a real headless Chromium (tests/browser);
+#   python   the Python wheel built with maturin, pip-installed into a venv, and its
+#            pytest suite (crates/primdecomp-py/tests).
+# Every section runs on inputs the repository writes at test time (the demo scene,
+# made-up meshes of every primitive kind, a z-up STL, a multi-node glTF and a
+# multi-group OBJ: `primdecomp-testkit inputs`), so a clone without ../shared runs
+# every consumer for real; the corpus (../shared/datasets/corpus) adds breadth where
+# present. Each section installs what it needs (Python packages into .venv and
+# .venv-py, npm packages beside their tests, Debian's chromium and fonts with apt-get
+# when run as root). It ends with a summary of what ran and what was skipped, per
+# section; under CI (`CI` set) any skip is a failure. Extra arguments go to
+# `cargo test` (e.g. a test name filter).
+set -uo pipefail
 cd "$(dirname "$0")/.."
+root=$PWD
+target=${CARGO_TARGET_DIR:-$root/target}
+export PRIMDECOMP_BIN=$target/release/primdecomp
+export PRIMDECOMP_TESTKIT=$target/release/primdecomp-testkit
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+export PRIMDECOMP_SKIP_LOG=$work/rust_skips
+corpus=$root/../shared/datasets/corpus
+started=$SECONDS
 
-echo "== documents: every relative link resolves, every decision record has its header (scripts/check_docs.py)"
-python3 scripts/check_docs.py
-
-echo "== cargo test --release --workspace"
-cargo test --release --workspace "$@"
-
-echo "== browser: the viewer page in a real headless Chromium (tests/browser)"
-# `primdecomp view`'s page opened from file:// with the network refused: it must
-# become ready, report the JSON's primitive counts, draw every kind in its colour,
-# switch levels and panes, and show a clicked primitive (tests/browser/view.test.mjs);
-# built from hostile file and collider names, it must still start and run no injected
-# script (tests/browser/hostile.test.mjs).
-# Needs the release binary, Debian's chromium, Node and playwright-core (npm ci, from
-# tests/browser/package-lock.json); chromium is installed here with apt-get when
-# missing. Under CI a missing piece fails; elsewhere it is skipped, loudly.
 in_ci() { [ -n "${CI:-}" ] && [ "${CI}" != "false" ] && [ "${CI}" != "0" ]; }
-browser_missing() {
+section() { echo; echo "== $1 ($(( SECONDS - started )) s so far)"; }
+
+# The summary: one row per section (name|passed|failed|skipped|notes).
+rows=()
+row() { rows+=("$1|$2|$3|$4|$5"); }
+# A section that cannot run at all: a failure under CI, else one loud skip.
+cannot_run() {
   if in_ci; then
-    echo "FATAL: $1; the browser test cannot run under CI" >&2
-    exit 1
+    echo "FATAL: $1: $2 (required under CI)" >&2
+    row "$1" 0 1 0 "could not run: $2"
+  else
+    echo "!!!!!!!! SKIPPED $1: $2" >&2
+    row "$1" 0 0 1 "not run: $2"
   fi
-  echo "!!!!!!!! SKIPPED the browser test: $1" >&2
 }
-chromium=${CHROMIUM:-/usr/bin/chromium}
-if [ ! -x "$chromium" ] && [ "$chromium" = /usr/bin/chromium ] && command -v apt-get >/dev/null 2>&1 && [ "$(id -u)" = 0 ]; then
-  echo "-- installing Debian's chromium"
-  (apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium) >/dev/null \
-    || echo "apt-get could not install chromium" >&2
-fi
-if [ ! -x "$chromium" ]; then
-  browser_missing "no Chromium at $chromium (apt-get install chromium)"
-elif ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
-  browser_missing "no node/npm on PATH"
+# pytest's and node's closing counts from a log: "passed failed skipped".
+pytest_counts() {
+  python3 - "$1" <<'EOF'
+import re, sys
+text = open(sys.argv[1], errors="replace").read().splitlines()
+last = next((l for l in reversed(text) if re.search(r"\d+ (passed|failed|skipped|error)", l)), "")
+get = lambda w: sum(int(n) for n in re.findall(r"(\d+) " + w, last))
+print(get("passed"), get("failed") + get("error"), get("skipped"))
+EOF
+}
+node_counts() {
+  awk '/^# pass /{p=$3} /^# fail /{f=$3} /^# skipped /{s=$3} /^# cancelled /{f+=$3} END{print p+0, f+0, s+0}' "$1"
+}
+pip_install() { # VENV ARGS...: pip without its progress bar, one line per package
+  "$1/bin/pip" install --disable-pip-version-check --progress-bar off "${@:2}" | grep -E "^(Collecting|Successfully)" || true
+}
+
+# ---------------------------------------------------------------- documents
+section "documents: every relative link resolves, every decision record has its header (scripts/check_docs.py)"
+if python3 scripts/check_docs.py; then
+  row documents 1 0 0 "links and decision records"
 else
-  cargo build --release --quiet -p primdecomp-cli
-  (cd tests/browser && npm ci --no-audit --no-fund --loglevel=error)
-  CHROMIUM="$chromium" node --test tests/browser/view.test.mjs tests/browser/hostile.test.mjs
+  row documents 0 1 0 "scripts/check_docs.py found problems (above)"
 fi
 
-echo "== export consumers: MuJoCo, yourdfpy, usd-core, glTF Validator, enclosure per format"
-# The engine exports are checked by the real consumers (tests/exports/README.md):
-# Python packages pinned in tests/exports/requirements.txt go into .venv, the Khronos
-# glTF Validator (npm) into tests/exports/node_modules. Installs are skipped when
-# already there; under CI a consumer that cannot be installed fails the run.
-fail_or_skip() {
-  if in_ci; then
-    echo "FATAL: $1 (required under CI)" >&2
-    exit 1
+# ---------------------------------------------------------------- system packages
+section "system packages: chromium (the browser test), fonts (the sim plot test)"
+want_apt=()
+chromium=${CHROMIUM:-/usr/bin/chromium}
+[ -x "$chromium" ] || [ "$chromium" != /usr/bin/chromium ] || want_apt+=(chromium)
+[ -n "${PRIMDECOMP_FONT:-}" ] || [ -f /usr/share/fonts/truetype/dejavu/DejaVuSans.ttf ] || want_apt+=(fonts-dejavu-core)
+if [ ${#want_apt[@]} -gt 0 ]; then
+  if command -v apt-get >/dev/null 2>&1 && [ "$(id -u)" = 0 ]; then
+    echo "-- apt-get install ${want_apt[*]} (a minute or two)"
+    (apt-get update -q && DEBIAN_FRONTEND=noninteractive apt-get install -y -q "${want_apt[@]}") 2>&1 \
+      | grep -E "^(Get:|Setting up|E:)" | sed 's/^/   /' || true
+  else
+    echo "cannot install ${want_apt[*]}: not root or no apt-get" >&2
   fi
-  echo "WARNING: $1; the export consumer checks are skipped (CI fails here)" >&2
-  exports_ok=0
-}
+else
+  echo "-- all there"
+fi
+
+# ---------------------------------------------------------------- rust
+section "rust: cargo test --release --workspace (one build; the binaries below come from it)"
+: >"$PRIMDECOMP_SKIP_LOG"
+# --no-fail-fast: every test binary runs, so the summary counts all of them.
+cargo test --release --workspace --no-fail-fast "$@" 2>&1 | tee "$work/rust.log"
+rust_status=${PIPESTATUS[0]}
+read -r r_pass r_fail r_ign < <(awk '/^test result:/{
+    for (i = 1; i <= NF; i++) { if ($(i+1) ~ /^passed/) p += $i; if ($(i+1) ~ /^failed/) f += $i; if ($(i+1) ~ /^ignored/) g += $i }
+  } END { print p+0, f+0, g+0 }' "$work/rust.log")
+r_skip=$(sort -u "$PRIMDECOMP_SKIP_LOG" | wc -l)
+[ "$rust_status" = 0 ] || [ "$r_fail" -gt 0 ] || r_fail=1  # a build failure fails the section
+note="$r_ign ignored by design (measurements run by hand)"
+if [ "$r_skip" -gt 0 ]; then
+  note="$note; $r_skip passed without their corpus part: $(cut -d: -f2 "$PRIMDECOMP_SKIP_LOG" | sort -u | tr '\n' ' ')"
+  in_ci && r_fail=$(( r_fail + r_skip ))
+fi
+row rust "$(( r_pass - r_skip ))" "$r_fail" "$r_skip" "$note"
+built=1
+for b in "$PRIMDECOMP_BIN" "$PRIMDECOMP_TESTKIT"; do [ -x "$b" ] || built=0; done
+
+# ---------------------------------------------------------------- made-up inputs
+export PRIMDECOMP_TEST_INPUTS=$work/inputs
+if [ "$built" = 1 ]; then
+  section "made-up inputs (primdecomp-testkit inputs): what every consumer check runs on"
+  "$PRIMDECOMP_TESTKIT" inputs "$PRIMDECOMP_TEST_INPUTS" | tr '\n' ' '; echo
+  if [ -d "$corpus" ]; then echo "-- and the corpus: $corpus"; else echo "-- no corpus at $corpus: its cases are skipped"; fi
+fi
+
+# ---------------------------------------------------------------- exports
+section "exports: MuJoCo, yourdfpy + pybullet, usd-core, Khronos glTF Validator, enclosure per format (tests/exports)"
 exports_ok=1
 req=tests/exports/requirements.txt
-if ! command -v python3 >/dev/null 2>&1; then
-  fail_or_skip "python3 not found"
-fi
-if [ "$exports_ok" = 1 ] && { [ ! -x .venv/bin/python ] || ! cmp -s "$req" .venv/.requirements 2>/dev/null; }; then
-  echo "-- installing $req into .venv"
-  if python3 -m venv .venv && .venv/bin/pip install --quiet --disable-pip-version-check -r "$req"; then
+if [ "$built" = 0 ]; then
+  cannot_run exports "the Rust build failed"; exports_ok=0
+elif ! command -v python3 >/dev/null 2>&1; then
+  cannot_run exports "python3 not found"; exports_ok=0
+elif [ ! -x .venv/bin/python ] || ! cmp -s "$req" .venv/.requirements 2>/dev/null; then
+  echo "-- installing $req into .venv (a few minutes the first time)"
+  if python3 -m venv .venv && pip_install .venv -r "$req" && .venv/bin/python -c "import mujoco, pxr, yourdfpy, pybullet"; then
     cp "$req" .venv/.requirements
   else
-    fail_or_skip "cannot install $req into .venv"
+    cannot_run exports "cannot install $req into .venv"; exports_ok=0
   fi
 fi
 if [ "$exports_ok" = 1 ]; then
   if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
-    fail_or_skip "node/npm not found (the glTF Validator runs on node)"
+    cannot_run exports "node/npm not found (the glTF Validator runs on node)"; exports_ok=0
   elif ! (cd tests/exports && node -e "const w = require('./package.json').dependencies['gltf-validator']; process.exit(require('./node_modules/gltf-validator/package.json').version === w ? 0 : 1)") 2>/dev/null; then
     echo "-- npm ci in tests/exports (gltf-validator)"
-    (cd tests/exports && npm ci --no-audit --no-fund --loglevel=error) || fail_or_skip "npm ci failed in tests/exports"
+    (cd tests/exports && npm ci --no-audit --no-fund --loglevel=error) || { cannot_run exports "npm ci failed in tests/exports"; exports_ok=0; }
   fi
 fi
 if [ "$exports_ok" = 1 ]; then
-  cargo build --release --quiet -p primdecomp-cli -p primdecomp-testkit
-  # pytest's exit 5 (no test collected) is a failure here too.
-  (cd tests/exports && ../../.venv/bin/python -m pytest -q -p no:cacheprovider)
+  (cd tests/exports && ../../.venv/bin/python -m pytest -q -rs -p no:cacheprovider) 2>&1 | tee "$work/exports.log"
+  status=${PIPESTATUS[0]}
+  read -r p f s < <(pytest_counts "$work/exports.log")
+  [ "$status" = 0 ] || [ "$f" -gt 0 ] || f=1
+  note=""
+  [ -d "$corpus" ] || note="made-up cases only: no corpus at $corpus (its cases are not collected)"
+  row exports "$p" "$f" "$s" "$note"
 fi
 
-# The Python package (crates/primdecomp-py/README.md): a fresh venv (.venv-py), maturin,
-# numpy, pytest, trimesh + scipy (the independent convexity/containment check) and ray
-# (the batch runner on a local Ray instance) from PyPI, then a real
-# `pip install ./crates/primdecomp-py` (the wheel built by maturin into the venv) and
-# its pytest suite, which compares with the release CLI's JSON (built first, below).
-# Under CI a missing piece fails; elsewhere it is skipped.
-py_fail_or_skip() {
-  if in_ci; then
-    echo "FATAL: $1 (required under CI)" >&2
-    exit 1
-  fi
-  echo "WARNING: $1; the Python package tests are skipped (CI fails here)" >&2
-  py_ok=0
-}
+# ---------------------------------------------------------------- browser
+section "browser: the viewer page in headless Chromium (tests/browser)"
+# view.test.mjs: the page becomes ready, draws every kind, switches levels and panes;
+# hostile.test.mjs: built from hostile file and collider names, it still starts and
+# runs no injected script.
+if [ "$built" = 0 ]; then
+  cannot_run browser "the Rust build failed"
+elif [ ! -x "$chromium" ]; then
+  cannot_run browser "no Chromium at $chromium (apt-get install chromium)"
+elif ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
+  cannot_run browser "node/npm not found"
+elif ! (cd tests/browser && npm ci --no-audit --no-fund --loglevel=error); then
+  cannot_run browser "npm ci failed in tests/browser"
+else
+  CHROMIUM="$chromium" node --test --test-reporter=spec --test-reporter-destination=stdout \
+    --test-reporter=tap --test-reporter-destination="$work/browser.tap" tests/browser/view.test.mjs tests/browser/hostile.test.mjs
+  status=$?
+  read -r p f s < <(node_counts "$work/browser.tap")
+  [ "$status" = 0 ] || [ "$f" -gt 0 ] || f=1
+  row browser "$p" "$f" "$s" ""
+fi
+
+# ---------------------------------------------------------------- python
+section "python: the wheel (maturin), pip-installed into .venv-py, and its pytest suite"
+# The test dependencies: numpy, pytest, trimesh + scipy (an independent convexity and
+# containment check) and ray (the batch runner on a local Ray instance).
+py_req="maturin numpy pytest trimesh scipy ray"
 py_ok=1
-command -v python3 >/dev/null 2>&1 || py_fail_or_skip "python3 not found"
-if [ "$py_ok" = 1 ]; then
-  echo "-- building the Python package into a fresh .venv-py"
+if [ "$built" = 0 ]; then
+  cannot_run python "the Rust build failed"; py_ok=0
+elif ! command -v python3 >/dev/null 2>&1; then
+  cannot_run python "python3 not found"; py_ok=0
+elif [ ! -x .venv-py/bin/python ] || [ "$(cat .venv-py/.requirements 2>/dev/null)" != "$py_req" ]; then
+  echo "-- installing $py_req into .venv-py (a few minutes the first time)"
   rm -rf .venv-py
-  if ! { python3 -m venv .venv-py &&
-    .venv-py/bin/pip install --quiet --disable-pip-version-check maturin numpy pytest trimesh scipy ray &&
-    CARGO_TARGET_DIR="$PWD/target" .venv-py/bin/pip install --quiet --disable-pip-version-check ./crates/primdecomp-py; }; then
-    py_fail_or_skip "cannot pip install ./crates/primdecomp-py into .venv-py"
+  # shellcheck disable=SC2086
+  if python3 -m venv .venv-py && pip_install .venv-py $py_req; then
+    echo "$py_req" >.venv-py/.requirements
+  else
+    cannot_run python "cannot install $py_req into .venv-py"; py_ok=0
   fi
 fi
 if [ "$py_ok" = 1 ]; then
-  cargo build --release --quiet -p primdecomp-cli
-  root=$PWD
-  (cd /tmp && "$root/.venv-py/bin/python" -m pytest -q -p no:cacheprovider "$root/crates/primdecomp-py/tests")
+  # The extension module is a second build of the core (it links against Python,
+  # without the tests' feature set): shown as it goes, in the same target directory.
+  echo "-- building the wheel (maturin build --release; the first time a few minutes)"
+  if CARGO_TARGET_DIR="$target" .venv-py/bin/maturin build --release -m crates/primdecomp-py/Cargo.toml \
+      --out "$work/wheels" 2>&1 | grep -vE "^\s+(Compiling|Fresh) " ; then
+    wheel=$(ls "$work"/wheels/*.whl 2>/dev/null | head -1)
+  fi
+  if [ -z "${wheel:-}" ] || ! pip_install .venv-py --force-reinstall --no-deps "$wheel"; then
+    cannot_run python "the wheel did not build or install"; py_ok=0
+  fi
+fi
+if [ "$py_ok" = 1 ]; then
+  so=$(.venv-py/bin/python -c "import primdecomp._native as n; print(n.__file__)")
+  sizes="wheel $(du -k "$wheel" | cut -f1) KiB, installed module $(du -k "$so" | cut -f1) KiB, CLI $(du -k "$PRIMDECOMP_BIN" | cut -f1) KiB"
+  echo "-- sizes: $sizes"
+  (cd /tmp && "$root/.venv-py/bin/python" -m pytest -q -rs -p no:cacheprovider "$root/crates/primdecomp-py/tests") 2>&1 | tee "$work/python.log"
+  status=${PIPESTATUS[0]}
+  read -r p f s < <(pytest_counts "$work/python.log")
+  [ "$status" = 0 ] || [ "$f" -gt 0 ] || f=1
+  row python "$p" "$f" "$s" "$sizes"
 fi
 
-echo "== embedding: the C ABI (cc, c++, AddressSanitizer), the npm package with Rapier.js in node, the live page in Chromium"
-# scripts/test_embedding.sh installs what it needs; under CI a missing piece fails.
-CHROMIUM="$chromium" scripts/test_embedding.sh
+# ---------------------------------------------------------------- embedding
+section "embedding: the C ABI (cc, c++, AddressSanitizer), the npm package with Rapier.js in node, the live page in Chromium"
+# scripts/test_embedding.sh installs what it needs (g++ and pkg-config, the wasm32
+# target, wasm-bindgen-cli, npm packages); under CI a missing piece fails. Its three
+# parts (c, wasm, live) each count as one check here; their own counts are above.
+if [ "$built" = 0 ]; then
+  cannot_run embedding "the Rust build failed"
+else
+  CHROMIUM="$chromium" scripts/test_embedding.sh 2>&1 | tee "$work/embedding.log"
+  status=${PIPESTATUS[0]}
+  e_skip=$(grep -c '^!!!!!!!! SKIPPED (embedding):' "$work/embedding.log" || true)
+  if [ "$status" = 0 ]; then
+    row embedding "$(( 3 - e_skip ))" 0 "$e_skip" "c, wasm, live"
+  else
+    row embedding 0 1 0 "scripts/test_embedding.sh failed (above)"
+  fi
+fi
 
-echo "== all tests passed"
+# ---------------------------------------------------------------- summary
+section "summary"
+total_p=0 total_f=0 total_s=0
+printf '%-9s %8s %8s %8s  %s\n' section passed failed skipped notes
+for r in "${rows[@]}"; do
+  IFS='|' read -r name p f s note <<<"$r"
+  printf '%-9s %8s %8s %8s  %s\n' "$name" "$p" "$f" "$s" "$note"
+  total_p=$(( total_p + p )) total_f=$(( total_f + f )) total_s=$(( total_s + s ))
+done
+if [ "$total_s" -gt 0 ] && in_ci; then
+  echo "FATAL: $total_s skipped under CI: every check must run here" >&2
+  total_f=$(( total_f + total_s ))
+fi
+echo "$total_p passed, $total_f failed, $total_s skipped"
+[ "$total_f" = 0 ]

@@ -1,19 +1,23 @@
 // The viewer page (`primdecomp view`) in a real headless Chromium, opened from
-// file:// with every network request refused: it must draw a corpus mesh's colliders
-// and say what it drew.
+// file:// with every network request refused: it must draw a mesh's colliders and say
+// what it drew.
 //
-// For a corpus mesh with all six kinds (vhacd_lamp.obj at -n 60,20) it checks that
-// the page becomes ready with no network, that the primitive count and the counts
-// by kind it reports match each level's JSON, that a screenshot is not blank and
-// shows every present kind's colour (by hue, as shading darkens it) in the drawing
-// and its exact flat colour in the legend swatch, that switching level and showing
-// the compared hulls side by side change what is drawn, and that clicking a
-// primitive shows its kind, parameters and face count from the JSON.
+// On a made-up mesh with all six kinds (kinds.obj from `primdecomp-testkit inputs`, at
+// -n 6,3; it runs everywhere) and, where the corpus is present, on a corpus mesh with
+// all six kinds (vhacd_lamp.obj at -n 60,20), it checks that the page becomes ready
+// with no network, that the primitive count and the counts by kind it reports match
+// each level's JSON, that a screenshot is not blank and shows every present kind's
+// colour (by hue, as shading darkens it) in the drawing and its exact flat colour in
+// the legend swatch, that switching level and showing the compared hulls side by side
+// change what is drawn, that a level is labelled by what was asked, and that clicking
+// a primitive shows its kind, parameters and face count from the JSON.
 //
-// Environment: PRIMDECOMP_BIN (default target/release/primdecomp), CHROMIUM
-// (default /usr/bin/chromium), VIEW_SHOTS (a directory to keep the screenshots in),
-// CI (set: a missing corpus or browser fails instead of skipping).
-import { test, before, after } from 'node:test';
+// Environment: PRIMDECOMP_BIN (default $CARGO_TARGET_DIR/release/primdecomp, else
+// target/release/primdecomp), PRIMDECOMP_TESTKIT (likewise), PRIMDECOMP_TEST_INPUTS (a
+// folder of the made-up inputs; default: written here), CHROMIUM (default
+// /usr/bin/chromium), VIEW_SHOTS (a directory to keep the screenshots in), CI (set: a
+// missing corpus or browser fails instead of skipping).
+import { describe, test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
@@ -24,15 +28,13 @@ import { decodePng, countHue, countNot, countExact } from './png.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const root = path.resolve(here, '..', '..');
-const bin = process.env.PRIMDECOMP_BIN || path.join(root, 'target', 'release', 'primdecomp');
+const target = process.env.CARGO_TARGET_DIR ? path.resolve(process.env.CARGO_TARGET_DIR) : path.join(root, 'target');
+const bin = process.env.PRIMDECOMP_BIN || path.join(target, 'release', 'primdecomp');
+const testkit = process.env.PRIMDECOMP_TESTKIT || path.join(target, 'release', 'primdecomp-testkit');
 const chromiumPath = process.env.CHROMIUM || '/usr/bin/chromium';
 const corpus = path.resolve(root, '..', 'shared', 'datasets', 'corpus');
-const MESH = 'vhacd_lamp.obj';
-const TARGETS = [60, 20];
 const inCi = !!process.env.CI && process.env.CI !== 'false' && process.env.CI !== '0';
-
-const work = fs.mkdtempSync(path.join(os.tmpdir(), 'primdecomp-view-test-'));
-const shots = process.env.VIEW_SHOTS ? path.resolve(process.env.VIEW_SHOTS) : work;
+const shotsRoot = process.env.VIEW_SHOTS ? path.resolve(process.env.VIEW_SHOTS) : null;
 
 function missing(what) {
   const msg = `${what}: browser test cannot run`;
@@ -41,24 +43,47 @@ function missing(what) {
   return msg;
 }
 
-let skip = false;
-const mesh = path.join(corpus, MESH);
-if (!fs.existsSync(mesh)) skip = missing(`CORPUS ABSENT: ${mesh} not found`);
-else if (!fs.existsSync(chromiumPath)) skip = missing(`no Chromium at ${chromiumPath} (apt-get install chromium)`);
-else if (!fs.existsSync(bin)) skip = missing(`no primdecomp binary at ${bin} (cargo build --release)`);
+function inputs() {
+  if (process.env.PRIMDECOMP_TEST_INPUTS) return path.resolve(process.env.PRIMDECOMP_TEST_INPUTS);
+  const d = fs.mkdtempSync(path.join(os.tmpdir(), 'primdecomp-inputs-'));
+  execFileSync(testkit, ['inputs', d], { stdio: ['ignore', 'ignore', 'inherit'] });
+  return d;
+}
 
+// Each case: a name, the mesh, the counts of its two levels, and the first level's label.
+const cases = [
+  { name: 'made-up kinds.obj', mesh: () => path.join(inputs(), 'kinds.obj'), targets: [6, 3], corpus: false },
+  { name: 'corpus vhacd_lamp.obj', mesh: () => path.join(corpus, 'vhacd_lamp.obj'), targets: [60, 20], corpus: true },
+];
+
+let common = false;
+if (!fs.existsSync(chromiumPath)) common = missing(`no Chromium at ${chromiumPath} (apt-get install chromium)`);
+else if (!fs.existsSync(bin)) common = missing(`no primdecomp binary at ${bin} (cargo test --release --workspace builds it)`);
+else if (!fs.existsSync(testkit) && !process.env.PRIMDECOMP_TEST_INPUTS) common = missing(`no primdecomp-testkit binary at ${testkit}`);
+
+for (const c of cases) {
+  let skip = common;
+  if (!skip && c.corpus && !fs.existsSync(corpus)) skip = missing(`CORPUS ABSENT: ${corpus} not found`);
+  describe(c.name, { skip }, () => suite(c));
+}
+
+function suite(c) {
+const work = fs.mkdtempSync(path.join(os.tmpdir(), 'primdecomp-view-test-'));
+const shots = shotsRoot ? path.join(shotsRoot, c.targets.join('_')) : work;
+if (shotsRoot) fs.mkdirSync(shots, { recursive: true });
+const TARGETS = c.targets;
 function run(args) {
   return execFileSync(bin, args, { cwd: work, encoding: 'utf8', stdio: ['ignore', 'pipe', 'pipe'] });
 }
 
-const out = path.join(work, 'lamp.json');
-const levelFile = (t) => path.join(work, `lamp_n${t}.json`);
+const out = path.join(work, 'res.json');
+const levelFile = (t) => path.join(work, `res_n${t}.json`);
 const levels = [];
-let browser, page;
+let browser, page, mesh;
 const requests = [];
 
 before(async () => {
-  if (skip) return;
+  mesh = c.mesh();
   run(['decompose', mesh, '-n', TARGETS.join(','), '-o', out, '--obj', path.join(work, 'hulls.obj'), '--quiet']);
   for (const t of TARGETS) levels.push(JSON.parse(fs.readFileSync(levelFile(t), 'utf8')));
   // Our own n20 tessellation stands in for a peer's hull file: one convex `o` per part.
@@ -105,7 +130,7 @@ before(async () => {
 
 after(async () => {
   if (browser) await browser.close();
-  if (!process.env.VIEW_SHOTS) fs.rmSync(work, { recursive: true, force: true });
+  fs.rmSync(work, { recursive: true, force: true });
 });
 
 /** The canvas's rectangle in page pixels. */
@@ -131,7 +156,7 @@ async function shot(name) {
 const background = () => page.evaluate(() => window.primdecompView.palette.background);
 const kindColours = () => page.evaluate(() => window.primdecompView.palette.kinds);
 
-test('the page opens from file:// with no network and reports every level of the JSON', { skip }, async () => {
+test('the page opens from file:// with no network and reports every level of the JSON', async () => {
   assert.deepEqual(requests, [], 'no network request');
   const v = await page.evaluate(() => ({ levels: window.primdecompView.levels, level: window.primdecompView.level, primitives: window.primdecompView.primitives }));
   assert.equal(v.levels.length, TARGETS.length);
@@ -144,7 +169,7 @@ test('the page opens from file:// with no network and reports every level of the
   assert.equal(v.primitives, levels[0].primitives.length);
 });
 
-test('ours alone: not blank, and every present kind in its colour in the drawing and the legend', { skip }, async () => {
+test('ours alone: not blank, and every present kind in its colour in the drawing and the legend', async () => {
   await page.evaluate(() => window.primdecompView.setMode('level:0'));
   const img = await shot('view.png');
   const c = await canvasRect();
@@ -169,7 +194,7 @@ test('ours alone: not blank, and every present kind in its colour in the drawing
   }
 });
 
-test('clicking a primitive shows its kind, parameters and face count', { skip }, async () => {
+test('clicking a primitive shows its kind, parameters and face count', async () => {
   const c = await canvasRect();
   // The first point of a coarse grid over the canvas that hits a part.
   let hit = null;
@@ -199,7 +224,7 @@ test('clicking a primitive shows its kind, parameters and face count', { skip },
   await shot('view_selected.png');
 });
 
-test('the level selector switches to the other level', { skip }, async () => {
+test('the level selector switches to the other level', async () => {
   const before = await shot('level0.png');
   await page.selectOption('#level', '1');
   const v = await page.evaluate(() => ({ level: window.primdecompView.level, primitives: window.primdecompView.primitives, selected: window.primdecompView.selected }));
@@ -218,7 +243,7 @@ test('the level selector switches to the other level', { skip }, async () => {
   await page.selectOption('#level', '0');
 });
 
-test('side by side: the input, ours and the compared hulls, each in its pane, with distances', { skip }, async () => {
+test('side by side: the input, ours and the compared hulls, each in its pane, with distances', async () => {
   await page.evaluate(() => window.primdecompView.setMode('side'));
   const img = await shot('view_side.png');
   const v = await page.evaluate(() => window.primdecompView.panes);
@@ -239,8 +264,10 @@ test('side by side: the input, ours and the compared hulls, each in its pane, wi
   assert.ok(hullsHere < hullsThere / 20, `hull colour in our pane: ${hullsHere} vs ${hullsThere}`);
   const evalText = await page.evaluate(() => document.getElementById('eval').innerText);
   const ev = JSON.parse(fs.readFileSync(path.join(work, 'eval.json'), 'utf8'));
-  assert.ok(evalText.includes('ours, target 60'), evalText);
+  // A level is labelled by what was asked (a count here) and what was reached.
+  assert.ok(evalText.includes(`ours, count ${TARGETS[0]}`), evalText);
   assert.ok(evalText.includes('tessellation.obj'), evalText);
   const h = ev.colliders[0].hausdorff;
   assert.ok(evalText.includes(h.toPrecision(4)), `Hausdorff ${h} in ${evalText}`);
 });
+}

@@ -1,32 +1,52 @@
 """Shared set-up of the export checks: the binaries (built by scripts/test.sh), the
-corpus, and the results and exports every test reads (made once per session)."""
+made-up inputs and the corpus, and the results and exports every test reads (made
+once per session)."""
 import json
 import os
 import subprocess
+import tempfile
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
-BIN = ROOT / "target" / "release" / "primdecomp"
-TESTKIT = ROOT / "target" / "release" / "primdecomp-testkit"
+TARGET = Path(os.environ.get("CARGO_TARGET_DIR", ROOT / "target"))
+BIN = Path(os.environ.get("PRIMDECOMP_BIN", TARGET / "release" / "primdecomp"))
+TESTKIT = Path(os.environ.get("PRIMDECOMP_TESTKIT", TARGET / "release" / "primdecomp-testkit"))
 CORPUS = Path(os.environ.get("PRIMDECOMP_CORPUS", ROOT.parent / "shared" / "datasets" / "corpus"))
-IN_CI = bool(os.environ.get("CI"))
+IN_CI = bool(os.environ.get("CI")) and os.environ.get("CI") not in ("0", "false")
 
-# The corpus cases: (name, input, decompose arguments). Together they hold all six
-# kinds (test_enclosure.py::test_all_six_kinds_present checks it) and a skewed prism
-# (the default run's nearest fit of a right triangle); the two last are per-object:
-# a multi-node glTF with node transforms and a multi-group OBJ.
-CASES = [
+# The cases: (name, input, decompose arguments). The made-up ones (inputs the
+# repository writes at test time, `primdecomp-testkit inputs`) run everywhere and hold
+# all six kinds (test_enclosure.py::test_all_six_kinds_present checks it), a skewed
+# prism (the default run's nearest fit of a scalene triangle), a z-up STL and the two
+# per-object inputs: a glTF of named nodes with transforms and an OBJ of named groups.
+# The corpus cases add breadth where ../shared is present.
+MADE_UP = [
+    ("demo", "demo_scene.obj", ["-n", "40"]),
+    ("kinds", "kinds.obj", ["-n", "6"]),
+    ("wedges", "wedges.off", []),
+    ("robot", "robot.stl", ["-n", "12"]),
+    ("nodes", "nodes.glb", ["-n", "12", "--per-object"]),
+    ("groups", "groups.obj", ["-n", "9", "--per-object"]),
+]
+CORPUS_CASES = [
     ("stairs", "parry_stairs.obj", ["-n", "24", "--kinds", "box,prism"]),
-    ("wedges", "tiny_2triangles.off", []),
+    ("c_wedges", "tiny_2triangles.off", []),
     ("bottle", "coacd_bottle.obj", ["-n", "24", "--kinds", "frustum,cylinder,sphere,capsule"]),
     ("spot", "spot.obj", ["-n", "24", "--kinds", "sphere,capsule,frustum"]),
     ("mixer", "kitchenaid_mixer.obj", ["-n", "48"]),
     ("character", "kenney_character.glb", ["-n", "30", "--per-object"]),
     ("lamp", "vhacd_lamp.obj", ["-n", "30", "--per-object"]),
 ]
+# The corpus cases are collected where the corpus is, and under CI (where its absence
+# fails them); elsewhere a clone without ../shared runs the made-up cases alone, none
+# skipped (scripts/test.sh's summary notes the corpus's absence).
+CORPUS_PRESENT = CORPUS.is_dir()
+CASES = MADE_UP + (CORPUS_CASES if CORPUS_PRESENT or IN_CI else [])
+CASE_NAMES = {c[0] for c in CASES}
+CORPUS_NAMES = {c[0] for c in CORPUS_CASES}
 
 # Every export format with the file name it gets and the extra arguments.
 FORMATS = {
@@ -60,20 +80,45 @@ def need_corpus():
 @pytest.fixture(scope="session")
 def workdir(tmp_path_factory):
     for b in (BIN, TESTKIT):
-        assert b.exists(), f"{b} missing: scripts/test.sh builds it (cargo build --release -p primdecomp-cli -p primdecomp-testkit)"
+        assert b.exists(), f"{b} missing: scripts/test.sh builds it (cargo test --release --workspace)"
     return tmp_path_factory.mktemp("exports")
+
+
+_inputs = []
+
+
+def made_up(name):
+    """A made-up input: from PRIMDECOMP_TEST_INPUTS (scripts/test.sh writes them once),
+    else written here by `primdecomp-testkit inputs`."""
+    given = os.environ.get("PRIMDECOMP_TEST_INPUTS")
+    if given:
+        return Path(given) / name
+    if not _inputs:
+        d = Path(tempfile.mkdtemp(prefix="primdecomp-inputs-"))
+        run([TESTKIT, "inputs", d])
+        _inputs.append(d)
+    return _inputs[0] / name
+
+
+def source(case):
+    """The input file of a case (skipped, or failed under CI, when it is a corpus
+    case and the corpus is absent)."""
+    name, mesh, _ = next(c for c in CASES if c[0] == case)
+    if name in CORPUS_NAMES:
+        need_corpus()
+        return CORPUS / mesh
+    return made_up(mesh)
 
 
 _results = {}
 
 
 def result(workdir, case):
-    """(result JSON path, input path, faces dict) of a corpus case, made once."""
+    """(result JSON path, input path, faces dict) of a case, made once."""
     if case in _results:
         return _results[case]
-    need_corpus()
-    name, mesh, args = next(c for c in CASES if c[0] == case)
-    src = CORPUS / mesh
+    name, _, args = next(c for c in CASES if c[0] == case)
+    src = source(case)
     d = workdir / name
     d.mkdir(exist_ok=True)
     out = d / "result.json"

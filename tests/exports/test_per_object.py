@@ -1,14 +1,30 @@
-"""--per-object keeps names and transforms: on the corpus' multi-node glTF (kenney
-character: six named mesh nodes under a transformed parent) each object has its node's
-name and world transform, the glTF export has one node per object with that transform
-(its colliders as children), and the target is shared exactly; on a multi-group OBJ
-(vhacd_lamp: three groups) each group keeps its name in every format."""
+"""--per-object keeps names and transforms: on a multi-node glTF (the made-up
+nodes.glb: five named mesh nodes under a moved and turned parent, one scaled, one
+turned; and, with the corpus, kenney_character: six) each object has its node's name
+and world transform, the glTF export has one node per object with that transform (its
+colliders as children), and the target is shared exactly; on a multi-group OBJ (the
+made-up groups.obj, and vhacd_lamp: three groups) each group keeps its name in every
+format."""
 import json
 
 import numpy as np
+import pytest
 
-from conftest import BIN, CORPUS, export, need_corpus, result, run
+from conftest import BIN, CASE_NAMES, CASES, export, made_up, result, run
 from readers import _trs, load_gltf, parse_tscn
+
+# (case, the object names in order) of the multi-node glTF and multi-group OBJ cases.
+NODES = [("nodes", ["base", "column", "ball", "arm", "lamp"]),
+         ("character", ["leg-left", "leg-right", "torso", "arm-left", "arm-right", "antenna"])]
+GROUPS = [("groups", ["table", "lamp", "books"]), ("lamp", ["globes", "arms", "post"])]
+# Only the cases collected here (the corpus ones where the corpus is).
+NODES = [n for n in NODES if n[0] in CASE_NAMES]
+GROUPS = [g for g in GROUPS if g[0] in CASE_NAMES]
+
+
+def count_of(case):
+    args = next(c[2] for c in CASES if c[0] == case)
+    return int(args[args.index("-n") + 1])
 
 
 def node_world(doc):
@@ -33,14 +49,14 @@ def frame_matrix(o):
     return M
 
 
-def test_gltf_nodes_keep_names_and_transforms(workdir):
-    need_corpus()
-    res, src, _ = result(workdir, "character")
+@pytest.mark.parametrize("case,names", NODES)
+def test_gltf_nodes_keep_names_and_transforms(workdir, case, names):
+    res, src, _ = result(workdir, case)
     doc = json.loads(res.read_text())
     inp, _ = load_gltf(src)
     nodes = node_world(inp)
     objs = doc["objects"]
-    assert [o["name"] for o in objs] == ["leg-left", "leg-right", "torso", "arm-left", "arm-right", "antenna"]
+    assert [o["name"] for o in objs] == names
     assert set(nodes) == {o["name"] for o in objs}
     moved = 0
     for o in objs:
@@ -49,11 +65,11 @@ def test_gltf_nodes_keep_names_and_transforms(workdir):
         moved += not np.allclose(W, np.eye(4))
         assert o["target"] >= 1
     assert moved > 0, "the case should have transformed nodes"
-    assert sum(o["target"] for o in objs) == doc["settings"]["target"] == 30
+    assert sum(o["target"] for o in objs) == doc["settings"]["target"] == count_of(case)
     assert "surface area" in doc["settings"]["share_rule"]
     # The glTF export: one node per object, named, with the node's transform, and the
     # colliders as its children (so they move with it).
-    out, _ = load_gltf(export(workdir, "character", "gltf", "y", 1.0))
+    out, _ = load_gltf(export(workdir, case, "gltf", "y", 1.0))
     scene = [out["nodes"][i] for i in out["scenes"][0]["nodes"]]
     assert [n["name"] for n in scene] == [o["name"] for o in objs]
     for n, o in zip(scene, objs):
@@ -61,16 +77,15 @@ def test_gltf_nodes_keep_names_and_transforms(workdir):
         assert len(n.get("children", [])) == len(o["primitives"])
 
 
-def test_obj_groups_keep_names_in_every_format(workdir):
-    need_corpus()
-    res, _, _ = result(workdir, "lamp")
-    names = [o["name"] for o in json.loads(res.read_text())["objects"]]
-    assert names == ["globes", "arms", "post"]
-    urdf = export(workdir, "lamp", "urdf", "y", 1.0).read_text()
-    mjcf = export(workdir, "lamp", "xml", "y", 1.0).read_text()
-    usda = export(workdir, "lamp", "usda", "y", 1.0).read_text()
-    tscn = parse_tscn(export(workdir, "lamp", "tscn", "y", 1.0))
-    gltf, _ = load_gltf(export(workdir, "lamp", "glb", "y", 1.0))
+@pytest.mark.parametrize("case,names", GROUPS)
+def test_obj_groups_keep_names_in_every_format(workdir, case, names):
+    res, _, _ = result(workdir, case)
+    assert [o["name"] for o in json.loads(res.read_text())["objects"]] == names
+    urdf = export(workdir, case, "urdf", "y", 1.0).read_text()
+    mjcf = export(workdir, case, "xml", "y", 1.0).read_text()
+    usda = export(workdir, case, "usda", "y", 1.0).read_text()
+    tscn = parse_tscn(export(workdir, case, "tscn", "y", 1.0))
+    gltf, _ = load_gltf(export(workdir, case, "glb", "y", 1.0))
     for n in names:
         assert f'<link name="{n}">' in urdf
         assert f'<body name="{n}"' in mjcf
@@ -79,12 +94,11 @@ def test_obj_groups_keep_names_in_every_format(workdir):
         assert any(x.get("name") == n for x in gltf["nodes"])
 
 
-def test_without_the_flag_nothing_changes(workdir, tmp_path):
-    need_corpus()
-    src = CORPUS / "vhacd_lamp.obj"
+def test_without_the_flag_nothing_changes(tmp_path):
+    src = made_up("groups.obj")
     a, b = tmp_path / "a.json", tmp_path / "b.json"
-    run([BIN, "decompose", src, "-n", "20", "-o", a, "--quiet"])
-    run([BIN, "decompose", src, "-n", "20", "-o", b, "--quiet", "--export", tmp_path / "x.glb"])
+    run([BIN, "decompose", src, "-n", "8", "-o", a, "--quiet"])
+    run([BIN, "decompose", src, "-n", "8", "-o", b, "--quiet", "--export", tmp_path / "x.glb"])
     doc = json.loads(a.read_text())
     assert "objects" not in doc and "share_rule" not in doc["settings"]
     assert a.read_bytes() == b.read_bytes()

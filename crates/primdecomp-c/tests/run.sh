@@ -12,7 +12,7 @@ cxx=${CXX:-c++}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 target=$(cd "$root" && cargo metadata --format-version 1 --no-deps | python3 -c 'import json, sys; print(json.load(sys.stdin)["target_directory"])')
-(cd "$root" && cargo build --release --quiet -p primdecomp-cli)
+[ -x "${PRIMDECOMP_BIN:-}" ] || (cd "$root" && cargo build --release -p primdecomp-cli)
 "$here/install.sh" "$work/prefix" >/dev/null
 export PKG_CONFIG_PATH="$work/prefix/lib/pkgconfig"
 
@@ -39,5 +39,5 @@ echo "-- the C++ test (c++, static, AddressSanitizer and LeakSanitizer)"
   "$work/prefix/lib/libprimdecomp_c.a" $(pkg-config --static --libs-only-l primdecomp | sed 's/-lprimdecomp_c//') \
   -o "$work/abi_test"
 mkdir -p "$work/run"
-ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 "$work/abi_test" "$target/release/primdecomp" \
+ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 "$work/abi_test" "${PRIMDECOMP_BIN:-$target/release/primdecomp}" \
   "$root/datasets/demo_scene.obj" "$work/run"

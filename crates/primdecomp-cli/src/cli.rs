@@ -1,6 +1,7 @@
 //! Command-line interface: argument parsing (clap), the one-screen summary, progress
 //! bar and exit codes (0 ok, 2 bad input or settings, 1 anything else).
 
+use crate::args::{DecomposeArgs, LoadArgs};
 use crate::exit::BadArgs;
 use crate::exit::{eprintln, print, println};
 use crate::manifest::{self, Manifest, Stamp};
@@ -42,7 +43,7 @@ enum Cmd {
     /// Write a result's colliders for an engine: glTF/GLB with physics extensions,
     /// MuJoCo MJCF, URDF, USD (.usda) or a Godot 4 scene (.tscn).
     Export(Box<crate::export_cmd::ExportCmd>),
-    /// Write the built-in demo scene (stairs, table, pipes, house, ring) as OBJ.
+    /// Write the built-in demo scene (stairs, table, pipes, house, ring, washer) as OBJ.
     DemoScene {
         /// Output file.
         #[arg(short, long, default_value = "datasets/demo_scene.obj")]
@@ -77,225 +78,7 @@ struct EvalArgs {
     load: LoadArgs,
 }
 
-/// How inputs are read (every subcommand that reads a mesh).
-#[derive(Args, Debug)]
-struct LoadArgs {
-    /// glTF: also read buffers whose URIs are absolute paths, climb out of the glTF's
-    /// folder (a `..`, or a symbolic link leading out) or are file: URLs. By default
-    /// only data: URIs and files inside the glTF's own folder are read, so a glTF from
-    /// an untrusted source cannot make us read other files; URLs of other schemes
-    /// (http: …) are never read. Every input and buffer must be a regular file (a
-    /// pipe, socket, device or directory is refused before reading: exit 2).
-    #[arg(long)]
-    allow_external_uris: bool,
-}
-
 const EVAL_HELP: &str = include_str!("eval_help.txt");
-
-#[derive(Args, Debug)]
-struct DecomposeArgs {
-    /// Input meshes; with several, -o names a directory and a table can be printed.
-    #[arg(required = true)]
-    inputs: Vec<PathBuf>,
-    /// Target primitive counts, comma-separated (a count, or a percentage of the input's
-    /// faces such as 1%); one result per target from one bottom-up pass. At most N
-    /// each: fewer where nested primitives are removed and coplanar faces merge for
-    /// free (see --no-join-coplanar). Without -n: the fewest primitives within
-    /// --tolerance (default 2% of the diagonal), at most 1024; -n 64 is about half the
-    /// time, with 2.8x the median distance (docs/decisions/0037).
-    #[arg(short = 'n', long = "targets", value_delimiter = ',')]
-    targets: Option<Vec<String>>,
-    /// Start from the settings of a file: a primdecomp JSON result (its `settings`:
-    /// the same settings give the same primitives), or a JSON or TOML file of settings
-    /// (keys as in the JSON's `settings`; absent keys keep their defaults). Flags
-    /// given here override it.
-    #[arg(long, value_name = "FILE")]
-    config: Option<PathBuf>,
-    /// With several inputs: print a markdown table of all results at the end (with
-    /// --resume, of the inputs run this time).
-    #[arg(long)]
-    table: bool,
-    /// With several inputs: how many to decompose at once, each on its share of the
-    /// threads and within the --max-memory budget together (default: one per thread).
-    /// 1 = one after another, each with all threads. Outputs do not depend on it.
-    #[arg(long)]
-    jobs: Option<usize>,
-    /// Refuse merges adding more than this fraction of the input's bounding-box volume
-    /// (§3.3); re-prices every merge at once (--reprice exact) unless --reprice says
-    /// otherwise.
-    #[arg(long)]
-    max_excess_volume: Option<f64>,
-    /// Cost weights per kind, e.g. box=1,sphere=1,capsule=1,cylinder=1.05,frustum=2.1,prism=1.4
-    /// (the defaults): a heavier kind is chosen less often.
-    #[arg(long, value_delimiter = ',')]
-    weights: Vec<String>,
-    /// Kinds allowed, e.g. box,sphere,capsule (default: all six).
-    #[arg(long, value_delimiter = ',')]
-    kinds: Vec<String>,
-    /// Weight ε of the tangent term in Q = area·(nnᵀ + ε·ttᵀ); 0 disables it. Default 0.01.
-    #[arg(long)]
-    tangent_eps: Option<f64>,
-    /// Vertex deduplication: exact (default), off, or a distance tolerance in input units.
-    #[arg(long)]
-    dedup: Option<String>,
-    /// Minimum half-extent of a primitive, as a fraction of the input's bounding-box
-    /// diagonal. Default 0.0005.
-    #[arg(long)]
-    min_extent: Option<f64>,
-    /// Keep primitives whose faces all lie inside another primitive.
-    #[arg(long)]
-    keep_nested: bool,
-    /// Also remove boxes thinner than this fraction of the diagonal when others cover
-    /// them.
-    #[arg(long)]
-    remove_thin_boxes: Option<f64>,
-    /// Keep holes and gaps in flat surfaces open: coplanar merges are priced as if the
-    /// primitive were this thick (half-extent, fraction of the diagonal), so a roof's
-    /// rim does not close into a lid. 0 = the paper's pricing. Default 0.01.
-    #[arg(long)]
-    open_holes: Option<f64>,
-    /// How strongly output primitives keep off the faces beside them (a plate standing
-    /// past a wall's top as a curb): k·V + W·Σ len·gap² over the convex boundary edges.
-    /// 0 = the volume alone, the paper's criterion. Default 1.
-    #[arg(long)]
-    rim_weight: Option<f64>,
-    /// Centre output plates on their faces (half the minimum thickness proud of the
-    /// surface) instead of laying them flush, reaching inward from the faces.
-    #[arg(long)]
-    no_flush_plates: bool,
-    /// Stop at exactly N clusters (the paper) even where the next merges add nothing;
-    /// by default coplanar faces merge into plates of no more area first, and plates in
-    /// one plane are joined where one covers both with no more area.
-    #[arg(long)]
-    no_join_coplanar: bool,
-    /// Price merges by the volume they add outside the input (its interior by ray
-    /// parity on a voxel grid) instead of the whole volume: closed parts fill into
-    /// solid primitives rather than shells of plates; slower. Without it or
-    /// --min-thickness flat regions are plates 2 × --min-extent thick (0.001 of the
-    /// diagonal), which fast bodies can skip between discrete physics steps: for
-    /// colliders hit by fast bodies use the engine's CCD or --min-thickness 0.3
-    /// (docs/results/projectiles.md).
-    #[arg(long)]
-    solid: bool,
-    /// Thicken plates inward to this thickness (a fraction of the diagonal) where the
-    /// part is closed behind them, so fast bodies stop at them without CCD: the outer
-    /// surface stays, at most 0.6 of the part's depth is filled, open sheets and holes
-    /// are left as they are. 0.3 fills most closed parts (fewer balls pass than
-    /// CoACD's hulls at bullet speed, more at thrown speed; Hausdorff about 1.9× the
-    /// default's, time 1.25×). 0 (default) = plates 2 × --min-extent thick; the JSON
-    /// records it as settings.min_thickness.
-    #[arg(long)]
-    min_thickness: Option<f64>,
-    /// Fill each target: when removing nested primitives leaves fewer than N, merge
-    /// less (search up to 8N) so the result has as many primitives as fit within N.
-    /// Costs up to 4 more merge passes; the JSON's settings.merge_target says where
-    /// the merge stopped.
-    #[arg(long)]
-    fill: bool,
-    /// Cut the merge tree where the error is, instead of taking the greedy pass's N
-    /// clusters: a cut of at most N primitives near the least worst distance N allows
-    /// (up to 1.25 times it, where spending the rest of N where the greedy pass would
-    /// brings the mean distance nearer); about half the greedy's Hausdorff distance on
-    /// most meshes, the same Chamfer, a median 3.5x the time (docs/decisions/0032,
-    /// 0034, 0051).
-    #[arg(long)]
-    cut: bool,
-    /// Keep every primitive within this distance of the input: the fewest primitives
-    /// whose every one stands at most D from the mesh's surface (the one-way distance
-    /// `eval` calls Hausdorff, bounded from above for each primitive, not sampled:
-    /// docs/decisions/0040). D in input units,
-    /// or D% of the bounding-box diagonal; several (2%,0.5%) give one level each from
-    /// one pass. -n caps the count (without -n: at most 1024). Implies --cut. The JSON
-    /// records the tolerance and the distance reached (`stats.distance`). Default
-    /// without -n and --max-bytes: 2% (a median 88.5 primitives on the corpus:
-    /// docs/results/default_tolerance.md).
-    #[arg(long, value_delimiter = ',')]
-    tolerance: Option<Vec<String>>,
-    /// Keep each level's storage within B bytes by the paper's Table 2 (4 bytes a
-    /// float: a box 40, a sphere 16, a prism 44), e.g. 4096 or 4K: the cut standing nearest the
-    /// input that fits. Several give one level each; combines with --tolerance and
-    /// with -n as caps (without -n: at most 1024 primitives). Implies --cut.
-    #[arg(long, value_delimiter = ',')]
-    max_bytes: Option<Vec<String>>,
-    /// When merged clusters' pairs are re-priced: exact (at once, the paper's greedy
-    /// order), deferred (each when popped: faster, approximate order), or a neighbour
-    /// count N: merges of clusters with N or more neighbours are deferred, others
-    /// exact. Default 64.
-    #[arg(long)]
-    reprice: Option<String>,
-    /// Split the faces into K spatial parts merged in parallel (to 16x the largest
-    /// target) before the global merge: faster on several cores, merges across parts
-    /// wait. 1 = one global greedy (the paper); auto (default) = 16 parts (or one per
-    /// 65,536 faces if more) for inputs of 524,288 faces or more, else 1.
-    #[arg(long)]
-    partitions: Option<String>,
-    /// JSON output file (default: INPUT's stem + .primdecomp.json in the current
-    /// directory). With several inputs, or when it ends in / or is a directory: the
-    /// output directory, where each input writes STEM.primdecomp.json (STEM: its file
-    /// name without the extension); two inputs with the same STEM are refused before
-    /// anything runs (rename one), and so is a -o ending in .json. No output may be an
-    /// input: the paths are compared as files (device and inode, after symbolic
-    /// links), not as spellings, and a clash is refused before writing (exit 2).
-    #[arg(short, long)]
-    out: Option<PathBuf>,
-    /// Also write the primitives as a conservative OBJ tessellation to this file; in a
-    /// batch (-o naming a directory), the directory where each input writes
-    /// STEM.primdecomp.obj.
-    #[arg(long)]
-    obj: Option<PathBuf>,
-    /// Decompose each object on its own, keeping its name: each glTF node with a mesh
-    /// (in the node's frame, its transform kept) and each OBJ o/g group. A total
-    /// count -n N is shared: one primitive each, the other N - k (k objects) in
-    /// proportion to surface area, largest remainder (ties to the earlier object);
-    /// with N < k each object still gets one. A percentage applies per object. The
-    /// JSON gains an `objects` list.
-    #[arg(long)]
-    per_object: bool,
-    /// Also export the colliders for an engine (repeatable): .gltf/.glb (Khronos or
-    /// OMI physics), .urdf, .usda, .tscn, or MuJoCo's .xml with --format mjcf.
-    #[arg(long, value_name = "OUT.EXT")]
-    export: Vec<PathBuf>,
-    #[command(flatten)]
-    export_opts: crate::export_cmd::ExportArgs,
-    /// Segments around circles in the OBJ tessellation.
-    #[arg(long, default_value_t = 16)]
-    obj_detail: usize,
-    /// Also render the first level over the input as PNG (`primdecomp view --png`);
-    /// with several inputs, a directory: one INPUT-stem.png each.
-    #[arg(long, value_name = "OUT.png")]
-    png: Option<PathBuf>,
-    /// Refuse inputs whose decomposition is estimated to need more memory than this:
-    /// a size such as 512M, 8G or 1.5T, "available" (the memory available at start,
-    /// from /proc/meminfo) or "none".
-    #[arg(long, default_value = "available", value_name = "SIZE")]
-    max_memory: String,
-    /// Worker threads (default: all cores); results do not depend on it.
-    #[arg(long)]
-    threads: Option<usize>,
-    /// Print nothing but errors.
-    #[arg(short, long)]
-    quiet: bool,
-    /// Report progress (stage, percent, time left) on stderr even when it is not a
-    /// terminal: a line as each stage starts and every few seconds. On a terminal a bar shows it anyway for
-    /// inputs of 100,000 faces or more (not with --quiet or several inputs at once).
-    #[arg(long)]
-    progress: bool,
-    /// Print the per-stage seconds and the peak memory even with --quiet, and write the
-    /// seconds into the JSON (`stats.seconds`; without this flag the JSON is
-    /// byte-identical across runs).
-    #[arg(long)]
-    timings: bool,
-    /// Finish a batch (-o DIR) that was interrupted (killed, power loss): inputs that
-    /// DIR/.primdecomp-manifest.jsonl records as done with the same size, modification
-    /// time and settings, and whose outputs are all in place, are skipped; the rest
-    /// (not reached, failed, changed) run again, ending with the files a clean run
-    /// writes. Without --resume a batch starts a new manifest. Outputs are renamed into
-    /// place only when complete, so a partial file is never left or trusted.
-    #[arg(long)]
-    resume: bool,
-    #[command(flatten)]
-    load: LoadArgs,
-}
 
 #[derive(Args, Debug)]
 struct SimArgs {
@@ -415,6 +198,7 @@ fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
     p.solid |= a.solid;
     p.fill |= a.fill;
     p.cut |= a.cut;
+    p.greedy |= a.greedy;
     if let Some(t) = &a.tolerance {
         p.tolerance = t
             .iter()
@@ -481,6 +265,14 @@ fn parse_tolerance(t: &str) -> anyhow::Result<Tolerance> {
         Some(p) => (p.trim(), true),
         None => (t, false),
     };
+    if num.parse::<f64>().is_ok_and(|v| v <= 0.0) {
+        return Err(BadArgs(format!(
+            "--tolerance: '{t}' is not positive: a tolerance is how far every primitive may \
+             stand from the mesh, a distance (input units) or a percentage of the diagonal \
+             like 1%, greater than 0"
+        ))
+        .into());
+    }
     match num.parse::<f64>() {
         Ok(v) if v.is_finite() && v > 0.0 && (!percent || v < 100.0) => Ok(match percent {
             true => Tolerance::Diagonal(v / 100.0),
@@ -1074,6 +866,8 @@ fn run_one(
     })?;
     shown.finish();
     dec.input.path = Some(input.display().to_string());
+    let up = input_up(a, input);
+    (dec.input.up, dec.input.up_from) = (Some(up.0), Some(up.1));
     dec.timings.stages.insert(0, ("load".into(), load_s));
     let now = Instant::now();
     let mut written = write_outputs(&dec, &params, dest, guard, a.obj_detail, a.timings)?;
@@ -1083,10 +877,12 @@ fn run_one(
             &a.export,
             &a.export_opts,
             &crate::export_cmd::whole(level),
-            &label,
-            dec.levels.len(),
-            &[input],
-            Some(&mesh),
+            (&label, dec.levels.len()),
+            &crate::export_cmd::Source {
+                path: input,
+                mesh: &mesh,
+                up: up.0,
+            },
         )?);
     }
     let write_s = now.elapsed().as_secs_f64();
@@ -1097,10 +893,18 @@ fn run_one(
     }
     let _out = PRINT.lock();
     if !a.quiet {
-        print_summary(&dec, &mesh, &written);
+        print_summary(&dec, &mesh, &written, a.verbose);
     }
-    if !a.quiet || a.timings {
-        print_timings(&dec, write_s, a.inputs.len() > 1, memory.as_deref());
+    if a.verbose || a.timings {
+        print_timings(
+            &dec,
+            write_s,
+            a.inputs.len() > 1,
+            a.verbose,
+            memory.as_deref(),
+        );
+    } else if !a.quiet {
+        println!("time      {:.2} s", dec.timings.total() + write_s);
     }
     Ok((dec, written))
 }
@@ -1137,6 +941,8 @@ fn run_objects(
         e => anyhow::Error::from(e),
     })?;
     objs.input.path = Some(input.display().to_string());
+    let up = input_up(a, input);
+    (objs.input.up, objs.input.up_from) = (Some(up.0), Some(up.1));
     let n = objs.levels();
     let mut written = Vec::new();
     let sum = |f: fn(&primdecomp::Stats) -> usize| {
@@ -1195,10 +1001,12 @@ fn run_objects(
             &a.export,
             &a.export_opts,
             &crate::export_cmd::level_objects(&objs, i),
-            &format!("n{target}"),
-            n,
-            &[input],
-            Some(mesh),
+            (&format!("n{target}"), n),
+            &crate::export_cmd::Source {
+                path: input,
+                mesh,
+                up: up.0,
+            },
         )?);
         dec.levels.push(level);
     }
@@ -1213,9 +1021,21 @@ fn run_objects(
                 .collect::<Vec<_>>()
                 .join(", ")
         );
-        print_summary(&dec, mesh, &written);
+        print_summary(&dec, mesh, &written, a.verbose);
     }
     Ok((dec, written))
+}
+
+/// The input's up axis and where it came from: `--up`, else what its format says
+/// (`Up::of_format`).
+fn input_up(a: &DecomposeArgs, input: &Path) -> (primdecomp::export::Up, String) {
+    use primdecomp::export::Up;
+    match a.export_opts.up.as_deref().and_then(Up::from_axis) {
+        Some(up) => (up, "given with --up".into()),
+        None => primdecomp::Format::from_path(input)
+            .map(Up::of_format)
+            .map_or((Up::Y, "assumed".into()), |(u, why)| (u, why.into())),
+    }
 }
 
 /// One markdown row per input and target.
@@ -1393,16 +1213,33 @@ fn write_outputs(
     Ok(written)
 }
 
-fn print_summary(dec: &Decomposition, mesh: &primdecomp::Mesh, written: &[PathBuf]) {
+fn print_summary(dec: &Decomposition, mesh: &primdecomp::Mesh, written: &[PathBuf], verbose: bool) {
     let i = &dec.input;
+    let welded = match verbose {
+        true => format!(
+            " ({} after welding), {} pairs of faces sharing an edge",
+            dec.stats.welded_vertices, dec.stats.adjacency_edges
+        ),
+        false => String::new(),
+    };
     println!(
-        "input     {}: {} faces, {} vertices ({} after dedup), {} adjacent pairs",
+        "input     {}: {} faces, {} vertices{welded}",
         i.path.as_deref().unwrap_or("-"),
         i.faces,
         i.vertices,
-        dec.stats.welded_vertices,
-        dec.stats.adjacency_edges
     );
+    if let (Some(up), Some(from)) = (i.up, &i.up_from) {
+        let other = match up {
+            primdecomp::export::Up::Y => "z",
+            primdecomp::export::Up::Z => "y",
+        };
+        // An assumption says how to change it; a format's own axis does not need to.
+        let change = match from.starts_with("assumed") {
+            true => format!("; --up {other} if the mesh stands on {other}"),
+            false => String::new(),
+        };
+        println!("up        +{} ({from}{change})", up.axis().to_uppercase());
+    }
     let skipped = mesh.skipped();
     if skipped.short_faces + skipped.other > 0 {
         println!(
@@ -1427,8 +1264,8 @@ fn print_summary(dec: &Decomposition, mesh: &primdecomp::Mesh, written: &[PathBu
             few(l, dec.input.faces)
         );
     }
-    for w in written {
-        println!("wrote     {}", w.display());
+    for line in crate::export_cmd::wrote_lines(written) {
+        println!("{line}");
     }
 }
 
@@ -1442,7 +1279,7 @@ fn asked(l: &primdecomp::Level, diagonal: f64) -> String {
             l.target
         ),
         (None, Some(b)) => format!("bytes {b} (at most {})", l.target),
-        (None, None) => format!("target {:>5}", l.target),
+        (None, None) => format!("count {:>5}", l.target),
     }
 }
 
@@ -1472,17 +1309,25 @@ fn reach(l: &primdecomp::Level, diagonal: f64) -> String {
     s + ")"
 }
 
-/// Why a greedy snapshot holds under half of its count although the input has the
-/// faces for it, for the summary line ("" otherwise): post-processing removed the
-/// clusters inside others and joined coplanar plates (§3.4), as where one part's
-/// primitive encloses the rest.
+/// Why a level of a count alone holds fewer primitives than asked, for the summary
+/// line ("" otherwise): a greedy snapshot under half of its count, where
+/// post-processing removed the clusters inside others and joined coplanar plates
+/// (§3.4); a cut short by more than a few (2, or 1/32 of the count: the rule that
+/// makes a greedy level a cut, docs/decisions/0054), where no split of the merge tree
+/// stands nearer the mesh than the primitives kept.
 fn few(l: &primdecomp::Level, faces: usize) -> &'static str {
-    match l.distance.is_none() && 2 * l.primitives.len() < l.target.min(faces) {
-        true => {
-            "; the other clusters lay inside those kept or were joined to them (--cut or \
-            --tolerance keeps parts apart)"
+    let want = l.target.min(faces);
+    let n = l.primitives.len();
+    let count_alone = l.tolerance.is_none() && l.max_bytes.is_none();
+    match (l.distance.is_some(), count_alone) {
+        (false, true) if 2 * n < want => {
+            "; the other clusters lay inside those kept or were joined to them (without \
+            --greedy, counts keep parts apart)"
         }
-        false => "",
+        (true, true) if n + (want / 32).max(2) < want => {
+            "; no more primitives would stand nearer the mesh"
+        }
+        _ => "",
     }
 }
 
@@ -1504,11 +1349,13 @@ fn shortfall(l: &primdecomp::Level) -> String {
 }
 
 /// The stage breakdown (load through write) and the process's peak resident memory
-/// (with `by_stage`, each stage's own peak, MiB, and the largest of them).
+/// (with `by_stage`, each stage's own peak, MiB, and the largest of them); with
+/// `verbose` also the merge loop's counters.
 fn print_timings(
     dec: &Decomposition,
     write_s: f64,
     several: bool,
+    verbose: bool,
     by_stage: Option<&[(String, f64, f64)]>,
 ) {
     let stages: Vec<String> = dec
@@ -1523,7 +1370,8 @@ fn print_timings(
         dec.timings.total() + write_s
     );
     let st = &dec.stats;
-    println!(
+    if verbose {
+        println!(
         "fits      {} merges{}; {} seeding, {} re-priced at once, {} when popped ({:.2} per merge); {} merges' points reduced ahead",
         st.merges,
         match st.merges_past {
@@ -1536,6 +1384,7 @@ fn print_timings(
         (st.fits_at_once + st.fits_when_popped) as f64 / st.merges.max(1) as f64,
         st.merges_ahead
     );
+    }
     if let Some(stages) = by_stage.filter(|s| !s.is_empty()) {
         let peak = stages.iter().map(|s| s.1).fold(0.0, f64::max);
         let each: Vec<String> = stages
@@ -1822,9 +1671,12 @@ struct ViewArgs {
     /// shown).
     #[arg(long, default_value_t = primdecomp_view::PNG_SIZE)]
     png_size: usize,
-    /// The input's up axis (the default view looks from the front right, above).
-    #[arg(long, default_value = "y", value_parser = ["y", "z"])]
-    up: String,
+    /// Which axis points up in the mesh: y or z (default: what the first result
+    /// records, else what the input's file format says, as `decompose --up`).
+    ///
+    /// The default view looks from the front right, above.
+    #[arg(long, value_parser = ["y", "z"], ignore_case = true)]
+    up: Option<String>,
     /// Most input triangles shown; larger inputs are simplified (meshoptimizer) to this.
     #[arg(long, default_value_t = primdecomp_view::simplify::DISPLAY_TRIANGLES)]
     display_faces: usize,
@@ -1881,10 +1733,15 @@ fn view(a: ViewArgs) -> anyhow::Result<()> {
         .filter_map(|(flag, p)| p.as_ref().map(|p| Out::flag(flag, p, p.clone())))
         .collect();
     guard.check(&outs)?;
+    let up = view_up(&a);
     let mut opts = scene::Options {
         detail: a.detail,
         display_triangles: a.display_faces.max(1),
-        up_axis: if a.up == "z" { 2 } else { 1 },
+        up_axis: if up == primdecomp::export::Up::Z {
+            2
+        } else {
+            1
+        },
         load: LoadOptions {
             max_memory: memory_limit(&a.max_memory)?,
             allow_external_uris: a.load.allow_external_uris,
@@ -1988,6 +1845,31 @@ fn view(a: ViewArgs) -> anyhow::Result<()> {
     Ok(())
 }
 
+/// `view`'s up axis: `--up`, else the first result's (`input.up`), else what the
+/// input's format says (as `decompose`), else +Y.
+fn view_up(a: &ViewArgs) -> primdecomp::export::Up {
+    use primdecomp::export::Up;
+    let recorded = || {
+        let first = a.results.first()?;
+        let file = scene_first_file(first)?;
+        let doc: serde_json::Value =
+            serde_json::from_str(&crate::paths::read_result(&file).ok()?).ok()?;
+        let doc = doc.get("levels").and_then(|l| l.get(0)).unwrap_or(&doc);
+        Up::from_axis(doc.get("input")?.get("up")?.as_str()?)
+    };
+    let of_input = || Some(Up::of_format(primdecomp::Format::from_path(a.input.as_deref()?)?).0);
+    a.up.as_deref()
+        .and_then(Up::from_axis)
+        .or_else(recorded)
+        .or_else(of_input)
+        .unwrap_or(Up::Y)
+}
+
+/// The first file a result argument stands for (`out.json` → `out_n200.json`).
+fn scene_first_file(r: &Path) -> Option<PathBuf> {
+    primdecomp_view::scene::result_files(r).into_iter().next()
+}
+
 /// The input a result document names (`input.path`), if that file exists here.
 fn recorded_input(result: &Path) -> Option<PathBuf> {
     let text = crate::paths::read_result(result).ok()?;
@@ -2009,7 +1891,13 @@ fn decompose_png(
 ) -> anyhow::Result<PathBuf> {
     use primdecomp_view::{scene, source};
     let json = output_path_for(out, label, dec.levels.len());
-    let opts = scene::Options::default();
+    let opts = scene::Options {
+        up_axis: match dec.input.up {
+            Some(primdecomp::export::Up::Z) => 2,
+            _ => 1,
+        },
+        ..scene::Options::default()
+    };
     let s = scene::Scene {
         input: Some(scene::input_from(
             input,

@@ -15,31 +15,46 @@ use crate::outputs::{Guard, Out};
 /// The options every export takes (`export` and `decompose --export`).
 #[derive(Args, Debug, Clone)]
 pub struct ExportArgs {
-    /// Export format for outputs whose extension does not name one: gltf, glb, mjcf
-    /// (MuJoCo's .xml needs it), urdf, usda, tscn. An extension that names a format
-    /// (.gltf, .glb, .urdf, .usda, .tscn, .mjcf) always decides.
-    #[arg(long = "format")]
+    /// The format of exports whose extension names none: gltf, glb, mjcf, urdf,
+    /// usda, tscn.
+    ///
+    /// MuJoCo's .xml needs --format mjcf. An extension that names a format (.gltf,
+    /// .glb, .urdf, .usda, .tscn, .mjcf) always decides.
+    #[arg(long = "format", hide_short_help = true)]
     pub format: Option<String>,
-    /// Up axis of the result (the input's): y or z. glTF and Godot are +Y up, MJCF
-    /// and URDF +Z up: a result whose up differs is turned; USD declares it.
-    #[arg(long, default_value = "y")]
-    pub up: String,
-    /// Multiply every length by this (input units to metres).
-    #[arg(long, default_value_t = 1.0)]
+    /// Which axis points up in the mesh: y or z (default: what the file format says).
+    ///
+    /// decompose: glTF is +Y up by its specification; STL files say nothing and are
+    /// taken as +Z up (CAD and robot parts mostly are); OBJ, PLY and OFF say nothing
+    /// and are taken as +Y up (most modelling tools and scans write them so). The
+    /// result records it (input.up), and export and view use it: glTF and Godot are
+    /// +Y up and MJCF and URDF +Z up, so a mesh whose up differs is turned; USD
+    /// declares it. export: the result's axis (y for results that record none).
+    #[arg(long, value_parser = ["y", "z"], ignore_case = true)]
+    pub up: Option<String>,
+    /// Multiply every length by this (input units to metres; default 1).
+    #[arg(long, default_value_t = 1.0, hide_short_help = true)]
     pub scale: f64,
-    /// glTF physics extensions: khr (KHR_implicit_shapes + KHR_physics_rigid_bodies)
-    /// or omi (OMI_physics_shape + OMI_physics_body, imported by Godot 4).
-    #[arg(long, default_value = "khr")]
+    /// glTF physics extensions: khr (default) or omi.
+    ///
+    /// khr: KHR_implicit_shapes and KHR_physics_rigid_bodies (Khronos); omi:
+    /// OMI_physics_shape and OMI_physics_body, which Godot 4 imports.
+    #[arg(
+        long,
+        default_value = "khr",
+        value_name = "khr|omi",
+        hide_short_help = true
+    )]
     pub gltf_physics: String,
     /// glTF: also a coloured, half-transparent preview mesh of each collider.
-    #[arg(long)]
+    #[arg(long, hide_short_help = true)]
     pub preview: bool,
     /// URDF: write capsules as <capsule> (not in URDF 1.0) instead of a cylinder and
     /// two spheres.
-    #[arg(long)]
+    #[arg(long, hide_short_help = true)]
     pub urdf_capsule: bool,
-    /// Segments around circles of frustums (and of every preview) written as hulls.
-    #[arg(long, default_value_t = primdecomp::export::DEFAULT_DETAIL)]
+    /// Segments around circles of frustums (and of every preview) written as meshes.
+    #[arg(long, default_value_t = primdecomp::export::DEFAULT_DETAIL, hide_short_help = true)]
     pub export_detail: usize,
 }
 
@@ -60,8 +75,14 @@ pub struct ExportCmd {
 }
 
 impl ExportArgs {
-    /// Options and format for `out`.
-    pub fn resolve(&self, out: &Path, model: &str) -> anyhow::Result<(Format, ExportOptions)> {
+    /// Options and format for `out`; `up` is the result's up axis, which `--up`
+    /// overrides.
+    pub fn resolve(
+        &self,
+        out: &Path,
+        model: &str,
+        up: Up,
+    ) -> anyhow::Result<(Format, ExportOptions)> {
         // The extension decides where it names a format; --format covers the others
         // (MuJoCo's .xml), so `decompose --export a.glb --export b.xml --format mjcf`
         // writes both.
@@ -82,10 +103,10 @@ impl ExportArgs {
                 out.display()
             ))
         })?;
-        let up = match self.up.to_ascii_lowercase().as_str() {
-            "y" => Up::Y,
-            "z" => Up::Z,
-            u => bail!(BadArgs(format!("--up: expected y or z, got '{u}'"))),
+        let up = match self.up.as_deref() {
+            None => up,
+            Some(u) => Up::from_axis(u)
+                .ok_or_else(|| BadArgs(format!("--up: expected y or z, got '{u}'")))?,
         };
         let physics = match self.gltf_physics.to_ascii_lowercase().as_str() {
             "khr" => Physics::Khr,
@@ -143,13 +164,34 @@ pub fn export(a: ExportCmd) -> anyhow::Result<()> {
     let text = crate::paths::read_result(&a.result)?;
     let objects =
         read_objects(&text).map_err(|e| BadArgs(format!("{}: {e}", a.result.display())))?;
-    let (format, mut opts) = a.opts.resolve(&a.out, &model_name(&a.out))?;
+    // The result's up axis (results made before it was recorded: +Y, as then).
+    let recorded = serde_json::from_str::<serde_json::Value>(&text)
+        .ok()
+        .and_then(|d| Up::from_axis(d.get("input")?.get("up")?.as_str()?));
+    let up = recorded.unwrap_or(Up::Y);
+    let (format, mut opts) = a.opts.resolve(&a.out, &model_name(&a.out), up)?;
     if let Some(input) = &a.input {
         let mesh = primdecomp::load(input)?;
         opts.input_mesh = Some(mesh_polygons(&mesh));
     }
-    for w in write_export(&a.out, &objects, format, &opts)? {
-        println!("wrote     {}", w.display());
+    for line in wrote_lines(&write_export(&a.out, &objects, format, &opts)?) {
+        println!("{line}");
+    }
+    if let Some(native) = format.up().filter(|&n| n != opts.up) {
+        println!(
+            "up        {} in the result{}, turned to the format's {}{}",
+            opts.up.axis(),
+            match (a.opts.up.is_some(), recorded) {
+                (true, _) => " (--up)",
+                (false, Some(_)) => "",
+                (false, None) => " (assumed: the result records none)",
+            },
+            native.axis(),
+            match opts.up {
+                Up::Y => " (--up z if the mesh stands on z)",
+                Up::Z => " (--up y if the mesh stands on y)",
+            }
+        );
     }
     Ok(())
 }
@@ -179,9 +221,59 @@ pub fn whole(level: &Level) -> Vec<ResultObject> {
 /// [`write_level_exports`] will ask), or the first error.
 pub fn check_exports(exports: &[PathBuf], args: &ExportArgs) -> anyhow::Result<()> {
     for e in exports {
-        args.resolve(e, &model_name(e))?;
+        args.resolve(e, &model_name(e), Up::Y)?;
     }
     Ok(())
+}
+
+/// The files a run wrote, one line each, except that the collision meshes a URDF
+/// writes into its `{stem}_meshes/` folder are counted on the URDF's line:
+/// `wrote     robot.urdf and 96 mesh files in robot_meshes/`.
+pub fn wrote_lines(written: &[PathBuf]) -> Vec<String> {
+    // The URDF whose meshes folder holds `f`, by its index in `written`.
+    let owner = |f: &PathBuf| -> Option<usize> {
+        let dir = f.parent()?;
+        let name = dir.file_name()?.to_str()?;
+        written.iter().position(|h| {
+            let urdf = h
+                .extension()
+                .is_some_and(|e| e.eq_ignore_ascii_case("urdf"));
+            let stem = h.file_stem().and_then(|s| s.to_str());
+            urdf && h.parent() == dir.parent()
+                && stem.is_some_and(|s| name == format!("{s}_meshes"))
+        })
+    };
+    let owners: Vec<Option<usize>> = written.iter().map(owner).collect();
+    let mut lines = Vec::new();
+    for (i, f) in written
+        .iter()
+        .enumerate()
+        .filter(|(i, _)| owners[*i].is_none())
+    {
+        let meshes: Vec<&PathBuf> = (written.iter().zip(&owners))
+            .filter(|(_, o)| **o == Some(i))
+            .map(|(m, _)| m)
+            .collect();
+        lines.push(match meshes.first().and_then(|m| m.parent()) {
+            None => format!("wrote     {}", f.display()),
+            Some(dir) => format!(
+                "wrote     {} and {} mesh file{} in {}/",
+                f.display(),
+                meshes.len(),
+                if meshes.len() == 1 { "" } else { "s" },
+                dir.display()
+            ),
+        });
+    }
+    lines
+}
+
+/// The input `decompose --export` writes a level of: its path (never to be
+/// overwritten), its mesh (for `--preview`) and its up axis.
+pub struct Source<'a> {
+    pub path: &'a Path,
+    pub mesh: &'a primdecomp::Mesh,
+    pub up: Up,
 }
 
 /// Writes `decompose --export` files of one level; returns the paths.
@@ -189,20 +281,48 @@ pub fn write_level_exports(
     exports: &[PathBuf],
     args: &ExportArgs,
     objects: &[ResultObject],
-    label: &str,
-    levels: usize,
-    inputs: &[&Path],
-    input_mesh: Option<&primdecomp::Mesh>,
+    (label, levels): (&str, usize),
+    source: &Source,
 ) -> anyhow::Result<Vec<PathBuf>> {
     let mut written = Vec::new();
     for e in exports {
         let path = crate::paths::output_path_for(e, label, levels);
-        let (format, mut opts) = args.resolve(e, &model_name(e))?;
-        if let (true, Some(m)) = (args.preview, input_mesh) {
-            opts.input_mesh = Some(mesh_polygons(m));
+        let (format, mut opts) = args.resolve(e, &model_name(e), source.up)?;
+        if args.preview {
+            opts.input_mesh = Some(mesh_polygons(source.mesh));
         }
-        not_an_input("--export", &path, inputs)?;
+        not_an_input("--export", &path, &[source.path])?;
         written.extend(write_export(&path, objects, format, &opts)?);
     }
     Ok(written)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::wrote_lines;
+    use std::path::PathBuf;
+
+    /// A URDF's mesh files are one count on its line, wherever they stand in the list;
+    /// other files (an MJCF of the same stem, the result) keep a line each.
+    #[test]
+    fn a_urdfs_meshes_are_counted_on_its_line() {
+        let p = |s: &str| PathBuf::from(s);
+        let written = [
+            p("out/r.json"),
+            p("out/r.xml"),
+            p("out/r_meshes/a.obj"),
+            p("out/r_meshes/b.obj"),
+            p("out/r.urdf"),
+            p("out/other/c.obj"),
+        ];
+        assert_eq!(
+            wrote_lines(&written),
+            [
+                "wrote     out/r.json",
+                "wrote     out/r.xml",
+                "wrote     out/r.urdf and 2 mesh files in out/r_meshes/",
+                "wrote     out/other/c.obj",
+            ]
+        );
+    }
 }

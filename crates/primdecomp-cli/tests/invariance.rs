@@ -13,9 +13,13 @@ fn demo_mesh(scale: f64, offset: [f64; 3]) -> Mesh {
     Mesh::from_polygons(&v, &f).unwrap()
 }
 
+/// The greedy pass's levels: the demo scene has several parts, whose counts are
+/// otherwise cuts of the merge tree (docs/decisions/0054), which these bounds do not
+/// hold for (at scale 1e-6 and offset 1e6 a cut of the demo chose other nodes).
 fn params() -> Params {
     Params {
         targets: vec![120, 40],
+        greedy: true,
         ..Default::default()
     }
 }

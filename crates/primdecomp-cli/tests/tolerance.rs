@@ -98,9 +98,20 @@ fn a_box_within_a_tolerance_is_one_box() {
         std::fs::read(d.join("t.json")).unwrap(),
         "default = 2%"
     );
+    // The greedy level of 64 is a shell of plates; a count on one part whose greedy
+    // level comes out short is cut again (docs/decisions/0054): one box, as no more
+    // primitives would stand nearer, and the summary says so.
     let (code, out) = run(
         &d,
-        &["decompose", "cube.obj", "-n", "64", "-o", "cube64.json"],
+        &[
+            "decompose",
+            "cube.obj",
+            "-n",
+            "64",
+            "--greedy",
+            "-o",
+            "cube64.json",
+        ],
     );
     assert_eq!(code, Some(0), "{out}");
     assert!(
@@ -108,6 +119,16 @@ fn a_box_within_a_tolerance_is_one_box() {
             .as_u64()
             .unwrap()
             > 1
+    );
+    let (code, out) = run(
+        &d,
+        &["decompose", "cube.obj", "-n", "64", "-o", "cube64c.json"],
+    );
+    assert_eq!(code, Some(0), "{out}");
+    assert!(out.contains("count    64 → 1 primitives (1 box)"), "{out}");
+    assert!(
+        out.contains("no more primitives would stand nearer"),
+        "{out}"
     );
     // Fill completes a count: without one it is refused, naming -n.
     let (code, out) = run(&d, &["decompose", "cube.obj", "--fill", "-o", "f.json"]);
@@ -224,9 +245,11 @@ fn bad_values_are_refused() {
             &["--tolerance", "1mm"][..],
             "--tolerance: expected a positive distance",
         ),
+        (&["--tolerance=-1"][..], "--tolerance: '-1' is not positive"),
+        // A negative value is a value, not an option (not "unexpected argument '-1'").
         (
-            &["--tolerance=-1"][..],
-            "--tolerance: expected a positive distance",
+            &["--tolerance", "-1%"][..],
+            "--tolerance: '-1%' is not positive",
         ),
         (
             &["--tolerance", "2%,1%,0.5%", "-n", "8,4"][..],
@@ -264,10 +287,27 @@ fn a_greedy_level_far_under_its_count_says_why() {
         parts.push(cuboid(lo, lo.map(|x| x + 2.0)));
     }
     std::fs::write(d.join("crate.obj"), obj_text(&join(&parts))).unwrap();
-    let (code, out) = run(&d, &["decompose", "crate.obj", "-n", "9", "-o", "g.json"]);
+    let (code, out) = run(
+        &d,
+        &[
+            "decompose",
+            "crate.obj",
+            "-n",
+            "9",
+            "--greedy",
+            "-o",
+            "g.json",
+        ],
+    );
     assert_eq!(code, Some(0), "{out}");
-    assert!(out.contains("target     9 → 1 primitives (1 box)"), "{out}");
+    assert!(out.contains("count     9 → 1 primitives (1 box)"), "{out}");
     assert!(out.contains("lay inside those kept"), "{out}");
+    // Without --greedy a count on several parts is a cut (docs/decisions/0054): the
+    // blocks are hidden in the closed crate, so no split stands nearer and no note.
+    let (code, out) = run(&d, &["decompose", "crate.obj", "-n", "9", "-o", "c.json"]);
+    assert_eq!(code, Some(0), "{out}");
+    assert!(out.contains("farthest"), "{out}");
+    assert!(!out.contains("lay inside those kept"), "{out}");
     let (code, out) = run(
         &d,
         &[
@@ -281,4 +321,30 @@ fn a_greedy_level_far_under_its_count_says_why() {
     );
     assert_eq!(code, Some(0), "{out}");
     assert!(!out.contains("lay inside those kept"), "{out}");
+}
+
+/// Six separate cubes at -n 10: six boxes stand on the faces exactly, so the cut
+/// keeps six, and the summary says why a user asking for ten got six (short by more
+/// than a few, not under half).
+#[test]
+fn a_cut_short_of_its_count_says_why() {
+    let d = dir("six");
+    let parts: Vec<_> = (0..6)
+        .map(|i| {
+            let lo = [3.0 * i as f64, 0.0, 0.0];
+            cuboid(lo, lo.map(|x| x + 1.0))
+        })
+        .collect();
+    std::fs::write(d.join("six.obj"), obj_text(&join(&parts))).unwrap();
+    let (code, out) = run(&d, &["decompose", "six.obj", "-n", "10", "-o", "s.json"]);
+    assert_eq!(code, Some(0), "{out}");
+    assert!(out.contains("count    10 → 6 primitives (6 box)"), "{out}");
+    assert!(
+        out.contains("no more primitives would stand nearer"),
+        "{out}"
+    );
+    // Asking for what the parts hold says nothing more.
+    let (code, out) = run(&d, &["decompose", "six.obj", "-n", "6", "-o", "e.json"]);
+    assert_eq!(code, Some(0), "{out}");
+    assert!(!out.contains("no more primitives"), "{out}");
 }

@@ -16,6 +16,8 @@ fn measured(m: &Mesh, counts: &[usize], cut: bool) -> Metrics {
     let p = Params {
         targets: counts.to_vec(),
         cut,
+        // Without a cut, the greedy pass's level to compare with (docs/decisions/0054).
+        greedy: !cut,
         ..Params::default()
     };
     let d = decompose(m, &p).expect("decomposes");

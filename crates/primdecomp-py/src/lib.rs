@@ -24,11 +24,43 @@ type MeshArrays<'py> = (Bound<'py, PyArray2<f64>>, Vec<Vec<u32>>);
 /// How often the waiting Python thread checks for signals and reports progress.
 const POLL: Duration = Duration::from_millis(50);
 
+/// The library's errors in Python's vocabulary: the file system's as `OSError` with
+/// the errno and the file name, so Python raises its own subclass
+/// (`FileNotFoundError`, `PermissionError`, `IsADirectoryError`, …) with its usual
+/// message; bad input and settings as `ValueError` with the CLI's one-line message
+/// (without the "invalid setting: " prefix the CLI prints after "error: "); a
+/// cancellation as `KeyboardInterrupt`.
 fn to_py_err(e: Error) -> PyErr {
-    match e {
-        Error::Io { .. } => PyOSError::new_err(e.to_string()),
+    let os = |error: &std::io::Error, path: &Path| match error.raw_os_error() {
+        Some(code) => PyOSError::new_err((code, reason(error), path.display().to_string())),
+        None => PyOSError::new_err(e.to_string()),
+    };
+    match &e {
+        Error::Open { path, error } | Error::Io { path, error } | Error::Write { path, error } => {
+            os(error, path)
+        }
+        Error::NotAFile {
+            path,
+            kind: primdecomp::FileKind::Directory,
+        } => PyOSError::new_err((EISDIR, "Is a directory", path.display().to_string())),
+        Error::NotAFile { .. } => PyOSError::new_err(e.to_string()),
         Error::Cancelled => PyKeyboardInterrupt::new_err(e.to_string()),
+        Error::InvalidParams(m) => PyValueError::new_err(m.clone()),
         _ => PyValueError::new_err(e.to_string()),
+    }
+}
+
+/// `EISDIR`, the errno Python maps to `IsADirectoryError` (the same on Linux, macOS
+/// and the BSDs).
+const EISDIR: i32 = 21;
+
+/// The operating system's words for an error, without Rust's " (os error N)" suffix
+/// (Python prints the errno itself).
+fn reason(error: &std::io::Error) -> String {
+    let s = error.to_string();
+    match s.rfind(" (os error ") {
+        Some(i) => s[..i].to_string(),
+        None => s,
     }
 }
 
@@ -216,8 +248,12 @@ fn decompose_path(
         .map_err(|p| PyRuntimeError::new_err(panic_message(p)))?
         .map_err(to_py_err)?;
     let mut dec = run_watched(py, &mesh, &params, progress.as_ref())?;
-    // As the CLI records it, so that to_json() is the CLI's file byte for byte.
+    // As the CLI records them, so that to_json() is the CLI's file byte for byte.
     dec.input.path = Some(Path::new(path).display().to_string());
+    if let Some(format) = primdecomp::Format::from_path(Path::new(path)) {
+        let (up, why) = primdecomp::export::Up::of_format(format);
+        (dec.input.up, dec.input.up_from) = (Some(up), Some(why.to_string()));
+    }
     Ok(NativeResult { dec, params })
 }
 
@@ -366,7 +402,12 @@ impl NativeResult {
                     })?,
                 };
                 let objs = primdecomp::export::read_objects(&json).map_err(PyValueError::new_err)?;
-                write_export(p, &objs, format, &ExportOptions::default())
+                // The input's up axis where the result records it (+Y otherwise).
+                let opts = ExportOptions {
+                    up: self.dec.input.up.unwrap_or_default(),
+                    ..ExportOptions::default()
+                };
+                write_export(p, &objs, format, &opts)
             }
         }
         .map_err(to_py_err)?;

@@ -1,6 +1,7 @@
-"""The Python package against the CLI on corpus meshes, the coacd-style hulls against
-an independent containment check (trimesh), other input formats, zero-copy input,
-and the batch runner on a local Ray instance and on the thread-pool fallback."""
+"""The Python package against the CLI on made-up meshes (and corpus meshes where
+present), the coacd-style hulls against an independent containment check (trimesh),
+other input formats, zero-copy input, and the batch runner on a local Ray instance
+and on the thread-pool fallback."""
 
 import json
 import os
@@ -14,29 +15,21 @@ import pytest
 import primdecomp
 import primdecomp.batch
 
-ROOT = Path(__file__).resolve().parents[3]
-CORPUS = ROOT.parent / "shared" / "datasets" / "corpus"
-# Small corpus meshes; the first two differed from the CLI in the last bit before
-# load() returned the file's coordinates unrounded.
-MESHES = ["coacd_bottle.obj", "parry_poly_cylinder.obj", "cad_featuretype.STL"]
+from conftest import CLI, ROOT, collected, made_up, mesh, need
 
-
-def corpus(name):
-    p = CORPUS / name
-    if not p.exists():
-        if os.environ.get("CI"):
-            pytest.fail(f"{p} missing under CI")
-        pytest.skip(f"{p} missing")
-    return p
+# Made-up meshes of three formats (kinds of every primitive, a scalene pair, a z-up
+# STL), then small corpus meshes, the first two of which differed from the CLI in the
+# last bit before load() returned the file's coordinates unrounded.
+MESHES = collected(["made-up/kinds.obj", "made-up/wedges.off", "made-up/robot.stl", "corpus/coacd_bottle.obj",
+                    "corpus/parry_poly_cylinder.obj", "corpus/cad_featuretype.STL"])
+BATCH = ["kinds.obj", "wedges.off", "robot.stl"]
 
 
 @pytest.fixture(scope="session")
 def cli():
-    """The release CLI: target/release/primdecomp, built with cargo when missing."""
-    exe = ROOT / "target" / "release" / "primdecomp"
-    if not exe.exists():
-        subprocess.run(["cargo", "build", "--release", "-q", "-p", "primdecomp-cli"], cwd=ROOT, check=True)
-    return exe
+    """The release CLI (scripts/test.sh builds it)."""
+    need(CLI)
+    return CLI
 
 
 def cli_json(cli, mesh, out, n=16):
@@ -50,11 +43,11 @@ def prims(text):
 
 @pytest.mark.parametrize("name", MESHES)
 def test_arrays_and_file_equal_cli(cli, tmp_path, name):
-    mesh = corpus(name)
-    want = cli_json(cli, mesh, tmp_path / "c.json")
-    v, f = primdecomp.load(mesh)
+    path = mesh(name)
+    want = cli_json(cli, path, tmp_path / "c.json")
+    v, f = primdecomp.load(path)
     assert prims(primdecomp.decompose(v, f, targets=[16]).to_json()) == prims(want)
-    assert primdecomp.decompose_file(str(mesh), targets=[16]).to_json().encode() == want
+    assert primdecomp.decompose_file(str(path), targets=[16]).to_json().encode() == want
 
 
 def inside_some_hull(points, hulls, tol):
@@ -70,7 +63,7 @@ def inside_some_hull(points, hulls, tol):
 
 def test_as_hulls_are_convex_and_contain_the_input():
     trimesh = pytest.importorskip("trimesh")
-    v, f = primdecomp.load(corpus("coacd_bottle.obj"))
+    v, f = primdecomp.load(made_up("kinds.obj"))
     hulls = [trimesh.Trimesh(hv, hf) for hv, hf in primdecomp.as_hulls(v, f, targets=[12])]
     assert 1 <= len(hulls) <= 12
     assert all(h.is_convex and h.is_watertight for h in hulls)
@@ -127,7 +120,8 @@ def test_input_arrays_are_not_copied():
 
 
 def test_faces_dtypes_and_layouts_agree():
-    v, f = primdecomp.load(corpus("parry_poly_cylinder.obj"))
+    # Triangles (an STL), so the faces are one (F, 3) array in every dtype and layout.
+    v, f = primdecomp.load(made_up("robot.stl"))
     ref = primdecomp.decompose(v, f, targets=[6]).to_json()
     f = np.asarray(f)
     wide = np.zeros((len(f), 6), dtype=np.int64)
@@ -140,7 +134,7 @@ def batch_inputs(tmp_path):
     bad = tmp_path / "in" / "broken.obj"
     bad.parent.mkdir()
     bad.write_text("v 0 0 0\nf 1 2 3\n")
-    return [str(corpus(n)) for n in MESHES] + [str(bad)]
+    return [str(made_up(n)) for n in BATCH] + [str(bad)]
 
 
 def check_batch(cli, tmp_path, rows, inputs, out):
@@ -179,17 +173,17 @@ def test_batch_on_local_ray(cli, tmp_path):
 def test_batch_thread_pool_fallback_and_folder(cli, tmp_path):
     folder = tmp_path / "meshes"
     folder.mkdir()
-    for n in MESHES:
-        shutil.copy(corpus(n), folder / n)
+    for n in BATCH:
+        shutil.copy(made_up(n), folder / n)
     (folder / "notes.txt").write_text("not a mesh")
     inputs = primdecomp.batch.inputs_of(folder)
-    assert [Path(p).name for p in inputs] == sorted(MESHES)
+    assert [Path(p).name for p in inputs] == sorted(BATCH)
     rows = primdecomp.batch.run(folder, tmp_path / "out", use_ray=False, workers=2, targets=[16])
     for r in rows:
         assert r["status"] == "done"
         assert Path(r["output"]).read_bytes() == cli_json(cli, r["input"], tmp_path / "c.json")
     assert rows[0]["output"] == primdecomp.batch.output_of(inputs[0], tmp_path / "out")
     with pytest.raises(ValueError, match="rename"):
-        primdecomp.batch.run([folder / MESHES[0], tmp_path / "x" / MESHES[0]], tmp_path / "o2", use_ray=False)
+        primdecomp.batch.run([folder / BATCH[0], tmp_path / "x" / BATCH[0]], tmp_path / "o2", use_ray=False)
     with pytest.raises(ValueError, match="one value of targets"):
         primdecomp.batch.run(folder, tmp_path / "o3", use_ray=False, targets=[8, 4])

@@ -1,6 +1,6 @@
-"""pytest suite of the primdecomp Python package. Needs the corpus at
-../shared/datasets/corpus relative to the repo root and the CLI binary
-target/release/primdecomp (scripts/test.sh builds both before running this)."""
+"""pytest suite of the primdecomp Python package. Runs on the made-up inputs
+(conftest.py) and needs the CLI binary (scripts/test.sh builds it before running
+this)."""
 
 import json
 import os
@@ -15,17 +15,12 @@ import pytest
 
 import primdecomp
 
-ROOT = Path(__file__).resolve().parents[3]
-CORPUS = ROOT.parent / "shared" / "datasets" / "corpus"
-CLI = ROOT / "target" / "release" / "primdecomp"
-MESH = CORPUS / "armadillo_libigl.obj"
+from conftest import CLI, ROOT, made_up, need
 
 
-def need(p):
-    if not p.exists():
-        if os.environ.get("CI"):
-            pytest.fail(f"{p} missing under CI")
-        pytest.skip(f"{p} missing")
+def lumpy():
+    """A made-up mesh of 81,920 triangles: runs long enough to interrupt."""
+    return made_up("lumpy.ply")
 
 
 def cube():
@@ -95,13 +90,74 @@ def test_bad_input_raises_value_error(bad, msg):
 
 
 def test_bad_settings():
+    """Settings errors in Python's vocabulary: an unknown keyword is a TypeError, as
+    for any function; a wrong value a ValueError with the CLI's one-line message."""
     v, q = cube()
-    with pytest.raises(ValueError, match="bogus"):
+    with pytest.raises(TypeError, match="unexpected keyword argument 'bogus'"):
         primdecomp.decompose(v, q, bogus=1)
-    with pytest.raises(ValueError):
+    with pytest.raises(ValueError, match="targets: expected a positive count, got 0"):
         primdecomp.decompose(v, q, targets=[0])
     with pytest.raises(ValueError, match="fill needs targets"):
         primdecomp.decompose(v, q, fill=True)
+    with pytest.raises(ValueError, match=r"^tolerance: expected a positive distance .* got 'abc'$"):
+        primdecomp.decompose(v, q, tolerance="abc")
+    with pytest.raises(ValueError, match="is not positive"):
+        primdecomp.decompose(v, q, tolerance="-1%")
+    with pytest.raises(ValueError, match="unknown primitive kind 'cone'"):
+        primdecomp.decompose(v, q, kinds=["box", "cone"])
+    with pytest.raises(ValueError, match="min_extent: expected a number, got 'x'"):
+        primdecomp.decompose(v, q, min_extent="x")
+    with pytest.raises(ValueError, match="max_bytes: expected a positive byte count"):
+        primdecomp.decompose(v, q, max_bytes="lots")
+    with pytest.raises(ValueError, match=r"^min_extent must be in \(0, 1\), got -1"):
+        primdecomp.decompose(v, q, min_extent=-1.0)
+    # The CLI's forms work: kinds by name, a partial weights dict, "4K" bytes.
+    r = primdecomp.decompose(v, q, kinds=["box"], weights={"box": 2}, max_bytes="4K", targets=4)
+    assert {p.kind for p in r.levels[0].primitives} == {"box"}
+
+
+def test_file_errors_are_os_errors(tmp_path):
+    """The file system's errors as Python's own OSError subclasses, with errno and
+    the file name; a file that is not a mesh is a ValueError naming its line."""
+    import errno
+
+    with pytest.raises(FileNotFoundError) as e:
+        primdecomp.load(tmp_path / "nonexistent.obj")
+    assert e.value.errno == errno.ENOENT and e.value.filename == str(tmp_path / "nonexistent.obj")
+    with pytest.raises(IsADirectoryError):
+        primdecomp.load(tmp_path)
+    with pytest.raises(FileNotFoundError):
+        primdecomp.decompose_file(tmp_path / "missing.stl")
+    locked = tmp_path / "locked.obj"
+    locked.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    locked.chmod(0)
+    try:
+        if os.geteuid() != 0:  # root reads it anyway
+            with pytest.raises(PermissionError):
+                primdecomp.load(locked)
+    finally:
+        locked.chmod(0o644)
+    bad = tmp_path / "bad.obj"
+    bad.write_text("v 0 0\nf 1 2 3\n")
+    with pytest.raises(ValueError, match=r"bad.obj:1"):
+        primdecomp.load(bad)
+    with pytest.raises(TypeError):
+        primdecomp.load(42)
+
+
+def test_reprs_say_what_they_hold():
+    v, q = cube()
+    r = primdecomp.decompose(v, q, targets=[4, 1])
+    text = repr(r)
+    assert text.startswith("<primdecomp.Result of arrays (6 faces), 2 levels: targets 4: ")
+    assert "primitives (" in text and "bytes" in text
+    lv = r.levels[1]
+    assert repr(lv).startswith("<primdecomp.Level targets 1: 1 primitives (1 box), 40 bytes")
+    p = lv.primitives[0]
+    assert repr(p).startswith("Primitive(box: center=(0.5, 0.5, 0.5), half_extents=(")
+    assert "faces=6" in repr(p)
+    t = primdecomp.decompose(v, q, tolerance="1%")
+    assert "tolerance 1% of the diagonal" in repr(t.levels[0]) and "farthest" in repr(t.levels[0])
 
 
 def test_as_hulls_and_export(tmp_path):
@@ -115,18 +171,17 @@ def test_as_hulls_and_export(tmp_path):
 
 
 def test_same_primitives_as_cli(tmp_path):
-    need(MESH)
     need(CLI)
-    subprocess.run([CLI, "decompose", MESH, "-n", "16", "-o", tmp_path / "c.json"],
+    mesh = lumpy()
+    subprocess.run([CLI, "decompose", mesh, "-n", "16", "-o", tmp_path / "c.json"],
                    check=True, capture_output=True)
     cli = json.loads((tmp_path / "c.json").read_text())["primitives"]
-    py = json.loads(primdecomp.decompose_file(MESH, targets=[16]).to_json())["primitives"]
+    py = json.loads(primdecomp.decompose_file(mesh, targets=[16]).to_json())["primitives"]
     assert json.dumps(cli) == json.dumps(py)
 
 
 def test_gil_released():
-    need(MESH)
-    v, f = primdecomp.load(MESH)
+    v, f = primdecomp.load(lumpy())
     ticks = []
     stop = threading.Event()
 
@@ -146,8 +201,7 @@ def test_gil_released():
 
 
 def test_ctrl_c_interrupts_quickly():
-    need(MESH)
-    v, f = primdecomp.load(MESH)
+    v, f = primdecomp.load(lumpy())
     seen = []
     timer = threading.Timer(0.3, lambda: os.kill(os.getpid(), signal.SIGINT))
     timer.start()
@@ -159,14 +213,20 @@ def test_ctrl_c_interrupts_quickly():
 
 
 def test_tolerance_and_bytes(tmp_path):
-    """A closed cube within 1% is one box, as by default (a count of 64 gives plates);
+    """A closed cube within 1% is one box, as by default and, triangulated, as a count
+    of 64 (its greedy level, a shell of plates, comes out short and is cut again);
     a chain of tolerances gives one level each; the same settings as the CLI give its
     primitives."""
     v, f = cube()
     one = primdecomp.decompose(v, f, tolerance="1%")
     assert [p.kind for p in one.levels[0].primitives] == ["box"]
     assert [p.kind for p in primdecomp.decompose(v, f).levels[0].primitives] == ["box"]
-    assert len(primdecomp.decompose(v, f, targets=64).levels[0].primitives) > 1
+    # Triangulated (12 faces), the greedy level's 6 plates are short of 12 and cut again;
+    # the 6 quads' greedy level holds one primitive per face, and stays.
+    t = np.array([[a, b, c] for q in f for a, b, c in ((q[0], q[1], q[2]), (q[0], q[2], q[3]))])
+    assert [p.kind for p in primdecomp.decompose(v, t, targets=64).levels[0].primitives] == ["box"]
+    assert len(primdecomp.decompose(v, t, targets=64, greedy=True).levels[0].primitives) > 1
+    assert len(primdecomp.decompose(v, f, targets=64).levels[0].primitives) == 6
     dist = json.loads(one.to_json())["stats"]["distance"]
     assert dist["worst"] <= dist["tolerance"]
     with pytest.raises(ValueError, match="tolerance"):

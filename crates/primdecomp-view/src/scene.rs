@@ -37,7 +37,8 @@ impl Default for Options {
 /// One collider: a level of our result or a peer's hulls.
 #[derive(Clone, Debug)]
 pub struct Collider {
-    /// Short label: `target 150` or the peer's name.
+    /// Short label: what the level asked for and reached (`count 150`, `tolerance 2%,
+    /// reached 1.31%`), or the peer's name.
     pub label: String,
     /// The file it came from, as given.
     pub file: String,
@@ -219,13 +220,15 @@ pub fn result_files(path: &Path) -> Vec<PathBuf> {
 }
 
 /// One level of a result as read: its primitives (checked by the core's reader), each
-/// primitive's JSON object (only the contract's keys) and its target.
+/// primitive's JSON object (only the contract's keys), its target and its label.
 #[derive(Clone, Debug)]
 pub struct LevelDoc {
     pub path: PathBuf,
     pub primitives: Vec<Primitive>,
     pub json: Vec<Value>,
     pub target: Option<u64>,
+    /// What was asked and reached ([`level_label`]), when the document says.
+    pub label: Option<String>,
 }
 
 /// The keys of a primitive's JSON object that the page shows (the result contract's):
@@ -306,6 +309,7 @@ fn read_level(path: &Path, doc: &Value) -> Result<LevelDoc> {
         primitives,
         json,
         target,
+        label: level_label(doc),
     })
 }
 
@@ -319,10 +323,7 @@ pub fn build_level(doc: &LevelDoc, detail: usize) -> Collider {
         parts.push_polygons(&v, &f, kind as u8);
         bytes += kind.bytes();
     }
-    let label = match doc.target {
-        Some(t) => format!("target {t}"),
-        None => file_label(&doc.path),
-    };
+    let label = doc.label.clone().unwrap_or_else(|| file_label(&doc.path));
     Collider {
         label,
         file: doc.path.display().to_string(),
@@ -392,6 +393,61 @@ pub fn fit_detail(
         d -= 1;
     }
     Ok(d)
+}
+
+/// A level's label: what was asked (a tolerance, a byte size, or a count) and, for a
+/// cut, what was reached (the farthest distance, or the bytes used); `None` for a
+/// document without `settings.target`.
+pub fn level_label(doc: &Value) -> Option<String> {
+    let target = doc.get("settings")?.get("target")?.as_u64()?;
+    let distance = doc.get("stats").and_then(|s| s.get("distance"));
+    let get = |k: &str| distance.and_then(|d| d.get(k)).and_then(Value::as_f64);
+    let diagonal = diagonal(doc);
+    // A distance as the user gives it: a percentage of the diagonal when the input's
+    // bounds are known, else in input units.
+    let show = |d: f64| match diagonal {
+        Some(g) if g > 0.0 => format!("{}%", short(100.0 * d / g)),
+        _ => short(d),
+    };
+    let worst = get("worst");
+    let label = match (get("tolerance"), get("max_bytes")) {
+        (Some(t), _) => format!("tolerance {}", show(t)),
+        (None, Some(b)) => format!("max {} bytes", b as u64),
+        (None, None) => format!("count {target}"),
+    };
+    Some(match worst {
+        Some(w) => format!("{label}, reached {}", show(w)),
+        None => label,
+    })
+}
+
+/// The input's bounding-box diagonal recorded in a result document.
+fn diagonal(doc: &Value) -> Option<f64> {
+    let input = doc.get("input")?;
+    let corner = |k: &str| -> Option<Vec<f64>> {
+        input
+            .get(k)?
+            .as_array()?
+            .iter()
+            .map(Value::as_f64)
+            .collect()
+    };
+    let (lo, hi) = (corner("aabb_min")?, corner("aabb_max")?);
+    (lo.len() == 3 && hi.len() == 3)
+        .then(|| (0..3).map(|k| (hi[k] - lo[k]).powi(2)).sum::<f64>().sqrt())
+}
+
+/// Three significant digits, without trailing zeros.
+fn short(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let digits = (2 - x.abs().log10().floor() as i32).max(0) as usize;
+    let s = format!("{x:.digits$}");
+    match s.contains('.') {
+        true => s.trim_end_matches('0').trim_end_matches('.').to_string(),
+        false => s,
+    }
 }
 
 fn file_label(path: &Path) -> String {

@@ -113,8 +113,10 @@ impl Search {
 /// targets, then up to [`ROUNDS`] ladder passes for the targets the post-processing
 /// left short; the merge stage's progress runs over all of them.
 pub(crate) fn fill(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Result<Decomposition> {
+    // The passes are greedy levels, which fill refines (never cuts, 0054).
     let once = Params {
         fill: false,
+        greedy: true,
         ..params.clone()
     };
     // Progress: the first pass is the first half, each round an equal share of the rest.

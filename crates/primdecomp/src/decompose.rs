@@ -3,7 +3,7 @@
 
 use crate::error::Result;
 use crate::mesh::Mesh;
-use crate::params::Params;
+use crate::params::{short_of, Params};
 use crate::progress::{Progress, Silent};
 use crate::result::Decomposition;
 use crate::{budget, pipeline};
@@ -45,5 +45,34 @@ pub fn decompose_with(
         // Nested primitives removed leave room: merge less to fill it.
         return budget::fill(mesh, params, progress);
     }
-    pipeline::run(mesh, params, progress)
+    let mut dec = pipeline::run(mesh, params, progress)?;
+    // A greedy level post-processing left short of its count is cut from the merge
+    // tree instead, as on several parts (docs/decisions/0054); the other levels stay
+    // the greedy's, so each level is what its own run gives.
+    let faces = mesh.face_count();
+    let short: Vec<usize> = (0..dec.levels.len())
+        .filter(|&i| {
+            let l = &dec.levels[i];
+            params.count_cut()
+                && l.distance.is_none()
+                && short_of(l.primitives.len(), l.target, faces)
+        })
+        .collect();
+    if short.is_empty() {
+        return Ok(dec);
+    }
+    let recut = Params {
+        cut: true,
+        targets: short.iter().map(|&i| params.targets[i]).collect(),
+        ..params.clone()
+    };
+    let cut = pipeline::run(mesh, &recut, progress)?;
+    for (&i, level) in short.iter().zip(cut.levels) {
+        dec.levels[i] = level;
+    }
+    let recut_stages = cut.timings.stages.into_iter();
+    dec.timings
+        .stages
+        .extend(recut_stages.map(|(s, t)| (format!("recut {s}"), t)));
+    Ok(dec)
 }

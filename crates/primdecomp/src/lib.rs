@@ -82,6 +82,7 @@ mod progress;
 mod quadric;
 mod recut;
 mod result;
+mod up;
 mod wallclock;
 
 pub use decompose::{decompose, decompose_with};

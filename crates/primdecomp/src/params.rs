@@ -244,6 +244,15 @@ pub struct Params {
     /// less (up to 8N) so the level holds as many primitives as fit within N; up to
     /// four more merge passes (docs/decisions/0020).
     pub fill: bool,
+    /// Counts are the greedy pass's levels (the paper's, the fastest), never cut
+    /// again. By default ([`Params::count_cut`]) a count on an input of several
+    /// separate parts is a cut of the merge tree, and on one part a greedy level that
+    /// post-processing left short of its count by more than a few
+    /// ([`short_of`]) is cut again: on several parts the greedy level loses the parts
+    /// nested in one large primitive, so -n 32 could give 5
+    /// (docs/decisions/0054-counts-on-several-parts.md).
+    #[serde(skip_serializing_if = "is_false")]
+    pub greedy: bool,
     /// Each target is a cut of the pass's merge tree instead of the clusters alive when
     /// N remain: the node whose primitive stands farthest from the input (a bound of
     /// the one-way distance, docs/decisions/0040) is split until N remain or none is worth splitting, and of
@@ -290,6 +299,7 @@ impl Default for Params {
             solid: false,
             min_thickness: 0.0,
             fill: false,
+            greedy: false,
             cut: false,
             tolerance: Vec::new(),
             max_bytes: Vec::new(),
@@ -303,6 +313,19 @@ impl Default for Params {
 /// existed are byte-identical).
 fn is_zero(x: &f64) -> bool {
     *x == 0.0
+}
+
+/// Whether `b` is false (as [`is_zero`]).
+fn is_false(b: &bool) -> bool {
+    !*b
+}
+
+/// Whether a level of `primitives` falls short of its count `target` by more than a
+/// few (2, or 1/32 of the count if more), on an input of `faces` faces: the greedy
+/// level's post-processing removed what the count asked for.
+pub(crate) fn short_of(primitives: usize, target: usize, faces: usize) -> bool {
+    let want = target.min(faces);
+    primitives + (want / 32).max(2) < want
 }
 
 /// Per-kind arrays as `{"box": …, "sphere": …, …}` (every kind named, in order).
@@ -542,6 +565,12 @@ impl Params {
         if self.max_bytes.contains(&0) {
             return bad("max_bytes must be positive".into());
         }
+        if self.greedy && self.uses_cut() {
+            return bad(
+                "greedy takes the greedy pass's levels: not with cut, tolerance or max_bytes"
+                    .into(),
+            );
+        }
         if self.fill && self.uses_cut() {
             return bad(
                 "fill refines the greedy snapshot; cut, tolerance and max_bytes already fill \
@@ -556,6 +585,12 @@ impl Params {
     /// byte target).
     pub(crate) fn uses_cut(&self) -> bool {
         self.cut || !self.tolerance.is_empty() || !self.max_bytes.is_empty()
+    }
+
+    /// Whether counts alone may become cuts of the merge tree where the greedy level
+    /// falls short ([`Params::greedy`]): neither greedy, fill nor a cut is asked for.
+    pub(crate) fn count_cut(&self) -> bool {
+        !self.greedy && !self.fill && !self.uses_cut()
     }
 
     /// Level `i`'s tolerance and byte target (one value applies to every level).

@@ -26,17 +26,6 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
     check_input(mesh)?;
     let mut clock = Clock::new(progress);
     let bounds = mesh.aabb();
-    // Spatial parts merge down to their share of the largest requested count's groups,
-    // the greedy's own; a cut's leaves come from the global loop after them (0042).
-    let largest = params.targets.iter().copied().max().unwrap_or(1);
-    let mut targets = if params.uses_cut() {
-        // The tree's leaves (a snapshot of a few times the largest target, needed only
-        // after spatial parts: below) up to its roots (docs/decisions/0032, 0034).
-        let leaves = largest.saturating_mul(crate::cut::LEAVES_PER_TARGET);
-        merge_order(&[leaves.min(mesh.face_count()).max(largest), 1])
-    } else {
-        merge_order(&params.targets)
-    };
     // Weld overlapping vertices so seams between parts become adjacency (§3.4).
     let (welded, distinct) = clock
         .stage(Stage::Dedup, "dedup", |go_on, _| {
@@ -49,6 +38,35 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
             adjacency::face_pairs_checked(&mesh.face_offsets, &welded, go_on)
         })?
         .ok_or(Error::Cancelled)?;
+    // Counts on several separate parts are cuts of the merge tree: the greedy level
+    // drops the parts nested in one part's primitive (docs/decisions/0054).
+    let point = |f: usize| {
+        let corners = &welded[mesh.face_offsets[f] as usize..mesh.face_offsets[f + 1] as usize];
+        corners.iter().all(|&v| v == corners[0])
+    };
+    let several = params.count_cut() && components::several(mesh.face_count(), &pairs, point);
+    let cut_params;
+    let params = match several {
+        true => {
+            cut_params = Params {
+                cut: true,
+                ..params.clone()
+            };
+            &cut_params
+        }
+        false => params,
+    };
+    // Spatial parts merge down to their share of the largest requested count's groups,
+    // the greedy's own; a cut's leaves come from the global loop after them (0042).
+    let largest = params.targets.iter().copied().max().unwrap_or(1);
+    let mut targets = if params.uses_cut() {
+        // The tree's leaves (a snapshot of a few times the largest target, needed only
+        // after spatial parts: below) up to its roots (docs/decisions/0032, 0034).
+        let leaves = largest.saturating_mul(crate::cut::LEAVES_PER_TARGET);
+        merge_order(&[leaves.min(mesh.face_count()).max(largest), 1])
+    } else {
+        merge_order(&params.targets)
+    };
     // Where the merge loop starts: spatial parts, components, or the faces themselves.
     let first = FirstPhase::choose(mesh, params, &pairs, targets[0], largest);
     // Spatial parts compute their faces' operators and seed volumes themselves, and
@@ -579,6 +597,8 @@ pub(crate) fn input_info(mesh: &Mesh, (lo, hi): (V3, V3)) -> InputInfo {
         vertices: mesh.vertex_count(),
         aabb_min: crate::math::add(lo, mesh.offset),
         aabb_max: crate::math::add(hi, mesh.offset),
+        up: None,
+        up_from: None,
     }
 }
 

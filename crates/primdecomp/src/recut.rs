@@ -58,7 +58,13 @@ pub(crate) fn snapshots(
             s.step(r, snap, level);
         }
     }
-    fill_short(&mut cutter, &mut searches, requests, ev, (params, post));
+    fill_short(
+        &mut cutter,
+        &mut searches,
+        requests,
+        (ev, tris),
+        (params, post),
+    );
     loosen(
         &mut cutter,
         &mut searches,
@@ -77,13 +83,16 @@ pub(crate) fn snapshots(
 /// A level of a count alone that the raises left short of it (its worst node's
 /// subtree splits no nearer, and a larger exploration is spent there too) cut once
 /// more at its own count, the rest of the count spent on the cut's other nodes
-/// (`Cutter::snapshots_filled`, docs/decisions/0048), and kept where its level holds more primitives within the
-/// count and its nodes stand no farther.
+/// (`Cutter::snapshots_filled`, docs/decisions/0048), and kept where its level holds
+/// more primitives within the count and its nodes stand no farther, or no more than
+/// [`SLACK`] times farther and nearer on the mean (as [`loosen`]'s levels): a count's
+/// worst error can sit on one feature no split brings nearer, and a bound a hair
+/// lower then kept one primitive of the eight asked for (docs/decisions/0054).
 fn fill_short(
     cutter: &mut Cutter,
     searches: &mut [Search],
     requests: &[Request],
-    ev: &Evaluator,
+    (ev, tris): (&Evaluator, &Triangles),
     (params, post): (&Params, &postprocess::Input),
 ) {
     let short = |s: &Search, r: &Request| {
@@ -104,9 +113,12 @@ fn fill_short(
         .zip(requests)
         .zip(snaps.into_iter().zip(&levels))
     {
-        let nearer = snap.bound.unwrap_or(f64::INFINITY) <= s.kept.bound.unwrap_or(f64::INFINITY);
+        let (new, old) = (bound(&snap), bound(&s.kept));
         let more = level.primitives.len() > s.level.primitives.len();
-        if short(s, r) && more && nearer && within(r, level) {
+        let nearer = || {
+            new <= old || (new <= SLACK * old && mean(ev, tris, level) < mean(ev, tris, &s.level))
+        };
+        if short(s, r) && more && within(r, level) && nearer() {
             (s.kept, s.level) = (snap, level.clone());
         }
     }
@@ -208,13 +220,7 @@ fn loosen(
         .map(|s| cutter.snapshot_loose(&s.before))
         .collect();
     let levels = postprocess::levels(ev, snaps.clone(), params, post);
-    // Levels are in world coordinates, the input's triangles in its re-centred frame.
-    let back = ev.mesh.offset.map(|x| -x);
-    let mean = |l: &Level| {
-        let prims: Vec<Primitive> = l.primitives.iter().map(|p| p.translated(back)).collect();
-        mean_distance(&prims, tris)
-    };
-    let bound = |s: &Snapshot| s.bound.unwrap_or(f64::INFINITY);
+    let mean = |l: &Level| mean(ev, tris, l);
     let old: Vec<f64> = searches.iter().map(|s| bound(&s.kept)).collect();
     let n = old.len();
     let mut now = old.clone();
@@ -234,6 +240,19 @@ fn loosen(
         }
         (s.kept, s.level) = (snaps[i].clone(), level.clone());
     }
+}
+
+/// A cut's bound on its worst error (infinite where none was proved).
+fn bound(s: &Snapshot) -> f64 {
+    s.bound.unwrap_or(f64::INFINITY)
+}
+
+/// A level's mean distance to the input ([`mean_distance`]); levels are in world
+/// coordinates, the input's triangles in its re-centred frame.
+fn mean(ev: &Evaluator, tris: &Triangles, l: &Level) -> f64 {
+    let back = ev.mesh.offset.map(|x| -x);
+    let prims: Vec<Primitive> = l.primitives.iter().map(|p| p.translated(back)).collect();
+    mean_distance(&prims, tris)
 }
 
 /// Whether a cut for `now` (from `from`'s caps raised to `to`'s) holds less than

@@ -3,6 +3,7 @@
 
 use crate::math::V3;
 use crate::primitive::Primitive;
+use crate::up::Up;
 use serde::Serialize;
 
 /// What the input was: its size and bounding box in world coordinates.
@@ -18,6 +19,16 @@ pub struct InputInfo {
     pub aabb_min: V3,
     /// Upper corner of that box.
     pub aabb_max: V3,
+    /// Which axis points up in the input, when the caller knows it (the CLI and
+    /// Python's `decompose_file` set it from the file format or `--up`,
+    /// [`Up::of_format`]); the exports and the viewer turn the result by it. Results
+    /// without it are taken as +Y up.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub up: Option<Up>,
+    /// Where [`InputInfo::up`] came from: the format's specification, an assumption
+    /// for a format that says nothing, or the caller.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub up_from: Option<String>,
 }
 
 impl InputInfo {

@@ -16,6 +16,8 @@ fn params(targets: &[usize], free: bool) -> Params {
     Params {
         targets: targets.to_vec(),
         join_coplanar: free,
+        // The greedy pass these merges happen in (docs/decisions/0054).
+        greedy: true,
         ..Default::default()
     }
 }

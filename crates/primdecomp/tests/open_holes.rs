@@ -19,10 +19,13 @@ fn roof_centre_covered(mesh: &Mesh, p: &Params) -> bool {
         .any(|p| p.contains(probe, 0.0))
 }
 
+/// The greedy pass's level, whose coplanar pricing this measures (a count on several
+/// parts is otherwise a cut of the merge tree: docs/decisions/0054).
 fn with_flat(target: usize, flat: f64) -> Params {
     Params {
         targets: vec![target],
         open_holes: flat,
+        greedy: true,
         ..Default::default()
     }
 }

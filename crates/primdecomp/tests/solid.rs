@@ -12,6 +12,8 @@ fn params(targets: &[usize], solid: bool) -> Params {
     Params {
         targets: targets.to_vec(),
         solid,
+        // The greedy pass's pricing, which this measures (docs/decisions/0054).
+        greedy: true,
         ..Default::default()
     }
 }

@@ -24,8 +24,20 @@ def load(path):
 
     Returns (vertices, faces): vertices an (N,3) float64 array holding the file's
     coordinates exactly; faces an (F,k) uint32 array when every face has k corners,
-    else a list of polygons. `decompose(*load(path))` equals the CLI's primitives."""
-    return _native.load(str(path))
+    else a list of polygons. `decompose(*load(path))` equals the CLI's primitives.
+
+    Raises FileNotFoundError, PermissionError, IsADirectoryError (OSError) for the
+    file system, ValueError for a file that is not a mesh we read (naming the line or
+    byte where it went wrong)."""
+    return _native.load(_path(path))
+
+
+def _path(path):
+    """A str or path-like as str (TypeError otherwise, as open() does)."""
+    import os
+
+    p = os.fspath(path)
+    return p.decode() if isinstance(p, bytes) else p
 
 
 def _vertices(vertices):
@@ -91,21 +103,57 @@ class Primitive:
         return self._native.tessellate(self._level, self._index, detail)
 
     def __repr__(self):
-        return f"Primitive(kind={self.kind!r}, volume={self.volume:.6g})"
+        def show(v):
+            if isinstance(v, (list, tuple)):
+                return "(" + ", ".join(f"{x:.4g}" for x in v) + ")"
+            return f"{v:.4g}"
+
+        skip = {"kind", "faces", "rotation"}
+        if self.kind == "prism" and self.params.get("shift_z") == 0.0:
+            skip.add("shift_z")
+        fields = ", ".join(f"{k}={show(v)}" for k, v in self.params.items() if k not in skip)
+        return f"Primitive({self.kind}: {fields}, volume={self.volume:.4g}, faces={self.params.get('faces')})"
 
 
 class Level:
-    """One target's result: `target`, `primitives`."""
+    """One level of a result: `target` (the count asked, or the cap of a tolerance or
+    byte target), `primitives`, `counts` by kind, `bytes` (the paper's Table 2) and,
+    for a cut of the merge tree, `distance` (the farthest a primitive stands from the
+    mesh, input units, with what was asked: the JSON's `stats.distance`, else None)."""
 
     def __init__(self, native, level):
         self._doc = _json.loads(native.to_json(level))
         vols, tfs = native.volumes(level), native.transforms(level)
         prims = self._doc["primitives"]
         self.primitives = [Primitive(native, level, i, prims[i], tfs[i], vols[i]) for i in range(len(prims))]
-        self.target = self._doc.get("target")
+        self.target = self._doc["settings"].get("target")
+        stats = self._doc["stats"]
+        self.counts = {k: n for k, n in stats["counts"].items() if n}
+        self.bytes = stats["bytes"]
+        self.distance = stats.get("distance")
+
+    def _asked(self):
+        """What the level asked for, in the user's words."""
+        d = self.distance or {}
+        diag = _diagonal(self._doc)
+        if d.get("tolerance") is not None:
+            return f"tolerance {_pct(d['tolerance'], diag)}"
+        if d.get("max_bytes") is not None:
+            return f"max_bytes {d['max_bytes']}"
+        return f"targets {self.target}"
+
+    def _summary(self):
+        kinds = ", ".join(f"{n} {k}" for k, n in self.counts.items())
+        s = f"{self._asked()}: {len(self.primitives)} primitives ({kinds}), {self.bytes} bytes"
+        if self.distance:
+            s += f", farthest {_pct(self.distance['worst'], _diagonal(self._doc))} from the mesh"
+        return s
+
+    def __len__(self):
+        return len(self.primitives)
 
     def __repr__(self):
-        return f"Level(primitives={len(self.primitives)})"
+        return f"<primdecomp.Level {self._summary()}>"
 
 
 class Result:
@@ -115,6 +163,14 @@ class Result:
         self._native = native
         self.levels = [Level(native, i) for i in range(native.level_count())]
         self.stats = self.levels[0]._doc.get("stats", {}) if self.levels else {}
+        self.input = self.levels[0]._doc.get("input", {}) if self.levels else {}
+
+    def __repr__(self):
+        inp = self.input
+        name = inp.get("path") or "arrays"
+        head = f"<primdecomp.Result of {name} ({inp.get('faces')} faces), {len(self.levels)} level"
+        head += "s" if len(self.levels) != 1 else ""
+        return head + ": " + "; ".join(l._summary() for l in self.levels) + ">"
 
     def to_json(self, level=0):
         """The CLI's JSON document (`primdecomp decompose`) of one level."""
@@ -124,6 +180,21 @@ class Result:
         """Write one level in the format named by the extension (.json, .obj, .gltf,
         .glb, .urdf, .usda, .tscn, .xml = MJCF). Returns the files written."""
         return self._native.export(str(path), level)
+
+
+def _diagonal(doc):
+    inp = doc.get("input", {})
+    lo, hi = inp.get("aabb_min"), inp.get("aabb_max")
+    if not lo or not hi:
+        return None
+    return sum((b - a) ** 2 for a, b in zip(lo, hi)) ** 0.5
+
+
+def _pct(d, diagonal):
+    """A distance as a percentage of the diagonal (and in units)."""
+    if diagonal:
+        return f"{100 * d / diagonal:.3g}% of the diagonal ({d:.4g})"
+    return f"{d:.4g}"
 
 
 def decompose(vertices, faces, progress=None, **settings):
@@ -158,39 +229,148 @@ def _progress(callback):
     return lambda stage, fraction, left: callback(stage, fraction)
 
 
+_KINDS = ("box", "sphere", "capsule", "cylinder", "frustum", "prism")
+_WEIGHTS = {"box": 1.0, "sphere": 1.0, "capsule": 1.0, "cylinder": 1.05, "frustum": 2.1, "prism": 1.4}
+_NUMBERS = ("tangent_eps", "min_extent", "max_excess_volume", "remove_thin_boxes", "open_holes",
+            "rim_weight", "min_thickness")
+_FLAGS = ("remove_nested", "flush_plates", "join_coplanar", "solid", "fill", "greedy", "cut")
+_OTHER = ("targets", "tolerance", "max_bytes", "kinds", "weights", "dedup", "reprice", "partitions")
+
+
+def _number(x):
+    return isinstance(x, (int, float)) and not isinstance(x, bool)
+
+
+def _listed(v):
+    return list(v) if isinstance(v, (list, tuple)) else [v]
+
+
+def _target(t):
+    """A count, as -n takes it (percentages need the face count: give a count)."""
+    if isinstance(t, int) and not isinstance(t, bool) and t > 0:
+        return t
+    raise ValueError(f"targets: expected a positive count, got {t!r}")
+
+
 def _tolerance(t):
     """"1%" (of the bounding-box diagonal) or a distance in input units, as the
-    library's Tolerance; a dict ({"units": d} / {"diagonal": f}) is passed on."""
-    if isinstance(t, str) and t.strip().endswith("%"):
-        try:
-            return {"diagonal": float(t.strip()[:-1]) / 100.0}
-        except ValueError:
-            raise ValueError(f"tolerance: expected a distance or a percentage like '1%', got {t!r}") from None
-    if isinstance(t, (int, float)) and not isinstance(t, bool):
-        return {"units": float(t)}
-    return t
-
-
-def _settings(settings):
-    settings = dict(settings)
-    # Targets in the user's terms: one value or a list; tolerances as "1%" or units.
-    for key in ("targets", "tolerance", "max_bytes"):
-        v = settings.get(key)
-        if v is not None and (isinstance(v, (str, int, float, dict)) and not isinstance(v, bool)):
-            settings[key] = [v]
-    if "tolerance" in settings and isinstance(settings["tolerance"], (list, tuple)):
-        settings["tolerance"] = [_tolerance(t) for t in settings["tolerance"]]
+    library's Tolerance ({"units": d} / {"diagonal": f}, also accepted as is); the
+    CLI's words when it is neither."""
+    if isinstance(t, dict):
+        return t
+    text = t.strip() if isinstance(t, str) else t
+    percent = isinstance(text, str) and text.endswith("%")
     try:
-        return _json.dumps(settings, allow_nan=False)
-    except (TypeError, ValueError) as e:
-        raise ValueError(f"invalid settings: {e}") from None
+        value = float(text[:-1] if percent else text) if not isinstance(text, bool) else None
+    except (TypeError, ValueError):
+        value = None
+    if value is not None and value <= 0:
+        raise ValueError(f"tolerance: {t!r} is not positive: a tolerance is a distance (input units) "
+                         "or a percentage of the diagonal like '1%', greater than 0")
+    if value is None or value != value or value in (float("inf"),) or (percent and value >= 100):
+        raise ValueError(f"tolerance: expected a positive distance (input units) or a percentage of "
+                         f"the diagonal like '1%', got {t!r}")
+    return {"diagonal": value / 100.0} if percent else {"units": value}
+
+
+def _bytes(b):
+    """A byte count: an int, or a string such as '4096' or '4K' (K, M, G: powers of 1024)."""
+    scale = {"": 1, "K": 1 << 10, "M": 1 << 20, "G": 1 << 30}
+    if isinstance(b, int) and not isinstance(b, bool) and b > 0:
+        return b
+    if isinstance(b, str):
+        t = b.strip().upper().removesuffix("IB").removesuffix("B")
+        unit = t[-1:] if t[-1:] in scale else ""
+        try:
+            n = float(t[: len(t) - len(unit)])
+            if n > 0 and n * scale[unit] >= 1:
+                return int(n * scale[unit])
+        except ValueError:
+            pass
+    raise ValueError(f"max_bytes: expected a positive byte count such as 4096 or '4K', got {b!r}")
+
+
+def _kind(k):
+    if k not in _KINDS:
+        raise ValueError(f"unknown primitive kind {k!r}: expected box, sphere, capsule, cylinder, frustum or prism")
+    return k
+
+
+def _kinds(v):
+    """Allowed kinds: names (['box', 'sphere']), or a dict of the kinds to turn on or off."""
+    if isinstance(v, dict):
+        out = dict.fromkeys(_KINDS, True)
+        for k, on in v.items():
+            out[_kind(k)] = bool(on)
+        return out
+    names = {_kind(k) for k in _listed(v)}
+    return {k: k in names for k in _KINDS}
+
+
+def _weights(v):
+    """Cost factors per kind: a dict of the kinds to change ({'frustum': 3})."""
+    if not isinstance(v, dict):
+        raise ValueError(f"weights: expected a dict of kind to factor such as {{'frustum': 3.0}}, got {v!r}")
+    out = dict(_WEIGHTS)
+    for k, w in v.items():
+        if not _number(w):
+            raise ValueError(f"weights: {w!r} is not a number")
+        out[_kind(k)] = float(w)
+    return out
+
+
+def _settings(settings, where="decompose"):
+    """The keyword arguments as the library's Params JSON, each checked first so that
+    a wrong value is a ValueError in the CLI's words and an unknown name a TypeError."""
+    for key in settings:
+        if key not in _NUMBERS + _FLAGS + _OTHER:
+            raise TypeError(f"{where}() got an unexpected keyword argument {key!r}")
+    out = {}
+    for key, v in settings.items():
+        if v is None and key in ("max_excess_volume", "remove_thin_boxes"):
+            out[key] = None
+        elif key in _NUMBERS:
+            if not _number(v):
+                raise ValueError(f"{key}: expected a number, got {v!r}")
+            out[key] = float(v)
+        elif key in _FLAGS:
+            if not isinstance(v, bool):
+                raise ValueError(f"{key}: expected True or False, got {v!r}")
+            out[key] = v
+        elif key == "targets":
+            out[key] = [_target(t) for t in _listed(v)]
+        elif key == "tolerance":
+            out[key] = [_tolerance(t) for t in _listed(v)]
+        elif key == "max_bytes":
+            out[key] = [_bytes(b) for b in _listed(v)]
+        elif key == "kinds":
+            out[key] = _kinds(v)
+        elif key == "weights":
+            out[key] = _weights(v)
+        elif key == "dedup":
+            out[key] = v if v in ("exact", "off") else {"tolerance": v} if _number(v) else _bad_word(key, v, "'exact', 'off' or a distance")
+        elif key == "reprice":
+            out[key] = v if v == "exact" else {"deferred": {"min_degree": 0 if v == "deferred" else v}} \
+                if v == "deferred" or (isinstance(v, int) and not isinstance(v, bool) and v >= 0) \
+                else _bad_word(key, v, "'exact', 'deferred' or a neighbour count")
+        elif key == "partitions":
+            out[key] = v if v == "auto" or (isinstance(v, int) and not isinstance(v, bool) and v > 0) \
+                else _bad_word(key, v, "'auto' or a count")
+    try:
+        return _json.dumps(out, allow_nan=False)
+    except ValueError:
+        raise ValueError("settings: numbers must be finite (no NaN or infinity)") from None
+
+
+def _bad_word(key, v, expected):
+    raise ValueError(f"{key}: expected {expected}, got {v!r}")
 
 
 def decompose_file(path, progress=None, **settings):
     """Decompose the mesh in a file with the CLI's own loader: the primitives equal
     `primdecomp decompose PATH` byte for byte in to_json(), as decompose(*load(path))
     does, without handing the arrays to Python."""
-    return Result(_native.decompose_path(str(path), _settings(settings), _progress(progress)))
+    return Result(_native.decompose_path(_path(path), _settings(settings, "decompose_file"), _progress(progress)))
 
 
 def as_hulls(vertices, faces, progress=None, **settings):

@@ -18,10 +18,15 @@ class Primitive:
 class Level:
     target: Optional[int]
     primitives: list[Primitive]
+    counts: dict[str, int]
+    bytes: int
+    distance: Optional[dict]
+    def __len__(self) -> int: ...
 
 class Result:
     levels: list[Level]
     stats: dict
+    input: dict
     def to_json(self, level: int = 0) -> str: ...
     def export(self, path: _Path, level: int = 0) -> list[str]: ...
 

@@ -612,11 +612,22 @@ impl<'a> Cutter<'a> {
         }
         let table = self.costs(ex, bounds[lo], r.bytes.is_some());
         let cut = collect(ex, &table, &ex.roots);
-        match fits(r, totals(ex, &cut)) {
-            true => self.fill(ex, cut, &table, bounds[lo], r),
+        if !fits(r, totals(ex, &cut)) {
             // Nothing fits the caps (more roots than the count): the roots.
-            false => ex.roots.clone(),
+            return ex.roots.clone();
         }
+        let filled = self.fill(ex, cut.clone(), &table, bounds[lo], r);
+        // A count alone still short by more than a few is filled within SLACK times its
+        // least worst error: where one feature no split brings nearer sets that error,
+        // a bound a hair lower must not keep one primitive of the eight asked for
+        // (docs/decisions/0054).
+        let count_alone = r.tolerance.is_none() && r.bytes.is_none();
+        if !count_alone || !crate::params::short_of(filled.len(), r.count, usize::MAX) {
+            return filled;
+        }
+        let bound = SLACK * bounds[lo].max(worst(ex, &cut));
+        let loose = self.costs(ex, bound, false);
+        self.fill(ex, cut, &loose, bound, r)
     }
 
     /// The cut of fewest nodes (of least bytes with `by_bytes`) whose every node's

@@ -21,6 +21,7 @@ use super::obj::{tessellate, Tess};
 use super::range;
 use crate::math::{add, norm, normalize, scale, sub, V3};
 use crate::primitive::{Kind, Primitive};
+use crate::up::Up;
 use std::path::Path;
 
 /// An export format.
@@ -105,26 +106,6 @@ impl Format {
             _ => {}
         }
         n
-    }
-}
-
-/// An up axis.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
-pub enum Up {
-    /// +Y up (glTF, Godot).
-    #[default]
-    Y,
-    /// +Z up (MuJoCo, URDF, most CAD).
-    Z,
-}
-
-impl Up {
-    /// `"Y"` or `"Z"`, as USD's `upAxis` spells it.
-    pub fn name(self) -> &'static str {
-        match self {
-            Up::Y => "Y",
-            Up::Z => "Z",
-        }
     }
 }
 

@@ -776,6 +776,7 @@ mod tests {
                 vertices: 30,
                 aabb_min: [-5.0, -5.0, -5.0],
                 aabb_max: [5.0, 5.0, 5.0],
+                ..Default::default()
             },
             levels: vec![level],
             timings: Timings {

@@ -22,8 +22,9 @@ mod usd;
 mod write;
 mod xml;
 
+pub use crate::up::Up;
 pub use atomic::write_atomic;
-pub use engine::{ExportOptions, Files, Format, Physics, Up};
+pub use engine::{ExportOptions, Files, Format, Physics};
 pub use frame::Frame;
 pub use json::{
     read_objects, read_primitives, to_json, to_json_objects, to_json_timed, ResultObject,

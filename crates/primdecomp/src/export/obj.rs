@@ -161,7 +161,19 @@ fn sphere_scale(h: usize, k: usize) -> f64 {
 
 /// Rings of a conservative capsule (`p0 == p1` gives a sphere): the lower
 /// hemisphere about `p0`, then the upper one about `p1`, sharing the equator ring.
+/// A segment shorter than [`SPHERE_REL`] of the radius is a sphere about its middle,
+/// grown by half its length: two equator rings a rounding error apart would leave a
+/// band of slivers that mesh tools read as an open, non-convex surface.
 fn capsule_rings(p0: V3, p1: V3, r: f64, h: usize, k: usize) -> (Vec<(V3, f64)>, V3) {
+    let d = sub(p1, p0);
+    let len = dot(d, d).sqrt();
+    let (p0, p1, r) = match len > 0.0 && len <= SPHERE_REL * r {
+        true => {
+            let c = madd(p0, d, 0.5);
+            (c, c, r + 0.5 * len)
+        }
+        false => (p0, p1, r),
+    };
     let a = axis(p0, p1);
     let s = r * sphere_scale(h, k);
     let rings = polar(h);
@@ -175,6 +187,10 @@ fn capsule_rings(p0: V3, p1: V3, r: f64, h: usize, k: usize) -> (Vec<(V3, f64)>,
         .map(|&(sn, cs)| (madd(p1, a, s * cs), s * sn));
     (lower.chain(upper).collect(), a)
 }
+
+/// Segments shorter than this fraction of their capsule's radius are tessellated as
+/// a sphere ([`capsule_rings`]).
+const SPHERE_REL: f64 = 1e-9;
 
 /// Box-like hexahedron from corners in [`BOX_FACES`] order; wound outward when
 /// `right_handed`, reversed otherwise.
@@ -602,6 +618,13 @@ mod tests {
             radius: 1.0,
         });
         assert_eq!(count(cap), 16 * 9);
+        // A segment a rounding error long is a sphere: no band of slivers.
+        let dot_cap = Primitive::Capsule(Capsule {
+            p0: [2.0, 0.5, 0.5],
+            p1: [2.0, 0.5, 0.5 + 1e-15],
+            radius: 0.5,
+        });
+        assert_eq!(count(dot_cap), 16 * 8);
         let wedge = Prism {
             center: z,
             axes,

@@ -42,20 +42,41 @@ pub const MIN_FACES: usize = 4096;
 /// At most this many groups of components are merged side by side.
 const GROUPS: usize = 16;
 
+/// Whether the faces form more than one connected component (by shared edges),
+/// leaving out the faces `point` says are points (all corners welded into one
+/// vertex: no part of the surface, as the dragon's nine).
+pub(crate) fn several(faces: usize, pairs: &[(u32, u32)], point: impl Fn(usize) -> bool) -> bool {
+    let mut parent: Vec<u32> = (0..faces as u32).collect();
+    for &(a, b) in pairs {
+        let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+        parent[ra.max(rb) as usize] = ra.min(rb);
+    }
+    let mut first = None;
+    for f in (0..faces).filter(|&f| !point(f)) {
+        let r = root(&mut parent, f as u32);
+        if *first.get_or_insert(r) != r {
+            return true;
+        }
+    }
+    false
+}
+
+/// The root of `x` in a union-find forest, halving the path on the way.
+fn root(p: &mut [u32], mut x: u32) -> u32 {
+    while p[x as usize] != x {
+        let up = p[p[x as usize] as usize];
+        p[x as usize] = up;
+        x = up;
+    }
+    x
+}
+
 /// Connected components of the adjacency `pairs` over `faces` faces, each a list of
 /// increasing face ids, ordered by their lowest face.
 pub fn components(faces: usize, pairs: &[(u32, u32)]) -> Vec<Vec<u32>> {
     let mut parent: Vec<u32> = (0..faces as u32).collect();
-    fn find(p: &mut [u32], mut x: u32) -> u32 {
-        while p[x as usize] != x {
-            let up = p[p[x as usize] as usize];
-            p[x as usize] = up;
-            x = up;
-        }
-        x
-    }
     for &(a, b) in pairs {
-        let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
+        let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
         // The lower root wins, so a component's root is its lowest face.
         let (lo, hi) = (ra.min(rb), ra.max(rb));
         parent[hi as usize] = lo;
@@ -63,7 +84,7 @@ pub fn components(faces: usize, pairs: &[(u32, u32)]) -> Vec<Vec<u32>> {
     let mut index = vec![u32::MAX; faces];
     let mut out: Vec<Vec<u32>> = Vec::new();
     for f in 0..faces as u32 {
-        let r = find(&mut parent, f) as usize;
+        let r = root(&mut parent, f) as usize;
         if index[r] == u32::MAX {
             index[r] = out.len() as u32;
             out.push(Vec::new());

@@ -10,6 +10,8 @@
 //! - `ladder MESH LEVELS OUT.ply` / `city PARTS OUT.ply`: the scale ladder's inputs
 //!   (`primdecomp_testkit::ladder`): MESH subdivided LEVELS times, or a city block of
 //!   PARTS parts, streamed to a binary PLY file; prints the faces written.
+//! - `inputs DIR`: the made-up inputs every consumer check runs on (`inputs.rs`),
+//!   one file name per line on stdout.
 
 use primdecomp_testkit::contain::{parse_primitive, shape_contains};
 
@@ -20,9 +22,10 @@ fn main() {
         Some("contain") if args.len() == 5 => contain(&args[2], &args[3], &args[4]),
         Some("ladder") if args.len() == 5 => ladder(&args[2], &args[3], &args[4]),
         Some("city") if args.len() == 4 => city(&args[2], &args[3]),
+        Some("inputs") if args.len() == 3 => inputs(&args[2]),
         _ => Err(
             "usage: primdecomp-testkit faces MESH OUT.json | contain SHAPES.json POINTS.json TOL \
-             | ladder MESH LEVELS OUT.ply | city PARTS OUT.ply"
+             | ladder MESH LEVELS OUT.ply | city PARTS OUT.ply | inputs DIR"
                 .into(),
         ),
     };
@@ -87,5 +90,14 @@ fn contain(shapes: &str, points: &str, tol: &str) -> Result<(), String> {
         "{}",
         serde_json::to_string(&out).map_err(|e| e.to_string())?
     );
+    Ok(())
+}
+
+fn inputs(dir: &str) -> Result<(), String> {
+    let names =
+        primdecomp_testkit::inputs::write_all(dir.as_ref()).map_err(|e| format!("{dir}: {e}"))?;
+    for n in names {
+        println!("{n}");
+    }
     Ok(())
 }

@@ -30,7 +30,8 @@ pub struct ExportArgs {
     /// result records it (input.up), and export and view use it: glTF and Godot are
     /// +Y up and MJCF and URDF +Z up, so a mesh whose up differs is turned; USD
     /// declares it. export: the result's axis (y for results that record none).
-    #[arg(long, value_parser = ["y", "z"], ignore_case = true)]
+    // Listed with the input files: it says how the mesh stands, for decompose too.
+    #[arg(long, value_parser = ["y", "z"], ignore_case = true, help_heading = "Input files")]
     pub up: Option<String>,
     /// Multiply every length by this (input units to metres; default 1).
     #[arg(long, default_value_t = 1.0, hide_short_help = true)]

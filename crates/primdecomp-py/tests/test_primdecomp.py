@@ -149,10 +149,10 @@ def test_reprs_say_what_they_hold():
     v, q = cube()
     r = primdecomp.decompose(v, q, targets=[4, 1])
     text = repr(r)
-    assert text.startswith("<primdecomp.Result of arrays (6 faces), 2 levels: targets 4: ")
+    assert text.startswith("<primdecomp.Result of arrays (6 faces), 2 levels: count 4: ")
     assert "primitives (" in text and "bytes" in text
     lv = r.levels[1]
-    assert repr(lv).startswith("<primdecomp.Level targets 1: 1 primitives (1 box), 40 bytes")
+    assert repr(lv).startswith("<primdecomp.Level count 1: 1 primitives (1 box), 40 bytes")
     p = lv.primitives[0]
     assert repr(p).startswith("Primitive(box: center=(0.5, 0.5, 0.5), half_extents=(")
     assert "faces=6" in repr(p)

@@ -245,10 +245,10 @@ pub struct Params {
     /// four more merge passes (docs/decisions/0020).
     pub fill: bool,
     /// Counts are the greedy pass's levels (the paper's, the fastest), never cut
-    /// again. By default ([`Params::count_cut`]) a count on an input of several
+    /// again. By default (`Params::count_cut`) a count on an input of several
     /// separate parts is a cut of the merge tree, and on one part a greedy level that
     /// post-processing left short of its count by more than a few
-    /// ([`short_of`]) is cut again: on several parts the greedy level loses the parts
+    /// (`short_of`) is cut again: on several parts the greedy level loses the parts
     /// nested in one large primitive, so -n 32 could give 5
     /// (docs/decisions/0054-counts-on-several-parts.md).
     #[serde(skip_serializing_if = "is_false")]

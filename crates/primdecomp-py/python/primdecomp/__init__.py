@@ -139,8 +139,8 @@ class Level:
         if d.get("tolerance") is not None:
             return f"tolerance {_pct(d['tolerance'], diag)}"
         if d.get("max_bytes") is not None:
-            return f"max_bytes {d['max_bytes']}"
-        return f"targets {self.target}"
+            return f"bytes {d['max_bytes']}"
+        return f"count {self.target}"
 
     def _summary(self):
         kinds = ", ".join(f"{n} {k}" for k, n in self.counts.items())

@@ -31,7 +31,7 @@ pub fn hidden(c: char) -> bool {
         || matches!(c, '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}')
 }
 
-/// `s` with each [`hidden`] character written as `\u{…}` (lowercase hex).
+/// `s` with each `hidden` character written as `\u{…}` (lowercase hex).
 ///
 /// ```
 /// use primdecomp::export::visible;

@@ -627,34 +627,18 @@ fn memory_limit_refuses_up_front() {
          max_memory of primdecomp::LoadOptions)"
     );
     assert!(!dir.join("big.json").exists());
-    let (code, err) = run_in(
-        &dir,
-        &[
-            "decompose",
-            "big.obj",
-            "-n",
-            "2",
-            "-o",
-            "big.json",
-            "--max-memory",
-            "100M",
-            "--quiet",
-        ],
-    );
+    // A count's greedy run: fits under 100M, refused under 80M.
+    let greedy = |limit: &str| {
+        let args = ["decompose", "big.obj", "-n", "2", "-o", "small.json"];
+        run_in(
+            &dir,
+            &[&args[..], &["--max-memory", limit, "--quiet"]].concat(),
+        )
+    };
+    let (code, err) = greedy("100M");
     assert_eq!(code, Some(0), "{err}");
-    let (code, err) = run_in(
-        &dir,
-        &[
-            "decompose",
-            "big.obj",
-            "-n",
-            "2",
-            "-o",
-            "small.json",
-            "--max-memory",
-            "80M",
-        ],
-    );
+    std::fs::remove_file(dir.join("small.json")).unwrap();
+    let (code, err) = greedy("80M");
     assert_eq!(code, Some(2), "{err}");
     assert!(err.contains("needs about 80.4 MiB"), "{err}");
     assert!(!dir.join("small.json").exists());

@@ -335,10 +335,12 @@ fn parse_reprice(r: &str) -> anyhow::Result<Reprice> {
     })
 }
 
-/// How `decompose` reads each input: `--max-memory` and `--allow-external-uris`.
-fn load_options(a: &DecomposeArgs) -> anyhow::Result<LoadOptions> {
+/// How `decompose` reads each input: `--max-memory` (checked against the peak of the
+/// run `params` asks for) and `--allow-external-uris`.
+fn load_options(a: &DecomposeArgs, params: &Params) -> anyhow::Result<LoadOptions> {
     Ok(LoadOptions {
         max_memory: max_memory(a)?,
+        greedy_only: !params.uses_cut(),
         allow_external_uris: a.load.allow_external_uris,
         ..LoadOptions::default()
     })
@@ -846,7 +848,7 @@ fn run_one(
     // Peaks per stage only for a run alone in the process: the mark is process-wide.
     let memory = (a.timings && !beside_others).then(|| StageMemory::new("load"));
     let now = Instant::now();
-    let mesh = primdecomp::load_with(input, &load_options(a)?)?;
+    let mesh = primdecomp::load_with(input, &load_options(a, base)?)?;
     let load_s = now.elapsed().as_secs_f64();
     let params = Params {
         targets: resolve_targets(targets, mesh.face_count()),

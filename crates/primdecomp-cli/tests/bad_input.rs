@@ -593,11 +593,13 @@ fn run_in(dir: &Path, args: &[&str]) -> (Option<i32>, String) {
 /// `--max-memory`: an input whose estimated need exceeds the limit is refused before
 /// parsing (OBJ counts come from a byte scan) and before decomposing (glTF, counted
 /// once parsed), with exit 2, a message giving both sizes and the flag, and no output.
+/// The need is the run's: a count's greedy run fits where the default's cut does not.
 #[test]
 fn memory_limit_refuses_up_front() {
     let dir = tempdir("memory");
-    // 2,000 triangles: 3 × 2,000 vertices. Estimate: 1.25 × (32 MiB + 200·6,000 +
-    // 280·2,000 + 80·6,000) = 42.7 MiB.
+    // 2,000 triangles: 3 × 2,000 vertices. Estimate (`memory::estimate`), the cut:
+    // 1.25 × (112 MiB + 32·6,000 + 128·2,000) = 140.5 MiB; the greedy run:
+    // 1.25 × (64 MiB + 32·6,000 + 92·2,000) = 80.4 MiB.
     let mut obj = String::new();
     for t in 0..2000 {
         let z = t as f64;
@@ -613,33 +615,33 @@ fn memory_limit_refuses_up_front() {
             "-o",
             "big.json",
             "--max-memory",
-            "40M",
+            "100M",
         ],
     );
     assert_eq!(code, Some(2), "{err}");
     assert_eq!(
         err,
-        "error: big.obj: decomposing this mesh (2000 faces, 6000 vertices) needs about 42.7 MiB, \
-         more than the memory limit of 40.0 MiB (default: the memory available now); raise \
+        "error: big.obj: decomposing this mesh (2000 faces, 6000 vertices) needs about 141 MiB, \
+         more than the memory limit of 100 MiB (default: the memory available now); raise \
          the limit with --max-memory SIZE, e.g. --max-memory 64G (in the library: the \
          max_memory of primdecomp::LoadOptions)"
     );
     assert!(!dir.join("big.json").exists());
-    let (code, err) = run_in(
-        &dir,
-        &[
-            "decompose",
-            "big.obj",
-            "-n",
-            "2",
-            "-o",
-            "big.json",
-            "--max-memory",
-            "43M",
-            "--quiet",
-        ],
-    );
+    // A count's greedy run: fits under 100M, refused under 80M.
+    let greedy = |limit: &str| {
+        let args = ["decompose", "big.obj", "-n", "2", "-o", "small.json"];
+        run_in(
+            &dir,
+            &[&args[..], &["--max-memory", limit, "--quiet"]].concat(),
+        )
+    };
+    let (code, err) = greedy("100M");
     assert_eq!(code, Some(0), "{err}");
+    std::fs::remove_file(dir.join("small.json")).unwrap();
+    let (code, err) = greedy("80M");
+    assert_eq!(code, Some(2), "{err}");
+    assert!(err.contains("needs about 80.4 MiB"), "{err}");
+    assert!(!dir.join("small.json").exists());
     let (code, err) = run_in(
         &dir,
         &[
@@ -664,7 +666,7 @@ fn memory_limit_refuses_up_front() {
     );
     assert_eq!(code, Some(2), "{err}");
     assert!(
-        err.contains("t.glb: decomposing this mesh (1 faces, 3 vertices) needs about 40.0 MiB"),
+        err.contains("t.glb: decomposing this mesh (1 faces, 3 vertices) needs about 140 MiB"),
         "{err}"
     );
     assert!(!dir.join("t.json").exists());

@@ -2,8 +2,9 @@
 //! than allowed is refused up front with [`Error::TooLarge`], instead of being killed by
 //! the operating system halfway through a batch.
 //!
-//! The need is a linear model of the input's vertex, face and corner counts, fitted on
-//! the peak resident memory of CLI runs (see [`estimate`]). The counts come from the
+//! The need is a linear model of the input's vertex and triangle counts, one for the
+//! greedy run and one for the cut, fitted on the peak resident memory of CLI runs (see
+//! [`estimate`]). The counts come from the
 //! file before parsing (`mesh::io::declared_counts`: header counts for PLY, OFF and
 //! binary STL, a byte scan for OBJ and ASCII STL, each capped by what the file's size
 //! could hold) and again, exactly, from the parsed mesh (which also covers glTF, whose
@@ -21,33 +22,56 @@ pub(crate) struct Counts {
     pub corners: u64,
 }
 
-/// Fixed cost of a run (binary, thread stacks, allocator arenas), bytes.
-const BASE: u64 = 32 << 20;
-/// Bytes per vertex, face and corner. Fitted on the peak resident memory of the
-/// default run (the merge-tree cut within 2%, docs/decisions/0037),
-/// `primdecomp decompose FILE --max-memory none` under `/usr/bin/time -f %M` (KiB):
-/// lucy_100k.obj (99,970 faces) 66.0 MiB, dragon_vrip_res2.ply (202,520 faces)
-/// 121.9 MiB, dragon_vrip_full.ply (871,414 faces) 496.2 MiB, i.e. about 9 MB + 590 bytes
-/// per triangle (a count's greedy run, `-n 1%`, needs about half). Three triangle
-/// meshes cannot separate the three rates; the split below gives 620 bytes a triangle
-/// (½ vertex + 1 face + 3 corners) and charges polygons by their corners.
-const PER_VERTEX: u64 = 200;
-const PER_FACE: u64 = 280;
-const PER_CORNER: u64 = 80;
+/// Which decomposition an estimate is for: the two peak differently.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Run {
+    /// Counts' levels from the greedy merge alone (`-n N` without `--cut`): its peak
+    /// is the surface and seeding step, about 100 bytes a triangle from 3.5M up.
+    Greedy,
+    /// Levels cut from the merge tree (the default tolerance, `--cut`, a byte target):
+    /// the greedy peak plus the triangles' hierarchy and the cut's error samples, about
+    /// 150 bytes a triangle from 3.5M up and a larger fixed part on small meshes.
+    Cut,
+}
 
-/// Peak bytes a run on an input of these counts is expected to need: the fitted model
-/// above plus 25% for what it does not capture (more targets, more threads).
-pub(crate) fn estimate(c: Counts) -> u64 {
-    let linear = BASE
+/// Bytes a vertex costs either run, as loaded (before welding: an STL's three a
+/// triangle): its position and welding's tables. Fitted on the dragon as binary STL
+/// against the same dragon as PLY (2.18M more vertices, 46 MiB more at the peak).
+const PER_VERTEX: u64 = 32;
+/// Fixed cost and bytes a triangle, for [`Run::Greedy`] and [`Run::Cut`]. The fixed
+/// cost is the binary, thread stacks and allocator arenas and, for the cut, its error
+/// samples, whose number follows the tolerance more than the mesh (the 202,520-face
+/// dragon peaks at 131 MiB by default, the 99,970-face Lucy at 69). Fitted on the peak
+/// resident memory the release CLI's `--timings` reports, scans from 100k to 56M
+/// faces, a city block of many parts and flat grids: the table in
+/// docs/decisions/limits-memory-estimate.md.
+const BASE: [u64; 2] = [64 << 20, 112 << 20];
+const PER_TRIANGLE: [u64; 2] = [92, 128];
+/// Bytes each corner past a polygon's third costs the greedy run on top of its fan
+/// triangles: a flat grid of a million quads peaked at 590.8 MiB there, the same grid
+/// as two million triangles at 321.5 MiB (the cut: 301.9 against 331.3).
+const PER_POLYGON_CORNER: [u64; 2] = [256, 0];
+
+/// Peak bytes a `run` on an input of these counts is expected to need: the fitted
+/// model above plus a quarter for what it does not capture (other shapes, more
+/// targets, more threads). A polygon of k corners counts as its k − 2 fan triangles.
+pub(crate) fn estimate(c: Counts, run: Run) -> u64 {
+    let k = run as usize;
+    let triangles = c
+        .corners
+        .saturating_sub(c.faces.saturating_mul(2))
+        .max(c.faces);
+    let past_third = c.corners.saturating_sub(c.faces.saturating_mul(3));
+    let linear = BASE[k]
         .saturating_add(PER_VERTEX.saturating_mul(c.vertices))
-        .saturating_add(PER_FACE.saturating_mul(c.faces))
-        .saturating_add(PER_CORNER.saturating_mul(c.corners));
+        .saturating_add(PER_TRIANGLE[k].saturating_mul(triangles))
+        .saturating_add(PER_POLYGON_CORNER[k].saturating_mul(past_third));
     linear.saturating_add(linear / 4)
 }
 
-/// Refuses `counts` when their estimate exceeds `limit` bytes.
-pub(crate) fn check(path: &Path, counts: Counts, limit: u64) -> Result<()> {
-    let needed = estimate(counts);
+/// Refuses `counts` when their estimate for `run` exceeds `limit` bytes.
+pub(crate) fn check(path: &Path, counts: Counts, run: Run, limit: u64) -> Result<()> {
+    let needed = estimate(counts, run);
     if needed <= limit {
         return Ok(());
     }
@@ -71,9 +95,38 @@ mod tests {
             faces: 2000,
             corners: 6000,
         };
-        assert!(check(Path::new("m.obj"), c, estimate(c)).is_ok());
-        let e = check(Path::new("m.obj"), c, estimate(c) - 1).unwrap_err();
-        assert!(matches!(e, Error::TooLarge { faces: 2000, .. }), "{e}");
-        assert_eq!(e.exit_code(), 2);
+        for run in [Run::Greedy, Run::Cut] {
+            let need = estimate(c, run);
+            assert!(check(Path::new("m.obj"), c, run, need).is_ok());
+            let e = check(Path::new("m.obj"), c, run, need - 1).unwrap_err();
+            assert!(matches!(e, Error::TooLarge { faces: 2000, .. }), "{e}");
+            assert_eq!(e.exit_code(), 2);
+        }
+    }
+
+    /// The cut holds the greedy run's data and more; a quad costs the cut its two fan
+    /// triangles and the greedy run more; counts past any real file saturate instead
+    /// of wrapping.
+    #[test]
+    fn cut_needs_more_and_polygons_count_their_triangles() {
+        let tris = Counts {
+            vertices: 1000,
+            faces: 2000,
+            corners: 6000,
+        };
+        let quads = Counts {
+            faces: 1000,
+            corners: 4000,
+            ..tris
+        };
+        assert_eq!(estimate(quads, Run::Cut), estimate(tris, Run::Cut));
+        assert!(estimate(quads, Run::Greedy) > estimate(tris, Run::Greedy));
+        assert!(estimate(tris, Run::Cut) > estimate(tris, Run::Greedy));
+        let huge = Counts {
+            vertices: u64::MAX,
+            faces: u64::MAX,
+            corners: u64::MAX,
+        };
+        assert_eq!(estimate(huge, Run::Cut), u64::MAX);
     }
 }

@@ -582,8 +582,18 @@ impl Params {
     }
 
     /// Whether levels are cuts of the merge tree ([`Params::cut`], or a tolerance or
-    /// byte target).
-    pub(crate) fn uses_cut(&self) -> bool {
+    /// byte target), which needs more memory than the greedy merge alone
+    /// ([`LoadOptions::greedy_only`](crate::LoadOptions::greedy_only)).
+    ///
+    /// ```
+    /// use primdecomp::{Params, Tolerance};
+    ///
+    /// let count = Params { targets: vec![2000], ..Params::default() };
+    /// assert!(!count.uses_cut());
+    /// let tolerance = Params { tolerance: vec![Tolerance::Diagonal(0.02)], ..count };
+    /// assert!(tolerance.uses_cut());
+    /// ```
+    pub fn uses_cut(&self) -> bool {
         self.cut || !self.tolerance.is_empty() || !self.max_bytes.is_empty()
     }
 

@@ -96,6 +96,11 @@ pub struct LoadOptions {
     /// than this many bytes by the memory model ([`memory_needed`]): once from the counts the
     /// file declares, before parsing, and once from the parsed mesh. `None`: no limit.
     pub max_memory: Option<u64>,
+    /// The decomposition that follows takes no cut of the merge tree (its targets are
+    /// counts, without [`Params::cut`](crate::Params::cut), a tolerance or a byte
+    /// target): `max_memory` is checked against the greedy run's peak, about two
+    /// thirds of the cut's. Off (the default): against the cut's, which covers both.
+    pub greedy_only: bool,
     /// glTF: also read buffer URIs that are absolute paths, climb out of the glTF's
     /// folder (a `..` component, or a symbolic link inside the folder that leads out
     /// of it) or are `file:` URLs. Off: such a URI is [`Error::Uri`], so a glTF from an
@@ -468,7 +473,8 @@ pub(crate) mod text {
     }
 }
 
-/// The peak memory in bytes a decomposition of `path` is expected to need, from the
+/// The peak memory in bytes a decomposition of `path` is expected to need (a default
+/// run, with the merge tree's cut: a count's greedy run needs less), from the
 /// counts its header declares, read without parsing the file; `None` where they
 /// cannot be known before parsing (glTF/GLB, an unreadable file or one that is not a
 /// regular file, a header that does not parse). Schedulers running several inputs at
@@ -482,7 +488,8 @@ pub fn memory_needed(path: &Path) -> Option<u64> {
     // SAFETY: as in `load_with`: a read-only map living only for this call.
     let map = unsafe { memmap2::Mmap::map(&file) }.ok()?;
     // Reading maps the whole file: its size is a floor of the need.
-    declared::declared_counts(&map, format).map(|c| crate::memory::estimate(c).max(meta.len()))
+    declared::declared_counts(&map, format)
+        .map(|c| crate::memory::estimate(c, crate::memory::Run::Cut).max(meta.len()))
 }
 
 /// Reads the mesh in `path` (OBJ, PLY, STL, OFF, glTF/GLB, by its extension):
@@ -532,6 +539,11 @@ pub fn load_with(path: &Path, options: &LoadOptions) -> Result<Mesh> {
         )
     })?;
     let max_memory = options.max_memory;
+    let run = if options.greedy_only {
+        crate::memory::Run::Greedy
+    } else {
+        crate::memory::Run::Cut
+    };
     if let Some(limit) = max_memory.filter(|&l| meta.len() > l) {
         // The mapped file becomes resident as it is read: a file larger than the limit
         // (a sparse file of zeros, say) cannot be read within it.
@@ -558,7 +570,7 @@ pub fn load_with(path: &Path, options: &LoadOptions) -> Result<Mesh> {
         })?;
         let declared = declared::declared_counts(&map, format);
         if let (Some(limit), Some(counts)) = (max_memory, declared) {
-            crate::memory::check(path, counts, limit)?;
+            crate::memory::check(path, counts, run, limit)?;
         }
         parse_bytes_with(&map, format, path, options)?
     };
@@ -568,7 +580,7 @@ pub fn load_with(path: &Path, options: &LoadOptions) -> Result<Mesh> {
             faces: builder.face_count() as u64,
             corners: builder.face_indices.len() as u64,
         };
-        crate::memory::check(path, counts, limit)?;
+        crate::memory::check(path, counts, run, limit)?;
     }
     let world = options
         .keep_world_coordinates

@@ -99,7 +99,8 @@ pub struct LoadOptions {
     /// The decomposition that follows takes no cut of the merge tree (its targets are
     /// counts, without [`Params::cut`](crate::Params::cut), a tolerance or a byte
     /// target): `max_memory` is checked against the greedy run's peak, about two
-    /// thirds of the cut's. Off (the default): against the cut's, which covers both.
+    /// thirds of the cut's. Off (the default): against the cut's, which is never below
+    /// the greedy run's, so it covers both.
     pub greedy_only: bool,
     /// glTF: also read buffer URIs that are absolute paths, climb out of the glTF's
     /// folder (a `..` component, or a symbolic link inside the folder that leads out

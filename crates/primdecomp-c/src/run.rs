@@ -150,6 +150,15 @@ pub unsafe extern "C" fn primdecomp_decompose(
         };
         let mut dec = run(mesh, &params, &watch, progress, user_data)?;
         dec.input.path = mesh.path.clone();
+        // The up axis the input's format says, as the CLI records it (`input.up`), so that
+        // the JSON is the CLI's byte for byte.
+        let format = mesh
+            .path
+            .as_deref()
+            .and_then(|p| primdecomp::Format::from_path(p.as_ref()));
+        if let Some((up, why)) = format.map(primdecomp::export::Up::of_format) {
+            (dec.input.up, dec.input.up_from) = (Some(up), Some(why.to_string()));
+        }
         let result = PrimdecompResult::new(dec, params);
         put(out, Box::into_raw(Box::new(result)), "out")
     })

@@ -81,5 +81,14 @@ pub fn decompose(
     };
     let mut dec = run.map_err(js_error)?;
     dec.input.path = mesh.path.clone();
+    // The up axis the input's format says, as the CLI records it (`input.up`), so that
+    // the JSON is the CLI's byte for byte.
+    let format = mesh
+        .path
+        .as_deref()
+        .and_then(|p| primdecomp::Format::from_path(p.as_ref()));
+    if let Some((up, why)) = format.map(primdecomp::export::Up::of_format) {
+        (dec.input.up, dec.input.up_from) = (Some(up), Some(why.to_string()));
+    }
     Ok(WasmResult::new(dec, params, mesh.mesh.centre()))
 }

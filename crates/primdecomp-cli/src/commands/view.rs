@@ -9,6 +9,7 @@ use crate::paths::memory_limit;
 use anyhow::bail;
 use clap::Args;
 use primdecomp::{write_atomic, LoadOptions};
+use primdecomp_view::scene;
 use std::path::{Path, PathBuf};
 
 /// `primdecomp view`.
@@ -69,7 +70,47 @@ pub struct ViewArgs {
 /// Reads every file first (a bad one fails the run before anything is written), then
 /// writes the page and the PNG atomically.
 pub fn run(a: ViewArgs) -> anyhow::Result<()> {
-    use primdecomp_view::scene;
+    check_args(&a)?;
+    // Nothing the page or the PNG is made from may be overwritten by them.
+    let read: Vec<PathBuf> = a
+        .results
+        .iter()
+        .flat_map(|r| scene::result_files(r))
+        .chain(a.input.iter().chain(&a.compare).chain(&a.eval).cloned())
+        .collect();
+    let guard = Guard::new(read.iter().map(PathBuf::as_path));
+    let outs: Vec<Out> = [("-o", &a.out), ("--png", &a.png)]
+        .into_iter()
+        .filter_map(|(flag, p)| p.as_ref().map(|p| Out::flag(flag, p, p.clone())))
+        .collect();
+    guard.check(&outs)?;
+    let (s, title) = scene_of(&a)?;
+    check_extent(&s)?;
+    if let Some(i) = &s.input {
+        if i.display.simplified {
+            println!(
+                "input     {}: {} triangles shown of {} (simplified for display)",
+                i.file,
+                i.display.triangles.len(),
+                i.display.source_triangles
+            );
+        }
+    }
+    if let Some(out) = &a.out {
+        write_atomic(out, primdecomp_view::html::page(&s, &title).as_bytes())?;
+        println!("wrote     {}", out.display());
+    }
+    if let Some(png) = &a.png {
+        let bytes =
+            primdecomp_view::render_png(&s, a.png_size).expect("checked: the scene has triangles");
+        write_atomic(png, &bytes)?;
+        println!("wrote     {}", png.display());
+    }
+    Ok(())
+}
+
+/// The flags' own checks: something to write, something to show, sizes in range.
+fn check_args(a: &ViewArgs) -> anyhow::Result<()> {
     if a.out.is_none() && a.png.is_none() {
         bail!(BadArgs(
             "view: nothing to write: give -o view.html and/or --png OUT.png".into()
@@ -93,20 +134,12 @@ pub fn run(a: ViewArgs) -> anyhow::Result<()> {
             a.detail
         )));
     }
-    // Nothing the page or the PNG is made from may be overwritten by them.
-    let read: Vec<PathBuf> = a
-        .results
-        .iter()
-        .flat_map(|r| scene::result_files(r))
-        .chain(a.input.iter().chain(&a.compare).chain(&a.eval).cloned())
-        .collect();
-    let guard = Guard::new(read.iter().map(PathBuf::as_path));
-    let outs: Vec<Out> = [("-o", &a.out), ("--png", &a.png)]
-        .into_iter()
-        .filter_map(|(flag, p)| p.as_ref().map(|p| Out::flag(flag, p, p.clone())))
-        .collect();
-    guard.check(&outs)?;
-    let up = view_up(&a);
+    Ok(())
+}
+
+/// The scene to draw, every file read, and the page's title.
+fn scene_of(a: &ViewArgs) -> anyhow::Result<(scene::Scene, String)> {
+    let up = view_up(a);
     let mut opts = scene::Options {
         detail: a.detail,
         display_triangles: a.display_faces.max(1),
@@ -121,35 +154,7 @@ pub fn run(a: ViewArgs) -> anyhow::Result<()> {
             ..LoadOptions::default()
         },
     };
-    let mut docs = Vec::new();
-    for r in &a.results {
-        for f in scene::result_files(r) {
-            docs.extend(scene::read_levels(&f)?);
-        }
-    }
-    let peers = a
-        .compare
-        .iter()
-        .map(|p| scene::load_peer(p, None))
-        .collect::<primdecomp::Result<Vec<_>>>()?;
-    // A page shows a bounded number of parts and triangles: coarser circles first.
-    let hulls = peers.iter().map(|c| c.parts.len()).sum();
-    let hull_triangles = peers.iter().map(|c| c.parts.triangles.len()).sum();
-    opts.detail = scene::fit_detail(&docs, hulls, hull_triangles, a.detail)
-        .map_err(|m| BadArgs(format!("view: {m}")))?;
-    if opts.detail < a.detail && !docs.is_empty() {
-        println!(
-            "levels    shown with {} segments around circles (of --detail {}), so the parts \
-             stay within {} triangles",
-            opts.detail,
-            a.detail,
-            scene::MAX_PART_TRIANGLES
-        );
-    }
-    let levels: Vec<_> = docs
-        .iter()
-        .map(|d| scene::build_level(d, opts.detail))
-        .collect();
+    let (levels, peers) = levels_and_peers(a, &mut opts)?;
     let input_path = match (&a.input, a.no_input) {
         (Some(p), _) => Some(p.clone()),
         (None, true) => None,
@@ -182,6 +187,49 @@ pub fn run(a: ViewArgs) -> anyhow::Result<()> {
         eval,
         up_axis: opts.up_axis,
     };
+    Ok((s, title))
+}
+
+/// The results' levels and the peers' hulls, with circles coarse enough that the page
+/// stays within its triangles (`opts.detail`).
+fn levels_and_peers(
+    a: &ViewArgs,
+    opts: &mut scene::Options,
+) -> anyhow::Result<(Vec<scene::Collider>, Vec<scene::Collider>)> {
+    let mut docs = Vec::new();
+    for r in &a.results {
+        for f in scene::result_files(r) {
+            docs.extend(scene::read_levels(&f)?);
+        }
+    }
+    let peers = a
+        .compare
+        .iter()
+        .map(|p| scene::load_peer(p, None))
+        .collect::<primdecomp::Result<Vec<_>>>()?;
+    // A page shows a bounded number of parts and triangles: coarser circles first.
+    let hulls = peers.iter().map(|c| c.parts.len()).sum();
+    let hull_triangles = peers.iter().map(|c| c.parts.triangles.len()).sum();
+    opts.detail = scene::fit_detail(&docs, hulls, hull_triangles, a.detail)
+        .map_err(|m| BadArgs(format!("view: {m}")))?;
+    if opts.detail < a.detail && !docs.is_empty() {
+        println!(
+            "levels    shown with {} segments around circles (of --detail {}), so the parts \
+             stay within {} triangles",
+            opts.detail,
+            a.detail,
+            scene::MAX_PART_TRIANGLES
+        );
+    }
+    let levels: Vec<scene::Collider> = docs
+        .iter()
+        .map(|d| scene::build_level(d, opts.detail))
+        .collect();
+    Ok((levels, peers))
+}
+
+/// Refuses a scene with nothing to draw, or wider than the page draws.
+fn check_extent(s: &scene::Scene) -> anyhow::Result<()> {
     let Some((lo, hi)) = s.aabb() else {
         bail!(BadArgs(
             "view: the files hold nothing to draw (no triangles)".into()
@@ -194,26 +242,6 @@ pub fn run(a: ViewArgs) -> anyhow::Result<()> {
             "view: the scene spans {span:e}, more than the {:e} a page draws in 32-bit floats",
             primdecomp_view::MAX_SPAN
         )));
-    }
-    if let Some(i) = &s.input {
-        if i.display.simplified {
-            println!(
-                "input     {}: {} triangles shown of {} (simplified for display)",
-                i.file,
-                i.display.triangles.len(),
-                i.display.source_triangles
-            );
-        }
-    }
-    if let Some(out) = &a.out {
-        write_atomic(out, primdecomp_view::html::page(&s, &title).as_bytes())?;
-        println!("wrote     {}", out.display());
-    }
-    if let Some(png) = &a.png {
-        let bytes =
-            primdecomp_view::render_png(&s, a.png_size).expect("checked: the scene has triangles");
-        write_atomic(png, &bytes)?;
-        println!("wrote     {}", png.display());
     }
     Ok(())
 }

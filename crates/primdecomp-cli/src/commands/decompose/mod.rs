@@ -19,7 +19,7 @@ use crate::manifest::{self, Manifest, Stamp};
 use crate::outputs::{check_batch_dir, check_stems, names_dir, Guard, Out};
 use anyhow::{anyhow, bail};
 use dest::{default_obj, default_out, default_png, Chain, Dest};
-use primdecomp::{export, Params};
+use primdecomp::{export, Decomposition, Params};
 use run::{run_one, PRINT};
 use settings::{max_memory, params_from, parse_targets, Target};
 use std::path::{Path, PathBuf};
@@ -130,19 +130,7 @@ fn decompose_batch(
         check_batch_dir("--obj", o, n, "obj", "STEM.primdecomp.obj")?;
     }
     check_stems(&a.inputs, |i| dir.join(default_out(i)))?;
-    let dests: Vec<Dest> = a
-        .inputs
-        .iter()
-        .map(|i| Dest {
-            json: dir.join(default_out(i)),
-            json_flag: "-o",
-            obj: a.obj.as_ref().map(|o| o.join(default_obj(i))),
-            exports: Vec::new(),
-            png: a.png.as_ref().map(|d| d.join(default_png(i))),
-            batch_input: Some(i.clone()),
-            chain: Chain::of(base),
-        })
-        .collect();
+    let dests = batch_dests(a, base, dir);
     let known: Vec<Out> = dests.iter().flat_map(|d| d.up_front(targets)).collect();
     guard.check(&known)?;
     set_threads(a.threads)?;
@@ -153,40 +141,10 @@ fn decompose_batch(
         std::fs::create_dir_all(d)
             .map_err(|e| anyhow!("cannot create output directory {}: {e}", d.display()))?;
     }
-    let settings = manifest::settings_hash(&serde_json::json!({
-        "params": base,
-        "targets": targets.iter().map(|t| format!("{t:?}")).collect::<Vec<_>>(),
-        "per_object": a.per_object,
-        "obj": a.obj,
-        "obj_detail": a.obj_detail,
-        "timings": a.timings,
-        "allow_external_uris": a.load.allow_external_uris,
-    }))?;
+    let settings = batch_settings(a, base, targets)?;
     let manifest = Manifest::open(dir, a.resume)?;
     clear_stale(a, dir);
-    let todo: Vec<usize> = (0..n)
-        .filter(|&i| {
-            let input = &a.inputs[i];
-            !(a.resume && {
-                let (expected, could_write) = dests[i].resumable(targets, a.per_object);
-                manifest.done_before(
-                    input,
-                    Stamp::of(input),
-                    &settings,
-                    expected.as_deref(),
-                    &could_write,
-                )
-            })
-        })
-        .collect();
-    if a.resume && !a.quiet {
-        println!(
-            "resume: {} of {n} inputs were done by an earlier run ({}); running the other {}",
-            n - todo.len(),
-            dir.join(manifest::NAME).display(),
-            todo.len()
-        );
-    }
+    let todo = still_to_do(a, &dests, targets, &manifest, &settings, dir);
     let threads = rayon::current_num_threads();
     let jobs = a.jobs.unwrap_or(threads).max(1);
     let paths: Vec<PathBuf> = todo.iter().map(|&i| a.inputs[i].clone()).collect();
@@ -205,6 +163,88 @@ fn decompose_batch(
         }
         r
     });
+    let (rows, worst) = tally(results);
+    if a.table {
+        print_table(&rows);
+    }
+    match worst {
+        Some(e) => Err(e.context(format!("{} of {n} inputs failed", todo.len() - rows.len()))),
+        None => Ok(()),
+    }
+}
+
+/// Each input's files in a batch: `STEM.primdecomp.json` in `dir`, the OBJ and PNG in
+/// theirs.
+fn batch_dests(a: &DecomposeArgs, base: &Params, dir: &Path) -> Vec<Dest> {
+    a.inputs
+        .iter()
+        .map(|i| Dest {
+            json: dir.join(default_out(i)),
+            json_flag: "-o",
+            obj: a.obj.as_ref().map(|o| o.join(default_obj(i))),
+            exports: Vec::new(),
+            png: a.png.as_ref().map(|d| d.join(default_png(i))),
+            batch_input: Some(i.clone()),
+            chain: Chain::of(base),
+        })
+        .collect()
+}
+
+/// The hash of every setting that changes what a batch writes (`manifest.rs`).
+fn batch_settings(a: &DecomposeArgs, base: &Params, targets: &[Target]) -> anyhow::Result<String> {
+    manifest::settings_hash(&serde_json::json!({
+        "params": base,
+        "targets": targets.iter().map(|t| format!("{t:?}")).collect::<Vec<_>>(),
+        "per_object": a.per_object,
+        "obj": a.obj,
+        "obj_detail": a.obj_detail,
+        "timings": a.timings,
+        "allow_external_uris": a.load.allow_external_uris,
+    }))
+}
+
+/// The inputs still to run: all of them, or with `--resume` those the manifest does not
+/// show finished with these settings and files.
+fn still_to_do(
+    a: &DecomposeArgs,
+    dests: &[Dest],
+    targets: &[Target],
+    manifest: &Manifest,
+    settings: &str,
+    dir: &Path,
+) -> Vec<usize> {
+    let n = a.inputs.len();
+    let todo: Vec<usize> = (0..n)
+        .filter(|&i| {
+            let input = &a.inputs[i];
+            !(a.resume && {
+                let (expected, could_write) = dests[i].resumable(targets, a.per_object);
+                manifest.done_before(
+                    input,
+                    Stamp::of(input),
+                    settings,
+                    expected.as_deref(),
+                    &could_write,
+                )
+            })
+        })
+        .collect();
+    if a.resume && !a.quiet {
+        println!(
+            "resume: {} of {n} inputs were done by an earlier run ({}); running the other {}",
+            n - todo.len(),
+            dir.join(manifest::NAME).display(),
+            todo.len()
+        );
+    }
+    todo
+}
+
+/// The decompositions that succeeded, and the error to report: the last one, except
+/// that a failure that is not the input's fault (exit 1), once seen, is kept.
+fn tally(
+    results: Vec<anyhow::Result<Decomposition>>,
+) -> (Vec<Decomposition>, Option<anyhow::Error>) {
     let mut rows = Vec::new();
     let mut worst: Option<anyhow::Error> = None;
     for r in results {
@@ -215,13 +255,7 @@ fn decompose_batch(
             Err(e) => worst = Some(e),
         }
     }
-    if a.table {
-        print_table(&rows);
-    }
-    match worst {
-        Some(e) => Err(e.context(format!("{} of {n} inputs failed", todo.len() - rows.len()))),
-        None => Ok(()),
-    }
+    (rows, worst)
 }
 
 /// Removes what a killed run left half-written in the output directories: the

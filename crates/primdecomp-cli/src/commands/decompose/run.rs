@@ -111,7 +111,7 @@ fn run_objects(
     dest: &Dest,
     guard: &Guard,
 ) -> anyhow::Result<(Decomposition, Vec<PathBuf>)> {
-    use primdecomp::{decompose_objects, ObjectTarget};
+    use primdecomp::decompose_objects;
     if a.obj_detail < 3 {
         bail!(BadArgs(format!(
             "--obj-detail must be at least 3, got {}",
@@ -119,61 +119,29 @@ fn run_objects(
         )));
     }
     let now = Instant::now();
-    let wanted: Vec<ObjectTarget> = targets
-        .iter()
-        .map(|t| match *t {
-            Target::Count(n) => ObjectTarget::Total(n),
-            Target::Percent(p) => ObjectTarget::Percent(p),
-        })
-        .collect();
-    let mut objs = decompose_objects(mesh, params, &wanted).map_err(|e| match e {
-        primdecomp::Error::InvalidParams(m) => BadArgs(format!("{}: {m}", input.display())).into(),
-        e => anyhow::Error::from(e),
-    })?;
+    let mut objs =
+        decompose_objects(mesh, params, &object_targets(targets)).map_err(|e| match e {
+            primdecomp::Error::InvalidParams(m) => {
+                BadArgs(format!("{}: {m}", input.display())).into()
+            }
+            e => anyhow::Error::from(e),
+        })?;
     objs.input.path = Some(input.display().to_string());
     let up = input_up(a, input);
     (objs.input.up, objs.input.up_from) = (Some(up.0), Some(up.1));
     let n = objs.levels();
     let mut written = Vec::new();
-    let sum = |f: fn(&primdecomp::Stats) -> usize| {
-        objs.objects.iter().map(|o| f(&o.decomposition.stats)).sum()
-    };
-    let mut dec = Decomposition {
-        input: objs.input.clone(),
-        stats: primdecomp::Stats {
-            welded_vertices: sum(|s| s.welded_vertices),
-            adjacency_edges: sum(|s| s.adjacency_edges),
-            ..Default::default()
-        },
-        ..Default::default()
-    };
+    let mut dec = totals(&objs);
     dec.timings
         .stages
         .push(("decompose".into(), now.elapsed().as_secs_f64()));
-    let mut jsons = Vec::with_capacity(n);
-    for i in 0..n {
-        let json = export::to_json_objects(&objs, i, params);
-        let v: serde_json::Value = serde_json::from_str(&json)?;
-        jsons.push((v["settings"]["target"].as_u64().unwrap_or(0) as usize, json));
-    }
+    let jsons = level_jsons(&objs, params)?;
     // The names are known only now (a percentage's count): check them before writing.
     let outs = dest.outs(&jsons.iter().map(|j| j.0).collect::<Vec<_>>());
     guard.check(&outs)?;
     let per_level = if dest.obj.is_some() { 2 } else { 1 };
     for (i, (target, json)) in jsons.into_iter().enumerate() {
-        let level = primdecomp::Level {
-            target,
-            merged_to: target,
-            primitives: objs.world_primitives(i),
-            // For the summary line: each object's tolerance is this share of its own
-            // diagonal (--per-object takes one value).
-            tolerance: params
-                .tolerance
-                .first()
-                .map(|t| t.in_units(mesh.diagonal())),
-            max_bytes: params.max_bytes.first().copied(),
-            ..Default::default()
-        };
+        let level = world_level(&objs, i, target, params, mesh.diagonal());
         let json_out = &outs[i * per_level];
         write_atomic(&json_out.path, json.as_bytes())?;
         guard.wrote(json_out);
@@ -202,18 +170,89 @@ fn run_objects(
     }
     let _out = PRINT.lock();
     if !a.quiet {
-        println!(
-            "objects   {}: {}",
-            objs.objects.len(),
-            objs.objects
-                .iter()
-                .map(|o| format!("{:?} ({} faces)", o.name, o.faces))
-                .collect::<Vec<_>>()
-                .join(", ")
-        );
+        print_objects(&objs);
         print_summary(&dec, mesh, &written, a.verbose);
     }
     Ok((dec, written))
+}
+
+/// `-n` for `--per-object`: a count is the total over the objects, a percentage each
+/// object's share of its own faces.
+fn object_targets(targets: &[Target]) -> Vec<primdecomp::ObjectTarget> {
+    use primdecomp::ObjectTarget;
+    targets
+        .iter()
+        .map(|t| match *t {
+            Target::Count(n) => ObjectTarget::Total(n),
+            Target::Percent(p) => ObjectTarget::Percent(p),
+        })
+        .collect()
+}
+
+/// A decomposition standing for all of `objs` in the summary: their input and the sums
+/// of their welding and adjacency counts; no levels yet.
+fn totals(objs: &primdecomp::Objects) -> Decomposition {
+    let sum = |f: fn(&primdecomp::Stats) -> usize| {
+        objs.objects.iter().map(|o| f(&o.decomposition.stats)).sum()
+    };
+    Decomposition {
+        input: objs.input.clone(),
+        stats: primdecomp::Stats {
+            welded_vertices: sum(|s| s.welded_vertices),
+            adjacency_edges: sum(|s| s.adjacency_edges),
+            ..Default::default()
+        },
+        ..Default::default()
+    }
+}
+
+/// Each level's JSON with its target, read back from the JSON (a percentage's count
+/// is known only once decomposed).
+fn level_jsons(
+    objs: &primdecomp::Objects,
+    params: &Params,
+) -> anyhow::Result<Vec<(usize, String)>> {
+    let n = objs.levels();
+    let mut jsons = Vec::with_capacity(n);
+    for i in 0..n {
+        let json = export::to_json_objects(objs, i, params);
+        let v: serde_json::Value = serde_json::from_str(&json)?;
+        jsons.push((v["settings"]["target"].as_u64().unwrap_or(0) as usize, json));
+    }
+    Ok(jsons)
+}
+
+/// Level `i` of `objs` as one level of world primitives (for the OBJ and the summary).
+fn world_level(
+    objs: &primdecomp::Objects,
+    i: usize,
+    target: usize,
+    params: &Params,
+    diagonal: f64,
+) -> primdecomp::Level {
+    primdecomp::Level {
+        target,
+        merged_to: target,
+        primitives: objs.world_primitives(i),
+        // For the summary line: each object's tolerance is this share of its own
+        // diagonal (--per-object takes one value).
+        tolerance: params.tolerance.first().map(|t| t.in_units(diagonal)),
+        max_bytes: params.max_bytes.first().copied(),
+        ..Default::default()
+    }
+}
+
+/// The objects line of the summary: each object's name and faces.
+fn print_objects(objs: &primdecomp::Objects) {
+    println!(
+        "objects   {}: {}",
+        objs.objects.len(),
+        objs.objects
+            .iter()
+            .map(|o| format!("{:?} ({} faces)", o.name, o.faces))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
 }
 
 /// The input's up axis and where it came from: `--up`, else what its format says

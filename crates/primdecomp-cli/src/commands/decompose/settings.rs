@@ -16,6 +16,21 @@ pub(super) fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
         Some(path) => read_config(path)?,
         None => Params::default(),
     };
+    set_plain(&mut p, a);
+    set_parsed(&mut p, a)?;
+    // Targets are resolved per input (percentages); validate with a stand-in.
+    let levels = p.tolerance.len().max(p.max_bytes.len()).max(1);
+    let check = Params {
+        // One -n value is the cap of every level of a chain (`decompose`).
+        targets: vec![1; a.targets.as_ref().map_or(1, Vec::len).max(1).max(levels)],
+        ..p.clone()
+    };
+    check.validate().map_err(|e| BadArgs(e.to_string()))?;
+    Ok(p)
+}
+
+/// The flags taken as they are: numbers and switches.
+fn set_plain(p: &mut Params, a: &DecomposeArgs) {
     let set = |field: &mut f64, v: Option<f64>| {
         if let Some(v) = v {
             *field = v;
@@ -40,6 +55,11 @@ pub(super) fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
     p.fill |= a.fill;
     p.cut |= a.cut;
     p.greedy |= a.greedy;
+}
+
+/// The flags a user spells (a tolerance, a size, a kind, `auto`…), each parsed with
+/// a message naming the flag.
+fn set_parsed(p: &mut Params, a: &DecomposeArgs) -> anyhow::Result<()> {
     if let Some(t) = &a.tolerance {
         p.tolerance = t
             .iter()
@@ -82,15 +102,7 @@ pub(super) fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
     if let Some(r) = &a.reprice {
         p.reprice = parse_reprice(r)?;
     }
-    // Targets are resolved per input (percentages); validate with a stand-in.
-    let levels = p.tolerance.len().max(p.max_bytes.len()).max(1);
-    let check = Params {
-        // One -n value is the cap of every level of a chain (`decompose`).
-        targets: vec![1; a.targets.as_ref().map_or(1, Vec::len).max(1).max(levels)],
-        ..p.clone()
-    };
-    check.validate().map_err(|e| BadArgs(e.to_string()))?;
-    Ok(p)
+    Ok(())
 }
 
 /// `--tolerance`: a distance in input units, or a percentage of the diagonal.

@@ -79,23 +79,7 @@ pub struct SimArgs {
 /// Checks the outputs, loads the input and the colliders, runs the scenario and
 /// reports it.
 pub fn run(a: SimArgs) -> anyhow::Result<()> {
-    let guard = Guard::new(
-        std::iter::once(&a.input)
-            .chain(&a.colliders)
-            .map(PathBuf::as_path),
-    );
-    let mut outs = Vec::new();
-    for (flag, path) in [("--json", &a.json), ("--plot", &a.plot)] {
-        if let Some(p) = path {
-            outs.push(Out::flag(flag, p, p.clone()));
-        }
-    }
-    if let Some(dir) = &a.csv {
-        for name in csv_names(&a.input) {
-            outs.push(Out::flag("--csv", dir, dir.join(name)));
-        }
-    }
-    guard.check(&outs)?;
+    check_outputs(&a)?;
     let mesh = primdecomp::load_with(&a.input, &a.load.options())?;
     if a.scenario == "projectiles" {
         return projectiles(&a, &mesh);
@@ -141,6 +125,29 @@ pub fn run(a: SimArgs) -> anyhow::Result<()> {
     if a.profile {
         print!("{}", primdecomp_sim::report::profile_table(&run));
     }
+    Ok(())
+}
+
+/// Refuses outputs (`--json`, `--plot`, the `--csv` files) that are an input or one
+/// another.
+fn check_outputs(a: &SimArgs) -> anyhow::Result<()> {
+    let guard = Guard::new(
+        std::iter::once(&a.input)
+            .chain(&a.colliders)
+            .map(PathBuf::as_path),
+    );
+    let mut outs = Vec::new();
+    for (flag, path) in [("--json", &a.json), ("--plot", &a.plot)] {
+        if let Some(p) = path {
+            outs.push(Out::flag(flag, p, p.clone()));
+        }
+    }
+    if let Some(dir) = &a.csv {
+        for name in csv_names(&a.input) {
+            outs.push(Out::flag("--csv", dir, dir.join(name)));
+        }
+    }
+    guard.check(&outs)?;
     Ok(())
 }
 

@@ -61,20 +61,7 @@ pub(super) fn run_one(
     dec.timings.stages.insert(0, ("load".into(), load_s));
     let now = Instant::now();
     let mut written = write_outputs(&dec, &params, dest, guard, a.obj_detail, a.timings)?;
-    let counts: Vec<usize> = dec.levels.iter().map(|l| l.target).collect();
-    for (level, label) in dec.levels.iter().zip(dest.labels(&counts)) {
-        written.extend(write_level_exports(
-            &a.export,
-            &a.export_opts,
-            &whole(level),
-            (&label, dec.levels.len()),
-            &Source {
-                path: input,
-                mesh: &mesh,
-                up: up.0,
-            },
-        )?);
-    }
+    written.extend(write_exports(a, &dec, dest, input, &mesh, up.0)?);
     let write_s = now.elapsed().as_secs_f64();
     let memory = memory.map(StageMemory::finish);
     if let Some(png) = &dest.png {
@@ -97,6 +84,33 @@ pub(super) fn run_one(
         println!("time      {:.2} s", dec.timings.total() + write_s);
     }
     Ok((dec, written))
+}
+
+/// `--export`: each level's file in each format asked for; returns the paths written.
+fn write_exports(
+    a: &DecomposeArgs,
+    dec: &Decomposition,
+    dest: &Dest,
+    input: &Path,
+    mesh: &primdecomp::Mesh,
+    up: primdecomp::export::Up,
+) -> anyhow::Result<Vec<PathBuf>> {
+    let mut written = Vec::new();
+    let counts: Vec<usize> = dec.levels.iter().map(|l| l.target).collect();
+    for (level, label) in dec.levels.iter().zip(dest.labels(&counts)) {
+        written.extend(write_level_exports(
+            &a.export,
+            &a.export_opts,
+            &whole(level),
+            (&label, dec.levels.len()),
+            &Source {
+                path: input,
+                mesh,
+                up,
+            },
+        )?);
+    }
+    Ok(written)
 }
 
 /// `--per-object`: decomposes each object on its own and writes the JSON (with

@@ -1,11 +1,11 @@
 //! `primdecomp decompose`: one input written to `-o`, or a batch of inputs written
 //! into a directory with a manifest (`--resume`). The settings come from
 //! [`settings`], where each input's files go from [`dest`], the run of one input from
-//! [`run`]; the screen it prints from [`progress`], [`summary`] and [`timings`].
+//! [`one_input`]; the screen it prints from [`progress`], [`summary`] and [`timings`].
 
 mod dest;
+mod one_input;
 mod progress;
-mod run;
 mod settings;
 mod summary;
 mod timings;
@@ -19,8 +19,8 @@ use crate::manifest::{self, Manifest, Stamp};
 use crate::outputs::{check_batch_dir, check_stems, names_dir, Guard, Out};
 use anyhow::{anyhow, bail};
 use dest::{default_obj, default_out, default_png, Chain, Dest};
+use one_input::{run_one, PRINT};
 use primdecomp::{export, Decomposition, Params};
-use run::{run_one, PRINT};
 use settings::{max_memory, params_from, parse_targets, Target};
 use std::path::{Path, PathBuf};
 use summary::print_table;

@@ -3,6 +3,7 @@
 //! raising or lowering it does), without the paper's notation.
 
 use clap::Args;
+use primdecomp::LoadOptions;
 use std::path::PathBuf;
 
 /// How inputs are read (every subcommand that reads a mesh).
@@ -18,6 +19,16 @@ pub(crate) struct LoadArgs {
     /// file (a pipe, socket, device or directory is refused before reading).
     #[arg(long, hide_short_help = true, help_heading = "Input files")]
     pub allow_external_uris: bool,
+}
+
+impl LoadArgs {
+    /// The options for `eval` and `sim`, which have no memory limit.
+    pub(crate) fn options(&self) -> LoadOptions {
+        LoadOptions {
+            allow_external_uris: self.allow_external_uris,
+            ..LoadOptions::default()
+        }
+    }
 }
 
 #[derive(Args, Debug)]
@@ -123,7 +134,7 @@ pub(crate) struct DecomposeArgs {
     #[arg(long, value_name = "OUT.EXT", help_heading = "Output")]
     pub export: Vec<PathBuf>,
     #[command(flatten, next_help_heading = "Export")]
-    pub export_opts: crate::export_cmd::ExportArgs,
+    pub export_opts: crate::commands::export::ExportArgs,
     /// Segments around circles in the OBJ mesh (--obj).
     #[arg(
         long,

@@ -1,4 +1,5 @@
-//! The `primdecomp` command: a thin shell over the library (see `cli.rs`).
+//! The `primdecomp` command: a thin shell over the library (see `cli.rs`, and
+//! `commands/` for each subcommand).
 
 /// mimalloc only with `--features mimalloc`: it was no faster than the system
 /// allocator and held more memory at peak (docs/decisions/perf-allocator-and-build.md).
@@ -9,8 +10,8 @@ static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
 mod args;
 mod batch;
 mod cli;
+mod commands;
 mod exit;
-mod export_cmd;
 mod manifest;
 mod outputs;
 mod paths;

@@ -1,6 +1,7 @@
 //! Output file names and the memory limit's settings: command-line policy, not the
 //! library's.
 
+use crate::exit::BadArgs;
 use primdecomp::Tolerance;
 use std::path::{Path, PathBuf};
 
@@ -83,6 +84,19 @@ pub fn parse_size(s: &str) -> Option<u64> {
     let v: f64 = num.trim().parse().ok()?;
     let bytes = v * (1u64 << shift) as f64;
     (v.is_finite() && v >= 0.0 && bytes < u64::MAX as f64).then_some(bytes as u64)
+}
+
+/// A `--max-memory` value in bytes: a size, `available` or `none` (`None`).
+pub fn memory_limit(s: &str) -> anyhow::Result<Option<u64>> {
+    Ok(match s.trim() {
+        "none" => None,
+        "available" => available_memory(),
+        s => Some(parse_size(s).ok_or_else(|| {
+            BadArgs(format!(
+                "--max-memory: expected a size like 8G, 'available' or 'none', got '{s}'"
+            ))
+        })?),
+    })
 }
 
 #[cfg(test)]

@@ -157,7 +157,9 @@ pub fn mesh_polygons(mesh: &primdecomp::Mesh) -> (Vec<[f64; 3]>, Vec<Vec<u32>>) 
     (v, f)
 }
 
-pub fn export(a: ExportCmd) -> anyhow::Result<()> {
+/// `primdecomp export`: reads a result and writes its colliders in the format `-o`
+/// names, turned to the format's up axis.
+pub fn run(a: ExportCmd) -> anyhow::Result<()> {
     let inputs: Vec<&Path> = std::iter::once(a.result.as_path())
         .chain(a.input.as_deref())
         .collect();

@@ -1,0 +1,353 @@
+//! One input's run: load, decompose (whole, or each object with `--per-object`), write
+//! the JSON, OBJ, exports and PNG of every level, print the summary.
+
+use super::dest::Dest;
+use super::progress::Shown;
+use super::settings::{load_options, resolve_targets, Target};
+use super::summary::print_summary;
+use super::timings::{print_timings, StageMemory};
+use crate::args::DecomposeArgs;
+use crate::commands::export::{level_objects, whole, write_level_exports, Source};
+use crate::exit::println;
+use crate::exit::BadArgs;
+use crate::outputs::Guard;
+use crate::paths::output_path_for;
+use anyhow::{anyhow, bail};
+use primdecomp::{export, write_atomic, Stage};
+use primdecomp::{Decomposition, Params};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Keeps one input's messages together when several inputs run at once.
+pub(super) static PRINT: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+/// Loads, decomposes and writes one input; `beside_others` (several inputs at once):
+/// no progress bar, and the messages printed in one block. Returns the decomposition
+/// and the files written.
+pub(super) fn run_one(
+    a: &DecomposeArgs,
+    input: &Path,
+    base: &Params,
+    targets: &[Target],
+    dest: &Dest,
+    guard: &Guard,
+    beside_others: bool,
+) -> anyhow::Result<(Decomposition, Vec<PathBuf>)> {
+    // Peaks per stage only for a run alone in the process: the mark is process-wide.
+    let memory = (a.timings && !beside_others).then(|| StageMemory::new("load"));
+    let now = Instant::now();
+    let mesh = primdecomp::load_with(input, &load_options(a, base)?)?;
+    let load_s = now.elapsed().as_secs_f64();
+    let params = Params {
+        targets: resolve_targets(targets, mesh.face_count()),
+        ..base.clone()
+    };
+    if a.per_object {
+        let (mut dec, written) = run_objects(a, input, &params, targets, &mesh, dest, guard)?;
+        dec.timings.stages.insert(0, ("load".into(), load_s));
+        return Ok((dec, written));
+    }
+    let shown = Shown::new(&params, mesh.face_count(), a, beside_others);
+    let mut dec = primdecomp::decompose_with(&mesh, &params, &|stage: Stage, f: f64| {
+        if let Some(m) = &memory {
+            m.enter(stage.name());
+        }
+        shown.update(stage, f);
+    })?;
+    shown.finish();
+    dec.input.path = Some(input.display().to_string());
+    let up = input_up(a, input);
+    (dec.input.up, dec.input.up_from) = (Some(up.0), Some(up.1));
+    dec.timings.stages.insert(0, ("load".into(), load_s));
+    let now = Instant::now();
+    let mut written = write_outputs(&dec, &params, dest, guard, a.obj_detail, a.timings)?;
+    written.extend(write_exports(a, &dec, dest, input, &mesh, up.0)?);
+    let write_s = now.elapsed().as_secs_f64();
+    let memory = memory.map(StageMemory::finish);
+    if let Some(png) = &dest.png {
+        let label = dest.labels(&[dec.levels[0].target]).swap_remove(0);
+        written.push(decompose_png(&dest.json, &label, &dec, input, &mesh, png)?);
+    }
+    let _out = PRINT.lock();
+    if !a.quiet {
+        print_summary(&dec, &mesh, &written, a.verbose);
+    }
+    if a.verbose || a.timings {
+        print_timings(
+            &dec,
+            write_s,
+            a.inputs.len() > 1,
+            a.verbose,
+            memory.as_deref(),
+        );
+    } else if !a.quiet {
+        println!("time      {:.2} s", dec.timings.total() + write_s);
+    }
+    Ok((dec, written))
+}
+
+/// `--export`: each level's file in each format asked for; returns the paths written.
+fn write_exports(
+    a: &DecomposeArgs,
+    dec: &Decomposition,
+    dest: &Dest,
+    input: &Path,
+    mesh: &primdecomp::Mesh,
+    up: primdecomp::export::Up,
+) -> anyhow::Result<Vec<PathBuf>> {
+    let mut written = Vec::new();
+    let counts: Vec<usize> = dec.levels.iter().map(|l| l.target).collect();
+    for (level, label) in dec.levels.iter().zip(dest.labels(&counts)) {
+        written.extend(write_level_exports(
+            &a.export,
+            &a.export_opts,
+            &whole(level),
+            (&label, dec.levels.len()),
+            &Source {
+                path: input,
+                mesh,
+                up,
+            },
+        )?);
+    }
+    Ok(written)
+}
+
+/// `--per-object`: decomposes each object on its own and writes the JSON (with
+/// `objects`), the OBJ (world primitives) and the exports per level. Returns a
+/// decomposition of the world primitives for the summary and the table.
+fn run_objects(
+    a: &DecomposeArgs,
+    input: &Path,
+    params: &Params,
+    targets: &[Target],
+    mesh: &primdecomp::Mesh,
+    dest: &Dest,
+    guard: &Guard,
+) -> anyhow::Result<(Decomposition, Vec<PathBuf>)> {
+    use primdecomp::decompose_objects;
+    if a.obj_detail < 3 {
+        bail!(BadArgs(format!(
+            "--obj-detail must be at least 3, got {}",
+            a.obj_detail
+        )));
+    }
+    let now = Instant::now();
+    let mut objs =
+        decompose_objects(mesh, params, &object_targets(targets)).map_err(|e| match e {
+            primdecomp::Error::InvalidParams(m) => {
+                BadArgs(format!("{}: {m}", input.display())).into()
+            }
+            e => anyhow::Error::from(e),
+        })?;
+    objs.input.path = Some(input.display().to_string());
+    let up = input_up(a, input);
+    (objs.input.up, objs.input.up_from) = (Some(up.0), Some(up.1));
+    let n = objs.levels();
+    let mut written = Vec::new();
+    let mut dec = totals(&objs);
+    dec.timings
+        .stages
+        .push(("decompose".into(), now.elapsed().as_secs_f64()));
+    let jsons = level_jsons(&objs, params)?;
+    // The names are known only now (a percentage's count): check them before writing.
+    let outs = dest.outs(&jsons.iter().map(|j| j.0).collect::<Vec<_>>());
+    guard.check(&outs)?;
+    let per_level = if dest.obj.is_some() { 2 } else { 1 };
+    for (i, (target, json)) in jsons.into_iter().enumerate() {
+        let level = world_level(&objs, i, target, params, mesh.diagonal());
+        let json_out = &outs[i * per_level];
+        write_atomic(&json_out.path, json.as_bytes())?;
+        guard.wrote(json_out);
+        written.push(json_out.path.clone());
+        if dest.obj.is_some() {
+            let obj_out = &outs[i * per_level + 1];
+            write_atomic(
+                &obj_out.path,
+                export::to_obj(&level, a.obj_detail).as_bytes(),
+            )?;
+            guard.wrote(obj_out);
+            written.push(obj_out.path.clone());
+        }
+        written.extend(write_level_exports(
+            &a.export,
+            &a.export_opts,
+            &level_objects(&objs, i),
+            (&format!("n{target}"), n),
+            &Source {
+                path: input,
+                mesh,
+                up: up.0,
+            },
+        )?);
+        dec.levels.push(level);
+    }
+    let _out = PRINT.lock();
+    if !a.quiet {
+        print_objects(&objs);
+        print_summary(&dec, mesh, &written, a.verbose);
+    }
+    Ok((dec, written))
+}
+
+/// `-n` for `--per-object`: a count is the total over the objects, a percentage each
+/// object's share of its own faces.
+fn object_targets(targets: &[Target]) -> Vec<primdecomp::ObjectTarget> {
+    use primdecomp::ObjectTarget;
+    targets
+        .iter()
+        .map(|t| match *t {
+            Target::Count(n) => ObjectTarget::Total(n),
+            Target::Percent(p) => ObjectTarget::Percent(p),
+        })
+        .collect()
+}
+
+/// A decomposition standing for all of `objs` in the summary: their input and the sums
+/// of their welding and adjacency counts; no levels yet.
+fn totals(objs: &primdecomp::Objects) -> Decomposition {
+    let sum = |f: fn(&primdecomp::Stats) -> usize| {
+        objs.objects.iter().map(|o| f(&o.decomposition.stats)).sum()
+    };
+    Decomposition {
+        input: objs.input.clone(),
+        stats: primdecomp::Stats {
+            welded_vertices: sum(|s| s.welded_vertices),
+            adjacency_edges: sum(|s| s.adjacency_edges),
+            ..Default::default()
+        },
+        ..Default::default()
+    }
+}
+
+/// Each level's JSON with its target, read back from the JSON (a percentage's count
+/// is known only once decomposed).
+fn level_jsons(
+    objs: &primdecomp::Objects,
+    params: &Params,
+) -> anyhow::Result<Vec<(usize, String)>> {
+    let n = objs.levels();
+    let mut jsons = Vec::with_capacity(n);
+    for i in 0..n {
+        let json = export::to_json_objects(objs, i, params);
+        let v: serde_json::Value = serde_json::from_str(&json)?;
+        jsons.push((v["settings"]["target"].as_u64().unwrap_or(0) as usize, json));
+    }
+    Ok(jsons)
+}
+
+/// Level `i` of `objs` as one level of world primitives (for the OBJ and the summary).
+fn world_level(
+    objs: &primdecomp::Objects,
+    i: usize,
+    target: usize,
+    params: &Params,
+    diagonal: f64,
+) -> primdecomp::Level {
+    primdecomp::Level {
+        target,
+        merged_to: target,
+        primitives: objs.world_primitives(i),
+        // For the summary line: each object's tolerance is this share of its own
+        // diagonal (--per-object takes one value).
+        tolerance: params.tolerance.first().map(|t| t.in_units(diagonal)),
+        max_bytes: params.max_bytes.first().copied(),
+        ..Default::default()
+    }
+}
+
+/// The objects line of the summary: each object's name and faces.
+fn print_objects(objs: &primdecomp::Objects) {
+    println!(
+        "objects   {}: {}",
+        objs.objects.len(),
+        objs.objects
+            .iter()
+            .map(|o| format!("{:?} ({} faces)", o.name, o.faces))
+            .collect::<Vec<_>>()
+            .join(", ")
+    );
+}
+
+/// The input's up axis and where it came from: `--up`, else what its format says
+/// (`Up::of_format`).
+fn input_up(a: &DecomposeArgs, input: &Path) -> (primdecomp::export::Up, String) {
+    use primdecomp::export::Up;
+    match a.export_opts.up.as_deref().and_then(Up::from_axis) {
+        Some(up) => (up, "given with --up".into()),
+        None => primdecomp::Format::from_path(input)
+            .map(Up::of_format)
+            .map_or((Up::Y, "assumed".into()), |(u, why)| (u, why.into())),
+    }
+}
+
+/// Writes JSON (and OBJ) per level atomically, after checking that none of the files
+/// is an input or another output of the run ([`Guard`]); returns the paths written.
+/// With `timed` (`--timings`) the JSON holds the stage timings, which stop before
+/// writing (the file cannot time its own write); without, it is byte-identical across
+/// runs.
+fn write_outputs(
+    dec: &Decomposition,
+    params: &Params,
+    dest: &Dest,
+    guard: &Guard,
+    detail: usize,
+    timed: bool,
+) -> anyhow::Result<Vec<PathBuf>> {
+    let levels: Vec<usize> = dec.levels.iter().map(|l| l.target).collect();
+    let outs = dest.outs(&levels);
+    guard.check(&outs)?;
+    let per_level = if dest.obj.is_some() { 2 } else { 1 };
+    let mut written = Vec::new();
+    for (out, k) in outs.iter().zip(0..) {
+        let (i, is_obj) = (k / per_level, k % per_level == 1);
+        let level = &dec.levels[i];
+        let bytes = if is_obj {
+            export::to_obj(level, detail)
+        } else if timed {
+            export::to_json_timed(dec, i, params)
+        } else {
+            export::to_json(dec, i, params)
+        };
+        write_atomic(&out.path, bytes.as_bytes())?;
+        guard.wrote(out);
+        written.push(out.path.clone());
+    }
+    Ok(written)
+}
+
+/// `decompose --png`: the first level, read back from the JSON just written, over
+/// the input; with several inputs `png` is a directory. Returns the file written.
+fn decompose_png(
+    out: &Path,
+    label: &str,
+    dec: &Decomposition,
+    input: &Path,
+    mesh: &primdecomp::Mesh,
+    png: &Path,
+) -> anyhow::Result<PathBuf> {
+    use primdecomp_view::{scene, source};
+    let json = output_path_for(out, label, dec.levels.len());
+    let opts = scene::Options {
+        up_axis: match dec.input.up {
+            Some(primdecomp::export::Up::Z) => 2,
+            _ => 1,
+        },
+        ..scene::Options::default()
+    };
+    let s = scene::Scene {
+        input: Some(scene::input_from(
+            input,
+            &source::from_core_mesh(mesh),
+            &opts,
+        )),
+        levels: scene::load_levels(&json, &opts)?,
+        peers: Vec::new(),
+        eval: Vec::new(),
+        up_axis: opts.up_axis,
+    };
+    let bytes = primdecomp_view::render_png(&s, primdecomp_view::PNG_SIZE)
+        .ok_or_else(|| anyhow!("{}: nothing to draw", input.display()))?;
+    write_atomic(png, &bytes)?;
+    Ok(png.to_path_buf())
+}

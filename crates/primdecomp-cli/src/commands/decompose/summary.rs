@@ -1,0 +1,181 @@
+//! What `decompose` prints when an input is done: the input, its up axis, one line
+//! per level (what it asked for, what it reached, why it holds fewer primitives than
+//! asked), the files written; and `--table`'s markdown rows for a batch.
+
+use crate::commands::export::wrote_lines;
+use crate::exit::println;
+use primdecomp::{Decomposition, Kind};
+use std::path::{Path, PathBuf};
+
+/// The input, its up axis, skipped elements, one line per level and the files
+/// written; with `verbose` also the welding and adjacency counts.
+pub(super) fn print_summary(
+    dec: &Decomposition,
+    mesh: &primdecomp::Mesh,
+    written: &[PathBuf],
+    verbose: bool,
+) {
+    let i = &dec.input;
+    let welded = match verbose {
+        true => format!(
+            " ({} after welding), {} pairs of faces sharing an edge",
+            dec.stats.welded_vertices, dec.stats.adjacency_edges
+        ),
+        false => String::new(),
+    };
+    println!(
+        "input     {}: {} faces, {} vertices{welded}",
+        i.path.as_deref().unwrap_or("-"),
+        i.faces,
+        i.vertices,
+    );
+    if let (Some(up), Some(from)) = (i.up, &i.up_from) {
+        let other = match up {
+            primdecomp::export::Up::Y => "z",
+            primdecomp::export::Up::Z => "y",
+        };
+        // An assumption says how to change it; a format's own axis does not need to.
+        let change = match from.starts_with("assumed") {
+            true => format!("; --up {other} if the mesh stands on {other}"),
+            false => String::new(),
+        };
+        println!("up        +{} ({from}{change})", up.axis().to_uppercase());
+    }
+    let skipped = mesh.skipped();
+    if skipped.short_faces + skipped.other > 0 {
+        println!(
+            "skipped   {} faces with fewer than 3 vertices or lines, {} other elements",
+            skipped.short_faces, skipped.other
+        );
+    }
+    for l in &dec.levels {
+        let c = l.counts();
+        let kinds: Vec<String> = Kind::ALL
+            .iter()
+            .filter(|k| c[**k as usize] > 0)
+            .map(|k| format!("{} {}", c[*k as usize], k.name()))
+            .collect();
+        println!(
+            "{} → {} primitives ({}), {} bytes{}{}",
+            asked(l, dec.input.diagonal()),
+            l.primitives.len(),
+            kinds.join(", "),
+            l.bytes(),
+            reach(l, dec.input.diagonal()),
+            few(l, dec.input.faces)
+        );
+    }
+    for line in wrote_lines(written) {
+        println!("{line}");
+    }
+}
+
+/// What a level asked for, for the summary line: its tolerance (a percentage of the
+/// diagonal), else its byte target, else its count; a count that only caps is named.
+fn asked(l: &primdecomp::Level, diagonal: f64) -> String {
+    match (l.tolerance, l.max_bytes) {
+        (Some(t), _) => format!(
+            "tolerance {:.2}% (at most {})",
+            100.0 * t / diagonal.max(f64::MIN_POSITIVE),
+            l.target
+        ),
+        (None, Some(b)) => format!("bytes {b} (at most {})", l.target),
+        (None, None) => format!("count {:>5}", l.target),
+    }
+}
+
+/// A cut's limits and the distance it reached, for the summary line ("" for a
+/// greedy snapshot).
+fn reach(l: &primdecomp::Level, diagonal: f64) -> String {
+    let Some(d) = l.distance else {
+        return String::new();
+    };
+    let pct = |x: f64| 100.0 * x / diagonal.max(f64::MIN_POSITIVE);
+    let mut s = format!(
+        "; farthest {d:.4} from the mesh ({:.2}% of the diagonal",
+        pct(d)
+    );
+    if let Some(t) = l.tolerance {
+        s += &match d <= t {
+            true => format!(", within the tolerance {t:.4}"),
+            false => format!(", over the tolerance {t:.4}: {}", shortfall(l)),
+        };
+    }
+    if let Some(b) = l.max_bytes {
+        s += &match l.bytes() <= b {
+            true => format!(", byte target {b}"),
+            false => format!(", over the byte target {b}: no cut of the merge tree fits it"),
+        };
+    }
+    s + ")"
+}
+
+/// Why a level of a count alone holds fewer primitives than asked, for the summary
+/// line ("" otherwise): a greedy snapshot under half of its count, where
+/// post-processing removed the clusters inside others and joined coplanar plates
+/// (§3.4); a cut short by more than a few (2, or 1/32 of the count: the rule that
+/// makes a greedy level a cut, docs/decisions/0054), where no split of the merge tree
+/// stands nearer the mesh than the primitives kept.
+fn few(l: &primdecomp::Level, faces: usize) -> &'static str {
+    let want = l.target.min(faces);
+    let n = l.primitives.len();
+    let count_alone = l.tolerance.is_none() && l.max_bytes.is_none();
+    match (l.distance.is_some(), count_alone) {
+        (false, true) if 2 * n < want => {
+            "; the other clusters lay inside those kept or were joined to them (without \
+            --greedy, counts keep parts apart)"
+        }
+        (true, true) if n + (want / 32).max(2) < want => {
+            "; no more primitives would stand nearer the mesh"
+        }
+        _ => "",
+    }
+}
+
+/// What stopped a level short of its tolerance, for the summary line.
+fn shortfall(l: &primdecomp::Level) -> String {
+    match l.shortfall {
+        Some(primdecomp::Shortfall::Count) => format!(
+            "the cap of {} primitives comes first (-n raises it)",
+            l.target
+        ),
+        Some(primdecomp::Shortfall::Bytes) => {
+            "the bytes run out first (--max-bytes raises them)".into()
+        }
+        Some(primdecomp::Shortfall::Faces) => "the nearest the merge tree reaches: faces \
+            no enabled kind encloses nearer"
+            .into(),
+        None => "the nearest the merge tree reaches".into(),
+    }
+}
+
+/// One markdown row per input and target.
+pub(super) fn print_table(rows: &[Decomposition]) {
+    println!("\n| mesh | faces | N | primitives | box | sphere | capsule | cylinder | frustum | prism | bytes | seconds |");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    for d in rows {
+        let name = d
+            .input
+            .path
+            .as_deref()
+            .and_then(|p| Path::new(p).file_name()?.to_str())
+            .unwrap_or("-");
+        for l in &d.levels {
+            let c = l.counts();
+            println!(
+                "| {name} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.3} |",
+                d.input.faces,
+                l.target,
+                l.primitives.len(),
+                c[0],
+                c[1],
+                c[2],
+                c[3],
+                c[4],
+                c[5],
+                l.bytes(),
+                d.timings.total()
+            );
+        }
+    }
+}

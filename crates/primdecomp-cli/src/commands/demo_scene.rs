@@ -1,0 +1,22 @@
+//! `primdecomp demo-scene`: writes the library's built-in demo scene as OBJ.
+
+use crate::exit::println;
+use clap::Args;
+use primdecomp::write_atomic;
+use std::path::PathBuf;
+
+/// `primdecomp demo-scene`.
+#[derive(Args, Debug)]
+pub struct DemoSceneArgs {
+    /// Output file.
+    #[arg(short, long, default_value = "datasets/demo_scene.obj")]
+    out: PathBuf,
+}
+
+/// Writes the scene to `--out` atomically.
+pub fn run(a: DemoSceneArgs) -> anyhow::Result<()> {
+    let out = a.out;
+    write_atomic(&out, primdecomp::demo_scene_obj().as_bytes())
+        .map_err(anyhow::Error::from)
+        .map(|_| println!("wrote {}", out.display()))
+}

@@ -68,7 +68,7 @@ mod cut;
 mod decompose;
 mod demo;
 mod error;
-pub mod export;
+mod export;
 pub mod math;
 mod memory;
 mod merge;
@@ -88,7 +88,11 @@ mod wallclock;
 pub use decompose::{decompose, decompose_with};
 pub use demo::{demo_scene, demo_scene_obj};
 pub use error::{Error, FileKind, Result};
-pub use export::{read_primitives, tessellate, to_json, to_obj, write_atomic};
+pub use export::{
+    circle_frame, read_objects, read_primitives, tessellate, to_json, to_json_objects,
+    to_json_timed, to_obj, visible, write_atomic, Frame, ResultObject, Tess, DEFAULT_DETAIL,
+    MAX_DETAIL, MAX_RESULT_BYTES,
+};
 pub use mesh::io::{
     load, load_with, memory_needed, open_regular, parse_mesh, parse_mesh_with, read_regular,
     Format, LoadOptions,
@@ -101,6 +105,7 @@ pub use params::{
 pub use primitive::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
 pub use progress::{Estimate, Eta, Progress, Stage};
 pub use result::{Decomposition, InputInfo, Level, Shortfall, Stats, Timings};
+pub use up::Up;
 
 /// The stages one by one, for the project's own tests and benchmarks (feature
 /// `test-internals`, which the workspace's test helpers turn on). Not part of the

@@ -5,7 +5,7 @@
 //! rotations as scalar-last unit quaternions. Also the reverse direction
 //! ([`read_primitives`]) and the quaternion conversions the eval tools share.
 
-use crate::export::frame::Frame;
+use super::frame::Frame;
 use crate::math::quat::{axes_from_quat, quat_from_axes};
 use crate::math::V3;
 use crate::objects::{ObjectTarget, Objects, SHARE_RULE};
@@ -378,7 +378,6 @@ fn check_values(p: &Primitive, scale: f64, offset: f64) -> Result<(), String> {
     if let Primitive::Prism(q) = p {
         sz.push(q.shift.abs());
     }
-    let show = crate::export::range::show;
     if let Some(x) = coords.iter().chain(&sz).find(|x| !x.is_finite()) {
         return Err(format!("a number is {x}, not finite"));
     }
@@ -400,6 +399,21 @@ fn check_values(p: &Primitive, scale: f64, offset: f64) -> Result<(), String> {
         ));
     }
     Ok(())
+}
+
+/// Short form of a number for messages, three significant digits: `1e60`,
+/// `2.5e-35`, `inf`.
+fn show(x: f64) -> String {
+    if x == 0.0 {
+        return "0".into();
+    }
+    let s = format!("{x:.2e}");
+    match s.split_once('e') {
+        Some((m, e)) if m.contains('.') => {
+            format!("{}e{e}", m.trim_end_matches('0').trim_end_matches('.'))
+        }
+        _ => s,
+    }
 }
 
 /// The JSON document of `dec.levels[level]` (panics if `level` is out of range):

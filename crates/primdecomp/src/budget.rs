@@ -14,10 +14,10 @@
 
 use crate::error::Result;
 use crate::mesh::Mesh;
+use crate::output::result::{Decomposition, Level};
 use crate::params::Params;
 use crate::pipeline;
 use crate::progress::{Progress, Stage};
-use crate::result::{Decomposition, Level};
 use crate::wallclock::Instant;
 
 /// Candidate targets per round (one merge pass gives them all).

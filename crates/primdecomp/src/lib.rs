@@ -68,12 +68,12 @@ mod cut;
 mod decompose;
 mod demo;
 mod error;
-mod export;
 pub mod math;
 mod memory;
 mod merge;
 mod mesh;
 mod objects;
+mod output;
 mod params;
 mod pipeline;
 mod postprocess;
@@ -81,30 +81,29 @@ mod primitive;
 mod progress;
 mod quadric;
 mod recut;
-mod result;
 mod up;
 mod wallclock;
 
 pub use decompose::{decompose, decompose_with};
 pub use demo::{demo_scene, demo_scene_obj};
 pub use error::{Error, FileKind, Result};
-pub use export::{
-    circle_frame, read_objects, read_primitives, tessellate, to_json, to_json_objects,
-    to_json_timed, to_obj, visible, write_atomic, Frame, ResultObject, Tess, DEFAULT_DETAIL,
-    MAX_DETAIL, MAX_RESULT_BYTES,
-};
 pub use mesh::io::{
     load, load_with, memory_needed, open_regular, parse_mesh, parse_mesh_with, read_regular,
     Format, LoadOptions,
 };
 pub use mesh::{Mesh, MeshObject, SkipCounts, Transform};
 pub use objects::{decompose_objects, ObjectResult, ObjectTarget, Objects};
+pub use output::result::{Decomposition, InputInfo, Level, Shortfall, Stats, Timings};
+pub use output::{
+    circle_frame, read_objects, read_primitives, tessellate, to_json, to_json_objects,
+    to_json_timed, to_obj, visible, write_atomic, Frame, ResultObject, Tess, DEFAULT_DETAIL,
+    MAX_DETAIL, MAX_RESULT_BYTES,
+};
 pub use params::{
     Dedup, Params, Partitions, Reprice, Tolerance, DEFAULT_TOLERANCE, MAX_PRIMITIVES,
 };
 pub use primitive::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
 pub use progress::{Estimate, Eta, Progress, Stage};
-pub use result::{Decomposition, InputInfo, Level, Shortfall, Stats, Timings};
 pub use up::Up;
 
 /// The stages one by one, for the project's own tests and benchmarks (feature

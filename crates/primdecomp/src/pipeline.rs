@@ -11,10 +11,10 @@ use crate::merge::{components, partition, Clusters, Evaluator, MergeOutput, Work
 use crate::mesh::solid::{self, Solid};
 use crate::mesh::triangles::Triangles;
 use crate::mesh::{adjacency, dedup, orient, Mesh};
+use crate::output::result::{Decomposition, InputInfo, Stats, Timings};
 use crate::params::{Params, Reprice};
 use crate::primitive::fit::{FitConfig, FrameSearch};
 use crate::progress::{GoOn, Progress, Stage};
-use crate::result::{Decomposition, InputInfo, Stats, Timings};
 use crate::wallclock::Instant;
 use crate::{postprocess, quadric};
 use rayon::prelude::*;

@@ -1,4 +1,5 @@
-//! Writers: the JSON result contract ([`to_json`], read back by [`read_primitives`];
+//! The output stage: what a run hands back ([`result`]: `Decomposition`, `Level`, …)
+//! and how it is written. The JSON result contract ([`to_json`], read back by [`read_primitives`];
 //! per-object results with [`to_json_objects`] / [`read_objects`]), a conservative
 //! triangle-mesh tessellation of the primitives ([`tessellate`], [`to_obj`]: each
 //! tessellated primitive contains the exact one, so the enclosure guarantee holds for
@@ -11,14 +12,15 @@ pub(crate) mod contract;
 pub(crate) mod frame;
 mod json;
 mod obj;
+mod read;
+pub(crate) mod result;
 mod visible;
 
 pub use atomic::write_atomic;
 pub use frame::Frame;
-pub use json::{
-    read_objects, read_primitives, to_json, to_json_objects, to_json_timed, ResultObject,
-};
+pub use json::{to_json, to_json_objects, to_json_timed};
 pub use obj::{circle_frame, tessellate, to_obj, Tess, DEFAULT_DETAIL, MAX_DETAIL};
+pub use read::{read_objects, read_primitives, ResultObject};
 pub use visible::visible;
 
 /// The largest result, evaluation or settings file the tools read ([`crate::read_regular`]):

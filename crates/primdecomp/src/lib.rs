@@ -66,33 +66,29 @@
 mod budget;
 mod cut;
 mod decompose;
-mod demo;
 mod error;
+mod input;
 pub mod math;
-mod memory;
 mod merge;
-mod mesh;
-mod objects;
 mod output;
 mod params;
 mod pipeline;
 mod postprocess;
 mod primitive;
 mod progress;
-mod quadric;
 mod recut;
-mod up;
-mod wallclock;
+mod seed;
 
+pub use decompose::objects::{decompose_objects, ObjectResult, ObjectTarget, Objects};
 pub use decompose::{decompose, decompose_with};
-pub use demo::{demo_scene, demo_scene_obj};
 pub use error::{Error, FileKind, Result};
-pub use mesh::io::{
+pub use input::demo::{demo_scene, demo_scene_obj};
+pub use input::io::{
     load, load_with, memory_needed, open_regular, parse_mesh, parse_mesh_with, read_regular,
     Format, LoadOptions,
 };
-pub use mesh::{Mesh, MeshObject, SkipCounts, Transform};
-pub use objects::{decompose_objects, ObjectResult, ObjectTarget, Objects};
+pub use input::mesh::{Mesh, MeshObject, SkipCounts, Transform};
+pub use input::up::Up;
 pub use output::result::{Decomposition, InputInfo, Level, Shortfall, Stats, Timings};
 pub use output::{
     circle_frame, read_objects, read_primitives, tessellate, to_json, to_json_objects,
@@ -104,7 +100,6 @@ pub use params::{
 };
 pub use primitive::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
 pub use progress::{Estimate, Eta, Progress, Stage};
-pub use up::Up;
 
 /// The stages one by one, for the project's own tests and benchmarks (feature
 /// `test-internals`, which the workspace's test helpers turn on). Not part of the
@@ -113,6 +108,10 @@ pub use up::Up;
 #[doc(hidden)]
 #[allow(missing_docs)]
 pub mod internals {
+    pub use crate::input::dedup::weld;
+    pub use crate::input::mesh::outward_normal;
+    use crate::input::mesh::Mesh;
+    pub use crate::input::orient::face_signs_of_lists;
     use crate::math::Sym3;
     pub use crate::merge::cluster::Clusters;
     pub use crate::merge::cost::{Evaluator, Workspace};
@@ -120,21 +119,17 @@ pub mod internals {
     pub use crate::merge::heap::StdHeap;
     pub use crate::merge::rim::{FaceAdjacency, Surroundings};
     pub use crate::merge::worker::with_pricer;
-    pub use crate::mesh::dedup::weld;
-    pub use crate::mesh::orient::face_signs_of_lists;
-    pub use crate::mesh::outward_normal;
-    use crate::mesh::Mesh;
     pub use crate::params::{AUTO_MIN_FACES, AUTO_PARTS};
     pub use crate::pipeline::evaluator;
     pub use crate::postprocess::nested::{keep_mask, Cleanup};
 
     /// Faces sharing an edge, by the welded indices `welded`.
     pub fn face_pairs(mesh: &Mesh, welded: &[u32]) -> Vec<(u32, u32)> {
-        crate::mesh::adjacency::face_pairs(&mesh.face_offsets, welded)
+        crate::input::adjacency::face_pairs(&mesh.face_offsets, welded)
     }
-    pub use crate::mesh::adjacency::neighbour_lists;
+    pub use crate::input::adjacency::neighbour_lists;
 
-    pub use crate::quadric::face_quadrics;
+    pub use crate::seed::quadric::face_quadrics;
 
     /// Each face's seed volume.
     pub fn seed_volumes(ev: &Evaluator, q: &[Sym3]) -> Vec<f64> {

@@ -5,9 +5,9 @@
 //! rotations as scalar-last unit quaternions. The reverse direction is
 //! [`super::read`].
 
+use crate::decompose::objects::{ObjectTarget, Objects, SHARE_RULE};
 use crate::math::quat::quat_from_axes;
 use crate::math::V3;
-use crate::objects::{ObjectTarget, Objects, SHARE_RULE};
 use crate::output::result::{Decomposition, InputInfo, Level, Timings};
 use crate::params::Params;
 use crate::primitive::{Kind, Primitive};

@@ -28,7 +28,7 @@ struct DocumentIn {
 /// writes reads back, and nothing read overflows the arithmetic of the tools that
 /// use it.
 fn check_values(p: &Primitive, scale: f64, offset: f64) -> Result<(), String> {
-    use crate::mesh::{MAX_EXTENT, MAX_POSITION};
+    use crate::input::mesh::{MAX_EXTENT, MAX_POSITION};
     let coords: Vec<f64> = match *p {
         Primitive::Box(Obb { center, .. })
         | Primitive::Sphere(Sphere { center, .. })

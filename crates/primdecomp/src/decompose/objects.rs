@@ -12,7 +12,7 @@
 
 use crate::decompose::decompose;
 use crate::error::Result;
-use crate::mesh::Mesh;
+use crate::input::mesh::Mesh;
 use crate::output::frame::{conservative, Frame};
 use crate::output::result::{Decomposition, InputInfo};
 use crate::params::Params;

@@ -326,6 +326,19 @@ pub(crate) struct DecomposeArgs {
         help_heading = "Speed and memory"
     )]
     pub max_memory: String,
+    /// Decompose in K spatial tiles, one at a time, as an input over --max-memory is.
+    ///
+    /// An input whose decomposition would need more than --max-memory is decomposed
+    /// in tiles instead of refused: the fewest that fit, each merged to boxes, the
+    /// boxes merged on top; every face stays enclosed. This forces K tiles (1 to
+    /// 4096). Binary PLY is read a tile at a time; other formats are parsed whole.
+    #[arg(
+        long,
+        value_name = "K",
+        hide_short_help = true,
+        help_heading = "Speed and memory"
+    )]
+    pub tiles: Option<usize>,
 
     // --- Several inputs ---
     /// How many inputs to decompose at once (default: one per thread).

@@ -82,6 +82,7 @@ mod progress;
 mod quadric;
 mod recut;
 mod result;
+mod tiles;
 mod up;
 mod wallclock;
 
@@ -101,6 +102,7 @@ pub use params::{
 pub use primitive::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
 pub use progress::{Estimate, Eta, Progress, Stage};
 pub use result::{Decomposition, InputInfo, Level, Shortfall, Stats, Timings};
+pub use tiles::{decompose_tiled, MAX_TILES};
 
 /// The stages one by one, for the project's own tests and benchmarks (feature
 /// `test-internals`, which the workspace's test helpers turn on). Not part of the

@@ -36,7 +36,17 @@ pub(super) fn run_one(
     // Peaks per stage only for a run alone in the process: the mark is process-wide.
     let memory = (a.timings && !beside_others).then(|| StageMemory::new("load"));
     let now = Instant::now();
-    let mesh = primdecomp::load_with(input, &load_options(a, base)?)?;
+    let options = load_options(a, base)?;
+    if let Some(why) = super::tiled::reason(a, input, &options) {
+        return super::tiled::run(a, input, base, targets, dest, guard, &options, &why);
+    }
+    let mesh = match primdecomp::load_with(input, &options) {
+        Err(primdecomp::Error::TooLarge { needed, limit, .. }) if !a.per_object => {
+            let why = super::tiled::over(needed, limit);
+            return super::tiled::run(a, input, base, targets, dest, guard, &options, &why);
+        }
+        m => m?,
+    };
     let load_s = now.elapsed().as_secs_f64();
     let params = Params {
         targets: resolve_targets(targets, mesh.face_count()),
@@ -87,7 +97,7 @@ pub(super) fn run_one(
 }
 
 /// `--export`: each level's file in each format asked for; returns the paths written.
-fn write_exports(
+pub(super) fn write_exports(
     a: &DecomposeArgs,
     dec: &Decomposition,
     dest: &Dest,
@@ -271,7 +281,7 @@ fn print_objects(objs: &primdecomp::Objects) {
 
 /// The input's up axis and where it came from: `--up`, else what its format says
 /// (`Up::of_format`).
-fn input_up(a: &DecomposeArgs, input: &Path) -> (primdecomp::export::Up, String) {
+pub(super) fn input_up(a: &DecomposeArgs, input: &Path) -> (primdecomp::export::Up, String) {
     use primdecomp::export::Up;
     match a.export_opts.up.as_deref().and_then(Up::from_axis) {
         Some(up) => (up, "given with --up".into()),
@@ -286,7 +296,7 @@ fn input_up(a: &DecomposeArgs, input: &Path) -> (primdecomp::export::Up, String)
 /// With `timed` (`--timings`) the JSON holds the stage timings, which stop before
 /// writing (the file cannot time its own write); without, it is byte-identical across
 /// runs.
-fn write_outputs(
+pub(super) fn write_outputs(
     dec: &Decomposition,
     params: &Params,
     dest: &Dest,

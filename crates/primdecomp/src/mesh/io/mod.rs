@@ -24,6 +24,7 @@ pub(crate) use off::declared_counts as off_declared;
 pub(crate) use off::parse_off;
 pub(crate) use ply::declared_counts as ply_declared;
 pub(crate) use ply::parse_ply;
+pub(crate) use ply::PlyLayout;
 pub(crate) use stl::parse_stl;
 
 /// The mesh formats [`crate::load`] reads, chosen by the file's extension.
@@ -117,6 +118,10 @@ pub struct LoadOptions {
     /// [`load_with`] still refuses what it refuses with re-centring. Decomposing such a
     /// mesh directly loses the precision re-centring keeps far from the origin.
     pub keep_world_coordinates: bool,
+    /// [`crate::decompose_tiled`]: decompose in this many spatial tiles (at most
+    /// [`crate::MAX_TILES`]) instead of the fewest that fit `max_memory`. `None` (the
+    /// default): the fewest; [`load_with`] ignores it.
+    pub tiles: Option<usize>,
 }
 
 /// Opens `path` for reading and returns it with its metadata, or refuses it with

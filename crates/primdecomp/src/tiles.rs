@@ -63,7 +63,8 @@ const RELEASE_EVERY: usize = 16 << 20;
 ///
 /// # Errors
 /// What [`crate::load_with`] and [`crate::decompose`] return, and
-/// [`Error::TooLarge`] when even [`MAX_TILES`] tiles would not fit the limit.
+/// [`Error::TooLarge`] when even [`MAX_TILES`] tiles would not fit the limit (with
+/// the need of the smallest tiles).
 pub fn decompose_tiled(
     path: &Path,
     params: &Params,
@@ -124,9 +125,11 @@ fn whole(path: &Path, options: &LoadOptions) -> Result<Mesh> {
         ..options.clone()
     };
     if let (Some(limit), Ok((_, meta))) = (options.max_memory, open_regular(path)) {
-        // The parse maps the file whole and builds the mesh beside it.
+        // The parse maps the file whole: `load_with`'s refusal of a file over the limit.
         if meta.len() > limit {
-            return Err(too_large(path, meta.len(), limit, true));
+            if let Err(e) = crate::mesh::io::load_with(path, options) {
+                return Err(e);
+            }
         }
     }
     let mesh = crate::mesh::io::load_with(path, &unlimited)?;
@@ -137,7 +140,7 @@ fn whole(path: &Path, options: &LoadOptions) -> Result<Mesh> {
             mesh.face_indices.len() as u64,
         );
         if need > limit {
-            return Err(too_large(path, need, limit, true));
+            return Err(too_large(path, need, limit));
         }
     }
     Ok(mesh)
@@ -151,18 +154,15 @@ fn mesh_bytes(vertices: u64, faces: u64, corners: u64) -> u64 {
         .saturating_add(faces.saturating_mul(4))
 }
 
-fn too_large(path: &Path, need: u64, limit: u64, whole: bool) -> Error {
-    let why = match whole {
-        true => {
-            "only binary PLY is read a tile at a time (other formats and ASCII PLY are \
-                 parsed whole first; convert the file to binary PLY)"
-        }
-        false => "even the most tiles would not fit",
-    };
+/// The parsed mesh alone needs `need` bytes, over `limit`.
+fn too_large(path: &Path, need: u64, limit: u64) -> Error {
+    let why = "only binary PLY is read a tile at a time (other formats and ASCII PLY are \
+               parsed whole first; convert the file to binary PLY)";
     Error::format(
         path,
         format!(
-            "decomposing it in tiles needs at least {}, more than the memory limit of {}: \
+            "read whole before it is cut into tiles, its positions and polygons hold {}, more \
+             than the memory limit of {}: \
              {why}; raise the limit with --max-memory SIZE (in the library: the max_memory \
              of primdecomp::LoadOptions)",
             crate::error::show_bytes(need),
@@ -414,7 +414,14 @@ impl Plan {
                 return Ok(k as usize);
             }
         }
-        Err(too_large(path, shared.saturating_add(top), limit, false))
+        // Not even the most tiles fit: the need of the fewest that would.
+        Err(Error::TooLarge {
+            path: path.to_path_buf(),
+            faces: self.faces as u64,
+            vertices: self.vertices as u64,
+            needed: shared.saturating_add(top),
+            limit,
+        })
     }
 }
 

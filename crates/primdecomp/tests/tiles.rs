@@ -8,7 +8,7 @@
 use primdecomp::{decompose_tiled, load, load_with, to_json, Error, LoadOptions, Params};
 use primdecomp_testkit::check::{assert_counts, assert_valid};
 use primdecomp_testkit::on_threads;
-use primdecomp_testkit::shapes::{cuboid, cylinder, icosphere, join, obj_text, Polys};
+use primdecomp_testkit::shapes::{cuboid, cylinder, icosphere, join, obj_text, ply_bytes, Polys};
 use std::path::{Path, PathBuf};
 
 /// A sphere, a cylinder and a box standing apart: three parts, several tiles.
@@ -24,35 +24,6 @@ fn scene() -> Polys {
         moved(cylinder(0.5, 3.0, 48), [3.0, 0.2, 0.0]),
         cuboid([-4.0, -1.0, -1.0], [-2.5, 0.5, 2.0]),
     ])
-}
-
-/// `polys` as binary little-endian PLY: float positions, triangles fanned from each
-/// polygon as `uchar int` lists.
-fn ply_bytes((v, f): &Polys) -> Vec<u8> {
-    let tris: Vec<[u32; 3]> = f
-        .iter()
-        .flat_map(|p| (1..p.len() - 1).map(move |i| [p[0], p[i], p[i + 1]]))
-        .collect();
-    let mut out = format!(
-        "ply\nformat binary_little_endian 1.0\nelement vertex {}\nproperty float x\n\
-         property float y\nproperty float z\nelement face {}\n\
-         property list uchar int vertex_indices\nend_header\n",
-        v.len(),
-        tris.len()
-    )
-    .into_bytes();
-    for p in v {
-        for c in p {
-            out.extend_from_slice(&(*c as f32).to_le_bytes());
-        }
-    }
-    for t in &tris {
-        out.push(3);
-        for i in t {
-            out.extend_from_slice(&(*i as i32).to_le_bytes());
-        }
-    }
-    out
 }
 
 fn temp_dir(name: &str) -> PathBuf {

@@ -41,9 +41,14 @@ pub(super) fn run_one(
         return super::tiled::run(a, input, base, targets, dest, guard, &options, &why);
     }
     let mesh = match primdecomp::load_with(input, &options) {
-        Err(primdecomp::Error::TooLarge { needed, limit, .. }) if !a.per_object => {
+        Err(e @ primdecomp::Error::TooLarge { needed, limit, .. }) if !a.per_object => {
             let why = super::tiled::over(needed, limit);
-            return super::tiled::run(a, input, base, targets, dest, guard, &options, &why);
+            // Where not even tiles fit, the refusal of the input read whole says why.
+            return super::tiled::run(a, input, base, targets, dest, guard, &options, &why)
+                .map_err(|t| match t.downcast_ref::<primdecomp::Error>() {
+                    Some(primdecomp::Error::TooLarge { .. }) => e.into(),
+                    _ => t,
+                });
         }
         m => m?,
     };

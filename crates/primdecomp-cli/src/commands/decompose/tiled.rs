@@ -23,7 +23,10 @@ pub(super) fn reason(a: &DecomposeArgs, input: &Path, options: &LoadOptions) -> 
     if let Some(k) = a.tiles {
         return Some(format!("{k} asked for with --tiles"));
     }
-    let size = std::fs::metadata(input).ok()?.len();
+    // Only binary PLY is read a tile at a time: other files over the limit are
+    // refused as they are read whole.
+    let ply = input.extension()?.eq_ignore_ascii_case("ply");
+    let size = std::fs::metadata(input).ok().filter(|_| ply)?.len();
     let limit = options.max_memory?;
     (size > limit).then(|| {
         format!(

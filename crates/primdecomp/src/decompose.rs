@@ -1,8 +1,11 @@
 //! The library's entry points: check the settings, then one bottom-up pass
 //! ([`crate::pipeline`]) or, to fill each target's budget, several (`crate::budget`).
 
+pub(crate) mod objects;
+pub(crate) mod tiles;
+
 use crate::error::Result;
-use crate::mesh::Mesh;
+use crate::input::mesh::Mesh;
 use crate::params::{short_of, Params};
 use crate::progress::{Progress, Silent};
 use crate::result::Decomposition;

@@ -37,43 +37,56 @@ pub(super) fn run_one(
     let memory = (a.timings && !beside_others).then(|| StageMemory::new("load"));
     let now = Instant::now();
     let options = load_options(a, base)?;
-    if let Some(why) = super::tiled::reason(a, input, &options) {
-        return super::tiled::run(a, input, base, targets, dest, guard, &options, &why);
-    }
-    let mesh = match primdecomp::load_with(input, &options) {
-        Err(e @ primdecomp::Error::TooLarge { needed, limit, .. }) if !a.per_object => {
-            let why = super::tiled::over(needed, limit);
-            // Where not even tiles fit, the refusal of the input read whole says why.
-            return super::tiled::run(a, input, base, targets, dest, guard, &options, &why)
-                .map_err(|t| match t.downcast_ref::<primdecomp::Error>() {
-                    Some(primdecomp::Error::TooLarge { .. }) => e.into(),
-                    _ => t,
-                });
-        }
-        m => m?,
+    let mut why = super::tiled::reason(a, input, &options);
+    let loaded = match &why {
+        Some(_) => None,
+        None => match primdecomp::load_with(input, &options) {
+            Err(e @ primdecomp::Error::TooLarge { needed, limit, .. }) if !a.per_object => {
+                why = Some(super::tiled::over(needed, limit));
+                Some(Err(e))
+            }
+            m => Some(Ok(m?)),
+        },
     };
-    let load_s = now.elapsed().as_secs_f64();
-    let params = Params {
-        targets: resolve_targets(targets, mesh.face_count()),
-        ..base.clone()
-    };
-    if a.per_object {
-        let (mut dec, written) = run_objects(a, input, &params, targets, &mesh, dest, guard)?;
-        dec.timings.stages.insert(0, ("load".into(), load_s));
-        return Ok((dec, written));
-    }
-    let shown = Shown::new(&params, mesh.face_count(), a, beside_others);
-    let mut dec = primdecomp::decompose_with(&mesh, &params, &|stage: Stage, f: f64| {
-        if let Some(m) = &memory {
-            m.enter(stage.name());
+    let (mesh, params, mut dec) = match (loaded, &why) {
+        (Some(Ok(mesh)), _) => {
+            let load_s = now.elapsed().as_secs_f64();
+            let params = Params {
+                targets: resolve_targets(targets, mesh.face_count()),
+                ..base.clone()
+            };
+            if a.per_object {
+                let (mut dec, written) =
+                    run_objects(a, input, &params, targets, &mesh, dest, guard)?;
+                dec.timings.stages.insert(0, ("load".into(), load_s));
+                return Ok((dec, written));
+            }
+            let shown = Shown::new(&params, mesh.face_count(), a, beside_others);
+            let mut dec = primdecomp::decompose_with(&mesh, &params, &|stage: Stage, f: f64| {
+                if let Some(m) = &memory {
+                    m.enter(stage.name());
+                }
+                shown.update(stage, f);
+            })?;
+            shown.finish();
+            dec.timings.stages.insert(0, ("load".into(), load_s));
+            (mesh, params, dec)
         }
-        shown.update(stage, f);
-    })?;
-    shown.finish();
+        (refused, why) => {
+            let why = why.as_deref().unwrap_or_default();
+            // The input read whole would not fit: in tiles, or (where not even tiles
+            // fit) the refusal of the input read whole, which says why.
+            let tiled = super::tiled::decompose(a, input, base, targets, dest, &options, why);
+            let (dec, params) = tiled.map_err(|t| match (t.downcast_ref(), refused) {
+                (Some(primdecomp::Error::TooLarge { .. }), Some(Err(e))) => e.into(),
+                _ => t,
+            })?;
+            (primdecomp::Mesh::from_triangles(&[], &[])?, params, dec)
+        }
+    };
     dec.input.path = Some(input.display().to_string());
     let up = input_up(a, input);
     (dec.input.up, dec.input.up_from) = (Some(up.0), Some(up.1));
-    dec.timings.stages.insert(0, ("load".into(), load_s));
     let now = Instant::now();
     let mut written = write_outputs(&dec, &params, dest, guard, a.obj_detail, a.timings)?;
     written.extend(write_exports(a, &dec, dest, input, &mesh, up.0)?);
@@ -85,6 +98,9 @@ pub(super) fn run_one(
     }
     let _out = PRINT.lock();
     if !a.quiet {
+        if let Some(why) = &why {
+            println!("tiles     {}: {why}", dec.stats.tiles);
+        }
         print_summary(&dec, &mesh, &written, a.verbose);
     }
     if a.verbose || a.timings {
@@ -102,7 +118,7 @@ pub(super) fn run_one(
 }
 
 /// `--export`: each level's file in each format asked for; returns the paths written.
-pub(super) fn write_exports(
+fn write_exports(
     a: &DecomposeArgs,
     dec: &Decomposition,
     dest: &Dest,
@@ -286,7 +302,7 @@ fn print_objects(objs: &primdecomp::Objects) {
 
 /// The input's up axis and where it came from: `--up`, else what its format says
 /// (`Up::of_format`).
-pub(super) fn input_up(a: &DecomposeArgs, input: &Path) -> (primdecomp::export::Up, String) {
+fn input_up(a: &DecomposeArgs, input: &Path) -> (primdecomp::export::Up, String) {
     use primdecomp::export::Up;
     match a.export_opts.up.as_deref().and_then(Up::from_axis) {
         Some(up) => (up, "given with --up".into()),
@@ -301,7 +317,7 @@ pub(super) fn input_up(a: &DecomposeArgs, input: &Path) -> (primdecomp::export::
 /// With `timed` (`--timings`) the JSON holds the stage timings, which stop before
 /// writing (the file cannot time its own write); without, it is byte-identical across
 /// runs.
-pub(super) fn write_outputs(
+fn write_outputs(
     dec: &Decomposition,
     params: &Params,
     dest: &Dest,

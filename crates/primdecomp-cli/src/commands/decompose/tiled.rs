@@ -1,21 +1,16 @@
 //! `decompose` in out-of-core tiles (`primdecomp::decompose_tiled`): when `--tiles`
 //! asks for them or the input would need more than `--max-memory` read whole. The
 //! mesh is never held whole, so what needs it is refused: `--per-object`, `--png`,
-//! `--export-preview`, and `-n` as a percentage.
+//! `--export-preview`, and `-n` as a percentage. `one_input` writes the result.
 
 use super::dest::Dest;
-use super::one_input::{input_up, write_exports, write_outputs, PRINT};
 use super::progress::Shown;
 use super::settings::Target;
-use super::summary::print_summary;
-use super::timings::print_timings;
 use crate::args::DecomposeArgs;
-use crate::exit::{println, BadArgs};
-use crate::outputs::Guard;
+use crate::exit::BadArgs;
 use anyhow::bail;
 use primdecomp::{Decomposition, LoadOptions, Params, Stage};
-use std::path::{Path, PathBuf};
-use std::time::Instant;
+use std::path::Path;
 
 /// Why `input` is decomposed in tiles, or `None` when it is read whole: `--tiles`,
 /// or a file larger than the memory limit (reading it whole maps it whole).
@@ -53,18 +48,17 @@ fn bytes(b: u64) -> String {
     }
 }
 
-/// Decomposes `input` in tiles and writes what a whole run writes.
-#[allow(clippy::too_many_arguments)]
-pub(super) fn run(
+/// Decomposes `input` in tiles with `base`'s settings at `targets`; returns the
+/// decomposition and its settings. What needs the whole mesh is refused.
+pub(super) fn decompose(
     a: &DecomposeArgs,
     input: &Path,
     base: &Params,
     targets: &[Target],
     dest: &Dest,
-    guard: &Guard,
     options: &LoadOptions,
     why: &str,
-) -> anyhow::Result<(Decomposition, Vec<PathBuf>)> {
+) -> anyhow::Result<(Decomposition, Params)> {
     let refuse = |what: &str| -> anyhow::Result<()> {
         bail!(BadArgs(format!(
             "{}: {what} needs the whole mesh in memory, and this input is decomposed in tiles ({why})",
@@ -99,30 +93,10 @@ pub(super) fn run(
         tiles: a.tiles,
         ..options.clone()
     };
-    let now = Instant::now();
     let shown = Shown::new(&params, usize::MAX, a, false);
-    let mut dec = primdecomp::decompose_tiled(input, &params, &options, &|s: Stage, f: f64| {
+    let dec = primdecomp::decompose_tiled(input, &params, &options, &|s: Stage, f: f64| {
         shown.update(s, f)
     })?;
     shown.finish();
-    let run_s = now.elapsed().as_secs_f64();
-    dec.input.path = Some(input.display().to_string());
-    let up = input_up(a, input);
-    (dec.input.up, dec.input.up_from) = (Some(up.0), Some(up.1));
-    let now = Instant::now();
-    let empty = primdecomp::Mesh::from_triangles(&[], &[])?;
-    let mut written = write_outputs(&dec, &params, dest, guard, a.obj_detail, a.timings)?;
-    written.extend(write_exports(a, &dec, dest, input, &empty, up.0)?);
-    let write_s = now.elapsed().as_secs_f64();
-    let _out = PRINT.lock();
-    if !a.quiet {
-        println!("tiles     {}: {why}", dec.stats.tiles);
-        print_summary(&dec, &empty, &written, a.verbose);
-    }
-    if a.verbose || a.timings {
-        print_timings(&dec, write_s, a.inputs.len() > 1, a.verbose, None);
-    } else if !a.quiet {
-        println!("time      {:.2} s", run_s + write_s);
-    }
-    Ok((dec, written))
+    Ok((dec, params))
 }

@@ -19,14 +19,14 @@
 //! each pass; other formats are parsed whole and the tiles cut from the parsed mesh.
 
 use crate::error::{Error, Result};
+use crate::input::io::{open_regular, Format, LoadOptions, PlyLayout};
+use crate::input::mesh::{Mesh, MeshBuilder};
 use crate::math::V3;
-use crate::mesh::io::{open_regular, Format, LoadOptions, PlyLayout};
-use crate::mesh::{Mesh, MeshBuilder};
 use crate::params::Params;
 use crate::primitive::Kind;
+use crate::progress::wallclock::Instant;
 use crate::progress::{Progress, Stage};
 use crate::result::Decomposition;
-use crate::wallclock::Instant;
 use std::path::Path;
 
 /// The groups tiles merge down to per unit of the largest target, as the in-memory
@@ -127,12 +127,12 @@ fn whole(path: &Path, options: &LoadOptions) -> Result<Mesh> {
     if let (Some(limit), Ok((_, meta))) = (options.max_memory, open_regular(path)) {
         // The parse maps the file whole: `load_with`'s refusal of a file over the limit.
         if meta.len() > limit {
-            if let Err(e) = crate::mesh::io::load_with(path, options) {
+            if let Err(e) = crate::input::io::load_with(path, options) {
                 return Err(e);
             }
         }
     }
-    let mesh = crate::mesh::io::load_with(path, &unlimited)?;
+    let mesh = crate::input::io::load_with(path, &unlimited)?;
     if let Some(limit) = options.max_memory {
         let need = mesh_bytes(
             mesh.vertex_count() as u64,
@@ -391,8 +391,8 @@ impl Plan {
             return Ok(1);
         };
         let shared = (4 * self.vertices as u64).saturating_add(resident);
-        let top = crate::memory::estimate(
-            crate::memory::Counts {
+        let top = crate::input::memory::estimate(
+            crate::input::memory::Counts {
                 vertices: 8 * self.groups as u64,
                 faces: 6 * self.groups as u64,
                 corners: 24 * self.groups as u64,
@@ -402,13 +402,13 @@ impl Plan {
         let (v, f) = (self.vertices as u64, self.faces as u64);
         for k in 1..=MAX_TILES as u64 {
             let share = |n: u64| (n / k + 1).saturating_add(n / k / 4);
-            let tile = crate::memory::estimate(
-                crate::memory::Counts {
+            let tile = crate::input::memory::estimate(
+                crate::input::memory::Counts {
                     vertices: share(v),
                     faces: share(f),
                     corners: share(corners),
                 },
-                crate::memory::Run::Greedy,
+                crate::input::memory::Run::Greedy,
             );
             if shared.saturating_add(tile.max(top)) <= limit {
                 return Ok(k as usize);
@@ -425,10 +425,10 @@ impl Plan {
     }
 }
 
-fn run_of(params: &Params) -> crate::memory::Run {
+fn run_of(params: &Params) -> crate::input::memory::Run {
     match params.uses_cut() {
-        true => crate::memory::Run::Cut,
-        false => crate::memory::Run::Greedy,
+        true => crate::input::memory::Run::Cut,
+        false => crate::input::memory::Run::Greedy,
     }
 }
 

@@ -19,7 +19,7 @@
 //! each pass; other formats are parsed whole and the tiles cut from the parsed mesh.
 
 use crate::error::{Error, Result};
-use crate::input::io::{open_regular, Format, LoadOptions, PlyLayout};
+use crate::input::io::{format_of, open_regular, Format, LoadOptions, PlyLayout};
 use crate::input::mesh::{Mesh, MeshBuilder};
 use crate::math::V3;
 use crate::params::Params;
@@ -74,12 +74,7 @@ pub fn decompose_tiled(
     params.validate()?;
     let started = Instant::now();
     let (file, meta) = open_regular(path)?;
-    let format = Format::from_path(path).ok_or_else(|| {
-        Error::format(
-            path,
-            "unknown extension: expected .obj, .ply, .stl, .off, .gltf or .glb",
-        )
-    })?;
+    let format = format_of(path)?;
     if meta.len() == 0 {
         return Err(Error::EmptyMesh {
             path: path.to_path_buf(),
@@ -127,9 +122,7 @@ fn whole(path: &Path, options: &LoadOptions) -> Result<Mesh> {
     if let (Some(limit), Ok((_, meta))) = (options.max_memory, open_regular(path)) {
         // The parse maps the file whole: `load_with`'s refusal of a file over the limit.
         if meta.len() > limit {
-            if let Err(e) = crate::input::io::load_with(path, options) {
-                return Err(e);
-            }
+            crate::input::io::load_with(path, options)?;
         }
     }
     let mesh = crate::input::io::load_with(path, &unlimited)?;

@@ -498,6 +498,16 @@ pub fn memory_needed(path: &Path) -> Option<u64> {
         .map(|c| crate::input::memory::estimate(c, crate::input::memory::Run::Cut).max(meta.len()))
 }
 
+/// The format `path`'s extension names, or the error saying which are known.
+pub(crate) fn format_of(path: &Path) -> Result<Format> {
+    Format::from_path(path).ok_or_else(|| {
+        Error::format(
+            path,
+            "unknown extension: expected .obj, .ply, .stl, .off, .gltf or .glb",
+        )
+    })
+}
+
 /// Reads the mesh in `path` (OBJ, PLY, STL, OFF, glTF/GLB, by its extension):
 /// memory-mapped, parsed, re-centred, with the default [`LoadOptions`] (no memory
 /// limit, glTF buffers only from inside the glTF's folder): see [`load_with`].
@@ -538,12 +548,7 @@ pub fn load(path: &Path) -> Result<Mesh> {
 /// ```
 pub fn load_with(path: &Path, options: &LoadOptions) -> Result<Mesh> {
     let (file, meta) = open_regular(path)?;
-    let format = Format::from_path(path).ok_or_else(|| {
-        Error::format(
-            path,
-            "unknown extension: expected .obj, .ply, .stl, .off, .gltf or .glb",
-        )
-    })?;
+    let format = format_of(path)?;
     let max_memory = options.max_memory;
     let run = if options.greedy_only {
         crate::input::memory::Run::Greedy

@@ -316,8 +316,10 @@ pub(crate) struct DecomposeArgs {
         help_heading = "Speed and memory"
     )]
     pub reprice: Option<String>,
-    /// Refuse inputs estimated to need more memory than this: 512M, 8G, available
-    /// (default) or none.
+    /// Stay within this much memory: 512M, 8G, available (default) or none.
+    ///
+    /// An input estimated to need more is decomposed in spatial tiles (--tiles), or
+    /// refused when not even tiles would fit.
     #[arg(
         long,
         default_value = "available",

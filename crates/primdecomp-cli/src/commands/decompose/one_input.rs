@@ -76,7 +76,15 @@ pub(super) fn run_one(
             let why = why.as_deref().unwrap_or_default();
             // The input read whole would not fit: in tiles, or (where not even tiles
             // fit) the refusal of the input read whole, which says why.
-            let tiled = super::tiled::decompose(a, input, base, targets, dest, &options, why);
+            let tiled = super::tiled::decompose(
+                a,
+                input,
+                base,
+                targets,
+                dest,
+                &options,
+                (why, beside_others),
+            );
             let (dec, params) = tiled.map_err(|t| match (t.downcast_ref(), refused) {
                 (Some(primdecomp::Error::TooLarge { .. }), Some(Err(e))) => e.into(),
                 _ => t,

@@ -57,7 +57,7 @@ pub(super) fn decompose(
     targets: &[Target],
     dest: &Dest,
     options: &LoadOptions,
-    why: &str,
+    (why, beside_others): (&str, bool),
 ) -> anyhow::Result<(Decomposition, Params)> {
     let refuse = |what: &str| -> anyhow::Result<()> {
         bail!(BadArgs(format!(
@@ -93,7 +93,7 @@ pub(super) fn decompose(
         tiles: a.tiles,
         ..options.clone()
     };
-    let shown = Shown::new(&params, usize::MAX, a, false);
+    let shown = Shown::new(&params, usize::MAX, a, beside_others);
     let dec = primdecomp::decompose_tiled(input, &params, &options, &|s: Stage, f: f64| {
         shown.update(s, f)
     })?;

@@ -163,7 +163,7 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
         })?;
     }
     // The bounds the cut proved, for the distances of what post-processing keeps.
-    let known: Vec<Vec<(crate::Primitive, f64)>> = merged
+    let known: Vec<Vec<(crate::primitive::Primitive, f64)>> = merged
         .snapshots
         .iter_mut()
         .map(|s| std::mem::take(&mut s.known))

@@ -14,7 +14,7 @@ use crate::merge::{Evaluator, Snapshot};
 use crate::params::Params;
 use crate::postprocess;
 use crate::primitive::Primitive;
-use crate::{Level, Shortfall};
+use crate::result::{Level, Shortfall};
 
 /// A cut is made again at most this many times with counts and bytes raised.
 const RECUTS: usize = 4;

@@ -1,7 +1,8 @@
 //! The cut's tests: tolerances, chains, byte targets and enclosure on small meshes.
 
 use super::*;
-use crate::{decompose, Params, Tolerance};
+use crate::decompose::decompose;
+use crate::params::{Params, Tolerance};
 
 /// A closed cube within 1% of its diagonal is one box, whatever the cap; an
 /// icosphere one round primitive; a tolerance tighter than the cube's faces allow
@@ -19,7 +20,7 @@ fn a_tolerance_needs_no_count() {
         let d = decompose(&cube, &p).expect("decomposes");
         let level = &d.levels[0];
         assert_eq!(level.primitives.len(), 1, "{t:?}");
-        assert_eq!(level.primitives[0].kind(), crate::Kind::Box);
+        assert_eq!(level.primitives[0].kind(), crate::primitive::Kind::Box);
         assert_eq!(level.tolerance, Some(t.in_units(cube.diagonal())));
         assert!(level.distance.expect("measured") < 1e-9);
     }
@@ -72,7 +73,7 @@ fn tolerance_chains_and_byte_targets() {
     };
     let l = &decompose(&mesh, &tight).expect("decomposes").levels[0];
     assert!(l.distance.expect("measured") > l.tolerance.expect("asked"));
-    assert_eq!(l.shortfall, Some(crate::Shortfall::Bytes));
+    assert_eq!(l.shortfall, Some(crate::result::Shortfall::Bytes));
 }
 
 /// Two triangles folded along a shared edge (the corpus's tiny_2triangles): the
@@ -123,7 +124,7 @@ fn a_face_the_cut_cannot_split_gets_its_nearest_fit() {
     let floor = levels(0.0001);
     assert_eq!(floor.primitives.len(), 2, "{:?}", floor.primitives);
     assert!(floor.distance.expect("measured") <= 1.01 * got);
-    assert_eq!(floor.shortfall, Some(crate::Shortfall::Faces));
+    assert_eq!(floor.shortfall, Some(crate::result::Shortfall::Faces));
 }
 
 /// Mismatched lists and fill with a cut are refused with a message naming them.
@@ -150,7 +151,7 @@ fn limits_are_validated() {
 }
 
 /// The largest of a level's primitives' bounds, each alone, in the input's frame.
-fn worst_error(mesh: &crate::Mesh, prims: &[Primitive]) -> f64 {
+fn worst_error(mesh: &crate::input::mesh::Mesh, prims: &[Primitive]) -> f64 {
     let surface = Triangles::new(mesh);
     let back = mesh.offset.map(|x| -x);
     prims
@@ -249,7 +250,7 @@ fn same_cuts_fitting_ahead(count: usize, tolerance: f64) {
         d.levels
     };
     let serial = run(1, true);
-    let capped = (count < 400).then_some(crate::Shortfall::Count);
+    let capped = (count < 400).then_some(crate::result::Shortfall::Count);
     assert_eq!(serial[2].shortfall, capped, "{count}");
     for (threads, off) in [(1, false), (2, false), (2, true)] {
         let levels = run(threads, off);
@@ -268,7 +269,7 @@ fn same_cuts_fitting_ahead(count: usize, tolerance: f64) {
 #[test]
 fn caps_are_spent_on_what_post_processing_keeps() {
     let mesh = crate::input::demo::demo_scene();
-    let most = crate::Kind::ALL
+    let most = crate::primitive::Kind::ALL
         .iter()
         .map(|k| k.bytes())
         .max()

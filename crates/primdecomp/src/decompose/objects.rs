@@ -147,7 +147,7 @@ pub fn decompose_objects(
 ) -> Result<Objects> {
     let parts = mesh.objects();
     if parts.len() > MAX_OBJECTS {
-        return Err(crate::Error::InvalidParams(format!(
+        return Err(crate::error::Error::InvalidParams(format!(
             "the mesh has {} objects; per-object decomposition takes at most {MAX_OBJECTS} \
              (each is decomposed on its own): decompose the mesh whole",
             parts.len()

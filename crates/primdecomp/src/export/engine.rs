@@ -234,8 +234,8 @@ impl ExportOptions {
     /// opts.scale = 0.0;
     /// assert!(opts.validate().is_err());
     /// ```
-    pub fn validate(&self) -> crate::Result<()> {
-        check_options(self).map_err(crate::Error::InvalidParams)
+    pub fn validate(&self) -> crate::error::Result<()> {
+        check_options(self).map_err(crate::error::Error::InvalidParams)
     }
 }
 

@@ -511,7 +511,7 @@ mod tests {
     /// OMI lists its shape extension, whose shapes hold the hulls.
     #[test]
     fn an_unused_shape_extension_is_not_listed() {
-        let prism = crate::Primitive::Prism(crate::primitive::Prism {
+        let prism = crate::primitive::Primitive::Prism(crate::primitive::Prism {
             center: [0.0; 3],
             axes: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
             hx: 0.01,

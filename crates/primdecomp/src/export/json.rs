@@ -285,7 +285,7 @@ struct Distance {
     max_bytes: Option<usize>,
     /// Over the tolerance: what stopped the cut nearer (`count`, `bytes` or `faces`).
     #[serde(skip_serializing_if = "Option::is_none")]
-    limited_by: Option<crate::Shortfall>,
+    limited_by: Option<crate::result::Shortfall>,
     method: &'static str,
 }
 

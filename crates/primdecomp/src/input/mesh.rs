@@ -2,7 +2,7 @@
 //! struct-of-arrays positions, re-centred in f64, and polygons in CSR form.
 //! Nothing else from the file is kept.
 
-use crate::math::V3;
+use crate::math::{aabb_of, V3};
 
 /// Largest distance of any vertex from the centre of the mesh's bounding box that the
 /// engine accepts. Fits take cubes (volumes) and fourth powers (squared quadric entries
@@ -196,7 +196,10 @@ impl Mesh {
     /// # Errors
     /// [`crate::Error::Format`] naming the first non-finite coordinate or index out of
     /// range.
-    pub fn from_triangles(positions: &[[f64; 3]], triangles: &[[u32; 3]]) -> crate::Result<Mesh> {
+    pub fn from_triangles(
+        positions: &[[f64; 3]],
+        triangles: &[[u32; 3]],
+    ) -> crate::error::Result<Mesh> {
         check_positions(positions)?;
         let mut b = MeshBuilder::new();
         b.positions.extend_from_slice(positions);
@@ -218,7 +221,7 @@ impl Mesh {
     pub fn from_polygons<F: AsRef<[u32]>>(
         positions: &[[f64; 3]],
         faces: &[F],
-    ) -> crate::Result<Mesh> {
+    ) -> crate::error::Result<Mesh> {
         check_positions(positions)?;
         let mut b = MeshBuilder::new();
         b.positions.extend_from_slice(positions);
@@ -325,9 +328,9 @@ impl Mesh {
     }
     /// [`Mesh::vertex_out_of_range`] and [`Mesh::vertex_beyond_position_limit`] as the
     /// errors for `path`.
-    pub(crate) fn check_extent(&self, path: &std::path::Path) -> crate::Result<()> {
+    pub(crate) fn check_extent(&self, path: &std::path::Path) -> crate::error::Result<()> {
         if let Some((i, d)) = self.vertex_out_of_range() {
-            return Err(crate::Error::Extent {
+            return Err(crate::error::Error::Extent {
                 path: path.to_path_buf(),
                 vertex: i as u64 + 1,
                 distance: d,
@@ -336,7 +339,7 @@ impl Mesh {
         }
         match self.vertex_beyond_position_limit() {
             None => Ok(()),
-            Some((i, c)) => Err(crate::Error::Position {
+            Some((i, c)) => Err(crate::error::Error::Position {
                 path: path.to_path_buf(),
                 vertex: i as u64 + 1,
                 coordinate: c,
@@ -354,22 +357,6 @@ impl Mesh {
         let (lo, hi) = self.aabb();
         crate::math::norm(crate::math::sub(hi, lo))
     }
-}
-
-/// Min/max corners of a point stream; `([0;3],[0;3])` for an empty stream.
-pub(crate) fn aabb_of(points: impl Iterator<Item = V3>) -> (V3, V3) {
-    let mut lo = [f64::INFINITY; 3];
-    let mut hi = [f64::NEG_INFINITY; 3];
-    for p in points {
-        for k in 0..3 {
-            lo[k] = lo[k].min(p[k]);
-            hi[k] = hi[k].max(p[k]);
-        }
-    }
-    if lo[0] > hi[0] {
-        return ([0.0; 3], [0.0; 3]);
-    }
-    (lo, hi)
 }
 
 /// Face `f`'s outward unit normal (Newell's normal of its own vertices times its sign
@@ -405,13 +392,13 @@ pub(crate) fn outward_normal_and_centre(
 }
 
 /// Refuses non-finite coordinates (as the readers do).
-fn check_positions(positions: &[[f64; 3]]) -> crate::Result<()> {
+fn check_positions(positions: &[[f64; 3]]) -> crate::error::Result<()> {
     match positions
         .iter()
         .position(|p| !p.iter().all(|c| c.is_finite()))
     {
         None => Ok(()),
-        Some(i) => Err(crate::Error::Format {
+        Some(i) => Err(crate::error::Error::Format {
             path: "<mesh>".into(),
             msg: format!("vertex {i} has a non-finite coordinate {:?}", positions[i]),
         }),
@@ -419,10 +406,10 @@ fn check_positions(positions: &[[f64; 3]]) -> crate::Result<()> {
 }
 
 /// Refuses indices past the last vertex.
-fn check_indices(indices: &[u32], vertices: usize) -> crate::Result<()> {
+fn check_indices(indices: &[u32], vertices: usize) -> crate::error::Result<()> {
     match indices.iter().find(|&&v| v as usize >= vertices) {
         None => Ok(()),
-        Some(v) => Err(crate::Error::Format {
+        Some(v) => Err(crate::error::Error::Format {
             path: "<mesh>".into(),
             msg: format!("face index {v} is out of range ({vertices} vertices)"),
         }),

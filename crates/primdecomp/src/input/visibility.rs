@@ -41,7 +41,7 @@ impl<'a> RayTree<'a> {
         let (lo, hi) = mesh.aabb();
         let bbox = |f: u32| {
             let vs = mesh.face(f as usize);
-            super::mesh::aabb_of(vs.iter().map(|&v| mesh.pos(v)))
+            crate::math::aabb_of(vs.iter().map(|&v| mesh.pos(v)))
         };
         RayTree {
             mesh,

@@ -221,7 +221,7 @@ mod tests {
     use super::*;
     use crate::merge::driver::tests::{reprice_modes, with_input};
     use crate::merge::{run, Clusters};
-    use crate::Params;
+    use crate::params::Params;
 
     /// The demo scene (several separate objects) merged to `targets` (decreasing) by
     /// the global loop alone and as a run does when components apply (phase 1, the
@@ -233,7 +233,7 @@ mod tests {
     }
 
     /// [`same_as_global`] on `mesh`.
-    fn same_as_global_on(mesh: &crate::Mesh, p: Params, targets: &[usize]) {
+    fn same_as_global_on(mesh: &crate::input::mesh::Mesh, p: Params, targets: &[usize]) {
         with_input(mesh, &p, |ev, q, vols, pairs| {
             let comps = components(mesh.face_count(), pairs);
             let count = comps.len();
@@ -298,7 +298,7 @@ mod tests {
     fn every_fourth_target_matches_the_global_loop() {
         let faces = demo_targets()[0] - 3;
         let all: Vec<usize> = (1..=faces).rev().step_by(4).collect();
-        let reprice = crate::Reprice::Deferred { min_degree: 0 };
+        let reprice = crate::params::Reprice::Deferred { min_degree: 0 };
         same_as_global(
             Params {
                 reprice,
@@ -322,7 +322,7 @@ mod tests {
 
     /// Bumpy grids of `sizes` quads (each quad two triangles, heights from a seeded
     /// generator, so costs differ and ties are rare), side by side: one component each.
-    fn bumpy_grids(sizes: &[(u32, u32)], seed: u64) -> crate::Mesh {
+    fn bumpy_grids(sizes: &[(u32, u32)], seed: u64) -> crate::input::mesh::Mesh {
         let mut b = crate::input::mesh::MeshBuilder::new();
         let mut x = seed | 1;
         let mut height = || {
@@ -348,7 +348,7 @@ mod tests {
             }
             left += n as f64 + 2.0;
         }
-        crate::Mesh::from_builder(b)
+        crate::input::mesh::Mesh::from_builder(b)
     }
 
     proptest::proptest! {
@@ -370,7 +370,7 @@ mod tests {
             targets.push(sizes.len());
             targets.sort_unstable_by(|a, b| b.cmp(a));
             targets.dedup();
-            for reprice in [crate::Reprice::Deferred { min_degree: 0 }, Params::default().reprice] {
+            for reprice in [crate::params::Reprice::Deferred { min_degree: 0 }, Params::default().reprice] {
                 same_as_global_on(&mesh, Params { reprice, ..Params::default() }, &targets);
             }
         }

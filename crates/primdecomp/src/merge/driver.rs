@@ -54,7 +54,7 @@ pub struct Snapshot {
     /// must keep (`postprocess::plates`); `None` for the greedy snapshot.
     pub bound: Option<f64>,
     /// For a cut over its tolerance: what stopped it nearer; `None` otherwise.
-    pub shortfall: Option<crate::Shortfall>,
+    pub shortfall: Option<crate::result::Shortfall>,
     /// For a cut: each primitive as the cut made it (the mesh's frame) with the upper
     /// bound of its error the cut proved, where it proved one; post-processing leaves
     /// it as it is, so `cut::record_limits` measures again only what it changed.
@@ -781,9 +781,9 @@ pub(super) mod tests {
     use super::*;
     use crate::input::{adjacency, dedup};
     use crate::math::{dot, V3};
+    use crate::params::{Params, Reprice};
     use crate::pipeline::evaluator;
     use crate::seed::quadric;
-    use crate::{Params, Reprice};
 
     /// Runs `f` on the demo scene's evaluator and a maker of its single-face clusters.
     pub(in crate::merge) fn with_demo<R>(
@@ -807,7 +807,7 @@ pub(super) mod tests {
     /// seed volumes and the adjacent face pairs (the driver's inputs, as `decompose`
     /// builds them).
     pub(in crate::merge) fn with_input<R>(
-        mesh: &crate::Mesh,
+        mesh: &crate::input::mesh::Mesh,
         p: &Params,
         f: impl FnOnce(&Evaluator, &[crate::math::Sym3], &[f64], &[(u32, u32)]) -> R,
     ) -> R {

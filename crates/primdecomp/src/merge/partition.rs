@@ -630,7 +630,7 @@ mod tests {
         // Bumpy, so that no merge is free and the parts stop at their targets (on a
         // flat grid every merge adds no volume and each part ends as one group).
         let mesh = grid_z(24, |i, j| ((i * 7 + j * 13) % 5) as f64 * 0.3);
-        let p = crate::Params::default();
+        let p = crate::params::Params::default();
         let (mut cl, pairs) =
             crate::merge::driver::tests::with_input(&mesh, &p, |ev, q, vols, pairs| {
                 let given = FaceData::Given {
@@ -674,7 +674,7 @@ mod tests {
     #[test]
     fn groups_start_phase_two_as_faces_do() {
         let mesh = grid_z(24, |i, j| ((i * 7 + j * 13) % 5) as f64 * 0.3);
-        let p = crate::Params::default();
+        let p = crate::params::Params::default();
         crate::merge::driver::tests::with_input(&mesh, &p, |ev, q, vols, pairs| {
             let (o, a) = crate::input::adjacency::neighbour_lists(q.len(), pairs);
             let lists: Lists = (o.into(), a.into());

@@ -130,7 +130,7 @@ fn hosts_of(
     i: usize,
     tol: f64,
 ) -> Vec<usize> {
-    let own = crate::input::mesh::aabb_of(verts.iter().map(|&v| mesh.pos(v)));
+    let own = crate::math::aabb_of(verts.iter().map(|&v| mesh.pos(v)));
     (0..prims.len())
         .filter(|&j| {
             j != i

@@ -145,7 +145,7 @@ const CUT_SHARES: [f64; 6] = [0.02, 0.03, 0.01, 0.09, 0.55, 0.30];
 
 impl Eta {
     /// An estimate for a run of `params`, starting now.
-    pub fn new(params: &crate::Params) -> Eta {
+    pub fn new(params: &crate::params::Params) -> Eta {
         Eta {
             start: crate::progress::wallclock::Instant::now(),
             shares: if params.resolved().uses_cut() {

@@ -197,18 +197,20 @@ LAYERS = {
         'stages': ['input', 'seed', 'merge', 'cut', 'postprocess', 'output'],
         'aliases': {'export': 'output'},
         'foundations': ['math', 'primitive'],
-        'shared': ['error', 'params', 'progress', 'result'],
+        # output::result: the result types (Decomposition, Level, Shortfall) every
+        # stage fills its part of; they live with the output that writes them.
+        'shared': ['error', 'params', 'progress', 'result', 'output::result'],
     },
 }
 
 # (crate, importing module, imported module) -> why this import may break the order.
 ALLOWED = {
-    ('primdecomp', 'cut::error', 'export'):
+    ('primdecomp', 'cut::error', 'output'):
         "a cut node's distance is measured over its primitive's conservative tessellation, "
-        "which today lives with the OBJ writer (export/obj.rs); it belongs with the primitives",
-    ('primdecomp', 'cut::mean', 'export'):
+        "which today lives with the OBJ writer (output/obj.rs); it belongs with the primitives",
+    ('primdecomp', 'cut::mean', 'output'):
         "a level's mean distance is measured over the same tessellation as cut::error's",
-    ('primdecomp', 'export::json', 'decompose::objects'):
+    ('primdecomp', 'output::json', 'decompose::objects'):
         "the JSON contract writes a per-object run's settings (ObjectTarget, Objects, "
         "SHARE_RULE), which the per-object entry defines beside the run",
 }
@@ -217,6 +219,8 @@ def place(layers, mod):
     """(kind, rank) of a module: kind in stage, foundation, shared, driver."""
     if not mod:
         return ('driver', 0)
+    if any('::'.join(mod[:len(s.split('::'))]) == s for s in layers['shared']):
+        return ('shared', 0)
     top = layers['aliases'].get(mod[0], mod[0])
     if top in layers['stages']:
         return ('stage', layers['stages'].index(top))

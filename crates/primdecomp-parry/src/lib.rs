@@ -32,7 +32,7 @@ use primdecomp::{Kind, Primitive};
 pub const GROW_REL: f64 = 1.0 / 262_144.0;
 
 /// Segments around the circles of a frustum's hull.
-const FRUSTUM_DETAIL: usize = primdecomp::export::DEFAULT_DETAIL;
+const FRUSTUM_DETAIL: usize = primdecomp::DEFAULT_DETAIL;
 
 /// A primitive parry cannot hold (a hull with no volume). The library's own output
 /// never has one: every primitive is at least its minimum extent thick.

@@ -8,8 +8,8 @@
 use numpy::{
     PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods,
 };
-use primdecomp::export::{write_export, ExportOptions, Format};
 use primdecomp::{Decomposition, Error, Mesh, Params, Primitive, Progress, Stage};
+use primdecomp_export::{write_export, ExportOptions, Format};
 use pyo3::exceptions::{PyKeyboardInterrupt, PyOSError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -251,7 +251,7 @@ fn decompose_path(
     // As the CLI records them, so that to_json() is the CLI's file byte for byte.
     dec.input.path = Some(Path::new(path).display().to_string());
     if let Some(format) = primdecomp::Format::from_path(Path::new(path)) {
-        let (up, why) = primdecomp::export::Up::of_format(format);
+        let (up, why) = primdecomp::Up::of_format(format);
         (dec.input.up, dec.input.up_from) = (Some(up), Some(why.to_string()));
     }
     Ok(NativeResult { dec, params })
@@ -389,7 +389,7 @@ impl NativeResult {
         let written = match ext.as_deref() {
             Some("json") => primdecomp::write_atomic(p, json.as_bytes()).map(|_| vec![p.into()]),
             Some("obj") => {
-                let obj = primdecomp::to_obj(self.level(level)?, primdecomp::export::DEFAULT_DETAIL);
+                let obj = primdecomp::to_obj(self.level(level)?, primdecomp::DEFAULT_DETAIL);
                 primdecomp::write_atomic(p, obj.as_bytes()).map(|_| vec![p.into()])
             }
             _ => {
@@ -401,7 +401,7 @@ impl NativeResult {
                         ))
                     })?,
                 };
-                let objs = primdecomp::export::read_objects(&json).map_err(PyValueError::new_err)?;
+                let objs = primdecomp::read_objects(&json).map_err(PyValueError::new_err)?;
                 // The input's up axis where the result records it (+Y otherwise).
                 let opts = ExportOptions {
                     up: self.dec.input.up.unwrap_or_default(),

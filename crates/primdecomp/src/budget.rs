@@ -14,11 +14,11 @@
 
 use crate::error::Result;
 use crate::input::mesh::Mesh;
+use crate::output::result::{Decomposition, Level};
 use crate::params::Params;
 use crate::pipeline;
 use crate::progress::wallclock::Instant;
 use crate::progress::{Progress, Stage};
-use crate::result::{Decomposition, Level};
 
 /// Candidate targets per round (one merge pass gives them all).
 const LADDER: usize = 12;

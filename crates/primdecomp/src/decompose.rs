@@ -6,9 +6,9 @@ pub(crate) mod tiles;
 
 use crate::error::Result;
 use crate::input::mesh::Mesh;
+use crate::output::result::Decomposition;
 use crate::params::{short_of, Params};
 use crate::progress::{Progress, Silent};
-use crate::result::Decomposition;
 use crate::{budget, pipeline};
 
 /// Decomposes `mesh` into primitives, one [`crate::Level`] per target in

@@ -67,36 +67,40 @@ mod budget;
 mod cut;
 mod decompose;
 mod error;
-pub mod export;
 mod input;
 pub mod math;
 mod merge;
+mod output;
 mod params;
 mod pipeline;
 mod postprocess;
 mod primitive;
 mod progress;
 mod recut;
-mod result;
 mod seed;
 
 pub use decompose::objects::{decompose_objects, ObjectResult, ObjectTarget, Objects};
 pub use decompose::tiles::{decompose_tiled, MAX_TILES};
 pub use decompose::{decompose, decompose_with};
 pub use error::{Error, FileKind, Result};
-pub use export::{read_primitives, tessellate, to_json, to_obj, write_atomic};
 pub use input::demo::{demo_scene, demo_scene_obj};
 pub use input::io::{
     load, load_with, memory_needed, open_regular, parse_mesh, parse_mesh_with, read_regular,
     Format, LoadOptions,
 };
 pub use input::mesh::{Mesh, MeshObject, SkipCounts, Transform};
+pub use input::up::Up;
+pub use output::result::{Decomposition, InputInfo, Level, Shortfall, Stats, Timings};
+pub use output::{
+    circle_frame, read_objects, read_primitives, tessellate, to_json, to_json_objects,
+    to_json_timed, to_obj, visible, write_atomic, Frame, ResultObject, Tess, DEFAULT_DETAIL,
+    MAX_DETAIL, MAX_RESULT_BYTES,
+};
 pub use params::{
     Dedup, Params, Partitions, Reprice, Tolerance, DEFAULT_TOLERANCE, MAX_PRIMITIVES,
 };
 pub use primitive::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
 pub use progress::{Estimate, Eta, Progress, Stage};
-pub use result::{Decomposition, InputInfo, Level, Shortfall, Stats, Timings};
 
 /// The stages one by one, for the project's own tests and benchmarks (feature
 /// `test-internals`, which the workspace's test helpers turn on). Not part of the

@@ -393,7 +393,7 @@ impl Params {
         // is settings alone.
         let mut settings = match value.get("format") {
             Some(_) => {
-                crate::export::contract::check_header(value.get("format"), value.get("version"))
+                crate::output::contract::check_header(value.get("format"), value.get("version"))
                     .map_err(Error::InvalidParams)?;
                 value.get("settings").cloned().ok_or_else(|| {
                     Error::InvalidParams("settings: the result has no \"settings\"".into())

@@ -12,12 +12,12 @@ use crate::input::{adjacency, dedup, orient};
 use crate::math::{Sym3, V3};
 use crate::merge::rim::FaceAdjacency;
 use crate::merge::{components, partition, Clusters, Evaluator, MergeOutput, Workspace};
+use crate::output::result::{Decomposition, InputInfo, Stats, Timings};
 use crate::params::{Params, Reprice};
 use crate::postprocess;
 use crate::primitive::fit::{FitConfig, FrameSearch};
 use crate::progress::wallclock::Instant;
 use crate::progress::{GoOn, Progress, Stage};
-use crate::result::{Decomposition, InputInfo, Stats, Timings};
 use crate::seed::quadric;
 use rayon::prelude::*;
 

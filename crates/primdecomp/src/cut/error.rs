@@ -2,7 +2,7 @@
 //! surface, the quantity `primdecomp eval` reports as Hausdorff (there over the union
 //! of the output; here over one primitive, so an upper bound of its share). Bounded,
 //! not sampled (docs/decisions/0040): the primitive's conservative tessellation
-//! (`export::tessellate`) is cut into triangles and refined best-first, the triangle
+//! (`output::tessellate`) is cut into triangles and refined best-first, the triangle
 //! of largest bound cut in two across its longest edge. The distance to the input is
 //! 1-Lipschitz, so over a triangle it is at most its centroid's distance plus the
 //! centroid's farthest vertex; and the distance to one triangle is convex, so over a
@@ -22,10 +22,10 @@ use std::collections::BinaryHeap;
 use rayon::prelude::*;
 
 use super::shadow;
-use crate::export::tessellate;
 use crate::input::triangles::Triangles;
 use crate::math::bvh::point_segment_dist2;
 use crate::math::{add, norm, scale, sub, V3};
+use crate::output::tessellate;
 use crate::primitive::Primitive;
 
 /// Segments around circles of the tessellation (its polygons stand at most
@@ -407,7 +407,7 @@ impl Ord for Cell {
 
 /// `prim`'s tessellation fine enough that its [`rounding`] is at most [`GAP`] of the
 /// diagonal (or as fine as [`DETAIL`] × 4), and that rounding.
-fn tessellation(prim: &Primitive, diagonal: f64) -> (crate::export::Tess, f64) {
+fn tessellation(prim: &Primitive, diagonal: f64) -> (crate::output::Tess, f64) {
     let mut k = DETAIL;
     loop {
         let tess = tessellate(prim, k);
@@ -425,7 +425,7 @@ fn tessellation(prim: &Primitive, diagonal: f64) -> (crate::export::Tess, f64) {
 /// bounds that surface's distance too. Each point of a ball or capsule lies on the
 /// ray from its core out through the tessellation, which lies within its farthest
 /// vertex; a cylinder's or frustum's side within 1/cos(π/k) of its radius.
-fn rounding(prim: &Primitive, tess: &crate::export::Tess, k: usize) -> f64 {
+fn rounding(prim: &Primitive, tess: &crate::output::Tess, k: usize) -> f64 {
     let circ = 1.0 / (std::f64::consts::PI / k as f64).cos();
     let beyond = |p0: V3, p1: V3, r: f64| {
         let far = tess
@@ -447,7 +447,7 @@ fn rounding(prim: &Primitive, tess: &crate::export::Tess, k: usize) -> f64 {
 /// The tessellation's faces as triangles: quads and triangles fanned from their first
 /// vertex, larger polygons (round caps) from their centre, so that no triangle is a
 /// sliver across the cap.
-pub(super) fn triangles(tess: &crate::export::Tess) -> Vec<[V3; 3]> {
+pub(super) fn triangles(tess: &crate::output::Tess) -> Vec<[V3; 3]> {
     let mut tris = Vec::new();
     for f in &tess.faces {
         let v = |i: usize| tess.vertices[f[i] as usize];

@@ -1,6 +1,6 @@
 //! A level's mean distance from its primitives' surfaces to the input, the quantity
 //! `primdecomp eval` reports as Chamfer (there sampled), estimated by the midpoint
-//! rule: each primitive's tessellation (`export::tessellate`) cut into cells of at
+//! rule: each primitive's tessellation (`output::tessellate`) cut into cells of at
 //! most an equal share of the level's area, each cell weighed by its area at its
 //! centroid's distance to the nearest input triangle (`input::triangles`). As eval's,
 //! over the boundary of the union: a cell whose centroid lies inside another
@@ -11,10 +11,10 @@
 use rayon::prelude::*;
 
 use super::error::{halves, triangles};
-use crate::export::tessellate;
 use crate::input::triangles::Triangles;
 use crate::math::bvh::Bvh;
 use crate::math::{add, cross, norm, scale, sub, V3};
+use crate::output::tessellate;
 use crate::primitive::Primitive;
 
 /// Segments around circles of the tessellation.

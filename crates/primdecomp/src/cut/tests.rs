@@ -73,7 +73,7 @@ fn tolerance_chains_and_byte_targets() {
     };
     let l = &decompose(&mesh, &tight).expect("decomposes").levels[0];
     assert!(l.distance.expect("measured") > l.tolerance.expect("asked"));
-    assert_eq!(l.shortfall, Some(crate::result::Shortfall::Bytes));
+    assert_eq!(l.shortfall, Some(crate::output::result::Shortfall::Bytes));
 }
 
 /// Two triangles folded along a shared edge (the corpus's tiny_2triangles): the
@@ -124,7 +124,10 @@ fn a_face_the_cut_cannot_split_gets_its_nearest_fit() {
     let floor = levels(0.0001);
     assert_eq!(floor.primitives.len(), 2, "{:?}", floor.primitives);
     assert!(floor.distance.expect("measured") <= 1.01 * got);
-    assert_eq!(floor.shortfall, Some(crate::result::Shortfall::Faces));
+    assert_eq!(
+        floor.shortfall,
+        Some(crate::output::result::Shortfall::Faces)
+    );
 }
 
 /// Mismatched lists and fill with a cut are refused with a message naming them.
@@ -250,7 +253,7 @@ fn same_cuts_fitting_ahead(count: usize, tolerance: f64) {
         d.levels
     };
     let serial = run(1, true);
-    let capped = (count < 400).then_some(crate::result::Shortfall::Count);
+    let capped = (count < 400).then_some(crate::output::result::Shortfall::Count);
     assert_eq!(serial[2].shortfall, capped, "{count}");
     for (threads, off) in [(1, false), (2, false), (2, true)] {
         let levels = run(threads, off);

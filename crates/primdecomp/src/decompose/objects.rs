@@ -12,11 +12,11 @@
 
 use crate::decompose::decompose;
 use crate::error::Result;
-use crate::export::frame::{conservative, Frame};
 use crate::input::mesh::Mesh;
+use crate::output::frame::{conservative, Frame};
+use crate::output::result::{Decomposition, InputInfo};
 use crate::params::Params;
 use crate::primitive::Primitive;
-use crate::result::{Decomposition, InputInfo};
 
 /// The sharing rule of a total target, as stated in the JSON and `--help`.
 pub const SHARE_RULE: &str = "a total count N is shared by the objects: one each, the other N - k (k objects) in proportion to surface area, largest remainder (ties to the earlier object); with N < k each object still gets one. A percentage applies to each object's faces.";

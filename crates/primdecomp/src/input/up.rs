@@ -30,7 +30,7 @@ impl Up {
     /// `"y"` or `"z"`, as results and the command line spell it.
     ///
     /// ```
-    /// use primdecomp::export::Up;
+    /// use primdecomp::Up;
     /// assert_eq!(Up::from_axis("Z"), Some(Up::Z));
     /// assert_eq!(Up::Z.axis(), "z");
     /// ```
@@ -54,7 +54,7 @@ impl Up {
     /// assumed for the formats that say nothing.
     ///
     /// ```
-    /// use primdecomp::{export::Up, Format};
+    /// use primdecomp::{Format, Up};
     /// assert_eq!(Up::of_format(Format::Stl).0, Up::Z);
     /// assert_eq!(Up::of_format(Format::Glb).0, Up::Y);
     /// ```

@@ -54,7 +54,7 @@ pub struct Snapshot {
     /// must keep (`postprocess::plates`); `None` for the greedy snapshot.
     pub bound: Option<f64>,
     /// For a cut over its tolerance: what stopped it nearer; `None` otherwise.
-    pub shortfall: Option<crate::result::Shortfall>,
+    pub shortfall: Option<crate::output::result::Shortfall>,
     /// For a cut: each primitive as the cut made it (the mesh's frame) with the upper
     /// bound of its error the cut proved, where it proved one; post-processing leaves
     /// it as it is, so `cut::record_limits` measures again only what it changed.

@@ -11,8 +11,8 @@ pub(crate) mod thicken;
 
 use crate::input::triangles::Triangles;
 use crate::merge::{Evaluator, Snapshot};
+use crate::output::result::Level;
 use crate::params::Params;
-use crate::result::Level;
 use nested::{keep_mask, Cleanup};
 
 /// What post-processing reads of the input besides the evaluator, made once per run

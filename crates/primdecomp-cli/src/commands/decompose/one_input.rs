@@ -13,7 +13,7 @@ use crate::exit::BadArgs;
 use crate::outputs::Guard;
 use crate::paths::output_path_for;
 use anyhow::{anyhow, bail};
-use primdecomp::{export, write_atomic, Stage};
+use primdecomp::{to_json, to_json_objects, to_json_timed, to_obj, write_atomic, Stage};
 use primdecomp::{Decomposition, Params};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -132,7 +132,7 @@ fn write_exports(
     dest: &Dest,
     input: &Path,
     mesh: &primdecomp::Mesh,
-    up: primdecomp::export::Up,
+    up: primdecomp::Up,
 ) -> anyhow::Result<Vec<PathBuf>> {
     let mut written = Vec::new();
     let counts: Vec<usize> = dec.levels.iter().map(|l| l.target).collect();
@@ -201,10 +201,7 @@ fn run_objects(
         written.push(json_out.path.clone());
         if dest.obj.is_some() {
             let obj_out = &outs[i * per_level + 1];
-            write_atomic(
-                &obj_out.path,
-                export::to_obj(&level, a.obj_detail).as_bytes(),
-            )?;
+            write_atomic(&obj_out.path, to_obj(&level, a.obj_detail).as_bytes())?;
             guard.wrote(obj_out);
             written.push(obj_out.path.clone());
         }
@@ -268,7 +265,7 @@ fn level_jsons(
     let n = objs.levels();
     let mut jsons = Vec::with_capacity(n);
     for i in 0..n {
-        let json = export::to_json_objects(objs, i, params);
+        let json = to_json_objects(objs, i, params);
         let v: serde_json::Value = serde_json::from_str(&json)?;
         jsons.push((v["settings"]["target"].as_u64().unwrap_or(0) as usize, json));
     }
@@ -310,8 +307,8 @@ fn print_objects(objs: &primdecomp::Objects) {
 
 /// The input's up axis and where it came from: `--up`, else what its format says
 /// (`Up::of_format`).
-fn input_up(a: &DecomposeArgs, input: &Path) -> (primdecomp::export::Up, String) {
-    use primdecomp::export::Up;
+fn input_up(a: &DecomposeArgs, input: &Path) -> (primdecomp::Up, String) {
+    use primdecomp::Up;
     match a.export_opts.up.as_deref().and_then(Up::from_axis) {
         Some(up) => (up, "given with --up".into()),
         None => primdecomp::Format::from_path(input)
@@ -342,11 +339,11 @@ fn write_outputs(
         let (i, is_obj) = (k / per_level, k % per_level == 1);
         let level = &dec.levels[i];
         let bytes = if is_obj {
-            export::to_obj(level, detail)
+            to_obj(level, detail)
         } else if timed {
-            export::to_json_timed(dec, i, params)
+            to_json_timed(dec, i, params)
         } else {
-            export::to_json(dec, i, params)
+            to_json(dec, i, params)
         };
         write_atomic(&out.path, bytes.as_bytes())?;
         guard.wrote(out);
@@ -369,7 +366,7 @@ fn decompose_png(
     let json = output_path_for(out, label, dec.levels.len());
     let opts = scene::Options {
         up_axis: match dec.input.up {
-            Some(primdecomp::export::Up::Z) => 2,
+            Some(primdecomp::Up::Z) => 2,
             _ => 1,
         },
         ..scene::Options::default()

@@ -8,8 +8,8 @@
 //! fails, so a failed export leaves nothing behind.
 
 use super::engine::{check_options, ExportOptions, Files, Format};
-use super::json::ResultObject;
-use crate::error::{Error, Result};
+use primdecomp::ResultObject;
+use primdecomp::{Error, Result};
 use std::path::{Component, Path, PathBuf};
 
 /// Writes `objects` as `format` to `path` (each file through a temporary file and a
@@ -17,6 +17,20 @@ use std::path::{Component, Path, PathBuf};
 /// [`Error::Format`] (exit code 2) options out of range, a result the format cannot
 /// hold ([`render`]) and a folder for the files beside it that is a symbolic link or
 /// not a folder.
+///
+/// ```
+/// use primdecomp::{Frame, Primitive, ResultObject, Sphere};
+/// use primdecomp_export::{write_export, ExportOptions, Format};
+///
+/// let ball = Primitive::Sphere(Sphere { center: [0.0, 1.0, 0.0], radius: 0.5 });
+/// let objects = [ResultObject { name: "ball".into(), frame: Frame::IDENTITY, primitives: vec![ball] }];
+/// let path = std::env::temp_dir().join(format!("primdecomp-doc-{}.tscn", std::process::id()));
+/// let written = write_export(&path, &objects, Format::Tscn, &ExportOptions::default())?;
+/// assert_eq!(written, [path.clone()]);
+/// assert!(std::fs::read_to_string(&path)?.contains("SphereShape3D"));
+/// # std::fs::remove_file(&path)?;
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn write_export(
     path: &Path,
     objects: &[ResultObject],
@@ -48,10 +62,10 @@ fn place(
     for (rel, bytes) in &files.beside {
         let p = dir.join(rel);
         folders(dir, Path::new(rel), made)?;
-        super::write_atomic(&p, bytes)?;
+        primdecomp::write_atomic(&p, bytes)?;
         written.push(p);
     }
-    super::write_atomic(path, &files.main)?;
+    primdecomp::write_atomic(path, &files.main)?;
     written.push(path.to_path_buf());
     Ok(())
 }
@@ -82,7 +96,7 @@ fn folders(dir: &Path, rel: &Path, made: &mut Vec<PathBuf>) -> Result<()> {
                         "is a symbolic link (to {}); the export's files are never written \
                          through a link in the output folder: remove it, or choose another \
                          output name",
-                        super::visible(&to.to_string_lossy())
+                        primdecomp::visible(&to.to_string_lossy())
                     ),
                 ));
             }
@@ -115,7 +129,20 @@ fn folders(dir: &Path, rel: &Path, made: &mut Vec<PathBuf>) -> Result<()> {
 /// The bytes of an export to `path` (whose file stem names the files beside the
 /// main one), or [`Error::Format`] naming `path` when the result holds a shape the
 /// format's readers could not load (a number beyond the range of 32-bit floats, a
-/// mesh MuJoCo refuses as too small: `export::range`).
+/// mesh MuJoCo refuses as too small).
+///
+/// ```
+/// use primdecomp::{Frame, Obb, Primitive, ResultObject};
+/// use primdecomp_export::{render, ExportOptions, Format};
+///
+/// let axes = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+/// let crate_box = Primitive::Box(Obb { center: [0.0; 3], axes, half: [1.0, 0.5, 0.25] });
+/// let objects = [ResultObject { name: "crate".into(), frame: Frame::IDENTITY, primitives: vec![crate_box] }];
+/// let files = render(&objects, Format::Glb, &ExportOptions::default(), "crate.glb".as_ref())?;
+/// assert_eq!(&files.main[..4], b"glTF");
+/// assert!(files.beside.is_empty());
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
 pub fn render(
     objects: &[ResultObject],
     format: Format,

@@ -10,21 +10,30 @@
 //!   in `upAxis` and is not turned.
 //! - `--scale S` multiplies every length (input units → metres); the formats take
 //!   metres, and USD says `metersPerUnit = 1`.
-//! - Every shape is grown by [`GROW_REL`](super::frame::GROW_REL) of its magnitude
-//!   ([`super::frame::conservative`]) before it is written, so rounding in the
+//! - Every shape is grown by [`Frame::GROW_REL`] of its magnitude
+//!   ([`Frame::conservative`]) before it is written, so rounding in the
 //!   consumer cannot cut a face.
 
-use super::frame::{conservative, Frame, MIN_AXIS_REL};
-use super::json::ResultObject;
-use super::names::{visible, Names};
-use super::obj::{tessellate, Tess};
+use super::names::Names;
 use super::range;
-use crate::input::up::Up;
-use crate::math::{add, norm, normalize, scale, sub, V3};
-use crate::primitive::{Kind, Primitive};
+use primdecomp::math::{add, norm, normalize, scale, sub, V3};
+use primdecomp::ResultObject;
+use primdecomp::Up;
+use primdecomp::{tessellate, Tess};
+use primdecomp::{visible, Frame};
+use primdecomp::{Kind, Primitive};
 use std::path::Path;
 
 /// An export format.
+///
+/// ```
+/// use primdecomp_export::Format;
+///
+/// assert_eq!(Format::from_path("robot.urdf".as_ref()), Some(Format::Urdf));
+/// assert_eq!(Format::from_path("scene.xml".as_ref()), None); // MJCF or not: say so
+/// assert_eq!(Format::from_name("usd"), Some(Format::Usda));
+/// assert_eq!(Format::Mjcf.up(), Some(primdecomp::Up::Z));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Format {
     /// glTF 2.0 JSON (`.gltf`, buffers embedded as data URIs).
@@ -146,7 +155,7 @@ impl Default for ExportOptions {
         ExportOptions {
             up: Up::Y,
             scale: 1.0,
-            detail: super::obj::DEFAULT_DETAIL,
+            detail: primdecomp::DEFAULT_DETAIL,
             physics: Physics::Khr,
             preview: false,
             urdf_capsule: false,
@@ -229,13 +238,13 @@ impl ExportOptions {
     /// Refuses a scale that is not positive and finite, and fewer than 3 segments.
     ///
     /// ```
-    /// let mut opts = primdecomp::export::ExportOptions::default();
+    /// let mut opts = primdecomp_export::ExportOptions::default();
     /// assert!(opts.validate().is_ok());
     /// opts.scale = 0.0;
     /// assert!(opts.validate().is_err());
     /// ```
-    pub fn validate(&self) -> crate::error::Result<()> {
-        check_options(self).map_err(crate::error::Error::InvalidParams)
+    pub fn validate(&self) -> primdecomp::Result<()> {
+        check_options(self).map_err(primdecomp::Error::InvalidParams)
     }
 }
 
@@ -247,10 +256,10 @@ pub(crate) fn check_options(opts: &ExportOptions) -> Result<(), String> {
             opts.scale
         ));
     }
-    if !(3..=super::obj::MAX_DETAIL).contains(&opts.detail) {
+    if !(3..=primdecomp::MAX_DETAIL).contains(&opts.detail) {
         return Err(format!(
             "--export-detail must be from 3 to {}, got {}",
-            super::obj::MAX_DETAIL,
+            primdecomp::MAX_DETAIL,
             opts.detail
         ));
     }
@@ -365,7 +374,7 @@ pub fn prepare(
         range::check_frame(&frame, keep_scale, &this)?;
         let mut shapes = Vec::with_capacity(o.primitives.len());
         for (j, p) in o.primitives.iter().enumerate() {
-            let q = conservative(p, &inner, offset);
+            let q = inner.conservative(p, offset);
             let what = object(j, p.kind());
             range::check_shape(&q, &frame, keep_scale, &what)?;
             let s = shape(&q, native, opts.detail);
@@ -404,7 +413,7 @@ pub fn shape(p: &Primitive, native: [bool; 6], detail: usize) -> Shape {
     match *p {
         Primitive::Box(b) => Shape::Box {
             center: b.center,
-            rotation: crate::math::quat::quat_from_axes(&right_handed(b.axes)),
+            rotation: primdecomp::math::quat_from_axes(&right_handed(b.axes)),
             half: b.half,
         },
         Primitive::Sphere(s) => Shape::Sphere {
@@ -413,7 +422,7 @@ pub fn shape(p: &Primitive, native: [bool; 6], detail: usize) -> Shape {
         },
         // A capsule whose segment is shorter than MIN_AXIS_REL of its radius (its half
         // length may round to 0, which MuJoCo and URDF refuse): the sphere around it.
-        Primitive::Capsule(c) if norm(sub(c.p1, c.p0)) <= MIN_AXIS_REL * c.radius => {
+        Primitive::Capsule(c) if norm(sub(c.p1, c.p0)) <= Frame::MIN_AXIS_REL * c.radius => {
             let (center, _, h) = Shape::axis(c.p0, c.p1);
             Shape::Sphere {
                 center,
@@ -445,7 +454,7 @@ pub fn shape(p: &Primitive, native: [bool; 6], detail: usize) -> Shape {
 /// Box axes made right-handed (a box is symmetric: flipping the third axis changes
 /// nothing), so they form a rotation.
 fn right_handed(a: [V3; 3]) -> [V3; 3] {
-    if crate::math::dot(crate::math::cross(a[0], a[1]), a[2]) >= 0.0 {
+    if primdecomp::math::dot(primdecomp::math::cross(a[0], a[1]), a[2]) >= 0.0 {
         a
     } else {
         [a[0], a[1], scale(a[2], -1.0)]
@@ -456,12 +465,12 @@ fn right_handed(a: [V3; 3]) -> [V3; 3] {
 /// unit vector `a`: the shortest arc, or a half turn about an axis perpendicular to
 /// `local` when `a` is opposite.
 pub fn quat_between(local: V3, a: V3) -> [f64; 4] {
-    let d = crate::math::dot(local, a);
+    let d = primdecomp::math::dot(local, a);
     if d < -1.0 + 1e-12 {
-        let (u, _) = super::obj::circle_frame(local);
+        let (u, _) = primdecomp::circle_frame(local);
         return [u[0], u[1], u[2], 0.0];
     }
-    let c = crate::math::cross(local, a);
+    let c = primdecomp::math::cross(local, a);
     let q = [c[0], c[1], c[2], 1.0 + d];
     let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
     q.map(|x| x / n)
@@ -484,10 +493,19 @@ pub struct Files {
     pub beside: Vec<(String, Vec<u8>)>,
 }
 
+/// `R(q) · v`, for the tests of the writers.
+#[cfg(test)]
+pub(crate) fn rotate(q: [f64; 4], v: V3) -> V3 {
+    Frame {
+        rotation: q,
+        ..Frame::IDENTITY
+    }
+    .vector(v)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::export::frame::rotate;
 
     #[test]
     fn up_rotations_turn_the_right_way() {

@@ -22,14 +22,14 @@
 //! (`input_mesh`) the input mesh, so one file is both the import and a preview.
 
 use super::engine::{prepare, quat_between, ExportOptions, Format, Physics, Prepared, Shape};
-use super::frame::Frame;
-use super::json::ResultObject;
-use super::obj::{tessellate, Tess};
-use crate::math::V3;
-use crate::primitive::Kind;
 use gltf_json as json;
 use json::validation::{Checked::Valid, USize64};
 use json::Index;
+use primdecomp::math::V3;
+use primdecomp::Frame;
+use primdecomp::Kind;
+use primdecomp::ResultObject;
+use primdecomp::{tessellate, Tess};
 use serde_json::{json as j, Value};
 
 /// Preview colours per kind (RGBA, half transparent), in [`Kind::ALL`] order.
@@ -243,7 +243,7 @@ pub fn to_gltf(
     root.push(json::Scene {
         extensions: None,
         extras: Default::default(),
-        name: Some(super::names::visible(&opts.model)),
+        name: Some(primdecomp::visible(&opts.model)),
         nodes,
     });
     root.scene = Some(Index::new(0));
@@ -406,7 +406,7 @@ fn build(
 
 /// The conservative tessellation of a shape in its object's frame.
 fn preview_tess(shape: &Shape, detail: usize) -> Tess {
-    use crate::primitive::{Capsule, Cylinder, Frustum, Obb, Primitive, Sphere};
+    use primdecomp::{Capsule, Cylinder, Frustum, Obb, Primitive, Sphere};
     let p = match shape {
         Shape::Hull(t) => return t.clone(),
         Shape::Box {
@@ -415,7 +415,7 @@ fn preview_tess(shape: &Shape, detail: usize) -> Tess {
             half,
         } => Primitive::Box(Obb {
             center: *center,
-            axes: crate::math::quat::axes_from_quat(*rotation),
+            axes: primdecomp::math::axes_from_quat(*rotation),
             half: *half,
         }),
         Shape::Sphere { center, radius } => Primitive::Sphere(Sphere {
@@ -511,7 +511,7 @@ mod tests {
     /// OMI lists its shape extension, whose shapes hold the hulls.
     #[test]
     fn an_unused_shape_extension_is_not_listed() {
-        let prism = crate::primitive::Primitive::Prism(crate::primitive::Prism {
+        let prism = primdecomp::Primitive::Prism(primdecomp::Prism {
             center: [0.0; 3],
             axes: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
             hx: 0.01,

@@ -6,8 +6,8 @@
 //! the sphere.
 
 use crate::math::{add, cross, dot, madd, normalize, scale, sub, V3};
+use crate::output::result::Level;
 use crate::primitive::Primitive;
-use crate::result::Level;
 use std::collections::HashMap;
 use std::f64::consts::{PI, TAU};
 use std::fmt::Write;

@@ -2,14 +2,14 @@
 //! name and any output file name gives a well-formed, loadable file whose names are
 //! still readable and still unique.
 //!
-//! 1. [`visible`]: characters no format may hold raw (C0 and C1 control characters,
+//! 1. [`primdecomp::visible`]: characters no format may hold raw (C0 and C1 control characters,
 //!    DEL, the non-characters U+FFFE and U+FFFF, and the bidirectional overrides that
 //!    make text display in another order than it is stored) are written as the
 //!    visible escape `\u{1b}`. Every name a writer puts in a file goes through it; XML
 //!    1.0 forbids most of these characters outright, attribute normalization turns tab
 //!    and line ends into spaces, and Godot and USD strings end at a NUL.
 //! 2. Each format's syntax is then escaped by its writer (quick-xml for MJCF and URDF
-//!    attributes, serde for glTF JSON, [`super::usd::quote`], [`super::godot::quote`]).
+//!    attributes, serde for glTF JSON, `usd::quote`, `godot::quote`).
 //! 3. Where a format takes identifiers (USD prim names, Godot node names, file
 //!    names), [`ident`] keeps `[A-Za-z0-9_-]` and turns the rest into `_`.
 //! 4. [`Names`] makes names unique per namespace (`name`, `name_2`, …) and steers clear
@@ -18,40 +18,10 @@
 //!    with a hash of the whole name when cut.
 
 use std::collections::{HashMap, HashSet};
-use std::fmt::Write;
 
 /// The longest file name (bytes) an export writes: the common limit of Linux, macOS
 /// and Windows file systems is 255; a temporary name adds up to about 40 bytes.
 pub const MAX_FILE_NAME: usize = 200;
-
-/// Whether `c` is written as a visible escape ([`visible`]).
-pub fn hidden(c: char) -> bool {
-    c.is_control()
-        || matches!(c, '\u{fffe}' | '\u{ffff}')
-        || matches!(c, '\u{202a}'..='\u{202e}' | '\u{2066}'..='\u{2069}')
-}
-
-/// `s` with each `hidden` character written as `\u{…}` (lowercase hex).
-///
-/// ```
-/// use primdecomp::export::visible;
-/// assert_eq!(visible("a\u{1b}[31mb\u{0}"), "a\\u{1b}[31mb\\u{0}");
-/// assert_eq!(visible("plain name, 日本"), "plain name, 日本");
-/// ```
-pub fn visible(s: &str) -> String {
-    if !s.chars().any(hidden) {
-        return s.to_string();
-    }
-    let mut out = String::with_capacity(s.len() + 8);
-    for c in s.chars() {
-        if hidden(c) {
-            let _ = write!(out, "\\u{{{:x}}}", c as u32);
-        } else {
-            out.push(c);
-        }
-    }
-    out
-}
 
 /// An identifier for formats whose names are identifiers: `[A-Za-z0-9_]`, and `-`
 /// unless `strict` (USD prim names, which also may not start with a digit); every
@@ -133,21 +103,6 @@ impl Names {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn hidden_characters_become_visible_escapes() {
-        assert_eq!(visible("a\tb\nc\rd"), "a\\u{9}b\\u{a}c\\u{d}d");
-        assert_eq!(
-            visible("\u{7f}\u{85}\u{fffe}\u{ffff}"),
-            "\\u{7f}\\u{85}\\u{fffe}\\u{ffff}"
-        );
-        assert_eq!(visible("\u{202e}abc"), "\\u{202e}abc");
-        // Other characters, quotes and markup included, are the writers' business.
-        assert_eq!(
-            visible("<!--<script> \"q\" & 'a' \\ é"),
-            "<!--<script> \"q\" & 'a' \\ é"
-        );
-    }
 
     #[test]
     fn identifiers() {

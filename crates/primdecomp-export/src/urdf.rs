@@ -9,11 +9,12 @@
 //! +Z up: `--up y` results are turned.
 
 use super::engine::{prepare, quat_between, ExportOptions, Files, Format, Shape};
-use super::json::ResultObject;
-use super::names::{file_name, ident, visible, MAX_FILE_NAME};
-use super::obj::Tess;
+use super::names::{file_name, ident, MAX_FILE_NAME};
 use super::xml::{nums, Xml};
-use crate::math::quat::axes_from_quat;
+use primdecomp::math::axes_from_quat;
+use primdecomp::visible;
+use primdecomp::ResultObject;
+use primdecomp::Tess;
 use std::fmt::Write;
 
 /// Fixed-axis roll, pitch, yaw of a unit quaternion (scalar last), from its matrix;
@@ -185,7 +186,7 @@ pub fn to_urdf(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::export::frame::rotate;
+    use crate::engine::rotate;
 
     /// R = Rz(yaw)·Ry(pitch)·Rx(roll) applied to v.
     fn from_rpy([r, p, y]: [f64; 3], v: [f64; 3]) -> [f64; 3] {

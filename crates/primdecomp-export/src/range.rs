@@ -14,10 +14,10 @@
 //! naming it: nothing non-finite or unloadable is ever written
 //! (docs/decisions/hostile-input-limits.md).
 
-use super::frame::{magnitude, Frame};
-use super::obj::Tess;
-use crate::math::{cross, norm, sub};
-use crate::primitive::Primitive;
+use primdecomp::math::{cross, norm, sub};
+use primdecomp::Frame;
+use primdecomp::Primitive;
+use primdecomp::Tess;
 
 /// The largest magnitude written: its square, 1e36, is within f32's range (3.4e38).
 pub const MAX_LENGTH: f64 = 1e18;
@@ -29,6 +29,13 @@ pub const MIN_LENGTH: f64 = 1e-30;
 /// The smallest surface area of a hull written as an MJCF mesh (MuJoCo 4.0 refused a
 /// cube of side 3e-8, area 5e-15, and loaded one of side 5e-8, area 1.5e-14).
 pub const MJCF_MIN_AREA: f64 = 1e-12;
+
+/// Largest absolute coordinate of the primitive's bounding box (the magnitude
+/// [`Frame::conservative`] grows a shape by a fraction of).
+fn magnitude(p: &Primitive) -> f64 {
+    let (lo, hi) = p.aabb();
+    lo.iter().chain(&hi).fold(0.0f64, |m, x| m.max(x.abs()))
+}
 
 /// Every number of a primitive (coordinates and sizes).
 fn numbers(p: &Primitive) -> Vec<f64> {
@@ -66,7 +73,7 @@ fn numbers(p: &Primitive) -> Vec<f64> {
 
 /// Short form of a number for messages, three significant digits: `1e60`,
 /// `2.5e-35`, `inf`.
-pub(crate) fn show(x: f64) -> String {
+fn show(x: f64) -> String {
     if x == 0.0 {
         return "0".into();
     }
@@ -202,7 +209,7 @@ pub fn check_points(points: &[[f64; 3]], frame: &Frame) -> Result<(), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::primitive::Sphere;
+    use primdecomp::Sphere;
 
     fn sphere(c: f64, r: f64) -> Primitive {
         Primitive::Sphere(Sphere {

@@ -8,23 +8,13 @@
 //! composition, and the 32-bit floats many consumers store (glTF node transforms and
 //! accessors, USD `point3f`, MuJoCo's mesh vertices, Godot's `real_t`), move a
 //! surface by up to a few 2⁻²⁴ of the coordinates' magnitude. So every exported
-//! shape is first grown by [`GROW_REL`] of its magnitude ([`grow`]: a shape that
+//! shape is first grown by [`Frame::GROW_REL`] of its magnitude ([`grow`]: a shape that
 //! contains the original's neighbourhood of that radius), which keeps the enclosure
 //! guarantee through every export (docs/decisions/exports-engine-conventions.md).
 
 use crate::math::quat::{axes_from_quat, quat_from_axes};
 use crate::math::{add, cross, dot, madd, norm, normalize, scale, sub, V3};
 use crate::primitive::{Capsule, Cylinder, Frustum, Obb, Primitive, Prism, Sphere};
-
-/// Margin of the exports, relative to a shape's magnitude (its farthest coordinate
-/// from the origin of the frame it is written in, plus that frame's own offset):
-/// 2⁻¹⁸ ≈ 3.8e-6, 64 times the 2⁻²⁴ rounding of a 32-bit float.
-pub const GROW_REL: f64 = 1.0 / 262_144.0;
-
-/// Shortest cylinder, frustum or capsule axis written, relative to its radius: a
-/// consumer derives the axis from the written ends or centre, and a flatter disc
-/// would let the ends' rounding tilt its rim out of the margin.
-pub const MIN_AXIS_REL: f64 = 1.0 / 1_073_741_824.0;
 
 /// A similarity transform `x ↦ translation + scale · R(rotation) · x`, rotation a
 /// unit quaternion `[x, y, z, w]` (scalar last, as in the JSON contract).
@@ -67,6 +57,35 @@ pub fn rotate(q: [f64; 4], v: V3) -> V3 {
 }
 
 impl Frame {
+    /// Margin of the exports, relative to a shape's magnitude (its farthest coordinate
+    /// from the origin of the frame it is written in, plus that frame's own offset):
+    /// 2⁻¹⁸ ≈ 3.8e-6, 64 times the 2⁻²⁴ rounding of a 32-bit float.
+    pub const GROW_REL: f64 = 1.0 / 262_144.0;
+
+    /// Shortest cylinder, frustum or capsule axis written, relative to its radius: a
+    /// consumer derives the axis from the written ends or centre, and a flatter disc
+    /// would let the ends' rounding tilt its rim out of the margin.
+    pub const MIN_AXIS_REL: f64 = 1.0 / 1_073_741_824.0;
+
+    /// `p` placed by this frame and grown by [`Frame::GROW_REL`] of (its magnitude +
+    /// `offset`), where `offset` is the magnitude of whatever frame a consumer places it
+    /// in beyond this one: a shape of the same kind that still contains `p` after the
+    /// consumer's rounding (32-bit floats included). Solids of revolution come out at
+    /// least [`Frame::MIN_AXIS_REL`] of their radius long.
+    ///
+    /// ```
+    /// use primdecomp::{Frame, Primitive, Sphere};
+    ///
+    /// let frame = Frame { translation: [1.0, 0.0, 0.0], ..Frame::IDENTITY };
+    /// let ball = Primitive::Sphere(Sphere { center: [0.0; 3], radius: 1.0 });
+    /// let Primitive::Sphere(placed) = frame.conservative(&ball, 0.0) else { unreachable!() };
+    /// assert_eq!(placed.center, [1.0, 0.0, 0.0]);
+    /// assert!(placed.radius > 1.0 && placed.radius < 1.0 + 1e-5);
+    /// ```
+    pub fn conservative(&self, p: &Primitive, offset: f64) -> Primitive {
+        conservative(p, self, offset)
+    }
+
     /// The identity: local coordinates are world coordinates.
     pub const IDENTITY: Frame = Frame {
         translation: [0.0; 3],
@@ -245,7 +264,7 @@ pub fn transform(p: &Primitive, f: &Frame) -> Primitive {
 fn orthonormal(a: [V3; 3]) -> [V3; 3] {
     let a0 = normalize(a[0]).unwrap_or([1.0, 0.0, 0.0]);
     let a1 = normalize(madd(a[1], a0, -dot(a[1], a0))).unwrap_or_else(|| {
-        let (u, _) = crate::export::obj::circle_frame(a0);
+        let (u, _) = super::obj::circle_frame(a0);
         u
     });
     let a2 = cross(a0, a1);
@@ -265,7 +284,7 @@ pub fn magnitude(p: &Primitive) -> f64 {
 
 /// A primitive of the same kind that contains every point within `m` of `p`
 /// (the Minkowski sum with a ball of radius `m`), and whose solids of revolution
-/// are at least [`MIN_AXIS_REL`] of their radius long.
+/// are at least [`Frame::MIN_AXIS_REL`] of their radius long.
 pub fn grow(p: &Primitive, m: f64) -> Primitive {
     let m = m.max(0.0);
     match *p {
@@ -320,21 +339,21 @@ pub fn grow(p: &Primitive, m: f64) -> Primitive {
 }
 
 /// Ends pushed out by `m` along the axis, and further apart if needed to be at
-/// least [`MIN_AXIS_REL`]·`r` long; a zero-length axis becomes z.
+/// least [`Frame::MIN_AXIS_REL`]·`r` long; a zero-length axis becomes z.
 fn extend(p0: V3, p1: V3, m: f64, r: f64) -> (V3, V3) {
     let len = norm(sub(p1, p0));
     let a = normalize(sub(p1, p0)).unwrap_or([0.0, 0.0, 1.0]);
-    let e = m.max(0.5 * (MIN_AXIS_REL * r - len)).max(0.0);
+    let e = m.max(0.5 * (Frame::MIN_AXIS_REL * r - len)).max(0.0);
     let c = scale(add(p0, p1), 0.5);
     let h = 0.5 * len + e;
     (madd(c, a, -h), madd(c, a, h))
 }
 
-/// `p` moved by `f`, grown by [`GROW_REL`] of (its magnitude + `offset`), where
+/// `p` moved by `f`, grown by [`Frame::GROW_REL`] of (its magnitude + `offset`), where
 /// `offset` is the magnitude of whatever frame the consumer places it in beyond `f`.
 pub fn conservative(p: &Primitive, f: &Frame, offset: f64) -> Primitive {
     let q = transform(p, f);
-    let m = GROW_REL * (magnitude(&q) + offset);
+    let m = Frame::GROW_REL * (magnitude(&q) + offset);
     grow(&q, m)
 }
 

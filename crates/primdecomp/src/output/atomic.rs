@@ -33,11 +33,11 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
     };
-    // A name near the file system's limit of 255 bytes is cut (with a hash of the
-    // whole) so the temporary name fits too.
+    // A name near the file system's limit of 255 bytes is cut so the temporary name
+    // fits too; the pid and the counter keep it unique.
     let tmp = dir.join(format!(
         ".{}.tmp.{}.{}",
-        super::names::file_name(&name.to_string_lossy(), super::names::MAX_FILE_NAME),
+        prefix(&name.to_string_lossy(), MAX_TMP_PREFIX),
         std::process::id(),
         COUNTER.fetch_add(1, Ordering::Relaxed)
     ));
@@ -59,6 +59,20 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     }
     sync_dir(dir);
     Ok(())
+}
+
+/// The most bytes of the target's name a temporary name keeps: with the
+/// `.tmp.{pid}.{counter}` around it, it stays under the file systems' 255.
+const MAX_TMP_PREFIX: usize = 200;
+
+/// The longest start of `name` of at most `max` bytes that ends on a character
+/// boundary.
+fn prefix(name: &str, max: usize) -> &str {
+    let mut cut = name.len().min(max);
+    while !name.is_char_boundary(cut) {
+        cut -= 1;
+    }
+    &name[..cut]
 }
 
 /// Best effort: makes the rename itself durable (Unix); errors are ignored because

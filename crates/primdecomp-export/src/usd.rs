@@ -10,9 +10,10 @@
 //! name is kept in a `primdecomp:name` string, escaped.
 
 use super::engine::{prepare, quat_between, ExportOptions, Format, Shape};
-use super::json::ResultObject;
-use super::names::{ident, visible, Names};
-use crate::math::V3;
+use super::names::{ident, Names};
+use primdecomp::math::V3;
+use primdecomp::visible;
+use primdecomp::ResultObject;
 use std::fmt::Write;
 
 /// A USD string literal: quoted, `\` and `"` escaped; control characters first made

@@ -10,10 +10,11 @@
 //! escaped.
 
 use super::engine::{num, prepare, quat_between, ExportOptions, Format, Shape};
-use super::json::ResultObject;
-use super::names::{ident, visible, Names};
-use crate::math::quat::axes_from_quat;
-use crate::math::V3;
+use super::names::{ident, Names};
+use primdecomp::math::axes_from_quat;
+use primdecomp::math::V3;
+use primdecomp::visible;
+use primdecomp::ResultObject;
 use std::fmt::Write;
 
 /// A Godot string literal: quoted, `\` and `"` escaped; control characters (which

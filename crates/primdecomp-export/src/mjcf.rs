@@ -8,10 +8,10 @@
 //! takes the convex hull. MJCF is +Z up (gravity −z): `--up y` results are turned.
 
 use super::engine::{prepare, quat_between, ExportOptions, Format, Shape};
-use super::json::ResultObject;
-use super::names::visible;
 use super::xml::{nums, Xml};
-use crate::math::V3;
+use primdecomp::math::V3;
+use primdecomp::visible;
+use primdecomp::ResultObject;
 
 /// Shortest `fromto` written, relative to the radius (and at least 1e-6 long):
 /// MuJoCo refuses end points too close ("fromto points too close in geom"), so a

@@ -22,11 +22,11 @@ use crate::error::{Error, Result};
 use crate::input::io::{format_of, open_regular, Format, LoadOptions, PlyLayout};
 use crate::input::mesh::{Mesh, MeshBuilder};
 use crate::math::V3;
+use crate::output::result::Decomposition;
 use crate::params::Params;
 use crate::primitive::Kind;
 use crate::progress::wallclock::Instant;
 use crate::progress::{Progress, Stage};
-use crate::result::Decomposition;
 use std::path::Path;
 
 /// The groups tiles merge down to per unit of the largest target, as the in-memory
@@ -470,7 +470,7 @@ fn run_tiles(
             crate::decompose::decompose_with(&mesh, &tile_params(params, share.max(1)), &tile)?;
         drop(mesh);
         for p in &dec.levels[0].primitives {
-            let tess = crate::export::tessellate(p, 4);
+            let tess = crate::output::tessellate(p, 4);
             let base = proxy.builder.positions.len() as u32;
             proxy.builder.positions.extend_from_slice(&tess.vertices);
             for f in &tess.faces {

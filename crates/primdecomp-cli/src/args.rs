@@ -316,8 +316,10 @@ pub(crate) struct DecomposeArgs {
         help_heading = "Speed and memory"
     )]
     pub reprice: Option<String>,
-    /// Refuse inputs estimated to need more memory than this: 512M, 8G, available
-    /// (default) or none.
+    /// Stay within this much memory: 512M, 8G, available (default) or none.
+    ///
+    /// An input estimated to need more is decomposed in spatial tiles (--tiles), or
+    /// refused when not even tiles would fit.
     #[arg(
         long,
         default_value = "available",
@@ -326,6 +328,19 @@ pub(crate) struct DecomposeArgs {
         help_heading = "Speed and memory"
     )]
     pub max_memory: String,
+    /// Decompose in K spatial tiles, one at a time, as an input over --max-memory is.
+    ///
+    /// An input whose decomposition would need more than --max-memory is decomposed
+    /// in tiles instead of refused: the fewest that fit, each merged to boxes, the
+    /// boxes merged on top; every face stays enclosed. This forces K tiles (1 to
+    /// 4096). Binary PLY is read a tile at a time; other formats are parsed whole.
+    #[arg(
+        long,
+        value_name = "K",
+        hide_short_help = true,
+        help_heading = "Speed and memory"
+    )]
+    pub tiles: Option<usize>,
 
     // --- Several inputs ---
     /// How many inputs to decompose at once (default: one per thread).

@@ -2,6 +2,7 @@
 //! ([`crate::pipeline`]) or, to fill each target's budget, several (`crate::budget`).
 
 pub(crate) mod objects;
+pub(crate) mod tiles;
 
 use crate::error::Result;
 use crate::input::mesh::Mesh;

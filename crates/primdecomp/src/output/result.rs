@@ -151,6 +151,9 @@ pub struct Stats {
     pub fits_when_popped: usize,
     /// Spatial parts merged in parallel before the global loop (1 = none).
     pub partitions: usize,
+    /// Out-of-core tiles the input was decomposed in ([`crate::decompose_tiled`]; 0 =
+    /// read whole).
+    pub tiles: usize,
 }
 
 /// Everything a run produces.

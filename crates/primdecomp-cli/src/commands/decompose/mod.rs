@@ -8,6 +8,7 @@ mod one_input;
 mod progress;
 mod settings;
 mod summary;
+mod tiled;
 mod timings;
 
 use crate::args::DecomposeArgs;

@@ -36,29 +36,65 @@ pub(super) fn run_one(
     // Peaks per stage only for a run alone in the process: the mark is process-wide.
     let memory = (a.timings && !beside_others).then(|| StageMemory::new("load"));
     let now = Instant::now();
-    let mesh = primdecomp::load_with(input, &load_options(a, base)?)?;
-    let load_s = now.elapsed().as_secs_f64();
-    let params = Params {
-        targets: resolve_targets(targets, mesh.face_count()),
-        ..base.clone()
+    let options = load_options(a, base)?;
+    let mut why = super::tiled::reason(a, input, &options);
+    let loaded = match &why {
+        Some(_) => None,
+        None => match primdecomp::load_with(input, &options) {
+            Err(e @ primdecomp::Error::TooLarge { needed, limit, .. }) if !a.per_object => {
+                why = Some(super::tiled::over(needed, limit));
+                Some(Err(e))
+            }
+            m => Some(Ok(m?)),
+        },
     };
-    if a.per_object {
-        let (mut dec, written) = run_objects(a, input, &params, targets, &mesh, dest, guard)?;
-        dec.timings.stages.insert(0, ("load".into(), load_s));
-        return Ok((dec, written));
-    }
-    let shown = Shown::new(&params, mesh.face_count(), a, beside_others);
-    let mut dec = primdecomp::decompose_with(&mesh, &params, &|stage: Stage, f: f64| {
-        if let Some(m) = &memory {
-            m.enter(stage.name());
+    let (mesh, params, mut dec) = match (loaded, &why) {
+        (Some(Ok(mesh)), _) => {
+            let load_s = now.elapsed().as_secs_f64();
+            let params = Params {
+                targets: resolve_targets(targets, mesh.face_count()),
+                ..base.clone()
+            };
+            if a.per_object {
+                let (mut dec, written) =
+                    run_objects(a, input, &params, targets, &mesh, dest, guard)?;
+                dec.timings.stages.insert(0, ("load".into(), load_s));
+                return Ok((dec, written));
+            }
+            let shown = Shown::new(&params, mesh.face_count(), a, beside_others);
+            let mut dec = primdecomp::decompose_with(&mesh, &params, &|stage: Stage, f: f64| {
+                if let Some(m) = &memory {
+                    m.enter(stage.name());
+                }
+                shown.update(stage, f);
+            })?;
+            shown.finish();
+            dec.timings.stages.insert(0, ("load".into(), load_s));
+            (mesh, params, dec)
         }
-        shown.update(stage, f);
-    })?;
-    shown.finish();
+        (refused, why) => {
+            let why = why.as_deref().unwrap_or_default();
+            // The input read whole would not fit: in tiles, or (where not even tiles
+            // fit) the refusal of the input read whole, which says why.
+            let tiled = super::tiled::decompose(
+                a,
+                input,
+                base,
+                targets,
+                dest,
+                &options,
+                (why, beside_others),
+            );
+            let (dec, params) = tiled.map_err(|t| match (t.downcast_ref(), refused) {
+                (Some(primdecomp::Error::TooLarge { .. }), Some(Err(e))) => e.into(),
+                _ => t,
+            })?;
+            (primdecomp::Mesh::from_triangles(&[], &[])?, params, dec)
+        }
+    };
     dec.input.path = Some(input.display().to_string());
     let up = input_up(a, input);
     (dec.input.up, dec.input.up_from) = (Some(up.0), Some(up.1));
-    dec.timings.stages.insert(0, ("load".into(), load_s));
     let now = Instant::now();
     let mut written = write_outputs(&dec, &params, dest, guard, a.obj_detail, a.timings)?;
     written.extend(write_exports(a, &dec, dest, input, &mesh, up.0)?);
@@ -70,6 +106,9 @@ pub(super) fn run_one(
     }
     let _out = PRINT.lock();
     if !a.quiet {
+        if let Some(why) = &why {
+            println!("tiles     {}: {why}", dec.stats.tiles);
+        }
         print_summary(&dec, &mesh, &written, a.verbose);
     }
     if a.verbose || a.timings {

@@ -24,6 +24,7 @@ pub(crate) use off::declared_counts as off_declared;
 pub(crate) use off::parse_off;
 pub(crate) use ply::declared_counts as ply_declared;
 pub(crate) use ply::parse_ply;
+pub(crate) use ply::PlyLayout;
 pub(crate) use stl::parse_stl;
 
 /// The mesh formats [`crate::load`] reads, chosen by the file's extension.
@@ -117,6 +118,10 @@ pub struct LoadOptions {
     /// [`load_with`] still refuses what it refuses with re-centring. Decomposing such a
     /// mesh directly loses the precision re-centring keeps far from the origin.
     pub keep_world_coordinates: bool,
+    /// [`crate::decompose_tiled`]: decompose in this many spatial tiles (at most
+    /// [`crate::MAX_TILES`]) instead of the fewest that fit `max_memory`. `None` (the
+    /// default): the fewest; [`load_with`] ignores it.
+    pub tiles: Option<usize>,
 }
 
 /// Opens `path` for reading and returns it with its metadata, or refuses it with
@@ -493,6 +498,16 @@ pub fn memory_needed(path: &Path) -> Option<u64> {
         .map(|c| crate::input::memory::estimate(c, crate::input::memory::Run::Cut).max(meta.len()))
 }
 
+/// The format `path`'s extension names, or the error saying which are known.
+pub(crate) fn format_of(path: &Path) -> Result<Format> {
+    Format::from_path(path).ok_or_else(|| {
+        Error::format(
+            path,
+            "unknown extension: expected .obj, .ply, .stl, .off, .gltf or .glb",
+        )
+    })
+}
+
 /// Reads the mesh in `path` (OBJ, PLY, STL, OFF, glTF/GLB, by its extension):
 /// memory-mapped, parsed, re-centred, with the default [`LoadOptions`] (no memory
 /// limit, glTF buffers only from inside the glTF's folder): see [`load_with`].
@@ -533,12 +548,7 @@ pub fn load(path: &Path) -> Result<Mesh> {
 /// ```
 pub fn load_with(path: &Path, options: &LoadOptions) -> Result<Mesh> {
     let (file, meta) = open_regular(path)?;
-    let format = Format::from_path(path).ok_or_else(|| {
-        Error::format(
-            path,
-            "unknown extension: expected .obj, .ply, .stl, .off, .gltf or .glb",
-        )
-    })?;
+    let format = format_of(path)?;
     let max_memory = options.max_memory;
     let run = if options.greedy_only {
         crate::input::memory::Run::Greedy

@@ -58,6 +58,199 @@ pub(crate) fn declared_counts(bytes: &[u8]) -> Option<(u64, u64)> {
     Some((count(ElRole::Vertex).sum(), count(ElRole::Face).sum()))
 }
 
+/// Where a binary PLY keeps its vertices and faces, for reading them straight from the
+/// (memory-mapped) file a tile at a time (`crate::tiles`): vertices by index, faces
+/// by a scan. Only a layout whose vertex records have a fixed size and whose face
+/// element follows elements of fixed size qualifies ([`PlyLayout::of`]).
+#[derive(Debug)]
+pub(crate) struct PlyLayout {
+    be: bool,
+    vertex_start: usize,
+    vertex_stride: usize,
+    /// Offset in a vertex record and type of x, y and z.
+    coords: [(usize, Ty); 3],
+    pub vertex_count: u64,
+    face_start: usize,
+    pub face_count: u64,
+    face_props: Vec<Kind>,
+    /// Which of `face_props` holds the indices.
+    indices: usize,
+}
+
+impl PlyLayout {
+    /// The layout of `bytes`' data, `Ok(None)` when it is ASCII, has no faces, or
+    /// puts a list before its faces or in its vertices (then only a whole parse reads
+    /// it); a header that does not parse is its usual error.
+    pub(crate) fn of(bytes: &[u8], path: &Path) -> Result<Option<PlyLayout>> {
+        let h = parse_header(bytes, path)?;
+        if h.enc == Encoding::Ascii {
+            return Ok(None);
+        }
+        let fixed = |el: &Element| -> Option<usize> {
+            el.props.iter().try_fold(0usize, |n, p| match p.kind {
+                Kind::Scalar(t) => n.checked_add(t.size()),
+                Kind::List(..) => None,
+            })
+        };
+        let (mut at, mut vertex) = (h.data_start as u64, None);
+        for el in &h.elements {
+            match el.role {
+                ElRole::Face => {
+                    let Some((vertex_start, vertex_stride, coords)) = vertex else {
+                        return Ok(None);
+                    };
+                    let indices = el.props.iter().position(|p| p.role == Role::Indices);
+                    let Ok(face_start) = usize::try_from(at) else {
+                        return Ok(None);
+                    };
+                    return Ok(Some(PlyLayout {
+                        be: h.enc == Encoding::Be,
+                        vertex_start,
+                        vertex_stride,
+                        coords,
+                        vertex_count: h.vertex_count,
+                        face_start,
+                        face_count: el.count,
+                        face_props: el.props.iter().map(|p| p.kind).collect(),
+                        indices: indices.unwrap_or(usize::MAX),
+                    }));
+                }
+                _ if el.props.is_empty() => {}
+                _ => {
+                    let Some(size) = fixed(el) else {
+                        return Ok(None);
+                    };
+                    if el.role == ElRole::Vertex {
+                        let mut coords = [(0, Ty::F32); 3];
+                        let mut off = 0;
+                        for p in &el.props {
+                            if let (Role::Coord(k), Kind::Scalar(t)) = (p.role, p.kind) {
+                                coords[k] = (off, t);
+                            }
+                            off += match p.kind {
+                                Kind::Scalar(t) => t.size(),
+                                Kind::List(..) => 0,
+                            };
+                        }
+                        let Ok(start) = usize::try_from(at) else {
+                            return Ok(None);
+                        };
+                        vertex = Some((start, size, coords));
+                    }
+                    at = at.saturating_add(el.count.saturating_mul(size as u64));
+                }
+            }
+        }
+        Ok(None)
+    }
+
+    /// Checks that `bytes` hold every vertex record and that every vertex is finite,
+    /// visiting each world position in order; the error is the whole parse's.
+    pub(crate) fn vertices(
+        &self,
+        bytes: &[u8],
+        path: &Path,
+        mut visit: impl FnMut([f64; 3]),
+    ) -> Result<()> {
+        let n = self.vertex_count;
+        let held =
+            bytes.len().saturating_sub(self.vertex_start) as u64 / self.vertex_stride.max(1) as u64;
+        if held < n {
+            let at = self.vertex_start as u64 + held * self.vertex_stride as u64;
+            return Err(Error::byte(
+                path,
+                at,
+                format!(
+                    "the data ends inside vertex {held} of {n} declared in the header \
+                     (truncated file, or a wrong header count)"
+                ),
+            ));
+        }
+        for i in 0..n as usize {
+            let p = self.pos(bytes, i);
+            if !p.iter().all(|c| c.is_finite()) {
+                let at = (self.vertex_start + i * self.vertex_stride) as u64;
+                let msg = format!("vertex {i} of {n}: vertex coordinates {p:?} are not finite");
+                return Err(Error::byte(path, at, msg));
+            }
+            visit(p);
+        }
+        Ok(())
+    }
+
+    /// Bytes of the vertex records.
+    pub(crate) fn vertex_bytes(&self) -> u64 {
+        self.vertex_count.saturating_mul(self.vertex_stride as u64)
+    }
+
+    /// Vertex `i`'s position (`i` below the count, `bytes` checked by
+    /// [`PlyLayout::vertices`]).
+    pub(crate) fn pos(&self, bytes: &[u8], i: usize) -> [f64; 3] {
+        let rec = self.vertex_start + i * self.vertex_stride;
+        self.coords.map(|(off, t)| {
+            let mut src = Binary {
+                b: bytes,
+                pos: rec + off,
+                start: rec + off,
+                be: self.be,
+                path: Path::new(""),
+            };
+            src.real(t).unwrap_or(f64::NAN)
+        })
+    }
+
+    /// Visits every face's corners in file order (`visit` also gets the byte offset
+    /// reached, to release what was read); a face past the data or an index out of
+    /// range is the whole parse's error.
+    pub(crate) fn faces(
+        &self,
+        bytes: &[u8],
+        path: &Path,
+        mut visit: impl FnMut(&[u32], usize),
+    ) -> Result<()> {
+        let mut src = Binary {
+            b: bytes,
+            pos: self.face_start,
+            start: self.face_start,
+            be: self.be,
+            path,
+        };
+        let mut corners = Vec::new();
+        let n = self.face_count;
+        for i in 0..n {
+            self.face(&mut src, &mut corners).map_err(|f| {
+                src.error(match f {
+                    Fail::Eof => format!(
+                        "the data ends inside face {i} of {n} declared in the header \
+                         (truncated file, or a wrong header count)"
+                    ),
+                    Fail::Bad(msg) => format!("face {i} of {n}: {msg}"),
+                })
+            })?;
+            visit(&corners, src.pos);
+        }
+        Ok(())
+    }
+
+    fn face(&self, src: &mut Binary, corners: &mut Vec<u32>) -> Got<()> {
+        for (k, kind) in self.face_props.iter().enumerate() {
+            match *kind {
+                Kind::Scalar(t) => src.skip(t, 1)?,
+                Kind::List(ct, it) if k == self.indices => {
+                    read_corners(src, ct, it, self.vertex_count, corners)?
+                }
+                Kind::List(ct, it) => {
+                    let n = src.int(ct)?;
+                    let n = u64::try_from(n)
+                        .map_err(|_| Fail::Bad(format!("negative list count {n}")))?;
+                    src.skip(it, n)?;
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
 /// A PLY scalar type.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Ty {

@@ -15,7 +15,8 @@ mod contain;
 
 use arbitrary::{Result, Unstructured};
 use primdecomp::{
-    decompose, to_json, Dedup, Error, Mesh, Params, Partitions, Reprice, Tolerance,
+    decompose, to_json, CountSearch, Dedup, Error, Goal, Mesh, Params, Partitions, Reprice,
+    Tolerance,
 };
 
 /// A number that is usually one of `typical` and sometimes any f64 at all.
@@ -31,7 +32,7 @@ fn pick(u: &mut Unstructured, typical: &[f64]) -> Result<f64> {
 fn params(u: &mut Unstructured) -> Result<Params> {
     let mut p = Params::default();
     let n = u.int_in_range(1..=3)?;
-    p.targets = (0..n)
+    let mut targets: Vec<usize> = (0..n)
         .map(|_| u.int_in_range(0..=40))
         .collect::<Result<_>>()?;
     for w in &mut p.weights {
@@ -86,7 +87,7 @@ fn params(u: &mut Unstructured) -> Result<Params> {
     };
     // After that (an exhausted input reads false, as grown): the budget search's extra
     // passes (budget.rs) on hostile input.
-    p.fill = u.arbitrary::<bool>()?;
+    let fill = u.arbitrary::<bool>()?;
     // Once `outward_weight` (removed: docs/decisions/0022); read still.
     if u.int_in_range(0..=3)? == 1 {
         pick(u, &[1.0, 1e-9, 1e9])?;
@@ -112,20 +113,38 @@ fn params(u: &mut Unstructured) -> Result<Params> {
     // tree's cut (docs/decisions/0032), with counts alone, with a
     // tolerance (one, or one per target), a byte target, both, or with no target at
     // all (the default run: the cut at 2% of the diagonal, capped at 1024).
+    // A fill of a cut, a tolerance or a byte target is no goal: such inputs decode to
+    // nothing (they were refused settings before there was one `Goal`).
+    let (mut cut, mut tolerances, mut max_bytes) = (false, Vec::new(), Vec::new());
     match u.int_in_range(0..=5)? {
         0 => {}
-        1 => p.cut = true,
+        1 => cut = true,
         2 => {
-            let n = if u.arbitrary::<bool>()? { p.targets.len() } else { 1 };
-            p.tolerance = (0..n).map(|_| tolerance(u)).collect::<Result<_>>()?;
+            let n = if u.arbitrary::<bool>()? { targets.len() } else { 1 };
+            tolerances = (0..n).map(|_| tolerance(u)).collect::<Result<_>>()?;
         }
-        3 => p.max_bytes = vec![bytes(u)?],
+        3 => max_bytes = vec![bytes(u)?],
         4 => {
-            p.tolerance = vec![tolerance(u)?];
-            p.max_bytes = vec![bytes(u)?];
+            tolerances = vec![tolerance(u)?];
+            max_bytes = vec![bytes(u)?];
         }
-        _ => p.targets.clear(),
+        _ => targets.clear(),
     }
+    p.goal = match (fill, tolerances.is_empty() && max_bytes.is_empty()) {
+        (true, true) if !cut && !targets.is_empty() => Goal::Fill { counts: targets },
+        (true, _) => return Err(arbitrary::Error::IncorrectFormat),
+        (false, false) => Goal::Within {
+            caps: targets,
+            tolerance: tolerances,
+            max_bytes,
+        },
+        (false, true) if targets.is_empty() => Goal::default(),
+        (false, true) if cut => Goal::Counts {
+            counts: targets,
+            search: CountSearch::Cut,
+        },
+        (false, true) => Goal::counts(targets),
+    };
     Ok(p)
 }
 

@@ -564,7 +564,7 @@ mod tests {
         assert!(step > 2.0 * r + 0.001 * crate::scene::SCENE_DIAGONAL);
         let level = |n, solid, min_thickness| {
             let p = primdecomp::Params {
-                targets: vec![n],
+                goal: primdecomp::Goal::counts([n]),
                 solid,
                 min_thickness,
                 ..Default::default()

@@ -4,18 +4,23 @@
 //! settings are written into its JSON (`settings`) and read back by
 //! [`Params::from_json`], so a result can be reproduced from its own file.
 
+mod goal;
+mod json;
+mod spelling;
+
+pub use goal::{CountSearch, Goal};
+pub use spelling::ByteSize;
+
 use crate::error::{Error, Result};
 use crate::primitive::Kind;
 use serde::{Deserialize, Serialize};
 
-/// The tolerance of a run that gives no count, tolerance or byte target (empty
-/// [`Params::targets`], [`Params::tolerance`] and [`Params::max_bytes`]): every
-/// primitive within this much of the input's diagonal, chosen from measurements over
-/// the corpus (docs/decisions/0037).
+/// The tolerance of the default [`Goal`]: every primitive within this much of the
+/// input's diagonal, chosen from measurements over the corpus (docs/decisions/0037).
 pub const DEFAULT_TOLERANCE: Tolerance = Tolerance::Diagonal(0.02);
 
-/// The most primitives a level holds when no count is given: the cap of a tolerance
-/// or byte target without [`Params::targets`].
+/// The most primitives a level holds when no count is given: the cap of a
+/// [`Goal::Within`] without caps.
 pub const MAX_PRIMITIVES: usize = 1024;
 
 /// The farthest any primitive of a level may stand from the input: the one-way
@@ -45,7 +50,7 @@ impl Tolerance {
         }
     }
 
-    fn value(self) -> f64 {
+    pub(crate) fn value(self) -> f64 {
         match self {
             Tolerance::Units(d) | Tolerance::Diagonal(d) => d,
         }
@@ -154,39 +159,34 @@ impl<'de> Deserialize<'de> for Partitions {
     }
 }
 
-/// All settings of a run. `Params::default()` is the recommended configuration: the
-/// fewest primitives within [`DEFAULT_TOLERANCE`] of the input, at most
-/// [`MAX_PRIMITIVES`]. Change only what you need, as in
-/// `Params { targets: vec![200, 50], ..Params::default() }` (two levels of at most
-/// 200 and 50 primitives) or `Params { tolerance: vec![Tolerance::Diagonal(0.005)],
-/// ..Params::default() }`.
+/// All settings of a run: what is asked for ([`Goal`]), then how primitives are fitted.
+/// `Params::default()` is the recommended configuration: the fewest primitives within
+/// [`DEFAULT_TOLERANCE`] of the input, at most [`MAX_PRIMITIVES`]. Change only what you
+/// need, as in `Params { goal: Goal::counts([200, 50]), ..Params::default() }` (two
+/// levels of at most 200 and 50 primitives) or
+/// `Params { goal: Goal::tolerance(Tolerance::Diagonal(0.005)), ..Params::default() }`.
+/// Results record the settings in the JSON shape [`Params::from_json`] reads.
 ///
 /// | setting | default | raising it | lowering it |
 /// |---|---|---|---|
-/// | `tolerance` | none given: 2% of the diagonal | fewer, larger primitives | tighter fit, more primitives |
-/// | `targets` | none: the tolerance decides | more, smaller primitives: tighter fit, more bytes | coarser colliders |
+/// | `goal`'s tolerance | 2% of the diagonal | fewer, larger primitives | tighter fit, more primitives |
+/// | `goal`'s counts | none: the tolerance decides | more, smaller primitives: tighter fit, more bytes | coarser colliders |
 /// | `weights[kind]` | box, sphere, capsule 1; cylinder 1.05; frustum 2.1; prism 1.4 | that kind is chosen less often | that kind is chosen more often |
 /// | `min_extent` | 5e-4 | thin parts get thicker primitives | flatter plates |
 /// | `open_holes` | 0.01 | holes and gaps in flat surfaces stay open at lower counts | 0: the paper's pricing (a roof's rim closes into a lid) |
 /// | `rim_weight` | 1 | primitives keep further off the faces beside them | 0: volume alone (a plate may stand past a wall's top as a curb) |
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
+#[serde(try_from = "json::Settings", into = "json::Settings")]
 pub struct Params {
+    /// What the run is asked for: counts, a tolerance or a byte budget, one
+    /// [`crate::Level`] each.
+    pub goal: Goal,
+
     // --- The paper's settings (§3.3, §3.4) ---
-    /// Target primitive counts, one [`crate::Level`] each from a single bottom-up pass
-    /// (§3.3). A level has at most its target's count: fewer where nested primitives
-    /// are removed and where coplanar faces merge for free ([`Params::join_coplanar`]).
-    /// With a [`Params::tolerance`] or [`Params::max_bytes`] each is that level's cap.
-    /// Empty (the default): one level per tolerance or byte target, each capped at
-    /// [`MAX_PRIMITIVES`]; with neither, one level within [`DEFAULT_TOLERANCE`]
-    /// ([`Params::resolved`]).
-    pub targets: Vec<usize>,
     /// Which kinds may be fitted, indexed by `Kind as usize` ([`Kind::ALL`] order).
-    #[serde(with = "by_kind")]
     pub kinds: [bool; 6],
     /// Cost weight k(kind) per kind, indexed by `Kind as usize`: a merge costs k·V, V
     /// the volume of the primitive it makes (§3.3).
-    #[serde(with = "by_kind")]
     pub weights: [f64; 6],
     /// ε of the tangent term in each face's quadric Q = area·(nnᵀ + ε·ttᵀ) (§3.4
     /// "Coplanar Vertices"): flat clusters align with their edges; 0 disables it.
@@ -238,40 +238,7 @@ pub struct Params {
     /// the input is closed behind them, their outer side where it was, filling at
     /// most 0.6 of the part's depth: fast bodies stop at them between discrete physics
     /// steps. 0 = off, plates 2 × `min_extent` thick (docs/decisions/0033).
-    #[serde(skip_serializing_if = "is_zero")]
     pub min_thickness: f64,
-    /// Fills each target: when removing nested primitives leaves fewer than N, merge
-    /// less (up to 8N) so the level holds as many primitives as fit within N; up to
-    /// four more merge passes (docs/decisions/0020).
-    pub fill: bool,
-    /// Counts are the greedy pass's levels (the paper's, the fastest), never cut
-    /// again. By default (`Params::count_cut`) a count on an input of several
-    /// separate parts is a cut of the merge tree, and on one part a greedy level that
-    /// post-processing left short of its count by more than a few
-    /// (`short_of`) is cut again: on several parts the greedy level loses the parts
-    /// nested in one large primitive, so -n 32 could give 5
-    /// (docs/decisions/0054-counts-on-several-parts.md).
-    #[serde(skip_serializing_if = "is_false")]
-    pub greedy: bool,
-    /// Each target is a cut of the pass's merge tree instead of the clusters alive when
-    /// N remain: the node whose primitive stands farthest from the input (a bound of
-    /// the one-way distance, docs/decisions/0040) is split until N remain or none is worth splitting, and of
-    /// the cuts reached, the one of at most N nodes whose worst node stands nearest
-    /// is kept, then filled to N (docs/decisions/0032 and 0034). A tolerance or byte
-    /// target implies it, and the settings a run records ([`Params::resolved`]) say so.
-    pub cut: bool,
-    /// Each level's primitives within this distance of the input: the fewest
-    /// primitives of the merge tree's cuts whose every primitive is within it, its
-    /// target as a cap ([`Params::cut`] implied). Empty: none; one value applies to
-    /// every target; otherwise one per target (docs/decisions/0034).
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub tolerance: Vec<Tolerance>,
-    /// Each level's storage at most this many bytes by the paper's Table 2 (4 bytes a
-    /// float), its target as a cap ([`Params::cut`] implied): the cut of least worst
-    /// distance that fits. Empty: none; one value applies to every target; otherwise
-    /// one per target (docs/decisions/0034).
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub max_bytes: Vec<usize>,
 
     // --- Speed (same quality within measurement noise) ---
     /// When merged clusters' candidate merges are re-priced.
@@ -283,7 +250,7 @@ pub struct Params {
 impl Default for Params {
     fn default() -> Self {
         Params {
-            targets: Vec::new(),
+            goal: Goal::default(),
             kinds: [true; 6],
             weights: [1.0, 1.0, 1.0, 1.05, 2.1, 1.4],
             tangent_eps: 0.01,
@@ -298,26 +265,10 @@ impl Default for Params {
             join_coplanar: true,
             solid: false,
             min_thickness: 0.0,
-            fill: false,
-            greedy: false,
-            cut: false,
-            tolerance: Vec::new(),
-            max_bytes: Vec::new(),
             reprice: Reprice::Deferred { min_degree: 64 },
             partitions: Partitions::Auto,
         }
     }
-}
-
-/// Whether `x` is 0 (a setting left off is not written, so documents made before it
-/// existed are byte-identical).
-fn is_zero(x: &f64) -> bool {
-    *x == 0.0
-}
-
-/// Whether `b` is false (as [`is_zero`]).
-fn is_false(b: &bool) -> bool {
-    !*b
 }
 
 /// Whether a level of `primitives` falls short of its count `target` by more than a
@@ -328,57 +279,15 @@ pub(crate) fn short_of(primitives: usize, target: usize, faces: usize) -> bool {
     primitives + (want / 32).max(2) < want
 }
 
-/// Per-kind arrays as `{"box": …, "sphere": …, …}` (every kind named, in order).
-mod by_kind {
-    use crate::primitive::Kind;
-    use serde::de::{Deserialize, Deserializer, Error};
-    use serde::ser::{SerializeMap, Serializer};
-    use serde::Serialize;
-    use std::collections::BTreeMap;
-
-    pub fn serialize<T: Serialize, S: Serializer>(v: &[T; 6], s: S) -> Result<S::Ok, S::Error> {
-        let mut m = s.serialize_map(Some(6))?;
-        for k in Kind::ALL {
-            m.serialize_entry(k.name(), &v[k as usize])?;
-        }
-        m.end()
-    }
-
-    pub fn deserialize<'de, T, D>(d: D) -> Result<[T; 6], D::Error>
-    where
-        T: Deserialize<'de> + Copy,
-        D: Deserializer<'de>,
-    {
-        let map = BTreeMap::<String, T>::deserialize(d)?;
-        for name in map.keys() {
-            if Kind::from_name(name).is_none() {
-                return Err(D::Error::custom(format!(
-                    "unknown primitive kind \"{name}\" (expected box, sphere, capsule, \
-                     cylinder, frustum or prism)"
-                )));
-            }
-        }
-        let get = |k: Kind| map.get(k.name()).copied();
-        let missing = Kind::ALL.into_iter().find(|&k| get(k).is_none());
-        if let Some(k) = missing {
-            return Err(D::Error::custom(format!(
-                "kind \"{}\" is missing",
-                k.name()
-            )));
-        }
-        Ok(Kind::ALL.map(|k| get(k).expect("checked above")))
-    }
-}
-
 impl Params {
     /// The settings of a primdecomp JSON result (its `settings` object), or a JSON
     /// object of settings alone; keys left out keep their defaults, unknown keys are
     /// an error. A result's own settings give back its primitives.
     ///
     /// ```
-    /// use primdecomp::{decompose, demo_scene, to_json, Params};
+    /// use primdecomp::{decompose, demo_scene, to_json, Goal, Params};
     ///
-    /// let params = Params { targets: vec![40], rim_weight: 0.5, ..Params::default() };
+    /// let params = Params { goal: Goal::counts([40]), rim_weight: 0.5, ..Params::default() };
     /// let first = decompose(&demo_scene(), &params)?;
     /// let json = to_json(&first, 0, &params);
     /// let again = Params::from_json(&json)?;
@@ -406,62 +315,14 @@ impl Params {
             obj.remove("target");
             obj.remove("merge_target");
         }
-        let params: Params = serde_json::from_value(settings).map_err(bad)?;
+        let settings: json::Settings = serde_json::from_value(settings).map_err(bad)?;
+        let params = Params::try_from(settings).map_err(Error::InvalidParams)?;
         params.validate()?;
         Ok(params)
     }
 
-    /// The settings a run uses: without [`Params::targets`], one level per tolerance or
-    /// byte target capped at [`MAX_PRIMITIVES`] primitives, or with neither one level
-    /// within [`DEFAULT_TOLERANCE`]; one target and a chain of tolerances or byte
-    /// targets, that target as every level's cap. Results record these settings.
-    ///
-    /// ```
-    /// use primdecomp::{Params, Tolerance, DEFAULT_TOLERANCE, MAX_PRIMITIVES};
-    ///
-    /// let run = Params::default().resolved();
-    /// assert_eq!((run.targets, run.tolerance), (vec![MAX_PRIMITIVES], vec![DEFAULT_TOLERANCE]));
-    /// let chain = Params {
-    ///     targets: vec![300],
-    ///     tolerance: vec![Tolerance::Diagonal(0.02), Tolerance::Diagonal(0.005)],
-    ///     ..Params::default()
-    /// };
-    /// assert_eq!(chain.resolved().targets, vec![300, 300]);
-    /// assert!(run.cut, "a tolerance is a cut of the merge tree");
-    /// let counts = Params { targets: vec![64], ..Params::default() }.resolved();
-    /// assert!(counts.tolerance.is_empty() && !counts.cut);
-    /// ```
-    pub fn resolved(&self) -> Params {
-        let mut p = self.clone();
-        let chain = p.tolerance.len().max(p.max_bytes.len());
-        match p.targets.len() {
-            // Fill completes a count: without one, validate says so.
-            0 if p.fill => {}
-            0 if chain == 0 => {
-                p.tolerance = vec![DEFAULT_TOLERANCE];
-                p.targets = vec![MAX_PRIMITIVES];
-            }
-            0 => p.targets = vec![MAX_PRIMITIVES; chain],
-            1 if chain > 1 => p.targets = vec![p.targets[0]; chain],
-            _ => {}
-        }
-        // A tolerance or byte target is a cut: the recorded settings say so.
-        p.cut = p.uses_cut();
-        p
-    }
-
-    /// Checks every setting of the run [`Params::resolved`] makes of these;
-    /// [`crate::decompose`] calls this before any work.
+    /// Checks every setting; [`crate::decompose`] calls this before any work.
     pub fn validate(&self) -> Result<()> {
-        if self.fill && self.targets.is_empty() {
-            return Err(Error::InvalidParams(
-                "fill needs targets: the counts whose levels it fills".into(),
-            ));
-        }
-        self.resolved().validate_resolved()
-    }
-
-    fn validate_resolved(&self) -> Result<()> {
         let bad = |m: String| Err(Error::InvalidParams(m));
         let fraction = |name: &str, x: f64, zero_ok: bool| {
             let ok = x.is_finite() && x < 1.0 && (x > 0.0 || (zero_ok && x == 0.0));
@@ -472,20 +333,7 @@ impl Params {
                 bad(format!("{name} must be in {range}, got {x}"))
             }
         };
-        if self.targets.is_empty() || self.targets.contains(&0) {
-            return bad("targets must be one or more positive counts".into());
-        }
-        let levels = self
-            .targets
-            .len()
-            .max(self.tolerance.len())
-            .max(self.max_bytes.len());
-        if levels > MAX_LEVELS {
-            return bad(format!(
-                "{levels} levels (targets, tolerances or byte targets) asked for; a run makes \
-                 at most {MAX_LEVELS}, each a result of its own"
-            ));
-        }
+        self.goal.validate()?;
         if !self.kinds.iter().any(|&k| k) {
             return bad("at least one primitive kind must be enabled".into());
         }
@@ -538,78 +386,12 @@ impl Params {
                 return bad(format!("remove_thin_boxes must be ≥ 0, got {t}"));
             }
         }
-        self.validate_cut()
-    }
-
-    /// The tolerance and byte targets: positive, one or one per target, not with fill.
-    fn validate_cut(&self) -> Result<()> {
-        let bad = |m: String| Err(Error::InvalidParams(m));
-        let n = self.targets.len();
-        for (name, len) in [
-            ("tolerance", self.tolerance.len()),
-            ("max_bytes", self.max_bytes.len()),
-        ] {
-            if len > 1 && len != n {
-                return bad(format!(
-                    "{name} has {len} values for {n} targets: give one value, or one per target"
-                ));
-            }
-        }
-        if let Some(t) = self
-            .tolerance
-            .iter()
-            .find(|t| !(t.value().is_finite() && t.value() > 0.0))
-        {
-            return bad(format!("tolerance must be a positive distance, got {t:?}"));
-        }
-        if self.max_bytes.contains(&0) {
-            return bad("max_bytes must be positive".into());
-        }
-        if self.greedy && self.uses_cut() {
-            return bad(
-                "greedy takes the greedy pass's levels: not with cut, tolerance or max_bytes"
-                    .into(),
-            );
-        }
-        if self.fill && self.uses_cut() {
-            return bad(
-                "fill refines the greedy snapshot; cut, tolerance and max_bytes already fill \
-                 each target from the merge tree"
-                    .into(),
-            );
-        }
         Ok(())
     }
 
-    /// Whether levels are cuts of the merge tree ([`Params::cut`], or a tolerance or
-    /// byte target), which needs more memory than the greedy merge alone
-    /// ([`LoadOptions::greedy_only`](crate::LoadOptions::greedy_only)).
-    ///
-    /// ```
-    /// use primdecomp::{Params, Tolerance};
-    ///
-    /// let count = Params { targets: vec![2000], ..Params::default() };
-    /// assert!(!count.uses_cut());
-    /// let tolerance = Params { tolerance: vec![Tolerance::Diagonal(0.02)], ..count };
-    /// assert!(tolerance.uses_cut());
-    /// ```
+    /// Whether levels are cuts of the merge tree ([`Goal::uses_cut`]).
     pub fn uses_cut(&self) -> bool {
-        self.cut || !self.tolerance.is_empty() || !self.max_bytes.is_empty()
-    }
-
-    /// Whether counts alone may become cuts of the merge tree where the greedy level
-    /// falls short ([`Params::greedy`]): neither greedy, fill nor a cut is asked for.
-    pub(crate) fn count_cut(&self) -> bool {
-        !self.greedy && !self.fill && !self.uses_cut()
-    }
-
-    /// Level `i`'s tolerance and byte target (one value applies to every level).
-    pub(crate) fn level_limits(&self, i: usize) -> (Option<Tolerance>, Option<usize>) {
-        let pick = |len: usize| (len > 0).then_some(if len == 1 { 0 } else { i });
-        (
-            pick(self.tolerance.len()).map(|k| self.tolerance[k]),
-            pick(self.max_bytes.len()).map(|k| self.max_bytes[k]),
-        )
+        self.goal.uses_cut()
     }
 }
 
@@ -641,7 +423,7 @@ mod tests {
         for partitions in [Partitions::Auto, Partitions::Fixed(1), Partitions::Fixed(8)] {
             let p = Params {
                 partitions,
-                targets: vec![7, 3],
+                goal: Goal::counts([7, 3]),
                 kinds: [true, false, true, true, false, true],
                 dedup: Dedup::Tolerance(0.25),
                 reprice: Reprice::Exact,
@@ -668,9 +450,14 @@ mod tests {
     fn bad_settings_are_named() {
         let err = |s: &str| Params::from_json(s).unwrap_err().to_string();
         assert!(err(r#"{"targets": [3], "rim_wieght": 1}"#).contains("rim_wieght"));
+        assert!(err(r#"{"fill": true}"#).contains("fill needs targets"));
+        assert!(err(r#"{"targets": [3], "greedy": true, "cut": true}"#).contains("greedy"));
         assert!(err(r#"{"weights": {"box": 1, "cone": 2}}"#).contains("cone"));
         assert!(err(r#"{"max_excess_volume": 0.1}"#).contains("reprice: exact"));
         let p = Params::from_json(r#"{"targets": [5], "solid": true}"#).unwrap();
-        assert_eq!((p.targets, p.solid, p.rim_weight), (vec![5], true, 1.0));
+        assert_eq!(
+            (p.goal, p.solid, p.rim_weight),
+            (Goal::counts([5]), true, 1.0)
+        );
     }
 }

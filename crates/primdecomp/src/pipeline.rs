@@ -19,7 +19,7 @@ use crate::wallclock::Instant;
 use crate::{postprocess, quadric};
 use rayon::prelude::*;
 
-/// One pass through `params.targets` (`params.fill` is the caller's: `budget`).
+/// One pass through the goal's targets (a fill's further passes are the caller's: `budget`).
 pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Result<Decomposition> {
     // Far-flung vertices would overflow volumes to inf and NaN
     // (docs/decisions/hostile-input-limits.md).
@@ -44,28 +44,29 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
         let corners = &welded[mesh.face_offsets[f] as usize..mesh.face_offsets[f + 1] as usize];
         corners.iter().all(|&v| v == corners[0])
     };
-    let several = params.count_cut() && components::several(mesh.face_count(), &pairs, point);
+    let several = params.goal.count_cut() && components::several(mesh.face_count(), &pairs, point);
     let cut_params;
     let params = match several {
         true => {
             cut_params = Params {
-                cut: true,
+                goal: params.goal.as_cut(),
                 ..params.clone()
             };
             &cut_params
         }
         false => params,
     };
+    let counts = params.goal.targets();
     // Spatial parts merge down to their share of the largest requested count's groups,
     // the greedy's own; a cut's leaves come from the global loop after them (0042).
-    let largest = params.targets.iter().copied().max().unwrap_or(1);
+    let largest = counts.iter().copied().max().unwrap_or(1);
     let mut targets = if params.uses_cut() {
         // The tree's leaves (a snapshot of a few times the largest target, needed only
         // after spatial parts: below) up to its roots (docs/decisions/0032, 0034).
         let leaves = largest.saturating_mul(crate::cut::LEAVES_PER_TARGET);
         merge_order(&[leaves.min(mesh.face_count()).max(largest), 1])
     } else {
-        merge_order(&params.targets)
+        merge_order(&counts)
     };
     // Where the merge loop starts: spatial parts, components, or the faces themselves.
     let first = FirstPhase::choose(mesh, params, &pairs, targets[0], largest);
@@ -219,11 +220,12 @@ fn tree_hulls_over(mesh: &Mesh, params: &Params, largest: usize) -> Option<usize
 /// Each target's request of the cut, its tolerance in the mesh's units.
 fn requests(params: &Params, mesh: &Mesh) -> Vec<Request> {
     let diagonal = mesh.diagonal();
-    (0..params.targets.len())
+    let counts = params.goal.targets();
+    (0..counts.len())
         .map(|i| {
-            let (tolerance, bytes) = params.level_limits(i);
+            let (tolerance, bytes) = params.goal.level_limits(i);
             Request {
-                count: params.targets[i],
+                count: counts[i],
                 bytes,
                 tolerance: tolerance.map(|t| t.in_units(diagonal)),
             }
@@ -402,7 +404,7 @@ struct MergeInput {
     pairs: Vec<(u32, u32)>,
     /// The pairs as neighbour lists, shared with the surface.
     lists: partition::Lists,
-    /// Every merge is logged for the merge tree (`Params::cut`).
+    /// Every merge is logged for the merge tree (a goal that [`Goal::uses_cut`](crate::Goal::uses_cut)).
     tree: bool,
     /// The clusters' points are kept for the tree's nodes of more faces
     /// (`merge::TreeHulls`).

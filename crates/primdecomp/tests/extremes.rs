@@ -7,7 +7,7 @@
 //! (a one-way surface distance computed here, see [`tightness`]) within 10%.
 
 use primdecomp::tessellate;
-use primdecomp::{decompose, Error, Mesh, Params, Primitive, Reprice};
+use primdecomp::{decompose, CountSearch, Error, Goal, Mesh, Params, Primitive, Reprice};
 use primdecomp_testkit::check::assert_valid;
 use primdecomp_testkit::shapes::{self, cuboid};
 use rand::{Rng, SeedableRng};
@@ -15,7 +15,7 @@ use rand_chacha::ChaCha8Rng;
 
 fn params(targets: &[usize]) -> Params {
     Params {
-        targets: targets.to_vec(),
+        goal: Goal::counts(targets.to_vec()),
         ..Default::default()
     }
 }
@@ -326,7 +326,10 @@ fn tightness(prims: &[Primitive], mesh_tris: &[[[f64; 3]; 3]]) -> f64 {
 fn random_rotations_keep_count_and_tightness() {
     let (base, faces) = primdecomp_testkit::shapes::demo_polys();
     let greedy = Params {
-        greedy: true,
+        goal: Goal::Counts {
+            counts: vec![120, 40],
+            search: CountSearch::Greedy,
+        },
         ..params(&[120, 40])
     };
     let cut = params(&[120, 40]);

@@ -6,14 +6,14 @@
 //! and inside the surface; with the setting off the outside points are inside (so the
 //! tests can fail), and every face stays enclosed either way.
 
-use primdecomp::{decompose, Mesh, Params};
+use primdecomp::{decompose, Goal, Mesh, Params};
 use primdecomp_testkit::check::{assert_same_on_threads, assert_valid, shapes};
 use primdecomp_testkit::contain::shape_contains;
 use primdecomp_testkit::shapes::{cuboid, flat_grid, mesh};
 
 fn params(targets: &[usize], flush: bool) -> Params {
     Params {
-        targets: targets.to_vec(),
+        goal: Goal::counts(targets.to_vec()),
         flush_plates: flush,
         ..Default::default()
     }

@@ -1,7 +1,7 @@
 //! Inputs the fuzzers (`fuzz/`) found to break an invariant, each reduced to a test
 //! that failed before its fix. The comment on each says what must happen and why.
 
-use primdecomp::{decompose, Dedup, Error, Kind, Mesh, Params};
+use primdecomp::{decompose, CountSearch, Dedup, Error, Goal, Kind, Mesh, Params};
 use primdecomp_testkit::check::assert_valid;
 
 /// `fuzz/fuzz_targets/decompose.rs`, first run: one triangle at a 1e-30 scale welded
@@ -13,7 +13,7 @@ fn tolerance_weld_does_not_shrink_the_output() {
     let v = [[1e-30, -1e-30, 0.0], [0.0, -1e-30, 2e-30]];
     let mesh = Mesh::from_polygons(&v, &[vec![0, 1, 1]]).unwrap();
     let params = Params {
-        targets: vec![27],
+        goal: Goal::counts([27]),
         dedup: Dedup::Tolerance(10.0),
         ..Default::default()
     };
@@ -38,7 +38,7 @@ fn transitive_tolerance_weld_keeps_every_face_enclosed() {
     let mesh = Mesh::from_polygons(&v, &f).unwrap();
     for n in [40, 4, 1] {
         let params = Params {
-            targets: vec![n],
+            goal: Goal::counts([n]),
             dedup: Dedup::Tolerance(0.6),
             ..Default::default()
         };
@@ -46,7 +46,10 @@ fn transitive_tolerance_weld_keeps_every_face_enclosed() {
         // The merge tree's cut too, whose nodes' points must be the faces' own, not
         // the welded ones the merge loop priced them by (docs/decisions/0052).
         let cut = Params {
-            cut: true,
+            goal: Goal::Counts {
+                counts: vec![n],
+                search: CountSearch::Cut,
+            },
             ..params
         };
         assert_valid(&mesh, &decompose(&mesh, &cut).unwrap(), &cut);
@@ -70,7 +73,7 @@ fn thin_frustum_far_from_the_origin_keeps_its_face() {
     ];
     let mesh = Mesh::from_polygons(&v, &[vec![0, 1, 2, 2, 2, 2]]).unwrap();
     let params = Params {
-        targets: vec![18],
+        goal: Goal::counts([18]),
         weights: [1.0, 1.4, 2.1, 1.05, 1e-9, 1.0],
         tangent_eps: 1000.0,
         dedup: Dedup::Off,
@@ -103,7 +106,7 @@ fn round_only(kind: Kind, targets: Vec<usize>, min_extent: f64) -> Params {
     let mut kinds = [false; 6];
     kinds[kind as usize] = true;
     Params {
-        targets,
+        goal: Goal::counts(targets),
         kinds,
         min_extent,
         ..Default::default()
@@ -161,7 +164,7 @@ fn faces_on_one_point_still_merge() {
     kinds[Kind::Box as usize] = true;
     kinds[Kind::Prism as usize] = true;
     let params = Params {
-        targets: vec![1, 3],
+        goal: Goal::counts([1, 3]),
         weights: [1e-9, 2.1, 1e-9, 1.0, 1.0, 1.0],
         kinds,
         dedup: Dedup::Off,
@@ -186,7 +189,7 @@ fn meshes_1e_minus_200_across_still_merge() {
     ];
     let mesh = Mesh::from_polygons(&v, &[vec![0, 1, 2], vec![3, 4, 5]]).unwrap();
     let params = Params {
-        targets: vec![1],
+        goal: Goal::counts([1]),
         remove_nested: false,
         ..Default::default()
     };
@@ -204,7 +207,7 @@ fn coordinates_near_the_top_of_f64_are_refused() {
     let v = [[5.391989341715902e68, 0.0, -4.294604791590196e304]];
     let mesh = Mesh::from_polygons(&v, &[vec![0; 8]]).unwrap();
     let params = Params {
-        targets: vec![37],
+        goal: Goal::counts([37]),
         weights: [1.0, 1.0, 1.0, 1.0, 1e-9, 1e9],
         kinds: [false, true, true, false, true, true],
         tangent_eps: 0.0,
@@ -243,7 +246,7 @@ fn minimum_extent_that_underflows_stays_positive() {
     let f = vec![vec![1, 1, 1, 0, 1, 1, 0, 1], vec![0; 5], vec![0; 8]];
     let mesh = Mesh::from_polygons(&v, &f).unwrap();
     let params = Params {
-        targets: vec![15],
+        goal: Goal::counts([15]),
         weights: [1.0, 1e-9, 1.0, 1.0, 1.0, 1.0],
         dedup: Dedup::Off,
         min_extent: 6.833639853623446e-304,
@@ -266,7 +269,7 @@ fn minimum_extent_that_underflows_stays_positive() {
 fn a_face_on_the_origin_gets_a_normal_sized_primitive() {
     let mesh = Mesh::from_polygons(&[[0.0; 3]], &[vec![0, 0, 0]]).unwrap();
     let params = Params {
-        targets: vec![39],
+        goal: Goal::counts([39]),
         max_excess_volume: Some(0.0),
         // A cap re-prices every merge at once (the run it came from did so implicitly).
         reprice: primdecomp::Reprice::Exact,
@@ -310,7 +313,7 @@ fn thin_box_removal_keeps_every_face_in_one_primitive() {
     ];
     let mesh = Mesh::from_polygons(&v, &f).unwrap();
     let params = Params {
-        targets: vec![27],
+        goal: Goal::counts([27]),
         weights: [1.0, 1e-9, 1e-9, 1.05, 1.05, 1.05],
         kinds: [true, false, true, false, true, false],
         dedup: Dedup::Off,
@@ -378,7 +381,7 @@ fn point_face_at_1e25_stays_enclosed() {
     ];
     let mesh = Mesh::from_polygons(&v, &f).unwrap();
     let params = Params {
-        targets: vec![23, 13, 17],
+        goal: Goal::counts([23, 13, 17]),
         weights: [1.0; 6],
         tangent_eps: 1.0,
         min_extent: 1.26e-321,

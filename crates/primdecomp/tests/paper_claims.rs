@@ -1,6 +1,6 @@
 //! The paper's claims on small meshes (§3.2, §4): each test says what must happen and why.
 
-use primdecomp::{decompose, Kind, Params, Primitive};
+use primdecomp::{decompose, Goal, Kind, Params, Primitive};
 use primdecomp_testkit::shapes::*;
 
 fn run(p: &Polys, params: &Params) -> Vec<Primitive> {
@@ -10,7 +10,7 @@ fn run(p: &Polys, params: &Params) -> Vec<Primitive> {
 
 fn with_target(n: usize) -> Params {
     Params {
-        targets: vec![n],
+        goal: Goal::counts([n]),
         ..Default::default()
     }
 }
@@ -106,7 +106,7 @@ fn plate_with_hole_keeps_the_hole_open() {
 fn multi_target_equals_separate_runs() {
     let plate = plate_with_hole(1.0, 0.05, 10, 4);
     let params = Params {
-        targets: vec![40, 8, 20],
+        goal: Goal::counts([40, 8, 20]),
         ..Default::default()
     };
     let d = decompose(&mesh(&plate), &params).unwrap();

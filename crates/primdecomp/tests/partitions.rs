@@ -4,7 +4,7 @@
 //! the default run, and its JSON must not mention the setting (default output unchanged).
 
 use primdecomp::to_json;
-use primdecomp::{decompose, Mesh, Params, Partitions};
+use primdecomp::{decompose, Goal, Mesh, Params, Partitions};
 use primdecomp_testkit::check::{
     assert_counts, assert_same_on_threads, assert_valid, check_corpus_meshes,
 };
@@ -31,7 +31,7 @@ fn scene() -> Mesh {
 
 fn params(targets: &[usize], k: usize) -> Params {
     Params {
-        targets: targets.to_vec(),
+        goal: Goal::counts(targets.to_vec()),
         partitions: Partitions::Fixed(k),
         ..Default::default()
     }
@@ -79,7 +79,7 @@ fn one_partition_is_the_default_run_on_small_inputs() {
     assert!(scene().face_count() < primdecomp::internals::AUTO_MIN_FACES);
     let m = scene();
     let default = Params {
-        targets: vec![60, 12],
+        goal: Goal::counts([60, 12]),
         ..Default::default()
     };
     let a = decompose(&m, &default).unwrap();

@@ -4,7 +4,7 @@
 //! cap keeps the exact order (a pair over the cap has no queue entry to defer).
 
 use primdecomp::to_json;
-use primdecomp::{decompose, demo_scene, Decomposition, Mesh, Params, Reprice};
+use primdecomp::{decompose, demo_scene, Decomposition, Goal, Mesh, Params, Reprice};
 use primdecomp_testkit::check::assert_valid;
 use primdecomp_testkit::shapes::{self, join, mesh, Polys};
 
@@ -12,7 +12,7 @@ const ALL: Reprice = Reprice::Deferred { min_degree: 0 };
 
 fn params(targets: &[usize], reprice: Reprice) -> Params {
     Params {
-        targets: targets.to_vec(),
+        goal: Goal::counts(targets.to_vec()),
         reprice,
         ..Default::default()
     }

@@ -8,17 +8,19 @@
 //! Whether a curb stands is decided by the independent containment oracle
 //! (`primdecomp_testkit::contain`), from points just above the top.
 
-use primdecomp::{decompose, demo_scene, Mesh, Params};
+use primdecomp::{decompose, demo_scene, CountSearch, Goal, Mesh, Params};
 use primdecomp_testkit::check::{assert_same_on_threads, assert_valid, shapes};
 use primdecomp_testkit::contain::shape_contains;
 
 fn params(targets: &[usize], w: f64) -> Params {
     Params {
-        targets: targets.to_vec(),
-        rim_weight: w,
         // The greedy pass's output fits, whose rims this measures (a count on several
         // parts is otherwise a cut of the merge tree: docs/decisions/0054).
-        greedy: true,
+        goal: Goal::Counts {
+            counts: targets.to_vec(),
+            search: CountSearch::Greedy,
+        },
+        rim_weight: w,
         ..Default::default()
     }
 }

@@ -8,7 +8,7 @@
 //! The benchmark that measures the whole ladder, to 56M faces, is
 //! `cargo bench -p primdecomp-cli --bench ladder`.
 
-use primdecomp::{decompose_with, Mesh, Params, Partitions, Progress, Stage};
+use primdecomp::{decompose_with, Goal, Mesh, Params, Partitions, Progress, Stage};
 use std::sync::Mutex;
 
 /// A stage's CPU time per face on the larger input over the smaller's above this
@@ -111,7 +111,7 @@ fn settings(faces: usize) -> Vec<(&'static str, Params)> {
         (
             "-n 200",
             Params {
-                targets: vec![200],
+                goal: Goal::counts([200]),
                 partitions: parts,
                 ..Params::default()
             },

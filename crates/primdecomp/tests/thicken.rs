@@ -4,13 +4,13 @@
 //! never move a plate's outer side out, never poke through a thin part's far side,
 //! and leave open sheets and holes as they are.
 
-use primdecomp::{decompose, demo_scene, Level, Params, Primitive};
+use primdecomp::{decompose, demo_scene, Goal, Level, Params, Primitive};
 use primdecomp_testkit::check::{assert_default_output, assert_same_on_threads, assert_valid};
 use primdecomp_testkit::shapes::{cuboid, flat_grid, mesh, plate_with_hole};
 
 fn params(targets: &[usize], min_thickness: f64) -> Params {
     Params {
-        targets: targets.to_vec(),
+        goal: Goal::counts(targets.to_vec()),
         min_thickness,
         ..Default::default()
     }

@@ -34,7 +34,7 @@ impl<'a> Input<'a> {
     }
 }
 
-/// One level per target in `params.targets` (in the order given) from the merge
+/// One level per target of `params.goal` (in the order given) from the merge
 /// loop's snapshots.
 pub(crate) fn levels(
     ev: &Evaluator,
@@ -62,11 +62,11 @@ pub(crate) fn levels(
     }
     // A cut's snapshots are one per target, in order (targets may repeat with
     // different tolerances); the greedy pass's are found by their count.
-    if params.uses_cut() && snaps.len() == params.targets.len() {
+    let targets = params.goal.targets();
+    if params.uses_cut() && snaps.len() == targets.len() {
         return snaps.iter().map(|s| finish(ev, s, params, diag)).collect();
     }
-    params
-        .targets
+    targets
         .iter()
         .map(|&n| {
             let snap = snaps

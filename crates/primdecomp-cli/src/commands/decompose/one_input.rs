@@ -14,7 +14,7 @@ use crate::outputs::Guard;
 use crate::paths::output_path_for;
 use anyhow::{anyhow, bail};
 use primdecomp::{export, write_atomic, Stage};
-use primdecomp::{Decomposition, Params};
+use primdecomp::{Decomposition, Goal, Params};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -39,7 +39,9 @@ pub(super) fn run_one(
     let mesh = primdecomp::load_with(input, &load_options(a, base)?)?;
     let load_s = now.elapsed().as_secs_f64();
     let params = Params {
-        targets: resolve_targets(targets, mesh.face_count()),
+        goal: base
+            .goal
+            .with_targets(resolve_targets(targets, mesh.face_count())),
         ..base.clone()
     };
     if a.per_object {
@@ -250,8 +252,14 @@ fn world_level(
         primitives: objs.world_primitives(i),
         // For the summary line: each object's tolerance is this share of its own
         // diagonal (--per-object takes one value).
-        tolerance: params.tolerance.first().map(|t| t.in_units(diagonal)),
-        max_bytes: params.max_bytes.first().copied(),
+        tolerance: match &params.goal {
+            Goal::Within { tolerance, .. } => tolerance.first().map(|t| t.in_units(diagonal)),
+            _ => None,
+        },
+        max_bytes: match &params.goal {
+            Goal::Within { max_bytes, .. } => max_bytes.first().copied(),
+            _ => None,
+        },
         ..Default::default()
     }
 }

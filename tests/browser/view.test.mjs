@@ -270,4 +270,28 @@ test('side by side: the input, ours and the compared hulls, each in its pane, wi
   const h = ev.colliders[0].hausdorff;
   assert.ok(evalText.includes(h.toPrecision(4)), `Hausdorff ${h} in ${evalText}`);
 });
+
+test('a resized window keeps the whole scene in the default view until the user moves it', async () => {
+  await page.evaluate(() => window.primdecompView.setMode('level:0'));
+  await page.evaluate(() => window.primdecompView.resetView());
+  const bg = await background();
+  try {
+    // Narrower than the view was fitted for: the scene must be fitted again, not cropped.
+    for (const size of [{ width: 640, height: 800 }, { width: 1280, height: 420 }]) {
+      await page.setViewportSize(size);
+      const img = await shot(`view_${size.width}x${size.height}.png`);
+      const c = await canvasRect();
+      assert.ok(countNot(img, c, bg) > 0.03 * c.w * c.h, `drawn at ${size.width}x${size.height}`);
+      const edges = [
+        { x: c.x, y: c.y, w: 2, h: c.h },
+        { x: c.x + c.w - 2, y: c.y, w: 2, h: c.h },
+        { x: c.x, y: c.y, w: c.w, h: 2 },
+        { x: c.x, y: c.y + c.h - 2, w: c.w, h: 2 }
+      ];
+      for (const e of edges) assert.equal(countNot(img, e, bg), 0, `the scene touches the frame's edge ${JSON.stringify(e)} at ${size.width}x${size.height}`);
+    }
+  } finally {
+    await page.setViewportSize({ width: 1280, height: 800 });
+  }
+});
 }

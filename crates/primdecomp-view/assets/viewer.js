@@ -401,12 +401,19 @@
     return { target: target, dist: dist };
   }
 
-  var cam = {};
-  function resetCamera() {
-    cam.back = unit(camData.back);
-    var f = fitCamera(cam.back, paneAspect());
+  /* `moved`: the user has orbited, panned or zoomed since the last fit; until then
+   * a change of the panes' shape (a resized window) fits the view again. */
+  var cam = { moved: false, aspect: 0 };
+  function refit() {
+    cam.aspect = paneAspect();
+    var f = fitCamera(cam.back, cam.aspect);
     cam.target = f.target;
     cam.dist = f.dist;
+  }
+  function resetCamera() {
+    cam.back = unit(camData.back);
+    cam.moved = false;
+    refit();
     dirty();
   }
   function eye() {
@@ -437,6 +444,7 @@
     return [f / aspect, 0, 0, 0, 0, f, 0, 0, 0, 0, (far + near) / (near - far), -1, 0, 0, (2 * far * near) / (near - far), 0];
   }
   function orbit(dx, dy) {
+    cam.moved = true;
     // Turn about the world's up axis, then tilt about the camera's right axis,
     // keeping away from the poles.
     var back = rotate(cam.back, worldUp, -dx * 0.008);
@@ -457,12 +465,14 @@
     });
   }
   function pan(dx, dy, paneHeight) {
+    cam.moved = true;
     var b = basis(cam.back, worldUp);
     var scale = (2 * cam.dist * Math.tan(0.5 * camData.fov_y_deg * DEG)) / paneHeight;
     for (var k = 0; k < 3; k++) cam.target[k] += (-dx * b.right[k] + dy * b.up[k]) * scale;
     dirty();
   }
   function zoom(factor) {
+    cam.moved = true;
     cam.dist = Math.min(Math.max(cam.dist * factor, radius * 1e-3), radius * 1e3);
     dirty();
   }
@@ -908,9 +918,7 @@
     select(null);
     updatePanel();
     // The panes' shape changed: fit again, looking from where the user looks now.
-    var f = fitCamera(cam.back, paneAspect());
-    cam.target = f.target;
-    cam.dist = f.dist;
+    refit();
     dirty();
   }
   // ---- input events ------------------------------------------------------------
@@ -950,7 +958,10 @@
   window.addEventListener('keydown', function (e) {
     if (e.key === 'r' || e.key === 'R') resetCamera();
   });
-  window.addEventListener('resize', dirty);
+  window.addEventListener('resize', function () {
+    if (!cam.moved && paneAspect() !== cam.aspect) refit();
+    dirty();
+  });
 
   // ---- for tests ----------------------------------------------------------------
 

@@ -13,12 +13,12 @@
 //! best rung found, not a proven optimum.
 
 use crate::error::Result;
-use crate::mesh::Mesh;
+use crate::input::mesh::Mesh;
 use crate::params::{CountSearch, Goal, Params};
 use crate::pipeline;
+use crate::progress::wallclock::Instant;
 use crate::progress::{Progress, Stage};
 use crate::result::{Decomposition, Level};
-use crate::wallclock::Instant;
 
 /// Candidate targets per round (one merge pass gives them all).
 const LADDER: usize = 12;

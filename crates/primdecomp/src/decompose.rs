@@ -1,8 +1,10 @@
 //! The library's entry points: check the settings, then one bottom-up pass
 //! ([`crate::pipeline`]) or, to fill each target's budget, several (`crate::budget`).
 
+pub(crate) mod objects;
+
 use crate::error::Result;
-use crate::mesh::Mesh;
+use crate::input::mesh::Mesh;
 use crate::params::{short_of, Goal, Params};
 use crate::progress::{Progress, Silent};
 use crate::result::Decomposition;

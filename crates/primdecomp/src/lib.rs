@@ -66,35 +66,30 @@
 mod budget;
 mod cut;
 mod decompose;
-mod demo;
 mod error;
 pub mod export;
+mod input;
 pub mod math;
-mod memory;
 mod merge;
-mod mesh;
-mod objects;
 mod params;
 mod pipeline;
 mod postprocess;
 mod primitive;
 mod progress;
-mod quadric;
 mod recut;
 mod result;
-mod up;
-mod wallclock;
+mod seed;
 
+pub use decompose::objects::{decompose_objects, ObjectResult, ObjectTarget, Objects};
 pub use decompose::{decompose, decompose_with};
-pub use demo::{demo_scene, demo_scene_obj};
 pub use error::{Error, FileKind, Result};
 pub use export::{read_primitives, tessellate, to_json, to_obj, write_atomic};
-pub use mesh::io::{
+pub use input::demo::{demo_scene, demo_scene_obj};
+pub use input::io::{
     load, load_with, memory_needed, open_regular, parse_mesh, parse_mesh_with, read_regular,
     Format, LoadOptions,
 };
-pub use mesh::{Mesh, MeshObject, SkipCounts, Transform};
-pub use objects::{decompose_objects, ObjectResult, ObjectTarget, Objects};
+pub use input::mesh::{Mesh, MeshObject, SkipCounts, Transform};
 pub use params::{
     ByteSize, CountSearch, Dedup, Goal, Params, Partitions, Reprice, Tolerance, DEFAULT_TOLERANCE,
     MAX_PRIMITIVES,
@@ -110,6 +105,10 @@ pub use result::{Decomposition, InputInfo, Level, Shortfall, Stats, Timings};
 #[doc(hidden)]
 #[allow(missing_docs)]
 pub mod internals {
+    pub use crate::input::dedup::weld;
+    pub use crate::input::mesh::outward_normal;
+    use crate::input::mesh::Mesh;
+    pub use crate::input::orient::face_signs_of_lists;
     use crate::math::Sym3;
     pub use crate::merge::cluster::Clusters;
     pub use crate::merge::cost::{Evaluator, Workspace};
@@ -117,21 +116,17 @@ pub mod internals {
     pub use crate::merge::heap::StdHeap;
     pub use crate::merge::rim::{FaceAdjacency, Surroundings};
     pub use crate::merge::worker::with_pricer;
-    pub use crate::mesh::dedup::weld;
-    pub use crate::mesh::orient::face_signs_of_lists;
-    pub use crate::mesh::outward_normal;
-    use crate::mesh::Mesh;
     pub use crate::params::{AUTO_MIN_FACES, AUTO_PARTS};
     pub use crate::pipeline::evaluator;
     pub use crate::postprocess::nested::{keep_mask, Cleanup};
 
     /// Faces sharing an edge, by the welded indices `welded`.
     pub fn face_pairs(mesh: &Mesh, welded: &[u32]) -> Vec<(u32, u32)> {
-        crate::mesh::adjacency::face_pairs(&mesh.face_offsets, welded)
+        crate::input::adjacency::face_pairs(&mesh.face_offsets, welded)
     }
-    pub use crate::mesh::adjacency::neighbour_lists;
+    pub use crate::input::adjacency::neighbour_lists;
 
-    pub use crate::quadric::face_quadrics;
+    pub use crate::seed::quadric::face_quadrics;
 
     /// Each face's seed volume.
     pub fn seed_volumes(ev: &Evaluator, q: &[Sym3]) -> Vec<f64> {

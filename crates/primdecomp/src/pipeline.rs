@@ -5,18 +5,20 @@
 
 use crate::cut::Request;
 use crate::error::{Error, Result};
+use crate::input::mesh::Mesh;
+use crate::input::solid::{self, Solid};
+use crate::input::triangles::Triangles;
+use crate::input::{adjacency, dedup, orient};
 use crate::math::{Sym3, V3};
 use crate::merge::rim::FaceAdjacency;
 use crate::merge::{components, partition, Clusters, Evaluator, MergeOutput, Workspace};
-use crate::mesh::solid::{self, Solid};
-use crate::mesh::triangles::Triangles;
-use crate::mesh::{adjacency, dedup, orient, Mesh};
 use crate::params::{Params, Reprice};
+use crate::postprocess;
 use crate::primitive::fit::{FitConfig, FrameSearch};
+use crate::progress::wallclock::Instant;
 use crate::progress::{GoOn, Progress, Stage};
 use crate::result::{Decomposition, InputInfo, Stats, Timings};
-use crate::wallclock::Instant;
-use crate::{postprocess, quadric};
+use crate::seed::quadric;
 use rayon::prelude::*;
 
 /// One pass through the goal's targets (a fill's further passes are the caller's: `budget`).

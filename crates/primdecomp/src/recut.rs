@@ -9,8 +9,8 @@
 //! than a quarter farther and nearer on the mean (docs/decisions/0051).
 
 use crate::cut::{mean_distance, Cutter, MergeTree, Request, SLACK};
+use crate::input::triangles::Triangles;
 use crate::merge::{Evaluator, Snapshot};
-use crate::mesh::triangles::Triangles;
 use crate::params::Params;
 use crate::postprocess;
 use crate::primitive::Primitive;

@@ -1,9 +1,9 @@
 //! What a run returns: the input's description, one [`Level`] of primitives per
 //! target, the stages' timings and the merge loop's counters.
 
+use crate::input::up::Up;
 use crate::math::V3;
 use crate::primitive::Primitive;
-use crate::up::Up;
 use serde::Serialize;
 
 /// What the input was: its size and bounding box in world coordinates.

@@ -17,8 +17,8 @@
 use super::hulls::HullScratch;
 use super::tree::MergeTree;
 use super::{Cutter, Entry, Explored, Scratch};
+use crate::input::mesh::{aabb_of, Mesh};
 use crate::math::{Sym3, V3};
-use crate::mesh::{aabb_of, Mesh};
 use crate::primitive::Primitive;
 use rayon::prelude::*;
 use std::collections::HashMap;

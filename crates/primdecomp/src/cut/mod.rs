@@ -23,9 +23,9 @@ mod shadow;
 mod spend;
 pub(crate) mod tree;
 
+use crate::input::triangles::Triangles;
 use crate::math::{Sym3, V3};
 use crate::merge::{Evaluator, Snapshot, Workspace};
-use crate::mesh::triangles::Triangles;
 use crate::primitive::Primitive;
 use crate::Shortfall;
 #[cfg(test)]

@@ -33,7 +33,7 @@ fn a_tolerance_needs_no_count() {
 /// tighter tolerance never fewer primitives, and a byte target kept.
 #[test]
 fn tolerance_chains_and_byte_targets() {
-    let mesh = crate::demo::demo_scene();
+    let mesh = crate::input::demo::demo_scene();
     let p = Params {
         goal: Goal::Within {
             caps: vec![400, 400, 400],
@@ -99,7 +99,7 @@ fn tolerance_chains_and_byte_targets() {
 /// enclosed. Asked for less than that floor, faces stop it and it says so.
 #[test]
 fn a_face_the_cut_cannot_split_gets_its_nearest_fit() {
-    let mut b = crate::mesh::MeshBuilder::new();
+    let mut b = crate::input::mesh::MeshBuilder::new();
     b.positions.extend([
         [0.0, 0.0, 0.0],
         [1.0, 0.0, 0.0],
@@ -108,7 +108,7 @@ fn a_face_the_cut_cannot_split_gets_its_nearest_fit() {
     ]);
     b.push_face(&[0, 1, 2]);
     b.push_face(&[1, 3, 2]);
-    let mesh = crate::mesh::Mesh::from_builder(b);
+    let mesh = crate::input::mesh::Mesh::from_builder(b);
     let levels = |tol: f64| {
         let p = Params {
             goal: Goal::Within {
@@ -185,7 +185,7 @@ fn worst_error(mesh: &crate::Mesh, prims: &[Primitive]) -> f64 {
 /// smaller one (up to the post-processing's plate joins, within the floor).
 #[test]
 fn cuts_enclose_and_improve_with_n() {
-    let mesh = crate::demo::demo_scene();
+    let mesh = crate::input::demo::demo_scene();
     let p = Params {
         goal: Goal::Counts {
             counts: vec![4, 16, 64],
@@ -223,7 +223,7 @@ fn cuts_enclose_and_improve_with_n() {
 /// target of one, both are the whole scene's single primitive.
 #[test]
 fn one_target_is_the_root() {
-    let mesh = crate::demo::demo_scene();
+    let mesh = crate::input::demo::demo_scene();
     let greedy = Params {
         goal: Goal::counts([1]),
         ..Params::default()
@@ -253,7 +253,7 @@ fn fitting_ahead_changes_no_cut() {
 
 fn same_cuts_fitting_ahead(count: usize, tolerance: f64) {
     use std::sync::atomic::Ordering::Relaxed;
-    let mesh = crate::demo::demo_scene();
+    let mesh = crate::input::demo::demo_scene();
     let p = Params {
         goal: Goal::Within {
             caps: vec![count; 3],
@@ -295,7 +295,7 @@ fn same_cuts_fitting_ahead(count: usize, tolerance: f64) {
 /// of 40 keeps at least 36 primitives (it kept 28); none over its cap.
 #[test]
 fn caps_are_spent_on_what_post_processing_keeps() {
-    let mesh = crate::demo::demo_scene();
+    let mesh = crate::input::demo::demo_scene();
     let most = crate::Kind::ALL
         .iter()
         .map(|k| k.bytes())

@@ -19,9 +19,9 @@ use super::json::ResultObject;
 use super::names::{visible, Names};
 use super::obj::{tessellate, Tess};
 use super::range;
+use crate::input::up::Up;
 use crate::math::{add, norm, normalize, scale, sub, V3};
 use crate::primitive::{Kind, Primitive};
-use crate::up::Up;
 use std::path::Path;
 
 /// An export format.

@@ -5,10 +5,10 @@
 //! rotations as scalar-last unit quaternions. Also the reverse direction
 //! ([`read_primitives`]) and the quaternion conversions the eval tools share.
 
+use crate::decompose::objects::{ObjectTarget, Objects, SHARE_RULE};
 use crate::export::frame::Frame;
 use crate::math::quat::{axes_from_quat, quat_from_axes};
 use crate::math::V3;
-use crate::objects::{ObjectTarget, Objects, SHARE_RULE};
 use crate::params::Params;
 use crate::primitive::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
 use crate::result::{Decomposition, InputInfo, Level, Timings};
@@ -365,7 +365,7 @@ struct DocumentIn {
 /// writes reads back, and nothing read overflows the arithmetic of the tools that
 /// use it.
 fn check_values(p: &Primitive, scale: f64, offset: f64) -> Result<(), String> {
-    use crate::mesh::{MAX_EXTENT, MAX_POSITION};
+    use crate::input::mesh::{MAX_EXTENT, MAX_POSITION};
     let coords: Vec<f64> = match *p {
         Primitive::Box(Obb { center, .. })
         | Primitive::Sphere(Sphere { center, .. })

@@ -22,7 +22,7 @@ mod usd;
 mod write;
 mod xml;
 
-pub use crate::up::Up;
+pub use crate::input::up::Up;
 pub use atomic::write_atomic;
 pub use engine::{ExportOptions, Files, Format, Physics};
 pub use frame::Frame;

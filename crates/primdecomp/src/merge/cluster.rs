@@ -85,12 +85,12 @@ pub struct Clusters {
 impl Clusters {
     /// One cluster per face, with the given per-face operators and volumes.
     pub fn new(q: Vec<Sym3>, volume: Vec<f64>, pairs: &[(u32, u32)]) -> Clusters {
-        let (adj_offsets, adj) = crate::mesh::adjacency::neighbour_lists(q.len(), pairs);
+        let (adj_offsets, adj) = crate::input::adjacency::neighbour_lists(q.len(), pairs);
         Clusters::with_lists(q, volume, (adj_offsets.into(), adj.into()))
     }
 
     /// [`Clusters::new`] with the adjacency as neighbour lists already built
-    /// ([`crate::mesh::adjacency::neighbour_lists`] of the pairs), shared.
+    /// ([`crate::input::adjacency::neighbour_lists`] of the pairs), shared.
     pub fn with_lists(q: Vec<Sym3>, volume: Vec<f64>, lists: (Arc<[u32]>, Arc<[u32]>)) -> Clusters {
         let n = q.len();
         let (adj_offsets, adj) = lists;

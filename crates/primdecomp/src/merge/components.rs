@@ -228,7 +228,7 @@ mod tests {
     /// replayed snapshots at targets of at least one cluster per component, phase 2
     /// for the rest): the same primitives and members at every target.
     fn same_as_global(p: Params, targets: &[usize]) {
-        let mesh = crate::demo::demo_scene();
+        let mesh = crate::input::demo::demo_scene();
         same_as_global_on(&mesh, p, targets);
     }
 
@@ -243,7 +243,7 @@ mod tests {
             let mut split = snapshots(ev, &p1, q, vols, pairs, targets, count).0;
             let rest = &targets[split.len()..];
             if !rest.is_empty() {
-                let (o, a) = crate::mesh::adjacency::neighbour_lists(q.len(), pairs);
+                let (o, a) = crate::input::adjacency::neighbour_lists(q.len(), pairs);
                 let lists = (o.into(), a.into());
                 let cl = partition::clusters(p1, q.to_vec(), vols.to_vec(), lists, &|_| true)
                     .expect("not stopped");
@@ -265,7 +265,7 @@ mod tests {
 
     /// Targets from every face down to one cluster, through the component count.
     fn demo_targets() -> Vec<usize> {
-        let mesh = crate::demo::demo_scene();
+        let mesh = crate::input::demo::demo_scene();
         let p = Params::default();
         let (faces, count) = with_input(&mesh, &p, |_, _, _, pairs| {
             (
@@ -323,7 +323,7 @@ mod tests {
     /// Bumpy grids of `sizes` quads (each quad two triangles, heights from a seeded
     /// generator, so costs differ and ties are rare), side by side: one component each.
     fn bumpy_grids(sizes: &[(u32, u32)], seed: u64) -> crate::Mesh {
-        let mut b = crate::mesh::MeshBuilder::new();
+        let mut b = crate::input::mesh::MeshBuilder::new();
         let mut x = seed | 1;
         let mut height = || {
             x ^= x << 13;

@@ -5,12 +5,12 @@
 use super::cluster::Clusters;
 use super::heap::Candidate;
 use super::rim::{clamp_to_points, rim_penalty, FaceAdjacency, Rim, Surroundings};
+use crate::input::mesh::outward_normal;
+use crate::input::mesh::Mesh;
+use crate::input::solid::Solid;
 use crate::math::hull::{hull_vertices, HullWorkspace};
 use crate::math::Sym3;
 use crate::math::{dot, V3};
-use crate::mesh::outward_normal;
-use crate::mesh::solid::Solid;
-use crate::mesh::Mesh;
 use crate::primitive::fit::{
     fit_best_frame, fit_frame, fit_frame_priced, Fit, FitConfig, FrameSearch,
 };
@@ -84,7 +84,7 @@ pub struct Evaluator<'a> {
     /// Merges whose clusters' neighbour lists hold at least this many entries are
     /// re-priced lazily (`Params::reprice`); `u32::MAX` = always at once (exact).
     pub defer_degree: u32,
-    /// Per face, ±1: the winding that faces outward (`mesh::orient`); empty = the
+    /// Per face, ±1: the winding that faces outward (`input::orient`); empty = the
     /// faces' own windings (set only when `rim_weight` > 0 or `flush_plates`).
     pub face_sign: &'a [i8],
     /// The input's interior (`Params::solid`,

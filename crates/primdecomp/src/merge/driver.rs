@@ -779,10 +779,11 @@ pub(super) fn snapshot(
 #[cfg(test)]
 pub(super) mod tests {
     use super::*;
+    use crate::input::{adjacency, dedup};
     use crate::math::{dot, V3};
-    use crate::mesh::{adjacency, dedup};
     use crate::pipeline::evaluator;
-    use crate::{quadric, Params, Reprice};
+    use crate::seed::quadric;
+    use crate::{Params, Reprice};
 
     /// Runs `f` on the demo scene's evaluator and a maker of its single-face clusters.
     pub(in crate::merge) fn with_demo<R>(
@@ -796,7 +797,7 @@ pub(super) mod tests {
         p: Params,
         f: impl FnOnce(&Evaluator, &(dyn Fn() -> Clusters + Sync)) -> R,
     ) -> R {
-        let mesh = crate::demo::demo_scene();
+        let mesh = crate::input::demo::demo_scene();
         with_input(&mesh, &p, |ev, q, vols, pairs| {
             f(ev, &|| Clusters::new(q.to_vec(), vols.to_vec(), pairs))
         })

@@ -28,7 +28,7 @@ use super::cluster::Clusters;
 use super::cost::{Evaluator, Side, Workspace};
 use super::heap::Candidate;
 use crate::math::Sym3;
-use crate::wallclock::Instant;
+use crate::progress::wallclock::Instant;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering::*};
 use std::sync::Mutex;
 use std::thread::{self, Thread};

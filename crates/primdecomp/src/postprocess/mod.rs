@@ -9,8 +9,8 @@ pub(crate) mod nested;
 pub(crate) mod plates;
 pub(crate) mod thicken;
 
+use crate::input::triangles::Triangles;
 use crate::merge::{Evaluator, Snapshot};
-use crate::mesh::triangles::Triangles;
 use crate::params::Params;
 use crate::result::Level;
 use nested::{keep_mask, Cleanup};

@@ -19,10 +19,10 @@
 use rayon::prelude::*;
 
 use crate::cut::error::is_within;
+use crate::input::triangles::Triangles;
 use crate::math::polygon::{clip, signed_area};
 use crate::math::{add, cross, dot, madd, normalize, scale, Sym3, V3};
 use crate::merge::{Evaluator, Snapshot, Workspace};
-use crate::mesh::triangles::Triangles;
 use crate::primitive::frame::convex_hull_2d;
 use crate::primitive::Primitive;
 

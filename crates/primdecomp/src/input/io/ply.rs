@@ -10,7 +10,7 @@
 
 use super::text::{parse_f64, parse_i64, show, tokens, Lines};
 use crate::error::{Error, Result};
-use crate::mesh::MeshBuilder;
+use crate::input::mesh::MeshBuilder;
 use std::path::Path;
 
 /// Parses a PLY file (any of the three encodings) into positions and polygons.

@@ -1,8 +1,8 @@
 //! The vertex, face and corner counts an input declares, read before parsing and
-//! without allocating, for the memory limit (`crate::memory`).
+//! without allocating, for the memory limit (`crate::input::memory`).
 
 use super::{text, Format};
-use crate::memory::Counts;
+use crate::input::memory::Counts;
 
 /// Counts an input claims, read without allocating: `None` for glTF/GLB (its counts
 /// live in the JSON; the parsed mesh is checked instead) and for files whose header

@@ -9,8 +9,8 @@
 //! one by what rays from its faces see (`visibility`, docs/decisions/0027), and by its signed
 //! volume only when they cannot tell.
 
+use super::mesh::Mesh;
 use super::visibility::{self, RayTree};
-use super::Mesh;
 use crate::math::{cross, dot, sub, V3};
 use std::collections::VecDeque;
 
@@ -184,7 +184,7 @@ mod tests {
             .map(|i| [(i & 1) as f64, ((i >> 1) & 1) as f64, ((i >> 2) & 1) as f64])
             .collect();
         // The demo's box quads: corner i has bit k set at the high end of axis k.
-        let mut f: Vec<Vec<u32>> = crate::demo::BOX_FACES
+        let mut f: Vec<Vec<u32>> = crate::input::demo::BOX_FACES
             .map(|q| q.map(|i| i as u32).to_vec())
             .to_vec();
         for &i in flip {

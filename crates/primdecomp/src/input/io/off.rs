@@ -9,7 +9,7 @@
 
 use super::text::{parse_f64, parse_i64, show, strip_comment, tokens, Lines};
 use crate::error::{Error, Result};
-use crate::mesh::MeshBuilder;
+use crate::input::mesh::MeshBuilder;
 use std::path::Path;
 
 /// Parses an ASCII OFF file into positions and polygons.

@@ -17,11 +17,11 @@
 //! The default scene (or scene 0) is walked with node transforms composed in f64;
 //! a file without scenes contributes every mesh once, untransformed. Triangle lists,
 //! strips and fans become triangles; points and lines primitives are counted in
-//! [`SkipCounts::other`](crate::mesh::SkipCounts::other).
+//! [`SkipCounts::other`](crate::input::mesh::SkipCounts::other).
 
 use super::{open_checked, LoadOptions, OpenFail};
 use crate::error::{reason, Error, Result};
-use crate::mesh::MeshBuilder;
+use crate::input::mesh::MeshBuilder;
 use gltf::accessor::sparse::IndexType;
 use gltf::accessor::{DataType, Dimensions};
 use gltf::json::validation::Validate;

@@ -7,8 +7,8 @@
 //!
 //! `datasets/demo_scene.obj` is [`demo_scene_obj`]'s output, checked by a test.
 
+use crate::input::mesh::{Mesh, MeshBuilder};
 use crate::math::{add, madd, scale, V3};
-use crate::mesh::{Mesh, MeshBuilder};
 use std::collections::HashMap;
 use std::f64::consts::{FRAC_PI_2, TAU};
 use std::fmt::Write;

@@ -5,7 +5,7 @@
 //! scanners mostly write them). A result records the axis and where it came from
 //! ([`crate::InputInfo::up`]), and the exports and the viewer read it from there.
 
-use crate::mesh::io::Format;
+use crate::input::io::Format;
 use serde::{Serialize, Serializer};
 
 /// An up axis.

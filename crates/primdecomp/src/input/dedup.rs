@@ -4,7 +4,7 @@
 //! point at the lowest-numbered vertex of each group, so results do not depend on
 //! thread count).
 
-use super::Mesh;
+use super::mesh::Mesh;
 use crate::params::Dedup;
 use crate::progress::GoOn;
 use rayon::prelude::*;

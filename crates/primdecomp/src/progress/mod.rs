@@ -4,6 +4,8 @@
 //! cancelled run stops within one check interval of every loop (a few thousand merges,
 //! a block of seed fits) and returns [`crate::Error::Cancelled`].
 
+pub(crate) mod wallclock;
+
 /// A stage of a run, in the order they run.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Stage {
@@ -130,7 +132,7 @@ pub struct Estimate {
 /// ```
 #[derive(Debug)]
 pub struct Eta {
-    start: crate::wallclock::Instant,
+    start: crate::progress::wallclock::Instant,
     /// Each stage's share of the run, in [`Stage::ALL`]'s order.
     shares: [f64; 6],
 }
@@ -145,7 +147,7 @@ impl Eta {
     /// An estimate for a run of `params`, starting now.
     pub fn new(params: &crate::Params) -> Eta {
         Eta {
-            start: crate::wallclock::Instant::now(),
+            start: crate::progress::wallclock::Instant::now(),
             shares: if params.uses_cut() {
                 CUT_SHARES
             } else {

@@ -14,7 +14,7 @@ mod ply;
 mod stl;
 
 use crate::error::{Error, FileKind, Result};
-use crate::mesh::{Mesh, MeshBuilder};
+use crate::input::mesh::{Mesh, MeshBuilder};
 use std::fs::{File, Metadata};
 use std::path::Path;
 
@@ -490,7 +490,7 @@ pub fn memory_needed(path: &Path) -> Option<u64> {
     let map = unsafe { memmap2::Mmap::map(&file) }.ok()?;
     // Reading maps the whole file: its size is a floor of the need.
     declared::declared_counts(&map, format)
-        .map(|c| crate::memory::estimate(c, crate::memory::Run::Cut).max(meta.len()))
+        .map(|c| crate::input::memory::estimate(c, crate::input::memory::Run::Cut).max(meta.len()))
 }
 
 /// Reads the mesh in `path` (OBJ, PLY, STL, OFF, glTF/GLB, by its extension):
@@ -541,9 +541,9 @@ pub fn load_with(path: &Path, options: &LoadOptions) -> Result<Mesh> {
     })?;
     let max_memory = options.max_memory;
     let run = if options.greedy_only {
-        crate::memory::Run::Greedy
+        crate::input::memory::Run::Greedy
     } else {
-        crate::memory::Run::Cut
+        crate::input::memory::Run::Cut
     };
     if let Some(limit) = max_memory.filter(|&l| meta.len() > l) {
         // The mapped file becomes resident as it is read: a file larger than the limit
@@ -571,17 +571,17 @@ pub fn load_with(path: &Path, options: &LoadOptions) -> Result<Mesh> {
         })?;
         let declared = declared::declared_counts(&map, format);
         if let (Some(limit), Some(counts)) = (max_memory, declared) {
-            crate::memory::check(path, counts, run, limit)?;
+            crate::input::memory::check(path, counts, run, limit)?;
         }
         parse_bytes_with(&map, format, path, options)?
     };
     if let Some(limit) = max_memory {
-        let counts = crate::memory::Counts {
+        let counts = crate::input::memory::Counts {
             vertices: builder.positions.len() as u64,
             faces: builder.face_count() as u64,
             corners: builder.face_indices.len() as u64,
         };
-        crate::memory::check(path, counts, run, limit)?;
+        crate::input::memory::check(path, counts, run, limit)?;
     }
     let world = options
         .keep_world_coordinates

@@ -13,7 +13,7 @@
 //! it coarsened on large inputs until each cell listed thousands of faces, and
 //! 14M faces took minutes per ray batch.
 
-use super::Mesh;
+use super::mesh::Mesh;
 use crate::math::bvh::Bvh;
 use crate::math::{cross, dot, norm, sub, V3};
 
@@ -41,7 +41,7 @@ impl<'a> RayTree<'a> {
         let (lo, hi) = mesh.aabb();
         let bbox = |f: u32| {
             let vs = mesh.face(f as usize);
-            super::aabb_of(vs.iter().map(|&v| mesh.pos(v)))
+            super::mesh::aabb_of(vs.iter().map(|&v| mesh.pos(v)))
         };
         RayTree {
             mesh,
@@ -127,7 +127,7 @@ pub fn vote(grid: &RayTree, members: &[u32], sign: &[i8], quota: usize) -> Optio
     let q = quota.clamp(1, members.len().max(1));
     for i in 0..q.min(members.len()) {
         let f = members[i * members.len() / q];
-        let Some((n, c, len)) = super::outward_normal_and_centre(mesh, sign, f) else {
+        let Some((n, c, len)) = super::mesh::outward_normal_and_centre(mesh, sign, f) else {
             continue;
         };
         sum += 0.5 * len * f64::from(grid.side_score(c, n, f));

@@ -5,7 +5,7 @@
 //! The need is a linear model of the input's vertex and triangle counts, one for the
 //! greedy run and one for the cut, fitted on the peak resident memory of CLI runs (see
 //! [`estimate`]). The counts come from the
-//! file before parsing (`mesh::io::declared_counts`: header counts for PLY, OFF and
+//! file before parsing (`input::io::declared_counts`: header counts for PLY, OFF and
 //! binary STL, a byte scan for OBJ and ASCII STL, each capped by what the file's size
 //! could hold) and again, exactly, from the parsed mesh (which also covers glTF, whose
 //! counts live in its JSON). The parsers themselves cap every reservation by the file

@@ -2,14 +2,6 @@
 //! struct-of-arrays positions, re-centred in f64, and polygons in CSR form.
 //! Nothing else from the file is kept.
 
-pub(crate) mod adjacency;
-pub(crate) mod dedup;
-pub(crate) mod io;
-pub(crate) mod orient;
-pub(crate) mod solid;
-pub(crate) mod triangles;
-pub(crate) mod visibility;
-
 use crate::math::V3;
 
 /// Largest distance of any vertex from the centre of the mesh's bounding box that the

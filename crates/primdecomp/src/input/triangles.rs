@@ -3,9 +3,9 @@
 //! the merge tree's node errors (`cut::error`, nearest triangle) and plates thickened
 //! inward (`postprocess::thicken`, first triangle along a ray).
 
+use crate::input::mesh::Mesh;
 use crate::math::bvh::{point_tri_dist2, ray_tri, tri_box, Bvh};
 use crate::math::V3;
-use crate::mesh::Mesh;
 
 /// The input's surface as triangles (fan-triangulated polygons, re-centred frame)
 /// with a hierarchy over them. The triangles are stored in the hierarchy's order
@@ -159,7 +159,7 @@ mod tests {
     /// The hierarchy's nearest distance equals a linear scan over every triangle.
     #[test]
     fn nearest_matches_a_linear_scan() {
-        let mesh = crate::demo::demo_scene();
+        let mesh = crate::input::demo::demo_scene();
         let s = Triangles::new(&mesh);
         let mut stack = Vec::new();
         for i in 0..200u32 {

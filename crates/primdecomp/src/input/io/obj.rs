@@ -7,12 +7,12 @@
 //! `o` and `g` name the objects the following faces belong to ([`Mesh::objects`]). Lines ending in `\` continue on the next line. The file is parsed as bytes,
 //! so non-UTF-8 content never panics; `\n`, `\r\n` and `\r` line ends all work.
 //!
-//! [`SkipCounts::short_faces`]: crate::mesh::SkipCounts::short_faces
-//! [`Mesh::objects`]: crate::mesh::Mesh::objects
+//! [`SkipCounts::short_faces`]: crate::input::mesh::SkipCounts::short_faces
+//! [`Mesh::objects`]: crate::input::mesh::Mesh::objects
 
 use super::text::{parse_f64, parse_i64, show, strip_comment, tokens, Lines};
 use crate::error::{Error, Result};
-use crate::mesh::MeshBuilder;
+use crate::input::mesh::MeshBuilder;
 use std::path::Path;
 
 /// Parses an OBJ file into world-space positions and polygons.

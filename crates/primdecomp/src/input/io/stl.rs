@@ -10,7 +10,7 @@
 
 use super::text::{parse_f64, show, tokens, Lines};
 use crate::error::{Error, Result};
-use crate::mesh::MeshBuilder;
+use crate::input::mesh::MeshBuilder;
 use std::path::Path;
 
 const HEADER: usize = 84;

@@ -19,7 +19,7 @@
 //! parities are kept, so a face given twice (two-sided) cancels itself: such a part
 //! has no inside and is priced as in the paper, never filled by mistake.
 
-use super::Mesh;
+use super::mesh::Mesh;
 use crate::math::V3;
 use crate::primitive::Primitive;
 
@@ -311,7 +311,7 @@ mod tests {
 
     /// The quads as a mesh; it is re-centred, so queries go through [`at`].
     fn mesh_of(quads: &[[V3; 4]]) -> Mesh {
-        let mut b = super::super::MeshBuilder::new();
+        let mut b = super::super::mesh::MeshBuilder::new();
         for q in quads {
             let base = b.positions.len() as u32;
             b.positions.extend_from_slice(q);
@@ -336,7 +336,7 @@ mod tests {
         };
         (0..6)
             .filter(|f| !skip.contains(f))
-            .map(|f| crate::demo::BOX_FACES[f].map(c))
+            .map(|f| crate::input::demo::BOX_FACES[f].map(c))
             .collect()
     }
 

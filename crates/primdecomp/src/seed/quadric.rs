@@ -10,8 +10,8 @@
 //!   planar), t = v₀ − v₂ + v₁ − v₃.
 //! - Larger polygons: a triangle fan from vertex 0, each triangle with its own normal.
 
+use crate::input::mesh::Mesh;
 use crate::math::{add, cross, norm, normalize, sub, Sym3, V3};
-use crate::mesh::Mesh;
 use rayon::prelude::*;
 
 /// Faces per parallel chunk.

@@ -13,7 +13,7 @@
 use crate::decompose::decompose;
 use crate::error::Result;
 use crate::export::frame::{conservative, Frame};
-use crate::mesh::Mesh;
+use crate::input::mesh::Mesh;
 use crate::params::Params;
 use crate::primitive::Primitive;
 use crate::result::{Decomposition, InputInfo};

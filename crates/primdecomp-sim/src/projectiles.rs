@@ -565,8 +565,11 @@ mod tests {
         let level = |n, solid, min_thickness| {
             let p = primdecomp::Params {
                 goal: primdecomp::Goal::counts([n]),
-                solid,
-                min_thickness,
+                plates: primdecomp::Plates {
+                    solid,
+                    min_thickness,
+                    ..Default::default()
+                },
                 ..Default::default()
             };
             primdecomp::decompose(&mesh, &p)

@@ -72,16 +72,16 @@ fn stages(c: &mut Criterion) {
         if let Some(path) = &inp.path {
             g.bench_function("load", |b| b.iter(|| load(path).unwrap()));
         }
-        g.bench_function("dedup", |b| b.iter(|| weld(m, p.dedup)));
-        let (welded, _) = weld(m, p.dedup);
+        g.bench_function("dedup", |b| b.iter(|| weld(m, p.fit.dedup)));
+        let (welded, _) = weld(m, p.fit.dedup);
         g.bench_function("adjacency", |b| b.iter(|| face_pairs(m, &welded)));
         let pairs = face_pairs(m, &welded);
         // Setup never relies on a bench closure having run (filters skip them).
         let mut q = Vec::new();
-        face_quadrics(m, p.tangent_eps, &mut q);
+        face_quadrics(m, p.fit.tangent_eps, &mut q);
         let mut q_bench = Vec::new();
         g.bench_function("quadrics", |b| {
-            b.iter(|| face_quadrics(m, p.tangent_eps, &mut q_bench))
+            b.iter(|| face_quadrics(m, p.fit.tangent_eps, &mut q_bench))
         });
         let ev = evaluator(m, &welded, &p, m.aabb());
         g.bench_function("seed", |b| b.iter(|| seed_volumes(&ev, &q)));

@@ -91,8 +91,8 @@ pub use input::io::{
 };
 pub use input::mesh::{Mesh, MeshObject, SkipCounts, Transform};
 pub use params::{
-    ByteSize, CountSearch, Dedup, Goal, Params, Partitions, Reprice, Tolerance, DEFAULT_TOLERANCE,
-    MAX_PRIMITIVES,
+    ByteSize, CountSearch, Dedup, Fit, Goal, Params, Partitions, Plates, Reprice, Speed, Tolerance,
+    DEFAULT_TOLERANCE, MAX_PRIMITIVES,
 };
 pub use primitive::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
 pub use progress::{Estimate, Eta, Progress, Stage};

@@ -1,7 +1,10 @@
-//! Settings of a decomposition. The paper's settings come first (§3.3 weights, §3.4
-//! deduplication, tangent term and clean-up); then what our fixes to it do for a user,
-//! each on by default and each recorded under `docs/decisions/`; then speed. A run's
-//! settings are written into its JSON (`settings`) and read back by
+//! Settings of a decomposition: what the user asks for ([`Goal`]: counts, a tolerance
+//! or a byte budget), then three groups named for what they do: [`Fit`] (which
+//! primitives and how a merge is priced: §3.3 weights, §3.4 deduplication and tangent
+//! term), [`Plates`] (how flat parts, holes and nested primitives come out: §3.4's
+//! clean-up and our fixes to it, each on by default and each recorded under
+//! `docs/decisions/`) and [`Speed`]. A run's settings are written into its JSON
+//! (`settings`, the flat shape of `params/json.rs`) and read back by
 //! [`Params::from_json`], so a result can be reproduced from its own file.
 
 mod goal;
@@ -159,11 +162,13 @@ impl<'de> Deserialize<'de> for Partitions {
     }
 }
 
-/// All settings of a run: what is asked for ([`Goal`]), then how primitives are fitted.
-/// `Params::default()` is the recommended configuration: the fewest primitives within
-/// [`DEFAULT_TOLERANCE`] of the input, at most [`MAX_PRIMITIVES`]. Change only what you
-/// need, as in `Params { goal: Goal::counts([200, 50]), ..Params::default() }` (two
-/// levels of at most 200 and 50 primitives) or
+/// All settings of a run: what is asked for ([`Goal`]), then what the primitives may
+/// be ([`Fit`]), how flat parts, holes and nested primitives come out ([`Plates`]),
+/// and how fast the merge runs ([`Speed`]). `Params::default()` is the recommended
+/// configuration: the fewest primitives within [`DEFAULT_TOLERANCE`] of the input, at
+/// most [`MAX_PRIMITIVES`]. Change only what you need, as in
+/// `Params { goal: Goal::counts([200, 50]), ..Params::default() }` (two levels of at
+/// most 200 and 50 primitives) or
 /// `Params { goal: Goal::tolerance(Tolerance::Diagonal(0.005)), ..Params::default() }`.
 /// Results record the settings in the JSON shape [`Params::from_json`] reads.
 ///
@@ -171,18 +176,38 @@ impl<'de> Deserialize<'de> for Partitions {
 /// |---|---|---|---|
 /// | `goal`'s tolerance | 2% of the diagonal | fewer, larger primitives | tighter fit, more primitives |
 /// | `goal`'s counts | none: the tolerance decides | more, smaller primitives: tighter fit, more bytes | coarser colliders |
-/// | `weights[kind]` | box, sphere, capsule 1; cylinder 1.05; frustum 2.1; prism 1.4 | that kind is chosen less often | that kind is chosen more often |
-/// | `min_extent` | 5e-4 | thin parts get thicker primitives | flatter plates |
-/// | `open_holes` | 0.01 | holes and gaps in flat surfaces stay open at lower counts | 0: the paper's pricing (a roof's rim closes into a lid) |
-/// | `rim_weight` | 1 | primitives keep further off the faces beside them | 0: volume alone (a plate may stand past a wall's top as a curb) |
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+/// | `fit.weights[kind]` | box, sphere, capsule 1; cylinder 1.05; frustum 2.1; prism 1.4 | that kind is chosen less often | that kind is chosen more often |
+/// | `fit.min_extent` | 5e-4 | thin parts get thicker primitives | flatter plates |
+/// | `plates.open_holes` | 0.01 | holes and gaps in flat surfaces stay open at lower counts | 0: the paper's pricing (a roof's rim closes into a lid) |
+/// | `plates.rim_weight` | 1 | primitives keep further off the faces beside them | 0: volume alone (a plate may stand past a wall's top as a curb) |
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(try_from = "json::Settings", into = "json::Settings")]
 pub struct Params {
     /// What the run is asked for: counts, a tolerance or a byte budget, one
     /// [`crate::Level`] each.
     pub goal: Goal,
+    /// Which primitives may be fitted and how a merge is priced (§3.3, §3.4).
+    pub fit: Fit,
+    /// How flat parts, holes, rims and nested primitives come out: the paper's
+    /// clean-up (§3.4) and our fixes to it, each on by default and each recorded under
+    /// `docs/decisions/`.
+    pub plates: Plates,
+    /// How fast the merge runs (the same quality within measurement noise).
+    pub speed: Speed,
+}
 
-    // --- The paper's settings (§3.3, §3.4) ---
+/// Which primitives may be fitted and how a merge is priced (§3.3, §3.4).
+///
+/// ```
+/// use primdecomp::{Fit, Kind, Params};
+///
+/// let mut kinds = [false; 6];
+/// kinds[Kind::Box as usize] = true;
+/// let boxes = Params { fit: Fit { kinds, ..Fit::default() }, ..Params::default() };
+/// assert!(boxes.validate().is_ok());
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Fit {
     /// Which kinds may be fitted, indexed by `Kind as usize` ([`Kind::ALL`] order).
     pub kinds: [bool; 6],
     /// Cost weight k(kind) per kind, indexed by `Kind as usize`: a merge costs k·V, V
@@ -191,7 +216,8 @@ pub struct Params {
     /// ε of the tangent term in each face's quadric Q = area·(nnᵀ + ε·ttᵀ) (§3.4
     /// "Coplanar Vertices"): flat clusters align with their edges; 0 disables it.
     pub tangent_eps: f64,
-    /// Vertex deduplication before adjacency (§3.4).
+    /// Which vertices count as one before adjacency (§3.4): what the merge sees as
+    /// connected.
     pub dedup: Dedup,
     /// Smallest half-extent of any primitive, as a fraction of the input's bounding-box
     /// diagonal (the paper's absolute 1e-3, made relative so that results do not
@@ -201,14 +227,31 @@ pub struct Params {
     /// (§3.3); `None` = unlimited. A capped merge has no queue entry to defer, so this
     /// needs [`Reprice::Exact`] (checked by [`Params::validate`]).
     pub max_excess_volume: Option<f64>,
-    /// Remove primitives whose faces all lie inside another primitive (§3.4
-    /// "Removing Redundant Primitives"); never loses coverage.
-    pub remove_nested: bool,
-    /// Also remove boxes whose smallest half-extent is below this fraction of the
-    /// diagonal when other primitives cover all their faces (the paper's Bistro figure).
-    pub remove_thin_boxes: Option<f64>,
+}
 
-    // --- What our fixes to the paper do for you (docs/decisions) ---
+impl Default for Fit {
+    fn default() -> Self {
+        Fit {
+            kinds: [true; 6],
+            weights: [1.0, 1.0, 1.0, 1.05, 2.1, 1.4],
+            tangent_eps: 0.01,
+            dedup: Dedup::Exact,
+            min_extent: 5e-4,
+            max_excess_volume: None,
+        }
+    }
+}
+
+/// How flat parts, holes, rims and nested primitives come out.
+///
+/// ```
+/// use primdecomp::{Params, Plates};
+///
+/// let thick = Params { plates: Plates { min_thickness: 0.3, ..Plates::default() }, ..Params::default() };
+/// assert!(thick.validate().is_ok());
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Plates {
     /// Keeps holes and gaps in flat surfaces open: merges of coplanar clusters are
     /// priced as if the primitive were at least this thick (half-extent, a fraction of
     /// the diagonal), so a roof's rim stays a rim instead of closing into a lid; other
@@ -239,32 +282,48 @@ pub struct Params {
     /// most 0.6 of the part's depth: fast bodies stop at them between discrete physics
     /// steps. 0 = off, plates 2 × `min_extent` thick (docs/decisions/0033).
     pub min_thickness: f64,
-
-    // --- Speed (same quality within measurement noise) ---
-    /// When merged clusters' candidate merges are re-priced.
-    pub reprice: Reprice,
-    /// Spatial parts merged in parallel before the global loop.
-    pub partitions: Partitions,
+    /// Remove primitives whose faces all lie inside another primitive (§3.4
+    /// "Removing Redundant Primitives"); never loses coverage.
+    pub remove_nested: bool,
+    /// Also remove boxes whose smallest half-extent is below this fraction of the
+    /// diagonal when other primitives cover all their faces (the paper's Bistro figure).
+    pub remove_thin_boxes: Option<f64>,
 }
 
-impl Default for Params {
+impl Default for Plates {
     fn default() -> Self {
-        Params {
-            goal: Goal::default(),
-            kinds: [true; 6],
-            weights: [1.0, 1.0, 1.0, 1.05, 2.1, 1.4],
-            tangent_eps: 0.01,
-            dedup: Dedup::Exact,
-            min_extent: 5e-4,
-            max_excess_volume: None,
-            remove_nested: true,
-            remove_thin_boxes: None,
+        Plates {
             open_holes: 0.01,
             rim_weight: 1.0,
             flush_plates: true,
             join_coplanar: true,
             solid: false,
             min_thickness: 0.0,
+            remove_nested: true,
+            remove_thin_boxes: None,
+        }
+    }
+}
+
+/// How fast the merge runs: the same quality within measurement noise.
+///
+/// ```
+/// use primdecomp::{Params, Partitions, Speed};
+///
+/// let one_loop = Params { speed: Speed { partitions: Partitions::Fixed(1), ..Speed::default() }, ..Params::default() };
+/// assert!(one_loop.validate().is_ok());
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Speed {
+    /// When merged clusters' candidate merges are re-priced.
+    pub reprice: Reprice,
+    /// Spatial parts merged in parallel before the global loop.
+    pub partitions: Partitions,
+}
+
+impl Default for Speed {
+    fn default() -> Self {
+        Speed {
             reprice: Reprice::Deferred { min_degree: 64 },
             partitions: Partitions::Auto,
         }
@@ -285,9 +344,10 @@ impl Params {
     /// an error. A result's own settings give back its primitives.
     ///
     /// ```
-    /// use primdecomp::{decompose, demo_scene, to_json, Goal, Params};
+    /// use primdecomp::{decompose, demo_scene, to_json, Goal, Params, Plates};
     ///
-    /// let params = Params { goal: Goal::counts([40]), rim_weight: 0.5, ..Params::default() };
+    /// let plates = Plates { rim_weight: 0.5, ..Plates::default() };
+    /// let params = Params { goal: Goal::counts([40]), plates, ..Params::default() };
     /// let first = decompose(&demo_scene(), &params)?;
     /// let json = to_json(&first, 0, &params);
     /// let again = Params::from_json(&json)?;
@@ -334,11 +394,11 @@ impl Params {
             }
         };
         self.goal.validate()?;
-        if !self.kinds.iter().any(|&k| k) {
+        if !self.fit.kinds.iter().any(|&k| k) {
             return bad("at least one primitive kind must be enabled".into());
         }
         for k in Kind::ALL {
-            let w = self.weights[k as usize];
+            let w = self.fit.weights[k as usize];
             if !(w.is_finite() && w > 0.0) {
                 return bad(format!(
                     "weight of {} must be a positive number, got {w}",
@@ -347,21 +407,21 @@ impl Params {
             }
         }
         for (name, x) in [
-            ("tangent_eps", self.tangent_eps),
-            ("rim_weight", self.rim_weight),
+            ("tangent_eps", self.fit.tangent_eps),
+            ("rim_weight", self.plates.rim_weight),
         ] {
             if !(x.is_finite() && x >= 0.0) {
                 return bad(format!("{name} must be ≥ 0, got {x}"));
             }
         }
-        fraction("min_extent", self.min_extent, false)?;
-        fraction("open_holes", self.open_holes, true)?;
-        fraction("min_thickness", self.min_thickness, true)?;
-        if let Some(m) = self.max_excess_volume {
+        fraction("min_extent", self.fit.min_extent, false)?;
+        fraction("open_holes", self.plates.open_holes, true)?;
+        fraction("min_thickness", self.plates.min_thickness, true)?;
+        if let Some(m) = self.fit.max_excess_volume {
             if !(m.is_finite() && m >= 0.0) {
                 return bad(format!("max_excess_volume must be ≥ 0, got {m}"));
             }
-            if self.reprice != Reprice::Exact {
+            if self.speed.reprice != Reprice::Exact {
                 return bad(
                     "max_excess_volume needs reprice: exact (a merge over the cap has no queue \
                      entry whose re-pricing could be deferred)"
@@ -369,19 +429,19 @@ impl Params {
                 );
             }
         }
-        if let Partitions::Fixed(k) = self.partitions {
+        if let Partitions::Fixed(k) = self.speed.partitions {
             if !(1..=MAX_PARTITIONS).contains(&k) {
                 return bad(format!(
                     "partitions must be auto or from 1 to {MAX_PARTITIONS}, got {k}"
                 ));
             }
         }
-        if let Dedup::Tolerance(t) = self.dedup {
+        if let Dedup::Tolerance(t) = self.fit.dedup {
             if !(t.is_finite() && t >= 0.0) {
                 return bad(format!("dedup tolerance must be ≥ 0, got {t}"));
             }
         }
-        if let Some(t) = self.remove_thin_boxes {
+        if let Some(t) = self.plates.remove_thin_boxes {
             if !(t.is_finite() && t >= 0.0) {
                 return bad(format!("remove_thin_boxes must be ≥ 0, got {t}"));
             }
@@ -422,20 +482,30 @@ mod tests {
     fn settings_round_trip_through_json() {
         for partitions in [Partitions::Auto, Partitions::Fixed(1), Partitions::Fixed(8)] {
             let p = Params {
-                partitions,
                 goal: Goal::counts([7, 3]),
-                kinds: [true, false, true, true, false, true],
-                dedup: Dedup::Tolerance(0.25),
-                reprice: Reprice::Exact,
-                max_excess_volume: Some(0.1),
-                remove_thin_boxes: Some(0.01),
-                ..Default::default()
+                fit: Fit {
+                    kinds: [true, false, true, true, false, true],
+                    dedup: Dedup::Tolerance(0.25),
+                    max_excess_volume: Some(0.1),
+                    ..Default::default()
+                },
+                plates: Plates {
+                    remove_thin_boxes: Some(0.01),
+                    ..Default::default()
+                },
+                speed: Speed {
+                    partitions,
+                    reprice: Reprice::Exact,
+                },
             };
             let json = serde_json::to_string(&p).unwrap();
             assert_eq!(Params::from_json(&json).unwrap(), p, "{json}");
         }
         let zero = Params {
-            partitions: Partitions::Fixed(0),
+            speed: Speed {
+                partitions: Partitions::Fixed(0),
+                ..Default::default()
+            },
             ..Default::default()
         };
         assert!(zero.validate().is_err());
@@ -456,7 +526,7 @@ mod tests {
         assert!(err(r#"{"max_excess_volume": 0.1}"#).contains("reprice: exact"));
         let p = Params::from_json(r#"{"targets": [5], "solid": true}"#).unwrap();
         assert_eq!(
-            (p.goal, p.solid, p.rim_weight),
+            (p.goal, p.plates.solid, p.plates.rim_weight),
             (Goal::counts([5]), true, 1.0)
         );
     }

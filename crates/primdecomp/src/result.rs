@@ -33,7 +33,7 @@ pub struct InputInfo {
 
 impl InputInfo {
     /// The length of the bounding box's diagonal (what relative settings such as
-    /// [`crate::Params::min_extent`] and [`crate::Tolerance::Diagonal`] scale by).
+    /// [`crate::Fit::min_extent`] and [`crate::Tolerance::Diagonal`] scale by).
     pub fn diagonal(&self) -> f64 {
         crate::math::norm(crate::math::sub(self.aabb_max, self.aabb_min))
     }

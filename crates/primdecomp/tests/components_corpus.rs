@@ -10,7 +10,7 @@
 //! change round-off, see the module's doc). Needs `../shared/datasets/corpus`; says so
 //! loudly and returns when it is absent.
 
-use primdecomp::{decompose, Goal, Params, Reprice};
+use primdecomp::{decompose, Fit, Goal, Params, Reprice, Speed};
 
 /// Meshes of 4,096 faces or more whose largest component holds at most 60% of the
 /// faces (so the components phase applies): 26, 59 and 3 components.
@@ -19,8 +19,14 @@ const MESHES: [&str; 3] = ["cgal_bones.off", "truck_shrec.obj", "chair_model.obj
 fn params(targets: &[usize], cap: Option<f64>) -> Params {
     Params {
         goal: Goal::counts(targets.to_vec()),
-        reprice: Reprice::Exact,
-        max_excess_volume: cap,
+        fit: Fit {
+            max_excess_volume: cap,
+            ..Default::default()
+        },
+        speed: Speed {
+            reprice: Reprice::Exact,
+            ..Default::default()
+        },
         ..Default::default()
     }
 }

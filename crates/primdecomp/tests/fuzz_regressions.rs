@@ -1,7 +1,9 @@
 //! Inputs the fuzzers (`fuzz/`) found to break an invariant, each reduced to a test
 //! that failed before its fix. The comment on each says what must happen and why.
 
-use primdecomp::{decompose, CountSearch, Dedup, Error, Goal, Kind, Mesh, Params};
+use primdecomp::{
+    decompose, CountSearch, Dedup, Error, Fit, Goal, Kind, Mesh, Params, Plates, Speed,
+};
 use primdecomp_testkit::check::assert_valid;
 
 /// `fuzz/fuzz_targets/decompose.rs`, first run: one triangle at a 1e-30 scale welded
@@ -14,7 +16,10 @@ fn tolerance_weld_does_not_shrink_the_output() {
     let mesh = Mesh::from_polygons(&v, &[vec![0, 1, 1]]).unwrap();
     let params = Params {
         goal: Goal::counts([27]),
-        dedup: Dedup::Tolerance(10.0),
+        fit: Fit {
+            dedup: Dedup::Tolerance(10.0),
+            ..Default::default()
+        },
         ..Default::default()
     };
     assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
@@ -39,7 +44,10 @@ fn transitive_tolerance_weld_keeps_every_face_enclosed() {
     for n in [40, 4, 1] {
         let params = Params {
             goal: Goal::counts([n]),
-            dedup: Dedup::Tolerance(0.6),
+            fit: Fit {
+                dedup: Dedup::Tolerance(0.6),
+                ..Default::default()
+            },
             ..Default::default()
         };
         assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
@@ -74,9 +82,12 @@ fn thin_frustum_far_from_the_origin_keeps_its_face() {
     let mesh = Mesh::from_polygons(&v, &[vec![0, 1, 2, 2, 2, 2]]).unwrap();
     let params = Params {
         goal: Goal::counts([18]),
-        weights: [1.0, 1.4, 2.1, 1.05, 1e-9, 1.0],
-        tangent_eps: 1000.0,
-        dedup: Dedup::Off,
+        fit: Fit {
+            weights: [1.0, 1.4, 2.1, 1.05, 1e-9, 1.0],
+            tangent_eps: 1000.0,
+            dedup: Dedup::Off,
+            ..Default::default()
+        },
         ..Default::default()
     };
     let dec = decompose(&mesh, &params).unwrap();
@@ -107,8 +118,11 @@ fn round_only(kind: Kind, targets: Vec<usize>, min_extent: f64) -> Params {
     kinds[kind as usize] = true;
     Params {
         goal: Goal::counts(targets),
-        kinds,
-        min_extent,
+        fit: Fit {
+            kinds,
+            min_extent,
+            ..Default::default()
+        },
         ..Default::default()
     }
 }
@@ -165,10 +179,16 @@ fn faces_on_one_point_still_merge() {
     kinds[Kind::Prism as usize] = true;
     let params = Params {
         goal: Goal::counts([1, 3]),
-        weights: [1e-9, 2.1, 1e-9, 1.0, 1.0, 1.0],
-        kinds,
-        dedup: Dedup::Off,
-        remove_nested: false,
+        fit: Fit {
+            weights: [1e-9, 2.1, 1e-9, 1.0, 1.0, 1.0],
+            kinds,
+            dedup: Dedup::Off,
+            ..Default::default()
+        },
+        plates: Plates {
+            remove_nested: false,
+            ..Default::default()
+        },
         ..Default::default()
     };
     merges_to_one(&mesh, &params);
@@ -190,7 +210,10 @@ fn meshes_1e_minus_200_across_still_merge() {
     let mesh = Mesh::from_polygons(&v, &[vec![0, 1, 2], vec![3, 4, 5]]).unwrap();
     let params = Params {
         goal: Goal::counts([1]),
-        remove_nested: false,
+        plates: Plates {
+            remove_nested: false,
+            ..Default::default()
+        },
         ..Default::default()
     };
     merges_to_one(&mesh, &params);
@@ -208,9 +231,12 @@ fn coordinates_near_the_top_of_f64_are_refused() {
     let mesh = Mesh::from_polygons(&v, &[vec![0; 8]]).unwrap();
     let params = Params {
         goal: Goal::counts([37]),
-        weights: [1.0, 1.0, 1.0, 1.0, 1e-9, 1e9],
-        kinds: [false, true, true, false, true, true],
-        tangent_eps: 0.0,
+        fit: Fit {
+            weights: [1.0, 1.0, 1.0, 1.0, 1e-9, 1e9],
+            kinds: [false, true, true, false, true, true],
+            tangent_eps: 0.0,
+            ..Default::default()
+        },
         ..Default::default()
     };
     match decompose(&mesh, &params) {
@@ -247,9 +273,12 @@ fn minimum_extent_that_underflows_stays_positive() {
     let mesh = Mesh::from_polygons(&v, &f).unwrap();
     let params = Params {
         goal: Goal::counts([15]),
-        weights: [1.0, 1e-9, 1.0, 1.0, 1.0, 1.0],
-        dedup: Dedup::Off,
-        min_extent: 6.833639853623446e-304,
+        fit: Fit {
+            weights: [1.0, 1e-9, 1.0, 1.0, 1.0, 1.0],
+            dedup: Dedup::Off,
+            min_extent: 6.833639853623446e-304,
+            ..Default::default()
+        },
         ..Default::default()
     };
     assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
@@ -270,13 +299,19 @@ fn a_face_on_the_origin_gets_a_normal_sized_primitive() {
     let mesh = Mesh::from_polygons(&[[0.0; 3]], &[vec![0, 0, 0]]).unwrap();
     let params = Params {
         goal: Goal::counts([39]),
-        max_excess_volume: Some(0.0),
-        // A cap re-prices every merge at once (the run it came from did so implicitly).
-        reprice: primdecomp::Reprice::Exact,
-        weights: [1.05, 1.0, 1.05, 1.4, 1e-9, 1.4],
-        kinds: [true, true, true, true, false, true],
-        dedup: Dedup::Off,
-        min_extent: 0.5,
+        fit: Fit {
+            max_excess_volume: Some(0.0),
+            weights: [1.05, 1.0, 1.05, 1.4, 1e-9, 1.4],
+            kinds: [true, true, true, true, false, true],
+            dedup: Dedup::Off,
+            min_extent: 0.5,
+            ..Default::default()
+        },
+        speed: Speed {
+            // A cap re-prices every merge at once (the run it came from did so implicitly).
+            reprice: primdecomp::Reprice::Exact,
+            ..Default::default()
+        },
         ..Default::default()
     };
     assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
@@ -314,12 +349,18 @@ fn thin_box_removal_keeps_every_face_in_one_primitive() {
     let mesh = Mesh::from_polygons(&v, &f).unwrap();
     let params = Params {
         goal: Goal::counts([27]),
-        weights: [1.0, 1e-9, 1e-9, 1.05, 1.05, 1.05],
-        kinds: [true, false, true, false, true, false],
-        dedup: Dedup::Off,
-        min_extent: 1e-12,
-        remove_nested: false,
-        remove_thin_boxes: Some(0.001),
+        fit: Fit {
+            weights: [1.0, 1e-9, 1e-9, 1.05, 1.05, 1.05],
+            kinds: [true, false, true, false, true, false],
+            dedup: Dedup::Off,
+            min_extent: 1e-12,
+            ..Default::default()
+        },
+        plates: Plates {
+            remove_nested: false,
+            remove_thin_boxes: Some(0.001),
+            ..Default::default()
+        },
         ..Default::default()
     };
     assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
@@ -382,13 +423,21 @@ fn point_face_at_1e25_stays_enclosed() {
     let mesh = Mesh::from_polygons(&v, &f).unwrap();
     let params = Params {
         goal: Goal::counts([23, 13, 17]),
-        weights: [1.0; 6],
-        tangent_eps: 1.0,
-        min_extent: 1.26e-321,
-        open_holes: 0.0,
-        remove_thin_boxes: Some(0.1),
-        reprice: primdecomp::Reprice::Deferred { min_degree: 0 },
-        ..Default::default()
+        fit: Fit {
+            weights: [1.0; 6],
+            tangent_eps: 1.0,
+            min_extent: 1.26e-321,
+            ..Default::default()
+        },
+        plates: Plates {
+            open_holes: 0.0,
+            remove_thin_boxes: Some(0.1),
+            ..Default::default()
+        },
+        speed: Speed {
+            reprice: primdecomp::Reprice::Deferred { min_degree: 0 },
+            ..Default::default()
+        },
     };
     assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
 }

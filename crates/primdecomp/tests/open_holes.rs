@@ -1,9 +1,9 @@
 //! `Params::merge_min_extent_rel` (`--merge-min-extent`): merges priced as if every
 //! primitive were at least that thick, output primitives as thin as `min_extent`;
-//! `Params::open_holes` (`--flat-merge-extent`): the same for merges of
+//! `Plates::open_holes` (`--flat-merge-extent`): the same for merges of
 //! coplanar clusters only.
 
-use primdecomp::{decompose, demo_scene, CountSearch, Error, Goal, Mesh, Params};
+use primdecomp::{decompose, demo_scene, CountSearch, Error, Goal, Mesh, Params, Plates};
 use primdecomp_testkit::check::assert_valid;
 use primdecomp_testkit::corpus_mesh;
 
@@ -27,7 +27,10 @@ fn with_flat(target: usize, flat: f64) -> Params {
             counts: vec![target],
             search: CountSearch::Greedy,
         },
-        open_holes: flat,
+        plates: Plates {
+            open_holes: flat,
+            ..Default::default()
+        },
         ..Default::default()
     }
 }

@@ -1,10 +1,10 @@
-//! `Params::solid` (docs/decisions/0023-merges-priced-by-the-air-they-add.md): merges priced by
+//! `Plates::solid` (docs/decisions/0023-merges-priced-by-the-air-they-add.md): merges priced by
 //! the volume their
 //! primitive adds outside the input. Off must be the default output exactly; on must
 //! keep the enclosure and thread independence; and a closed part must fill into solid
 //! primitives where the paper's pricing leaves it a shell of plates.
 
-use primdecomp::{decompose, demo_scene, CountSearch, Goal, Params};
+use primdecomp::{decompose, demo_scene, CountSearch, Goal, Params, Plates};
 use primdecomp_testkit::check::{assert_default_output, assert_same_on_threads, assert_valid};
 use primdecomp_testkit::shapes::{cuboid, cylinder, join, mesh};
 
@@ -15,7 +15,10 @@ fn params(targets: &[usize], solid: bool) -> Params {
             counts: targets.to_vec(),
             search: CountSearch::Greedy,
         },
-        solid,
+        plates: Plates {
+            solid,
+            ..Default::default()
+        },
         ..Default::default()
     }
 }

@@ -211,7 +211,7 @@ fn cuts_enclose_and_improve_with_n() {
         }
         errors.push(worst_error(&mesh, &level.primitives));
     }
-    let floor = FLOOR_HALVES * p.min_extent * mesh.diagonal();
+    let floor = FLOOR_HALVES * p.fit.min_extent * mesh.diagonal();
     assert!(errors[0] > errors[2], "{errors:?}: the cut never helped");
     assert!(
         errors.windows(2).all(|w| w[1] <= w[0] + floor),

@@ -221,7 +221,7 @@ mod tests {
     use super::*;
     use crate::merge::driver::tests::{reprice_modes, with_input};
     use crate::merge::{run, Clusters};
-    use crate::Params;
+    use crate::{Params, Speed};
 
     /// The demo scene (several separate objects) merged to `targets` (decreasing) by
     /// the global loop alone and as a run does when components apply (phase 1, the
@@ -301,7 +301,10 @@ mod tests {
         let reprice = crate::Reprice::Deferred { min_degree: 0 };
         same_as_global(
             Params {
-                reprice,
+                speed: Speed {
+                    reprice,
+                    ..Default::default()
+                },
                 ..Params::default()
             },
             &all,
@@ -313,7 +316,10 @@ mod tests {
         let targets = demo_targets();
         for reprice in reprice_modes() {
             let p = Params {
-                reprice,
+                speed: Speed {
+                    reprice,
+                    ..Default::default()
+                },
                 ..Params::default()
             };
             same_as_global(p, &targets);
@@ -352,29 +358,35 @@ mod tests {
     }
 
     proptest::proptest! {
-        #![proptest_config(proptest::prelude::ProptestConfig::with_cases(24))]
-        /// Random scenes of 2–5 components of random sizes, at random targets from
-        /// every face down to one cluster (so above, at and below the component
-        /// count): the same primitives and members as the global loop, under fully
-        /// deferred and the default re-pricing.
-        #[test]
-        fn random_scenes_match_the_global_loop(
-            sizes in proptest::collection::vec((1u32..8, 1u32..8), 2..6),
-            seed in proptest::prelude::any::<u64>(),
-            cuts in proptest::collection::vec(0.0f64..1.0, 1..6),
-        ) {
-            let mesh = bumpy_grids(&sizes, seed);
-            let faces = mesh.face_count();
-            let mut targets: Vec<usize> =
-                cuts.iter().map(|c| 1 + (c * faces as f64) as usize).collect();
-            targets.push(sizes.len());
-            targets.sort_unstable_by(|a, b| b.cmp(a));
-            targets.dedup();
-            for reprice in [crate::Reprice::Deferred { min_degree: 0 }, Params::default().reprice] {
-                same_as_global_on(&mesh, Params { reprice, ..Params::default() }, &targets);
+            #![proptest_config(proptest::prelude::ProptestConfig::with_cases(24))]
+            /// Random scenes of 2–5 components of random sizes, at random targets from
+            /// every face down to one cluster (so above, at and below the component
+            /// count): the same primitives and members as the global loop, under fully
+            /// deferred and the default re-pricing.
+            #[test]
+            fn random_scenes_match_the_global_loop(
+                sizes in proptest::collection::vec((1u32..8, 1u32..8), 2..6),
+                seed in proptest::prelude::any::<u64>(),
+                cuts in proptest::collection::vec(0.0f64..1.0, 1..6),
+            ) {
+                let mesh = bumpy_grids(&sizes, seed);
+                let faces = mesh.face_count();
+                let mut targets: Vec<usize> =
+                    cuts.iter().map(|c| 1 + (c * faces as f64) as usize).collect();
+                targets.push(sizes.len());
+                targets.sort_unstable_by(|a, b| b.cmp(a));
+                targets.dedup();
+                for reprice in [crate::Reprice::Deferred { min_degree: 0 }, Params::default().speed.reprice] {
+                    same_as_global_on(&mesh, Params {
+        speed: Speed {
+            reprice,
+            ..Default::default()
+        },
+        ..Params::default()
+    }, &targets);
+                }
             }
         }
-    }
 
     /// Merges of two loops interleave by key, each loop's own order kept on equal keys.
     #[test]

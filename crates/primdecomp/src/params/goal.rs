@@ -53,7 +53,7 @@ pub enum CountSearch {
 pub enum Goal {
     /// One level per count, each of at most that many primitives: fewer where nested
     /// primitives are removed and where coplanar faces merge for free
-    /// ([`Params::join_coplanar`](crate::Params::join_coplanar)).
+    /// ([`Plates::join_coplanar`](crate::Plates::join_coplanar)).
     Counts {
         /// The counts, one level each, in the order given.
         counts: Vec<usize>,

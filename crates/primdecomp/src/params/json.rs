@@ -5,7 +5,7 @@
 //! `greedy`, `fill`) become one [`Goal`], and a combination no goal can be
 //! (a greedy or filled tolerance, fill without counts) is refused with its reason.
 
-use super::{CountSearch, Dedup, Goal, Params, Partitions, Reprice, Tolerance};
+use super::{CountSearch, Dedup, Fit, Goal, Params, Partitions, Plates, Reprice, Speed, Tolerance};
 use serde::{Deserialize, Serialize};
 
 /// Every setting under its JSON key, in the order results write them.
@@ -87,27 +87,27 @@ impl From<Params> for Settings {
         }
         Settings {
             targets: p.goal.targets(),
-            kinds: p.kinds,
-            weights: p.weights,
-            tangent_eps: p.tangent_eps,
-            dedup: p.dedup,
-            min_extent: p.min_extent,
-            max_excess_volume: p.max_excess_volume,
-            remove_nested: p.remove_nested,
-            remove_thin_boxes: p.remove_thin_boxes,
-            open_holes: p.open_holes,
-            rim_weight: p.rim_weight,
-            flush_plates: p.flush_plates,
-            join_coplanar: p.join_coplanar,
-            solid: p.solid,
-            min_thickness: p.min_thickness,
+            kinds: p.fit.kinds,
+            weights: p.fit.weights,
+            tangent_eps: p.fit.tangent_eps,
+            dedup: p.fit.dedup,
+            min_extent: p.fit.min_extent,
+            max_excess_volume: p.fit.max_excess_volume,
+            remove_nested: p.plates.remove_nested,
+            remove_thin_boxes: p.plates.remove_thin_boxes,
+            open_holes: p.plates.open_holes,
+            rim_weight: p.plates.rim_weight,
+            flush_plates: p.plates.flush_plates,
+            join_coplanar: p.plates.join_coplanar,
+            solid: p.plates.solid,
+            min_thickness: p.plates.min_thickness,
             fill,
             greedy,
             cut: p.goal.uses_cut(),
             tolerance,
             max_bytes,
-            reprice: p.reprice,
-            partitions: p.partitions,
+            reprice: p.speed.reprice,
+            partitions: p.speed.partitions,
         }
     }
 }
@@ -118,22 +118,28 @@ impl TryFrom<Settings> for Params {
     fn try_from(s: Settings) -> Result<Params, String> {
         Ok(Params {
             goal: goal(&s)?,
-            kinds: s.kinds,
-            weights: s.weights,
-            tangent_eps: s.tangent_eps,
-            dedup: s.dedup,
-            min_extent: s.min_extent,
-            max_excess_volume: s.max_excess_volume,
-            remove_nested: s.remove_nested,
-            remove_thin_boxes: s.remove_thin_boxes,
-            open_holes: s.open_holes,
-            rim_weight: s.rim_weight,
-            flush_plates: s.flush_plates,
-            join_coplanar: s.join_coplanar,
-            solid: s.solid,
-            min_thickness: s.min_thickness,
-            reprice: s.reprice,
-            partitions: s.partitions,
+            fit: Fit {
+                kinds: s.kinds,
+                weights: s.weights,
+                tangent_eps: s.tangent_eps,
+                dedup: s.dedup,
+                min_extent: s.min_extent,
+                max_excess_volume: s.max_excess_volume,
+            },
+            plates: Plates {
+                open_holes: s.open_holes,
+                rim_weight: s.rim_weight,
+                flush_plates: s.flush_plates,
+                join_coplanar: s.join_coplanar,
+                solid: s.solid,
+                min_thickness: s.min_thickness,
+                remove_nested: s.remove_nested,
+                remove_thin_boxes: s.remove_thin_boxes,
+            },
+            speed: Speed {
+                reprice: s.reprice,
+                partitions: s.partitions,
+            },
         })
     }
 }

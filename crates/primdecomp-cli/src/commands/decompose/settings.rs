@@ -23,7 +23,7 @@ pub(super) fn params_from(a: &DecomposeArgs) -> anyhow::Result<(Params, Vec<Targ
     set_parsed(&mut p, a)?;
     let (goal, targets) = goal_from(a, &p.goal)?;
     p.goal = goal;
-    if a.max_excess_volume.is_some() && p.reprice != Reprice::Exact {
+    if a.max_excess_volume.is_some() && p.speed.reprice != Reprice::Exact {
         return Err(BadArgs(
             "--max-excess-volume needs --reprice exact: a merge over the cap has no queue \
              entry whose re-pricing could be deferred"
@@ -122,50 +122,50 @@ fn set_plain(p: &mut Params, a: &DecomposeArgs) {
             *field = v;
         }
     };
-    set(&mut p.tangent_eps, a.tangent_eps);
-    set(&mut p.min_extent, a.min_extent);
-    set(&mut p.open_holes, a.open_holes);
-    set(&mut p.min_thickness, a.min_thickness);
-    set(&mut p.rim_weight, a.rim_weight);
+    set(&mut p.fit.tangent_eps, a.tangent_eps);
+    set(&mut p.fit.min_extent, a.min_extent);
+    set(&mut p.plates.open_holes, a.open_holes);
+    set(&mut p.plates.min_thickness, a.min_thickness);
+    set(&mut p.plates.rim_weight, a.rim_weight);
     if let Some(m) = a.max_excess_volume {
-        p.max_excess_volume = Some(m);
+        p.fit.max_excess_volume = Some(m);
     }
     if a.remove_thin_boxes.is_some() {
-        p.remove_thin_boxes = a.remove_thin_boxes;
+        p.plates.remove_thin_boxes = a.remove_thin_boxes;
     }
-    p.remove_nested &= !a.keep_nested;
-    p.flush_plates &= !a.no_flush_plates;
-    p.join_coplanar &= !a.no_join_coplanar;
-    p.solid |= a.solid;
+    p.plates.remove_nested &= !a.keep_nested;
+    p.plates.flush_plates &= !a.no_flush_plates;
+    p.plates.join_coplanar &= !a.no_join_coplanar;
+    p.plates.solid |= a.solid;
 }
 
 /// The flags a user spells (a tolerance, a size, a kind, `auto`…), each parsed with
 /// a message naming the flag.
 fn set_parsed(p: &mut Params, a: &DecomposeArgs) -> anyhow::Result<()> {
     if let Some(k) = &a.partitions {
-        p.partitions = spelled("--partitions", k)?;
+        p.speed.partitions = spelled("--partitions", k)?;
     }
     for w in &a.weights {
         let (k, v) = w
             .split_once('=')
             .ok_or_else(|| BadArgs(format!("--weights: expected kind=value, got '{w}'")))?;
         let kind: Kind = spelled("", k)?;
-        p.weights[kind as usize] = v
+        p.fit.weights[kind as usize] = v
             .trim()
             .parse()
             .map_err(|_| BadArgs(format!("--weights: '{v}' is not a number")))?;
     }
     if !a.kinds.is_empty() {
-        p.kinds = [false; 6];
+        p.fit.kinds = [false; 6];
         for k in &a.kinds {
-            p.kinds[spelled::<Kind>("", k)? as usize] = true;
+            p.fit.kinds[spelled::<Kind>("", k)? as usize] = true;
         }
     }
     if let Some(d) = &a.dedup {
-        p.dedup = spelled("--dedup", d)?;
+        p.fit.dedup = spelled("--dedup", d)?;
     }
     if let Some(r) = &a.reprice {
-        p.reprice = spelled("--reprice", r)?;
+        p.speed.reprice = spelled("--reprice", r)?;
     }
     Ok(())
 }

@@ -3,7 +3,7 @@
 //! JSON is the same bytes on 1 and 2 threads and the library's; what needs the whole
 //! mesh is refused with exit 2.
 
-use primdecomp::{decompose_tiled, to_json, LoadOptions, Params};
+use primdecomp::{decompose_tiled, to_json, Goal, LoadOptions, Params};
 use primdecomp_testkit::shapes::{icosphere, ply_bytes};
 use std::path::Path;
 use std::process::Command;
@@ -65,7 +65,7 @@ fn over_the_limit_tiles_instead_of_refusing() {
     let t1 = std::fs::read_to_string(dir.join("t1.json")).unwrap();
     assert_eq!(t1, std::fs::read_to_string(dir.join("t2.json")).unwrap());
     let params = Params {
-        targets: vec![50],
+        goal: Goal::counts([50]),
         ..Params::default()
     };
     let options = LoadOptions {

@@ -14,10 +14,10 @@
 //! [`primdecomp::Error`] naming the shape, never written.
 //!
 //! ```
-//! use primdecomp::{decompose, demo_scene, Params, ResultObject, Frame};
+//! use primdecomp::{decompose, demo_scene, Frame, Goal, Params, ResultObject};
 //! use primdecomp_export::{render, ExportOptions, Format};
 //!
-//! let result = decompose(&demo_scene(), &Params { targets: vec![40], ..Params::default() })?;
+//! let result = decompose(&demo_scene(), &Params { goal: Goal::counts([40]), ..Params::default() })?;
 //! let objects = [ResultObject {
 //!     name: "demo".into(),
 //!     frame: Frame::IDENTITY,

@@ -3,10 +3,10 @@
 //! (`Collider::from(shape)`).
 //!
 //! ```
-//! use primdecomp::{decompose, demo_scene, Params};
+//! use primdecomp::{decompose, demo_scene, Goal, Params};
 //! use primdecomp_parry::compound;
 //!
-//! let result = decompose(&demo_scene(), &Params { targets: vec![40], ..Params::default() })?;
+//! let result = decompose(&demo_scene(), &Params { goal: Goal::counts([40]), ..Params::default() })?;
 //! let colliders = compound(&result.levels[0].primitives)?;
 //! // One shape holding every primitive, relative to `colliders.origin`: place the
 //! // collider (or the body it is attached to) there.

@@ -416,8 +416,46 @@ impl NativeResult {
 }
 
 /// The native module; the public API is in python/primdecomp/__init__.py.
+/// A setting's value as a user spells it ("1%", "4K", "exact", "auto", "box"), read
+/// by the library's own `FromStr` (as the CLI reads its flags), given back as the JSON
+/// of the settings; a wrong word is a `ValueError` naming `key`.
+#[pyfunction]
+fn spelled(key: &str, text: &str) -> PyResult<String> {
+    fn json<T: std::str::FromStr<Err = Error> + serde::Serialize>(
+        s: &str,
+    ) -> Result<String, Error> {
+        let value: T = s.parse()?;
+        Ok(serde_json::to_string(&value).expect("settings serialize"))
+    }
+    let value = match key {
+        "tolerance" => json::<primdecomp::Tolerance>(text),
+        "dedup" => json::<primdecomp::Dedup>(text),
+        "reprice" => json::<primdecomp::Reprice>(text),
+        "partitions" => json::<primdecomp::Partitions>(text),
+        "kind" => text.parse::<primdecomp::Kind>().map(|k| format!("\"{k}\"")),
+        "max_bytes" => match text.parse::<primdecomp::ByteSize>() {
+            Ok(primdecomp::ByteSize(b)) if b > 0 && b <= usize::MAX as u64 => Ok(b.to_string()),
+            _ => Err(Error::InvalidParams(format!(
+                "expected a positive byte count such as 4096 or 4K, got '{text}'"
+            ))),
+        },
+        _ => {
+            return Err(PyValueError::new_err(format!(
+                "{key}: not a spelled setting"
+            )))
+        }
+    };
+    value.map_err(|e| match e {
+        // The kind names itself ("unknown primitive kind …").
+        Error::InvalidParams(m) if key == "kind" => PyValueError::new_err(m),
+        Error::InvalidParams(m) => PyValueError::new_err(format!("{key}: {m}")),
+        e => to_py_err(e),
+    })
+}
+
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(spelled, m)?)?;
     m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(decompose, m)?)?;
     m.add_function(wrap_pyfunction!(decompose_path, m)?)?;

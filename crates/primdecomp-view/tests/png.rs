@@ -83,7 +83,7 @@ fn result(dir: &Path, target: usize) -> Option<(PathBuf, PathBuf, PathBuf)> {
     let mesh_path = primdecomp_testkit::corpus_dir().join(MESH);
     let mesh = primdecomp_testkit::corpus_mesh(MESH)?;
     let params = primdecomp::Params {
-        targets: vec![target],
+        goal: primdecomp::Goal::counts([target]),
         ..Default::default()
     };
     let dec = primdecomp::decompose(&mesh, &params).expect("decomposes");

@@ -15,7 +15,7 @@
 //! each a list of [`Primitive`]s in the mesh's own coordinates.
 //!
 //! ```
-//! use primdecomp::{decompose, Kind, Mesh, Params};
+//! use primdecomp::{decompose, Goal, Kind, Mesh, Params};
 //!
 //! // A unit cube as six quads.
 //! let corners: Vec<[f64; 3]> = (0..8)
@@ -24,7 +24,7 @@
 //! let quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
 //! let cube = Mesh::from_polygons(&corners, &quads)?;
 //!
-//! let result = decompose(&cube, &Params { targets: vec![1], ..Params::default() })?;
+//! let result = decompose(&cube, &Params { goal: Goal::counts([1]), ..Params::default() })?;
 //! let level = &result.levels[0];
 //! assert_eq!(level.primitives.len(), 1);
 //! assert_eq!(level.primitives[0].kind(), Kind::Box);
@@ -36,10 +36,10 @@
 //! Several targets come from one pass, coarse levels of detail for free:
 //!
 //! ```
-//! use primdecomp::{decompose, demo_scene, Params};
+//! use primdecomp::{decompose, demo_scene, Goal, Params};
 //!
 //! let scene = demo_scene(); // stairs, a table, pipes, a house, a torus and a washer
-//! let params = Params { targets: vec![200, 50], ..Params::default() };
+//! let params = Params { goal: Goal::counts([200, 50]), ..Params::default() };
 //! let result = decompose(&scene, &params)?;
 //! for level in &result.levels {
 //!     println!("{} primitives, {} bytes", level.primitives.len(), level.bytes());
@@ -97,7 +97,8 @@ pub use output::{
     MAX_DETAIL, MAX_RESULT_BYTES,
 };
 pub use params::{
-    Dedup, Params, Partitions, Reprice, Tolerance, DEFAULT_TOLERANCE, MAX_PRIMITIVES,
+    ByteSize, CountSearch, Dedup, Fit, Goal, Params, Partitions, Plates, Reprice, Speed, Tolerance,
+    DEFAULT_TOLERANCE, MAX_PRIMITIVES,
 };
 pub use primitive::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
 pub use progress::{Estimate, Eta, Progress, Stage};

@@ -5,7 +5,7 @@
 //! errors. Every input is made here and written as binary PLY (read from the map a
 //! tile at a time) or OBJ (parsed whole).
 
-use primdecomp::{decompose_tiled, load, load_with, to_json, Error, LoadOptions, Params};
+use primdecomp::{decompose_tiled, load, load_with, to_json, Error, Goal, LoadOptions, Params};
 use primdecomp_testkit::check::{assert_counts, assert_valid};
 use primdecomp_testkit::on_threads;
 use primdecomp_testkit::shapes::{cuboid, cylinder, icosphere, join, obj_text, ply_bytes, Polys};
@@ -54,7 +54,7 @@ fn forced_tiles_enclose_and_are_deterministic() {
     let polys = scene();
     let ply = write(&dir, "scene.ply", &ply_bytes(&polys));
     let params = Params {
-        targets: vec![40, 12],
+        goal: Goal::counts([40, 12]),
         ..Params::default()
     };
     let mesh = load(&ply).unwrap();
@@ -68,7 +68,7 @@ fn forced_tiles_enclose_and_are_deterministic() {
         .collect();
     assert_eq!(runs[0].stats.tiles, 3);
     assert_eq!(runs[0].input.faces, mesh.face_count());
-    for level in 0..params.targets.len() {
+    for level in 0..params.goal.targets().len() {
         assert_eq!(
             to_json(&runs[0], level, &params),
             to_json(&runs[1], level, &params),
@@ -101,7 +101,7 @@ fn a_small_memory_limit_tiles_instead_of_refusing() {
     let refused = load_with(&ply, &options).unwrap_err();
     assert!(matches!(refused, Error::TooLarge { .. }), "{refused}");
     let params = Params {
-        targets: vec![50],
+        goal: Goal::counts([50]),
         ..Params::default()
     };
     let dec = decompose_tiled(&ply, &params, &options, &|_, _| {}).unwrap();
@@ -125,7 +125,7 @@ fn bad_input_fails_with_the_usual_errors() {
     let dir = temp_dir("bad");
     let good = ply_bytes(&scene());
     let params = Params {
-        targets: vec![10],
+        goal: Goal::counts([10]),
         ..Params::default()
     };
     let run = |name: &str, bytes: &[u8]| {

@@ -2,7 +2,7 @@
 
 use super::*;
 use crate::decompose::decompose;
-use crate::params::{Params, Tolerance};
+use crate::params::{CountSearch, Goal, Params, Tolerance};
 
 /// A closed cube within 1% of its diagonal is one box, whatever the cap; an
 /// icosphere one round primitive; a tolerance tighter than the cube's faces allow
@@ -13,8 +13,11 @@ fn a_tolerance_needs_no_count() {
     let cube = error::tests::cube_mesh(1.0);
     for t in [Tolerance::Diagonal(0.01), Tolerance::Units(1e-6)] {
         let p = Params {
-            targets: vec![64],
-            tolerance: vec![t],
+            goal: Goal::Within {
+                caps: vec![64],
+                tolerance: vec![t],
+                max_bytes: vec![],
+            },
             ..Params::default()
         };
         let d = decompose(&cube, &p).expect("decomposes");
@@ -33,12 +36,15 @@ fn a_tolerance_needs_no_count() {
 fn tolerance_chains_and_byte_targets() {
     let mesh = crate::input::demo::demo_scene();
     let p = Params {
-        targets: vec![400, 400, 400],
-        tolerance: vec![
-            Tolerance::Diagonal(0.05),
-            Tolerance::Diagonal(0.02),
-            Tolerance::Diagonal(0.01),
-        ],
+        goal: Goal::Within {
+            caps: vec![400, 400, 400],
+            tolerance: vec![
+                Tolerance::Diagonal(0.05),
+                Tolerance::Diagonal(0.02),
+                Tolerance::Diagonal(0.01),
+            ],
+            max_bytes: vec![],
+        },
         ..Params::default()
     };
     let d = decompose(&mesh, &p).expect("decomposes");
@@ -57,8 +63,11 @@ fn tolerance_chains_and_byte_targets() {
         );
     }
     let small = Params {
-        targets: vec![400],
-        max_bytes: vec![600],
+        goal: Goal::Within {
+            caps: vec![400],
+            tolerance: vec![],
+            max_bytes: vec![600],
+        },
         ..Params::default()
     };
     let d = decompose(&mesh, &small).expect("decomposes");
@@ -68,7 +77,11 @@ fn tolerance_chains_and_byte_targets() {
     assert_eq!(l.shortfall, None, "no tolerance asked");
     // With a tolerance the 600 bytes cannot reach, the level says the bytes stopped it.
     let tight = Params {
-        tolerance: vec![Tolerance::Diagonal(0.01)],
+        goal: Goal::Within {
+            caps: vec![400],
+            tolerance: vec![Tolerance::Diagonal(0.01)],
+            max_bytes: vec![600],
+        },
         ..small
     };
     let l = &decompose(&mesh, &tight).expect("decomposes").levels[0];
@@ -99,7 +112,11 @@ fn a_face_the_cut_cannot_split_gets_its_nearest_fit() {
     let mesh = crate::input::mesh::Mesh::from_builder(b);
     let levels = |tol: f64| {
         let p = Params {
-            tolerance: vec![Tolerance::Diagonal(tol)],
+            goal: Goal::Within {
+                caps: vec![],
+                tolerance: vec![Tolerance::Diagonal(tol)],
+                max_bytes: vec![],
+            },
             ..Params::default()
         };
         decompose(&mesh, &p).expect("decomposes").levels.remove(0)
@@ -134,23 +151,26 @@ fn a_face_the_cut_cannot_split_gets_its_nearest_fit() {
 #[test]
 fn limits_are_validated() {
     let two = Params {
-        targets: vec![10, 20, 30],
-        tolerance: vec![Tolerance::Diagonal(0.01); 2],
+        goal: Goal::Within {
+            caps: vec![10, 20, 30],
+            tolerance: vec![Tolerance::Diagonal(0.01); 2],
+            max_bytes: vec![],
+        },
         ..Params::default()
     };
     let e = two.validate().unwrap_err().to_string();
     assert!(e.contains("tolerance has 2 values for 3 targets"), "{e}");
     let zero = Params {
-        tolerance: vec![Tolerance::Units(0.0)],
+        goal: Goal::Within {
+            caps: vec![],
+            tolerance: vec![Tolerance::Units(0.0)],
+            max_bytes: vec![],
+        },
         ..Params::default()
     };
     assert!(zero.validate().is_err());
-    let fill = Params {
-        max_bytes: vec![100],
-        fill: true,
-        ..Params::default()
-    };
-    assert!(fill.validate().unwrap_err().to_string().contains("fill"));
+    let fill = Params::from_json(r#"{"max_bytes": [100], "fill": true}"#);
+    assert!(fill.unwrap_err().to_string().contains("fill"));
 }
 
 /// The largest of a level's primitives' bounds, each alone, in the input's frame.
@@ -171,8 +191,10 @@ fn worst_error(mesh: &crate::input::mesh::Mesh, prims: &[Primitive]) -> f64 {
 fn cuts_enclose_and_improve_with_n() {
     let mesh = crate::input::demo::demo_scene();
     let p = Params {
-        targets: vec![4, 16, 64],
-        cut: true,
+        goal: Goal::Counts {
+            counts: vec![4, 16, 64],
+            search: CountSearch::Cut,
+        },
         ..Params::default()
     };
     let d = decompose(&mesh, &p).expect("decomposes");
@@ -193,7 +215,7 @@ fn cuts_enclose_and_improve_with_n() {
         }
         errors.push(worst_error(&mesh, &level.primitives));
     }
-    let floor = FLOOR_HALVES * p.min_extent * mesh.diagonal();
+    let floor = FLOOR_HALVES * p.fit.min_extent * mesh.diagonal();
     assert!(errors[0] > errors[2], "{errors:?}: the cut never helped");
     assert!(
         errors.windows(2).all(|w| w[1] <= w[0] + floor),
@@ -207,11 +229,14 @@ fn cuts_enclose_and_improve_with_n() {
 fn one_target_is_the_root() {
     let mesh = crate::input::demo::demo_scene();
     let greedy = Params {
-        targets: vec![1],
+        goal: Goal::counts([1]),
         ..Params::default()
     };
     let cut = Params {
-        cut: true,
+        goal: Goal::Counts {
+            counts: vec![1],
+            search: CountSearch::Cut,
+        },
         ..greedy.clone()
     };
     let a = decompose(&mesh, &greedy).expect("greedy");
@@ -234,12 +259,15 @@ fn same_cuts_fitting_ahead(count: usize, tolerance: f64) {
     use std::sync::atomic::Ordering::Relaxed;
     let mesh = crate::input::demo::demo_scene();
     let p = Params {
-        targets: vec![count; 3],
-        tolerance: vec![
-            Tolerance::Diagonal(0.05),
-            Tolerance::Diagonal(tolerance * 2.0),
-            Tolerance::Diagonal(tolerance),
-        ],
+        goal: Goal::Within {
+            caps: vec![count; 3],
+            tolerance: vec![
+                Tolerance::Diagonal(0.05),
+                Tolerance::Diagonal(tolerance * 2.0),
+                Tolerance::Diagonal(tolerance),
+            ],
+            max_bytes: vec![],
+        },
         ..Params::default()
     };
     let run = |threads: usize, off: bool| {
@@ -279,8 +307,11 @@ fn caps_are_spent_on_what_post_processing_keeps() {
         .unwrap_or(0);
     for bytes in [600, 1000, 2000] {
         let p = Params {
-            targets: vec![1024],
-            max_bytes: vec![bytes],
+            goal: Goal::Within {
+                caps: vec![1024],
+                tolerance: vec![],
+                max_bytes: vec![bytes],
+            },
             ..Params::default()
         };
         let l = &decompose(&mesh, &p).expect("decomposes").levels[0];
@@ -289,8 +320,10 @@ fn caps_are_spent_on_what_post_processing_keeps() {
         assert_eq!((l.target, l.max_bytes), (1024, Some(bytes)));
     }
     let p = Params {
-        targets: vec![40],
-        cut: true,
+        goal: Goal::Counts {
+            counts: vec![40],
+            search: CountSearch::Cut,
+        },
         ..Params::default()
     };
     let l = &decompose(&mesh, &p).expect("decomposes").levels[0];

@@ -180,7 +180,7 @@ pub fn decompose_objects(
         let sub = sub_mesh(mesh, part.faces.clone(), &frame)?;
         let mine: Vec<usize> = shares.iter().map(|s| s[i]).collect();
         let p = Params {
-            targets: mine.clone(),
+            goal: params.goal.with_targets(mine.clone()),
             ..params.clone()
         };
         let dec = decompose(&sub, &p)?;

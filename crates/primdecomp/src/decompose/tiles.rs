@@ -23,7 +23,7 @@ use crate::input::io::{format_of, open_regular, Format, LoadOptions, PlyLayout};
 use crate::input::mesh::{Mesh, MeshBuilder};
 use crate::math::V3;
 use crate::output::result::Decomposition;
-use crate::params::Params;
+use crate::params::{CountSearch, Fit, Goal, Params};
 use crate::primitive::Kind;
 use crate::progress::wallclock::Instant;
 use crate::progress::{Progress, Stage};
@@ -50,11 +50,11 @@ const RELEASE_EVERY: usize = 16 << 20;
 /// Deterministic for any thread count.
 ///
 /// ```
-/// use primdecomp::{decompose_tiled, LoadOptions, Params};
+/// use primdecomp::{decompose_tiled, Goal, LoadOptions, Params};
 ///
 /// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../datasets/demo_scene.obj");
 /// let options = LoadOptions { tiles: Some(2), ..LoadOptions::default() };
-/// let params = Params { targets: vec![20], ..Params::default() };
+/// let params = Params { goal: Goal::counts([20]), ..Params::default() };
 /// let result = decompose_tiled(path.as_ref(), &params, &options, &|_, _| {})?;
 /// assert_eq!(result.stats.tiles, 2);
 /// assert!(result.levels[0].primitives.len() <= 20);
@@ -330,7 +330,7 @@ impl Plan {
             });
         }
         debug_assert_eq!(plan.faces as u64, source.face_count_declared());
-        let largest = params.resolved().targets.iter().copied().max().unwrap_or(1);
+        let largest = params.goal.targets().into_iter().max().unwrap_or(1);
         plan.groups = GROUPS_PER_TARGET
             .saturating_mul(largest)
             .max(plan.faces / FACES_PER_GROUP)
@@ -516,13 +516,14 @@ fn tile_params(params: &Params, groups: usize) -> Params {
     kinds[Kind::Box as usize] = true;
     kinds[Kind::Prism as usize] = true;
     Params {
-        targets: vec![groups],
-        kinds,
-        greedy: true,
-        fill: false,
-        cut: false,
-        tolerance: Vec::new(),
-        max_bytes: Vec::new(),
+        goal: Goal::Counts {
+            counts: vec![groups],
+            search: CountSearch::Greedy,
+        },
+        fit: Fit {
+            kinds,
+            ..params.fit.clone()
+        },
         ..params.clone()
     }
 }

@@ -352,7 +352,7 @@ impl Mesh {
         aabb_of(self.face_indices.iter().map(|&v| self.pos(v)))
     }
     /// Length of the bounding box's diagonal: the scale every relative setting
-    /// ([`crate::Params::min_extent`], …) is a fraction of.
+    /// ([`crate::Fit::min_extent`], …) is a fraction of.
     pub fn diagonal(&self) -> f64 {
         let (lo, hi) = self.aabb();
         crate::math::norm(crate::math::sub(hi, lo))

@@ -1,5 +1,5 @@
 //! Consistent face orientation, for the rim reach of the output fits and flush plates
-//! (`Params::rim_weight`, `Params::flush_plates`; docs/decisions/0024, 0026 and 0027;
+//! (`Plates::rim_weight`, `Plates::flush_plates`; docs/decisions/0024, 0026 and 0027;
 //! not in the paper). Many
 //! inputs mix windings (truck_shrec: 46% of its area faces outward by its winding), so
 //! a face's own normal does not say which side is outside. Faces sharing an edge that

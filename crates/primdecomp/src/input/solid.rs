@@ -1,5 +1,5 @@
 //! The input's interior on a voxel grid, for pricing merges by the empty space they
-//! add (`Params::solid`, docs/decisions/0023-merges-priced-by-the-air-they-add.md; not in the
+//! add (`Plates::solid`, docs/decisions/0023-merges-priced-by-the-air-they-add.md; not in the
 //! paper, whose §3.3
 //! cost is a primitive's whole volume).
 //!

@@ -221,7 +221,7 @@ mod tests {
     use super::*;
     use crate::merge::driver::tests::{reprice_modes, with_input};
     use crate::merge::{run, Clusters};
-    use crate::params::Params;
+    use crate::params::{Params, Speed};
 
     /// The demo scene (several separate objects) merged to `targets` (decreasing) by
     /// the global loop alone and as a run does when components apply (phase 1, the
@@ -301,7 +301,10 @@ mod tests {
         let reprice = crate::params::Reprice::Deferred { min_degree: 0 };
         same_as_global(
             Params {
-                reprice,
+                speed: Speed {
+                    reprice,
+                    ..Default::default()
+                },
                 ..Params::default()
             },
             &all,
@@ -313,7 +316,10 @@ mod tests {
         let targets = demo_targets();
         for reprice in reprice_modes() {
             let p = Params {
-                reprice,
+                speed: Speed {
+                    reprice,
+                    ..Default::default()
+                },
                 ..Params::default()
             };
             same_as_global(p, &targets);
@@ -370,8 +376,9 @@ mod tests {
             targets.push(sizes.len());
             targets.sort_unstable_by(|a, b| b.cmp(a));
             targets.dedup();
-            for reprice in [crate::params::Reprice::Deferred { min_degree: 0 }, Params::default().reprice] {
-                same_as_global_on(&mesh, Params { reprice, ..Params::default() }, &targets);
+            for reprice in [crate::params::Reprice::Deferred { min_degree: 0 }, Params::default().speed.reprice] {
+                let speed = Speed { reprice, ..Default::default() };
+                same_as_global_on(&mesh, Params { speed, ..Params::default() }, &targets);
             }
         }
     }

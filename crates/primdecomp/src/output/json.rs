@@ -173,7 +173,7 @@ struct Stats<'a> {
     partitions: usize,
     #[serde(skip_serializing_if = "Option::is_none")]
     seconds: Option<Seconds<'a>>,
-    /// A cut's limits and the distance it reached (`Params::cut`, `tolerance`,
+    /// A cut's limits and the distance it reached (a cut of the merge tree: `Goal`'s `tolerance`,
     /// `max_bytes`).
     #[serde(skip_serializing_if = "Option::is_none")]
     distance: Option<Distance>,
@@ -271,9 +271,6 @@ pub fn to_json_timed(dec: &Decomposition, level: usize, params: &Params) -> Stri
 }
 
 fn document(dec: &Decomposition, level: usize, params: &Params, timed: bool) -> String {
-    // The settings the run used, so that the library's default run and the CLI's
-    // record the same (`Params::resolved`).
-    let params = &params.resolved();
     let lv = &dec.levels[level];
     debug_assert_eq!(
         lv.faces.len(),

@@ -33,7 +33,7 @@ pub struct InputInfo {
 
 impl InputInfo {
     /// The length of the bounding box's diagonal (what relative settings such as
-    /// [`crate::Params::min_extent`] and [`crate::Tolerance::Diagonal`] scale by).
+    /// [`crate::Fit::min_extent`] and [`crate::Tolerance::Diagonal`] scale by).
     pub fn diagonal(&self) -> f64 {
         crate::math::norm(crate::math::sub(self.aabb_max, self.aabb_min))
     }
@@ -44,7 +44,7 @@ impl InputInfo {
 pub struct Level {
     /// The requested target N.
     pub target: usize,
-    /// The target the merge loop stopped at: N, or with [`crate::Params::fill`] the
+    /// The target the merge loop stopped at: N, or with [`crate::Goal::Fill`] the
     /// larger count whose post-processed result fills the budget of N best.
     pub merged_to: usize,
     /// Primitives in world coordinates, in a deterministic order.
@@ -52,11 +52,11 @@ pub struct Level {
     /// For each primitive, how many input faces it was fitted to.
     pub faces: Vec<u32>,
     /// The level's tolerance in the input's units, when one was asked for
-    /// ([`crate::Params::tolerance`]).
+    /// ([`crate::Goal::Within`]).
     pub tolerance: Option<f64>,
-    /// The level's byte target, when one was asked for ([`crate::Params::max_bytes`]).
+    /// The level's byte target, when one was asked for ([`crate::Goal::Within`]).
     pub max_bytes: Option<usize>,
-    /// For a cut of the merge tree ([`crate::Params::cut`]): an upper bound of the
+    /// For a cut of the merge tree ([`crate::Goal::uses_cut`]): an upper bound of the
     /// farthest any point of a primitive stands from the input, in its units, within
     /// 2% of it (docs/decisions/0040): at most the tolerance whenever the level says
     /// it is within it.
@@ -68,12 +68,15 @@ pub struct Level {
 /// What keeps a cut of the merge tree from its tolerance ([`Level::shortfall`]).
 ///
 /// ```
-/// use primdecomp::{decompose, Params, Shortfall, Tolerance};
+/// use primdecomp::{decompose, Goal, Params, Shortfall, Tolerance};
 /// // Four primitives cannot stand within 0.5% of the demo scene's parts.
 /// let scene = primdecomp::demo_scene();
 /// let p = Params {
-///     targets: vec![4],
-///     tolerance: vec![Tolerance::Diagonal(0.005)],
+///     goal: Goal::Within {
+///         caps: vec![4],
+///         tolerance: vec![Tolerance::Diagonal(0.005)],
+///         max_bytes: vec![],
+///     },
 ///     ..Params::default()
 /// };
 /// let level = &decompose(&scene, &p)?.levels[0];
@@ -83,9 +86,9 @@ pub struct Level {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Shortfall {
-    /// The count ([`crate::Params::targets`], 1024 without one) ran out first.
+    /// The count ([`crate::Goal::targets`], 1024 without one) ran out first.
     Count,
-    /// The byte target ([`crate::Params::max_bytes`]) ran out first.
+    /// The byte target ([`crate::Goal::Within`]) ran out first.
     Bytes,
     /// Nothing ran out: the farthest primitives enclose faces, alone or a few together,
     /// that no enabled kind encloses nearer (every face must lie inside one primitive).

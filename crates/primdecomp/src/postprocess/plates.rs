@@ -1,4 +1,4 @@
-//! Coplanar plates joined after the merge loop (`Params::join_coplanar`,
+//! Coplanar plates joined after the merge loop (`Plates::join_coplanar`,
 //! docs/decisions/0028-coplanar-plates-joined.md; not in the paper, whose §3.4 removes only
 //! primitives nested in
 //! another).

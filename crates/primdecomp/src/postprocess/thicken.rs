@@ -1,4 +1,4 @@
-//! Plates thickened inward to a minimum thickness (`Params::min_thickness`,
+//! Plates thickened inward to a minimum thickness (`Plates::min_thickness`,
 //! docs/decisions/0033-plates-thickened-inward.md; not in the paper, whose §3.2 fits
 //! make a flat cluster's primitive as thin as the floor allows).
 //!

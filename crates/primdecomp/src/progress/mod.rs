@@ -52,7 +52,7 @@ impl Stage {
 /// closure is a `Progress` that never cancels.
 ///
 /// ```
-/// use primdecomp::{decompose_with, demo_scene, Error, Params, Progress, Stage};
+/// use primdecomp::{decompose_with, demo_scene, Error, Goal, Params, Progress, Stage};
 /// use std::sync::atomic::{AtomicBool, Ordering};
 ///
 /// /// Cancels the run once the merge stage is half done.
@@ -69,7 +69,7 @@ impl Stage {
 ///     }
 /// }
 ///
-/// let params = Params { targets: vec![10], ..Params::default() };
+/// let params = Params { goal: Goal::counts([10]), ..Params::default() };
 /// let run = decompose_with(&demo_scene(), &params, &HalfWay(AtomicBool::new(false)));
 /// assert!(matches!(run, Err(Error::Cancelled)));
 ///
@@ -123,9 +123,9 @@ pub struct Estimate {
 /// target or the default run).
 ///
 /// ```
-/// use primdecomp::{Eta, Params, Stage};
+/// use primdecomp::{Eta, Goal, Params, Stage};
 ///
-/// let eta = Eta::new(&Params { targets: vec![100], ..Params::default() });
+/// let eta = Eta::new(&Params { goal: Goal::counts([100]), ..Params::default() });
 /// let e = eta.update(Stage::Merge, 0.5);
 /// assert!(e.overall > 0.3 && e.overall < 0.9);
 /// assert_eq!(e.seconds_left, None); // too early to say
@@ -148,7 +148,7 @@ impl Eta {
     pub fn new(params: &crate::params::Params) -> Eta {
         Eta {
             start: crate::progress::wallclock::Instant::now(),
-            shares: if params.resolved().uses_cut() {
+            shares: if params.uses_cut() {
                 CUT_SHARES
             } else {
                 GREEDY_SHARES

@@ -14,7 +14,7 @@ use crate::outputs::Guard;
 use crate::paths::output_path_for;
 use anyhow::{anyhow, bail};
 use primdecomp::{to_json, to_json_objects, to_json_timed, to_obj, write_atomic, Stage};
-use primdecomp::{Decomposition, Params};
+use primdecomp::{Decomposition, Goal, Params};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -52,7 +52,9 @@ pub(super) fn run_one(
         (Some(Ok(mesh)), _) => {
             let load_s = now.elapsed().as_secs_f64();
             let params = Params {
-                targets: resolve_targets(targets, mesh.face_count()),
+                goal: base
+                    .goal
+                    .with_targets(resolve_targets(targets, mesh.face_count())),
                 ..base.clone()
             };
             if a.per_object {
@@ -286,8 +288,14 @@ fn world_level(
         primitives: objs.world_primitives(i),
         // For the summary line: each object's tolerance is this share of its own
         // diagonal (--per-object takes one value).
-        tolerance: params.tolerance.first().map(|t| t.in_units(diagonal)),
-        max_bytes: params.max_bytes.first().copied(),
+        tolerance: match &params.goal {
+            Goal::Within { tolerance, .. } => tolerance.first().map(|t| t.in_units(diagonal)),
+            _ => None,
+        },
+        max_bytes: match &params.goal {
+            Goal::Within { max_bytes, .. } => max_bytes.first().copied(),
+            _ => None,
+        },
         ..Default::default()
     }
 }

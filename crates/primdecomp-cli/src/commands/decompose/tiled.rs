@@ -82,10 +82,10 @@ pub(super) fn decompose(
         }
     }
     let params = Params {
-        targets: if counts.is_empty() {
-            base.targets.clone()
+        goal: if counts.is_empty() {
+            base.goal.clone()
         } else {
-            counts
+            base.goal.with_targets(counts)
         },
         ..base.clone()
     };

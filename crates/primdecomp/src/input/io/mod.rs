@@ -98,8 +98,8 @@ pub struct LoadOptions {
     /// file declares, before parsing, and once from the parsed mesh. `None`: no limit.
     pub max_memory: Option<u64>,
     /// The decomposition that follows takes no cut of the merge tree (its targets are
-    /// counts, without [`Params::cut`](crate::Params::cut), a tolerance or a byte
-    /// target): `max_memory` is checked against the greedy run's peak, about two
+    /// counts not cut from the merge tree: [`Goal::uses_cut`](crate::Goal::uses_cut)
+    /// is false): `max_memory` is checked against the greedy run's peak, about two
     /// thirds of the cut's. Off (the default): against the cut's, which is never below
     /// the greedy run's, so it covers both.
     pub greedy_only: bool,

@@ -73,6 +73,14 @@ else
   row documents 0 1 0 "scripts/check_docs.py found problems (above)"
 fi
 
+# ---------------------------------------------------------------- module graph
+section "module graph: no import cycles, no import through a crate root, no import against the core's stage order (scripts/module_cycles.py)"
+if python3 scripts/module_cycles.py; then
+  row modules 1 0 0 "cycles, crate-root imports, back-stage imports: none"
+else
+  row modules 0 1 0 "scripts/module_cycles.py found the imports above"
+fi
+
 # ---------------------------------------------------------------- system packages
 section "system packages: chromium (the browser test), fonts (the sim plot test)"
 want_apt=()

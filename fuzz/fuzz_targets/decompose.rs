@@ -15,7 +15,8 @@ mod contain;
 
 use arbitrary::{Result, Unstructured};
 use primdecomp::{
-    decompose, to_json, Dedup, Error, Mesh, Params, Partitions, Reprice, Tolerance,
+    decompose, to_json, CountSearch, Dedup, Error, Goal, Mesh, Params, Partitions, Reprice,
+    Tolerance,
 };
 
 /// A number that is usually one of `typical` and sometimes any f64 at all.
@@ -31,35 +32,35 @@ fn pick(u: &mut Unstructured, typical: &[f64]) -> Result<f64> {
 fn params(u: &mut Unstructured) -> Result<Params> {
     let mut p = Params::default();
     let n = u.int_in_range(1..=3)?;
-    p.targets = (0..n)
+    let mut targets: Vec<usize> = (0..n)
         .map(|_| u.int_in_range(0..=40))
         .collect::<Result<_>>()?;
-    for w in &mut p.weights {
+    for w in &mut p.fit.weights {
         *w = pick(u, &[1.0, 1.05, 2.1, 1.4, 1e-9, 1e9])?;
     }
     let mask: u8 = u.arbitrary()?;
-    for (k, on) in p.kinds.iter_mut().enumerate() {
+    for (k, on) in p.fit.kinds.iter_mut().enumerate() {
         *on = mask == 0 || mask & (1 << k) != 0;
     }
-    p.tangent_eps = pick(u, &[0.01, 0.0, 1.0, 1e3])?;
-    p.min_extent = pick(u, &[5e-4, 1e-12, 0.5, 0.999])?;
-    p.max_excess_volume = match u.int_in_range(0..=3)? {
+    p.fit.tangent_eps = pick(u, &[0.01, 0.0, 1.0, 1e3])?;
+    p.fit.min_extent = pick(u, &[5e-4, 1e-12, 0.5, 0.999])?;
+    p.fit.max_excess_volume = match u.int_in_range(0..=3)? {
         0 => Some(pick(u, &[0.0, 1e-3, 1.0])?),
         _ => None,
     };
-    p.dedup = match u.int_in_range(0..=3)? {
+    p.fit.dedup = match u.int_in_range(0..=3)? {
         0 => Dedup::Off,
         1 => Dedup::Tolerance(pick(u, &[0.0, 1e-3, 0.5, 10.0])?),
         _ => Dedup::Exact,
     };
-    p.remove_nested = u.arbitrary()?;
-    p.remove_thin_boxes = match u.arbitrary::<bool>()? {
+    p.plates.remove_nested = u.arbitrary()?;
+    p.plates.remove_thin_boxes = match u.arbitrary::<bool>()? {
         true => Some(pick(u, &[0.0, 1e-3, 0.1])?),
         false => None,
     };
     // Read last, so that corpus entries grown before these settings decode as before.
     // The meshes are small: low degrees are what make deferred re-pricing happen.
-    p.reprice = match u.int_in_range(0..=5)? {
+    p.speed.reprice = match u.int_in_range(0..=5)? {
         0 => Reprice::Exact,
         d => Reprice::Deferred {
             min_degree: [64, 0, 1, 2, 4][d as usize - 1],
@@ -73,20 +74,20 @@ fn params(u: &mut Unstructured) -> Result<Params> {
     // Last again. An exhausted input reads 0 twice, so entries grown before this setting
     // run with it off, as they were grown; otherwise mostly the default (0.01).
     if u.int_in_range(0..=3)? == 0 {
-        p.open_holes = pick(u, &[0.0, 0.05, 0.5, 0.999])?;
+        p.plates.open_holes = pick(u, &[0.0, 0.05, 0.5, 0.999])?;
     }
     // Once `reduction` (the approximate extremes, removed: docs/decisions); read still.
     u.arbitrary::<bool>()?;
     // After that (an exhausted input reads 0: auto, which never splits these small
     // meshes, as grown): a fixed count splits them when 16 × N < faces, so phase 1's
     // lazy parts run on hostile input too.
-    p.partitions = match u.int_in_range(0..=3)? {
+    p.speed.partitions = match u.int_in_range(0..=3)? {
         0 => Partitions::Auto,
         k => Partitions::Fixed([2, 3, 8][k as usize - 1]),
     };
     // After that (an exhausted input reads false, as grown): the budget search's extra
     // passes (budget.rs) on hostile input.
-    p.fill = u.arbitrary::<bool>()?;
+    let fill = u.arbitrary::<bool>()?;
     // Once `outward_weight` (removed: docs/decisions/0022); read still.
     if u.int_in_range(0..=3)? == 1 {
         pick(u, &[1.0, 1e-9, 1e9])?;
@@ -94,38 +95,56 @@ fn params(u: &mut Unstructured) -> Result<Params> {
     // After that (an exhausted input reads false, as grown): the interior grid's ray
     // parity and the air pricing on hostile input
     // (docs/decisions/0023-merges-priced-by-the-air-they-add.md).
-    p.solid = u.arbitrary::<bool>()?;
+    p.plates.solid = u.arbitrary::<bool>()?;
     // After that (an exhausted input reads 0: the default weight, as grown): the rim
     // reach's adjacency walk and the per-kind output fits at other weights, and off
     // (docs/decisions/0024-output-primitives-priced-by-rim-reach.md).
-    p.rim_weight =
+    p.plates.rim_weight =
         [1.0, 0.0, 1e-9, 1e9][u.int_in_range(0..=3)? as usize];
     // After that (an exhausted input reads false: free merges on, the default, so the
     // grown corpus now runs with them): a target's snapshot held for merges that add
     // no volume, and the exact stop (docs/decisions/0025-free-merges-into-plates.md).
-    p.join_coplanar = !u.arbitrary::<bool>()?;
+    p.plates.join_coplanar = !u.arbitrary::<bool>()?;
     // After that (an exhausted input reads false: flush plates, the default): output
     // plates moved onto their faces' outer side, and centred
     // (docs/decisions/0026-output-plates-lie-flush.md).
-    p.flush_plates = !u.arbitrary::<bool>()?;
+    p.plates.flush_plates = !u.arbitrary::<bool>()?;
     // After that (an exhausted input reads 0: the greedy levels, as grown): the merge
     // tree's cut (docs/decisions/0032), with counts alone, with a
     // tolerance (one, or one per target), a byte target, both, or with no target at
     // all (the default run: the cut at 2% of the diagonal, capped at 1024).
+    // A fill of a cut, a tolerance or a byte target is no goal: such inputs decode to
+    // nothing (they were refused settings before there was one `Goal`).
+    let (mut cut, mut tolerances, mut max_bytes) = (false, Vec::new(), Vec::new());
     match u.int_in_range(0..=5)? {
         0 => {}
-        1 => p.cut = true,
+        1 => cut = true,
         2 => {
-            let n = if u.arbitrary::<bool>()? { p.targets.len() } else { 1 };
-            p.tolerance = (0..n).map(|_| tolerance(u)).collect::<Result<_>>()?;
+            let n = if u.arbitrary::<bool>()? { targets.len() } else { 1 };
+            tolerances = (0..n).map(|_| tolerance(u)).collect::<Result<_>>()?;
         }
-        3 => p.max_bytes = vec![bytes(u)?],
+        3 => max_bytes = vec![bytes(u)?],
         4 => {
-            p.tolerance = vec![tolerance(u)?];
-            p.max_bytes = vec![bytes(u)?];
+            tolerances = vec![tolerance(u)?];
+            max_bytes = vec![bytes(u)?];
         }
-        _ => p.targets.clear(),
+        _ => targets.clear(),
     }
+    p.goal = match (fill, tolerances.is_empty() && max_bytes.is_empty()) {
+        (true, true) if !cut && !targets.is_empty() => Goal::Fill { counts: targets },
+        (true, _) => return Err(arbitrary::Error::IncorrectFormat),
+        (false, false) => Goal::Within {
+            caps: targets,
+            tolerance: tolerances,
+            max_bytes,
+        },
+        (false, true) if targets.is_empty() => Goal::default(),
+        (false, true) if cut => Goal::Counts {
+            counts: targets,
+            search: CountSearch::Cut,
+        },
+        (false, true) => Goal::counts(targets),
+    };
     Ok(p)
 }
 
@@ -209,7 +228,7 @@ fn run(data: &[u8]) -> Result<()> {
     let mag = verts.iter().flatten().fold(0.0f64, |m, c| m.max(c.abs()));
     let tol = 1e-6 * mesh.diagonal() + 64.0 * f64::EPSILON * mag;
     for (i, level) in dec.levels.iter().enumerate() {
-        if params.max_excess_volume.is_none() {
+        if params.fit.max_excess_volume.is_none() {
             assert!(
                 level.primitives.len() <= level.target,
                 "{} primitives for target {}",

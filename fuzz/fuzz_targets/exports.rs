@@ -22,7 +22,8 @@ mod exports;
 
 use arbitrary::{Arbitrary, Unstructured};
 use libfuzzer_sys::fuzz_target;
-use primdecomp::export::{render, ExportOptions, Format, Frame, Physics, ResultObject, Up};
+use primdecomp::{Frame, ResultObject, Up};
+use primdecomp_export::{render, ExportOptions, Format, Physics};
 use primdecomp::math::quat_from_axes;
 use primdecomp::{Capsule, Cylinder, Error, Frustum, Obb, Primitive, Prism, Sphere};
 use std::path::Path;

@@ -33,7 +33,7 @@ def hostile_result(path):
 
 
 def visible(s):
-    """The writers' escape of control characters (crates/primdecomp/src/export/names.rs)."""
+    """The writers' escape of control characters (`visible`, crates/primdecomp/src/output/visible.rs)."""
     hidden = lambda c: (ord(c) < 0x20 or 0x7f <= ord(c) <= 0x9f or c in "\ufffe\uffff"  # noqa: E731
                         or 0x202a <= ord(c) <= 0x202e or 0x2066 <= ord(c) <= 0x2069)
     return "".join(f"\\u{{{ord(c):x}}}" if hidden(c) else c for c in s)

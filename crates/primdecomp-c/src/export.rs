@@ -5,9 +5,8 @@
 use crate::args::{handle, optional_text, put, text, writable};
 use crate::result::PrimdecompResult;
 use crate::status::{guard, Failure, PrimdecompStatus};
-use primdecomp::export::{
-    render, write_export, ExportOptions, Format, Frame, Physics, ResultObject, Up, DEFAULT_DETAIL,
-};
+use primdecomp::{Frame, ResultObject, Up, DEFAULT_DETAIL};
+use primdecomp_export::{render, write_export, ExportOptions, Format, Physics};
 use serde::Deserialize;
 use std::ffi::c_char;
 use std::path::Path;

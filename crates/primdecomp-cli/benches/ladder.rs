@@ -196,10 +196,10 @@ fn cancel_answers(mesh: &primdecomp::Mesh, mode: &str) -> (f64, usize) {
         }
     }
     let params = primdecomp::Params {
-        targets: if mode == "n2000" {
-            vec![TARGET]
+        goal: if mode == "n2000" {
+            primdecomp::Goal::counts([TARGET])
         } else {
-            Vec::new()
+            primdecomp::Goal::default()
         },
         ..primdecomp::Params::default()
     };

@@ -3,7 +3,7 @@
 //! raising or lowering it does), without the paper's notation.
 
 use clap::Args;
-use primdecomp::LoadOptions;
+use primdecomp::{LoadOptions, DEFAULT_TOLERANCE, MAX_PRIMITIVES};
 use std::path::PathBuf;
 
 /// How inputs are read (every subcommand that reads a mesh).
@@ -33,10 +33,11 @@ impl LoadArgs {
 
 #[derive(Args, Debug)]
 #[command(after_help = "--help lists every option, explained.")]
-#[command(
-    after_long_help = "Without -n, --tolerance or --max-bytes: the fewest primitives \
-    that all stand within 2% of the mesh's size (its bounding-box diagonal), at most 1024."
-)]
+#[command(after_long_help = format!(
+    "Without -n, --tolerance or --max-bytes: the fewest primitives that all stand within {} \
+     of the mesh's size (its bounding-box diagonal), at most {MAX_PRIMITIVES}.",
+    DEFAULT_TOLERANCE
+))]
 pub(crate) struct DecomposeArgs {
     /// Input meshes: OBJ, PLY, STL, OFF, glTF or GLB.
     ///
@@ -61,15 +62,18 @@ pub(crate) struct DecomposeArgs {
     )]
     pub targets: Option<Vec<String>>,
     /// Every primitive within D of the mesh's surface: a distance, or D% of its size.
-    ///
-    /// D in the mesh's units, or a percentage of its bounding-box diagonal (1%). You
-    /// get the fewest primitives that all stand within D of the surface: a box for a
-    /// box, a sphere for a sphere. Smaller D: tighter, more primitives. Several
-    /// (2%,0.5%) give one result file each. The result records the distance reached
-    /// and, if it could not get within D, why. Default (without -n and --max-bytes):
-    /// 2%, at most 1024 primitives.
     #[arg(
         long,
+        long_help = format!(
+            "Every primitive within D of the mesh's surface: a distance, or D% of its size.\n\n\
+             D in the mesh's units, or a percentage of its bounding-box diagonal (1%). You get \
+             the fewest primitives that all stand within D of the surface: a box for a box, a \
+             sphere for a sphere. Smaller D: tighter, more primitives. Several (2%,0.5%) give \
+             one result file each. The result records the distance reached and, if it could \
+             not get within D, why. Default (without -n and --max-bytes): {}, at most \
+             {MAX_PRIMITIVES} primitives.",
+            DEFAULT_TOLERANCE
+        ),
         value_name = "D",
         value_delimiter = ',',
         allow_hyphen_values = true,
@@ -77,12 +81,14 @@ pub(crate) struct DecomposeArgs {
     )]
     pub tolerance: Option<Vec<String>>,
     /// The closest fit stored in at most B bytes (4096, 4K).
-    ///
-    /// Bytes as the paper's Table 2 counts them (4 bytes a number: a box 40, a
-    /// sphere 16, a prism 44). Several give one result file each. Combines with
-    /// --tolerance, and with -n as a cap (without -n: at most 1024 primitives).
     #[arg(
         long,
+        long_help = format!(
+            "The closest fit stored in at most B bytes (4096, 4K).\n\n\
+             Bytes as the paper's Table 2 counts them (4 bytes a number: a box 40, a sphere \
+             16, a prism 44). Several give one result file each. Combines with --tolerance, \
+             and with -n as a cap (without -n: at most {MAX_PRIMITIVES} primitives)."
+        ),
         value_name = "B",
         value_delimiter = ',',
         allow_hyphen_values = true,
@@ -245,7 +251,8 @@ pub(crate) struct DecomposeArgs {
     pub remove_thin_boxes: Option<f64>,
     /// Refuse merges adding more than this fraction of the mesh's bounding-box volume.
     ///
-    /// Slower: every merge is priced again at once (--reprice exact).
+    /// Needs --reprice exact (a merge over the cap has no queue entry whose re-pricing
+    /// could wait): every merge is priced again at once, which is slower.
     #[arg(long, value_name = "F", hide_short_help = true, help_heading = "Shape")]
     pub max_excess_volume: Option<f64>,
     /// How much a face's edge direction steers its group's orientation (default 0.01).
@@ -316,8 +323,10 @@ pub(crate) struct DecomposeArgs {
         help_heading = "Speed and memory"
     )]
     pub reprice: Option<String>,
-    /// Refuse inputs estimated to need more memory than this: 512M, 8G, available
-    /// (default) or none.
+    /// Stay within this much memory: 512M, 8G, available (default) or none.
+    ///
+    /// An input estimated to need more is decomposed in spatial tiles (--tiles), or
+    /// refused when not even tiles would fit.
     #[arg(
         long,
         default_value = "available",
@@ -326,6 +335,19 @@ pub(crate) struct DecomposeArgs {
         help_heading = "Speed and memory"
     )]
     pub max_memory: String,
+    /// Decompose in K spatial tiles, one at a time, as an input over --max-memory is.
+    ///
+    /// An input whose decomposition would need more than --max-memory is decomposed
+    /// in tiles instead of refused: the fewest that fit, each merged to boxes, the
+    /// boxes merged on top; every face stays enclosed. This forces K tiles (1 to
+    /// 4096). Binary PLY is read a tile at a time; other formats are parsed whole.
+    #[arg(
+        long,
+        value_name = "K",
+        hide_short_help = true,
+        help_heading = "Speed and memory"
+    )]
+    pub tiles: Option<usize>,
 
     // --- Several inputs ---
     /// How many inputs to decompose at once (default: one per thread).

@@ -24,11 +24,11 @@ pub fn report(e: &anyhow::Error) -> i32 {
 
 /// Text as the terminal is shown it: control characters (ESC, BEL, a carriage
 /// return…) in file and object names, or in a file's bytes quoted by a message, are
-/// written as visible escapes (`\u{1b}`, `primdecomp::export::visible`) instead of
+/// written as visible escapes (`\u{1b}`, `primdecomp::visible`) instead of
 /// acting on the terminal; line ends between lines stay.
 pub fn terminal(text: &str) -> String {
     text.split('\n')
-        .map(primdecomp::export::visible)
+        .map(primdecomp::visible)
         .collect::<Vec<_>>()
         .join("\n")
 }

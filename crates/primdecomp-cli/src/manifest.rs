@@ -86,7 +86,7 @@ pub struct Written {
 }
 
 /// The largest manifest read back (a line is a few hundred bytes per input).
-const MAX_BYTES: u64 = primdecomp::export::MAX_RESULT_BYTES;
+const MAX_BYTES: u64 = primdecomp::MAX_RESULT_BYTES;
 
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]
@@ -165,7 +165,7 @@ impl Manifest {
             }
         }
         // A file of our own, whatever was there (a link, a hard link, a pipe).
-        primdecomp::export::write_atomic(&path, kept.as_bytes())?;
+        primdecomp::write_atomic(&path, kept.as_bytes())?;
         let file = open_no_follow(&path, true)
             .with_context(|| format!("{}: cannot open the manifest", path.display()))?;
         Ok(Manifest {

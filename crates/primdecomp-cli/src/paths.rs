@@ -47,10 +47,10 @@ pub fn level_labels(counts: &[usize], tolerance: &[Tolerance], bytes: &[usize]) 
 }
 
 /// The text of a result or settings file (JSON or TOML): a regular file of at most
-/// [`primdecomp::export::MAX_RESULT_BYTES`] (a pipe or device is refused before
+/// [`primdecomp::MAX_RESULT_BYTES`] (a pipe or device is refused before
 /// reading, a larger file from its size), in UTF-8.
 pub fn read_result(path: &Path) -> anyhow::Result<String> {
-    let bytes = primdecomp::read_regular(path, primdecomp::export::MAX_RESULT_BYTES)?;
+    let bytes = primdecomp::read_regular(path, primdecomp::MAX_RESULT_BYTES)?;
     String::from_utf8(bytes).map_err(|e| {
         primdecomp::Error::ParseByte {
             path: path.to_path_buf(),
@@ -69,33 +69,20 @@ pub fn available_memory() -> Option<u64> {
     kib.checked_mul(1024)
 }
 
-/// A size such as `512M`, `8G`, `1.5T` or `1048576` (bytes; K, M, G, T are powers of
-/// 1024, an optional trailing `B` or `iB` is accepted).
-pub fn parse_size(s: &str) -> Option<u64> {
-    let t = s.trim().to_ascii_uppercase();
-    let t = t.trim_end_matches("IB").trim_end_matches('B');
-    let (num, shift) = match t.chars().last()? {
-        'K' => (&t[..t.len() - 1], 10),
-        'M' => (&t[..t.len() - 1], 20),
-        'G' => (&t[..t.len() - 1], 30),
-        'T' => (&t[..t.len() - 1], 40),
-        _ => (t, 0),
-    };
-    let v: f64 = num.trim().parse().ok()?;
-    let bytes = v * (1u64 << shift) as f64;
-    (v.is_finite() && v >= 0.0 && bytes < u64::MAX as f64).then_some(bytes as u64)
-}
-
 /// A `--max-memory` value in bytes: a size, `available` or `none` (`None`).
 pub fn memory_limit(s: &str) -> anyhow::Result<Option<u64>> {
     Ok(match s.trim() {
         "none" => None,
         "available" => available_memory(),
-        s => Some(parse_size(s).ok_or_else(|| {
-            BadArgs(format!(
-                "--max-memory: expected a size like 8G, 'available' or 'none', got '{s}'"
-            ))
-        })?),
+        s => Some(
+            s.parse::<primdecomp::ByteSize>()
+                .map(|b| b.0)
+                .map_err(|_| {
+                    BadArgs(format!(
+                        "--max-memory: expected a size like 8G, 'available' or 'none', got '{s}'"
+                    ))
+                })?,
+        ),
     })
 }
 
@@ -132,16 +119,5 @@ mod tests {
             PathBuf::from("a.b/out.tar_n7.json")
         );
         assert_eq!(p(".hidden", 7, 2), PathBuf::from(".hidden_n7"));
-    }
-
-    #[test]
-    fn sizes() {
-        assert_eq!(parse_size("1048576"), Some(1 << 20));
-        assert_eq!(parse_size("512M"), Some(512 << 20));
-        assert_eq!(parse_size("8g"), Some(8 << 30));
-        assert_eq!(parse_size("1.5GiB"), Some(3 << 29));
-        assert_eq!(parse_size("2KB"), Some(2048));
-        assert_eq!(parse_size("-1G"), None);
-        assert_eq!(parse_size("lots"), None);
     }
 }

@@ -477,6 +477,9 @@ fn clashes() -> Vec<Clash> {
         c(&["decompose", "a/x.obj", "b/y.obj", "-n", "4", "--quiet", "-o", "out/", "--export", "x.glb"], "--export with several inputs", &["--export writes one file per level of one input"], &[]),
         // Refused before the run: no level's JSON or first export written.
         c(&["decompose", "m.obj", "--tolerance", "1%,0.3%", "--quiet", "-o", "r.json", "--export", "r.glb", "--export", "r.xml"], "a second --export of no known format", &["r.xml: cannot tell the export format"], &[]),
+        // The library's coupling, said in the flags' words (the library refuses it too).
+        c(&["decompose", "m.obj", "--max-excess-volume", "0.1", "--quiet", "-o", "r.json"], "an excess-volume cap with deferred re-pricing", &["--max-excess-volume needs --reprice exact"], &[]),
+        c(&["decompose", "m.obj", "--greedy", "--quiet", "-o", "r.json"], "--greedy without counts", &["--greedy needs -n"], &[]),
     ]
 }
 

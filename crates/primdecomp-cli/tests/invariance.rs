@@ -2,7 +2,7 @@
 //! input's units or its position (georeferenced scans sit at 10^6 offsets).
 
 use primdecomp::to_json;
-use primdecomp::{decompose, Decomposition, Kind, Mesh, Params, Primitive};
+use primdecomp::{decompose, CountSearch, Decomposition, Goal, Kind, Mesh, Params, Primitive};
 use primdecomp_testkit::shapes::{cuboid, cylinder, demo_polys, join, obj_text};
 
 fn demo_mesh(scale: f64, offset: [f64; 3]) -> Mesh {
@@ -18,8 +18,10 @@ fn demo_mesh(scale: f64, offset: [f64; 3]) -> Mesh {
 /// hold for (at scale 1e-6 and offset 1e6 a cut of the demo chose other nodes).
 fn params() -> Params {
     Params {
-        targets: vec![120, 40],
-        greedy: true,
+        goal: Goal::Counts {
+            counts: vec![120, 40],
+            search: CountSearch::Greedy,
+        },
         ..Default::default()
     }
 }

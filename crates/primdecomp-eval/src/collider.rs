@@ -73,9 +73,9 @@ impl Collider {
 /// Loads a collider: `.json` is a primdecomp document, `.obj` convex hulls. Like a
 /// mesh it must be a regular file ([`primdecomp::read_regular`]: a named pipe or
 /// device is refused before reading), of at most
-/// [`primdecomp::export::MAX_RESULT_BYTES`].
+/// [`primdecomp::MAX_RESULT_BYTES`].
 pub fn load(path: &Path) -> Result<Collider> {
-    let bytes = primdecomp::read_regular(path, primdecomp::export::MAX_RESULT_BYTES)?;
+    let bytes = primdecomp::read_regular(path, primdecomp::MAX_RESULT_BYTES)?;
     let ext = path
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());

@@ -268,7 +268,7 @@ fn seg2_dist2(x: f64, y: f64, a: [f64; 2], b: [f64; 2]) -> f64 {
 
 /// Squared distance from `p` to the surface (not the solid) of `prim`, exact.
 pub fn surface_dist2(prim: &Primitive, p: V3) -> f64 {
-    use super::bvh::{point_segment_dist2, point_tri_dist2};
+    use primdecomp::math::bvh::{point_segment_dist2, point_tri_dist2};
     let tris = |t: [[V3; 3]; 12]| {
         t.iter()
             .map(|t| point_tri_dist2(p, t))

@@ -5,7 +5,7 @@
 //! count the least worst error leaves now goes to the latest merges, within 1.25
 //! times that error.
 
-use primdecomp::{decompose, Mesh, Params};
+use primdecomp::{decompose, CountSearch, Goal, Mesh, Params};
 use primdecomp_eval::collider::Collider;
 use primdecomp_eval::{evaluate, Input, Metrics};
 
@@ -14,10 +14,14 @@ use primdecomp_eval::{evaluate, Input, Metrics};
 /// count).
 fn measured(m: &Mesh, counts: &[usize], cut: bool) -> Metrics {
     let p = Params {
-        targets: counts.to_vec(),
-        cut,
-        // Without a cut, the greedy pass's level to compare with (docs/decisions/0054).
-        greedy: !cut,
+        goal: Goal::Counts {
+            counts: counts.to_vec(),
+            // Without a cut, the greedy pass's level to compare with (docs/decisions/0054).
+            search: match cut {
+                true => CountSearch::Cut,
+                false => CountSearch::Greedy,
+            },
+        },
         ..Params::default()
     };
     let d = decompose(m, &p).expect("decomposes");

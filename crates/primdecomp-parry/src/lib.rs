@@ -3,10 +3,10 @@
 //! (`Collider::from(shape)`).
 //!
 //! ```
-//! use primdecomp::{decompose, demo_scene, Params};
+//! use primdecomp::{decompose, demo_scene, Goal, Params};
 //! use primdecomp_parry::compound;
 //!
-//! let result = decompose(&demo_scene(), &Params { targets: vec![40], ..Params::default() })?;
+//! let result = decompose(&demo_scene(), &Params { goal: Goal::counts([40]), ..Params::default() })?;
 //! let colliders = compound(&result.levels[0].primitives)?;
 //! // One shape holding every primitive, relative to `colliders.origin`: place the
 //! // collider (or the body it is attached to) there.
@@ -32,7 +32,7 @@ use primdecomp::{Kind, Primitive};
 pub const GROW_REL: f64 = 1.0 / 262_144.0;
 
 /// Segments around the circles of a frustum's hull.
-const FRUSTUM_DETAIL: usize = primdecomp::export::DEFAULT_DETAIL;
+const FRUSTUM_DETAIL: usize = primdecomp::DEFAULT_DETAIL;
 
 /// A primitive parry cannot hold (a hull with no volume). The library's own output
 /// never has one: every primitive is at least its minimum extent thick.

@@ -2,7 +2,7 @@
 //! the compound (in parry's f32), and balls dropped on it in a Rapier world come to
 //! rest on it without any ball's centre ever entering or crossing it.
 
-use primdecomp::{decompose, demo_scene, Mesh, Params, Primitive};
+use primdecomp::{decompose, demo_scene, Goal, Mesh, Params, Primitive};
 use primdecomp_parry::{compound, shapes, Colliders};
 use primdecomp_testkit::shapes::{cuboid, cylinder, icosphere, join, mesh};
 use rapier3d::dynamics::RigidBodyBuilder;
@@ -198,7 +198,7 @@ fn balls_rest_on_the_made_up_scene() {
 #[test]
 fn balls_rest_on_the_demo_scene() {
     let p = Params {
-        targets: vec![150],
+        goal: Goal::counts([150]),
         ..Params::default()
     };
     check("demo scene, 150 primitives", &demo_scene(), &p, 0.2);

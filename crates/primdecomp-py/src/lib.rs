@@ -8,8 +8,8 @@
 use numpy::{
     PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods,
 };
-use primdecomp::export::{write_export, ExportOptions, Format};
 use primdecomp::{Decomposition, Error, Mesh, Params, Primitive, Progress, Stage};
+use primdecomp_export::{write_export, ExportOptions, Format};
 use pyo3::exceptions::{PyKeyboardInterrupt, PyOSError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use std::panic::{catch_unwind, AssertUnwindSafe};
@@ -251,7 +251,7 @@ fn decompose_path(
     // As the CLI records them, so that to_json() is the CLI's file byte for byte.
     dec.input.path = Some(Path::new(path).display().to_string());
     if let Some(format) = primdecomp::Format::from_path(Path::new(path)) {
-        let (up, why) = primdecomp::export::Up::of_format(format);
+        let (up, why) = primdecomp::Up::of_format(format);
         (dec.input.up, dec.input.up_from) = (Some(up), Some(why.to_string()));
     }
     Ok(NativeResult { dec, params })
@@ -389,7 +389,7 @@ impl NativeResult {
         let written = match ext.as_deref() {
             Some("json") => primdecomp::write_atomic(p, json.as_bytes()).map(|_| vec![p.into()]),
             Some("obj") => {
-                let obj = primdecomp::to_obj(self.level(level)?, primdecomp::export::DEFAULT_DETAIL);
+                let obj = primdecomp::to_obj(self.level(level)?, primdecomp::DEFAULT_DETAIL);
                 primdecomp::write_atomic(p, obj.as_bytes()).map(|_| vec![p.into()])
             }
             _ => {
@@ -401,7 +401,7 @@ impl NativeResult {
                         ))
                     })?,
                 };
-                let objs = primdecomp::export::read_objects(&json).map_err(PyValueError::new_err)?;
+                let objs = primdecomp::read_objects(&json).map_err(PyValueError::new_err)?;
                 // The input's up axis where the result records it (+Y otherwise).
                 let opts = ExportOptions {
                     up: self.dec.input.up.unwrap_or_default(),
@@ -416,8 +416,46 @@ impl NativeResult {
 }
 
 /// The native module; the public API is in python/primdecomp/__init__.py.
+/// A setting's value as a user spells it ("1%", "4K", "exact", "auto", "box"), read
+/// by the library's own `FromStr` (as the CLI reads its flags), given back as the JSON
+/// of the settings; a wrong word is a `ValueError` naming `key`.
+#[pyfunction]
+fn spelled(key: &str, text: &str) -> PyResult<String> {
+    fn json<T: std::str::FromStr<Err = Error> + serde::Serialize>(
+        s: &str,
+    ) -> Result<String, Error> {
+        let value: T = s.parse()?;
+        Ok(serde_json::to_string(&value).expect("settings serialize"))
+    }
+    let value = match key {
+        "tolerance" => json::<primdecomp::Tolerance>(text),
+        "dedup" => json::<primdecomp::Dedup>(text),
+        "reprice" => json::<primdecomp::Reprice>(text),
+        "partitions" => json::<primdecomp::Partitions>(text),
+        "kind" => text.parse::<primdecomp::Kind>().map(|k| format!("\"{k}\"")),
+        "max_bytes" => match text.parse::<primdecomp::ByteSize>() {
+            Ok(primdecomp::ByteSize(b)) if b > 0 && b <= usize::MAX as u64 => Ok(b.to_string()),
+            _ => Err(Error::InvalidParams(format!(
+                "expected a positive byte count such as 4096 or 4K, got '{text}'"
+            ))),
+        },
+        _ => {
+            return Err(PyValueError::new_err(format!(
+                "{key}: not a spelled setting"
+            )))
+        }
+    };
+    value.map_err(|e| match e {
+        // The kind names itself ("unknown primitive kind …").
+        Error::InvalidParams(m) if key == "kind" => PyValueError::new_err(m),
+        Error::InvalidParams(m) => PyValueError::new_err(format!("{key}: {m}")),
+        e => to_py_err(e),
+    })
+}
+
 #[pymodule]
 fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add_function(wrap_pyfunction!(spelled, m)?)?;
     m.add_function(wrap_pyfunction!(load, m)?)?;
     m.add_function(wrap_pyfunction!(decompose, m)?)?;
     m.add_function(wrap_pyfunction!(decompose_path, m)?)?;

@@ -114,6 +114,17 @@ def test_bad_settings():
     # The CLI's forms work: kinds by name, a partial weights dict, "4K" bytes.
     r = primdecomp.decompose(v, q, kinds=["box"], weights={"box": 2}, max_bytes="4K", targets=4)
     assert {p.kind for p in r.levels[0].primitives} == {"box"}
+    # The words the CLI reads, by the library's own parser, with the CLI's messages.
+    r = primdecomp.decompose(v, q, targets=4, reprice=64, dedup=0.5, partitions="auto")
+    assert r.levels[0].primitives
+    r = primdecomp.decompose(v, q, reprice="exact", max_excess_volume=0.5, targets=4)
+    assert r.levels[0].primitives
+    with pytest.raises(ValueError, match="^reprice: expected exact, deferred or a neighbour count, got 'soon'$"):
+        primdecomp.decompose(v, q, reprice="soon")
+    with pytest.raises(ValueError, match="^partitions: expected auto or a count, got 'many'$"):
+        primdecomp.decompose(v, q, partitions="many")
+    with pytest.raises(ValueError, match="^dedup: expected exact, off or a distance, got 'near'$"):
+        primdecomp.decompose(v, q, dedup="near")
 
 
 def test_file_errors_are_os_errors(tmp_path):

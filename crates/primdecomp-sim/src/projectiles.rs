@@ -564,9 +564,12 @@ mod tests {
         assert!(step > 2.0 * r + 0.001 * crate::scene::SCENE_DIAGONAL);
         let level = |n, solid, min_thickness| {
             let p = primdecomp::Params {
-                targets: vec![n],
-                solid,
-                min_thickness,
+                goal: primdecomp::Goal::counts([n]),
+                plates: primdecomp::Plates {
+                    solid,
+                    min_thickness,
+                    ..Default::default()
+                },
                 ..Default::default()
             };
             primdecomp::decompose(&mesh, &p)

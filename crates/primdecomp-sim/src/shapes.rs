@@ -11,7 +11,7 @@
 
 use super::frustum_shape::{FrustumShape, FRUSTUM_SEGMENTS};
 use super::prism_shape::PrismShape;
-use primdecomp::export::circle_frame;
+use primdecomp::circle_frame;
 use primdecomp::math::quat_from_axes;
 use primdecomp::math::{add, cross, norm2, normalize, scale, sub, V3};
 use primdecomp::Mesh;
@@ -142,7 +142,7 @@ pub fn primitive(p: &Primitive, frame: &Frame) -> Option<Placed> {
 }
 
 /// A frustum as [`FrustumShape`]: the hull of the OBJ export's tessellation (same
-/// vertex radii r / cos(π/k), same angles: the `stack` frame of `export::obj` puts
+/// vertex radii r / cos(π/k), same angles: the `stack` frame of the core's OBJ tessellation puts
 /// vertex j at u cos t + v sin t, t = 2πj/k, which is angle −t in local (x, z) with
 /// x = u, y = the axis, z = u × axis = −v).
 fn frustum(f: &Frustum, frame: &Frame) -> Option<Placed> {

@@ -34,7 +34,7 @@ pub fn from_core_mesh(mesh: &primdecomp::Mesh) -> InputMesh {
 
 /// The primitives of a result document (its `primitives` array).
 pub fn read_primitives(json: &str, path: &Path) -> Result<Vec<Primitive>> {
-    primdecomp::export::read_primitives(json).map_err(|m| Error::format(path, m))
+    primdecomp::read_primitives(json).map_err(|m| Error::format(path, m))
 }
 
 /// The kind of a primitive.
@@ -44,7 +44,7 @@ pub fn kind(p: &Primitive) -> Kind {
 
 /// A primitive's conservative closed tessellation: vertices and outward polygons.
 pub fn tessellate(p: &Primitive, detail: usize) -> (Vec<[f64; 3]>, Vec<Vec<u32>>) {
-    let t = primdecomp::export::tessellate(p, detail);
+    let t = primdecomp::tessellate(p, detail);
     (t.vertices, t.faces)
 }
 

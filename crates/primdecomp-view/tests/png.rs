@@ -83,14 +83,14 @@ fn result(dir: &Path, target: usize) -> Option<(PathBuf, PathBuf, PathBuf)> {
     let mesh_path = primdecomp_testkit::corpus_dir().join(MESH);
     let mesh = primdecomp_testkit::corpus_mesh(MESH)?;
     let params = primdecomp::Params {
-        targets: vec![target],
+        goal: primdecomp::Goal::counts([target]),
         ..Default::default()
     };
     let dec = primdecomp::decompose(&mesh, &params).expect("decomposes");
     let json = dir.join("lamp.json");
-    std::fs::write(&json, primdecomp::export::to_json(&dec, 0, &params)).unwrap();
+    std::fs::write(&json, primdecomp::to_json(&dec, 0, &params)).unwrap();
     let obj = dir.join("tessellation.obj");
-    std::fs::write(&obj, primdecomp::export::to_obj(&dec.levels[0], 16)).unwrap();
+    std::fs::write(&obj, primdecomp::to_obj(&dec.levels[0], 16)).unwrap();
     Some((mesh_path, json, obj))
 }
 

@@ -3,8 +3,8 @@
 //! engine exports in memory, and the tessellation the live page draws.
 
 use crate::js_error;
-use primdecomp::export::{render, ExportOptions, Format, Frame, Physics, ResultObject, Up};
-use primdecomp::{Decomposition, Level, Params};
+use primdecomp::{Decomposition, Frame, Level, Params, ResultObject, Up};
+use primdecomp_export::{render, ExportOptions, Format, Physics};
 use wasm_bindgen::prelude::*;
 
 /// A decomposition and the settings that made it.

@@ -8,7 +8,7 @@
 //! "Many components").
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use primdecomp::{decompose, Mesh, Params};
+use primdecomp::{decompose, Goal, Mesh, Params};
 use std::time::Duration;
 
 /// `c` tetrahedra of edge ~0.3 at integer grid points, deterministically jittered.
@@ -47,7 +47,7 @@ fn components(c: &mut Criterion) {
     for n in [1_000, 3_000, 10_000] {
         let mesh = tetrahedra(n);
         let params = Params {
-            targets: vec![n / 10, 1],
+            goal: Goal::counts([n / 10, 1]),
             ..Default::default()
         };
         g.bench_function(format!("{n}"), |b| {

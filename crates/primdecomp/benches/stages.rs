@@ -11,7 +11,7 @@ use primdecomp::internals::{
     evaluator, face_pairs, face_quadrics, keep_mask, run, run_with, seed_volumes, weld, Cleanup,
     Clusters, StdHeap,
 };
-use primdecomp::{decompose, demo_scene, load, Mesh, Params};
+use primdecomp::{decompose, demo_scene, load, Goal, Mesh, Params};
 use std::path::PathBuf;
 use std::time::Duration;
 
@@ -58,7 +58,7 @@ fn inputs() -> Vec<Input> {
 
 fn params(mesh: &Mesh) -> Params {
     Params {
-        targets: vec![(mesh.face_count() / 100).max(1)],
+        goal: Goal::counts([(mesh.face_count() / 100).max(1)]),
         ..Default::default()
     }
 }
@@ -72,33 +72,37 @@ fn stages(c: &mut Criterion) {
         if let Some(path) = &inp.path {
             g.bench_function("load", |b| b.iter(|| load(path).unwrap()));
         }
-        g.bench_function("dedup", |b| b.iter(|| weld(m, p.dedup)));
-        let (welded, _) = weld(m, p.dedup);
+        g.bench_function("dedup", |b| b.iter(|| weld(m, p.fit.dedup)));
+        let (welded, _) = weld(m, p.fit.dedup);
         g.bench_function("adjacency", |b| b.iter(|| face_pairs(m, &welded)));
         let pairs = face_pairs(m, &welded);
         // Setup never relies on a bench closure having run (filters skip them).
         let mut q = Vec::new();
-        face_quadrics(m, p.tangent_eps, &mut q);
+        face_quadrics(m, p.fit.tangent_eps, &mut q);
         let mut q_bench = Vec::new();
         g.bench_function("quadrics", |b| {
-            b.iter(|| face_quadrics(m, p.tangent_eps, &mut q_bench))
+            b.iter(|| face_quadrics(m, p.fit.tangent_eps, &mut q_bench))
         });
         let ev = evaluator(m, &welded, &p, m.aabb());
         g.bench_function("seed", |b| b.iter(|| seed_volumes(&ev, &q)));
         let vols = seed_volumes(&ev, &q);
         let fresh = || Clusters::new(q.clone(), vols.clone(), &pairs);
         g.bench_function("merge", |b| {
-            b.iter_batched(fresh, |cl| run(&ev, cl, &p.targets), BatchSize::LargeInput)
+            b.iter_batched(
+                fresh,
+                |cl| run(&ev, cl, &p.goal.targets()),
+                BatchSize::LargeInput,
+            )
         });
         // The same merge loop driven by std's BinaryHeap: the radix heap's reference.
         g.bench_function("merge_binary_heap", |b| {
             b.iter_batched(
                 fresh,
-                |cl| run_with::<StdHeap>(&ev, cl, &p.targets),
+                |cl| run_with::<StdHeap>(&ev, cl, &p.goal.targets()),
                 BatchSize::LargeInput,
             )
         });
-        let merged = run(&ev, fresh(), &p.targets);
+        let merged = run(&ev, fresh(), &p.goal.targets());
         let snap = &merged.snapshots[0];
         let cleanup = Cleanup {
             diagonal: m.diagonal(),

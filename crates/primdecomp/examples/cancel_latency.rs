@@ -4,7 +4,7 @@
 //!
 //! `cargo run --release -p primdecomp --example cancel_latency -- MESH [SECONDS...]`
 
-use primdecomp::{decompose_with, Error, Params, Progress, Stage};
+use primdecomp::{decompose_with, Error, Goal, Params, Progress, Stage};
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
@@ -37,7 +37,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     let mesh = primdecomp::load(path.as_ref())?;
     let params = Params {
-        targets: vec![2000],
+        goal: Goal::counts([2000]),
         ..Params::default()
     };
     println!("| cancel at (s) | stage | returned after (s) | latency (s) | cancelled |");

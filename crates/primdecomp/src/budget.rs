@@ -1,4 +1,4 @@
-//! Filling the primitive budget (`Params::fill`), an extension of §3.4 "Removing
+//! Filling the primitive budget ([`Goal::Fill`]), an extension of §3.4 "Removing
 //! Redundant Primitives". The merge loop stops at N clusters and post-processing then
 //! drops the primitives nested in others, so a run asked for N can return far fewer:
 //! truck_shrec at N = 64 keeps 19 (its cab interior and wheels sit inside the body's
@@ -13,12 +13,12 @@
 //! best rung found, not a proven optimum.
 
 use crate::error::Result;
-use crate::mesh::Mesh;
-use crate::params::Params;
+use crate::input::mesh::Mesh;
+use crate::output::result::{Decomposition, Level};
+use crate::params::{CountSearch, Goal, Params};
 use crate::pipeline;
+use crate::progress::wallclock::Instant;
 use crate::progress::{Progress, Stage};
-use crate::result::{Decomposition, Level};
-use crate::wallclock::Instant;
 
 /// Candidate targets per round (one merge pass gives them all).
 const LADDER: usize = 12;
@@ -109,14 +109,16 @@ impl Search {
     }
 }
 
-/// [`crate::decompose_with`] with `params.fill`: the first pass at the requested
+/// [`crate::decompose_with`] for a [`Goal::Fill`]: the first pass at the requested
 /// targets, then up to [`ROUNDS`] ladder passes for the targets the post-processing
 /// left short; the merge stage's progress runs over all of them.
 pub(crate) fn fill(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Result<Decomposition> {
     // The passes are greedy levels, which fill refines (never cuts, 0054).
     let once = Params {
-        fill: false,
-        greedy: true,
+        goal: Goal::Counts {
+            counts: params.goal.targets(),
+            search: CountSearch::Greedy,
+        },
         ..params.clone()
     };
     // Progress: the first pass is the first half, each round an equal share of the rest.
@@ -135,7 +137,7 @@ pub(crate) fn fill(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Res
         let share = 0.5 / ROUNDS as f64;
         let start = 0.5 + share * (round - 1) as f64;
         let ladder = Params {
-            targets,
+            goal: once.goal.with_targets(targets),
             ..once.clone()
         };
         let run = pipeline::run(mesh, &ladder, &Share::new(progress, start, share))?;

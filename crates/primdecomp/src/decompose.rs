@@ -1,23 +1,26 @@
 //! The library's entry points: check the settings, then one bottom-up pass
 //! ([`crate::pipeline`]) or, to fill each target's budget, several (`crate::budget`).
 
+pub(crate) mod objects;
+pub(crate) mod tiles;
+
 use crate::error::Result;
-use crate::mesh::Mesh;
-use crate::params::{short_of, Params};
+use crate::input::mesh::Mesh;
+use crate::output::result::Decomposition;
+use crate::params::{short_of, Goal, Params};
 use crate::progress::{Progress, Silent};
-use crate::result::Decomposition;
 use crate::{budget, pipeline};
 
 /// Decomposes `mesh` into primitives, one [`crate::Level`] per target in
-/// `params.targets` (§3), or per tolerance or byte target ([`Params::resolved`]):
+/// `params.goal` (§3), one per count, tolerance or byte budget ([`crate::Goal`]):
 /// every face lies inside at least one primitive of every level. Deterministic: the
 /// same mesh and settings give the same primitives whatever the number of threads
 /// (rayon's global pool; run it inside your own pool to choose).
 ///
 /// ```
-/// use primdecomp::{decompose, demo_scene, Params};
+/// use primdecomp::{decompose, demo_scene, Goal, Params};
 ///
-/// let result = decompose(&demo_scene(), &Params { targets: vec![30], ..Params::default() })?;
+/// let result = decompose(&demo_scene(), &Params { goal: Goal::counts([30]), ..Params::default() })?;
 /// assert!(result.levels[0].primitives.len() <= 30);
 /// # Ok::<(), primdecomp::Error>(())
 /// ```
@@ -39,9 +42,7 @@ pub fn decompose_with(
     progress: &dyn Progress,
 ) -> Result<Decomposition> {
     params.validate()?;
-    // Without a count, the tolerance's levels under the cap (`Params::resolved`).
-    let params = &params.resolved();
-    if params.fill {
+    if let Goal::Fill { .. } = params.goal {
         // Nested primitives removed leave room: merge less to fill it.
         return budget::fill(mesh, params, progress);
     }
@@ -53,7 +54,7 @@ pub fn decompose_with(
     let short: Vec<usize> = (0..dec.levels.len())
         .filter(|&i| {
             let l = &dec.levels[i];
-            params.count_cut()
+            params.goal.count_cut()
                 && l.distance.is_none()
                 && short_of(l.primitives.len(), l.target, faces)
         })
@@ -61,9 +62,9 @@ pub fn decompose_with(
     if short.is_empty() {
         return Ok(dec);
     }
+    let targets = params.goal.targets();
     let recut = Params {
-        cut: true,
-        targets: short.iter().map(|&i| params.targets[i]).collect(),
+        goal: Goal::cut_counts(short.iter().map(|&i| targets[i]).collect()),
         ..params.clone()
     };
     let cut = pipeline::run(mesh, &recut, progress)?;

@@ -15,7 +15,7 @@
 //! each a list of [`Primitive`]s in the mesh's own coordinates.
 //!
 //! ```
-//! use primdecomp::{decompose, Kind, Mesh, Params};
+//! use primdecomp::{decompose, Goal, Kind, Mesh, Params};
 //!
 //! // A unit cube as six quads.
 //! let corners: Vec<[f64; 3]> = (0..8)
@@ -24,7 +24,7 @@
 //! let quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
 //! let cube = Mesh::from_polygons(&corners, &quads)?;
 //!
-//! let result = decompose(&cube, &Params { targets: vec![1], ..Params::default() })?;
+//! let result = decompose(&cube, &Params { goal: Goal::counts([1]), ..Params::default() })?;
 //! let level = &result.levels[0];
 //! assert_eq!(level.primitives.len(), 1);
 //! assert_eq!(level.primitives[0].kind(), Kind::Box);
@@ -36,10 +36,10 @@
 //! Several targets come from one pass, coarse levels of detail for free:
 //!
 //! ```
-//! use primdecomp::{decompose, demo_scene, Params};
+//! use primdecomp::{decompose, demo_scene, Goal, Params};
 //!
 //! let scene = demo_scene(); // stairs, a table, pipes, a house, a torus and a washer
-//! let params = Params { targets: vec![200, 50], ..Params::default() };
+//! let params = Params { goal: Goal::counts([200, 50]), ..Params::default() };
 //! let result = decompose(&scene, &params)?;
 //! for level in &result.levels {
 //!     println!("{} primitives, {} bytes", level.primitives.len(), level.bytes());
@@ -66,41 +66,42 @@
 mod budget;
 mod cut;
 mod decompose;
-mod demo;
 mod error;
-pub mod export;
+mod input;
 pub mod math;
-mod memory;
 mod merge;
-mod mesh;
-mod objects;
+mod output;
 mod params;
 mod pipeline;
 mod postprocess;
 mod primitive;
 mod progress;
-mod quadric;
 mod recut;
-mod result;
-mod up;
-mod wallclock;
+mod seed;
 
+pub use decompose::objects::{decompose_objects, ObjectResult, ObjectTarget, Objects};
+pub use decompose::tiles::{decompose_tiled, MAX_TILES};
 pub use decompose::{decompose, decompose_with};
-pub use demo::{demo_scene, demo_scene_obj};
 pub use error::{Error, FileKind, Result};
-pub use export::{read_primitives, tessellate, to_json, to_obj, write_atomic};
-pub use mesh::io::{
+pub use input::demo::{demo_scene, demo_scene_obj};
+pub use input::io::{
     load, load_with, memory_needed, open_regular, parse_mesh, parse_mesh_with, read_regular,
     Format, LoadOptions,
 };
-pub use mesh::{Mesh, MeshObject, SkipCounts, Transform};
-pub use objects::{decompose_objects, ObjectResult, ObjectTarget, Objects};
+pub use input::mesh::{Mesh, MeshObject, SkipCounts, Transform};
+pub use input::up::Up;
+pub use output::result::{Decomposition, InputInfo, Level, Shortfall, Stats, Timings};
+pub use output::{
+    circle_frame, read_objects, read_primitives, tessellate, to_json, to_json_objects,
+    to_json_timed, to_obj, visible, write_atomic, Frame, ResultObject, Tess, DEFAULT_DETAIL,
+    MAX_DETAIL, MAX_RESULT_BYTES,
+};
 pub use params::{
-    Dedup, Params, Partitions, Reprice, Tolerance, DEFAULT_TOLERANCE, MAX_PRIMITIVES,
+    ByteSize, CountSearch, Dedup, Fit, Goal, Params, Partitions, Plates, Reprice, Speed, Tolerance,
+    DEFAULT_TOLERANCE, MAX_PRIMITIVES,
 };
 pub use primitive::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
 pub use progress::{Estimate, Eta, Progress, Stage};
-pub use result::{Decomposition, InputInfo, Level, Shortfall, Stats, Timings};
 
 /// The stages one by one, for the project's own tests and benchmarks (feature
 /// `test-internals`, which the workspace's test helpers turn on). Not part of the
@@ -109,6 +110,10 @@ pub use result::{Decomposition, InputInfo, Level, Shortfall, Stats, Timings};
 #[doc(hidden)]
 #[allow(missing_docs)]
 pub mod internals {
+    pub use crate::input::dedup::weld;
+    pub use crate::input::mesh::outward_normal;
+    use crate::input::mesh::Mesh;
+    pub use crate::input::orient::face_signs_of_lists;
     use crate::math::Sym3;
     pub use crate::merge::cluster::Clusters;
     pub use crate::merge::cost::{Evaluator, Workspace};
@@ -116,21 +121,17 @@ pub mod internals {
     pub use crate::merge::heap::StdHeap;
     pub use crate::merge::rim::{FaceAdjacency, Surroundings};
     pub use crate::merge::worker::with_pricer;
-    pub use crate::mesh::dedup::weld;
-    pub use crate::mesh::orient::face_signs_of_lists;
-    pub use crate::mesh::outward_normal;
-    use crate::mesh::Mesh;
     pub use crate::params::{AUTO_MIN_FACES, AUTO_PARTS};
     pub use crate::pipeline::evaluator;
     pub use crate::postprocess::nested::{keep_mask, Cleanup};
 
     /// Faces sharing an edge, by the welded indices `welded`.
     pub fn face_pairs(mesh: &Mesh, welded: &[u32]) -> Vec<(u32, u32)> {
-        crate::mesh::adjacency::face_pairs(&mesh.face_offsets, welded)
+        crate::input::adjacency::face_pairs(&mesh.face_offsets, welded)
     }
-    pub use crate::mesh::adjacency::neighbour_lists;
+    pub use crate::input::adjacency::neighbour_lists;
 
-    pub use crate::quadric::face_quadrics;
+    pub use crate::seed::quadric::face_quadrics;
 
     /// Each face's seed volume.
     pub fn seed_volumes(ev: &Evaluator, q: &[Sym3]) -> Vec<f64> {

@@ -1,21 +1,29 @@
-//! Settings of a decomposition. The paper's settings come first (§3.3 weights, §3.4
-//! deduplication, tangent term and clean-up); then what our fixes to it do for a user,
-//! each on by default and each recorded under `docs/decisions/`; then speed. A run's
-//! settings are written into its JSON (`settings`) and read back by
+//! Settings of a decomposition: what the user asks for ([`Goal`]: counts, a tolerance
+//! or a byte budget), then three groups named for what they do: [`Fit`] (which
+//! primitives and how a merge is priced: §3.3 weights, §3.4 deduplication and tangent
+//! term), [`Plates`] (how flat parts, holes and nested primitives come out: §3.4's
+//! clean-up and our fixes to it, each on by default and each recorded under
+//! `docs/decisions/`) and [`Speed`]. A run's settings are written into its JSON
+//! (`settings`, the flat shape of `params/json.rs`) and read back by
 //! [`Params::from_json`], so a result can be reproduced from its own file.
+
+mod goal;
+mod json;
+mod spelling;
+
+pub use goal::{CountSearch, Goal};
+pub use spelling::ByteSize;
 
 use crate::error::{Error, Result};
 use crate::primitive::Kind;
 use serde::{Deserialize, Serialize};
 
-/// The tolerance of a run that gives no count, tolerance or byte target (empty
-/// [`Params::targets`], [`Params::tolerance`] and [`Params::max_bytes`]): every
-/// primitive within this much of the input's diagonal, chosen from measurements over
-/// the corpus (docs/decisions/0037).
+/// The tolerance of the default [`Goal`]: every primitive within this much of the
+/// input's diagonal, chosen from measurements over the corpus (docs/decisions/0037).
 pub const DEFAULT_TOLERANCE: Tolerance = Tolerance::Diagonal(0.02);
 
-/// The most primitives a level holds when no count is given: the cap of a tolerance
-/// or byte target without [`Params::targets`].
+/// The most primitives a level holds when no count is given: the cap of a
+/// [`Goal::Within`] without caps.
 pub const MAX_PRIMITIVES: usize = 1024;
 
 /// The farthest any primitive of a level may stand from the input: the one-way
@@ -45,7 +53,7 @@ impl Tolerance {
         }
     }
 
-    fn value(self) -> f64 {
+    pub(crate) fn value(self) -> f64 {
         match self {
             Tolerance::Units(d) | Tolerance::Diagonal(d) => d,
         }
@@ -154,44 +162,62 @@ impl<'de> Deserialize<'de> for Partitions {
     }
 }
 
-/// All settings of a run. `Params::default()` is the recommended configuration: the
-/// fewest primitives within [`DEFAULT_TOLERANCE`] of the input, at most
-/// [`MAX_PRIMITIVES`]. Change only what you need, as in
-/// `Params { targets: vec![200, 50], ..Params::default() }` (two levels of at most
-/// 200 and 50 primitives) or `Params { tolerance: vec![Tolerance::Diagonal(0.005)],
-/// ..Params::default() }`.
+/// All settings of a run: what is asked for ([`Goal`]), then what the primitives may
+/// be ([`Fit`]), how flat parts, holes and nested primitives come out ([`Plates`]),
+/// and how fast the merge runs ([`Speed`]). `Params::default()` is the recommended
+/// configuration: the fewest primitives within [`DEFAULT_TOLERANCE`] of the input, at
+/// most [`MAX_PRIMITIVES`]. Change only what you need, as in
+/// `Params { goal: Goal::counts([200, 50]), ..Params::default() }` (two levels of at
+/// most 200 and 50 primitives) or
+/// `Params { goal: Goal::tolerance(Tolerance::Diagonal(0.005)), ..Params::default() }`.
+/// Results record the settings in the JSON shape [`Params::from_json`] reads.
 ///
 /// | setting | default | raising it | lowering it |
 /// |---|---|---|---|
-/// | `tolerance` | none given: 2% of the diagonal | fewer, larger primitives | tighter fit, more primitives |
-/// | `targets` | none: the tolerance decides | more, smaller primitives: tighter fit, more bytes | coarser colliders |
-/// | `weights[kind]` | box, sphere, capsule 1; cylinder 1.05; frustum 2.1; prism 1.4 | that kind is chosen less often | that kind is chosen more often |
-/// | `min_extent` | 5e-4 | thin parts get thicker primitives | flatter plates |
-/// | `open_holes` | 0.01 | holes and gaps in flat surfaces stay open at lower counts | 0: the paper's pricing (a roof's rim closes into a lid) |
-/// | `rim_weight` | 1 | primitives keep further off the faces beside them | 0: volume alone (a plate may stand past a wall's top as a curb) |
-#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
+/// | `goal`'s tolerance | 2% of the diagonal | fewer, larger primitives | tighter fit, more primitives |
+/// | `goal`'s counts | none: the tolerance decides | more, smaller primitives: tighter fit, more bytes | coarser colliders |
+/// | `fit.weights[kind]` | box, sphere, capsule 1; cylinder 1.05; frustum 2.1; prism 1.4 | that kind is chosen less often | that kind is chosen more often |
+/// | `fit.min_extent` | 5e-4 | thin parts get thicker primitives | flatter plates |
+/// | `plates.open_holes` | 0.01 | holes and gaps in flat surfaces stay open at lower counts | 0: the paper's pricing (a roof's rim closes into a lid) |
+/// | `plates.rim_weight` | 1 | primitives keep further off the faces beside them | 0: volume alone (a plate may stand past a wall's top as a curb) |
+#[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "json::Settings", into = "json::Settings")]
 pub struct Params {
-    // --- The paper's settings (§3.3, §3.4) ---
-    /// Target primitive counts, one [`crate::Level`] each from a single bottom-up pass
-    /// (§3.3). A level has at most its target's count: fewer where nested primitives
-    /// are removed and where coplanar faces merge for free ([`Params::join_coplanar`]).
-    /// With a [`Params::tolerance`] or [`Params::max_bytes`] each is that level's cap.
-    /// Empty (the default): one level per tolerance or byte target, each capped at
-    /// [`MAX_PRIMITIVES`]; with neither, one level within [`DEFAULT_TOLERANCE`]
-    /// ([`Params::resolved`]).
-    pub targets: Vec<usize>,
+    /// What the run is asked for: counts, a tolerance or a byte budget, one
+    /// [`crate::Level`] each.
+    pub goal: Goal,
+    /// Which primitives may be fitted and how a merge is priced (§3.3, §3.4).
+    pub fit: Fit,
+    /// How flat parts, holes, rims and nested primitives come out: the paper's
+    /// clean-up (§3.4) and our fixes to it, each on by default and each recorded under
+    /// `docs/decisions/`.
+    pub plates: Plates,
+    /// How fast the merge runs (the same quality within measurement noise).
+    pub speed: Speed,
+}
+
+/// Which primitives may be fitted and how a merge is priced (§3.3, §3.4).
+///
+/// ```
+/// use primdecomp::{Fit, Kind, Params};
+///
+/// let mut kinds = [false; 6];
+/// kinds[Kind::Box as usize] = true;
+/// let boxes = Params { fit: Fit { kinds, ..Fit::default() }, ..Params::default() };
+/// assert!(boxes.validate().is_ok());
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Fit {
     /// Which kinds may be fitted, indexed by `Kind as usize` ([`Kind::ALL`] order).
-    #[serde(with = "by_kind")]
     pub kinds: [bool; 6],
     /// Cost weight k(kind) per kind, indexed by `Kind as usize`: a merge costs k·V, V
     /// the volume of the primitive it makes (§3.3).
-    #[serde(with = "by_kind")]
     pub weights: [f64; 6],
     /// ε of the tangent term in each face's quadric Q = area·(nnᵀ + ε·ttᵀ) (§3.4
     /// "Coplanar Vertices"): flat clusters align with their edges; 0 disables it.
     pub tangent_eps: f64,
-    /// Vertex deduplication before adjacency (§3.4).
+    /// Which vertices count as one before adjacency (§3.4): what the merge sees as
+    /// connected.
     pub dedup: Dedup,
     /// Smallest half-extent of any primitive, as a fraction of the input's bounding-box
     /// diagonal (the paper's absolute 1e-3, made relative so that results do not
@@ -201,14 +227,31 @@ pub struct Params {
     /// (§3.3); `None` = unlimited. A capped merge has no queue entry to defer, so this
     /// needs [`Reprice::Exact`] (checked by [`Params::validate`]).
     pub max_excess_volume: Option<f64>,
-    /// Remove primitives whose faces all lie inside another primitive (§3.4
-    /// "Removing Redundant Primitives"); never loses coverage.
-    pub remove_nested: bool,
-    /// Also remove boxes whose smallest half-extent is below this fraction of the
-    /// diagonal when other primitives cover all their faces (the paper's Bistro figure).
-    pub remove_thin_boxes: Option<f64>,
+}
 
-    // --- What our fixes to the paper do for you (docs/decisions) ---
+impl Default for Fit {
+    fn default() -> Self {
+        Fit {
+            kinds: [true; 6],
+            weights: [1.0, 1.0, 1.0, 1.05, 2.1, 1.4],
+            tangent_eps: 0.01,
+            dedup: Dedup::Exact,
+            min_extent: 5e-4,
+            max_excess_volume: None,
+        }
+    }
+}
+
+/// How flat parts, holes, rims and nested primitives come out.
+///
+/// ```
+/// use primdecomp::{Params, Plates};
+///
+/// let thick = Params { plates: Plates { min_thickness: 0.3, ..Plates::default() }, ..Params::default() };
+/// assert!(thick.validate().is_ok());
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Plates {
     /// Keeps holes and gaps in flat surfaces open: merges of coplanar clusters are
     /// priced as if the primitive were at least this thick (half-extent, a fraction of
     /// the diagonal), so a roof's rim stays a rim instead of closing into a lid; other
@@ -238,86 +281,53 @@ pub struct Params {
     /// the input is closed behind them, their outer side where it was, filling at
     /// most 0.6 of the part's depth: fast bodies stop at them between discrete physics
     /// steps. 0 = off, plates 2 × `min_extent` thick (docs/decisions/0033).
-    #[serde(skip_serializing_if = "is_zero")]
     pub min_thickness: f64,
-    /// Fills each target: when removing nested primitives leaves fewer than N, merge
-    /// less (up to 8N) so the level holds as many primitives as fit within N; up to
-    /// four more merge passes (docs/decisions/0020).
-    pub fill: bool,
-    /// Counts are the greedy pass's levels (the paper's, the fastest), never cut
-    /// again. By default (`Params::count_cut`) a count on an input of several
-    /// separate parts is a cut of the merge tree, and on one part a greedy level that
-    /// post-processing left short of its count by more than a few
-    /// (`short_of`) is cut again: on several parts the greedy level loses the parts
-    /// nested in one large primitive, so -n 32 could give 5
-    /// (docs/decisions/0054-counts-on-several-parts.md).
-    #[serde(skip_serializing_if = "is_false")]
-    pub greedy: bool,
-    /// Each target is a cut of the pass's merge tree instead of the clusters alive when
-    /// N remain: the node whose primitive stands farthest from the input (a bound of
-    /// the one-way distance, docs/decisions/0040) is split until N remain or none is worth splitting, and of
-    /// the cuts reached, the one of at most N nodes whose worst node stands nearest
-    /// is kept, then filled to N (docs/decisions/0032 and 0034). A tolerance or byte
-    /// target implies it, and the settings a run records ([`Params::resolved`]) say so.
-    pub cut: bool,
-    /// Each level's primitives within this distance of the input: the fewest
-    /// primitives of the merge tree's cuts whose every primitive is within it, its
-    /// target as a cap ([`Params::cut`] implied). Empty: none; one value applies to
-    /// every target; otherwise one per target (docs/decisions/0034).
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub tolerance: Vec<Tolerance>,
-    /// Each level's storage at most this many bytes by the paper's Table 2 (4 bytes a
-    /// float), its target as a cap ([`Params::cut`] implied): the cut of least worst
-    /// distance that fits. Empty: none; one value applies to every target; otherwise
-    /// one per target (docs/decisions/0034).
-    #[serde(skip_serializing_if = "Vec::is_empty")]
-    pub max_bytes: Vec<usize>,
-
-    // --- Speed (same quality within measurement noise) ---
-    /// When merged clusters' candidate merges are re-priced.
-    pub reprice: Reprice,
-    /// Spatial parts merged in parallel before the global loop.
-    pub partitions: Partitions,
+    /// Remove primitives whose faces all lie inside another primitive (§3.4
+    /// "Removing Redundant Primitives"); never loses coverage.
+    pub remove_nested: bool,
+    /// Also remove boxes whose smallest half-extent is below this fraction of the
+    /// diagonal when other primitives cover all their faces (the paper's Bistro figure).
+    pub remove_thin_boxes: Option<f64>,
 }
 
-impl Default for Params {
+impl Default for Plates {
     fn default() -> Self {
-        Params {
-            targets: Vec::new(),
-            kinds: [true; 6],
-            weights: [1.0, 1.0, 1.0, 1.05, 2.1, 1.4],
-            tangent_eps: 0.01,
-            dedup: Dedup::Exact,
-            min_extent: 5e-4,
-            max_excess_volume: None,
-            remove_nested: true,
-            remove_thin_boxes: None,
+        Plates {
             open_holes: 0.01,
             rim_weight: 1.0,
             flush_plates: true,
             join_coplanar: true,
             solid: false,
             min_thickness: 0.0,
-            fill: false,
-            greedy: false,
-            cut: false,
-            tolerance: Vec::new(),
-            max_bytes: Vec::new(),
-            reprice: Reprice::Deferred { min_degree: 64 },
-            partitions: Partitions::Auto,
+            remove_nested: true,
+            remove_thin_boxes: None,
         }
     }
 }
 
-/// Whether `x` is 0 (a setting left off is not written, so documents made before it
-/// existed are byte-identical).
-fn is_zero(x: &f64) -> bool {
-    *x == 0.0
+/// How fast the merge runs: the same quality within measurement noise.
+///
+/// ```
+/// use primdecomp::{Params, Partitions, Speed};
+///
+/// let one_loop = Params { speed: Speed { partitions: Partitions::Fixed(1), ..Speed::default() }, ..Params::default() };
+/// assert!(one_loop.validate().is_ok());
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct Speed {
+    /// When merged clusters' candidate merges are re-priced.
+    pub reprice: Reprice,
+    /// Spatial parts merged in parallel before the global loop.
+    pub partitions: Partitions,
 }
 
-/// Whether `b` is false (as [`is_zero`]).
-fn is_false(b: &bool) -> bool {
-    !*b
+impl Default for Speed {
+    fn default() -> Self {
+        Speed {
+            reprice: Reprice::Deferred { min_degree: 64 },
+            partitions: Partitions::Auto,
+        }
+    }
 }
 
 /// Whether a level of `primitives` falls short of its count `target` by more than a
@@ -328,57 +338,16 @@ pub(crate) fn short_of(primitives: usize, target: usize, faces: usize) -> bool {
     primitives + (want / 32).max(2) < want
 }
 
-/// Per-kind arrays as `{"box": …, "sphere": …, …}` (every kind named, in order).
-mod by_kind {
-    use crate::primitive::Kind;
-    use serde::de::{Deserialize, Deserializer, Error};
-    use serde::ser::{SerializeMap, Serializer};
-    use serde::Serialize;
-    use std::collections::BTreeMap;
-
-    pub fn serialize<T: Serialize, S: Serializer>(v: &[T; 6], s: S) -> Result<S::Ok, S::Error> {
-        let mut m = s.serialize_map(Some(6))?;
-        for k in Kind::ALL {
-            m.serialize_entry(k.name(), &v[k as usize])?;
-        }
-        m.end()
-    }
-
-    pub fn deserialize<'de, T, D>(d: D) -> Result<[T; 6], D::Error>
-    where
-        T: Deserialize<'de> + Copy,
-        D: Deserializer<'de>,
-    {
-        let map = BTreeMap::<String, T>::deserialize(d)?;
-        for name in map.keys() {
-            if Kind::from_name(name).is_none() {
-                return Err(D::Error::custom(format!(
-                    "unknown primitive kind \"{name}\" (expected box, sphere, capsule, \
-                     cylinder, frustum or prism)"
-                )));
-            }
-        }
-        let get = |k: Kind| map.get(k.name()).copied();
-        let missing = Kind::ALL.into_iter().find(|&k| get(k).is_none());
-        if let Some(k) = missing {
-            return Err(D::Error::custom(format!(
-                "kind \"{}\" is missing",
-                k.name()
-            )));
-        }
-        Ok(Kind::ALL.map(|k| get(k).expect("checked above")))
-    }
-}
-
 impl Params {
     /// The settings of a primdecomp JSON result (its `settings` object), or a JSON
     /// object of settings alone; keys left out keep their defaults, unknown keys are
     /// an error. A result's own settings give back its primitives.
     ///
     /// ```
-    /// use primdecomp::{decompose, demo_scene, to_json, Params};
+    /// use primdecomp::{decompose, demo_scene, to_json, Goal, Params, Plates};
     ///
-    /// let params = Params { targets: vec![40], rim_weight: 0.5, ..Params::default() };
+    /// let plates = Plates { rim_weight: 0.5, ..Plates::default() };
+    /// let params = Params { goal: Goal::counts([40]), plates, ..Params::default() };
     /// let first = decompose(&demo_scene(), &params)?;
     /// let json = to_json(&first, 0, &params);
     /// let again = Params::from_json(&json)?;
@@ -393,7 +362,7 @@ impl Params {
         // is settings alone.
         let mut settings = match value.get("format") {
             Some(_) => {
-                crate::export::contract::check_header(value.get("format"), value.get("version"))
+                crate::output::contract::check_header(value.get("format"), value.get("version"))
                     .map_err(Error::InvalidParams)?;
                 value.get("settings").cloned().ok_or_else(|| {
                     Error::InvalidParams("settings: the result has no \"settings\"".into())
@@ -406,62 +375,14 @@ impl Params {
             obj.remove("target");
             obj.remove("merge_target");
         }
-        let params: Params = serde_json::from_value(settings).map_err(bad)?;
+        let settings: json::Settings = serde_json::from_value(settings).map_err(bad)?;
+        let params = Params::try_from(settings).map_err(Error::InvalidParams)?;
         params.validate()?;
         Ok(params)
     }
 
-    /// The settings a run uses: without [`Params::targets`], one level per tolerance or
-    /// byte target capped at [`MAX_PRIMITIVES`] primitives, or with neither one level
-    /// within [`DEFAULT_TOLERANCE`]; one target and a chain of tolerances or byte
-    /// targets, that target as every level's cap. Results record these settings.
-    ///
-    /// ```
-    /// use primdecomp::{Params, Tolerance, DEFAULT_TOLERANCE, MAX_PRIMITIVES};
-    ///
-    /// let run = Params::default().resolved();
-    /// assert_eq!((run.targets, run.tolerance), (vec![MAX_PRIMITIVES], vec![DEFAULT_TOLERANCE]));
-    /// let chain = Params {
-    ///     targets: vec![300],
-    ///     tolerance: vec![Tolerance::Diagonal(0.02), Tolerance::Diagonal(0.005)],
-    ///     ..Params::default()
-    /// };
-    /// assert_eq!(chain.resolved().targets, vec![300, 300]);
-    /// assert!(run.cut, "a tolerance is a cut of the merge tree");
-    /// let counts = Params { targets: vec![64], ..Params::default() }.resolved();
-    /// assert!(counts.tolerance.is_empty() && !counts.cut);
-    /// ```
-    pub fn resolved(&self) -> Params {
-        let mut p = self.clone();
-        let chain = p.tolerance.len().max(p.max_bytes.len());
-        match p.targets.len() {
-            // Fill completes a count: without one, validate says so.
-            0 if p.fill => {}
-            0 if chain == 0 => {
-                p.tolerance = vec![DEFAULT_TOLERANCE];
-                p.targets = vec![MAX_PRIMITIVES];
-            }
-            0 => p.targets = vec![MAX_PRIMITIVES; chain],
-            1 if chain > 1 => p.targets = vec![p.targets[0]; chain],
-            _ => {}
-        }
-        // A tolerance or byte target is a cut: the recorded settings say so.
-        p.cut = p.uses_cut();
-        p
-    }
-
-    /// Checks every setting of the run [`Params::resolved`] makes of these;
-    /// [`crate::decompose`] calls this before any work.
+    /// Checks every setting; [`crate::decompose`] calls this before any work.
     pub fn validate(&self) -> Result<()> {
-        if self.fill && self.targets.is_empty() {
-            return Err(Error::InvalidParams(
-                "fill needs targets: the counts whose levels it fills".into(),
-            ));
-        }
-        self.resolved().validate_resolved()
-    }
-
-    fn validate_resolved(&self) -> Result<()> {
         let bad = |m: String| Err(Error::InvalidParams(m));
         let fraction = |name: &str, x: f64, zero_ok: bool| {
             let ok = x.is_finite() && x < 1.0 && (x > 0.0 || (zero_ok && x == 0.0));
@@ -472,25 +393,12 @@ impl Params {
                 bad(format!("{name} must be in {range}, got {x}"))
             }
         };
-        if self.targets.is_empty() || self.targets.contains(&0) {
-            return bad("targets must be one or more positive counts".into());
-        }
-        let levels = self
-            .targets
-            .len()
-            .max(self.tolerance.len())
-            .max(self.max_bytes.len());
-        if levels > MAX_LEVELS {
-            return bad(format!(
-                "{levels} levels (targets, tolerances or byte targets) asked for; a run makes \
-                 at most {MAX_LEVELS}, each a result of its own"
-            ));
-        }
-        if !self.kinds.iter().any(|&k| k) {
+        self.goal.validate()?;
+        if !self.fit.kinds.iter().any(|&k| k) {
             return bad("at least one primitive kind must be enabled".into());
         }
         for k in Kind::ALL {
-            let w = self.weights[k as usize];
+            let w = self.fit.weights[k as usize];
             if !(w.is_finite() && w > 0.0) {
                 return bad(format!(
                     "weight of {} must be a positive number, got {w}",
@@ -499,21 +407,21 @@ impl Params {
             }
         }
         for (name, x) in [
-            ("tangent_eps", self.tangent_eps),
-            ("rim_weight", self.rim_weight),
+            ("tangent_eps", self.fit.tangent_eps),
+            ("rim_weight", self.plates.rim_weight),
         ] {
             if !(x.is_finite() && x >= 0.0) {
                 return bad(format!("{name} must be ≥ 0, got {x}"));
             }
         }
-        fraction("min_extent", self.min_extent, false)?;
-        fraction("open_holes", self.open_holes, true)?;
-        fraction("min_thickness", self.min_thickness, true)?;
-        if let Some(m) = self.max_excess_volume {
+        fraction("min_extent", self.fit.min_extent, false)?;
+        fraction("open_holes", self.plates.open_holes, true)?;
+        fraction("min_thickness", self.plates.min_thickness, true)?;
+        if let Some(m) = self.fit.max_excess_volume {
             if !(m.is_finite() && m >= 0.0) {
                 return bad(format!("max_excess_volume must be ≥ 0, got {m}"));
             }
-            if self.reprice != Reprice::Exact {
+            if self.speed.reprice != Reprice::Exact {
                 return bad(
                     "max_excess_volume needs reprice: exact (a merge over the cap has no queue \
                      entry whose re-pricing could be deferred)"
@@ -521,95 +429,29 @@ impl Params {
                 );
             }
         }
-        if let Partitions::Fixed(k) = self.partitions {
+        if let Partitions::Fixed(k) = self.speed.partitions {
             if !(1..=MAX_PARTITIONS).contains(&k) {
                 return bad(format!(
                     "partitions must be auto or from 1 to {MAX_PARTITIONS}, got {k}"
                 ));
             }
         }
-        if let Dedup::Tolerance(t) = self.dedup {
+        if let Dedup::Tolerance(t) = self.fit.dedup {
             if !(t.is_finite() && t >= 0.0) {
                 return bad(format!("dedup tolerance must be ≥ 0, got {t}"));
             }
         }
-        if let Some(t) = self.remove_thin_boxes {
+        if let Some(t) = self.plates.remove_thin_boxes {
             if !(t.is_finite() && t >= 0.0) {
                 return bad(format!("remove_thin_boxes must be ≥ 0, got {t}"));
             }
         }
-        self.validate_cut()
-    }
-
-    /// The tolerance and byte targets: positive, one or one per target, not with fill.
-    fn validate_cut(&self) -> Result<()> {
-        let bad = |m: String| Err(Error::InvalidParams(m));
-        let n = self.targets.len();
-        for (name, len) in [
-            ("tolerance", self.tolerance.len()),
-            ("max_bytes", self.max_bytes.len()),
-        ] {
-            if len > 1 && len != n {
-                return bad(format!(
-                    "{name} has {len} values for {n} targets: give one value, or one per target"
-                ));
-            }
-        }
-        if let Some(t) = self
-            .tolerance
-            .iter()
-            .find(|t| !(t.value().is_finite() && t.value() > 0.0))
-        {
-            return bad(format!("tolerance must be a positive distance, got {t:?}"));
-        }
-        if self.max_bytes.contains(&0) {
-            return bad("max_bytes must be positive".into());
-        }
-        if self.greedy && self.uses_cut() {
-            return bad(
-                "greedy takes the greedy pass's levels: not with cut, tolerance or max_bytes"
-                    .into(),
-            );
-        }
-        if self.fill && self.uses_cut() {
-            return bad(
-                "fill refines the greedy snapshot; cut, tolerance and max_bytes already fill \
-                 each target from the merge tree"
-                    .into(),
-            );
-        }
         Ok(())
     }
 
-    /// Whether levels are cuts of the merge tree ([`Params::cut`], or a tolerance or
-    /// byte target), which needs more memory than the greedy merge alone
-    /// ([`LoadOptions::greedy_only`](crate::LoadOptions::greedy_only)).
-    ///
-    /// ```
-    /// use primdecomp::{Params, Tolerance};
-    ///
-    /// let count = Params { targets: vec![2000], ..Params::default() };
-    /// assert!(!count.uses_cut());
-    /// let tolerance = Params { tolerance: vec![Tolerance::Diagonal(0.02)], ..count };
-    /// assert!(tolerance.uses_cut());
-    /// ```
+    /// Whether levels are cuts of the merge tree ([`Goal::uses_cut`]).
     pub fn uses_cut(&self) -> bool {
-        self.cut || !self.tolerance.is_empty() || !self.max_bytes.is_empty()
-    }
-
-    /// Whether counts alone may become cuts of the merge tree where the greedy level
-    /// falls short ([`Params::greedy`]): neither greedy, fill nor a cut is asked for.
-    pub(crate) fn count_cut(&self) -> bool {
-        !self.greedy && !self.fill && !self.uses_cut()
-    }
-
-    /// Level `i`'s tolerance and byte target (one value applies to every level).
-    pub(crate) fn level_limits(&self, i: usize) -> (Option<Tolerance>, Option<usize>) {
-        let pick = |len: usize| (len > 0).then_some(if len == 1 { 0 } else { i });
-        (
-            pick(self.tolerance.len()).map(|k| self.tolerance[k]),
-            pick(self.max_bytes.len()).map(|k| self.max_bytes[k]),
-        )
+        self.goal.uses_cut()
     }
 }
 
@@ -640,20 +482,30 @@ mod tests {
     fn settings_round_trip_through_json() {
         for partitions in [Partitions::Auto, Partitions::Fixed(1), Partitions::Fixed(8)] {
             let p = Params {
-                partitions,
-                targets: vec![7, 3],
-                kinds: [true, false, true, true, false, true],
-                dedup: Dedup::Tolerance(0.25),
-                reprice: Reprice::Exact,
-                max_excess_volume: Some(0.1),
-                remove_thin_boxes: Some(0.01),
-                ..Default::default()
+                goal: Goal::counts([7, 3]),
+                fit: Fit {
+                    kinds: [true, false, true, true, false, true],
+                    dedup: Dedup::Tolerance(0.25),
+                    max_excess_volume: Some(0.1),
+                    ..Default::default()
+                },
+                plates: Plates {
+                    remove_thin_boxes: Some(0.01),
+                    ..Default::default()
+                },
+                speed: Speed {
+                    partitions,
+                    reprice: Reprice::Exact,
+                },
             };
             let json = serde_json::to_string(&p).unwrap();
             assert_eq!(Params::from_json(&json).unwrap(), p, "{json}");
         }
         let zero = Params {
-            partitions: Partitions::Fixed(0),
+            speed: Speed {
+                partitions: Partitions::Fixed(0),
+                ..Default::default()
+            },
             ..Default::default()
         };
         assert!(zero.validate().is_err());
@@ -668,9 +520,14 @@ mod tests {
     fn bad_settings_are_named() {
         let err = |s: &str| Params::from_json(s).unwrap_err().to_string();
         assert!(err(r#"{"targets": [3], "rim_wieght": 1}"#).contains("rim_wieght"));
+        assert!(err(r#"{"fill": true}"#).contains("fill needs targets"));
+        assert!(err(r#"{"targets": [3], "greedy": true, "cut": true}"#).contains("greedy"));
         assert!(err(r#"{"weights": {"box": 1, "cone": 2}}"#).contains("cone"));
         assert!(err(r#"{"max_excess_volume": 0.1}"#).contains("reprice: exact"));
         let p = Params::from_json(r#"{"targets": [5], "solid": true}"#).unwrap();
-        assert_eq!((p.targets, p.solid, p.rim_weight), (vec![5], true, 1.0));
+        assert_eq!(
+            (p.goal, p.plates.solid, p.plates.rim_weight),
+            (Goal::counts([5]), true, 1.0)
+        );
     }
 }

@@ -5,21 +5,23 @@
 
 use crate::cut::Request;
 use crate::error::{Error, Result};
+use crate::input::mesh::Mesh;
+use crate::input::solid::{self, Solid};
+use crate::input::triangles::Triangles;
+use crate::input::{adjacency, dedup, orient};
 use crate::math::{Sym3, V3};
 use crate::merge::rim::FaceAdjacency;
 use crate::merge::{components, partition, Clusters, Evaluator, MergeOutput, Workspace};
-use crate::mesh::solid::{self, Solid};
-use crate::mesh::triangles::Triangles;
-use crate::mesh::{adjacency, dedup, orient, Mesh};
+use crate::output::result::{Decomposition, InputInfo, Stats, Timings};
 use crate::params::{Params, Reprice};
+use crate::postprocess;
 use crate::primitive::fit::{FitConfig, FrameSearch};
+use crate::progress::wallclock::Instant;
 use crate::progress::{GoOn, Progress, Stage};
-use crate::result::{Decomposition, InputInfo, Stats, Timings};
-use crate::wallclock::Instant;
-use crate::{postprocess, quadric};
+use crate::seed::quadric;
 use rayon::prelude::*;
 
-/// One pass through `params.targets` (`params.fill` is the caller's: `budget`).
+/// One pass through the goal's targets (a fill's further passes are the caller's: `budget`).
 pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Result<Decomposition> {
     // Far-flung vertices would overflow volumes to inf and NaN
     // (docs/decisions/hostile-input-limits.md).
@@ -29,7 +31,7 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
     // Weld overlapping vertices so seams between parts become adjacency (§3.4).
     let (welded, distinct) = clock
         .stage(Stage::Dedup, "dedup", |go_on, _| {
-            dedup::weld_checked(mesh, params.dedup, go_on)
+            dedup::weld_checked(mesh, params.fit.dedup, go_on)
         })?
         .ok_or(Error::Cancelled)?;
     // Faces sharing an edge form the merge graph (§3.3).
@@ -44,28 +46,29 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
         let corners = &welded[mesh.face_offsets[f] as usize..mesh.face_offsets[f + 1] as usize];
         corners.iter().all(|&v| v == corners[0])
     };
-    let several = params.count_cut() && components::several(mesh.face_count(), &pairs, point);
+    let several = params.goal.count_cut() && components::several(mesh.face_count(), &pairs, point);
     let cut_params;
     let params = match several {
         true => {
             cut_params = Params {
-                cut: true,
+                goal: params.goal.as_cut(),
                 ..params.clone()
             };
             &cut_params
         }
         false => params,
     };
+    let counts = params.goal.targets();
     // Spatial parts merge down to their share of the largest requested count's groups,
     // the greedy's own; a cut's leaves come from the global loop after them (0042).
-    let largest = params.targets.iter().copied().max().unwrap_or(1);
+    let largest = counts.iter().copied().max().unwrap_or(1);
     let mut targets = if params.uses_cut() {
         // The tree's leaves (a snapshot of a few times the largest target, needed only
         // after spatial parts: below) up to its roots (docs/decisions/0032, 0034).
         let leaves = largest.saturating_mul(crate::cut::LEAVES_PER_TARGET);
         merge_order(&[leaves.min(mesh.face_count()).max(largest), 1])
     } else {
-        merge_order(&params.targets)
+        merge_order(&counts)
     };
     // Where the merge loop starts: spatial parts, components, or the faces themselves.
     let first = FirstPhase::choose(mesh, params, &pairs, targets[0], largest);
@@ -76,7 +79,7 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
     let q = clock.stage(Stage::Quadrics, "quadrics", |go_on, _| {
         let mut q = Vec::new();
         if !per_part {
-            quadric::face_quadrics_checked(mesh, params.tangent_eps, &mut q, go_on);
+            quadric::face_quadrics_checked(mesh, params.fit.tangent_eps, &mut q, go_on);
         }
         q
     })?;
@@ -97,6 +100,7 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
     // The input's interior, where merges are priced by the air they add (--solid).
     let solid = clock.step(Stage::Seed, "solid", || {
         params
+            .plates
             .solid
             .then(|| Solid::build(mesh, solid::CELLS, solid::VOTES))
     })?;
@@ -137,7 +141,7 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
         lists: (surface.offsets.clone(), surface.adj.clone()),
         tree: params.uses_cut(),
         hulls_over: tree_hulls_over(mesh, params, largest),
-        tangent_eps: params.tangent_eps,
+        tangent_eps: params.fit.tangent_eps,
     };
     let mut merged = clock.stage(Stage::Merge, "merge", |go_on, laps| {
         merge(&ev, input, first, &targets, &mut stats, go_on, laps)
@@ -145,7 +149,7 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
     // The input's triangles, once, for the cut's distances and thickened plates.
     let cut = params.uses_cut() && !merged.stopped;
     let tris = clock.step(Stage::Postprocess, "triangles", || {
-        (cut || params.min_thickness > 0.0).then(|| Triangles::new(mesh))
+        (cut || params.plates.min_thickness > 0.0).then(|| Triangles::new(mesh))
     })?;
     // The input's interior, once, for plates thickened inward (--min-thickness).
     let post = clock.step(Stage::Postprocess, "interior", || {
@@ -161,7 +165,7 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
         })?;
     }
     // The bounds the cut proved, for the distances of what post-processing keeps.
-    let known: Vec<Vec<(crate::Primitive, f64)>> = merged
+    let known: Vec<Vec<(crate::primitive::Primitive, f64)>> = merged
         .snapshots
         .iter_mut()
         .map(|s| std::mem::take(&mut s.known))
@@ -212,18 +216,20 @@ fn merge_tree(ev: &Evaluator, merged: &mut MergeOutput, face_q: &[Sym3]) -> crat
 /// `None` (found from the faces) without a cut, or where the welded vertices (whose
 /// ids the loop keeps) may stand apart from the faces' own: a tolerance weld.
 fn tree_hulls_over(mesh: &Mesh, params: &Params, largest: usize) -> Option<usize> {
-    let welded_in_place = !matches!(params.dedup, crate::params::Dedup::Tolerance(t) if t > 0.0);
+    let welded_in_place =
+        !matches!(params.fit.dedup, crate::params::Dedup::Tolerance(t) if t > 0.0);
     (params.uses_cut() && welded_in_place).then(|| mesh.face_count() / largest.max(1))
 }
 
 /// Each target's request of the cut, its tolerance in the mesh's units.
 fn requests(params: &Params, mesh: &Mesh) -> Vec<Request> {
     let diagonal = mesh.diagonal();
-    (0..params.targets.len())
+    let counts = params.goal.targets();
+    (0..counts.len())
         .map(|i| {
-            let (tolerance, bytes) = params.level_limits(i);
+            let (tolerance, bytes) = params.goal.level_limits(i);
             Request {
-                count: params.targets[i],
+                count: counts[i],
                 bytes,
                 tolerance: tolerance.map(|t| t.in_units(diagonal)),
             }
@@ -370,7 +376,7 @@ impl Surface {
         params: &Params,
         go_on: GoOn,
     ) -> Option<Surface> {
-        let used = params.rim_weight != 0.0 || params.flush_plates;
+        let used = params.plates.rim_weight != 0.0 || params.plates.flush_plates;
         let signs = match used {
             true => orient::face_signs_checked(mesh, welded, &offsets, &adj, go_on)?,
             false => Vec::new(),
@@ -402,12 +408,12 @@ struct MergeInput {
     pairs: Vec<(u32, u32)>,
     /// The pairs as neighbour lists, shared with the surface.
     lists: partition::Lists,
-    /// Every merge is logged for the merge tree (`Params::cut`).
+    /// Every merge is logged for the merge tree (a goal that [`Goal::uses_cut`](crate::Goal::uses_cut)).
     tree: bool,
     /// The clusters' points are kept for the tree's nodes of more faces
     /// (`merge::TreeHulls`).
     hulls_over: Option<usize>,
-    /// `Params::tangent_eps`, for spatial parts' own operators.
+    /// `Fit::tangent_eps`, for spatial parts' own operators.
     tangent_eps: f64,
 }
 
@@ -435,7 +441,7 @@ impl FirstPhase {
         let faces = mesh.face_count();
         // Parts only where the faces outnumber what phase 1 would leave.
         let parts = if faces > partition::phase1_size(first) {
-            params.partitions.parts(faces)
+            params.speed.partitions.parts(faces)
         } else {
             1
         };
@@ -447,7 +453,7 @@ impl FirstPhase {
         }
         // A cap can refuse merges and leave a component in pieces, which the
         // components phase does not claim to reproduce.
-        if faces < components::MIN_FACES || params.max_excess_volume.is_some() {
+        if faces < components::MIN_FACES || params.fit.max_excess_volume.is_some() {
             return FirstPhase::Faces;
         }
         let comps = components::components(faces, pairs);
@@ -627,7 +633,7 @@ pub fn evaluator<'a>(
 ) -> Evaluator<'a> {
     let (lo, hi) = bounds;
     let diag = crate::math::norm(crate::math::sub(hi, lo));
-    let min_half = (params.min_extent * diag).max(MIN_HALF);
+    let min_half = (params.fit.min_extent * diag).max(MIN_HALF);
     let aabb_volume: f64 = (0..3)
         .map(|k| (hi[k] - lo[k]).max(2.0 * min_half))
         .product();
@@ -635,16 +641,17 @@ pub fn evaluator<'a>(
         mesh,
         welded,
         cfg: FitConfig {
-            weights: params.weights,
-            enabled: params.kinds,
+            weights: params.fit.weights,
+            enabled: params.fit.kinds,
             min_half,
             frames: FrameSearch::Degenerate,
         },
-        flat_scale: (params.open_holes * diag / min_half).max(1.0),
+        flat_scale: (params.plates.open_holes * diag / min_half).max(1.0),
         max_excess: params
+            .fit
             .max_excess_volume
             .map_or(f64::INFINITY, |m| m * aabb_volume),
-        defer_degree: match params.reprice {
+        defer_degree: match params.speed.reprice {
             Reprice::Deferred { min_degree } => min_degree,
             Reprice::Exact => u32::MAX,
         },
@@ -654,11 +661,11 @@ pub fn evaluator<'a>(
         hull_eps: 1e-12 * diag.max(min_half),
         face_sign: &[],
         solid: None,
-        rim_weight: params.rim_weight,
+        rim_weight: params.plates.rim_weight,
         face_adj: FaceAdjacency::default(),
-        free_merges: params.join_coplanar,
-        join_plates: params.join_coplanar,
-        flush_plates: params.flush_plates,
+        free_merges: params.plates.join_coplanar,
+        join_plates: params.plates.join_coplanar,
+        flush_plates: params.plates.flush_plates,
     }
 }
 

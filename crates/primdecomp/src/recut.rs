@@ -9,12 +9,12 @@
 //! than a quarter farther and nearer on the mean (docs/decisions/0051).
 
 use crate::cut::{mean_distance, Cutter, MergeTree, Request, SLACK};
+use crate::input::triangles::Triangles;
 use crate::merge::{Evaluator, Snapshot};
-use crate::mesh::triangles::Triangles;
+use crate::output::result::{Level, Shortfall};
 use crate::params::Params;
 use crate::postprocess;
 use crate::primitive::Primitive;
-use crate::{Level, Shortfall};
 
 /// A cut is made again at most this many times with counts and bytes raised.
 const RECUTS: usize = 4;

@@ -10,7 +10,7 @@
 //! change round-off, see the module's doc). Needs `../shared/datasets/corpus`; says so
 //! loudly and returns when it is absent.
 
-use primdecomp::{decompose, Params, Reprice};
+use primdecomp::{decompose, Fit, Goal, Params, Reprice, Speed};
 
 /// Meshes of 4,096 faces or more whose largest component holds at most 60% of the
 /// faces (so the components phase applies): 26, 59 and 3 components.
@@ -18,9 +18,15 @@ const MESHES: [&str; 3] = ["cgal_bones.off", "truck_shrec.obj", "chair_model.obj
 
 fn params(targets: &[usize], cap: Option<f64>) -> Params {
     Params {
-        targets: targets.to_vec(),
-        reprice: Reprice::Exact,
-        max_excess_volume: cap,
+        goal: Goal::counts(targets.to_vec()),
+        fit: Fit {
+            max_excess_volume: cap,
+            ..Default::default()
+        },
+        speed: Speed {
+            reprice: Reprice::Exact,
+            ..Default::default()
+        },
         ..Default::default()
     }
 }

@@ -5,7 +5,7 @@
 //! exceed N (bridging makes every N reachable when no excess cap is set).
 
 use primdecomp::to_json;
-use primdecomp::{decompose, Params};
+use primdecomp::{decompose, Goal, Params};
 use primdecomp_testkit::contain::{faces_enclosed, parse_primitive};
 use rayon::prelude::*;
 use std::path::Path;
@@ -32,7 +32,7 @@ fn check(path: &Path) -> Option<(String, Vec<String>)> {
     }
     let n = (faces / 100).max(1);
     let params = Params {
-        targets: vec![n, 1],
+        goal: Goal::counts([n, 1]),
         ..Default::default()
     };
     let t = std::time::Instant::now();
@@ -44,7 +44,7 @@ fn check(path: &Path) -> Option<(String, Vec<String>)> {
     let tol = 1e-6 * mesh.diagonal().max(1e-300);
     let name = path.file_name().unwrap().to_string_lossy().to_string();
     let mut failures = Vec::new();
-    for (i, &target) in params.targets.iter().enumerate() {
+    for (i, &target) in params.goal.targets().iter().enumerate() {
         let json: serde_json::Value = serde_json::from_str(&to_json(&dec, i, &params)).unwrap();
         let shapes: Vec<_> = json["primitives"]
             .as_array()

@@ -7,7 +7,7 @@
 //! (a one-way surface distance computed here, see [`tightness`]) within 10%.
 
 use primdecomp::tessellate;
-use primdecomp::{decompose, Error, Mesh, Params, Primitive, Reprice};
+use primdecomp::{decompose, CountSearch, Error, Goal, Mesh, Params, Primitive, Reprice, Speed};
 use primdecomp_testkit::check::assert_valid;
 use primdecomp_testkit::shapes::{self, cuboid};
 use rand::{Rng, SeedableRng};
@@ -15,7 +15,7 @@ use rand_chacha::ChaCha8Rng;
 
 fn params(targets: &[usize]) -> Params {
     Params {
-        targets: targets.to_vec(),
+        goal: Goal::counts(targets.to_vec()),
         ..Default::default()
     }
 }
@@ -48,7 +48,10 @@ fn flat_grid(n: u32, reprice: Reprice) -> (f64, f64, usize) {
     let (v, f) = shapes::flat_grid(n);
     let mesh = Mesh::from_polygons(&v, &f).unwrap();
     let p = Params {
-        reprice,
+        speed: Speed {
+            reprice,
+            ..params(&[100, 1]).speed
+        },
         ..params(&[100, 1])
     };
     let t = std::time::Instant::now();
@@ -68,7 +71,7 @@ fn flat_grid(n: u32, reprice: Reprice) -> (f64, f64, usize) {
 
 #[test]
 fn flat_grid_of_10_000_quads() {
-    flat_grid(100, Params::default().reprice);
+    flat_grid(100, Params::default().speed.reprice);
 }
 
 /// Exact re-pricing re-prices the ~2L quads along a growing strip's sides at every
@@ -79,8 +82,8 @@ fn flat_grid_of_10_000_quads() {
 #[test]
 fn flat_grid_defers_its_long_strips() {
     let (_, exact, _) = flat_grid(100, Reprice::Exact);
-    let (_, at_100, _) = flat_grid(100, Params::default().reprice);
-    let (_, at_200, _) = flat_grid(200, Params::default().reprice);
+    let (_, at_100, _) = flat_grid(100, Params::default().speed.reprice);
+    let (_, at_200, _) = flat_grid(200, Params::default().speed.reprice);
     assert!(exact > 40.0, "exact: {exact:.2} per merge");
     assert!(
         at_100 < exact / 2.0,
@@ -103,7 +106,7 @@ fn flat_grid_defers_its_long_strips() {
 /// decompose 3.4 s, 2.00 pairs re-priced per merge (same command, machine shared).
 #[test]
 fn flat_grid_of_a_million_quads() {
-    let (_, _, parts) = flat_grid(1000, Params::default().reprice);
+    let (_, _, parts) = flat_grid(1000, Params::default().speed.reprice);
     assert_eq!(parts, primdecomp::internals::AUTO_PARTS);
 }
 
@@ -117,7 +120,7 @@ fn grid_growth() {
         flat_grid(n, Reprice::Exact);
     }
     for n in [100, 200, 400, 1000] {
-        flat_grid(n, Params::default().reprice);
+        flat_grid(n, Params::default().speed.reprice);
     }
 }
 
@@ -326,7 +329,10 @@ fn tightness(prims: &[Primitive], mesh_tris: &[[[f64; 3]; 3]]) -> f64 {
 fn random_rotations_keep_count_and_tightness() {
     let (base, faces) = primdecomp_testkit::shapes::demo_polys();
     let greedy = Params {
-        greedy: true,
+        goal: Goal::Counts {
+            counts: vec![120, 40],
+            search: CountSearch::Greedy,
+        },
         ..params(&[120, 40])
     };
     let cut = params(&[120, 40]);

@@ -1,19 +1,24 @@
-//! `Params::fill` (src/budget.rs): a target N that post-processing left short is met
+//! `Goal::Fill` (src/budget.rs): a target N that post-processing left short is met
 //! by merging less. Each result must hold at most N primitives, at least as many as
 //! the plain run, enclose every face (the independent oracle), be exactly the plain
 //! engine's level at the merge target it reports, and not depend on the thread count.
 
-use primdecomp::{decompose, Mesh, Params};
+use primdecomp::{decompose, CountSearch, Goal, Mesh, Params};
 use primdecomp_testkit::check::{assert_counts, assert_same_on_threads, assert_valid};
 use primdecomp_testkit::shapes::{cuboid, join, mesh};
 
 /// A plain run is the greedy pass's level (`greedy`), which fill refines: without it
 /// a count on several parts would be a cut of the merge tree (docs/decisions/0054).
 fn params(targets: &[usize], fill: bool) -> Params {
+    let counts = targets.to_vec();
     Params {
-        targets: targets.to_vec(),
-        fill,
-        greedy: !fill,
+        goal: match fill {
+            true => Goal::Fill { counts },
+            false => Goal::Counts {
+                counts,
+                search: CountSearch::Greedy,
+            },
+        },
         ..Default::default()
     }
 }

@@ -1,4 +1,4 @@
-//! `Params::flush_plates` (docs/decisions/0026-output-plates-lie-flush.md): an output plate (a
+//! `Plates::flush_plates` (docs/decisions/0026-output-plates-lie-flush.md): an output plate (a
 //! primitive at the floor thickness, `min_extent` of the diagonal per half) lies
 //! flush on its faces, reaching inward from them, instead of centred on them, so a
 //! body resting on it rests where it would on the mesh. Decided by the independent
@@ -6,15 +6,18 @@
 //! and inside the surface; with the setting off the outside points are inside (so the
 //! tests can fail), and every face stays enclosed either way.
 
-use primdecomp::{decompose, Mesh, Params};
+use primdecomp::{decompose, Goal, Mesh, Params, Plates};
 use primdecomp_testkit::check::{assert_same_on_threads, assert_valid, shapes};
 use primdecomp_testkit::contain::shape_contains;
 use primdecomp_testkit::shapes::{cuboid, flat_grid, mesh};
 
 fn params(targets: &[usize], flush: bool) -> Params {
     Params {
-        targets: targets.to_vec(),
-        flush_plates: flush,
+        goal: Goal::counts(targets.to_vec()),
+        plates: Plates {
+            flush_plates: flush,
+            ..Default::default()
+        },
         ..Default::default()
     }
 }
@@ -53,9 +56,12 @@ fn around_box(d: f64) -> Vec<[f64; 3]> {
 #[test]
 fn a_boxs_side_plates_lie_inside_its_sides() {
     let m = mesh(&cuboid([0.0; 3], [2.0, 1.0, 0.5]));
-    let q = 0.25 * Params::default().min_extent * m.diagonal();
+    let q = 0.25 * Params::default().fit.min_extent * m.diagonal();
     let at = |flush| Params {
-        remove_nested: false,
+        plates: Plates {
+            remove_nested: false,
+            ..params(&[6], flush).plates
+        },
         ..params(&[6], flush)
     };
     let p = at(true);
@@ -88,7 +94,7 @@ fn an_open_sheets_plate_hangs_behind_its_faces() {
         .collect();
     for (faces, up) in [(f.clone(), 1.0), (flipped, -1.0)] {
         let m = Mesh::from_polygons(&v, &faces).unwrap();
-        let q = 0.25 * Params::default().min_extent * m.diagonal();
+        let q = 0.25 * Params::default().fit.min_extent * m.diagonal();
         let p = params(&[m.face_count()], true);
         let dec = assert_same_on_threads(&m, &p);
         assert_valid(&m, &dec, &p);

@@ -1,4 +1,4 @@
-//! `Params::join_coplanar` (docs/decisions/0025-free-merges-into-plates.md): at a target, the
+//! `Plates::join_coplanar` (docs/decisions/0025-free-merges-into-plates.md): at a target, the
 //! greedy
 //! order's next merges still run before the snapshot while they add no volume. The
 //! paper's stop at exactly N clusters left, at N = the face count, one plate per
@@ -7,17 +7,22 @@
 //! across one adds volume), keep every face enclosed (the independent containment
 //! oracle, `primdecomp_testkit::contain`) and not depend on the thread count.
 
-use primdecomp::{decompose, Mesh, Params};
+use primdecomp::{decompose, CountSearch, Goal, Mesh, Params, Plates};
 use primdecomp_testkit::check::{assert_same_on_threads, assert_valid, shapes};
 use primdecomp_testkit::contain::shape_contains;
 use primdecomp_testkit::shapes::{cuboid, flat_grid, join, mesh, plate_with_hole};
 
 fn params(targets: &[usize], free: bool) -> Params {
     Params {
-        targets: targets.to_vec(),
-        join_coplanar: free,
         // The greedy pass these merges happen in (docs/decisions/0054).
-        greedy: true,
+        goal: Goal::Counts {
+            counts: targets.to_vec(),
+            search: CountSearch::Greedy,
+        },
+        plates: Plates {
+            join_coplanar: free,
+            ..Default::default()
+        },
         ..Default::default()
     }
 }

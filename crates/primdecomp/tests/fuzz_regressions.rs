@@ -1,7 +1,9 @@
 //! Inputs the fuzzers (`fuzz/`) found to break an invariant, each reduced to a test
 //! that failed before its fix. The comment on each says what must happen and why.
 
-use primdecomp::{decompose, Dedup, Error, Kind, Mesh, Params};
+use primdecomp::{
+    decompose, CountSearch, Dedup, Error, Fit, Goal, Kind, Mesh, Params, Plates, Speed,
+};
 use primdecomp_testkit::check::assert_valid;
 
 /// `fuzz/fuzz_targets/decompose.rs`, first run: one triangle at a 1e-30 scale welded
@@ -13,8 +15,11 @@ fn tolerance_weld_does_not_shrink_the_output() {
     let v = [[1e-30, -1e-30, 0.0], [0.0, -1e-30, 2e-30]];
     let mesh = Mesh::from_polygons(&v, &[vec![0, 1, 1]]).unwrap();
     let params = Params {
-        targets: vec![27],
-        dedup: Dedup::Tolerance(10.0),
+        goal: Goal::counts([27]),
+        fit: Fit {
+            dedup: Dedup::Tolerance(10.0),
+            ..Default::default()
+        },
         ..Default::default()
     };
     assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
@@ -38,15 +43,21 @@ fn transitive_tolerance_weld_keeps_every_face_enclosed() {
     let mesh = Mesh::from_polygons(&v, &f).unwrap();
     for n in [40, 4, 1] {
         let params = Params {
-            targets: vec![n],
-            dedup: Dedup::Tolerance(0.6),
+            goal: Goal::counts([n]),
+            fit: Fit {
+                dedup: Dedup::Tolerance(0.6),
+                ..Default::default()
+            },
             ..Default::default()
         };
         assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
         // The merge tree's cut too, whose nodes' points must be the faces' own, not
         // the welded ones the merge loop priced them by (docs/decisions/0052).
         let cut = Params {
-            cut: true,
+            goal: Goal::Counts {
+                counts: vec![n],
+                search: CountSearch::Cut,
+            },
             ..params
         };
         assert_valid(&mesh, &decompose(&mesh, &cut).unwrap(), &cut);
@@ -70,10 +81,13 @@ fn thin_frustum_far_from_the_origin_keeps_its_face() {
     ];
     let mesh = Mesh::from_polygons(&v, &[vec![0, 1, 2, 2, 2, 2]]).unwrap();
     let params = Params {
-        targets: vec![18],
-        weights: [1.0, 1.4, 2.1, 1.05, 1e-9, 1.0],
-        tangent_eps: 1000.0,
-        dedup: Dedup::Off,
+        goal: Goal::counts([18]),
+        fit: Fit {
+            weights: [1.0, 1.4, 2.1, 1.05, 1e-9, 1.0],
+            tangent_eps: 1000.0,
+            dedup: Dedup::Off,
+            ..Default::default()
+        },
         ..Default::default()
     };
     let dec = decompose(&mesh, &params).unwrap();
@@ -103,9 +117,12 @@ fn round_only(kind: Kind, targets: Vec<usize>, min_extent: f64) -> Params {
     let mut kinds = [false; 6];
     kinds[kind as usize] = true;
     Params {
-        targets,
-        kinds,
-        min_extent,
+        goal: Goal::counts(targets),
+        fit: Fit {
+            kinds,
+            min_extent,
+            ..Default::default()
+        },
         ..Default::default()
     }
 }
@@ -161,11 +178,17 @@ fn faces_on_one_point_still_merge() {
     kinds[Kind::Box as usize] = true;
     kinds[Kind::Prism as usize] = true;
     let params = Params {
-        targets: vec![1, 3],
-        weights: [1e-9, 2.1, 1e-9, 1.0, 1.0, 1.0],
-        kinds,
-        dedup: Dedup::Off,
-        remove_nested: false,
+        goal: Goal::counts([1, 3]),
+        fit: Fit {
+            weights: [1e-9, 2.1, 1e-9, 1.0, 1.0, 1.0],
+            kinds,
+            dedup: Dedup::Off,
+            ..Default::default()
+        },
+        plates: Plates {
+            remove_nested: false,
+            ..Default::default()
+        },
         ..Default::default()
     };
     merges_to_one(&mesh, &params);
@@ -186,8 +209,11 @@ fn meshes_1e_minus_200_across_still_merge() {
     ];
     let mesh = Mesh::from_polygons(&v, &[vec![0, 1, 2], vec![3, 4, 5]]).unwrap();
     let params = Params {
-        targets: vec![1],
-        remove_nested: false,
+        goal: Goal::counts([1]),
+        plates: Plates {
+            remove_nested: false,
+            ..Default::default()
+        },
         ..Default::default()
     };
     merges_to_one(&mesh, &params);
@@ -204,10 +230,13 @@ fn coordinates_near_the_top_of_f64_are_refused() {
     let v = [[5.391989341715902e68, 0.0, -4.294604791590196e304]];
     let mesh = Mesh::from_polygons(&v, &[vec![0; 8]]).unwrap();
     let params = Params {
-        targets: vec![37],
-        weights: [1.0, 1.0, 1.0, 1.0, 1e-9, 1e9],
-        kinds: [false, true, true, false, true, true],
-        tangent_eps: 0.0,
+        goal: Goal::counts([37]),
+        fit: Fit {
+            weights: [1.0, 1.0, 1.0, 1.0, 1e-9, 1e9],
+            kinds: [false, true, true, false, true, true],
+            tangent_eps: 0.0,
+            ..Default::default()
+        },
         ..Default::default()
     };
     match decompose(&mesh, &params) {
@@ -243,10 +272,13 @@ fn minimum_extent_that_underflows_stays_positive() {
     let f = vec![vec![1, 1, 1, 0, 1, 1, 0, 1], vec![0; 5], vec![0; 8]];
     let mesh = Mesh::from_polygons(&v, &f).unwrap();
     let params = Params {
-        targets: vec![15],
-        weights: [1.0, 1e-9, 1.0, 1.0, 1.0, 1.0],
-        dedup: Dedup::Off,
-        min_extent: 6.833639853623446e-304,
+        goal: Goal::counts([15]),
+        fit: Fit {
+            weights: [1.0, 1e-9, 1.0, 1.0, 1.0, 1.0],
+            dedup: Dedup::Off,
+            min_extent: 6.833639853623446e-304,
+            ..Default::default()
+        },
         ..Default::default()
     };
     assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
@@ -266,14 +298,20 @@ fn minimum_extent_that_underflows_stays_positive() {
 fn a_face_on_the_origin_gets_a_normal_sized_primitive() {
     let mesh = Mesh::from_polygons(&[[0.0; 3]], &[vec![0, 0, 0]]).unwrap();
     let params = Params {
-        targets: vec![39],
-        max_excess_volume: Some(0.0),
-        // A cap re-prices every merge at once (the run it came from did so implicitly).
-        reprice: primdecomp::Reprice::Exact,
-        weights: [1.05, 1.0, 1.05, 1.4, 1e-9, 1.4],
-        kinds: [true, true, true, true, false, true],
-        dedup: Dedup::Off,
-        min_extent: 0.5,
+        goal: Goal::counts([39]),
+        fit: Fit {
+            max_excess_volume: Some(0.0),
+            weights: [1.05, 1.0, 1.05, 1.4, 1e-9, 1.4],
+            kinds: [true, true, true, true, false, true],
+            dedup: Dedup::Off,
+            min_extent: 0.5,
+            ..Default::default()
+        },
+        speed: Speed {
+            // A cap re-prices every merge at once (the run it came from did so implicitly).
+            reprice: primdecomp::Reprice::Exact,
+            ..Default::default()
+        },
         ..Default::default()
     };
     assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
@@ -310,13 +348,19 @@ fn thin_box_removal_keeps_every_face_in_one_primitive() {
     ];
     let mesh = Mesh::from_polygons(&v, &f).unwrap();
     let params = Params {
-        targets: vec![27],
-        weights: [1.0, 1e-9, 1e-9, 1.05, 1.05, 1.05],
-        kinds: [true, false, true, false, true, false],
-        dedup: Dedup::Off,
-        min_extent: 1e-12,
-        remove_nested: false,
-        remove_thin_boxes: Some(0.001),
+        goal: Goal::counts([27]),
+        fit: Fit {
+            weights: [1.0, 1e-9, 1e-9, 1.05, 1.05, 1.05],
+            kinds: [true, false, true, false, true, false],
+            dedup: Dedup::Off,
+            min_extent: 1e-12,
+            ..Default::default()
+        },
+        plates: Plates {
+            remove_nested: false,
+            remove_thin_boxes: Some(0.001),
+            ..Default::default()
+        },
         ..Default::default()
     };
     assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
@@ -378,98 +422,22 @@ fn point_face_at_1e25_stays_enclosed() {
     ];
     let mesh = Mesh::from_polygons(&v, &f).unwrap();
     let params = Params {
-        targets: vec![23, 13, 17],
-        weights: [1.0; 6],
-        tangent_eps: 1.0,
-        min_extent: 1.26e-321,
-        open_holes: 0.0,
-        remove_thin_boxes: Some(0.1),
-        reprice: primdecomp::Reprice::Deferred { min_degree: 0 },
-        ..Default::default()
+        goal: Goal::counts([23, 13, 17]),
+        fit: Fit {
+            weights: [1.0; 6],
+            tangent_eps: 1.0,
+            min_extent: 1.26e-321,
+            ..Default::default()
+        },
+        plates: Plates {
+            open_holes: 0.0,
+            remove_thin_boxes: Some(0.1),
+            ..Default::default()
+        },
+        speed: Speed {
+            reprice: primdecomp::Reprice::Deferred { min_degree: 0 },
+            ..Default::default()
+        },
     };
     assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
-}
-
-/// A one-primitive result in every export format, read back by the tests' readers
-/// (`crates/testkit/src/exports.rs`); `Err` carries the reader's complaint.
-fn export_reads_back(p: primdecomp::Primitive) -> Result<(), String> {
-    use primdecomp::export::{render, ExportOptions, Format, Frame, ResultObject};
-    use primdecomp_testkit::exports;
-    let objects = [ResultObject {
-        name: String::new(),
-        frame: Frame::IDENTITY,
-        primitives: vec![p],
-    }];
-    for format in Format::ALL {
-        let path = format!("x.{}", format.name());
-        let files = render(&objects, format, &ExportOptions::default(), path.as_ref())
-            .map_err(|e| e.to_string())?;
-        let text = || String::from_utf8(files.main.clone()).unwrap();
-        match format {
-            Format::Gltf | Format::Glb => exports::gltf(&files.main),
-            Format::Mjcf => exports::mjcf(&text()),
-            Format::Urdf => exports::urdf(&text()),
-            Format::Usda => exports::usda(&text()),
-            Format::Tscn => exports::tscn(&text()),
-        }
-        .map_err(|e| format!("{format:?}: {e}"))?;
-    }
-    Ok(())
-}
-
-/// `fuzz/fuzz_targets/exports.rs`, first run: a capsule whose ends differ by 1.8e-299
-/// was written to MJCF by position and `size="r 0"` (its half length rounds to 0), and
-/// MuJoCo refuses a size of 0 ("size 1 must be positive in geom"; URDF's cylinder of
-/// length 0 likewise). A capsule shorter than 2⁻³⁰ of its radius is written as the
-/// sphere around it, in every format.
-#[test]
-fn a_capsule_of_no_length_is_written_as_a_sphere() {
-    let p = primdecomp::Primitive::Capsule(primdecomp::Capsule {
-        p0: [0.0, 0.0, 0.0],
-        p1: [0.0, -1.8e-299, 0.0],
-        radius: 8.4e-8,
-    });
-    export_reads_back(p).unwrap();
-}
-
-/// `fuzz/fuzz_targets/exports.rs`, second run: an object without primitives placed
-/// at 1e156 was written to MJCF as a body at 1e156, which no 32-bit reader loads (the
-/// range check looked at shapes only). Every object's frame is checked: refused with
-/// one sentence naming the object.
-#[test]
-fn an_empty_object_far_away_is_refused() {
-    use primdecomp::export::{render, ExportOptions, Format, Frame, ResultObject};
-    let sphere = primdecomp::Primitive::Sphere(primdecomp::Sphere {
-        center: [0.0; 3],
-        radius: 1.0,
-    });
-    let objects = [
-        ResultObject {
-            name: "far".into(),
-            frame: Frame {
-                translation: [443.0, -4.9e140, 2.2e156],
-                ..Frame::IDENTITY
-            },
-            primitives: Vec::new(),
-        },
-        ResultObject {
-            name: "near".into(),
-            frame: Frame::IDENTITY,
-            primitives: vec![sphere],
-        },
-    ];
-    for format in Format::ALL {
-        let e = render(
-            &objects,
-            format,
-            &ExportOptions::default(),
-            "x.out".as_ref(),
-        )
-        .unwrap_err()
-        .to_string();
-        assert!(
-            e.contains("object 0 (\"far\"): its origin lies at 2.2e156"),
-            "{e}"
-        );
-    }
 }

@@ -1,9 +1,9 @@
 //! `Params::merge_min_extent_rel` (`--merge-min-extent`): merges priced as if every
 //! primitive were at least that thick, output primitives as thin as `min_extent`;
-//! `Params::open_holes` (`--flat-merge-extent`): the same for merges of
+//! `Plates::open_holes` (`--flat-merge-extent`): the same for merges of
 //! coplanar clusters only.
 
-use primdecomp::{decompose, demo_scene, Error, Mesh, Params};
+use primdecomp::{decompose, demo_scene, CountSearch, Error, Goal, Mesh, Params, Plates};
 use primdecomp_testkit::check::assert_valid;
 use primdecomp_testkit::corpus_mesh;
 
@@ -23,9 +23,14 @@ fn roof_centre_covered(mesh: &Mesh, p: &Params) -> bool {
 /// parts is otherwise a cut of the merge tree: docs/decisions/0054).
 fn with_flat(target: usize, flat: f64) -> Params {
     Params {
-        targets: vec![target],
-        open_holes: flat,
-        greedy: true,
+        goal: Goal::Counts {
+            counts: vec![target],
+            search: CountSearch::Greedy,
+        },
+        plates: Plates {
+            open_holes: flat,
+            ..Default::default()
+        },
         ..Default::default()
     }
 }
@@ -65,7 +70,7 @@ fn flat_floor_keeps_roof_rims_open() {
 fn flat_floor_keeps_enclosure_and_refuses_bad_values() {
     let mesh = demo_scene();
     let mut p = with_flat(120, 0.02);
-    p.targets = vec![120, 30];
+    p.goal = Goal::counts([120, 30]);
     let d = decompose(&mesh, &p).expect("decomposes");
     assert_valid(&mesh, &d, &p);
     for bad in [-1e-3, 1.0, f64::NAN, f64::INFINITY] {

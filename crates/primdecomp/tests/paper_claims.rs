@@ -1,6 +1,6 @@
 //! The paper's claims on small meshes (§3.2, §4): each test says what must happen and why.
 
-use primdecomp::{decompose, Kind, Params, Primitive};
+use primdecomp::{decompose, Goal, Kind, Params, Primitive};
 use primdecomp_testkit::shapes::*;
 
 fn run(p: &Polys, params: &Params) -> Vec<Primitive> {
@@ -10,7 +10,7 @@ fn run(p: &Polys, params: &Params) -> Vec<Primitive> {
 
 fn with_target(n: usize) -> Params {
     Params {
-        targets: vec![n],
+        goal: Goal::counts([n]),
         ..Default::default()
     }
 }
@@ -39,7 +39,7 @@ fn closed_cylinder_gives_one_cylinder() {
 #[test]
 fn uv_sphere_with_spheres_favoured_gives_one_sphere() {
     let mut params = with_target(1);
-    params.weights[Kind::Sphere as usize] = 0.5;
+    params.fit.weights[Kind::Sphere as usize] = 0.5;
     let p = run(&uv_sphere(1.0, 16, 32), &params);
     assert_eq!(p.len(), 1);
     assert_eq!(p[0].kind(), Kind::Sphere, "{p:?}");
@@ -106,7 +106,7 @@ fn plate_with_hole_keeps_the_hole_open() {
 fn multi_target_equals_separate_runs() {
     let plate = plate_with_hole(1.0, 0.05, 10, 4);
     let params = Params {
-        targets: vec![40, 8, 20],
+        goal: Goal::counts([40, 8, 20]),
         ..Default::default()
     };
     let d = decompose(&mesh(&plate), &params).unwrap();
@@ -160,15 +160,15 @@ fn excess_volume_cap_stops_costly_merges() {
         cuboid([9.0, 0.0, 0.0], [10.0, 1.0, 1.0]),
     ]);
     let mut params = with_target(1);
-    params.max_excess_volume = Some(0.5);
-    params.reprice = primdecomp::Reprice::Exact;
+    params.fit.max_excess_volume = Some(0.5);
+    params.speed.reprice = primdecomp::Reprice::Exact;
     let p = run(&two, &params);
     assert_eq!(
         p.len(),
         2,
         "each box closes (adds ≤ 1 of the AABB's 10 units) but bridging adds 8: refused"
     );
-    params.max_excess_volume = None;
+    params.fit.max_excess_volume = None;
     assert_eq!(run(&two, &params).len(), 1);
 }
 
@@ -176,17 +176,17 @@ fn excess_volume_cap_stops_costly_merges() {
 #[test]
 fn disabled_kinds_are_never_fitted() {
     let mut params = with_target(1);
-    params.kinds[Kind::Cylinder as usize] = false;
-    params.kinds[Kind::Frustum as usize] = false;
-    params.kinds[Kind::Prism as usize] = false;
+    params.fit.kinds[Kind::Cylinder as usize] = false;
+    params.fit.kinds[Kind::Frustum as usize] = false;
+    params.fit.kinds[Kind::Prism as usize] = false;
     let p = run(&cylinder(0.5, 2.0, 48), &params);
     assert_eq!(p.len(), 1);
     assert!(
         matches!(p[0].kind(), Kind::Box | Kind::Capsule | Kind::Sphere),
         "{p:?}"
     );
-    params.kinds = [false; 6];
-    params.kinds[Kind::Sphere as usize] = true;
+    params.fit.kinds = [false; 6];
+    params.fit.kinds[Kind::Sphere as usize] = true;
     assert_eq!(
         run(&cylinder(0.5, 2.0, 48), &params)[0].kind(),
         Kind::Sphere

@@ -1,10 +1,10 @@
-//! `Params::partitions` (merge/partition.rs): with K > 1 parts the output must still
+//! `Speed::partitions` (merge/partition.rs): with K > 1 parts the output must still
 //! enclose every input face (checked by the independent oracle, `primdecomp_testkit::contain`),
 //! hold at most N primitives, and be the same bytes on any thread count; K = 1 must be
 //! the default run, and its JSON must not mention the setting (default output unchanged).
 
 use primdecomp::to_json;
-use primdecomp::{decompose, Mesh, Params, Partitions};
+use primdecomp::{decompose, Goal, Mesh, Params, Partitions, Speed};
 use primdecomp_testkit::check::{
     assert_counts, assert_same_on_threads, assert_valid, check_corpus_meshes,
 };
@@ -31,8 +31,11 @@ fn scene() -> Mesh {
 
 fn params(targets: &[usize], k: usize) -> Params {
     Params {
-        targets: targets.to_vec(),
-        partitions: Partitions::Fixed(k),
+        goal: Goal::counts(targets.to_vec()),
+        speed: Speed {
+            partitions: Partitions::Fixed(k),
+            ..Default::default()
+        },
         ..Default::default()
     }
 }
@@ -79,7 +82,7 @@ fn one_partition_is_the_default_run_on_small_inputs() {
     assert!(scene().face_count() < primdecomp::internals::AUTO_MIN_FACES);
     let m = scene();
     let default = Params {
-        targets: vec![60, 12],
+        goal: Goal::counts([60, 12]),
         ..Default::default()
     };
     let a = decompose(&m, &default).unwrap();
@@ -149,7 +152,10 @@ fn parts_defer_unless_repricing_is_exact() {
     let lazy = decompose(&m, &params(&[12], 4)).unwrap();
     assert!(lazy.stats.fits_when_popped > 0, "{:?}", lazy.stats);
     let p = Params {
-        reprice: primdecomp::Reprice::Exact,
+        speed: Speed {
+            reprice: primdecomp::Reprice::Exact,
+            ..params(&[12], 4).speed
+        },
         ..params(&[12], 4)
     };
     let exact = decompose(&m, &p).unwrap();

@@ -4,7 +4,7 @@
 //! and returns `Error::Cancelled`. Counts, not clocks: how soon a run stops is
 //! measured by the reports that follow the cancel, never by time.
 
-use primdecomp::{decompose_with, Error, Mesh, Params, Partitions, Progress, Stage};
+use primdecomp::{decompose_with, Error, Goal, Mesh, Params, Partitions, Progress, Speed, Stage};
 use std::sync::atomic::{AtomicBool, Ordering::Relaxed};
 use std::sync::Mutex;
 
@@ -59,8 +59,11 @@ fn recorder<F: Fn(Stage, f64) -> bool + Sync>(cancel_at: F) -> Recorder<F> {
 
 fn params(partitions: Partitions) -> Params {
     Params {
-        targets: vec![40],
-        partitions,
+        goal: Goal::counts([40]),
+        speed: Speed {
+            partitions,
+            ..Default::default()
+        },
         ..Params::default()
     }
 }

@@ -1,10 +1,10 @@
-//! Deferred re-pricing (`Params::reprice`, `merge/lazy.rs`): the merge order changes,
+//! Deferred re-pricing (`Speed::reprice`, `merge/lazy.rs`): the merge order changes,
 //! the guarantees do not. Every face stays enclosed, the output does not depend on the
 //! thread count, a threshold no cluster reaches is the exact order, and an excess-volume
 //! cap keeps the exact order (a pair over the cap has no queue entry to defer).
 
 use primdecomp::to_json;
-use primdecomp::{decompose, demo_scene, Decomposition, Mesh, Params, Reprice};
+use primdecomp::{decompose, demo_scene, Decomposition, Fit, Goal, Mesh, Params, Reprice, Speed};
 use primdecomp_testkit::check::assert_valid;
 use primdecomp_testkit::shapes::{self, join, mesh, Polys};
 
@@ -12,8 +12,11 @@ const ALL: Reprice = Reprice::Deferred { min_degree: 0 };
 
 fn params(targets: &[usize], reprice: Reprice) -> Params {
     Params {
-        targets: targets.to_vec(),
-        reprice,
+        goal: Goal::counts(targets.to_vec()),
+        speed: Speed {
+            reprice,
+            ..Default::default()
+        },
         ..Default::default()
     }
 }
@@ -100,7 +103,10 @@ fn unreachable_threshold_is_exact() {
 fn excess_cap_keeps_the_exact_order() {
     let m = demo_scene();
     let capped = |reprice| Params {
-        max_excess_volume: Some(0.05),
+        fit: Fit {
+            max_excess_volume: Some(0.05),
+            ..params(&[100], reprice).fit
+        },
         ..params(&[100], reprice)
     };
     let exact = decompose(&m, &capped(Reprice::Exact)).unwrap();

@@ -1,4 +1,4 @@
-//! `Params::rim_weight` (docs/decisions/0024-output-primitives-priced-by-rim-reach.md): output
+//! `Plates::rim_weight` (docs/decisions/0024-output-primitives-priced-by-rim-reach.md): output
 //! fits also price how far
 //! a primitive stands past the plane of the face across each creased boundary edge of
 //! its cluster. The least-area plate around a sliver triangle on a wall's side is
@@ -8,17 +8,22 @@
 //! Whether a curb stands is decided by the independent containment oracle
 //! (`primdecomp_testkit::contain`), from points just above the top.
 
-use primdecomp::{decompose, demo_scene, Mesh, Params};
+use primdecomp::{decompose, demo_scene, CountSearch, Goal, Mesh, Params, Plates};
 use primdecomp_testkit::check::{assert_same_on_threads, assert_valid, shapes};
 use primdecomp_testkit::contain::shape_contains;
 
 fn params(targets: &[usize], w: f64) -> Params {
     Params {
-        targets: targets.to_vec(),
-        rim_weight: w,
         // The greedy pass's output fits, whose rims this measures (a count on several
         // parts is otherwise a cut of the merge tree: docs/decisions/0054).
-        greedy: true,
+        goal: Goal::Counts {
+            counts: targets.to_vec(),
+            search: CountSearch::Greedy,
+        },
+        plates: Plates {
+            rim_weight: w,
+            ..Default::default()
+        },
         ..Default::default()
     }
 }
@@ -79,8 +84,11 @@ fn points_above_top(m: &Mesh, p: &Params, lift: f64) -> usize {
 fn sliver_under_a_slab_top_stands_no_curb() {
     let m = slab();
     let at = |w| Params {
-        remove_nested: false,
-        join_coplanar: false,
+        plates: Plates {
+            remove_nested: false,
+            join_coplanar: false,
+            ..params(&[m.face_count()], w).plates
+        },
         ..params(&[m.face_count()], w)
     };
     assert!(
@@ -121,7 +129,10 @@ fn wall_high_has_no_curb_along_its_top() {
     let top = hi[1] + off[1];
     let count = |w: f64| {
         let p = Params {
-            join_coplanar: false,
+            plates: Plates {
+                join_coplanar: false,
+                ..params(&[208], w).plates
+            },
             ..params(&[208], w)
         };
         let dec = decompose(&m, &p).unwrap();
@@ -130,7 +141,7 @@ fn wall_high_has_no_curb_along_its_top() {
         // on a side lies flush inside it (docs/decisions/0026-output-plates-lie-flush.md), its
         // outer face on the edge.
         let at = |k: usize, t: f64| {
-            let e = 0.25 * p.min_extent * diag;
+            let e = 0.25 * p.fit.min_extent * diag;
             lo[k] + off[k] + e + (hi[k] - lo[k] - 2.0 * e) * t
         };
         let mut n = 0;
@@ -170,7 +181,7 @@ fn truck_hood_is_a_rim_of_the_fender_beside_it() {
     let Some(m) = primdecomp_testkit::corpus_mesh("truck_shrec.obj") else {
         return;
     };
-    let (welded, _) = weld(&m, Params::default().dedup);
+    let (welded, _) = weld(&m, Params::default().fit.dedup);
     let pairs = face_pairs(&m, &welded);
     let (offsets, adj) = neighbour_lists(m.face_count(), &pairs);
     let signs = face_signs_of_lists(&m, &welded, &offsets, &adj);

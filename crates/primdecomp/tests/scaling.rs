@@ -8,7 +8,7 @@
 //! The benchmark that measures the whole ladder, to 56M faces, is
 //! `cargo bench -p primdecomp-cli --bench ladder`.
 
-use primdecomp::{decompose_with, Mesh, Params, Partitions, Progress, Stage};
+use primdecomp::{decompose_with, Goal, Mesh, Params, Partitions, Progress, Speed, Stage};
 use std::sync::Mutex;
 
 /// A stage's CPU time per face on the larger input over the smaller's above this
@@ -111,15 +111,21 @@ fn settings(faces: usize) -> Vec<(&'static str, Params)> {
         (
             "-n 200",
             Params {
-                targets: vec![200],
-                partitions: parts,
+                goal: Goal::counts([200]),
+                speed: Speed {
+                    partitions: parts,
+                    ..Default::default()
+                },
                 ..Params::default()
             },
         ),
         (
             "default",
             Params {
-                partitions: parts,
+                speed: Speed {
+                    partitions: parts,
+                    ..Default::default()
+                },
                 ..Params::default()
             },
         ),

@@ -1,19 +1,24 @@
-//! `Params::solid` (docs/decisions/0023-merges-priced-by-the-air-they-add.md): merges priced by
+//! `Plates::solid` (docs/decisions/0023-merges-priced-by-the-air-they-add.md): merges priced by
 //! the volume their
 //! primitive adds outside the input. Off must be the default output exactly; on must
 //! keep the enclosure and thread independence; and a closed part must fill into solid
 //! primitives where the paper's pricing leaves it a shell of plates.
 
-use primdecomp::{decompose, demo_scene, Params};
+use primdecomp::{decompose, demo_scene, CountSearch, Goal, Params, Plates};
 use primdecomp_testkit::check::{assert_default_output, assert_same_on_threads, assert_valid};
 use primdecomp_testkit::shapes::{cuboid, cylinder, join, mesh};
 
 fn params(targets: &[usize], solid: bool) -> Params {
     Params {
-        targets: targets.to_vec(),
-        solid,
         // The greedy pass's pricing, which this measures (docs/decisions/0054).
-        greedy: true,
+        goal: Goal::Counts {
+            counts: targets.to_vec(),
+            search: CountSearch::Greedy,
+        },
+        plates: Plates {
+            solid,
+            ..Default::default()
+        },
         ..Default::default()
     }
 }
@@ -89,7 +94,7 @@ fn wall_high_top_slab_is_one_primitive() {
         return;
     };
     let p = Params {
-        fill: true,
+        goal: Goal::Fill { counts: vec![64] },
         ..params(&[64], true)
     };
     let dec = decompose(&m, &p).unwrap();

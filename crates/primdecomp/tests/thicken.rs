@@ -1,17 +1,20 @@
-//! `Params::min_thickness` (docs/decisions/0033-plates-thickened-inward.md): plates
+//! `Plates::min_thickness` (docs/decisions/0033-plates-thickened-inward.md): plates
 //! reach inward to a minimum thickness where the input is closed behind them. Off must
 //! be the default output exactly; on must keep the enclosure and thread independence,
 //! never move a plate's outer side out, never poke through a thin part's far side,
 //! and leave open sheets and holes as they are.
 
-use primdecomp::{decompose, demo_scene, Level, Params, Primitive};
+use primdecomp::{decompose, demo_scene, Goal, Level, Params, Plates, Primitive};
 use primdecomp_testkit::check::{assert_default_output, assert_same_on_threads, assert_valid};
 use primdecomp_testkit::shapes::{cuboid, flat_grid, mesh, plate_with_hole};
 
 fn params(targets: &[usize], min_thickness: f64) -> Params {
     Params {
-        targets: targets.to_vec(),
-        min_thickness,
+        goal: Goal::counts(targets.to_vec()),
+        plates: Plates {
+            min_thickness,
+            ..Default::default()
+        },
         ..Default::default()
     }
 }

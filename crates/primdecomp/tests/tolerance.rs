@@ -4,14 +4,17 @@
 //! comes from one pass, and on a multi-part corpus mesh a larger count never stands
 //! farther from the input.
 
-use primdecomp::{decompose, Kind, Params, Tolerance};
+use primdecomp::{decompose, CountSearch, Goal, Kind, Params, Tolerance};
 use primdecomp_testkit::check::assert_valid;
 use primdecomp_testkit::shapes::{cuboid, cylinder, join, mesh, uv_sphere};
 
 fn within(t: f64, cap: usize) -> Params {
     Params {
-        targets: vec![cap],
-        tolerance: vec![Tolerance::Diagonal(t)],
+        goal: Goal::Within {
+            caps: vec![cap],
+            tolerance: vec![Tolerance::Diagonal(t)],
+            max_bytes: vec![],
+        },
         ..Params::default()
     }
 }
@@ -36,12 +39,12 @@ fn simple_solids_are_one_primitive() {
             let d = decompose(&m, &p).expect("decomposes");
             let l = &d.levels[0];
             let kinds: Vec<Kind> = l.primitives.iter().map(|p| p.kind()).collect();
-            assert_eq!(kinds, vec![kind], "{name} {:?}", p.tolerance);
+            assert_eq!(kinds, vec![kind], "{name} {:?}", p.goal);
             assert!(l.distance.expect("measured") <= l.tolerance.expect("asked"));
             assert_valid(&m, &d, &p);
         }
         let counted = Params {
-            targets: vec![64],
+            goal: Goal::counts([64]),
             ..Params::default()
         };
         let plates = decompose(&m, &counted).expect("decomposes");
@@ -60,13 +63,15 @@ fn chains_and_byte_targets_enclose() {
         uv_sphere(0.4, 12, 24),
     ]));
     let p = Params {
-        targets: vec![200, 200, 200],
-        tolerance: vec![
-            Tolerance::Diagonal(0.05),
-            Tolerance::Diagonal(0.02),
-            Tolerance::Diagonal(0.005),
-        ],
-        max_bytes: vec![4096],
+        goal: Goal::Within {
+            caps: vec![200, 200, 200],
+            tolerance: vec![
+                Tolerance::Diagonal(0.05),
+                Tolerance::Diagonal(0.02),
+                Tolerance::Diagonal(0.005),
+            ],
+            max_bytes: vec![4096],
+        },
         ..Params::default()
     };
     let d = decompose(&scene, &p).expect("decomposes");
@@ -93,8 +98,10 @@ fn multi_part_mesh_improves_with_count() {
         return;
     };
     let p = Params {
-        targets: vec![16, 64, 256],
-        cut: true,
+        goal: Goal::Counts {
+            counts: vec![16, 64, 256],
+            search: CountSearch::Cut,
+        },
         ..Params::default()
     };
     let d = decompose(&m, &p).expect("decomposes");
@@ -147,8 +154,10 @@ fn a_count_is_filled_where_the_worst_node_splits_no_nearer() {
 /// declared distance over the diagonal.
 fn cut_at(m: &primdecomp::Mesh, counts: &[usize]) -> Vec<(usize, f64)> {
     let p = Params {
-        targets: counts.to_vec(),
-        cut: true,
+        goal: Goal::Counts {
+            counts: counts.to_vec(),
+            search: CountSearch::Cut,
+        },
         ..Params::default()
     };
     let d = decompose(m, &p).expect("decomposes");

@@ -2,7 +2,7 @@
 //! bit for bit, so that a mesh rebuilt from them with `Mesh::from_polygons` decomposes
 //! exactly as the file does (what the Python package's `load` relies on).
 
-use primdecomp::{decompose, load, load_with, to_json, LoadOptions, Mesh, Params};
+use primdecomp::{decompose, load, load_with, to_json, Goal, LoadOptions, Mesh, Params};
 
 /// Coordinates whose re-centred value plus the centre is not the value read.
 const OBJ: &str = "v 0.1 0.7 1e-17\nv 3.3 0.2 0.3\nv 0.30000000000000004 2.9 0.01\nv 1.1 1.3 2.7\n\
@@ -41,7 +41,7 @@ fn kept_coordinates_are_the_files_and_decompose_like_the_file() {
     let faces: Vec<&[u32]> = (0..kept.face_count()).map(|f| kept.face(f)).collect();
     let rebuilt = Mesh::from_polygons(&world(&kept), &faces).unwrap();
     let params = Params {
-        targets: vec![2],
+        goal: Goal::counts([2]),
         ..Params::default()
     };
     let a = to_json(&decompose(&centred, &params).unwrap(), 0, &params);

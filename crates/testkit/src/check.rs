@@ -86,13 +86,12 @@ pub fn assert_same_on_threads(mesh: &Mesh, params: &Params) -> Decomposition {
 }
 
 /// Panics unless `params` (an option set to its off value) give the default engine's
-/// primitives at every level of `params.targets`, met the same way (`greedy` kept:
-/// a test of the greedy pass's pricing compares greedy levels).
+/// primitives at every level of `params.goal`, met the same way (a test of the
+/// greedy pass's pricing compares greedy levels).
 pub fn assert_default_output(mesh: &Mesh, params: &Params) {
     let a = primdecomp::decompose(mesh, params).unwrap();
     let default = Params {
-        targets: params.targets.clone(),
-        greedy: params.greedy,
+        goal: params.goal.clone(),
         ..Default::default()
     };
     let b = primdecomp::decompose(mesh, &default).unwrap();

@@ -9,10 +9,10 @@ use primdecomp::{demo_scene, Params};
 pub fn with_demo<R>(f: impl FnOnce(&Evaluator, Clusters, Vec<(u32, u32)>) -> R) -> R {
     let mesh = demo_scene();
     let p = Params::default();
-    let (welded, _) = weld(&mesh, p.dedup);
+    let (welded, _) = weld(&mesh, p.fit.dedup);
     let pairs = face_pairs(&mesh, &welded);
     let mut q = Vec::new();
-    face_quadrics(&mesh, p.tangent_eps, &mut q);
+    face_quadrics(&mesh, p.fit.tangent_eps, &mut q);
     let ev = evaluator(&mesh, &welded, &p, mesh.aabb());
     let vols = seed_volumes(&ev, &q);
     let cl = Clusters::new(q, vols, &pairs);

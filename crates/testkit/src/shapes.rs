@@ -8,6 +8,35 @@ use std::f64::consts::PI;
 
 pub type Polys = (Vec<[f64; 3]>, Vec<Vec<u32>>);
 
+/// `polys` as binary little-endian PLY: float positions, triangles fanned from each
+/// polygon as `uchar int` lists (what the scale ladder writes).
+pub fn ply_bytes((v, f): &Polys) -> Vec<u8> {
+    let tris: Vec<[u32; 3]> = f
+        .iter()
+        .flat_map(|p| (1..p.len() - 1).map(move |i| [p[0], p[i], p[i + 1]]))
+        .collect();
+    let mut out = format!(
+        "ply\nformat binary_little_endian 1.0\nelement vertex {}\nproperty float x\n\
+         property float y\nproperty float z\nelement face {}\n\
+         property list uchar int vertex_indices\nend_header\n",
+        v.len(),
+        tris.len()
+    )
+    .into_bytes();
+    for p in v {
+        for c in p {
+            out.extend_from_slice(&(*c as f32).to_le_bytes());
+        }
+    }
+    for t in &tris {
+        out.push(3);
+        for i in t {
+            out.extend_from_slice(&(*i as i32).to_le_bytes());
+        }
+    }
+    out
+}
+
 /// Axis-aligned box from `lo` to `hi` as 6 quads.
 pub fn cuboid(lo: [f64; 3], hi: [f64; 3]) -> Polys {
     let v: Vec<[f64; 3]> = (0..8)

@@ -2,10 +2,8 @@
 
 use anyhow::bail;
 use clap::Args;
-use primdecomp::export::{
-    read_objects, write_export, ExportOptions, Format, Frame, Physics, ResultObject, Up,
-};
-use primdecomp::{Level, Objects};
+use primdecomp::{read_objects, Frame, Level, Objects, ResultObject, Up};
+use primdecomp_export::{write_export, ExportOptions, Format, Physics};
 use std::path::{Path, PathBuf};
 
 use crate::exit::println;
@@ -55,7 +53,7 @@ pub struct ExportArgs {
     #[arg(long, hide_short_help = true)]
     pub urdf_capsule: bool,
     /// Segments around circles of frustums (and of every preview) written as meshes.
-    #[arg(long, default_value_t = primdecomp::export::DEFAULT_DETAIL, hide_short_help = true)]
+    #[arg(long, default_value_t = primdecomp::DEFAULT_DETAIL, hide_short_help = true)]
     pub export_detail: usize,
 }
 

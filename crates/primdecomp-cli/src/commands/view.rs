@@ -127,10 +127,10 @@ fn check_args(a: &ViewArgs) -> anyhow::Result<()> {
             a.png_size
         )));
     }
-    if !(3..=primdecomp::export::MAX_DETAIL).contains(&a.detail) {
+    if !(3..=primdecomp::MAX_DETAIL).contains(&a.detail) {
         bail!(BadArgs(format!(
             "--detail must be from 3 to {}, got {}",
-            primdecomp::export::MAX_DETAIL,
+            primdecomp::MAX_DETAIL,
             a.detail
         )));
     }
@@ -143,11 +143,7 @@ fn scene_of(a: &ViewArgs) -> anyhow::Result<(scene::Scene, String)> {
     let mut opts = scene::Options {
         detail: a.detail,
         display_triangles: a.display_faces.max(1),
-        up_axis: if up == primdecomp::export::Up::Z {
-            2
-        } else {
-            1
-        },
+        up_axis: if up == primdecomp::Up::Z { 2 } else { 1 },
         load: LoadOptions {
             max_memory: memory_limit(&a.max_memory)?,
             allow_external_uris: a.load.allow_external_uris,
@@ -248,8 +244,8 @@ fn check_extent(s: &scene::Scene) -> anyhow::Result<()> {
 
 /// `view`'s up axis: `--up`, else the first result's (`input.up`), else what the
 /// input's format says (as `decompose`), else +Y.
-fn view_up(a: &ViewArgs) -> primdecomp::export::Up {
-    use primdecomp::export::Up;
+fn view_up(a: &ViewArgs) -> primdecomp::Up {
+    use primdecomp::Up;
     let recorded = || {
         let first = a.results.first()?;
         let file = scene_first_file(first)?;

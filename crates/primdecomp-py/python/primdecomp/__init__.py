@@ -252,48 +252,22 @@ def _target(t):
     raise ValueError(f"targets: expected a positive count, got {t!r}")
 
 
+def _spelled(key, v):
+    """A value as the CLI spells it ("1%", "4K", "exact", "auto", "box"), or a number,
+    read by the library's own parser; the JSON of the settings it stands for."""
+    if isinstance(v, bool) or not isinstance(v, (str, int, float)):
+        raise ValueError(f"{key}: expected a word or a number such as the CLI takes, got {v!r}")
+    return _json.loads(_native.spelled(key, str(v)))
+
+
 def _tolerance(t):
     """"1%" (of the bounding-box diagonal) or a distance in input units, as the
-    library's Tolerance ({"units": d} / {"diagonal": f}, also accepted as is); the
-    CLI's words when it is neither."""
-    if isinstance(t, dict):
-        return t
-    text = t.strip() if isinstance(t, str) else t
-    percent = isinstance(text, str) and text.endswith("%")
-    try:
-        value = float(text[:-1] if percent else text) if not isinstance(text, bool) else None
-    except (TypeError, ValueError):
-        value = None
-    if value is not None and value <= 0:
-        raise ValueError(f"tolerance: {t!r} is not positive: a tolerance is a distance (input units) "
-                         "or a percentage of the diagonal like '1%', greater than 0")
-    if value is None or value != value or value in (float("inf"),) or (percent and value >= 100):
-        raise ValueError(f"tolerance: expected a positive distance (input units) or a percentage of "
-                         f"the diagonal like '1%', got {t!r}")
-    return {"diagonal": value / 100.0} if percent else {"units": value}
-
-
-def _bytes(b):
-    """A byte count: an int, or a string such as '4096' or '4K' (K, M, G: powers of 1024)."""
-    scale = {"": 1, "K": 1 << 10, "M": 1 << 20, "G": 1 << 30}
-    if isinstance(b, int) and not isinstance(b, bool) and b > 0:
-        return b
-    if isinstance(b, str):
-        t = b.strip().upper().removesuffix("IB").removesuffix("B")
-        unit = t[-1:] if t[-1:] in scale else ""
-        try:
-            n = float(t[: len(t) - len(unit)])
-            if n > 0 and n * scale[unit] >= 1:
-                return int(n * scale[unit])
-        except ValueError:
-            pass
-    raise ValueError(f"max_bytes: expected a positive byte count such as 4096 or '4K', got {b!r}")
+    library's Tolerance ({"units": d} / {"diagonal": f}, also accepted as is)."""
+    return t if isinstance(t, dict) else _spelled("tolerance", t)
 
 
 def _kind(k):
-    if k not in _KINDS:
-        raise ValueError(f"unknown primitive kind {k!r}: expected box, sphere, capsule, cylinder, frustum or prism")
-    return k
+    return _spelled("kind", k)
 
 
 def _kinds(v):
@@ -342,28 +316,17 @@ def _settings(settings, where="decompose"):
         elif key == "tolerance":
             out[key] = [_tolerance(t) for t in _listed(v)]
         elif key == "max_bytes":
-            out[key] = [_bytes(b) for b in _listed(v)]
+            out[key] = [_spelled(key, b) for b in _listed(v)]
         elif key == "kinds":
             out[key] = _kinds(v)
         elif key == "weights":
             out[key] = _weights(v)
-        elif key == "dedup":
-            out[key] = v if v in ("exact", "off") else {"tolerance": v} if _number(v) else _bad_word(key, v, "'exact', 'off' or a distance")
-        elif key == "reprice":
-            out[key] = v if v == "exact" else {"deferred": {"min_degree": 0 if v == "deferred" else v}} \
-                if v == "deferred" or (isinstance(v, int) and not isinstance(v, bool) and v >= 0) \
-                else _bad_word(key, v, "'exact', 'deferred' or a neighbour count")
-        elif key == "partitions":
-            out[key] = v if v == "auto" or (isinstance(v, int) and not isinstance(v, bool) and v > 0) \
-                else _bad_word(key, v, "'auto' or a count")
+        elif key in ("dedup", "reprice", "partitions"):
+            out[key] = _spelled(key, v)
     try:
         return _json.dumps(out, allow_nan=False)
     except ValueError:
         raise ValueError("settings: numbers must be finite (no NaN or infinity)") from None
-
-
-def _bad_word(key, v, expected):
-    raise ValueError(f"{key}: expected {expected}, got {v!r}")
 
 
 def decompose_file(path, progress=None, **settings):

@@ -17,8 +17,9 @@
 use super::hulls::HullScratch;
 use super::tree::MergeTree;
 use super::{Cutter, Entry, Explored, Scratch};
+use crate::input::mesh::Mesh;
+use crate::math::aabb_of;
 use crate::math::{Sym3, V3};
-use crate::mesh::{aabb_of, Mesh};
 use crate::primitive::Primitive;
 use rayon::prelude::*;
 use std::collections::HashMap;

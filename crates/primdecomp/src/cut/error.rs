@@ -2,7 +2,7 @@
 //! surface, the quantity `primdecomp eval` reports as Hausdorff (there over the union
 //! of the output; here over one primitive, so an upper bound of its share). Bounded,
 //! not sampled (docs/decisions/0040): the primitive's conservative tessellation
-//! (`export::tessellate`) is cut into triangles and refined best-first, the triangle
+//! (`output::tessellate`) is cut into triangles and refined best-first, the triangle
 //! of largest bound cut in two across its longest edge. The distance to the input is
 //! 1-Lipschitz, so over a triangle it is at most its centroid's distance plus the
 //! centroid's farthest vertex; and the distance to one triangle is convex, so over a
@@ -12,7 +12,7 @@
 //! shadow (`cut::shadow`, docs/decisions/0047): tight over a few input facets.
 //! Centroids and vertices measured give lower bounds; a round primitive's own surface
 //! lies within a known gap of its tessellation, which is added. Measured to the
-//! nearest input triangle anywhere in the mesh (`mesh::triangles`): the whole mesh, as
+//! nearest input triangle anywhere in the mesh (`input::triangles`): the whole mesh, as
 //! eval measures, not only the node's faces, so a primitive lying on another part's
 //! surface is not charged for it, and one hierarchy serves every node.
 
@@ -22,10 +22,10 @@ use std::collections::BinaryHeap;
 use rayon::prelude::*;
 
 use super::shadow;
-use crate::export::tessellate;
+use crate::input::triangles::Triangles;
 use crate::math::bvh::point_segment_dist2;
 use crate::math::{add, norm, scale, sub, V3};
-use crate::mesh::triangles::Triangles;
+use crate::output::tessellate;
 use crate::primitive::Primitive;
 
 /// Segments around circles of the tessellation (its polygons stand at most
@@ -407,7 +407,7 @@ impl Ord for Cell {
 
 /// `prim`'s tessellation fine enough that its [`rounding`] is at most [`GAP`] of the
 /// diagonal (or as fine as [`DETAIL`] × 4), and that rounding.
-fn tessellation(prim: &Primitive, diagonal: f64) -> (crate::export::Tess, f64) {
+fn tessellation(prim: &Primitive, diagonal: f64) -> (crate::output::Tess, f64) {
     let mut k = DETAIL;
     loop {
         let tess = tessellate(prim, k);
@@ -425,7 +425,7 @@ fn tessellation(prim: &Primitive, diagonal: f64) -> (crate::export::Tess, f64) {
 /// bounds that surface's distance too. Each point of a ball or capsule lies on the
 /// ray from its core out through the tessellation, which lies within its farthest
 /// vertex; a cylinder's or frustum's side within 1/cos(π/k) of its radius.
-fn rounding(prim: &Primitive, tess: &crate::export::Tess, k: usize) -> f64 {
+fn rounding(prim: &Primitive, tess: &crate::output::Tess, k: usize) -> f64 {
     let circ = 1.0 / (std::f64::consts::PI / k as f64).cos();
     let beyond = |p0: V3, p1: V3, r: f64| {
         let far = tess
@@ -447,7 +447,7 @@ fn rounding(prim: &Primitive, tess: &crate::export::Tess, k: usize) -> f64 {
 /// The tessellation's faces as triangles: quads and triangles fanned from their first
 /// vertex, larger polygons (round caps) from their centre, so that no triangle is a
 /// sliver across the cap.
-pub(super) fn triangles(tess: &crate::export::Tess) -> Vec<[V3; 3]> {
+pub(super) fn triangles(tess: &crate::output::Tess) -> Vec<[V3; 3]> {
     let mut tris = Vec::new();
     for f in &tess.faces {
         let v = |i: usize| tess.vertices[f[i] as usize];
@@ -508,8 +508,8 @@ pub(crate) mod tests {
     }
 
     /// A closed cube of half-extent `h` about the origin, as quads.
-    pub(in crate::cut) fn cube_mesh(h: f64) -> crate::mesh::Mesh {
-        let mut b = crate::mesh::MeshBuilder::new();
+    pub(in crate::cut) fn cube_mesh(h: f64) -> crate::input::mesh::Mesh {
+        let mut b = crate::input::mesh::MeshBuilder::new();
         for i in 0..8u32 {
             let s = |bit: u32| if i >> bit & 1 == 1 { h } else { -h };
             b.positions.push([s(0), s(1), s(2)]);
@@ -524,7 +524,7 @@ pub(crate) mod tests {
         ] {
             b.push_face(&f);
         }
-        crate::mesh::Mesh::from_builder(b)
+        crate::input::mesh::Mesh::from_builder(b)
     }
 
     /// A long thin cylinder around an open tube (its side only): the caps' centres
@@ -545,7 +545,7 @@ pub(crate) mod tests {
         let quads: Vec<Vec<u32>> = (0..n)
             .map(|i| vec![i, (i + 1) % n, n + (i + 1) % n, n + i])
             .collect();
-        let tube = crate::mesh::Mesh::from_polygons(&points, &quads).expect("a tube");
+        let tube = crate::input::mesh::Mesh::from_polygons(&points, &quads).expect("a tube");
         let cyl = Primitive::Cylinder(crate::primitive::cylinder::Cylinder {
             p0: [0.0, 0.0, -h / 2.0],
             p1: [0.0, 0.0, h / 2.0],
@@ -573,7 +573,7 @@ pub(crate) mod tests {
     #[test]
     fn a_ball_over_a_faceted_sphere_is_within_its_facets_depth() {
         let (points, faces) = primdecomp_testkit::shapes::icosphere(1.0, 3);
-        let mesh = crate::mesh::Mesh::from_polygons(&points, &faces).expect("a sphere");
+        let mesh = crate::input::mesh::Mesh::from_polygons(&points, &faces).expect("a sphere");
         let surface = Triangles::new(&mesh);
         let r_min = (0..mesh.face_count())
             .map(|f| {
@@ -635,7 +635,7 @@ pub(crate) mod tests {
     /// the scene at random.
     #[test]
     fn no_sampled_point_is_beyond_the_bound() {
-        let mesh = crate::demo::demo_scene();
+        let mesh = crate::input::demo::demo_scene();
         let surface = Triangles::new(&mesh);
         let mut rng = ChaCha8Rng::seed_from_u64(7);
         let mut stack = Vec::new();
@@ -666,7 +666,7 @@ pub(crate) mod tests {
     /// same holds when each primitive's own bound is given as known beforehand.
     #[test]
     fn a_levels_bound_is_its_worst_primitives() {
-        let mesh = crate::demo::demo_scene();
+        let mesh = crate::input::demo::demo_scene();
         let surface = Triangles::new(&mesh);
         let mut rng = ChaCha8Rng::seed_from_u64(11);
         let d = mesh.diagonal();

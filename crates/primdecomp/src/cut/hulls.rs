@@ -7,9 +7,9 @@
 //! gathering every face below it again at every level (docs/decisions/0035).
 
 use super::tree::MergeTree;
+use crate::input::mesh::Mesh;
 use crate::math::hull::{hull_vertices, HullWorkspace};
 use crate::merge::rim::FaceAdjacency;
-use crate::mesh::Mesh;
 use rayon::prelude::*;
 use std::collections::HashMap;
 
@@ -280,8 +280,8 @@ impl<'a> NodeHulls<'a> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::input::adjacency::{face_pairs, neighbour_lists};
     use crate::math::Sym3;
-    use crate::mesh::adjacency::{face_pairs, neighbour_lists};
 
     /// On the demo scene, faces merged into a tree: every stored node's hull reaches
     /// as far in every direction as the points of its faces found directly (the same
@@ -290,7 +290,7 @@ mod tests {
     /// bottom-up sets are what gathering every face would give.
     #[test]
     fn bottom_up_sets_equal_the_direct_ones() {
-        let mesh = crate::demo::demo_scene();
+        let mesh = crate::input::demo::demo_scene();
         let faces = mesh.face_count() as u32;
         let members: Vec<Vec<u32>> = (0..faces).map(|f| vec![f]).collect();
         let q = vec![Sym3::ZERO; members.len()];

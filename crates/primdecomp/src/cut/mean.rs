@@ -1,8 +1,8 @@
 //! A level's mean distance from its primitives' surfaces to the input, the quantity
 //! `primdecomp eval` reports as Chamfer (there sampled), estimated by the midpoint
-//! rule: each primitive's tessellation (`export::tessellate`) cut into cells of at
+//! rule: each primitive's tessellation (`output::tessellate`) cut into cells of at
 //! most an equal share of the level's area, each cell weighed by its area at its
-//! centroid's distance to the nearest input triangle (`mesh::triangles`). As eval's,
+//! centroid's distance to the nearest input triangle (`input::triangles`). As eval's,
 //! over the boundary of the union: a cell whose centroid lies inside another
 //! primitive is buried, nothing a ball can touch, and left out. A cut of counts alone
 //! may spend its count on this mean instead of on the worst distance
@@ -11,10 +11,10 @@
 use rayon::prelude::*;
 
 use super::error::{halves, triangles};
-use crate::export::tessellate;
+use crate::input::triangles::Triangles;
 use crate::math::bvh::Bvh;
 use crate::math::{add, cross, norm, scale, sub, V3};
-use crate::mesh::triangles::Triangles;
+use crate::output::tessellate;
 use crate::primitive::Primitive;
 
 /// Segments around circles of the tessellation.
@@ -109,7 +109,7 @@ mod tests {
     /// radius; two of them the same (neither lies inside the other), and none 0.
     #[test]
     fn a_ball_about_a_point_stands_its_radius_off_it() {
-        let mesh = crate::mesh::Mesh::from_triangles(
+        let mesh = crate::input::mesh::Mesh::from_triangles(
             &[[0.0, 0.0, 0.0], [1e-6, 0.0, 0.0], [0.0, 1e-6, 0.0]],
             &[[0, 1, 2]],
         )

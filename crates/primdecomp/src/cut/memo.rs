@@ -66,7 +66,7 @@ mod tests {
     use super::*;
     use crate::cut::error::tests::random_primitive;
     use crate::cut::error::{error_until, Ask};
-    use crate::mesh::triangles::Triangles;
+    use crate::input::triangles::Triangles;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
@@ -77,7 +77,7 @@ mod tests {
     /// the one measured with.
     #[test]
     fn a_kept_answer_is_the_measure_it_stands_for() {
-        let mesh = crate::demo::demo_scene();
+        let mesh = crate::input::demo::demo_scene();
         let surface = Triangles::new(&mesh);
         let d = mesh.diagonal();
         let mut rng = ChaCha8Rng::seed_from_u64(5);

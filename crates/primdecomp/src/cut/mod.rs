@@ -23,11 +23,11 @@ mod shadow;
 mod spend;
 pub(crate) mod tree;
 
+use crate::input::triangles::Triangles;
 use crate::math::{Sym3, V3};
 use crate::merge::{Evaluator, Snapshot, Workspace};
-use crate::mesh::triangles::Triangles;
+use crate::output::result::Shortfall;
 use crate::primitive::Primitive;
-use crate::Shortfall;
 #[cfg(test)]
 use error::error_of;
 use error::{error_until, worst_error, Ask};
@@ -782,10 +782,10 @@ impl<'a> Cutter<'a> {
 /// frame), `known[i]` holding the primitives level `i`'s cut made with their bounds
 /// (those post-processing left as they were need no search past them).
 pub(crate) fn record_limits(
-    levels: &mut [crate::Level],
+    levels: &mut [crate::output::result::Level],
     requests: &[Request],
     known: &[Vec<(Primitive, f64)>],
-    mesh: &crate::Mesh,
+    mesh: &crate::input::mesh::Mesh,
     surface: &Triangles,
 ) {
     let back = mesh.offset.map(|x| -x);

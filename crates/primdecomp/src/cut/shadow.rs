@@ -10,10 +10,10 @@
 //! is affine, so its largest is at the piece's corners, and it bounds the distance to
 //! the input (the line meets the triangle there). Only for cells over a few triangles.
 
+use crate::input::triangles::Triangles;
 use crate::math::bvh::tri_box;
 use crate::math::polygon::{clip_by, signed_area};
 use crate::math::{add, cross, dot, norm, normalize, scale, sub, V3};
-use crate::mesh::triangles::Triangles;
 
 /// Cells over more input triangles than this are left to the other bounds.
 const MOST: usize = 32;
@@ -263,9 +263,9 @@ mod tests {
     use rand_chacha::ChaCha8Rng;
 
     /// A flat square of 2·n² triangles in z = 0, side n, centred on the origin.
-    fn grid(n: u32) -> crate::mesh::Mesh {
+    fn grid(n: u32) -> crate::input::mesh::Mesh {
         let (points, faces) = primdecomp_testkit::shapes::flat_grid(n);
-        crate::mesh::Mesh::from_polygons(&points, &faces).expect("a grid")
+        crate::input::mesh::Mesh::from_polygons(&points, &faces).expect("a grid")
     }
 
     /// A cell held level at height h over a grid of a few triangles is h from it at
@@ -294,7 +294,7 @@ mod tests {
     /// at random on the cell (the exact distance to the nearest triangle).
     #[test]
     fn no_point_of_a_cell_is_beyond_its_shadow() {
-        let mesh = crate::demo::demo_scene();
+        let mesh = crate::input::demo::demo_scene();
         let surface = Triangles::new(&mesh);
         let d = mesh.diagonal();
         let mut rng = ChaCha8Rng::seed_from_u64(3);
@@ -339,7 +339,7 @@ mod tests {
             .cloned()
             .collect();
         assert_eq!(kept.len() + 1, faces.len());
-        let mesh = crate::mesh::Mesh::from_polygons(&points, &kept).expect("a grid");
+        let mesh = crate::input::mesh::Mesh::from_polygons(&points, &kept).expect("a grid");
         let surface = Triangles::new(&mesh);
         let cell = [[-0.4, -0.4, 0.01], [1.5, 0.2, 0.01], [0.2, 1.5, 0.01]];
         let mut s = Scratch::default();

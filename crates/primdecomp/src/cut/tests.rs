@@ -1,7 +1,8 @@
 //! The cut's tests: tolerances, chains, byte targets and enclosure on small meshes.
 
 use super::*;
-use crate::{decompose, Params, Tolerance};
+use crate::decompose::decompose;
+use crate::params::{CountSearch, Goal, Params, Tolerance};
 
 /// A closed cube within 1% of its diagonal is one box, whatever the cap; an
 /// icosphere one round primitive; a tolerance tighter than the cube's faces allow
@@ -12,14 +13,17 @@ fn a_tolerance_needs_no_count() {
     let cube = error::tests::cube_mesh(1.0);
     for t in [Tolerance::Diagonal(0.01), Tolerance::Units(1e-6)] {
         let p = Params {
-            targets: vec![64],
-            tolerance: vec![t],
+            goal: Goal::Within {
+                caps: vec![64],
+                tolerance: vec![t],
+                max_bytes: vec![],
+            },
             ..Params::default()
         };
         let d = decompose(&cube, &p).expect("decomposes");
         let level = &d.levels[0];
         assert_eq!(level.primitives.len(), 1, "{t:?}");
-        assert_eq!(level.primitives[0].kind(), crate::Kind::Box);
+        assert_eq!(level.primitives[0].kind(), crate::primitive::Kind::Box);
         assert_eq!(level.tolerance, Some(t.in_units(cube.diagonal())));
         assert!(level.distance.expect("measured") < 1e-9);
     }
@@ -30,14 +34,17 @@ fn a_tolerance_needs_no_count() {
 /// tighter tolerance never fewer primitives, and a byte target kept.
 #[test]
 fn tolerance_chains_and_byte_targets() {
-    let mesh = crate::demo::demo_scene();
+    let mesh = crate::input::demo::demo_scene();
     let p = Params {
-        targets: vec![400, 400, 400],
-        tolerance: vec![
-            Tolerance::Diagonal(0.05),
-            Tolerance::Diagonal(0.02),
-            Tolerance::Diagonal(0.01),
-        ],
+        goal: Goal::Within {
+            caps: vec![400, 400, 400],
+            tolerance: vec![
+                Tolerance::Diagonal(0.05),
+                Tolerance::Diagonal(0.02),
+                Tolerance::Diagonal(0.01),
+            ],
+            max_bytes: vec![],
+        },
         ..Params::default()
     };
     let d = decompose(&mesh, &p).expect("decomposes");
@@ -56,8 +63,11 @@ fn tolerance_chains_and_byte_targets() {
         );
     }
     let small = Params {
-        targets: vec![400],
-        max_bytes: vec![600],
+        goal: Goal::Within {
+            caps: vec![400],
+            tolerance: vec![],
+            max_bytes: vec![600],
+        },
         ..Params::default()
     };
     let d = decompose(&mesh, &small).expect("decomposes");
@@ -67,12 +77,16 @@ fn tolerance_chains_and_byte_targets() {
     assert_eq!(l.shortfall, None, "no tolerance asked");
     // With a tolerance the 600 bytes cannot reach, the level says the bytes stopped it.
     let tight = Params {
-        tolerance: vec![Tolerance::Diagonal(0.01)],
+        goal: Goal::Within {
+            caps: vec![400],
+            tolerance: vec![Tolerance::Diagonal(0.01)],
+            max_bytes: vec![600],
+        },
         ..small
     };
     let l = &decompose(&mesh, &tight).expect("decomposes").levels[0];
     assert!(l.distance.expect("measured") > l.tolerance.expect("asked"));
-    assert_eq!(l.shortfall, Some(crate::Shortfall::Bytes));
+    assert_eq!(l.shortfall, Some(crate::output::result::Shortfall::Bytes));
 }
 
 /// Two triangles folded along a shared edge (the corpus's tiny_2triangles): the
@@ -86,7 +100,7 @@ fn tolerance_chains_and_byte_targets() {
 /// enclosed. Asked for less than that floor, faces stop it and it says so.
 #[test]
 fn a_face_the_cut_cannot_split_gets_its_nearest_fit() {
-    let mut b = crate::mesh::MeshBuilder::new();
+    let mut b = crate::input::mesh::MeshBuilder::new();
     b.positions.extend([
         [0.0, 0.0, 0.0],
         [1.0, 0.0, 0.0],
@@ -95,10 +109,14 @@ fn a_face_the_cut_cannot_split_gets_its_nearest_fit() {
     ]);
     b.push_face(&[0, 1, 2]);
     b.push_face(&[1, 3, 2]);
-    let mesh = crate::mesh::Mesh::from_builder(b);
+    let mesh = crate::input::mesh::Mesh::from_builder(b);
     let levels = |tol: f64| {
         let p = Params {
-            tolerance: vec![Tolerance::Diagonal(tol)],
+            goal: Goal::Within {
+                caps: vec![],
+                tolerance: vec![Tolerance::Diagonal(tol)],
+                max_bytes: vec![],
+            },
             ..Params::default()
         };
         decompose(&mesh, &p).expect("decomposes").levels.remove(0)
@@ -123,34 +141,40 @@ fn a_face_the_cut_cannot_split_gets_its_nearest_fit() {
     let floor = levels(0.0001);
     assert_eq!(floor.primitives.len(), 2, "{:?}", floor.primitives);
     assert!(floor.distance.expect("measured") <= 1.01 * got);
-    assert_eq!(floor.shortfall, Some(crate::Shortfall::Faces));
+    assert_eq!(
+        floor.shortfall,
+        Some(crate::output::result::Shortfall::Faces)
+    );
 }
 
 /// Mismatched lists and fill with a cut are refused with a message naming them.
 #[test]
 fn limits_are_validated() {
     let two = Params {
-        targets: vec![10, 20, 30],
-        tolerance: vec![Tolerance::Diagonal(0.01); 2],
+        goal: Goal::Within {
+            caps: vec![10, 20, 30],
+            tolerance: vec![Tolerance::Diagonal(0.01); 2],
+            max_bytes: vec![],
+        },
         ..Params::default()
     };
     let e = two.validate().unwrap_err().to_string();
     assert!(e.contains("tolerance has 2 values for 3 targets"), "{e}");
     let zero = Params {
-        tolerance: vec![Tolerance::Units(0.0)],
+        goal: Goal::Within {
+            caps: vec![],
+            tolerance: vec![Tolerance::Units(0.0)],
+            max_bytes: vec![],
+        },
         ..Params::default()
     };
     assert!(zero.validate().is_err());
-    let fill = Params {
-        max_bytes: vec![100],
-        fill: true,
-        ..Params::default()
-    };
-    assert!(fill.validate().unwrap_err().to_string().contains("fill"));
+    let fill = Params::from_json(r#"{"max_bytes": [100], "fill": true}"#);
+    assert!(fill.unwrap_err().to_string().contains("fill"));
 }
 
 /// The largest of a level's primitives' bounds, each alone, in the input's frame.
-fn worst_error(mesh: &crate::Mesh, prims: &[Primitive]) -> f64 {
+fn worst_error(mesh: &crate::input::mesh::Mesh, prims: &[Primitive]) -> f64 {
     let surface = Triangles::new(mesh);
     let back = mesh.offset.map(|x| -x);
     prims
@@ -165,10 +189,12 @@ fn worst_error(mesh: &crate::Mesh, prims: &[Primitive]) -> f64 {
 /// smaller one (up to the post-processing's plate joins, within the floor).
 #[test]
 fn cuts_enclose_and_improve_with_n() {
-    let mesh = crate::demo::demo_scene();
+    let mesh = crate::input::demo::demo_scene();
     let p = Params {
-        targets: vec![4, 16, 64],
-        cut: true,
+        goal: Goal::Counts {
+            counts: vec![4, 16, 64],
+            search: CountSearch::Cut,
+        },
         ..Params::default()
     };
     let d = decompose(&mesh, &p).expect("decomposes");
@@ -189,7 +215,7 @@ fn cuts_enclose_and_improve_with_n() {
         }
         errors.push(worst_error(&mesh, &level.primitives));
     }
-    let floor = FLOOR_HALVES * p.min_extent * mesh.diagonal();
+    let floor = FLOOR_HALVES * p.fit.min_extent * mesh.diagonal();
     assert!(errors[0] > errors[2], "{errors:?}: the cut never helped");
     assert!(
         errors.windows(2).all(|w| w[1] <= w[0] + floor),
@@ -201,13 +227,16 @@ fn cuts_enclose_and_improve_with_n() {
 /// target of one, both are the whole scene's single primitive.
 #[test]
 fn one_target_is_the_root() {
-    let mesh = crate::demo::demo_scene();
+    let mesh = crate::input::demo::demo_scene();
     let greedy = Params {
-        targets: vec![1],
+        goal: Goal::counts([1]),
         ..Params::default()
     };
     let cut = Params {
-        cut: true,
+        goal: Goal::Counts {
+            counts: vec![1],
+            search: CountSearch::Cut,
+        },
         ..greedy.clone()
     };
     let a = decompose(&mesh, &greedy).expect("greedy");
@@ -228,14 +257,17 @@ fn fitting_ahead_changes_no_cut() {
 
 fn same_cuts_fitting_ahead(count: usize, tolerance: f64) {
     use std::sync::atomic::Ordering::Relaxed;
-    let mesh = crate::demo::demo_scene();
+    let mesh = crate::input::demo::demo_scene();
     let p = Params {
-        targets: vec![count; 3],
-        tolerance: vec![
-            Tolerance::Diagonal(0.05),
-            Tolerance::Diagonal(tolerance * 2.0),
-            Tolerance::Diagonal(tolerance),
-        ],
+        goal: Goal::Within {
+            caps: vec![count; 3],
+            tolerance: vec![
+                Tolerance::Diagonal(0.05),
+                Tolerance::Diagonal(tolerance * 2.0),
+                Tolerance::Diagonal(tolerance),
+            ],
+            max_bytes: vec![],
+        },
         ..Params::default()
     };
     let run = |threads: usize, off: bool| {
@@ -249,7 +281,7 @@ fn same_cuts_fitting_ahead(count: usize, tolerance: f64) {
         d.levels
     };
     let serial = run(1, true);
-    let capped = (count < 400).then_some(crate::Shortfall::Count);
+    let capped = (count < 400).then_some(crate::output::result::Shortfall::Count);
     assert_eq!(serial[2].shortfall, capped, "{count}");
     for (threads, off) in [(1, false), (2, false), (2, true)] {
         let levels = run(threads, off);
@@ -267,16 +299,19 @@ fn same_cuts_fitting_ahead(count: usize, tolerance: f64) {
 /// of 40 keeps at least 36 primitives (it kept 28); none over its cap.
 #[test]
 fn caps_are_spent_on_what_post_processing_keeps() {
-    let mesh = crate::demo::demo_scene();
-    let most = crate::Kind::ALL
+    let mesh = crate::input::demo::demo_scene();
+    let most = crate::primitive::Kind::ALL
         .iter()
         .map(|k| k.bytes())
         .max()
         .unwrap_or(0);
     for bytes in [600, 1000, 2000] {
         let p = Params {
-            targets: vec![1024],
-            max_bytes: vec![bytes],
+            goal: Goal::Within {
+                caps: vec![1024],
+                tolerance: vec![],
+                max_bytes: vec![bytes],
+            },
             ..Params::default()
         };
         let l = &decompose(&mesh, &p).expect("decomposes").levels[0];
@@ -285,8 +320,10 @@ fn caps_are_spent_on_what_post_processing_keeps() {
         assert_eq!((l.target, l.max_bytes), (1024, Some(bytes)));
     }
     let p = Params {
-        targets: vec![40],
-        cut: true,
+        goal: Goal::Counts {
+            counts: vec![40],
+            search: CountSearch::Cut,
+        },
         ..Params::default()
     };
     let l = &decompose(&mesh, &p).expect("decomposes").levels[0];

@@ -78,3 +78,19 @@ pub fn fmin(a: f64, b: f64) -> f64 {
         a
     }
 }
+
+/// Min/max corners of a point stream; `([0;3],[0;3])` for an empty stream.
+pub(crate) fn aabb_of(points: impl Iterator<Item = V3>) -> (V3, V3) {
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for p in points {
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    if lo[0] > hi[0] {
+        return ([0.0; 3], [0.0; 3]);
+    }
+    (lo, hi)
+}

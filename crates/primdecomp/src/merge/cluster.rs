@@ -34,7 +34,7 @@ struct Node {
     /// The merge clock when the cluster last changed (0: never merged).
     changed: u32,
     /// The merge clock when all the cluster's pairs were last priced (≤ `changed`;
-    /// equal unless its last merge was deferred, `Params::reprice`).
+    /// equal unless its last merge was deferred, `Speed::reprice`).
     repriced: u32,
     /// Index into `slab`, or [`NO_LISTS`].
     slot: u32,
@@ -85,12 +85,12 @@ pub struct Clusters {
 impl Clusters {
     /// One cluster per face, with the given per-face operators and volumes.
     pub fn new(q: Vec<Sym3>, volume: Vec<f64>, pairs: &[(u32, u32)]) -> Clusters {
-        let (adj_offsets, adj) = crate::mesh::adjacency::neighbour_lists(q.len(), pairs);
+        let (adj_offsets, adj) = crate::input::adjacency::neighbour_lists(q.len(), pairs);
         Clusters::with_lists(q, volume, (adj_offsets.into(), adj.into()))
     }
 
     /// [`Clusters::new`] with the adjacency as neighbour lists already built
-    /// ([`crate::mesh::adjacency::neighbour_lists`] of the pairs), shared.
+    /// ([`crate::input::adjacency::neighbour_lists`] of the pairs), shared.
     pub fn with_lists(q: Vec<Sym3>, volume: Vec<f64>, lists: (Arc<[u32]>, Arc<[u32]>)) -> Clusters {
         let n = q.len();
         let (adj_offsets, adj) = lists;
@@ -213,7 +213,7 @@ impl Clusters {
     }
 
     /// Restarts the merge clock: every cluster counts as never changed (phase 2 of
-    /// `Params::partitions` prices everything afresh).
+    /// `Speed::partitions` prices everything afresh).
     pub fn reset_clock(&mut self) {
         self.clock = 0;
         for n in &mut self.node {

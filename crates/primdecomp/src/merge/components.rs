@@ -221,19 +221,19 @@ mod tests {
     use super::*;
     use crate::merge::driver::tests::{reprice_modes, with_input};
     use crate::merge::{run, Clusters};
-    use crate::Params;
+    use crate::params::{Params, Speed};
 
     /// The demo scene (several separate objects) merged to `targets` (decreasing) by
     /// the global loop alone and as a run does when components apply (phase 1, the
     /// replayed snapshots at targets of at least one cluster per component, phase 2
     /// for the rest): the same primitives and members at every target.
     fn same_as_global(p: Params, targets: &[usize]) {
-        let mesh = crate::demo::demo_scene();
+        let mesh = crate::input::demo::demo_scene();
         same_as_global_on(&mesh, p, targets);
     }
 
     /// [`same_as_global`] on `mesh`.
-    fn same_as_global_on(mesh: &crate::Mesh, p: Params, targets: &[usize]) {
+    fn same_as_global_on(mesh: &crate::input::mesh::Mesh, p: Params, targets: &[usize]) {
         with_input(mesh, &p, |ev, q, vols, pairs| {
             let comps = components(mesh.face_count(), pairs);
             let count = comps.len();
@@ -243,7 +243,7 @@ mod tests {
             let mut split = snapshots(ev, &p1, q, vols, pairs, targets, count).0;
             let rest = &targets[split.len()..];
             if !rest.is_empty() {
-                let (o, a) = crate::mesh::adjacency::neighbour_lists(q.len(), pairs);
+                let (o, a) = crate::input::adjacency::neighbour_lists(q.len(), pairs);
                 let lists = (o.into(), a.into());
                 let cl = partition::clusters(p1, q.to_vec(), vols.to_vec(), lists, &|_| true)
                     .expect("not stopped");
@@ -265,7 +265,7 @@ mod tests {
 
     /// Targets from every face down to one cluster, through the component count.
     fn demo_targets() -> Vec<usize> {
-        let mesh = crate::demo::demo_scene();
+        let mesh = crate::input::demo::demo_scene();
         let p = Params::default();
         let (faces, count) = with_input(&mesh, &p, |_, _, _, pairs| {
             (
@@ -298,10 +298,13 @@ mod tests {
     fn every_fourth_target_matches_the_global_loop() {
         let faces = demo_targets()[0] - 3;
         let all: Vec<usize> = (1..=faces).rev().step_by(4).collect();
-        let reprice = crate::Reprice::Deferred { min_degree: 0 };
+        let reprice = crate::params::Reprice::Deferred { min_degree: 0 };
         same_as_global(
             Params {
-                reprice,
+                speed: Speed {
+                    reprice,
+                    ..Default::default()
+                },
                 ..Params::default()
             },
             &all,
@@ -313,7 +316,10 @@ mod tests {
         let targets = demo_targets();
         for reprice in reprice_modes() {
             let p = Params {
-                reprice,
+                speed: Speed {
+                    reprice,
+                    ..Default::default()
+                },
                 ..Params::default()
             };
             same_as_global(p, &targets);
@@ -322,8 +328,8 @@ mod tests {
 
     /// Bumpy grids of `sizes` quads (each quad two triangles, heights from a seeded
     /// generator, so costs differ and ties are rare), side by side: one component each.
-    fn bumpy_grids(sizes: &[(u32, u32)], seed: u64) -> crate::Mesh {
-        let mut b = crate::mesh::MeshBuilder::new();
+    fn bumpy_grids(sizes: &[(u32, u32)], seed: u64) -> crate::input::mesh::Mesh {
+        let mut b = crate::input::mesh::MeshBuilder::new();
         let mut x = seed | 1;
         let mut height = || {
             x ^= x << 13;
@@ -348,7 +354,7 @@ mod tests {
             }
             left += n as f64 + 2.0;
         }
-        crate::Mesh::from_builder(b)
+        crate::input::mesh::Mesh::from_builder(b)
     }
 
     proptest::proptest! {
@@ -370,8 +376,9 @@ mod tests {
             targets.push(sizes.len());
             targets.sort_unstable_by(|a, b| b.cmp(a));
             targets.dedup();
-            for reprice in [crate::Reprice::Deferred { min_degree: 0 }, Params::default().reprice] {
-                same_as_global_on(&mesh, Params { reprice, ..Params::default() }, &targets);
+            for reprice in [crate::params::Reprice::Deferred { min_degree: 0 }, Params::default().speed.reprice] {
+                let speed = Speed { reprice, ..Default::default() };
+                same_as_global_on(&mesh, Params { speed, ..Params::default() }, &targets);
             }
         }
     }

@@ -5,12 +5,12 @@
 use super::cluster::Clusters;
 use super::heap::Candidate;
 use super::rim::{clamp_to_points, rim_penalty, FaceAdjacency, Rim, Surroundings};
+use crate::input::mesh::outward_normal;
+use crate::input::mesh::Mesh;
+use crate::input::solid::Solid;
 use crate::math::hull::{hull_vertices, HullWorkspace};
 use crate::math::Sym3;
 use crate::math::{dot, V3};
-use crate::mesh::outward_normal;
-use crate::mesh::solid::Solid;
-use crate::mesh::Mesh;
 use crate::primitive::fit::{
     fit_best_frame, fit_frame, fit_frame_priced, Fit, FitConfig, FrameSearch,
 };
@@ -37,7 +37,7 @@ pub struct Workspace {
     hz: Vec<f64>,
     /// The output fit's candidate frames, when the rim reach is priced.
     frames: Vec<[V3; 3]>,
-    /// The output cluster's faces, sorted, and its rims (`Params::rim_weight`).
+    /// The output cluster's faces, sorted, and its rims (`Plates::rim_weight`).
     members: Vec<u32>,
     rims: Vec<Rim>,
 }
@@ -76,35 +76,35 @@ pub struct Evaluator<'a> {
     /// whose exact costs tie — coplanar merges cost exactly 0, and there are many.
     pub cost_unit: f64,
     /// Factor on the cost of a merge whose points are coplanar (≥ 1): such merges are
-    /// priced as if primitives were `Params::open_holes` thick instead of the minimum
+    /// priced as if primitives were `Plates::open_holes` thick instead of the minimum
     /// extent (area across gaps and holes costs that thickness); 1 = off.
     pub flat_scale: f64,
     /// Distance below which a point counts as on a hull face (point reduction only).
     pub hull_eps: f64,
     /// Merges whose clusters' neighbour lists hold at least this many entries are
-    /// re-priced lazily (`Params::reprice`); `u32::MAX` = always at once (exact).
+    /// re-priced lazily (`Speed::reprice`); `u32::MAX` = always at once (exact).
     pub defer_degree: u32,
-    /// Per face, ±1: the winding that faces outward (`mesh::orient`); empty = the
+    /// Per face, ±1: the winding that faces outward (`input::orient`); empty = the
     /// faces' own windings (set only when `rim_weight` > 0 or `flush_plates`).
     pub face_sign: &'a [i8],
-    /// The input's interior (`Params::solid`,
+    /// The input's interior (`Plates::solid`,
     /// docs/decisions/0023-merges-priced-by-the-air-they-add.md): merges are priced by the
     /// volume their primitive adds outside it; `None` = the paper's whole volume.
     pub solid: Option<&'a Solid>,
-    /// `Params::rim_weight`: the rim reach's weight in the output frame choice
+    /// `Plates::rim_weight`: the rim reach's weight in the output frame choice
     /// (docs/decisions/0024-output-primitives-priced-by-rim-reach.md).
     pub rim_weight: f64,
     /// The input's face adjacency, for the output clusters' rims (read only when
     /// `rim_weight` > 0); empty = no rims (set when `face_sign` is).
     pub face_adj: FaceAdjacency<'a>,
-    /// `Params::join_coplanar`: free merges into plates run before a target's snapshot
+    /// `Plates::join_coplanar`: free merges into plates run before a target's snapshot
     /// (`merge::driver::free`, docs/decisions/0025).
     pub free_merges: bool,
     /// Coplanar plates a target's snapshot holds are joined where that adds no area
-    /// (`postprocess::plates`, docs/decisions/0028): `Params::join_coplanar` too, apart
+    /// (`postprocess::plates`, docs/decisions/0028): `Plates::join_coplanar` too, apart
     /// in tests that check the loop's free merges alone.
     pub join_plates: bool,
-    /// `Params::flush_plates`: output plates lie flush on their faces
+    /// `Plates::flush_plates`: output plates lie flush on their faces
     /// (docs/decisions/0026-output-plates-lie-flush.md).
     pub flush_plates: bool,
 }
@@ -281,7 +281,7 @@ impl<'a> Evaluator<'a> {
         }
     }
 
-    /// Whether output fits price the rim reach (`Params::rim_weight`).
+    /// Whether output fits price the rim reach (`Plates::rim_weight`).
     pub fn prices_rims(&self) -> bool {
         self.rim_weight > 0.0 && !self.face_adj.is_empty()
     }
@@ -508,7 +508,7 @@ impl<'a> Evaluator<'a> {
         let mut cost = fit.cost * air - before;
         let flat = ws.fit.was_flat();
         // A coplanar merge's volumes are all area × 2·floor, so scaling its cost is
-        // pricing it at the thicker floor (Params::open_holes).
+        // pricing it at the thicker floor (Plates::open_holes).
         if self.flat_scale > 1.0 && flat {
             cost *= self.flat_scale;
         }

@@ -1,6 +1,6 @@
 //! The merge loop of Alg. 1: seed the queue with every adjacent pair, pop the cheapest
 //! valid merge, apply it, re-price the merged cluster's neighbours (or, for a deferred
-//! merge under `Params::reprice`, leave its pairs' old entries as keys and re-price
+//! merge under `Speed::reprice`, leave its pairs' old entries as keys and re-price
 //! each when popped: lazy greedy, `lazy.rs`); record a snapshot at
 //! every requested target on the way down (one bottom-up pass serves all targets). When
 //! adjacency runs out above the target, bridge components (§3.4 "Pairwise Component
@@ -54,7 +54,7 @@ pub struct Snapshot {
     /// must keep (`postprocess::plates`); `None` for the greedy snapshot.
     pub bound: Option<f64>,
     /// For a cut over its tolerance: what stopped it nearer; `None` otherwise.
-    pub shortfall: Option<crate::Shortfall>,
+    pub shortfall: Option<crate::output::result::Shortfall>,
     /// For a cut: each primitive as the cut made it (the mesh's frame) with the upper
     /// bound of its error the cut proved, where it proved one; post-processing leaves
     /// it as it is, so `cut::record_limits` measures again only what it changed.
@@ -178,7 +178,7 @@ pub struct FitCounts {
 }
 
 impl std::ops::AddAssign for FitCounts {
-    /// Counts of two runs together (the phases of `Params::partitions`).
+    /// Counts of two runs together (the phases of `Speed::partitions`).
     fn add_assign(&mut self, o: FitCounts) {
         self.seed += o.seed;
         self.eager += o.eager;
@@ -281,7 +281,7 @@ fn run_counted<Q: Queue>(
 }
 
 /// What the merge loop runs on: the whole input, or one spatial part of it in phase 1
-/// of `Params::partitions` (`partition.rs`), which fits no snapshots (only the
+/// of `Speed::partitions` (`partition.rs`), which fits no snapshots (only the
 /// clusters are kept) and never bridges (linking components is a global decision).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum Scope {
@@ -301,7 +301,7 @@ impl Scope {
     }
 }
 
-/// Phase 1 of `Params::partitions`: merges `cl` (one part's clusters) down to
+/// Phase 1 of `Speed::partitions`: merges `cl` (one part's clusters) down to
 /// `target` on this thread alone (no worker: the parts run in parallel), or until
 /// adjacency runs out, reporting progress as [`run`] does; returns the clusters and
 /// the merge counts (and, when `traced`, every merge: [`Traced`]).
@@ -565,7 +565,7 @@ fn seed_queue<Q: Queue>(ev: &Evaluator, cl: &Clusters, heap: &mut Q, go_on: GoOn
     let mut block = Vec::with_capacity(PRICE_BLOCK);
     for a in 0..n {
         // Roots' neighbour lists: the input's adjacency, or (phase 2 of
-        // `Params::partitions`) the resolved adjacency between groups of faces, or
+        // `Speed::partitions`) the resolved adjacency between groups of faces, or
         // (after `merge::components`) whole components' lists as their loops left them,
         // whose merged-away ids name the component itself.
         let nbrs = if cl.is_root(a) { cl.neighbors(a) } else { &[] };
@@ -779,10 +779,11 @@ pub(super) fn snapshot(
 #[cfg(test)]
 pub(super) mod tests {
     use super::*;
+    use crate::input::{adjacency, dedup};
     use crate::math::{dot, V3};
-    use crate::mesh::{adjacency, dedup};
+    use crate::params::{Params, Plates, Reprice, Speed};
     use crate::pipeline::evaluator;
-    use crate::{quadric, Params, Reprice};
+    use crate::seed::quadric;
 
     /// Runs `f` on the demo scene's evaluator and a maker of its single-face clusters.
     pub(in crate::merge) fn with_demo<R>(
@@ -796,7 +797,7 @@ pub(super) mod tests {
         p: Params,
         f: impl FnOnce(&Evaluator, &(dyn Fn() -> Clusters + Sync)) -> R,
     ) -> R {
-        let mesh = crate::demo::demo_scene();
+        let mesh = crate::input::demo::demo_scene();
         with_input(&mesh, &p, |ev, q, vols, pairs| {
             f(ev, &|| Clusters::new(q.to_vec(), vols.to_vec(), pairs))
         })
@@ -806,14 +807,14 @@ pub(super) mod tests {
     /// seed volumes and the adjacent face pairs (the driver's inputs, as `decompose`
     /// builds them).
     pub(in crate::merge) fn with_input<R>(
-        mesh: &crate::Mesh,
+        mesh: &crate::input::mesh::Mesh,
         p: &Params,
         f: impl FnOnce(&Evaluator, &[crate::math::Sym3], &[f64], &[(u32, u32)]) -> R,
     ) -> R {
-        let (welded, _) = dedup::weld(mesh, p.dedup);
+        let (welded, _) = dedup::weld(mesh, p.fit.dedup);
         let pairs = adjacency::face_pairs(&mesh.face_offsets, &welded);
         let mut q = Vec::new();
-        quadric::face_quadrics(mesh, p.tangent_eps, &mut q);
+        quadric::face_quadrics(mesh, p.fit.tangent_eps, &mut q);
         let ev = evaluator(mesh, &welded, p, mesh.aabb());
         let vols = crate::pipeline::seed_volumes(&ev, &q, &|_| true);
         f(&ev, &q, &vols, &pairs)
@@ -824,7 +825,7 @@ pub(super) mod tests {
         [
             Reprice::Exact,
             Reprice::Deferred { min_degree: 0 },
-            Params::default().reprice,
+            Params::default().speed.reprice,
         ]
     }
 
@@ -837,7 +838,10 @@ pub(super) mod tests {
     fn look_ahead_keeps_the_serial_order() {
         for reprice in reprice_modes() {
             let p = Params {
-                reprice,
+                speed: Speed {
+                    reprice,
+                    ..Default::default()
+                },
                 ..Params::default()
             };
             with_demo_using(p, |ev, fresh| {
@@ -870,11 +874,17 @@ pub(super) mod tests {
     fn free_merges_carry_the_greedy_order_on() {
         for reprice in reprice_modes() {
             let free = Params {
-                reprice,
+                speed: Speed {
+                    reprice,
+                    ..Default::default()
+                },
                 ..Params::default()
             };
             let exact = Params {
-                join_coplanar: false,
+                plates: Plates {
+                    join_coplanar: false,
+                    ..free.clone().plates
+                },
                 ..free.clone()
             };
             // Above the face count (1,829) no merge is needed: only free ones run.
@@ -932,7 +942,10 @@ pub(super) mod tests {
     fn radix_heap_and_binary_heap_merge_identically() {
         for reprice in [Reprice::Exact, Reprice::Deferred { min_degree: 0 }] {
             let p = Params {
-                reprice,
+                speed: Speed {
+                    reprice,
+                    ..Default::default()
+                },
                 ..Params::default()
             };
             with_demo_using(p, |ev, fresh| {

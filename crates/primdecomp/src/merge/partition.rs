@@ -1,4 +1,4 @@
-//! Coarse-grained parallel first phase of the merge loop (`Params::partitions`, a
+//! Coarse-grained parallel first phase of the merge loop (`Speed::partitions`, a
 //! speed/accuracy setting; docs/decisions/0017-partitioned-first-phase.md and
 //! docs/decisions/0019-large-inputs-merged-in-parts.md). Alg. 1 (§3.3) is a
 //! sequential greedy; here it runs in two phases:
@@ -22,8 +22,8 @@
 use super::cluster::{Clusters, Group};
 use super::cost::Evaluator;
 use super::driver::{merge_part, FitCounts, MergeOutput, Traced};
+use crate::input::mesh::Mesh;
 use crate::math::Sym3;
-use crate::mesh::Mesh;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 
@@ -176,7 +176,7 @@ pub enum FaceData<'a> {
         pairs: &'a [(u32, u32)],
     },
     /// Computed by each part for its own faces, as the whole input's stages compute
-    /// them (`quadric::face_quadric` with this tangent weight,
+    /// them (`seed::quadric::face_quadric` with this tangent weight,
     /// [`Evaluator::seed_volume`], the pairs from `lists`): no per-face operator,
     /// volume or pair outlives its part (56 bytes a face held through phase 1
     /// before).
@@ -326,7 +326,7 @@ fn part_seeds(ev: &Evaluator, faces: FaceData, part: &[u32]) -> (Vec<Sym3>, Vec<
             let q: Vec<Sym3> = part
                 .iter()
                 .map(|&f| {
-                    crate::quadric::face_quadric(
+                    crate::seed::quadric::face_quadric(
                         mesh.face(f as usize),
                         |v| mesh.pos(v),
                         tangent_eps,
@@ -565,7 +565,7 @@ mod tests {
     /// per level), for K a power of two and not.
     #[test]
     fn split_covers_each_face_once_and_balances() {
-        let mesh = crate::demo::demo_scene();
+        let mesh = crate::input::demo::demo_scene();
         let n = mesh.face_count();
         for k in [1, 2, 3, 4, 7, 8, 16] {
             let parts = split(&mesh, k);
@@ -630,7 +630,7 @@ mod tests {
         // Bumpy, so that no merge is free and the parts stop at their targets (on a
         // flat grid every merge adds no volume and each part ends as one group).
         let mesh = grid_z(24, |i, j| ((i * 7 + j * 13) % 5) as f64 * 0.3);
-        let p = crate::Params::default();
+        let p = crate::params::Params::default();
         let (mut cl, pairs) =
             crate::merge::driver::tests::with_input(&mesh, &p, |ev, q, vols, pairs| {
                 let given = FaceData::Given {
@@ -641,7 +641,7 @@ mod tests {
                 let p1 = merge_parts(ev, given, 4, 4, &|_| true);
                 (
                     {
-                        let (o, a) = crate::mesh::adjacency::neighbour_lists(q.len(), pairs);
+                        let (o, a) = crate::input::adjacency::neighbour_lists(q.len(), pairs);
                         let lists = (o.into(), a.into());
                         clusters(p1, q.to_vec(), vols.to_vec(), lists, &|_| true)
                             .expect("not stopped")
@@ -674,9 +674,9 @@ mod tests {
     #[test]
     fn groups_start_phase_two_as_faces_do() {
         let mesh = grid_z(24, |i, j| ((i * 7 + j * 13) % 5) as f64 * 0.3);
-        let p = crate::Params::default();
+        let p = crate::params::Params::default();
         crate::merge::driver::tests::with_input(&mesh, &p, |ev, q, vols, pairs| {
-            let (o, a) = crate::mesh::adjacency::neighbour_lists(q.len(), pairs);
+            let (o, a) = crate::input::adjacency::neighbour_lists(q.len(), pairs);
             let lists: Lists = (o.into(), a.into());
             let given = FaceData::Given {
                 q,
@@ -684,7 +684,7 @@ mod tests {
                 pairs,
             };
             let own = FaceData::PerPart {
-                tangent_eps: p.tangent_eps,
+                tangent_eps: p.fit.tangent_eps,
                 lists: &lists,
             };
             let p1 = merge_parts(ev, given, 4, 4, &|_| true);

@@ -11,7 +11,7 @@
 //! past the wall's side. In a physics scene a curb holds balls that fall off the mesh.
 //! The rim reach prices that: for each boundary edge of the cluster where the face
 //! across falls away (turns by more than [`RIM_GENTLE_DEG`] and lies below the member
-//! face's plane, faces oriented outward by `mesh::orient`: a crease, or a tessellated
+//! face's plane, faces oriented outward by `input::orient`: a crease, or a tessellated
 //! rounded edge whose enclosing plate would otherwise stand past it as a lip), the
 //! distance the primitive's support reaches past that face's plane on its outer side,
 //! squared, times the edge's length (a volume, like k·V: the wedge a curb of that
@@ -20,9 +20,9 @@
 //! across a neighbour that continues the cluster's surface (turns by less than
 //! [`RIM_ANGLE_DEG`]).
 
+use crate::input::mesh::outward_normal_and_centre;
+use crate::input::mesh::Mesh;
 use crate::math::{dot, norm, sub, V3};
-use crate::mesh::outward_normal_and_centre;
-use crate::mesh::Mesh;
 use crate::primitive::Primitive;
 
 /// Edges whose two faces' normals differ by less than this join faces of one surface
@@ -41,7 +41,7 @@ pub const RIM_ANGLE_DEG: f64 = 20.0;
 /// crosses its neighbours' planes itself, and there it prices nothing.
 pub const RIM_GENTLE_DEG: f64 = 2.0;
 
-/// The input's face adjacency as CSR lists (`mesh::adjacency::neighbour_lists`): face
+/// The input's face adjacency as CSR lists (`input::adjacency::neighbour_lists`): face
 /// `f`'s neighbours are `adj[offsets[f]..offsets[f + 1]]`. Empty = no rim reach.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct FaceAdjacency<'a> {
@@ -121,7 +121,7 @@ pub fn rim_penalty(prim: &Primitive, rims: &[Rim], weight: f64, cost: f64, limit
 }
 
 /// The faces around one cluster and how to tell its rims: the input with its welded
-/// indices, its adjacency, and each face's outward sign (`mesh::orient`).
+/// indices, its adjacency, and each face's outward sign (`input::orient`).
 #[derive(Clone, Copy, Debug)]
 pub struct Surroundings<'a> {
     pub mesh: &'a Mesh,
@@ -216,8 +216,8 @@ fn shared_edge(f: &[u32], g: &[u32]) -> Option<(u32, u32)> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::input::adjacency::{face_pairs, neighbour_lists};
     use crate::math::{add, scale};
-    use crate::mesh::adjacency::{face_pairs, neighbour_lists};
     use crate::primitive::obb::Obb;
 
     /// The rims of `members` in `m` (unwelded, windings as given: outward here).

@@ -28,7 +28,7 @@ use super::cluster::Clusters;
 use super::cost::{Evaluator, Side, Workspace};
 use super::heap::Candidate;
 use crate::math::Sym3;
-use crate::wallclock::Instant;
+use crate::progress::wallclock::Instant;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering::*};
 use std::sync::Mutex;
 use std::thread::{self, Thread};
@@ -171,7 +171,7 @@ impl Drop for Pricer<'_> {
 }
 
 impl<'p> Pricer<'p> {
-    /// A pricer without a worker (phase 1 of `Params::partitions`: one per part, the
+    /// A pricer without a worker (phase 1 of `Speed::partitions`: one per part, the
     /// parts themselves run in parallel).
     pub(super) fn serial(ev: &'p Evaluator<'p>) -> Self {
         Pricer::new(ev, None)

@@ -1,5 +1,5 @@
 //! Near-duplicate output primitives absorbed into one, with solid pricing
-//! (`Params::solid`, docs/decisions/0023-merges-priced-by-the-air-they-add.md; not in the paper,
+//! (`Plates::solid`, docs/decisions/0023-merges-priced-by-the-air-they-add.md; not in the paper,
 //! whose §3.4 removes
 //! only primitives nested in another).
 //!

@@ -9,10 +9,10 @@ pub(crate) mod nested;
 pub(crate) mod plates;
 pub(crate) mod thicken;
 
+use crate::input::triangles::Triangles;
 use crate::merge::{Evaluator, Snapshot};
-use crate::mesh::triangles::Triangles;
+use crate::output::result::Level;
 use crate::params::Params;
-use crate::result::Level;
 use nested::{keep_mask, Cleanup};
 
 /// What post-processing reads of the input besides the evaluator, made once per run
@@ -28,13 +28,13 @@ pub(crate) struct Input<'a> {
 impl<'a> Input<'a> {
     pub(crate) fn new(ev: &Evaluator, params: &Params, tris: Option<&'a Triangles>) -> Self {
         let thick = tris
-            .filter(|_| params.min_thickness > 0.0)
+            .filter(|_| params.plates.min_thickness > 0.0)
             .map(|t| thicken::Input::build(ev, t));
         Input { tris, thick }
     }
 }
 
-/// One level per target in `params.targets` (in the order given) from the merge
+/// One level per target of `params.goal` (in the order given) from the merge
 /// loop's snapshots.
 pub(crate) fn levels(
     ev: &Evaluator,
@@ -57,16 +57,16 @@ pub(crate) fn levels(
         }
         // Plates reach inward to the minimum thickness where the input is closed.
         if let Some(input) = thick {
-            thicken::thicken(ev, input, snap, params.min_thickness * diag);
+            thicken::thicken(ev, input, snap, params.plates.min_thickness * diag);
         }
     }
     // A cut's snapshots are one per target, in order (targets may repeat with
     // different tolerances); the greedy pass's are found by their count.
-    if params.uses_cut() && snaps.len() == params.targets.len() {
+    let targets = params.goal.targets();
+    if params.uses_cut() && snaps.len() == targets.len() {
         return snaps.iter().map(|s| finish(ev, s, params, diag)).collect();
     }
-    params
-        .targets
+    targets
         .iter()
         .map(|&n| {
             let snap = snaps
@@ -82,8 +82,8 @@ pub(crate) fn levels(
 fn finish(ev: &Evaluator, snap: &Snapshot, params: &Params, diag: f64) -> Level {
     let cleanup = Cleanup {
         diagonal: diag,
-        remove_nested: params.remove_nested,
-        thin_box_half: params.remove_thin_boxes.map(|t| t * diag),
+        remove_nested: params.plates.remove_nested,
+        thin_box_half: params.plates.remove_thin_boxes.map(|t| t * diag),
     };
     let keep = keep_mask(ev.mesh, &snap.prims, &snap.verts, &snap.members, cleanup);
     let mut level = Level {

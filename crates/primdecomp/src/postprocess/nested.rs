@@ -6,8 +6,8 @@
 //! face by face: every face of a removed primitive lies in one kept primitive (the
 //! enclosure guarantee), not merely each of its corners in some primitive.
 
+use crate::input::mesh::Mesh;
 use crate::math::V3;
-use crate::mesh::Mesh;
 use crate::primitive::Primitive;
 use rayon::prelude::*;
 
@@ -130,7 +130,7 @@ fn hosts_of(
     i: usize,
     tol: f64,
 ) -> Vec<usize> {
-    let own = crate::mesh::aabb_of(verts.iter().map(|&v| mesh.pos(v)));
+    let own = crate::math::aabb_of(verts.iter().map(|&v| mesh.pos(v)));
     (0..prims.len())
         .filter(|&j| {
             j != i

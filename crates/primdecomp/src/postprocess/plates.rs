@@ -1,4 +1,4 @@
-//! Coplanar plates joined after the merge loop (`Params::join_coplanar`,
+//! Coplanar plates joined after the merge loop (`Plates::join_coplanar`,
 //! docs/decisions/0028-coplanar-plates-joined.md; not in the paper, whose §3.4 removes only
 //! primitives nested in
 //! another).
@@ -19,10 +19,10 @@
 use rayon::prelude::*;
 
 use crate::cut::error::is_within;
+use crate::input::triangles::Triangles;
 use crate::math::polygon::{clip, signed_area};
 use crate::math::{add, cross, dot, madd, normalize, scale, Sym3, V3};
 use crate::merge::{Evaluator, Snapshot, Workspace};
-use crate::mesh::triangles::Triangles;
 use crate::primitive::frame::convex_hull_2d;
 use crate::primitive::Primitive;
 

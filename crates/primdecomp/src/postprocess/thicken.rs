@@ -1,4 +1,4 @@
-//! Plates thickened inward to a minimum thickness (`Params::min_thickness`,
+//! Plates thickened inward to a minimum thickness (`Plates::min_thickness`,
 //! docs/decisions/0033-plates-thickened-inward.md; not in the paper, whose §3.2 fits
 //! make a flat cluster's primitive as thin as the floor allows).
 //!
@@ -9,7 +9,7 @@
 //! further than [`DEPTH_SHARE`] of the input's depth behind it: rays cast inward from a
 //! grid on its inner side must leave the input through the far side's back faces (no
 //! miss, no face seen from outside), and the input's interior (the voxel grid of
-//! `--solid`, `mesh::solid`) must hold the middle of the added slab at most of them.
+//! `--solid`, `input::solid`) must hold the middle of the added slab at most of them.
 //! So the outer surface stays (the enclosure guarantee holds, as the primitive only
 //! grows), holes in a plate's plane stay open (its footprint is unchanged), and a
 //! single sheet or an open cavity behind a plate is not filled. Plates facing each
@@ -18,11 +18,11 @@
 
 use rayon::prelude::*;
 
+use crate::input::mesh::outward_normal;
+use crate::input::solid::{self, Solid};
+use crate::input::triangles::Triangles;
 use crate::math::{dot, madd, V3};
 use crate::merge::{Evaluator, Snapshot};
-use crate::mesh::outward_normal;
-use crate::mesh::solid::{self, Solid};
-use crate::mesh::triangles::Triangles;
 use crate::primitive::Primitive;
 
 /// Share of the input's depth behind a plate (from its outer side along its inward
@@ -41,7 +41,7 @@ const INSET: f64 = 1e-3;
 /// Shifts of the grid along the footprint's two sides (shares of the half-extents).
 const SKEW: [f64; 2] = [0.0123, 0.0371];
 
-/// The input as rays see it: its triangles (shared with the run, `mesh::triangles`)
+/// The input as rays see it: its triangles (shared with the run, `input::triangles`)
 /// and its interior on the `--solid` voxel grid.
 pub(crate) struct Input<'a> {
     tris: &'a Triangles<'a>,

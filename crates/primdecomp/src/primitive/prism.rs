@@ -160,7 +160,7 @@ impl Prism {
     }
     /// Axis-aligned bounds (min, max), conservative.
     pub fn aabb(&self) -> (V3, V3) {
-        crate::mesh::aabb_of(self.corners().into_iter())
+        crate::math::aabb_of(self.corners().into_iter())
     }
 }
 

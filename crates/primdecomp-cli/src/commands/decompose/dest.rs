@@ -5,7 +5,7 @@
 use super::settings::Target;
 use crate::outputs::Out;
 use crate::paths::{level_labels, output_path_for};
-use primdecomp::{Params, Tolerance};
+use primdecomp::{Goal, Params, Tolerance};
 use std::path::{Path, PathBuf};
 
 /// A run's tolerances and byte targets: several of either name its levels
@@ -18,14 +18,21 @@ pub(super) struct Chain {
 
 impl Chain {
     pub(super) fn of(p: &Params) -> Chain {
-        Chain {
-            tolerance: p.tolerance.clone(),
-            max_bytes: p.max_bytes.clone(),
+        match &p.goal {
+            Goal::Within {
+                tolerance,
+                max_bytes,
+                ..
+            } => Chain {
+                tolerance: tolerance.clone(),
+                max_bytes: max_bytes.clone(),
+            },
+            _ => Chain::default(),
         }
     }
 
     /// Whether the levels are named by tolerances or byte targets, not counts.
-    fn names_levels(&self) -> bool {
+    pub(super) fn names_levels(&self) -> bool {
         self.tolerance.len() > 1 || self.max_bytes.len() > 1
     }
 }

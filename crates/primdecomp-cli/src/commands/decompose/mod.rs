@@ -8,6 +8,7 @@ mod one_input;
 mod progress;
 mod settings;
 mod summary;
+mod tiled;
 mod timings;
 
 use crate::args::DecomposeArgs;
@@ -20,46 +21,25 @@ use crate::outputs::{check_batch_dir, check_stems, names_dir, Guard, Out};
 use anyhow::{anyhow, bail};
 use dest::{default_obj, default_out, default_png, Chain, Dest};
 use one_input::{run_one, PRINT};
-use primdecomp::{export, Decomposition, Params};
-use settings::{max_memory, params_from, parse_targets, Target};
+use primdecomp::{Decomposition, Params, MAX_DETAIL};
+use settings::{max_memory, params_from, Target};
 use std::path::{Path, PathBuf};
 use summary::print_table;
 
 /// Checks the settings and the outputs, then runs one input or a batch.
 pub fn run(a: DecomposeArgs) -> anyhow::Result<()> {
-    let mut base = params_from(&a)?;
-    if a.fill && a.targets.is_none() {
-        bail!(BadArgs(
-            "--fill needs -n: the counts whose levels it fills".into()
-        ));
-    }
-    if a.targets.is_none() {
-        // Without -n, the library's run: a tolerance or byte target capped at
-        // MAX_PRIMITIVES, or the default tolerance (`Params::resolved`).
-        base.validate().map_err(|e| BadArgs(e.to_string()))?;
-        base = base.resolved();
-    }
-    let mut targets = match &a.targets {
-        Some(t) => parse_targets(t)?,
-        None => base.targets.iter().map(|&n| Target::Count(n)).collect(),
-    };
-    // A chain of tolerances or byte targets under one cap: one level each.
-    let chain = base.tolerance.len().max(base.max_bytes.len());
-    if chain > 1 && targets.len() == 1 {
-        targets = vec![targets[0]; chain];
-    }
-    if chain > 1 && a.per_object {
+    let (base, targets) = params_from(&a)?;
+    if Chain::of(&base).names_levels() && a.per_object {
         bail!(BadArgs(
             "--per-object takes one --tolerance and one --max-bytes value (a chain of \
              levels names its levels by them)"
                 .into()
         ));
     }
-    if !(3..=export::MAX_DETAIL).contains(&a.obj_detail) {
+    if !(3..=MAX_DETAIL).contains(&a.obj_detail) {
         bail!(BadArgs(format!(
             "--obj-detail must be from 3 to {}, got {}",
-            export::MAX_DETAIL,
-            a.obj_detail
+            MAX_DETAIL, a.obj_detail
         )));
     }
     let guard = Guard::new(a.inputs.iter().map(PathBuf::as_path));

@@ -13,8 +13,8 @@ use crate::exit::BadArgs;
 use crate::outputs::Guard;
 use crate::paths::output_path_for;
 use anyhow::{anyhow, bail};
-use primdecomp::{export, write_atomic, Stage};
-use primdecomp::{Decomposition, Params};
+use primdecomp::{to_json, to_json_objects, to_json_timed, to_obj, write_atomic, Stage};
+use primdecomp::{Decomposition, Goal, Params};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -36,29 +36,67 @@ pub(super) fn run_one(
     // Peaks per stage only for a run alone in the process: the mark is process-wide.
     let memory = (a.timings && !beside_others).then(|| StageMemory::new("load"));
     let now = Instant::now();
-    let mesh = primdecomp::load_with(input, &load_options(a, base)?)?;
-    let load_s = now.elapsed().as_secs_f64();
-    let params = Params {
-        targets: resolve_targets(targets, mesh.face_count()),
-        ..base.clone()
+    let options = load_options(a, base)?;
+    let mut why = super::tiled::reason(a, input, &options);
+    let loaded = match &why {
+        Some(_) => None,
+        None => match primdecomp::load_with(input, &options) {
+            Err(e @ primdecomp::Error::TooLarge { needed, limit, .. }) if !a.per_object => {
+                why = Some(super::tiled::over(needed, limit));
+                Some(Err(e))
+            }
+            m => Some(Ok(m?)),
+        },
     };
-    if a.per_object {
-        let (mut dec, written) = run_objects(a, input, &params, targets, &mesh, dest, guard)?;
-        dec.timings.stages.insert(0, ("load".into(), load_s));
-        return Ok((dec, written));
-    }
-    let shown = Shown::new(&params, mesh.face_count(), a, beside_others);
-    let mut dec = primdecomp::decompose_with(&mesh, &params, &|stage: Stage, f: f64| {
-        if let Some(m) = &memory {
-            m.enter(stage.name());
+    let (mesh, params, mut dec) = match (loaded, &why) {
+        (Some(Ok(mesh)), _) => {
+            let load_s = now.elapsed().as_secs_f64();
+            let params = Params {
+                goal: base
+                    .goal
+                    .with_targets(resolve_targets(targets, mesh.face_count())),
+                ..base.clone()
+            };
+            if a.per_object {
+                let (mut dec, written) =
+                    run_objects(a, input, &params, targets, &mesh, dest, guard)?;
+                dec.timings.stages.insert(0, ("load".into(), load_s));
+                return Ok((dec, written));
+            }
+            let shown = Shown::new(&params, mesh.face_count(), a, beside_others);
+            let mut dec = primdecomp::decompose_with(&mesh, &params, &|stage: Stage, f: f64| {
+                if let Some(m) = &memory {
+                    m.enter(stage.name());
+                }
+                shown.update(stage, f);
+            })?;
+            shown.finish();
+            dec.timings.stages.insert(0, ("load".into(), load_s));
+            (mesh, params, dec)
         }
-        shown.update(stage, f);
-    })?;
-    shown.finish();
+        (refused, why) => {
+            let why = why.as_deref().unwrap_or_default();
+            // The input read whole would not fit: in tiles, or (where not even tiles
+            // fit) the refusal of the input read whole, which says why.
+            let tiled = super::tiled::decompose(
+                a,
+                input,
+                base,
+                targets,
+                dest,
+                &options,
+                (why, beside_others),
+            );
+            let (dec, params) = tiled.map_err(|t| match (t.downcast_ref(), refused) {
+                (Some(primdecomp::Error::TooLarge { .. }), Some(Err(e))) => e.into(),
+                _ => t,
+            })?;
+            (primdecomp::Mesh::from_triangles(&[], &[])?, params, dec)
+        }
+    };
     dec.input.path = Some(input.display().to_string());
     let up = input_up(a, input);
     (dec.input.up, dec.input.up_from) = (Some(up.0), Some(up.1));
-    dec.timings.stages.insert(0, ("load".into(), load_s));
     let now = Instant::now();
     let mut written = write_outputs(&dec, &params, dest, guard, a.obj_detail, a.timings)?;
     written.extend(write_exports(a, &dec, dest, input, &mesh, up.0)?);
@@ -70,6 +108,9 @@ pub(super) fn run_one(
     }
     let _out = PRINT.lock();
     if !a.quiet {
+        if let Some(why) = &why {
+            println!("tiles     {}: {why}", dec.stats.tiles);
+        }
         print_summary(&dec, &mesh, &written, a.verbose);
     }
     if a.verbose || a.timings {
@@ -93,7 +134,7 @@ fn write_exports(
     dest: &Dest,
     input: &Path,
     mesh: &primdecomp::Mesh,
-    up: primdecomp::export::Up,
+    up: primdecomp::Up,
 ) -> anyhow::Result<Vec<PathBuf>> {
     let mut written = Vec::new();
     let counts: Vec<usize> = dec.levels.iter().map(|l| l.target).collect();
@@ -162,10 +203,7 @@ fn run_objects(
         written.push(json_out.path.clone());
         if dest.obj.is_some() {
             let obj_out = &outs[i * per_level + 1];
-            write_atomic(
-                &obj_out.path,
-                export::to_obj(&level, a.obj_detail).as_bytes(),
-            )?;
+            write_atomic(&obj_out.path, to_obj(&level, a.obj_detail).as_bytes())?;
             guard.wrote(obj_out);
             written.push(obj_out.path.clone());
         }
@@ -229,7 +267,7 @@ fn level_jsons(
     let n = objs.levels();
     let mut jsons = Vec::with_capacity(n);
     for i in 0..n {
-        let json = export::to_json_objects(objs, i, params);
+        let json = to_json_objects(objs, i, params);
         let v: serde_json::Value = serde_json::from_str(&json)?;
         jsons.push((v["settings"]["target"].as_u64().unwrap_or(0) as usize, json));
     }
@@ -250,8 +288,14 @@ fn world_level(
         primitives: objs.world_primitives(i),
         // For the summary line: each object's tolerance is this share of its own
         // diagonal (--per-object takes one value).
-        tolerance: params.tolerance.first().map(|t| t.in_units(diagonal)),
-        max_bytes: params.max_bytes.first().copied(),
+        tolerance: match &params.goal {
+            Goal::Within { tolerance, .. } => tolerance.first().map(|t| t.in_units(diagonal)),
+            _ => None,
+        },
+        max_bytes: match &params.goal {
+            Goal::Within { max_bytes, .. } => max_bytes.first().copied(),
+            _ => None,
+        },
         ..Default::default()
     }
 }
@@ -271,8 +315,8 @@ fn print_objects(objs: &primdecomp::Objects) {
 
 /// The input's up axis and where it came from: `--up`, else what its format says
 /// (`Up::of_format`).
-fn input_up(a: &DecomposeArgs, input: &Path) -> (primdecomp::export::Up, String) {
-    use primdecomp::export::Up;
+fn input_up(a: &DecomposeArgs, input: &Path) -> (primdecomp::Up, String) {
+    use primdecomp::Up;
     match a.export_opts.up.as_deref().and_then(Up::from_axis) {
         Some(up) => (up, "given with --up".into()),
         None => primdecomp::Format::from_path(input)
@@ -303,11 +347,11 @@ fn write_outputs(
         let (i, is_obj) = (k / per_level, k % per_level == 1);
         let level = &dec.levels[i];
         let bytes = if is_obj {
-            export::to_obj(level, detail)
+            to_obj(level, detail)
         } else if timed {
-            export::to_json_timed(dec, i, params)
+            to_json_timed(dec, i, params)
         } else {
-            export::to_json(dec, i, params)
+            to_json(dec, i, params)
         };
         write_atomic(&out.path, bytes.as_bytes())?;
         guard.wrote(out);
@@ -330,7 +374,7 @@ fn decompose_png(
     let json = output_path_for(out, label, dec.levels.len());
     let opts = scene::Options {
         up_axis: match dec.input.up {
-            Some(primdecomp::export::Up::Z) => 2,
+            Some(primdecomp::Up::Z) => 2,
             _ => 1,
         },
         ..scene::Options::default()

@@ -1,32 +1,118 @@
 //! `decompose`'s settings from its flags: the library's [`Params`] (defaults, then
-//! `--config`, then each flag), the targets as given (counts or percentages), how
-//! inputs are read. Every value a user can mistype fails with a message naming the
-//! flag (exit code 2).
+//! `--config`, then each flag), its [`Goal`] with the targets as given (counts or
+//! percentages, resolved per input), how inputs are read. Every value a user can
+//! mistype fails with a message naming the flag (exit code 2).
 
 use crate::args::DecomposeArgs;
 use crate::exit::BadArgs;
 use crate::paths::memory_limit;
 use primdecomp::LoadOptions;
-use primdecomp::{Dedup, Kind, Params, Partitions, Reprice, Tolerance};
+use primdecomp::{ByteSize, CountSearch, Goal, Kind, Params, Reprice, Tolerance};
 use std::path::Path;
+use std::str::FromStr;
 
-/// The settings: the defaults, then `--config`, then every flag given.
-pub(super) fn params_from(a: &DecomposeArgs) -> anyhow::Result<Params> {
+/// The settings (the defaults, then `--config`, then every flag given) and the goal's
+/// targets as given, one per level; the goal's counts are set per input
+/// ([`resolve_targets`], [`Goal::with_targets`]).
+pub(super) fn params_from(a: &DecomposeArgs) -> anyhow::Result<(Params, Vec<Target>)> {
     let mut p = match &a.config {
         Some(path) => read_config(path)?,
         None => Params::default(),
     };
     set_plain(&mut p, a);
     set_parsed(&mut p, a)?;
-    // Targets are resolved per input (percentages); validate with a stand-in.
-    let levels = p.tolerance.len().max(p.max_bytes.len()).max(1);
+    let (goal, targets) = goal_from(a, &p.goal)?;
+    p.goal = goal;
+    if a.max_excess_volume.is_some() && p.speed.reprice != Reprice::Exact {
+        return Err(BadArgs(
+            "--max-excess-volume needs --reprice exact: a merge over the cap has no queue \
+             entry whose re-pricing could be deferred"
+                .into(),
+        )
+        .into());
+    }
+    // Percentages are resolved per input; validate with a stand-in count.
     let check = Params {
-        // One -n value is the cap of every level of a chain (`decompose`).
-        targets: vec![1; a.targets.as_ref().map_or(1, Vec::len).max(1).max(levels)],
+        goal: p.goal.with_targets(vec![1; targets.len()]),
         ..p.clone()
     };
     check.validate().map_err(|e| BadArgs(e.to_string()))?;
-    Ok(p)
+    Ok((p, targets))
+}
+
+/// The goal the flags ask for, or the settings file's when they ask for none: -n,
+/// --tolerance and --max-bytes replace the file's goal; --cut, --greedy and --fill
+/// apply to the counts of -n, or of the file. Its targets: one per level (one -n
+/// value caps every level of a chain of tolerances or byte budgets).
+fn goal_from(a: &DecomposeArgs, file: &Goal) -> anyhow::Result<(Goal, Vec<Target>)> {
+    let given = a.targets.is_some() || a.tolerance.is_some() || a.max_bytes.is_some();
+    if !(given || a.cut || a.greedy || a.fill) {
+        let targets = file.targets().into_iter().map(Target::Count).collect();
+        return Ok((file.clone(), targets));
+    }
+    let tolerance: Vec<Tolerance> = match &a.tolerance {
+        Some(t) => t
+            .iter()
+            .map(|t| spelled("--tolerance", t))
+            .collect::<anyhow::Result<_>>()?,
+        None => Vec::new(),
+    };
+    let max_bytes: Vec<usize> = match &a.max_bytes {
+        Some(b) => b
+            .iter()
+            .map(|b| parse_bytes(b))
+            .collect::<anyhow::Result<_>>()?,
+        None => Vec::new(),
+    };
+    let mut targets = match (&a.targets, file) {
+        (Some(t), _) => Some(parse_targets(t)?),
+        (None, Goal::Counts { counts, .. } | Goal::Fill { counts }) if !given => {
+            Some(counts.iter().map(|&n| Target::Count(n)).collect())
+        }
+        _ => None,
+    };
+    let within = !tolerance.is_empty() || !max_bytes.is_empty();
+    let bad = |m: &str| Err(BadArgs(m.into()).into());
+    if a.fill && (within || a.cut) {
+        return bad(
+            "--fill refines the greedy pass's levels; --cut, --tolerance and --max-bytes \
+             already fill each target from the merge tree",
+        );
+    }
+    if a.greedy && within {
+        return bad("--greedy takes the greedy pass's levels: not with --tolerance or --max-bytes");
+    }
+    let counts = |t: &Option<Vec<Target>>| vec![1; t.as_ref().map_or(0, Vec::len)];
+    let goal = match &targets {
+        None if a.fill => return bad("--fill needs -n: the counts whose levels it fills"),
+        None if a.greedy => return bad("--greedy needs -n: the counts whose levels it takes"),
+        _ if within => Goal::Within {
+            caps: counts(&targets),
+            tolerance,
+            max_bytes,
+        },
+        // --cut alone: the file's tolerance or byte goal, or the default (a cut).
+        None => file.clone(),
+        Some(_) if a.fill => Goal::Fill {
+            counts: counts(&targets),
+        },
+        Some(_) => Goal::Counts {
+            counts: counts(&targets),
+            search: match (a.greedy, a.cut) {
+                (true, _) => CountSearch::Greedy,
+                (_, true) => CountSearch::Cut,
+                _ => CountSearch::Auto,
+            },
+        },
+    };
+    let levels = goal.levels().max(1);
+    targets = match targets {
+        // A chain of tolerances or byte budgets under one cap: one level each.
+        Some(t) if t.len() == 1 => Some(vec![t[0]; levels]),
+        Some(t) => Some(t),
+        None => Some(goal.targets().into_iter().map(Target::Count).collect()),
+    };
+    Ok((goal, targets.unwrap_or_default()))
 }
 
 /// The flags taken as they are: numbers and switches.
@@ -36,109 +122,76 @@ fn set_plain(p: &mut Params, a: &DecomposeArgs) {
             *field = v;
         }
     };
-    set(&mut p.tangent_eps, a.tangent_eps);
-    set(&mut p.min_extent, a.min_extent);
-    set(&mut p.open_holes, a.open_holes);
-    set(&mut p.min_thickness, a.min_thickness);
-    set(&mut p.rim_weight, a.rim_weight);
+    set(&mut p.fit.tangent_eps, a.tangent_eps);
+    set(&mut p.fit.min_extent, a.min_extent);
+    set(&mut p.plates.open_holes, a.open_holes);
+    set(&mut p.plates.min_thickness, a.min_thickness);
+    set(&mut p.plates.rim_weight, a.rim_weight);
     if let Some(m) = a.max_excess_volume {
-        p.max_excess_volume = Some(m);
-        p.reprice = Reprice::Exact;
+        p.fit.max_excess_volume = Some(m);
     }
     if a.remove_thin_boxes.is_some() {
-        p.remove_thin_boxes = a.remove_thin_boxes;
+        p.plates.remove_thin_boxes = a.remove_thin_boxes;
     }
-    p.remove_nested &= !a.keep_nested;
-    p.flush_plates &= !a.no_flush_plates;
-    p.join_coplanar &= !a.no_join_coplanar;
-    p.solid |= a.solid;
-    p.fill |= a.fill;
-    p.cut |= a.cut;
-    p.greedy |= a.greedy;
+    p.plates.remove_nested &= !a.keep_nested;
+    p.plates.flush_plates &= !a.no_flush_plates;
+    p.plates.join_coplanar &= !a.no_join_coplanar;
+    p.plates.solid |= a.solid;
 }
 
 /// The flags a user spells (a tolerance, a size, a kind, `auto`…), each parsed with
 /// a message naming the flag.
 fn set_parsed(p: &mut Params, a: &DecomposeArgs) -> anyhow::Result<()> {
-    if let Some(t) = &a.tolerance {
-        p.tolerance = t
-            .iter()
-            .map(|t| parse_tolerance(t))
-            .collect::<anyhow::Result<_>>()?;
-    }
-    if let Some(b) = &a.max_bytes {
-        p.max_bytes = b
-            .iter()
-            .map(|b| parse_bytes(b))
-            .collect::<anyhow::Result<_>>()?;
-    }
     if let Some(k) = &a.partitions {
-        p.partitions = match k.as_str() {
-            "auto" => Partitions::Auto,
-            k => Partitions::Fixed(k.parse().map_err(|_| {
-                BadArgs(format!("--partitions: expected auto or a count, got '{k}'"))
-            })?),
-        };
+        p.speed.partitions = spelled("--partitions", k)?;
     }
     for w in &a.weights {
         let (k, v) = w
             .split_once('=')
             .ok_or_else(|| BadArgs(format!("--weights: expected kind=value, got '{w}'")))?;
-        let kind = parse_kind(k)?;
-        p.weights[kind as usize] = v
+        let kind: Kind = spelled("", k)?;
+        p.fit.weights[kind as usize] = v
             .trim()
             .parse()
             .map_err(|_| BadArgs(format!("--weights: '{v}' is not a number")))?;
     }
     if !a.kinds.is_empty() {
-        p.kinds = [false; 6];
+        p.fit.kinds = [false; 6];
         for k in &a.kinds {
-            p.kinds[parse_kind(k)? as usize] = true;
+            p.fit.kinds[spelled::<Kind>("", k)? as usize] = true;
         }
     }
     if let Some(d) = &a.dedup {
-        p.dedup = parse_dedup(d)?;
+        p.fit.dedup = spelled("--dedup", d)?;
     }
     if let Some(r) = &a.reprice {
-        p.reprice = parse_reprice(r)?;
+        p.speed.reprice = spelled("--reprice", r)?;
     }
     Ok(())
 }
 
-/// `--tolerance`: a distance in input units, or a percentage of the diagonal.
-fn parse_tolerance(t: &str) -> anyhow::Result<Tolerance> {
-    let t = t.trim();
-    let bad = || {
-        BadArgs(format!(
-            "--tolerance: expected a positive distance (input units) or a percentage of \
-             the diagonal like 1%, got '{t}'"
-        ))
-    };
-    let (num, percent) = match t.strip_suffix('%') {
-        Some(p) => (p.trim(), true),
-        None => (t, false),
-    };
-    if num.parse::<f64>().is_ok_and(|v| v <= 0.0) {
-        return Err(BadArgs(format!(
-            "--tolerance: '{t}' is not positive: a tolerance is how far every primitive may \
-             stand from the mesh, a distance (input units) or a percentage of the diagonal \
-             like 1%, greater than 0"
-        ))
-        .into());
-    }
-    match num.parse::<f64>() {
-        Ok(v) if v.is_finite() && v > 0.0 && (!percent || v < 100.0) => Ok(match percent {
-            true => Tolerance::Diagonal(v / 100.0),
-            false => Tolerance::Units(v),
-        }),
-        _ => Err(bad().into()),
-    }
+/// A value as the library spells it (its `FromStr`), a wrong one refused with the
+/// library's words after the flag's name (`flag` empty: the words alone).
+pub(crate) fn spelled<T: FromStr<Err = primdecomp::Error>>(
+    flag: &str,
+    s: &str,
+) -> anyhow::Result<T> {
+    s.parse().map_err(|e| {
+        let words = match e {
+            primdecomp::Error::InvalidParams(m) => m,
+            e => e.to_string(),
+        };
+        match flag {
+            "" => BadArgs(words).into(),
+            flag => BadArgs(format!("{flag}: {words}")).into(),
+        }
+    })
 }
 
 /// `--max-bytes`: a positive byte count, optionally with K, M or G.
 fn parse_bytes(b: &str) -> anyhow::Result<usize> {
-    match crate::paths::parse_size(b.trim()) {
-        Some(v) if v > 0 && v <= usize::MAX as u64 => Ok(v as usize),
+    match b.parse::<ByteSize>() {
+        Ok(ByteSize(v)) if v > 0 && v <= usize::MAX as u64 => Ok(v as usize),
         _ => Err(BadArgs(format!(
             "--max-bytes: expected a positive byte count such as 4096 or 4K, got '{b}'"
         ))
@@ -162,34 +215,6 @@ fn read_config(path: &Path) -> anyhow::Result<Params> {
     params.map_err(|e| BadArgs(format!("{}: {e}", path.display())).into())
 }
 
-/// `--dedup`: exact, off or a welding distance.
-fn parse_dedup(d: &str) -> anyhow::Result<Dedup> {
-    Ok(match d {
-        "exact" => Dedup::Exact,
-        "off" => Dedup::Off,
-        t => Dedup::Tolerance(t.parse().map_err(|_| {
-            BadArgs(format!(
-                "--dedup: expected exact, off or a distance, got '{t}'"
-            ))
-        })?),
-    })
-}
-
-/// `--reprice`: exact, deferred or the neighbour count from which re-pricing waits.
-fn parse_reprice(r: &str) -> anyhow::Result<Reprice> {
-    Ok(match r {
-        "exact" => Reprice::Exact,
-        "deferred" => Reprice::Deferred { min_degree: 0 },
-        t => Reprice::Deferred {
-            min_degree: t.parse().map_err(|_| {
-                BadArgs(format!(
-                    "--reprice: expected exact, deferred or a neighbour count, got '{t}'"
-                ))
-            })?,
-        },
-    })
-}
-
 /// How `decompose` reads each input: `--max-memory` (checked against the peak of the
 /// run `params` asks for) and `--allow-external-uris`.
 pub(super) fn load_options(a: &DecomposeArgs, params: &Params) -> anyhow::Result<LoadOptions> {
@@ -204,13 +229,6 @@ pub(super) fn load_options(a: &DecomposeArgs, params: &Params) -> anyhow::Result
 /// The memory limit in bytes from `--max-memory`; `None` for no limit.
 pub(super) fn max_memory(a: &DecomposeArgs) -> anyhow::Result<Option<u64>> {
     memory_limit(&a.max_memory)
-}
-
-/// A primitive kind by name (`--weights`, `--kinds`).
-fn parse_kind(k: &str) -> anyhow::Result<Kind> {
-    Kind::from_name(k.trim()).ok_or_else(|| {
-        BadArgs(format!("unknown primitive kind '{k}': expected box, sphere, capsule, cylinder, frustum or prism")).into()
-    })
 }
 
 /// A target as given: a count, or a percentage of the input's faces.

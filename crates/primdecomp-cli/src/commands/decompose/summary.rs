@@ -31,8 +31,8 @@ pub(super) fn print_summary(
     );
     if let (Some(up), Some(from)) = (i.up, &i.up_from) {
         let other = match up {
-            primdecomp::export::Up::Y => "z",
-            primdecomp::export::Up::Z => "y",
+            primdecomp::Up::Y => "z",
+            primdecomp::Up::Z => "y",
         };
         // An assumption says how to change it; a format's own axis does not need to.
         let change = match from.starts_with("assumed") {

@@ -1,0 +1,585 @@
+//! A bounding-volume hierarchy over items with axis-aligned boxes (triangles,
+//! primitives, hulls), with exact nearest-item and containing-item queries, and the
+//! exact point-to-triangle distance: the merge tree's node errors (`cut`) and
+//! `primdecomp-eval`'s distance metrics both stand on it.
+//!
+//! Built by median splits on the longest axis of the item centroids (ties broken by
+//! item index, so the tree is the same on every run); queried depth-first, nearer
+//! child first, pruning nodes whose box is farther than the best distance so far (a
+//! node exactly as far is visited, so the nearest item of least id is found whatever
+//! the visiting order or the starting guess).
+
+use super::{add, cross, dot, norm2, scale, sub, V3};
+use rayon::prelude::*;
+
+/// Items per leaf, at most, of [`Bvh::build`]'s hierarchies.
+pub const LEAF: usize = 4;
+
+#[derive(Clone, Copy, Debug)]
+struct Node {
+    lo: V3,
+    hi: V3,
+    /// Leaf: first item in `items`; inner: index of the left child (right = left + 1).
+    first: u32,
+    /// Leaf: item count; inner: 0.
+    count: u32,
+}
+
+/// The hierarchy; item ids are indices into the caller's item list.
+#[derive(Clone, Debug, Default)]
+pub struct Bvh {
+    nodes: Vec<Node>,
+    items: Vec<u32>,
+}
+
+/// Squared distance from `p` to the box `lo..hi` (0 inside).
+#[inline]
+pub fn box_dist2(p: V3, lo: V3, hi: V3) -> f64 {
+    let mut d = 0.0;
+    for k in 0..3 {
+        let e = (lo[k] - p[k]).max(p[k] - hi[k]).max(0.0);
+        d += e * e;
+    }
+    d
+}
+
+impl Bvh {
+    /// Builds over `boxes[i] = (lo, hi)`, the two halves of large nodes in parallel
+    /// (the same hierarchy on any thread count).
+    pub fn build(boxes: &[(V3, V3)]) -> Bvh {
+        Bvh::build_by(boxes.len(), LEAF, &|i| boxes[i as usize])
+    }
+
+    /// [`Bvh::build`] over `count` items whose boxes `bbox` gives, up to `leaf` items
+    /// per leaf, with no table of boxes: each item's box is asked for twice (its
+    /// centre, then its leaf's box). For large inputs queried a few times, where a
+    /// table of boxes and small leaves would cost more memory than the queries save.
+    pub fn build_by(count: usize, leaf: usize, bbox: &(dyn Fn(u32) -> (V3, V3) + Sync)) -> Bvh {
+        Bvh::build_with(count, leaf, bbox, |c| c)
+    }
+
+    /// [`Bvh::build_by`] with the items' centres rounded to f32 for the splits: a
+    /// table of 16 bytes an item instead of 32, a tree as good for queries whose
+    /// answers do not depend on its shape (whether any item meets a ray), not the
+    /// same tree.
+    pub fn build_coarse(count: usize, leaf: usize, bbox: &(dyn Fn(u32) -> (V3, V3) + Sync)) -> Bvh {
+        Bvh::build_with(count, leaf, bbox, |c| c.map(|x| x as f32))
+    }
+
+    /// The build, each item's centre kept as `keep` makes it.
+    fn build_with<C: Centre>(
+        count: usize,
+        leaf: usize,
+        bbox: &(dyn Fn(u32) -> (V3, V3) + Sync),
+        keep: impl Fn(V3) -> C + Sync,
+    ) -> Bvh {
+        if count == 0 {
+            return Bvh::default();
+        }
+        let leaf = leaf.max(1);
+        let sizes = Sizes::new(count, leaf);
+        let empty = Node {
+            lo: [0.0; 3],
+            hi: [0.0; 3],
+            first: 0,
+            count: 0,
+        };
+        let mut nodes = vec![empty; sizes.nodes(count)];
+        let (root, below) = nodes.split_first_mut().expect("one node or more");
+        // The splits move each item's centroid with its id, so that they read
+        // memory in order; the boxes are read again for the leaves.
+        let mut span: Vec<Item<C>> = (0..count as u32)
+            .into_par_iter()
+            .map(|i| {
+                let (lo, hi) = bbox(i);
+                Item {
+                    c: keep(scale(add(lo, hi), 0.5)),
+                    id: i,
+                }
+            })
+            .collect();
+        let build = Build { bbox, sizes };
+        build.subtree(root, below, 1, &mut span, 0);
+        Bvh {
+            nodes,
+            items: span.iter().map(|it| it.id).collect(),
+        }
+    }
+
+    /// The smallest `dist2(item)` over all items, with that item (or `u32::MAX` when
+    /// empty). `dist2` must be at least the squared distance from `p` to the item's box.
+    pub fn nearest(&self, p: V3, dist2: impl FnMut(u32) -> f64) -> (f64, u32) {
+        self.nearest_with(p, &mut Vec::with_capacity(64), dist2)
+    }
+
+    /// [`Bvh::nearest`] with a reusable `stack` (scratch; its contents are replaced),
+    /// for callers that query in a loop.
+    pub fn nearest_with(
+        &self,
+        p: V3,
+        stack: &mut Vec<(f64, u32)>,
+        dist2: impl FnMut(u32) -> f64,
+    ) -> (f64, u32) {
+        self.nearest_until(p, f64::NEG_INFINITY, stack, dist2)
+    }
+
+    /// [`Bvh::nearest_with`] that stops at the first item with `dist2` at most `enough`:
+    /// the exact nearest when it is farther than `enough`, otherwise some item within
+    /// it. For a running maximum of distances, where a point no farther than the
+    /// maximum so far cannot change it.
+    pub fn nearest_until(
+        &self,
+        p: V3,
+        enough: f64,
+        stack: &mut Vec<(f64, u32)>,
+        mut dist2: impl FnMut(u32) -> f64,
+    ) -> (f64, u32) {
+        let items = &self.items;
+        let (d, slot) = self.nearest_slot(p, enough, u32::MAX, stack, |k| dist2(items[k as usize]));
+        (d, items.get(slot as usize).copied().unwrap_or(u32::MAX))
+    }
+
+    /// The items in the hierarchy's order: a leaf's items side by side. A caller
+    /// that stores its items in this order reads them in order ([`Bvh::nearest_slot`]).
+    pub fn order(&self) -> &[u32] {
+        &self.items
+    }
+
+    /// [`Bvh::nearest_until`] with items named by their slot, their position in
+    /// [`Bvh::order`] (`dist2` gets a slot and the answer is one), searched from the
+    /// slot `start` (a guess: the nearer it is, the less is visited; `u32::MAX` for
+    /// none). The nearest item of least id, whatever the guess.
+    pub fn nearest_slot(
+        &self,
+        p: V3,
+        enough: f64,
+        start: u32,
+        stack: &mut Vec<(f64, u32)>,
+        mut dist2: impl FnMut(u32) -> f64,
+    ) -> (f64, u32) {
+        let mut best = (f64::INFINITY, u32::MAX);
+        let mut best_id = u32::MAX;
+        if self.nodes.is_empty() {
+            return best;
+        }
+        if let Some(&id) = self.items.get(start as usize) {
+            (best, best_id) = ((dist2(start), start), id);
+        }
+        stack.clear();
+        stack.push((0.0, 0));
+        while let Some((d, n)) = stack.pop() {
+            if d > best.0 {
+                continue;
+            }
+            let node = self.nodes[n as usize];
+            if node.count > 0 {
+                for k in node.first..node.first + node.count {
+                    let (di, i) = (dist2(k), self.items[k as usize]);
+                    if di < best.0 || (di == best.0 && i < best_id) {
+                        (best, best_id) = ((di, k), i);
+                    }
+                }
+                if best.0 <= enough {
+                    return best;
+                }
+                continue;
+            }
+            let (l, r) = (node.first, node.first + 1);
+            let dl = self.node_dist2(l, p);
+            let dr = self.node_dist2(r, p);
+            // Push the farther child first so the nearer one is visited next.
+            if dl <= dr {
+                stack.extend([(dr, r), (dl, l)]);
+            } else {
+                stack.extend([(dl, l), (dr, r)]);
+            }
+        }
+        best
+    }
+
+    fn node_dist2(&self, n: u32, p: V3) -> f64 {
+        let node = &self.nodes[n as usize];
+        box_dist2(p, node.lo, node.hi)
+    }
+
+    /// Whether `test(item)` holds for some item whose box, grown by `grow`, holds `p`.
+    pub fn any_at(&self, p: V3, grow: f64, mut test: impl FnMut(u32) -> bool) -> bool {
+        if self.nodes.is_empty() {
+            return false;
+        }
+        let g2 = grow.max(0.0) * grow.max(0.0);
+        let mut stack: Vec<u32> = Vec::with_capacity(64);
+        stack.push(0);
+        while let Some(n) = stack.pop() {
+            let node = self.nodes[n as usize];
+            if box_dist2(p, node.lo, node.hi) > g2 {
+                continue;
+            }
+            if node.count == 0 {
+                stack.extend([node.first, node.first + 1]);
+                continue;
+            }
+            let span = node.first as usize..(node.first + node.count) as usize;
+            if self.items[span].iter().any(|&i| test(i)) {
+                return true;
+            }
+        }
+        false
+    }
+
+    /// The slots ([`Bvh::order`]) of the items of every leaf whose box meets the box
+    /// `lo..hi` (so every item whose own box meets it, and perhaps some more), into
+    /// `out` in slot order; or `false` (and `out` partly filled) once there are more
+    /// than `most`. `stack` is scratch.
+    pub fn slots_meeting(
+        &self,
+        (lo, hi): (V3, V3),
+        most: usize,
+        stack: &mut Vec<u32>,
+        out: &mut Vec<u32>,
+    ) -> bool {
+        out.clear();
+        stack.clear();
+        if !self.nodes.is_empty() {
+            stack.push(0);
+        }
+        let meets = |a: &Node| (0..3).all(|k| a.lo[k] <= hi[k] && lo[k] <= a.hi[k]);
+        while let Some(n) = stack.pop() {
+            let node = self.nodes[n as usize];
+            if !meets(&node) {
+                continue;
+            }
+            if node.count == 0 {
+                // Right first, so the left is visited next: slots come out in order.
+                stack.extend([node.first + 1, node.first]);
+                continue;
+            }
+            out.extend(node.first..node.first + node.count);
+            if out.len() > most {
+                return false;
+            }
+        }
+        true
+    }
+
+    /// The least `hit(item)` (a distance along the ray `o + t·d`, `None` for a miss)
+    /// over the items whose box the ray meets for some `t` in `[0, tmax]`, capped at
+    /// `tmax`, with that item (`u32::MAX` when none is nearer). `stack` is scratch.
+    pub fn ray_first(
+        &self,
+        o: V3,
+        d: V3,
+        tmax: f64,
+        stack: &mut Vec<u32>,
+        mut hit: impl FnMut(u32) -> Option<f64>,
+    ) -> (f64, u32) {
+        let items = &self.items;
+        let (t, slot) = self.ray_slot_first(o, d, tmax, stack, |k| hit(items[k as usize]));
+        (t, items.get(slot as usize).copied().unwrap_or(u32::MAX))
+    }
+
+    /// [`Bvh::ray_first`] with items named by their slot ([`Bvh::order`]), as
+    /// [`Bvh::nearest_slot`] names them.
+    pub fn ray_slot_first(
+        &self,
+        o: V3,
+        d: V3,
+        tmax: f64,
+        stack: &mut Vec<u32>,
+        mut hit: impl FnMut(u32) -> Option<f64>,
+    ) -> (f64, u32) {
+        let mut best = (tmax, u32::MAX);
+        let mut best_id = u32::MAX;
+        if self.nodes.is_empty() {
+            return best;
+        }
+        let inv = d.map(|c| 1.0 / c);
+        stack.clear();
+        stack.push(0);
+        while let Some(n) = stack.pop() {
+            let node = self.nodes[n as usize];
+            if !ray_meets_box(o, inv, best.0, node.lo, node.hi) {
+                continue;
+            }
+            if node.count == 0 {
+                stack.extend([node.first, node.first + 1]);
+                continue;
+            }
+            for k in node.first..node.first + node.count {
+                let i = self.items[k as usize];
+                match hit(k) {
+                    Some(t) if t < best.0 || (t == best.0 && i < best_id) => {
+                        (best, best_id) = ((t, k), i);
+                    }
+                    _ => {}
+                }
+            }
+        }
+        best
+    }
+}
+
+impl Bvh {
+    /// Whether `hit(item)` holds for some item whose box the ray `o + t·d` meets for
+    /// some `t` in `[0, tmax]`; stops at the first. `stack` is scratch.
+    pub fn ray_any(
+        &self,
+        o: V3,
+        d: V3,
+        tmax: f64,
+        stack: &mut Vec<u32>,
+        mut hit: impl FnMut(u32) -> bool,
+    ) -> bool {
+        if self.nodes.is_empty() {
+            return false;
+        }
+        let inv = d.map(|c| 1.0 / c);
+        stack.clear();
+        stack.push(0);
+        while let Some(n) = stack.pop() {
+            let node = self.nodes[n as usize];
+            if !ray_meets_box(o, inv, tmax, node.lo, node.hi) {
+                continue;
+            }
+            if node.count == 0 {
+                stack.extend([node.first, node.first + 1]);
+                continue;
+            }
+            let span = node.first as usize..(node.first + node.count) as usize;
+            if self.items[span].iter().any(|&i| hit(i)) {
+                return true;
+            }
+        }
+        false
+    }
+}
+
+/// Nodes of at least this many items build their two halves in parallel.
+const PARALLEL: usize = 4096;
+
+/// How many nodes the hierarchy over a count of items has: a median split halves
+/// it, so the count fixes the shape. Looked up below [`PARALLEL`] items.
+struct Sizes {
+    table: Vec<usize>,
+    /// Items per leaf, at most.
+    leaf: usize,
+}
+
+impl Sizes {
+    fn new(items: usize, leaf: usize) -> Sizes {
+        let mut table = vec![1; items.min(PARALLEL) + 1];
+        for c in leaf + 1..table.len() {
+            table[c] = 1 + table[c / 2] + table[c - c / 2];
+        }
+        Sizes { table, leaf }
+    }
+
+    fn nodes(&self, count: usize) -> usize {
+        match self.table.get(count) {
+            Some(&n) => n,
+            None => 1 + self.nodes(count / 2) + self.nodes(count - count / 2),
+        }
+    }
+}
+
+/// What building a subtree reads.
+struct Build<'a> {
+    bbox: &'a (dyn Fn(u32) -> (V3, V3) + Sync),
+    sizes: Sizes,
+}
+
+/// An item being placed: its box's centroid and its id.
+#[derive(Clone, Copy)]
+struct Item<C> {
+    c: C,
+    id: u32,
+}
+
+/// A centroid as a build keeps it: in f64, or rounded to f32 ([`Bvh::build_coarse`]).
+trait Centre: Copy + Send + Sync {
+    fn at(&self, k: usize) -> f64;
+}
+
+impl Centre for V3 {
+    #[inline]
+    fn at(&self, k: usize) -> f64 {
+        self[k]
+    }
+}
+
+impl Centre for [f32; 3] {
+    #[inline]
+    fn at(&self, k: usize) -> f64 {
+        f64::from(self[k])
+    }
+}
+
+impl Build<'_> {
+    /// Builds the subtree over `span` (the item list's entries from `first` on) into
+    /// `node`, its descendants into `below` (whose first node has index `at`): a
+    /// node's children side by side, then the left child's descendants, then the
+    /// right's. Split at the median of the item centroids on their longest axis; a
+    /// node's box is its items' (a leaf) or its children's.
+    fn subtree<C: Centre>(
+        &self,
+        node: &mut Node,
+        below: &mut [Node],
+        at: usize,
+        span: &mut [Item<C>],
+        first: usize,
+    ) {
+        let count = span.len();
+        if count <= self.sizes.leaf {
+            (node.lo, node.hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+            for it in span.iter() {
+                let (blo, bhi) = (self.bbox)(it.id);
+                for k in 0..3 {
+                    (node.lo[k], node.hi[k]) = (node.lo[k].min(blo[k]), node.hi[k].max(bhi[k]));
+                }
+            }
+            (node.first, node.count) = (first as u32, count as u32);
+            return;
+        }
+        let (mut clo, mut chi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for it in span.iter() {
+            for k in 0..3 {
+                (clo[k], chi[k]) = (clo[k].min(it.c.at(k)), chi[k].max(it.c.at(k)));
+            }
+        }
+        let axis = (0..3)
+            .max_by(|&a, &b| (chi[a] - clo[a]).total_cmp(&(chi[b] - clo[b])))
+            .unwrap_or(0);
+        let mid = count / 2;
+        span.select_nth_unstable_by(mid, |a, b| {
+            a.c.at(axis).total_cmp(&b.c.at(axis)).then(a.id.cmp(&b.id))
+        });
+        (node.first, node.count) = (at as u32, 0);
+        let (kids, rest) = below.split_at_mut(2);
+        let (left, right) = kids.split_at_mut(1);
+        let left_below = self.sizes.nodes(mid) - 1;
+        let (below_l, below_r) = rest.split_at_mut(left_below);
+        let (span_l, span_r) = span.split_at_mut(mid);
+        let at_r = at + 2 + left_below;
+        let (l, r) = (&mut left[0], &mut right[0]);
+        let mut build_l = || self.subtree(l, below_l, at + 2, span_l, first);
+        let mut build_r = || self.subtree(r, below_r, at_r, span_r, first + mid);
+        match count >= PARALLEL {
+            true => rayon::join(build_l, build_r),
+            false => (build_l(), build_r()),
+        };
+        let (l, r) = (&left[0], &right[0]);
+        for k in 0..3 {
+            (node.lo[k], node.hi[k]) = (l.lo[k].min(r.lo[k]), l.hi[k].max(r.hi[k]));
+        }
+    }
+}
+
+/// Whether the ray `o + t·d` (`inv` = 1/d componentwise) meets the box `lo..hi` for
+/// some `t` in `[0, tmax]` (slab test; a zero component of `d` gives ±inf in `inv`).
+fn ray_meets_box(o: V3, inv: V3, tmax: f64, lo: V3, hi: V3) -> bool {
+    let (mut t0, mut t1) = (0.0_f64, tmax);
+    for k in 0..3 {
+        let (a, b) = ((lo[k] - o[k]) * inv[k], (hi[k] - o[k]) * inv[k]);
+        let (a, b) = if a <= b { (a, b) } else { (b, a) };
+        // NaN (0 · inf: the ray in the slab's plane) keeps the bound as it is.
+        t0 = if a > t0 { a } else { t0 };
+        t1 = if b < t1 { b } else { t1 };
+    }
+    t0 <= t1
+}
+
+/// Where the ray `o + t·d` meets triangle `t` (Möller–Trumbore), if at some `t > tmin`.
+pub fn ray_tri(o: V3, d: V3, t: &[V3; 3], tmin: f64) -> Option<f64> {
+    let (e1, e2) = (sub(t[1], t[0]), sub(t[2], t[0]));
+    let p = cross(d, e2);
+    let det = dot(e1, p);
+    if det == 0.0 || !det.is_finite() {
+        return None;
+    }
+    let s = sub(o, t[0]);
+    let u = dot(s, p) / det;
+    let q = cross(s, e1);
+    let v = dot(d, q) / det;
+    let at = dot(e2, q) / det;
+    (u >= 0.0 && v >= 0.0 && u + v <= 1.0 && at > tmin).then_some(at)
+}
+
+/// Box of a triangle.
+pub fn tri_box(t: &[V3; 3]) -> (V3, V3) {
+    let mut lo = t[0];
+    let mut hi = t[0];
+    for v in &t[1..] {
+        for k in 0..3 {
+            lo[k] = lo[k].min(v[k]);
+            hi[k] = hi[k].max(v[k]);
+        }
+    }
+    (lo, hi)
+}
+
+/// Squared distance from `p` to the closest point of triangle `t` (Ericson,
+/// Real-Time Collision Detection §5.1.5: Voronoi regions of vertices, edges, face).
+pub fn point_tri_dist2(p: V3, t: &[V3; 3]) -> f64 {
+    let [a, b, c] = *t;
+    let (ab, ac, ap) = (sub(b, a), sub(c, a), sub(p, a));
+    let (d1, d2) = (dot(ab, ap), dot(ac, ap));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return norm2(ap);
+    }
+    let bp = sub(p, b);
+    let (d3, d4) = (dot(ab, bp), dot(ac, bp));
+    if d3 >= 0.0 && d4 <= d3 {
+        return norm2(bp);
+    }
+    // An edge's region is taken only if the edge has length (d1 - d3 is its squared
+    // length, and so below): where two corners coincide its parameter would be 0/0,
+    // and a NaN distance passes every comparison. Such a triangle is its segment
+    // (the degenerate case at the end).
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 && d1 - d3 > 0.0 {
+        let v = d1 / (d1 - d3);
+        return norm2(sub(ap, scale(ab, v)));
+    }
+    let cp = sub(p, c);
+    let (d5, d6) = (dot(ab, cp), dot(ac, cp));
+    if d6 >= 0.0 && d5 <= d6 {
+        return norm2(cp);
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 && d2 - d6 > 0.0 {
+        let w = d2 / (d2 - d6);
+        return norm2(sub(ap, scale(ac, w)));
+    }
+    let va = d3 * d6 - d5 * d4;
+    let bc = (d4 - d3) + (d5 - d6);
+    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 && bc > 0.0 {
+        let w = (d4 - d3) / bc;
+        return norm2(sub(bp, scale(sub(c, b), w)));
+    }
+    let denom = va + vb + vc;
+    if denom <= 0.0 || !denom.is_finite() {
+        // Degenerate triangle: the nearest of its three edges.
+        return [(a, b), (b, c), (c, a)]
+            .iter()
+            .map(|&(s, e)| point_segment_dist2(p, s, e))
+            .fold(f64::INFINITY, f64::min);
+    }
+    let (v, w) = (vb / denom, vc / denom);
+    norm2(sub(ap, add(scale(ab, v), scale(ac, w))))
+}
+
+/// Squared distance from `p` to the segment `a`–`b`.
+pub fn point_segment_dist2(p: V3, a: V3, b: V3) -> f64 {
+    let ab = sub(b, a);
+    let l2 = norm2(ab);
+    let ap = sub(p, a);
+    let t = if l2 > 0.0 {
+        (dot(ap, ab) / l2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    norm2(sub(ap, scale(ab, t)))
+}
+
+#[cfg(test)]
+mod tests;

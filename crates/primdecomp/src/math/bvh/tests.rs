@@ -1,0 +1,239 @@
+//! Tests of the hierarchy and its kernels against brute force: the point–triangle
+//! distance, nearest and containing items, the slots meeting a box, searches from any
+//! slot, first ray hits, and a parallel build equal to the one-thread build.
+
+use super::*;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+/// Brute force over barycentric grid points plus the edges: an upper bound that
+/// the exact distance must not exceed and must come within grid resolution of.
+fn brute(p: V3, t: &[V3; 3]) -> f64 {
+    let n = 200;
+    let mut best = f64::INFINITY;
+    for i in 0..=n {
+        for j in 0..=n - i {
+            let (u, v) = (i as f64 / n as f64, j as f64 / n as f64);
+            let q = add(
+                t[0],
+                add(scale(sub(t[1], t[0]), u), scale(sub(t[2], t[0]), v)),
+            );
+            best = best.min(norm2(sub(p, q)));
+        }
+    }
+    best
+}
+
+#[test]
+fn triangle_distance_matches_brute_force() {
+    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    let mut v = || -> V3 { std::array::from_fn(|_| rng.gen_range(-1.0..1.0)) };
+    for _ in 0..200 {
+        let t = [v(), v(), v()];
+        let p = scale(v(), 2.0);
+        let exact = point_tri_dist2(p, &t).sqrt();
+        let bf = brute(p, &t).sqrt();
+        assert!(exact <= bf + 1e-12, "{exact} > {bf}");
+        assert!(bf - exact < 0.02, "{exact} vs {bf}");
+    }
+    let flat = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [2.0, 0.0, 0.0]];
+    assert!((point_tri_dist2([1.0, 1.0, 0.0], &flat) - 1.0).abs() < 1e-15);
+}
+
+/// A triangle with two corners at one point is a segment: its distance is the
+/// segment's, never NaN. Each edge's parameter divided 0 by 0 there, and a NaN
+/// distance passed every comparison: nearest searches visited the whole tree for
+/// each point (samurai_monastery's cut took minutes) and error bounds over such
+/// triangles came out 0.
+#[test]
+fn a_triangle_with_coincident_corners_is_its_segment() {
+    let (a, b) = ([0.0, 0.0, 0.0], [2.0, 0.0, 0.0]);
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    for _ in 0..200 {
+        let p: V3 = std::array::from_fn(|_| rng.gen_range(-3.0..3.0));
+        let want = point_segment_dist2(p, a, b);
+        for t in [
+            [a, a, b],
+            [a, b, a],
+            [b, a, a],
+            [a, b, b],
+            [b, b, a],
+            [a, a, a],
+        ] {
+            let want = if t == [a, a, a] { norm2(p) } else { want };
+            let got = point_tri_dist2(p, &t);
+            assert!(
+                (got - want).abs() <= 1e-12 * (1.0 + want),
+                "{t:?} {p:?}: {got} vs {want}"
+            );
+        }
+    }
+}
+
+#[test]
+fn nearest_and_any_at_match_linear_scans() {
+    let mut rng = ChaCha8Rng::seed_from_u64(9);
+    let tris = small_triangles(&mut rng, 500);
+    let boxes: Vec<_> = tris.iter().map(tri_box).collect();
+    let bvh = Bvh::build(&boxes);
+    for _ in 0..300 {
+        let p: V3 = std::array::from_fn(|_| rng.gen_range(-6.0..6.0));
+        let (d, i) = bvh.nearest(p, |i| point_tri_dist2(p, &tris[i as usize]));
+        let lin = tris
+            .iter()
+            .map(|t| point_tri_dist2(p, t))
+            .fold(f64::INFINITY, f64::min);
+        assert_eq!(d, lin);
+        assert_eq!(point_tri_dist2(p, &tris[i as usize]), d);
+        let near = |i: u32| point_tri_dist2(p, &tris[i as usize]) < 0.01;
+        let want = (0..tris.len() as u32).any(near);
+        assert_eq!(bvh.any_at(p, 0.1, near), want);
+    }
+    assert_eq!(Bvh::build(&[]).nearest([0.0; 3], |_| 0.0).1, u32::MAX);
+}
+
+/// `n` triangles of corners within 0.3 of a centre in the cube of half-side 5.
+fn small_triangles(rng: &mut ChaCha8Rng, n: usize) -> Vec<[V3; 3]> {
+    (0..n)
+        .map(|_| {
+            let c: V3 = std::array::from_fn(|_| rng.gen_range(-5.0..5.0));
+            std::array::from_fn(|_| add(c, std::array::from_fn(|_| rng.gen_range(-0.3..0.3))))
+        })
+        .collect()
+}
+
+/// The slots meeting a box hold every item whose box meets it, in slot order,
+/// each once; more than `most` of them is said so. Against a linear scan, for
+/// boxes of every size about 200 small triangles.
+#[test]
+fn the_slots_meeting_a_box_hold_every_item_meeting_it() {
+    let mut rng = ChaCha8Rng::seed_from_u64(9);
+    let tris = small_triangles(&mut rng, 200);
+    let boxes: Vec<(V3, V3)> = tris.iter().map(tri_box).collect();
+    let bvh = Bvh::build(&boxes);
+    let (mut stack, mut out) = (Vec::new(), Vec::new());
+    for q in 0..300 {
+        let c: V3 = std::array::from_fn(|_| rng.gen_range(-6.0..6.0));
+        let r = [0.1, 1.0, 4.0][q % 3];
+        let (lo, hi) = (c.map(|x| x - r), c.map(|x| x + r));
+        let meets = |(a, b): &(V3, V3)| (0..3).all(|k| a[k] <= hi[k] && lo[k] <= b[k]);
+        let want: Vec<u32> = (0..200u32).filter(|&i| meets(&boxes[i as usize])).collect();
+        let all = bvh.slots_meeting((lo, hi), usize::MAX, &mut stack, &mut out);
+        assert!(all);
+        assert!(out.windows(2).all(|w| w[0] < w[1]), "{out:?}");
+        let ids: Vec<u32> = out.iter().map(|&k| bvh.order()[k as usize]).collect();
+        assert!(want.iter().all(|i| ids.contains(i)), "{want:?} {ids:?}");
+        let fits = bvh.slots_meeting((lo, hi), want.len(), &mut stack, &mut out);
+        assert_eq!(fits, ids.len() <= want.len());
+        if !want.is_empty() {
+            assert!(!bvh.slots_meeting((lo, hi), want.len() - 1, &mut stack, &mut out));
+        }
+    }
+}
+
+/// Searched from any slot, the nearest item is the one of least id among all at
+/// the least distance: triangles repeated three times over (so every nearest one
+/// ties with two others in other leaves) and points on a triangle (distance 0
+/// to it and to its copies), against a linear scan.
+#[test]
+fn a_search_from_any_slot_finds_the_least_id_among_the_nearest() {
+    let mut rng = ChaCha8Rng::seed_from_u64(5);
+    let base = small_triangles(&mut rng, 200);
+    let tris: Vec<[V3; 3]> = (0..3).flat_map(|_| base.iter().copied()).collect();
+    let bvh = Bvh::build(&tris.iter().map(tri_box).collect::<Vec<_>>());
+    let by_slot: Vec<[V3; 3]> = bvh.order().iter().map(|&i| tris[i as usize]).collect();
+    let mut stack = Vec::new();
+    for q in 0..300 {
+        let p: V3 = match q % 2 {
+            0 => std::array::from_fn(|_| rng.gen_range(-6.0..6.0)),
+            _ => base[q % base.len()][0],
+        };
+        let dist = |t: &[V3; 3]| point_tri_dist2(p, t);
+        let least = tris.iter().map(dist).fold(f64::INFINITY, f64::min);
+        let first = (0..tris.len()).find(|&i| dist(&tris[i]) == least);
+        for start in [0, 7, (q * 13) as u32 % 600, 599, u32::MAX] {
+            let (d, k) = bvh.nearest_slot(p, f64::NEG_INFINITY, start, &mut stack, |k| {
+                dist(&by_slot[k as usize])
+            });
+            assert_eq!(d, least, "point {q}, start {start}");
+            assert_eq!(Some(bvh.order()[k as usize] as usize), first, "point {q}");
+        }
+    }
+}
+
+/// A hierarchy large enough to build its halves in parallel: each item in one
+/// leaf, each box holding its children's (and a leaf's its items'), nearest
+/// queries the linear scan's, and the same nodes and items on one thread and two.
+#[test]
+fn a_parallel_build_is_whole_and_thread_independent() {
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    let n = 3 * PARALLEL + 5;
+    let boxes: Vec<(V3, V3)> = (0..n)
+        .map(|_| {
+            let lo: V3 = std::array::from_fn(|_| rng.gen_range(-5.0..5.0));
+            (lo, lo.map(|x| x + rng.gen_range(0.0..0.2)))
+        })
+        .collect();
+    let on = |threads| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build();
+        pool.expect("pool").install(|| Bvh::build(&boxes))
+    };
+    let (one, bvh) = (on(1), on(2));
+    assert_eq!(format!("{one:?}"), format!("{bvh:?}"));
+    let mut seen = vec![0; n];
+    let holds = |(lo, hi): (V3, V3), n: &Node| (0..3).all(|k| n.lo[k] <= lo[k] && hi[k] <= n.hi[k]);
+    for node in &bvh.nodes {
+        let span = node.first as usize..(node.first + node.count) as usize;
+        for &i in &bvh.items[span] {
+            seen[i as usize] += 1;
+            assert!(holds(boxes[i as usize], node));
+        }
+        if node.count == 0 {
+            for c in [node.first, node.first + 1] {
+                let c = &bvh.nodes[c as usize];
+                assert!(holds((c.lo, c.hi), node));
+            }
+        }
+    }
+    assert!(seen.iter().all(|&k| k == 1));
+    for _ in 0..200 {
+        let p: V3 = std::array::from_fn(|_| rng.gen_range(-6.0..6.0));
+        let d2 = |i: u32| box_dist2(p, boxes[i as usize].0, boxes[i as usize].1);
+        let lin = (0..n as u32).map(d2).fold(f64::INFINITY, f64::min);
+        assert_eq!(bvh.nearest(p, d2).0, lin);
+    }
+}
+
+/// The first hit along random rays through random triangles is the brute-force
+/// least hit over all triangles, and a ray pointing away from them all meets none.
+#[test]
+fn first_ray_hits_match_brute_force() {
+    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    let mut pt = || -> V3 { std::array::from_fn(|_| rng.gen_range(-1.0..1.0)) };
+    let tris: Vec<[V3; 3]> = (0..200)
+        .map(|_| {
+            let c = pt();
+            let (a, b) = (pt(), pt());
+            [c, add(c, scale(a, 0.2)), add(c, scale(b, 0.2))]
+        })
+        .collect();
+    let bvh = Bvh::build(&tris.iter().map(tri_box).collect::<Vec<_>>());
+    let mut stack = Vec::new();
+    for k in 0..100 {
+        let o = scale(pt(), 3.0);
+        let c = scale(add(add(tris[k][0], tris[k][1]), tris[k][2]), 1.0 / 3.0);
+        let d = sub(c, o);
+        let (t, i) = bvh.ray_first(o, d, 10.0, &mut stack, |i| {
+            ray_tri(o, d, &tris[i as usize], 0.0)
+        });
+        let brute = (0..tris.len() as u32)
+            .filter_map(|i| ray_tri(o, d, &tris[i as usize], 0.0).map(|t| (t, i)))
+            .fold((10.0, u32::MAX), |b, x| if x.0 < b.0 { x } else { b });
+        assert_eq!((t, i), brute, "ray {k}");
+        assert!(t <= 1.0 + 1e-9, "ray {k} aims at a centroid: {t}");
+    }
+    let away = bvh.ray_first([0.0, 0.0, 5.0], [0.0, 0.0, 1.0], 10.0, &mut stack, |i| {
+        ray_tri([0.0, 0.0, 5.0], [0.0, 0.0, 1.0], &tris[i as usize], 0.0)
+    });
+    assert_eq!(away, (10.0, u32::MAX));
+}

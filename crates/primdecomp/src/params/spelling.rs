@@ -1,0 +1,325 @@
+//! How a user spells each setting's value ("1%", "4K", "exact", "auto", "box"): one
+//! [`FromStr`] and one [`Display`] per value type, used by the command line and the
+//! Python keywords alike, so that each reads the same words and says the same thing
+//! when a word is wrong. A parse error is [`Error::InvalidParams`] with what was
+//! expected and what was given; the caller names the flag or keyword.
+
+use super::{Dedup, Partitions, Reprice, Tolerance};
+use crate::error::Error;
+use crate::primitive::Kind;
+use std::fmt::{self, Display, Formatter};
+use std::str::FromStr;
+
+fn invalid(message: String) -> Error {
+    Error::InvalidParams(message)
+}
+
+/// A number written as briefly as it reads back (`0.5`, `2`), rounded to 12
+/// significant digits so that 0.07 × 100 shows as 7.
+fn brief(x: f64) -> String {
+    let digits = 12 - x.abs().log10().ceil().clamp(-300.0, 300.0) as i32;
+    let scale = 10f64.powi(digits.clamp(0, 300));
+    let rounded = (x * scale).round() / scale;
+    match rounded.is_finite() {
+        true => format!("{rounded}"),
+        false => format!("{x}"),
+    }
+}
+
+/// A distance in the input's units (`0.5`) or a percentage of its diagonal (`1%`).
+///
+/// ```
+/// use primdecomp::Tolerance;
+///
+/// assert_eq!("1%".parse::<Tolerance>()?, Tolerance::Diagonal(0.01));
+/// assert_eq!("0.5".parse::<Tolerance>()?, Tolerance::Units(0.5));
+/// assert_eq!(Tolerance::Diagonal(0.02).to_string(), "2%");
+/// assert!("-1%".parse::<Tolerance>().is_err());
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
+impl FromStr for Tolerance {
+    type Err = Error;
+
+    fn from_str(t: &str) -> Result<Tolerance, Error> {
+        let t = t.trim();
+        let (num, percent) = match t.strip_suffix('%') {
+            Some(p) => (p.trim(), true),
+            None => (t, false),
+        };
+        if num.parse::<f64>().is_ok_and(|v| v <= 0.0) {
+            return Err(invalid(format!(
+                "'{t}' is not positive: a tolerance is how far every primitive may stand from \
+                 the mesh, a distance (input units) or a percentage of the diagonal like 1%, \
+                 greater than 0"
+            )));
+        }
+        match num.parse::<f64>() {
+            Ok(v) if v.is_finite() && v > 0.0 && (!percent || v < 100.0) => Ok(match percent {
+                true => Tolerance::Diagonal(v / 100.0),
+                false => Tolerance::Units(v),
+            }),
+            _ => Err(invalid(format!(
+                "expected a positive distance (input units) or a percentage of the diagonal \
+                 like 1%, got '{t}'"
+            ))),
+        }
+    }
+}
+
+impl Display for Tolerance {
+    fn fmt(&self, f: &mut Formatter<'_>) -> fmt::Result {
+        match *self {
+            Tolerance::Units(d) => write!(f, "{}", brief(d)),
+            Tolerance::Diagonal(x) => write!(f, "{}%", brief(x * 100.0)),
+        }
+    }
+}
+
+/// A byte count, optionally with K, M, G or T (powers of 1024; `KB`, `KiB` read the
+/// same): a byte budget (`--max-bytes`) or a memory limit (`--max-memory`).
+///
+/// ```
+/// use primdecomp::ByteSize;
+///
+/// assert_eq!("4K".parse::<ByteSize>()?, ByteSize(4096));
+/// assert_eq!("1.5GiB".parse::<ByteSize>()?, ByteSize(3 << 29));
+/// assert_eq!(ByteSize(4096).to_string(), "4K");
+/// assert_eq!(ByteSize(1000).to_string(), "1000");
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
+pub struct ByteSize(pub u64);
+
+impl FromStr for ByteSize {
+    type Err = Error;
+
+    fn from_str(s: &str) -> Result<ByteSize, Error> {
+        let bad = || {
+            invalid(format!(
+                "expected a byte count such as 4096 or 4K, got '{s}'"
+            ))
+        };
+        let t = s.trim().to_ascii_uppercase();
+        let t = t.trim_end_matches("IB").trim_end_matches('B');
+        let (num, shift) = match t.chars().last().ok_or_else(bad)? {
+            'K' => (&t[..t.len() - 1], 10),
+            'M' => (&t[..t.len() - 1], 20),
+            'G' => (&t[..t.len() - 1], 30),
+            'T' => (&t[..t.len() - 1], 40),
+            _ => (t, 0),
+        };
+        let v: f64 = num.trim().parse().map_err(|_| bad())?;
+        let bytes = v * (1u64 << shift) as f64;
+        match v.is_finite() && v >= 0.0 && bytes < u64::MAX as f64 {
+            true => Ok(ByteSize(bytes as u64)),
+            false => Err(bad()),
+        }
+    }
+}
+
+impl Display for ByteSize {
+    fn fmt(&self, f: &mut Formatter<'_>) -> fmt::Result {
+        let unit = [(40, "T"), (30, "G"), (20, "M"), (10, "K")]
+            .into_iter()
+            .find(|&(shift, _)| self.0 >= 1 << shift && self.0 % (1 << shift) == 0);
+        match unit {
+            Some((shift, u)) => write!(f, "{}{u}", self.0 >> shift),
+            None => write!(f, "{}", self.0),
+        }
+    }
+}
+
+/// `auto` or a count of parts.
+///
+/// ```
+/// use primdecomp::Partitions;
+///
+/// assert_eq!("auto".parse::<Partitions>()?, Partitions::Auto);
+/// assert_eq!("8".parse::<Partitions>()?, Partitions::Fixed(8));
+/// assert_eq!(Partitions::Fixed(8).to_string(), "8");
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
+impl FromStr for Partitions {
+    type Err = Error;
+
+    fn from_str(k: &str) -> Result<Partitions, Error> {
+        match k.trim() {
+            "auto" => Ok(Partitions::Auto),
+            n => n
+                .parse()
+                .map(Partitions::Fixed)
+                .map_err(|_| invalid(format!("expected auto or a count, got '{k}'"))),
+        }
+    }
+}
+
+impl Display for Partitions {
+    fn fmt(&self, f: &mut Formatter<'_>) -> fmt::Result {
+        match self {
+            Partitions::Auto => f.write_str("auto"),
+            Partitions::Fixed(k) => write!(f, "{k}"),
+        }
+    }
+}
+
+/// `exact`, `deferred` (every merge's re-pricing deferred) or the neighbour count from
+/// which it is.
+///
+/// ```
+/// use primdecomp::Reprice;
+///
+/// assert_eq!("64".parse::<Reprice>()?, Reprice::Deferred { min_degree: 64 });
+/// assert_eq!(Reprice::Exact.to_string(), "exact");
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
+impl FromStr for Reprice {
+    type Err = Error;
+
+    fn from_str(r: &str) -> Result<Reprice, Error> {
+        Ok(match r.trim() {
+            "exact" => Reprice::Exact,
+            "deferred" => Reprice::Deferred { min_degree: 0 },
+            t => Reprice::Deferred {
+                min_degree: t.parse().map_err(|_| {
+                    invalid(format!(
+                        "expected exact, deferred or a neighbour count, got '{r}'"
+                    ))
+                })?,
+            },
+        })
+    }
+}
+
+impl Display for Reprice {
+    fn fmt(&self, f: &mut Formatter<'_>) -> fmt::Result {
+        match self {
+            Reprice::Exact => f.write_str("exact"),
+            Reprice::Deferred { min_degree: 0 } => f.write_str("deferred"),
+            Reprice::Deferred { min_degree } => write!(f, "{min_degree}"),
+        }
+    }
+}
+
+/// `exact`, `off` or a welding distance in the input's units.
+///
+/// ```
+/// use primdecomp::Dedup;
+///
+/// assert_eq!("0.25".parse::<Dedup>()?, Dedup::Tolerance(0.25));
+/// assert_eq!(Dedup::Off.to_string(), "off");
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
+impl FromStr for Dedup {
+    type Err = Error;
+
+    fn from_str(d: &str) -> Result<Dedup, Error> {
+        Ok(match d.trim() {
+            "exact" => Dedup::Exact,
+            "off" => Dedup::Off,
+            t => {
+                Dedup::Tolerance(t.parse().map_err(|_| {
+                    invalid(format!("expected exact, off or a distance, got '{d}'"))
+                })?)
+            }
+        })
+    }
+}
+
+impl Display for Dedup {
+    fn fmt(&self, f: &mut Formatter<'_>) -> fmt::Result {
+        match self {
+            Dedup::Exact => f.write_str("exact"),
+            Dedup::Off => f.write_str("off"),
+            Dedup::Tolerance(t) => write!(f, "{}", brief(*t)),
+        }
+    }
+}
+
+/// A primitive kind by name (`box`, `sphere`, `capsule`, `cylinder`, `frustum`,
+/// `prism`).
+///
+/// ```
+/// use primdecomp::Kind;
+///
+/// assert_eq!("prism".parse::<Kind>()?, Kind::Prism);
+/// assert_eq!(Kind::Frustum.to_string(), "frustum");
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
+impl FromStr for Kind {
+    type Err = Error;
+
+    fn from_str(k: &str) -> Result<Kind, Error> {
+        Kind::from_name(k.trim()).ok_or_else(|| {
+            invalid(format!(
+                "unknown primitive kind '{k}': expected box, sphere, capsule, cylinder, \
+                 frustum or prism"
+            ))
+        })
+    }
+}
+
+impl Display for Kind {
+    fn fmt(&self, f: &mut Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every value reads back from what it displays.
+    #[test]
+    fn spellings_read_back() {
+        for t in [
+            Tolerance::Diagonal(0.02),
+            Tolerance::Diagonal(0.005),
+            Tolerance::Units(0.5),
+            Tolerance::Units(3.0),
+        ] {
+            assert_eq!(t.to_string().parse::<Tolerance>().unwrap(), t, "{t}");
+        }
+        assert_eq!(Tolerance::Diagonal(0.07).to_string(), "7%");
+        for b in [0, 1, 1000, 4096, 3 << 29, 5 << 40] {
+            let s = ByteSize(b).to_string();
+            assert_eq!(s.parse::<ByteSize>().unwrap(), ByteSize(b), "{s}");
+        }
+        for p in [Partitions::Auto, Partitions::Fixed(16)] {
+            assert_eq!(p.to_string().parse::<Partitions>().unwrap(), p);
+        }
+        for r in [
+            Reprice::Exact,
+            Reprice::Deferred { min_degree: 0 },
+            Reprice::Deferred { min_degree: 64 },
+        ] {
+            assert_eq!(r.to_string().parse::<Reprice>().unwrap(), r);
+        }
+        for d in [Dedup::Exact, Dedup::Off, Dedup::Tolerance(0.25)] {
+            assert_eq!(d.to_string().parse::<Dedup>().unwrap(), d);
+        }
+        for k in Kind::ALL {
+            assert_eq!(k.to_string().parse::<Kind>().unwrap(), k);
+        }
+    }
+
+    /// A wrong word says what was expected and what was given.
+    #[test]
+    fn wrong_words_are_named() {
+        let msg = |e: Error| e.to_string();
+        assert!(msg("1mm".parse::<Tolerance>().unwrap_err()).contains("got '1mm'"));
+        assert!(msg("-1%".parse::<Tolerance>().unwrap_err()).contains("'-1%' is not positive"));
+        assert!(msg("100%".parse::<Tolerance>().unwrap_err()).contains("percentage"));
+        assert!(msg("lots".parse::<ByteSize>().unwrap_err()).contains("got 'lots'"));
+        assert!("-1G".parse::<ByteSize>().is_err());
+        for (s, b) in [
+            ("1048576", 1 << 20),
+            ("512M", 512 << 20),
+            ("8g", 8 << 30),
+            ("2KB", 2048),
+        ] {
+            assert_eq!(s.parse::<ByteSize>().unwrap(), ByteSize(b), "{s}");
+        }
+        assert!(msg("some".parse::<Partitions>().unwrap_err()).contains("auto or a count"));
+        assert!(msg("cone".parse::<Kind>().unwrap_err()).contains("unknown primitive kind 'cone'"));
+    }
+}

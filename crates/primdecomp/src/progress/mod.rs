@@ -1,0 +1,184 @@
+//! Progress reports and cancellation of a run ([`crate::decompose_with`]). The driver
+//! reports each stage as it starts and ends, and the merge stage as it goes; kernels
+//! never see this type, only a callback that tells them whether to go on, so a
+//! cancelled run stops within one check interval of every loop (a few thousand merges,
+//! a block of seed fits) and returns [`crate::Error::Cancelled`].
+
+pub(crate) mod wallclock;
+
+/// A stage of a run, in the order they run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Stage {
+    /// Welding vertices at the same position (§3.4).
+    Dedup,
+    /// Finding faces that share an edge (§3.3).
+    Adjacency,
+    /// One quadric per face (§3.1).
+    Quadrics,
+    /// One primitive per face, and the inputs of the merge loop (Alg. 1, line 2).
+    Seed,
+    /// The greedy merges through every target (Alg. 1's loop); the longest stage.
+    Merge,
+    /// Nested primitives removed, plates joined, levels written out (§3.4).
+    Postprocess,
+}
+
+impl Stage {
+    /// Every stage, in run order.
+    pub const ALL: [Stage; 6] = [
+        Stage::Dedup,
+        Stage::Adjacency,
+        Stage::Quadrics,
+        Stage::Seed,
+        Stage::Merge,
+        Stage::Postprocess,
+    ];
+
+    /// A short lower-case name (`"merge"`), as the timings use.
+    pub fn name(self) -> &'static str {
+        match self {
+            Stage::Dedup => "dedup",
+            Stage::Adjacency => "adjacency",
+            Stage::Quadrics => "quadrics",
+            Stage::Seed => "seed",
+            Stage::Merge => "merge",
+            Stage::Postprocess => "postprocess",
+        }
+    }
+}
+
+/// Receives a run's progress and says whether to cancel it. Both methods have
+/// defaults, so an implementation gives only what it needs; any `Fn(Stage, f64)`
+/// closure is a `Progress` that never cancels.
+///
+/// ```
+/// use primdecomp::{decompose_with, demo_scene, Error, Goal, Params, Progress, Stage};
+/// use std::sync::atomic::{AtomicBool, Ordering};
+///
+/// /// Cancels the run once the merge stage is half done.
+/// struct HalfWay(AtomicBool);
+///
+/// impl Progress for HalfWay {
+///     fn update(&self, stage: Stage, fraction: f64) {
+///         if stage == Stage::Merge && fraction >= 0.5 {
+///             self.0.store(true, Ordering::Relaxed);
+///         }
+///     }
+///     fn cancelled(&self) -> bool {
+///         self.0.load(Ordering::Relaxed)
+///     }
+/// }
+///
+/// let params = Params { goal: Goal::counts([10]), ..Params::default() };
+/// let run = decompose_with(&demo_scene(), &params, &HalfWay(AtomicBool::new(false)));
+/// assert!(matches!(run, Err(Error::Cancelled)));
+///
+/// // A closure reports progress and never cancels.
+/// let done = decompose_with(&demo_scene(), &params, &|stage: Stage, f: f64| {
+///     eprintln!("{} {:.0}%", stage.name(), 100.0 * f)
+/// });
+/// assert!(done.is_ok());
+/// ```
+pub trait Progress: Sync {
+    /// `stage` has done `fraction` (0 to 1) of its work. Called from the thread that
+    /// called [`crate::decompose_with`] or from the library's worker threads, often
+    /// (keep it cheap).
+    fn update(&self, stage: Stage, fraction: f64) {
+        let _ = (stage, fraction);
+    }
+
+    /// Whether the run should stop; checked at least every few thousand merges and
+    /// between stages. Once it returns true the run returns
+    /// [`crate::Error::Cancelled`].
+    fn cancelled(&self) -> bool {
+        false
+    }
+}
+
+impl<F: Fn(Stage, f64) + Sync> Progress for F {
+    fn update(&self, stage: Stage, fraction: f64) {
+        self(stage, fraction)
+    }
+}
+
+/// Where a run stands, for a progress display: the stage running, the fraction of
+/// it done, the fraction of the whole run done, and the seconds left (estimated;
+/// `None` until a second has passed and a percent is done).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Estimate {
+    /// The stage running.
+    pub stage: Stage,
+    /// The fraction of `stage` done, 0 to 1.
+    pub fraction: f64,
+    /// The fraction of the whole run done, 0 to 1.
+    pub overall: f64,
+    /// The seconds left, extrapolated from the time spent on `overall`.
+    pub seconds_left: Option<f64>,
+}
+
+/// Turns the reports of a run ([`Progress::update`]) into [`Estimate`]s of the whole
+/// run: each stage counts for its share of a run's time, as the scale ladder
+/// measured it from 871k to 56M faces (`cargo bench -p primdecomp-cli --bench
+/// ladder`), a cut's share where the run cuts the merge tree (a tolerance, a byte
+/// target or the default run).
+///
+/// ```
+/// use primdecomp::{Eta, Goal, Params, Stage};
+///
+/// let eta = Eta::new(&Params { goal: Goal::counts([100]), ..Params::default() });
+/// let e = eta.update(Stage::Merge, 0.5);
+/// assert!(e.overall > 0.3 && e.overall < 0.9);
+/// assert_eq!(e.seconds_left, None); // too early to say
+/// ```
+#[derive(Debug)]
+pub struct Eta {
+    start: crate::progress::wallclock::Instant,
+    /// Each stage's share of the run, in [`Stage::ALL`]'s order.
+    shares: [f64; 6],
+}
+
+/// Shares of a greedy run (a count): dedup, adjacency, quadrics, seed, merge,
+/// post-processing.
+const GREEDY_SHARES: [f64; 6] = [0.02, 0.04, 0.02, 0.12, 0.78, 0.02];
+/// Shares of a run that cuts the merge tree (its cut is post-processing's).
+const CUT_SHARES: [f64; 6] = [0.02, 0.03, 0.01, 0.09, 0.55, 0.30];
+
+impl Eta {
+    /// An estimate for a run of `params`, starting now.
+    pub fn new(params: &crate::params::Params) -> Eta {
+        Eta {
+            start: crate::progress::wallclock::Instant::now(),
+            shares: if params.uses_cut() {
+                CUT_SHARES
+            } else {
+                GREEDY_SHARES
+            },
+        }
+    }
+
+    /// The estimate when `stage` has done `fraction` of its work.
+    pub fn update(&self, stage: Stage, fraction: f64) -> Estimate {
+        let fraction = fraction.clamp(0.0, 1.0);
+        let i = Stage::ALL.iter().position(|&s| s == stage).unwrap_or(0);
+        let done: f64 = self.shares[..i].iter().sum::<f64>() + self.shares[i] * fraction;
+        let overall = (done / self.shares.iter().sum::<f64>()).clamp(0.0, 1.0);
+        let spent = self.start.elapsed().as_secs_f64();
+        let seconds_left =
+            (spent >= 1.0 && overall >= 0.01).then(|| spent * (1.0 - overall) / overall);
+        Estimate {
+            stage,
+            fraction,
+            overall,
+            seconds_left,
+        }
+    }
+}
+
+/// A [`Progress`] that reports nothing and never cancels.
+pub(crate) struct Silent;
+
+impl Progress for Silent {}
+
+/// The callback kernels take: report a fraction of the current stage, and learn
+/// whether to go on (false = stop now).
+pub(crate) type GoOn<'a> = &'a (dyn Fn(f64) -> bool + Sync);

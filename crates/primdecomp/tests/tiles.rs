@@ -1,0 +1,172 @@
+//! Out-of-core tiles (`primdecomp::decompose_tiled`, src/tiles.rs): a tiled run must
+//! enclose every input face (checked by the independent oracle,
+//! `primdecomp_testkit::contain`), be the same bytes on 1 and 2 threads, run within a
+//! memory limit that refuses the input read whole, and turn bad input into the usual
+//! errors. Every input is made here and written as binary PLY (read from the map a
+//! tile at a time) or OBJ (parsed whole).
+
+use primdecomp::{decompose_tiled, load, load_with, to_json, Error, Goal, LoadOptions, Params};
+use primdecomp_testkit::check::{assert_counts, assert_valid};
+use primdecomp_testkit::on_threads;
+use primdecomp_testkit::shapes::{cuboid, cylinder, icosphere, join, obj_text, ply_bytes, Polys};
+use std::path::{Path, PathBuf};
+
+/// A sphere, a cylinder and a box standing apart: three parts, several tiles.
+fn scene() -> Polys {
+    let moved = |(v, f): Polys, d: [f64; 3]| -> Polys {
+        (
+            v.iter().map(|p| [0, 1, 2].map(|k| p[k] + d[k])).collect(),
+            f,
+        )
+    };
+    join(&[
+        icosphere(1.0, 4),
+        moved(cylinder(0.5, 3.0, 48), [3.0, 0.2, 0.0]),
+        cuboid([-4.0, -1.0, -1.0], [-2.5, 0.5, 2.0]),
+    ])
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("primdecomp-tiles-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn write(dir: &Path, name: &str, bytes: &[u8]) -> PathBuf {
+    let path = dir.join(name);
+    std::fs::write(&path, bytes).unwrap();
+    path
+}
+
+fn tiles(k: usize) -> LoadOptions {
+    LoadOptions {
+        tiles: Some(k),
+        ..LoadOptions::default()
+    }
+}
+
+/// Forced tiles from the map: every face enclosed at every level, at most N
+/// primitives, the same JSON on 1 and 2 threads; OBJ (parsed whole, then tiled)
+/// encloses too.
+#[test]
+fn forced_tiles_enclose_and_are_deterministic() {
+    let dir = temp_dir("forced");
+    let polys = scene();
+    let ply = write(&dir, "scene.ply", &ply_bytes(&polys));
+    let params = Params {
+        goal: Goal::counts([40, 12]),
+        ..Params::default()
+    };
+    let mesh = load(&ply).unwrap();
+    let runs: Vec<_> = [1, 2]
+        .iter()
+        .map(|&t| {
+            on_threads(t, || {
+                decompose_tiled(&ply, &params, &tiles(3), &|_, _| {}).unwrap()
+            })
+        })
+        .collect();
+    assert_eq!(runs[0].stats.tiles, 3);
+    assert_eq!(runs[0].input.faces, mesh.face_count());
+    for level in 0..params.goal.targets().len() {
+        assert_eq!(
+            to_json(&runs[0], level, &params),
+            to_json(&runs[1], level, &params),
+            "1 vs 2 threads"
+        );
+    }
+    assert_valid(&mesh, &runs[0], &params);
+    assert_counts(&runs[0], "tiled");
+    // The default run (a tolerance, cut from the merge tree) on tiles encloses too.
+    let default = Params::default();
+    let dec = decompose_tiled(&ply, &default, &tiles(4), &|_, _| {}).unwrap();
+    assert_valid(&mesh, &dec, &default);
+    let obj = write(&dir, "scene.obj", obj_text(&polys).as_bytes());
+    let dec = decompose_tiled(&obj, &params, &tiles(2), &|_, _| {}).unwrap();
+    assert_valid(&load(&obj).unwrap(), &dec, &params);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// A limit that refuses the input read whole: `load_with` says too large, the tiled
+/// run picks more than one tile by itself and still encloses every face.
+#[test]
+fn a_small_memory_limit_tiles_instead_of_refusing() {
+    let dir = temp_dir("limit");
+    let ply = write(&dir, "ball.ply", &ply_bytes(&icosphere(1.0, 7)));
+    let options = LoadOptions {
+        max_memory: Some(115 << 20),
+        greedy_only: true,
+        ..LoadOptions::default()
+    };
+    let refused = load_with(&ply, &options).unwrap_err();
+    assert!(matches!(refused, Error::TooLarge { .. }), "{refused}");
+    let params = Params {
+        goal: Goal::counts([50]),
+        ..Params::default()
+    };
+    let dec = decompose_tiled(&ply, &params, &options, &|_, _| {}).unwrap();
+    assert!(dec.stats.tiles > 1, "{} tiles", dec.stats.tiles);
+    assert_valid(&load(&ply).unwrap(), &dec, &params);
+    // A limit below what even the most tiles need is refused, naming the file.
+    let tiny = LoadOptions {
+        max_memory: Some(1 << 20),
+        ..options
+    };
+    let e = decompose_tiled(&ply, &params, &tiny, &|_, _| {}).unwrap_err();
+    assert!(e.to_string().contains("ball.ply"), "{e}");
+    assert_eq!(e.exit_code(), 2);
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// Truncated data, a header that claims more than the file holds and an index out
+/// of range are the whole parse's errors, naming the file and a byte offset.
+#[test]
+fn bad_input_fails_with_the_usual_errors() {
+    let dir = temp_dir("bad");
+    let good = ply_bytes(&scene());
+    let params = Params {
+        goal: Goal::counts([10]),
+        ..Params::default()
+    };
+    let run = |name: &str, bytes: &[u8]| {
+        let path = write(&dir, name, bytes);
+        let e = decompose_tiled(&path, &params, &tiles(2), &|_, _| {}).unwrap_err();
+        assert_eq!(e.exit_code(), 2, "{e}");
+        assert!(matches!(e, Error::ParseByte { .. }), "{name}: {e}");
+        e.to_string()
+    };
+    // Cut inside the faces, and inside the vertices.
+    let e = run("cut.ply", &good[..good.len() - 7]);
+    assert!(e.contains("truncated file"), "{e}");
+    let header_end = good.windows(11).position(|w| w == b"end_header\n").unwrap() + 11;
+    let e = run("cut_vertices.ply", &good[..header_end + 40]);
+    assert!(e.contains("ends inside vertex"), "{e}");
+    // A header that claims one more face than the data holds.
+    let text = String::from_utf8_lossy(&good[..header_end]).to_string();
+    let faces: usize = text
+        .lines()
+        .find_map(|l| l.strip_prefix("element face "))
+        .unwrap()
+        .parse()
+        .unwrap();
+    let lying = text.replace(
+        &format!("element face {faces}"),
+        &format!("element face {}", faces + 1),
+    );
+    let mut bytes = lying.into_bytes();
+    bytes.extend_from_slice(&good[header_end..]);
+    let e = run("lying.ply", &bytes);
+    assert!(e.contains("truncated file"), "{e}");
+    // The last face's last index out of range.
+    let mut bytes = good.clone();
+    let n = bytes.len();
+    bytes[n - 4..].copy_from_slice(&i32::MAX.to_le_bytes());
+    let e = run("index.ply", &bytes);
+    assert!(e.contains("out of range"), "{e}");
+    // A non-finite vertex.
+    let mut bytes = good.clone();
+    bytes[header_end..header_end + 4].copy_from_slice(&f32::NAN.to_le_bytes());
+    let e = run("nan.ply", &bytes);
+    assert!(e.contains("not finite"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -1,6 +1,8 @@
 #!/usr/bin/env python3
 """Checks the documents: every relative link resolves, every decision record opens
-with its five-line header, and docs/decisions/README.md's table matches the headers.
+with its five-line header, docs/decisions/README.md's table matches the headers, and
+ARCHITECTURE.md's table of the core's public API names exactly what
+crates/primdecomp/src/lib.rs makes public (and the file stays a five-minute read).
 
     python3 scripts/check_docs.py           # check; exit 1 with one line per problem
     python3 scripts/check_docs.py --write   # rewrite the README's table from the headers
@@ -20,6 +22,11 @@ FIELDS = ("Decision:", "Status:", "Effect:", "Code:", "Measurements:")
 TABLE_HEAD = "| record | decision | status |\n|---|---|---|\n"
 LINK = re.compile(r"\[[^\]]*\]\(([^)\s]+)\)")
 FENCE = re.compile(r"^(```|~~~)")
+LIB = ROOT / "crates" / "primdecomp" / "src" / "lib.rs"
+ARCH = ROOT / "ARCHITECTURE.md"
+API_HEADING = "## The core's public API"
+ARCH_MAX_LINES = 250
+IDENT = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 
 
 def documents():
@@ -108,8 +115,69 @@ def table(top):
     return TABLE_HEAD + "".join(rows)
 
 
-def main():
+def public_names():
+    """What lib.rs makes public at the crate root: every name of a `pub use` (its
+    `as` name when renamed), every `pub fn`/`pub struct`/… defined there, and every
+    `pub mod` as `name::`. Items under `#[cfg(feature = "test-internals")]` (the
+    hidden `internals` module) are not part of the API."""
+    text = re.sub(r"//[^\n]*", "", LIB.read_text(encoding="utf-8"))
+    text = re.sub(r'#\[cfg\(feature = "test-internals"\)\]\s*(#\[[^\]]*\]\s*)*pub mod \w+ \{.*',
+                  "", text, flags=re.S)
+    names = set()
+    for m in re.finditer(r"\bpub use\s+([^;]+);", text):
+        body = m.group(1)
+        inner = body[body.index("{") + 1:body.rindex("}")] if "{" in body else body.rsplit("::", 1)[-1]
+        for item in re.split(r"\s*,\s*", inner.strip()):
+            if item:
+                names.add(item.split(" as ")[-1].strip().rsplit("::", 1)[-1])
+    for m in re.finditer(r"\bpub (?:fn|struct|enum|trait|type|const|static)\s+(\w+)", text):
+        names.add(m.group(1))
+    for m in re.finditer(r"\bpub mod\s+(\w+)", text):
+        names.add(m.group(1) + "::")
+    return names
+
+
+def api_table_problems():
+    """ARCHITECTURE.md's API table against lib.rs: the second column lists the root
+    names in backticks (paths such as `Mesh::from_triangles` are notes, not names); a
+    row whose first column names a public module as `name::` describes what is
+    inside it."""
+    lines = ARCH.read_text(encoding="utf-8").splitlines()
     problems = []
+    if len(lines) > ARCH_MAX_LINES:
+        problems.append(f"ARCHITECTURE.md: {len(lines)} lines, more than the {ARCH_MAX_LINES} "
+                        "a five-minute read holds")
+    if API_HEADING not in lines:
+        return problems + [f"ARCHITECTURE.md: no section {API_HEADING!r}"]
+    table, i = [], lines.index(API_HEADING) + 1
+    while i < len(lines) and not lines[i].startswith("|"):
+        i += 1
+    while i < len(lines) and lines[i].startswith("|"):
+        table.append(lines[i])
+        i += 1
+    listed = set()
+    for row in table[2:]:
+        cells = [c.strip() for c in row.strip("|").split("|")]
+        if len(cells) < 2:
+            continue
+        modules = [n for n in re.findall(r"`([^`]+)`", cells[0])
+                   if n.endswith("::") and IDENT.match(n[:-2])]
+        listed.update(modules)
+        if modules:
+            continue  # a public module's row names what is inside it
+        for name in re.findall(r"`([^`]+)`", cells[1]):
+            if IDENT.match(name):
+                listed.add(name)
+    public = public_names()
+    for name in sorted(public - listed):
+        problems.append(f"ARCHITECTURE.md: the API table does not list `{name}`, public in lib.rs")
+    for name in sorted(listed - public):
+        problems.append(f"ARCHITECTURE.md: the API table lists `{name}`, not public in lib.rs")
+    return problems
+
+
+def main():
+    problems = api_table_problems()
     for doc in documents():
         problems += link_problems(doc)
     top, steps = records()

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The test command (README.md). Runs, each in its own section:
 #   documents every relative link resolves, every decision record opens with its
-#            header and the records' index matches them (scripts/check_docs.py);
+#            header and the records' index matches them, ARCHITECTURE.md's API table names what lib.rs makes public (scripts/check_docs.py);
 #   rust     every Rust test of the workspace (unit, property, paper-claim, corpus-wide
 #            and CLI tests, doctests), built once: the consumer checks below use the
 #            binaries this build makes, so nothing is compiled twice;
@@ -66,7 +66,7 @@ pip_install() { # VENV ARGS...: pip without its progress bar, one line per packa
 }
 
 # ---------------------------------------------------------------- documents
-section "documents: every relative link resolves, every decision record has its header (scripts/check_docs.py)"
+section "documents: every relative link resolves, every decision record has its header, the API table matches lib.rs (scripts/check_docs.py)"
 if python3 scripts/check_docs.py; then
   row documents 1 0 0 "links and decision records"
 else

@@ -81,6 +81,17 @@ fn forced_tiles_enclose_and_are_deterministic() {
     let default = Params::default();
     let dec = decompose_tiled(&ply, &default, &tiles(4), &|_, _| {}).unwrap();
     assert_valid(&mesh, &dec, &default);
+    // Its tolerance is the share of the input's diagonal asked for, not of the boxes'.
+    let diagonal = (0..3)
+        .map(|d| (dec.input.aabb_max[d] - dec.input.aabb_min[d]).powi(2))
+        .sum::<f64>()
+        .sqrt();
+    let asked = primdecomp::DEFAULT_TOLERANCE.in_units(diagonal);
+    let tolerance = dec.levels[0].tolerance.expect("a tolerance level");
+    assert!(
+        (tolerance - asked).abs() <= 1e-12 * asked,
+        "{tolerance} against {asked}"
+    );
     let obj = write(&dir, "scene.obj", obj_text(&polys).as_bytes());
     let dec = decompose_tiled(&obj, &params, &tiles(2), &|_, _| {}).unwrap();
     assert_valid(&load(&obj).unwrap(), &dec, &params);

@@ -23,7 +23,7 @@ use crate::input::io::{format_of, open_regular, Format, LoadOptions, PlyLayout};
 use crate::input::mesh::{Mesh, MeshBuilder};
 use crate::math::V3;
 use crate::output::result::Decomposition;
-use crate::params::{CountSearch, Fit, Goal, Params};
+use crate::params::{CountSearch, Fit, Goal, Params, Tolerance};
 use crate::primitive::Kind;
 use crate::progress::wallclock::Instant;
 use crate::progress::{Progress, Stage};
@@ -102,7 +102,8 @@ pub fn decompose_tiled(
     drop(source);
     // The tiles' boxes merged on top with the caller's settings (§3).
     let mesh = Mesh::from_builder(proxy.builder);
-    let mut dec = crate::decompose::decompose_with(&mesh, params, progress)?;
+    let top = of_input(params, proxy.used);
+    let mut dec = crate::decompose::decompose_with(&mesh, &top, progress)?;
     timings.append(&mut dec.timings.stages);
     dec.timings.stages = timings;
     dec.input.faces = plan.faces;
@@ -110,6 +111,34 @@ pub fn decompose_tiled(
     (dec.input.aabb_min, dec.input.aabb_max) = proxy.used;
     dec.stats.tiles = plan.tiles;
     Ok(dec)
+}
+
+/// The top run's settings: a tolerance given as a share of the diagonal is of the
+/// input's diagonal (`used`, its corners), not of the tiles' boxes', which stand a
+/// little beyond it; so a tiled run is held to the distance the user asked for.
+fn of_input(params: &Params, used: (V3, V3)) -> Params {
+    let Goal::Within {
+        caps,
+        tolerance,
+        max_bytes,
+    } = &params.goal
+    else {
+        return params.clone();
+    };
+    let (lo, hi) = used;
+    let diagonal = crate::math::norm(crate::math::sub(hi, lo));
+    let tolerance = tolerance
+        .iter()
+        .map(|&t| Tolerance::Units(t.in_units(diagonal)))
+        .collect();
+    Params {
+        goal: Goal::Within {
+            caps: caps.clone(),
+            tolerance,
+            max_bytes: max_bytes.clone(),
+        },
+        ..params.clone()
+    }
 }
 
 /// The whole mesh parsed, for a format not read a tile at a time: refused when the

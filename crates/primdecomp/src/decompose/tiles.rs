@@ -165,6 +165,11 @@ impl Tiled {
         self.plan.tiles
     }
 
+    /// The settings the run is planned with (the result's JSON records them).
+    pub fn params(&self) -> &Params {
+        &self.params
+    }
+
     /// The plan as bytes, for [`Tiled::from_bytes`] on another machine; the same plan
     /// gives the same bytes.
     pub fn to_bytes(&self) -> Vec<u8> {

@@ -10,7 +10,9 @@ use primdecomp::{
 };
 use primdecomp_testkit::check::{assert_counts, assert_valid};
 use primdecomp_testkit::on_threads;
-use primdecomp_testkit::shapes::{cuboid, cylinder, icosphere, join, obj_text, ply_bytes, Polys};
+use primdecomp_testkit::shapes::{
+    cuboid, cylinder, flat_grid, icosphere, join, obj_text, ply_bytes, Polys,
+};
 use std::path::{Path, PathBuf};
 
 /// A sphere, a cylinder and a box standing apart: three parts, several tiles.
@@ -281,5 +283,38 @@ fn plan_tiles_and_merge_apart_equal_the_tiled_run_and_refuse_bad_bytes() {
         plan.run_tile(&changed, 0, &|_, _| {}).unwrap_err(),
         "not the file",
     );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The top run holds relative settings to the input's diagonal, not to the tiles'
+/// boxes' (which stand beyond the input by their thickness): on a flat grid tiled in
+/// two with `min_extent` 2%, the plates come out exactly 2% of the input's diagonal
+/// thick (half-extent), where the boxes' diagonal made them about 0.05% thicker.
+#[test]
+fn the_top_run_holds_relative_settings_to_the_inputs_diagonal() {
+    let dir = temp_dir("relative");
+    let ply = write(&dir, "grid.ply", &ply_bytes(&flat_grid(24)));
+    let params = Params {
+        goal: Goal::counts([2]),
+        fit: primdecomp::Fit {
+            min_extent: 0.02,
+            ..primdecomp::Fit::default()
+        },
+        ..Params::default()
+    };
+    let dec = decompose_tiled(&ply, &params, &tiles(2), &|_, _| {}).unwrap();
+    assert_valid(&load(&ply).unwrap(), &dec, &params);
+    let want = 0.02 * dec.input.diagonal();
+    for p in &dec.levels[0].primitives {
+        let primdecomp::Primitive::Box(b) = p else {
+            panic!("a flat grid gives boxes: {p:?}")
+        };
+        let thin = b.half.iter().copied().fold(f64::INFINITY, f64::min);
+        assert!(
+            (thin - want).abs() <= 1e-9 * want,
+            "half-thickness {thin}, {} of the input's diagonal's 2%",
+            thin / want
+        );
+    }
     std::fs::remove_dir_all(&dir).ok();
 }

@@ -271,7 +271,7 @@ impl Tiled {
         }
         // The tiles' boxes merged on top with the caller's settings (§3).
         let mesh = Mesh::from_builder(builder);
-        let top = of_input(&self.params, used);
+        let top = of_input(&self.params, used, mesh.aabb());
         let mut dec = crate::decompose::decompose_with(&mesh, &top, progress)?;
         dec.input.faces = self.plan.faces;
         dec.input.vertices = self.plan.vertices;
@@ -396,32 +396,36 @@ fn content_hash(map: &memmap2::Mmap) -> u128 {
     hasher.digest128()
 }
 
-/// The top run's settings: a tolerance given as a share of the diagonal is of the
-/// input's diagonal (`used`, its corners), not of the tiles' boxes', which stand a
-/// little beyond it; so a tiled run is held to the distance the user asked for.
-fn of_input(params: &Params, used: (V3, V3)) -> Params {
-    let Goal::Within {
-        caps,
-        tolerance,
-        max_bytes,
-    } = &params.goal
-    else {
-        return params.clone();
+/// The top run's settings: every setting given as a share of the diagonal (a
+/// tolerance, `min_extent`, `open_holes`, `min_thickness`, `remove_thin_boxes`) or
+/// of the box's volume (`max_excess_volume`) is of the input's (`used`, its
+/// corners), not of the tiles' boxes' (`boxes`), which stand a little beyond it; so a
+/// tiled run is held to what the user asked for (to rounding, for all but the
+/// tolerance, which becomes a distance).
+fn of_input(params: &Params, used: (V3, V3), boxes: (V3, V3)) -> Params {
+    let diagonal = |(lo, hi): (V3, V3)| crate::math::norm(crate::math::sub(hi, lo));
+    let volume = |(lo, hi): (V3, V3)| (0..3).map(|k| hi[k] - lo[k]).product::<f64>();
+    let ratio = |a: f64, b: f64| match a > 0.0 && b > 0.0 && (a / b).is_finite() {
+        true => a / b,
+        false => 1.0,
     };
-    let (lo, hi) = used;
-    let diagonal = crate::math::norm(crate::math::sub(hi, lo));
-    let tolerance = tolerance
-        .iter()
-        .map(|&t| Tolerance::Units(t.in_units(diagonal)))
-        .collect();
-    Params {
-        goal: Goal::Within {
-            caps: caps.clone(),
-            tolerance,
-            max_bytes: max_bytes.clone(),
-        },
-        ..params.clone()
+    let (d, v) = (
+        ratio(diagonal(used), diagonal(boxes)),
+        ratio(volume(used), volume(boxes)),
+    );
+    let mut top = params.clone();
+    top.fit.min_extent *= d;
+    top.fit.max_excess_volume = top.fit.max_excess_volume.map(|m| m * v);
+    top.plates.open_holes *= d;
+    top.plates.min_thickness *= d;
+    top.plates.remove_thin_boxes = top.plates.remove_thin_boxes.map(|t| t * d);
+    if let Goal::Within { tolerance, .. } = &mut top.goal {
+        let input = diagonal(used);
+        for t in tolerance.iter_mut() {
+            *t = Tolerance::Units(t.in_units(input));
+        }
     }
+    top
 }
 
 /// The whole mesh parsed, for a format not read a tile at a time: refused when the

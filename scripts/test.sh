@@ -10,7 +10,9 @@
 #            with enclosure checked per format (tests/exports);
 #   browser  the viewer page in a real headless Chromium (tests/browser);
 #   python   the Python wheel built with maturin, pip-installed into a venv, and its
-#            pytest suite (crates/primdecomp-py/tests).
+#            pytest suite (crates/primdecomp-py/tests);
+#   ray      one scan as tiles on a local Ray cluster of two nodes, against the CLI's
+#            tiled run (scripts/test_ray_cluster.sh).
 # Every section runs on inputs the repository writes at test time (the demo scene,
 # made-up meshes of every primitive kind, a z-up STL, a multi-node glTF and a
 # multi-group OBJ: `primdecomp-testkit inputs`), so a clone without ../shared runs
@@ -224,6 +226,23 @@ if [ "$py_ok" = 1 ]; then
   read -r p f s < <(pytest_counts "$work/python.log")
   [ "$status" = 0 ] || [ "$f" -gt 0 ] || f=1
   row python "$p" "$f" "$s" "$sizes"
+fi
+
+# ---------------------------------------------------------------- ray cluster
+section "ray cluster: one scan as Ray tasks on a local cluster of two nodes (scripts/test_ray_cluster.sh)"
+# ray start --head and ray start --address, one CPU each, on this machine; the driver
+# (primdecomp.ray_tiles) must equal the CLI's --tiles run byte for byte, run tasks on
+# both nodes, resume from its cache, and rerun a corrupted cached tile.
+if [ "${py_ok:-0}" != 1 ]; then
+  cannot_run "ray" "the Python section did not install the wheel"
+else
+  scripts/test_ray_cluster.sh .venv-py "$PRIMDECOMP_BIN" "$PRIMDECOMP_TEST_INPUTS/lumpy.ply" "$work/ray" 2>&1 \
+    | tee "$work/ray.log"
+  status=${PIPESTATUS[0]}
+  p=$(grep -c '^ok ' "$work/ray.log" || true)
+  f=$(grep -c '^FAILED ' "$work/ray.log" || true)
+  [ "$status" = 0 ] || [ "$f" -gt 0 ] || f=1
+  row ray "$p" "$f" 0 "$(grep '^times:' "$work/ray.log" | cut -c8-)"
 fi
 
 # ---------------------------------------------------------------- embedding

@@ -18,6 +18,8 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Mutex;
 use std::time::Duration;
 
+mod tiles;
+
 /// A mesh for Python: (vertices (N,3) float64, polygons).
 type MeshArrays<'py> = (Bound<'py, PyArray2<f64>>, Vec<Vec<u32>>);
 
@@ -30,7 +32,7 @@ const POLL: Duration = Duration::from_millis(50);
 /// message; bad input and settings as `ValueError` with the CLI's one-line message
 /// (without the "invalid setting: " prefix the CLI prints after "error: "); a
 /// cancellation as `KeyboardInterrupt`.
-fn to_py_err(e: Error) -> PyErr {
+pub(crate) fn to_py_err(e: Error) -> PyErr {
     let os = |error: &std::io::Error, path: &Path| match error.raw_os_error() {
         Some(code) => PyOSError::new_err((code, reason(error), path.display().to_string())),
         None => PyOSError::new_err(e.to_string()),
@@ -64,7 +66,7 @@ fn reason(error: &std::io::Error) -> String {
     }
 }
 
-fn panic_message(p: Box<dyn std::any::Any + Send>) -> String {
+pub(crate) fn panic_message(p: Box<dyn std::any::Any + Send>) -> String {
     p.downcast_ref::<&str>()
         .map(|s| s.to_string())
         .or_else(|| p.downcast_ref::<String>().cloned())
@@ -150,6 +152,20 @@ fn run_watched(
     params: &Params,
     callback: Option<&PyObject>,
 ) -> PyResult<Decomposition> {
+    watched(py, params, callback, |shared| {
+        primdecomp::decompose_with(mesh, params, shared)
+    })
+}
+
+/// Runs `work` on a worker thread while this (Python) thread, GIL released, wakes
+/// every [`POLL`] to check signals (Ctrl-C cancels the work) and call the progress
+/// callback with the stage, its fraction and the estimate of `params`' run.
+pub(crate) fn watched<T: Send>(
+    py: Python<'_>,
+    params: &Params,
+    callback: Option<&PyObject>,
+    work: impl FnOnce(&dyn Progress) -> primdecomp::Result<T> + Send,
+) -> PyResult<T> {
     let shared = Shared {
         cancel: AtomicBool::new(false),
         latest: Mutex::new(None),
@@ -158,11 +174,7 @@ fn run_watched(
     let mut reported: Option<(Stage, f64)> = None;
     let eta = primdecomp::Eta::new(params);
     let out = std::thread::scope(|s| {
-        let worker = s.spawn(|| {
-            catch_unwind(AssertUnwindSafe(|| {
-                primdecomp::decompose_with(mesh, params, &shared)
-            }))
-        });
+        let worker = s.spawn(|| catch_unwind(AssertUnwindSafe(|| work(&shared))));
         while !worker.is_finished() {
             py.allow_threads(|| std::thread::park_timeout(POLL));
             if raised.is_some() {
@@ -248,20 +260,25 @@ fn decompose_path(
         .map_err(|p| PyRuntimeError::new_err(panic_message(p)))?
         .map_err(to_py_err)?;
     let mut dec = run_watched(py, &mesh, &params, progress.as_ref())?;
-    // As the CLI records them, so that to_json() is the CLI's file byte for byte.
+    as_the_cli_records(&mut dec, path);
+    Ok(NativeResult { dec, params })
+}
+
+/// The input's path and up axis as the CLI records them, so that to_json() is the
+/// CLI's file byte for byte.
+pub(crate) fn as_the_cli_records(dec: &mut Decomposition, path: &str) {
     dec.input.path = Some(Path::new(path).display().to_string());
     if let Some(format) = primdecomp::Format::from_path(Path::new(path)) {
         let (up, why) = primdecomp::Up::of_format(format);
         (dec.input.up, dec.input.up_from) = (Some(up), Some(why.to_string()));
     }
-    Ok(NativeResult { dec, params })
 }
 
 /// A finished decomposition and the settings that made it.
 #[pyclass(frozen, module = "primdecomp._native")]
-struct NativeResult {
-    dec: Decomposition,
-    params: Params,
+pub(crate) struct NativeResult {
+    pub(crate) dec: Decomposition,
+    pub(crate) params: Params,
 }
 
 fn frame(z: [f64; 3]) -> [[f64; 3]; 3] {
@@ -460,5 +477,6 @@ fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(decompose, m)?)?;
     m.add_function(wrap_pyfunction!(decompose_path, m)?)?;
     m.add_class::<NativeResult>()?;
+    tiles::add(m)?;
     Ok(())
 }

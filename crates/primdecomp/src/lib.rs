@@ -77,7 +77,7 @@ mod progress;
 mod seed;
 
 pub use decompose::objects::{decompose_objects, ObjectResult, ObjectTarget, Objects};
-pub use decompose::tiles::{decompose_tiled, MAX_TILES};
+pub use decompose::tiles::{decompose_tiled, Tiled, MAX_TILES};
 pub use decompose::{decompose, decompose_with};
 pub use error::{Error, FileKind, Result};
 pub use input::demo::{demo_scene, demo_scene_obj};

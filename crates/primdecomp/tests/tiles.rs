@@ -5,10 +5,14 @@
 //! errors. Every input is made here and written as binary PLY (read from the map a
 //! tile at a time) or OBJ (parsed whole).
 
-use primdecomp::{decompose_tiled, load, load_with, to_json, Error, Goal, LoadOptions, Params};
+use primdecomp::{
+    decompose_tiled, load, load_with, to_json, Error, Goal, LoadOptions, Params, Tiled,
+};
 use primdecomp_testkit::check::{assert_counts, assert_valid};
 use primdecomp_testkit::on_threads;
-use primdecomp_testkit::shapes::{cuboid, cylinder, icosphere, join, obj_text, ply_bytes, Polys};
+use primdecomp_testkit::shapes::{
+    cuboid, cylinder, flat_grid, icosphere, join, obj_text, ply_bytes, Polys,
+};
 use std::path::{Path, PathBuf};
 
 /// A sphere, a cylinder and a box standing apart: three parts, several tiles.
@@ -179,5 +183,138 @@ fn bad_input_fails_with_the_usual_errors() {
     bytes[header_end..header_end + 4].copy_from_slice(&f32::NAN.to_le_bytes());
     let e = run("nan.ply", &bytes);
     assert!(e.contains("not finite"), "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The three steps apart (plan, each tile, merge), through their bytes, give
+/// `decompose_tiled`'s JSON byte for byte; bytes altered, cut, of another version,
+/// another plan, another tile or another file are refused with an error naming what
+/// is wrong, never trusted.
+#[test]
+fn plan_tiles_and_merge_apart_equal_the_tiled_run_and_refuse_bad_bytes() {
+    let dir = temp_dir("apart");
+    let ply = write(&dir, "scene.ply", &ply_bytes(&scene()));
+    for params in [
+        Params {
+            goal: Goal::counts([30, 8]),
+            ..Params::default()
+        },
+        Params::default(),
+    ] {
+        let plan = Tiled::plan(&ply, &params, &tiles(3)).unwrap();
+        let bytes = plan.to_bytes();
+        assert_eq!(
+            bytes,
+            Tiled::plan(&ply, &params, &tiles(3)).unwrap().to_bytes()
+        );
+        let plan = Tiled::from_bytes(&bytes).unwrap();
+        assert_eq!(plan.tiles(), 3);
+        let results: Vec<Vec<u8>> = (0..3)
+            .map(|t| plan.run_tile(&ply, t, &|_, _| {}).unwrap())
+            .collect();
+        let merged = plan.merge(&results, &|_, _| {}).unwrap();
+        let whole = decompose_tiled(&ply, &params, &tiles(3), &|_, _| {}).unwrap();
+        for level in 0..whole.levels.len() {
+            assert_eq!(
+                to_json(&merged, level, &params),
+                to_json(&whole, level, &params)
+            );
+        }
+    }
+    let params = Params {
+        goal: Goal::counts([20]),
+        ..Params::default()
+    };
+    let plan = Tiled::plan(&ply, &params, &tiles(2)).unwrap();
+    let bytes = plan.to_bytes();
+    let tile = plan.run_tile(&ply, 1, &|_, _| {}).unwrap();
+    plan.check_tile(1, &tile).unwrap();
+    let refused = |e: Error, words: &str| {
+        let text = e.to_string();
+        assert!(text.contains(words), "{text} (expected '{words}')");
+        assert_eq!(e.exit_code(), 2, "{text}");
+    };
+    // Plans: cut, altered, of another version, not a plan at all.
+    refused(
+        Tiled::from_bytes(&bytes[..bytes.len() - 3]).unwrap_err(),
+        "checksum",
+    );
+    let mut altered = bytes.clone();
+    altered[30] ^= 4;
+    refused(Tiled::from_bytes(&altered).unwrap_err(), "checksum");
+    let mut v2 = bytes.clone();
+    v2[8] = 2;
+    refused(Tiled::from_bytes(&v2).unwrap_err(), "version 2");
+    refused(
+        Tiled::from_bytes(b"{\"format\": 1}").unwrap_err(),
+        "not a primdecomp plan",
+    );
+    refused(
+        Tiled::from_bytes(&tile).unwrap_err(),
+        "not a primdecomp plan",
+    );
+    // Tile results: cut, altered, of tile 1 read as tile 0, of another plan.
+    refused(
+        plan.check_tile(1, &tile[..tile.len() - 9]).unwrap_err(),
+        "checksum",
+    );
+    let mut altered = tile.clone();
+    altered[60] ^= 1;
+    refused(plan.check_tile(1, &altered).unwrap_err(), "checksum");
+    refused(
+        plan.check_tile(0, &tile).unwrap_err(),
+        "holds tile 1, not tile 0",
+    );
+    let other = Tiled::plan(&ply, &params, &tiles(3)).unwrap();
+    refused(other.check_tile(1, &tile).unwrap_err(), "another plan");
+    let results = vec![plan.run_tile(&ply, 0, &|_, _| {}).unwrap(), tile.clone()];
+    refused(other.merge(&results, &|_, _| {}).unwrap_err(), "3 tiles, 2");
+    refused(
+        plan.merge(&[tile.clone(), tile], &|_, _| {}).unwrap_err(),
+        "not tile 0",
+    );
+    // A tile out of range, and a file other than the plan's.
+    refused(
+        plan.run_tile(&ply, 2, &|_, _| {}).unwrap_err(),
+        "out of range",
+    );
+    let changed = write(&dir, "other.ply", &ply_bytes(&icosphere(1.0, 3)));
+    refused(
+        plan.run_tile(&changed, 0, &|_, _| {}).unwrap_err(),
+        "not the file",
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+/// The top run holds relative settings to the input's diagonal, not to the tiles'
+/// boxes' (which stand beyond the input by their thickness): on a flat grid tiled in
+/// two with `min_extent` 2%, the plates come out exactly 2% of the input's diagonal
+/// thick (half-extent), where the boxes' diagonal made them about 0.05% thicker.
+#[test]
+fn the_top_run_holds_relative_settings_to_the_inputs_diagonal() {
+    let dir = temp_dir("relative");
+    let ply = write(&dir, "grid.ply", &ply_bytes(&flat_grid(24)));
+    let params = Params {
+        goal: Goal::counts([2]),
+        fit: primdecomp::Fit {
+            min_extent: 0.02,
+            ..primdecomp::Fit::default()
+        },
+        ..Params::default()
+    };
+    let dec = decompose_tiled(&ply, &params, &tiles(2), &|_, _| {}).unwrap();
+    assert_valid(&load(&ply).unwrap(), &dec, &params);
+    let want = 0.02 * dec.input.diagonal();
+    for p in &dec.levels[0].primitives {
+        let primdecomp::Primitive::Box(b) = p else {
+            panic!("a flat grid gives boxes: {p:?}")
+        };
+        let thin = b.half.iter().copied().fold(f64::INFINITY, f64::min);
+        assert!(
+            (thin - want).abs() <= 1e-9 * want,
+            "half-thickness {thin}, {} of the input's diagonal's 2%",
+            thin / want
+        );
+    }
     std::fs::remove_dir_all(&dir).ok();
 }

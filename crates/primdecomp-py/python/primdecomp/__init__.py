@@ -16,7 +16,7 @@ import numpy as _np
 
 from . import _native
 
-__all__ = ["load", "decompose", "decompose_file", "as_hulls", "Result", "Level", "Primitive", "batch"]
+__all__ = ["load", "decompose", "decompose_file", "as_hulls", "Result", "Level", "Primitive", "batch", "ray_tiles"]
 
 
 def load(path):

@@ -18,8 +18,11 @@
 //! Binary PLY is read from the memory map a tile at a time, its pages released after
 //! each pass; other formats are parsed whole and the tiles cut from the parsed mesh.
 
+mod bytes;
+mod source;
+
 use crate::error::{Error, Result};
-use crate::input::io::{format_of, open_regular, Format, LoadOptions, PlyLayout};
+use crate::input::io::LoadOptions;
 use crate::input::mesh::{Mesh, MeshBuilder};
 use crate::math::V3;
 use crate::output::result::Decomposition;
@@ -27,6 +30,8 @@ use crate::params::{CountSearch, Fit, Goal, Params, Tolerance};
 use crate::primitive::Kind;
 use crate::progress::wallclock::Instant;
 use crate::progress::{Progress, Stage};
+use bytes::TileResult;
+use source::{open, Source};
 use std::path::Path;
 
 /// The groups tiles merge down to per unit of the largest target, as the in-memory
@@ -47,7 +52,8 @@ const RELEASE_EVERY: usize = 16 << 20;
 /// refuses as too large. The result has the levels [`crate::decompose`] would give,
 /// each enclosing every face, from a different merge order (the difference is
 /// measured in docs/results/out-of-core.md); `stats.tiles` says how many tiles.
-/// Deterministic for any thread count.
+/// Deterministic for any thread count. The same as [`Tiled::plan`], then
+/// [`Tiled::run_tile`] for each tile and [`Tiled::merge`], with the file opened once.
 ///
 /// ```
 /// use primdecomp::{decompose_tiled, Goal, LoadOptions, Params};
@@ -73,235 +79,318 @@ pub fn decompose_tiled(
 ) -> Result<Decomposition> {
     params.validate()?;
     let started = Instant::now();
-    let (file, meta) = open_regular(path)?;
-    let format = format_of(path)?;
-    if meta.len() == 0 {
-        return Err(Error::EmptyMesh {
-            path: path.to_path_buf(),
-        });
-    }
-    // SAFETY: read-only and private to this call; a concurrent writer truncating the
-    // file could fault, as for every mmap reader (`load_with`).
-    let map = unsafe { memmap2::Mmap::map(&file) }.map_err(|error| Error::Io {
-        path: path.to_path_buf(),
-        error,
-    })?;
-    let layout = match format {
-        Format::Ply => PlyLayout::of(&map, path)?,
-        _ => None,
-    };
-    let source = match layout {
-        Some(layout) => Source::Mapped { map, layout, path },
-        None => Source::Whole(whole(path, options)?),
-    };
-    let plan = Plan::new(&source, path, params, options)?;
+    let (source, input) = open(path, options)?;
+    let tiled = Tiled::of(&source, input, path, params, options)?;
     let mut timings = vec![("plan".to_string(), started.elapsed().as_secs_f64())];
     let now = Instant::now();
-    let proxy = run_tiles(&source, &plan, params, progress)?;
+    let mut local = vec![u32::MAX; source.vertex_count()];
+    let mut results = Vec::with_capacity(tiled.plan.tiles);
+    for t in 0..tiled.plan.tiles {
+        if progress.cancelled() {
+            return Err(Error::Cancelled);
+        }
+        results.push(tiled.tile_of(&source, t, &mut local, progress)?);
+    }
     timings.push(("tiles".to_string(), now.elapsed().as_secs_f64()));
     drop(source);
-    // The tiles' boxes merged on top with the caller's settings (§3).
-    let mesh = Mesh::from_builder(proxy.builder);
-    let top = of_input(params, proxy.used);
-    let mut dec = crate::decompose::decompose_with(&mesh, &top, progress)?;
+    let mut dec = tiled.merge(&results, progress)?;
     timings.append(&mut dec.timings.stages);
     dec.timings.stages = timings;
-    dec.input.faces = plan.faces;
-    dec.input.vertices = plan.vertices;
-    (dec.input.aabb_min, dec.input.aabb_max) = proxy.used;
-    dec.stats.tiles = plan.tiles;
     Ok(dec)
 }
 
-/// The top run's settings: a tolerance given as a share of the diagonal is of the
-/// input's diagonal (`used`, its corners), not of the tiles' boxes', which stand a
-/// little beyond it; so a tiled run is held to the distance the user asked for.
-fn of_input(params: &Params, used: (V3, V3)) -> Params {
-    let Goal::Within {
-        caps,
-        tolerance,
-        max_bytes,
-    } = &params.goal
-    else {
-        return params.clone();
-    };
-    let (lo, hi) = used;
-    let diagonal = crate::math::norm(crate::math::sub(hi, lo));
-    let tolerance = tolerance
-        .iter()
-        .map(|&t| Tolerance::Units(t.in_units(diagonal)))
-        .collect();
-    Params {
-        goal: Goal::Within {
-            caps: caps.clone(),
-            tolerance,
-            max_bytes: max_bytes.clone(),
-        },
-        ..params.clone()
-    }
+/// A tiled run in three steps that can run on different machines (a Ray cluster;
+/// the Python package's `primdecomp.ray_tiles`): [`Tiled::plan`] reads the file once
+/// and cuts it into tiles; [`Tiled::run_tile`] decomposes one tile, anywhere the same
+/// file can be read; [`Tiled::merge`] merges every tile's result into the
+/// [`Decomposition`] [`decompose_tiled`] gives, byte for byte. The plan and the tile
+/// results travel as bytes ([`Tiled::to_bytes`], [`Tiled::from_bytes`]; the format
+/// is in `decompose/tiles/bytes.rs`), each checked when read: magic, version,
+/// checksum, every count and number, the input's size and content hash when a tile
+/// runs, and the plan and tile index a result was made for.
+///
+/// ```
+/// use primdecomp::{decompose_tiled, to_json, Goal, LoadOptions, Params, Tiled};
+///
+/// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../datasets/demo_scene.obj");
+/// let params = Params { goal: Goal::counts([20]), ..Params::default() };
+/// let options = LoadOptions { tiles: Some(3), ..LoadOptions::default() };
+/// let bytes = Tiled::plan(path.as_ref(), &params, &options)?.to_bytes();
+/// // Elsewhere: the plan's bytes and the same file give each tile's bytes.
+/// let plan = Tiled::from_bytes(&bytes)?;
+/// let tiles = (0..plan.tiles())
+///     .map(|t| plan.run_tile(path.as_ref(), t, &|_, _| {}))
+///     .collect::<Result<Vec<_>, _>>()?;
+/// let merged = plan.merge(&tiles, &|_, _| {})?;
+/// let whole = decompose_tiled(path.as_ref(), &params, &options, &|_, _| {})?;
+/// assert_eq!(to_json(&merged, 0, &params), to_json(&whole, 0, &params));
+/// // A result altered on the way is refused.
+/// let mut bad = tiles[0].clone();
+/// bad[40] ^= 1;
+/// assert!(plan.check_tile(0, &bad).is_err());
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
+#[derive(Debug)]
+pub struct Tiled {
+    plan: Plan,
+    params: Params,
+    input: Identity,
+    /// The load options a tile needs to read the file as the plan did
+    /// (bit 0: `allow_external_uris`, bit 1: `keep_world_coordinates`).
+    flags: u8,
+    /// The hash of the plan's bytes, which every tile result names.
+    id: u128,
 }
 
-/// The whole mesh parsed, for a format not read a tile at a time: refused when the
-/// parsed mesh alone (its positions and polygons) exceeds the limit.
-fn whole(path: &Path, options: &LoadOptions) -> Result<Mesh> {
-    let unlimited = LoadOptions {
-        max_memory: None,
-        ..options.clone()
-    };
-    if let (Some(limit), Ok((_, meta))) = (options.max_memory, open_regular(path)) {
-        // The parse maps the file whole: `load_with`'s refusal of a file over the limit.
-        if meta.len() > limit {
-            crate::input::io::load_with(path, options)?;
+/// What a plan knows of its input: its size and the hash of its bytes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Identity {
+    size: u64,
+    hash: u128,
+}
+
+impl Tiled {
+    /// Plans a tiled run of the mesh in `path` with `params`: one pass over the file
+    /// (its content hash, its vertices' box, its faces' histogram) cuts it into
+    /// `options.tiles` tiles, or the fewest that fit `options.max_memory`.
+    ///
+    /// # Errors
+    /// What [`decompose_tiled`] returns before its first tile.
+    pub fn plan(path: &Path, params: &Params, options: &LoadOptions) -> Result<Tiled> {
+        params.validate()?;
+        let (source, input) = open(path, options)?;
+        Tiled::of(&source, input, path, params, options)
+    }
+
+    /// The number of tiles ([`Tiled::run_tile`]'s `tile` is below it).
+    pub fn tiles(&self) -> usize {
+        self.plan.tiles
+    }
+
+    /// The settings the run is planned with (the result's JSON records them).
+    pub fn params(&self) -> &Params {
+        &self.params
+    }
+
+    /// The plan as bytes, for [`Tiled::from_bytes`] on another machine; the same plan
+    /// gives the same bytes.
+    pub fn to_bytes(&self) -> Vec<u8> {
+        self.encode()
+    }
+
+    /// The plan [`Tiled::to_bytes`] wrote.
+    ///
+    /// # Errors
+    /// [`Error::ParseByte`] (naming `<tile plan>` and the byte) for bytes that are
+    /// not a plan, of another version, altered, truncated, or hold a number out of
+    /// range or settings that do not read.
+    pub fn from_bytes(bytes: &[u8]) -> Result<Tiled> {
+        Tiled::decode(bytes)
+    }
+
+    /// Decomposes tile `tile` of the file at `path` (the file the plan was made
+    /// from, at any path) into its result's bytes, for [`Tiled::merge`].
+    ///
+    /// # Errors
+    /// [`Error::InvalidParams`] for a tile out of range; [`Error::Format`] when the
+    /// file's size or content hash is not the plan's; what [`decompose_tiled`]
+    /// returns for the file and the tile's run ([`Error::Cancelled`] included).
+    pub fn run_tile(&self, path: &Path, tile: usize, progress: &dyn Progress) -> Result<Vec<u8>> {
+        self.in_range(tile)?;
+        let options = LoadOptions {
+            allow_external_uris: self.flags & 1 != 0,
+            keep_world_coordinates: self.flags & 2 != 0,
+            ..LoadOptions::default()
+        };
+        let (source, input) = open(path, &options)?;
+        if input != self.input {
+            return Err(Error::format(
+                path,
+                format!(
+                    "not the file this tile plan was made from: {} bytes with content hash \
+                     {:032x}, the plan's file {} bytes with {:032x}",
+                    input.size, input.hash, self.input.size, self.input.hash
+                ),
+            ));
         }
+        let mut local = vec![u32::MAX; source.vertex_count()];
+        self.tile_of(&source, tile, &mut local, progress)
     }
-    let mesh = crate::input::io::load_with(path, &unlimited)?;
-    if let Some(limit) = options.max_memory {
-        let need = mesh_bytes(
-            mesh.vertex_count() as u64,
-            mesh.face_count() as u64,
-            mesh.face_indices.len() as u64,
-        );
-        if need > limit {
-            return Err(too_large(path, need, limit));
+
+    /// Checks that `bytes` are a result of tile `tile` of this plan, as
+    /// [`Tiled::merge`] does: for a cache of tile results, never trusted unread.
+    ///
+    /// # Errors
+    /// [`Error::ParseByte`] (naming `<tile result>` and the byte) for bytes that are
+    /// not a tile result, of another version, altered or truncated, of another plan
+    /// or tile, or holding a number out of range; [`Error::InvalidParams`] for a tile
+    /// out of range.
+    pub fn check_tile(&self, tile: usize, bytes: &[u8]) -> Result<()> {
+        self.in_range(tile)?;
+        TileResult::decode(bytes, self, tile).map(|_| ())
+    }
+
+    /// Merges every tile's result (`tiles[t]` of tile `t`, each checked as
+    /// [`Tiled::check_tile`] does) on top with the plan's settings: the
+    /// [`Decomposition`] of [`decompose_tiled`], without its `plan` and `tiles`
+    /// timings.
+    ///
+    /// # Errors
+    /// [`Error::InvalidParams`] when there are not [`Tiled::tiles`] results; what
+    /// [`Tiled::check_tile`] and [`crate::decompose`] return.
+    pub fn merge(
+        &self,
+        tiles: &[impl AsRef<[u8]>],
+        progress: &dyn Progress,
+    ) -> Result<Decomposition> {
+        if tiles.len() != self.plan.tiles {
+            return Err(Error::InvalidParams(format!(
+                "the plan has {} tiles, {} tile results were given",
+                self.plan.tiles,
+                tiles.len()
+            )));
         }
-    }
-    Ok(mesh)
-}
-
-/// Bytes a parsed [`Mesh`] holds: three f64 a vertex, a u32 a corner and a face.
-fn mesh_bytes(vertices: u64, faces: u64, corners: u64) -> u64 {
-    vertices
-        .saturating_mul(24)
-        .saturating_add(corners.saturating_mul(4))
-        .saturating_add(faces.saturating_mul(4))
-}
-
-/// The parsed mesh alone needs `need` bytes, over `limit`.
-fn too_large(path: &Path, need: u64, limit: u64) -> Error {
-    let why = "only binary PLY is read a tile at a time (other formats and ASCII PLY are \
-               parsed whole first; convert the file to binary PLY)";
-    Error::format(
-        path,
-        format!(
-            "read whole before it is cut into tiles, its positions and polygons hold {}, more \
-             than the memory limit of {}: \
-             {why}; raise the limit with --max-memory SIZE (in the library: the max_memory \
-             of primdecomp::LoadOptions)",
-            crate::error::show_bytes(need),
-            crate::error::show_bytes(limit)
-        ),
-    )
-}
-
-/// Where the faces come from: the memory-mapped binary PLY, or a parsed mesh.
-enum Source<'p> {
-    Mapped {
-        map: memmap2::Mmap,
-        layout: PlyLayout,
-        path: &'p Path,
-    },
-    Whole(Mesh),
-}
-
-impl Source<'_> {
-    fn vertex_count(&self) -> usize {
-        match self {
-            Source::Mapped { layout, .. } => layout.vertex_count as usize,
-            Source::Whole(m) => m.vertex_count(),
-        }
-    }
-
-    /// Bytes the source keeps resident through the run: the parsed mesh, or the
-    /// mapped vertices (read at random while faces are scanned) and the face data
-    /// read since the last release.
-    fn resident(&self) -> u64 {
-        match self {
-            Source::Mapped { layout, .. } => {
-                layout.vertex_bytes().saturating_add(RELEASE_EVERY as u64)
+        let mut builder = MeshBuilder::new();
+        let mut used = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for (t, bytes) in tiles.iter().enumerate() {
+            let tile = TileResult::decode(bytes.as_ref(), self, t)?;
+            if let Some((lo, hi)) = tile.used {
+                for k in 0..3 {
+                    used.0[k] = used.0[k].min(lo[k]);
+                    used.1[k] = used.1[k].max(hi[k]);
+                }
             }
-            Source::Whole(m) => mesh_bytes(
-                m.vertex_count() as u64,
-                m.face_count() as u64,
-                m.face_indices.len() as u64,
-            ),
-        }
-    }
-
-    fn face_count_declared(&self) -> u64 {
-        match self {
-            Source::Mapped { layout, .. } => layout.face_count,
-            Source::Whole(m) => m.face_count() as u64,
-        }
-    }
-
-    /// Vertex `v`'s world position (`v` in range; the mapped file's checked by
-    /// [`Source::vertices`]).
-    fn pos(&self, v: u32) -> V3 {
-        match self {
-            Source::Mapped { map, layout, .. } => layout.pos(map, v as usize),
-            Source::Whole(m) => m.world_pos(v),
-        }
-    }
-
-    /// Visits every vertex's world position in order; the mapped file's are checked
-    /// (present and finite) with the whole parse's messages.
-    fn vertices(&self, mut visit: impl FnMut(V3)) -> Result<()> {
-        match self {
-            Source::Mapped { map, layout, path } => {
-                let r = layout.vertices(map, path, visit);
-                release(map, 0, map.len());
-                r
-            }
-            Source::Whole(m) => {
-                (0..m.vertex_count() as u32).for_each(|v| visit(m.world_pos(v)));
-                Ok(())
+            let base = builder.positions.len() as u32;
+            builder.positions.extend_from_slice(&tile.positions);
+            let mut at = 0;
+            let mut face = Vec::new();
+            for &n in &tile.sizes {
+                face.clear();
+                face.extend(tile.corners[at..at + n as usize].iter().map(|&c| base + c));
+                builder.push_face(&face);
+                at += n as usize;
             }
         }
+        // The tiles' boxes merged on top with the caller's settings (§3).
+        let mesh = Mesh::from_builder(builder);
+        let top = of_input(&self.params, used, mesh.aabb());
+        let mut dec = crate::decompose::decompose_with(&mesh, &top, progress)?;
+        dec.input.faces = self.plan.faces;
+        dec.input.vertices = self.plan.vertices;
+        (dec.input.aabb_min, dec.input.aabb_max) = used;
+        dec.stats.tiles = self.plan.tiles;
+        Ok(dec)
     }
 
-    /// Visits every face's corners in order (an index out of range or data that
-    /// ends early is the whole parse's error). The mapped pages read are released
-    /// as the scan goes, so a pass keeps little of the file resident.
-    fn faces(&self, mut visit: impl FnMut(&[u32])) -> Result<()> {
-        match self {
-            Source::Mapped { map, layout, path } => {
-                let mut released = 0;
-                let r = layout.faces(map, path, |corners, at| {
-                    visit(corners);
-                    if at >= released + RELEASE_EVERY {
-                        release(map, released, at - released);
-                        released = at;
+    fn in_range(&self, tile: usize) -> Result<()> {
+        match tile < self.plan.tiles {
+            true => Ok(()),
+            false => Err(Error::InvalidParams(format!(
+                "tile {tile} out of range: the plan has {} tiles",
+                self.plan.tiles
+            ))),
+        }
+    }
+
+    /// The plan of `source` (the file at `path`, of identity `input`).
+    fn of(
+        source: &Source,
+        input: Identity,
+        path: &Path,
+        params: &Params,
+        options: &LoadOptions,
+    ) -> Result<Tiled> {
+        let plan = Plan::new(source, path, params, options)?;
+        let flags = options.allow_external_uris as u8 | (options.keep_world_coordinates as u8) << 1;
+        let mut tiled = Tiled {
+            plan,
+            params: params.clone(),
+            input,
+            flags,
+            id: 0,
+        };
+        tiled.id = bytes::plan_id(&tiled.encode());
+        Ok(tiled)
+    }
+
+    /// Tile `t` decomposed into its groups' hexahedra, as bytes.
+    fn tile_of(
+        &self,
+        source: &Source,
+        t: usize,
+        local: &mut [u32],
+        progress: &dyn Progress,
+    ) -> Result<Vec<u8>> {
+        let plan = &self.plan;
+        let mut out = TileResult::default();
+        if plan.tile_faces[t] > 0 {
+            let mesh = tile_mesh(source, plan, t, local)?;
+            let (lo, hi) = mesh.aabb();
+            let lo = [0, 1, 2].map(|k| lo[k] + mesh.offset[k]);
+            let hi = [0, 1, 2].map(|k| hi[k] + mesh.offset[k]);
+            if (0..3).all(|k| lo[k] <= hi[k]) {
+                out.used = Some((lo, hi));
+            }
+            if mesh.face_count() > 0 {
+                let share = (plan.groups as u128 * plan.tile_faces[t] as u128 / plan.faces as u128)
+                    as usize;
+                let tile = TileProgress {
+                    outer: progress,
+                    done: t,
+                    of: plan.tiles,
+                };
+                let params = tile_params(&self.params, share.max(1));
+                let dec = crate::decompose::decompose_with(&mesh, &params, &tile)?;
+                drop(mesh);
+                for p in &dec.levels[0].primitives {
+                    let tess = crate::output::tessellate(p, 4);
+                    let base = out.positions.len() as u32;
+                    out.positions.extend_from_slice(&tess.vertices);
+                    for f in tess.faces.iter().filter(|f| f.len() >= 3) {
+                        out.sizes.push(f.len() as u32);
+                        out.corners.extend(f.iter().map(|&i| base + i));
                     }
-                });
-                release(map, 0, map.len());
-                r
-            }
-            Source::Whole(m) => {
-                (0..m.face_count()).for_each(|f| visit(m.face(f)));
-                Ok(())
+                }
             }
         }
+        Ok(out.encode(self.id, t))
     }
 }
 
-/// Drops the mapped pages of `len` bytes from `offset` from this process's resident
-/// memory (they are the file's, read again if needed).
-fn release(map: &memmap2::Mmap, offset: usize, len: usize) {
-    #[cfg(unix)]
-    {
-        let page = 4096;
-        let start = offset / page * page;
-        let len = (offset + len).min(map.len()) - start;
-        // SAFETY: the map is read-only and file-backed: dropped pages read back from
-        // the file, unchanged.
-        let _ =
-            unsafe { map.unchecked_advise_range(memmap2::UncheckedAdvice::DontNeed, start, len) };
+/// The top run's settings: every setting given as a share of the diagonal (a
+/// tolerance, `min_extent`, `open_holes`, `min_thickness`, `remove_thin_boxes`) or
+/// of the box's volume (`max_excess_volume`) is of the input's (`used`, its
+/// corners), not of the tiles' boxes' (`boxes`), which stand a little beyond it; so a
+/// tiled run is held to what the user asked for (to rounding, for all but the
+/// tolerance, which becomes a distance).
+fn of_input(params: &Params, used: (V3, V3), boxes: (V3, V3)) -> Params {
+    let diagonal = |(lo, hi): (V3, V3)| crate::math::norm(crate::math::sub(hi, lo));
+    let volume = |(lo, hi): (V3, V3)| (0..3).map(|k| hi[k] - lo[k]).product::<f64>();
+    let ratio = |a: f64, b: f64| match a > 0.0 && b > 0.0 && (a / b).is_finite() {
+        true => a / b,
+        false => 1.0,
+    };
+    let (d, v) = (
+        ratio(diagonal(used), diagonal(boxes)),
+        ratio(volume(used), volume(boxes)),
+    );
+    let mut top = params.clone();
+    top.fit.min_extent *= d;
+    top.fit.max_excess_volume = top.fit.max_excess_volume.map(|m| m * v);
+    top.plates.open_holes *= d;
+    top.plates.min_thickness *= d;
+    top.plates.remove_thin_boxes = top.plates.remove_thin_boxes.map(|t| t * d);
+    if let Goal::Within { tolerance, .. } = &mut top.goal {
+        let input = diagonal(used);
+        for t in tolerance.iter_mut() {
+            *t = Tolerance::Units(t.in_units(input));
+        }
     }
-    #[cfg(not(unix))]
-    let _ = (map, offset, len);
+    top
 }
 
 /// The tiles: slabs of the faces' centroids along the longest axis of the box.
+#[derive(Debug)]
 struct Plan {
     tiles: usize,
     axis: usize,
@@ -370,6 +459,12 @@ impl Plan {
         };
         plan.cut(&histogram);
         Ok(plan)
+    }
+
+    /// The first bin of tile `t` ([`BINS`] for a tile without bins): tiles are runs
+    /// of bins in order, so these give every bin's tile back.
+    fn first_bin(&self, t: usize) -> usize {
+        self.bin_tile.partition_point(|&b| (b as usize) < t)
     }
 
     /// The bin of a face's centroid.
@@ -452,63 +547,6 @@ fn run_of(params: &Params) -> crate::input::memory::Run {
         true => crate::input::memory::Run::Cut,
         false => crate::input::memory::Run::Greedy,
     }
-}
-
-/// The tiles' boxes as one mesh, and the box of the vertices the faces use.
-struct Proxy {
-    builder: MeshBuilder,
-    used: (V3, V3),
-}
-
-/// Decomposes each tile in turn into its groups' boxes.
-fn run_tiles(
-    source: &Source,
-    plan: &Plan,
-    params: &Params,
-    progress: &dyn Progress,
-) -> Result<Proxy> {
-    let mut local = vec![u32::MAX; source.vertex_count()];
-    let mut proxy = Proxy {
-        builder: MeshBuilder::new(),
-        used: ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]),
-    };
-    for t in 0..plan.tiles {
-        if progress.cancelled() {
-            return Err(Error::Cancelled);
-        }
-        if plan.tile_faces[t] == 0 {
-            continue;
-        }
-        let mesh = tile_mesh(source, plan, t, &mut local)?;
-        let (lo, hi) = mesh.aabb();
-        for k in 0..3 {
-            proxy.used.0[k] = proxy.used.0[k].min(lo[k] + mesh.offset[k]);
-            proxy.used.1[k] = proxy.used.1[k].max(hi[k] + mesh.offset[k]);
-        }
-        if mesh.face_count() == 0 {
-            continue;
-        }
-        let share =
-            (plan.groups as u128 * plan.tile_faces[t] as u128 / plan.faces as u128) as usize;
-        let tile = TileProgress {
-            outer: progress,
-            done: t,
-            of: plan.tiles,
-        };
-        let dec =
-            crate::decompose::decompose_with(&mesh, &tile_params(params, share.max(1)), &tile)?;
-        drop(mesh);
-        for p in &dec.levels[0].primitives {
-            let tess = crate::output::tessellate(p, 4);
-            let base = proxy.builder.positions.len() as u32;
-            proxy.builder.positions.extend_from_slice(&tess.vertices);
-            for f in &tess.faces {
-                let face: Vec<u32> = f.iter().map(|&i| base + i).collect();
-                proxy.builder.push_face(&face);
-            }
-        }
-    }
-    Ok(proxy)
 }
 
 /// Tile `t`'s faces and the vertices they use (local ids through `local`, reset

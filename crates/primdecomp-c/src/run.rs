@@ -155,7 +155,7 @@ pub unsafe extern "C" fn primdecomp_decompose(
         let format = mesh
             .path
             .as_deref()
-            .and_then(|p| primdecomp::Format::from_path(p.as_ref()));
+            .and_then(|p| primdecomp::MeshFormat::from_path(p.as_ref()));
         if let Some((up, why)) = format.map(primdecomp::Up::of_format) {
             (dec.input.up, dec.input.up_from) = (Some(up), Some(why.to_string()));
         }

@@ -14,10 +14,10 @@
 //! naming it: nothing non-finite or unloadable is ever written
 //! (docs/decisions/hostile-input-limits.md).
 
-use primdecomp::math::{cross, norm, sub};
 use primdecomp::Frame;
 use primdecomp::Primitive;
 use primdecomp::Tess;
+use primdecomp_math::{cross, norm, sub};
 
 /// The largest magnitude written: its square, 1e36, is within f32's range (3.4e38).
 pub const MAX_LENGTH: f64 = 1e18;

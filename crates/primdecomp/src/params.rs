@@ -20,11 +20,11 @@ use serde::{Deserialize, Serialize};
 
 /// The tolerance of the default [`Goal`]: every primitive within this much of the
 /// input's diagonal, chosen from measurements over the corpus (docs/decisions/0037).
-pub const DEFAULT_TOLERANCE: Tolerance = Tolerance::Diagonal(0.02);
+pub(crate) const DEFAULT_TOLERANCE: Tolerance = Tolerance::Diagonal(0.02);
 
 /// The most primitives a level holds when no count is given: the cap of a
 /// [`Goal::Within`] without caps.
-pub const MAX_PRIMITIVES: usize = 1024;
+pub(crate) const MAX_PRIMITIVES: usize = 1024;
 
 /// The farthest any primitive of a level may stand from the input: the one-way
 /// distance from each primitive's surface to the input's surface, the quantity
@@ -39,6 +39,17 @@ pub enum Tolerance {
 }
 
 impl Tolerance {
+    /// The tolerance of the default [`Goal`]: every primitive within 2% of the input's
+    /// diagonal, chosen from measurements over the corpus (docs/decisions/0037).
+    ///
+    /// ```
+    /// use primdecomp::Tolerance;
+    ///
+    /// assert_eq!(Tolerance::DEFAULT, Tolerance::Diagonal(0.02));
+    /// assert_eq!(Tolerance::DEFAULT.to_string(), "2%");
+    /// ```
+    pub const DEFAULT: Tolerance = DEFAULT_TOLERANCE;
+
     /// The distance in the input's units for an input whose diagonal is `diagonal`.
     ///
     /// ```
@@ -165,8 +176,8 @@ impl<'de> Deserialize<'de> for Partitions {
 /// All settings of a run: what is asked for ([`Goal`]), then what the primitives may
 /// be ([`Fit`]), how flat parts, holes and nested primitives come out ([`Plates`]),
 /// and how fast the merge runs ([`Speed`]). `Params::default()` is the recommended
-/// configuration: the fewest primitives within [`DEFAULT_TOLERANCE`] of the input, at
-/// most [`MAX_PRIMITIVES`]. Change only what you need, as in
+/// configuration: the fewest primitives within [`Tolerance::DEFAULT`] of the input, at
+/// most [`Goal::MAX_PRIMITIVES`]. Change only what you need, as in
 /// `Params { goal: Goal::counts([200, 50]), ..Params::default() }` (two levels of at
 /// most 200 and 50 primitives) or
 /// `Params { goal: Goal::tolerance(Tolerance::Diagonal(0.005)), ..Params::default() }`.
@@ -344,12 +355,12 @@ impl Params {
     /// an error. A result's own settings give back its primitives.
     ///
     /// ```
-    /// use primdecomp::{decompose, demo_scene, to_json, Goal, Params, Plates};
+    /// use primdecomp::{decompose, demo_scene, Goal, Params, Plates};
     ///
     /// let plates = Plates { rim_weight: 0.5, ..Plates::default() };
     /// let params = Params { goal: Goal::counts([40]), plates, ..Params::default() };
     /// let first = decompose(&demo_scene(), &params)?;
-    /// let json = to_json(&first, 0, &params);
+    /// let json = first.to_json(0, &params);
     /// let again = Params::from_json(&json)?;
     /// assert_eq!(again, params);
     /// assert_eq!(decompose(&demo_scene(), &again)?.levels, first.levels);

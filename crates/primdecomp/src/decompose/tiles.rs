@@ -19,7 +19,7 @@
 //! each pass; other formats are parsed whole and the tiles cut from the parsed mesh.
 
 use crate::error::{Error, Result};
-use crate::input::io::{format_of, open_regular, Format, LoadOptions, PlyLayout};
+use crate::input::io::{format_of, open_regular, LoadOptions, MeshFormat, PlyLayout};
 use crate::input::mesh::{Mesh, MeshBuilder};
 use crate::math::V3;
 use crate::output::result::Decomposition;
@@ -43,7 +43,7 @@ pub const MAX_TILES: usize = 4096;
 const RELEASE_EVERY: usize = 16 << 20;
 
 /// Decomposes the mesh in `path` as spatial tiles within `options.max_memory`
-/// ([`LoadOptions::tiles`] forces their number): for inputs [`crate::load_with`]
+/// ([`LoadOptions::tiles`] forces their number): for inputs [`crate::Mesh::load_with`]
 /// refuses as too large. The result has the levels [`crate::decompose`] would give,
 /// each enclosing every face, from a different merge order (the difference is
 /// measured in docs/results/out-of-core.md); `stats.tiles` says how many tiles.
@@ -62,8 +62,8 @@ const RELEASE_EVERY: usize = 16 << 20;
 /// ```
 ///
 /// # Errors
-/// What [`crate::load_with`] and [`crate::decompose`] return, and
-/// [`Error::TooLarge`] when even [`MAX_TILES`] tiles would not fit the limit (with
+/// What [`crate::Mesh::load_with`] and [`crate::decompose`] return, and
+/// [`Error::TooLarge`] when even `MAX_TILES` (4096) tiles would not fit the limit (with
 /// the need of the smallest tiles).
 pub fn decompose_tiled(
     path: &Path,
@@ -87,7 +87,7 @@ pub fn decompose_tiled(
         error,
     })?;
     let layout = match format {
-        Format::Ply => PlyLayout::of(&map, path)?,
+        MeshFormat::Ply => PlyLayout::of(&map, path)?,
         _ => None,
     };
     let source = match layout {

@@ -264,7 +264,7 @@ pub fn transform(p: &Primitive, f: &Frame) -> Primitive {
 fn orthonormal(a: [V3; 3]) -> [V3; 3] {
     let a0 = normalize(a[0]).unwrap_or([1.0, 0.0, 0.0]);
     let a1 = normalize(madd(a[1], a0, -dot(a[1], a0))).unwrap_or_else(|| {
-        let (u, _) = super::obj::circle_frame(a0);
+        let (u, _) = crate::math::circle_frame(a0);
         u
     });
     let a2 = cross(a0, a1);

@@ -257,17 +257,54 @@ pub(super) struct ObjectJson {
     pub(super) primitives: Vec<PrimJson>,
 }
 
-/// The JSON document of `dec.levels[level]` (panics if `level` is out of range):
-/// pretty-printed, 2-space indent, arrays of plain numbers on one line, ending in a
-/// newline. It depends only on the input and the settings (byte-identical across runs
-/// and thread counts): no timings.
-pub fn to_json(dec: &Decomposition, level: usize, params: &Params) -> String {
-    document(dec, level, params, false)
+impl Decomposition {
+    /// The JSON document of `self.levels[level]` (panics if `level` is out of range),
+    /// the result contract every tool reads ([`crate::ResultFile::read`]):
+    /// pretty-printed, 2-space indent, arrays of plain numbers on one line, ending in a
+    /// newline. `params` are the settings the run was given, recorded under
+    /// `settings`. It depends only on the input and the settings (byte-identical
+    /// across runs and thread counts): no timings.
+    ///
+    /// ```
+    /// use primdecomp::{decompose, Goal, Mesh, Params, ResultFile};
+    ///
+    /// let corners = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    /// let tetrahedron = Mesh::from_triangles(&corners, &[[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])?;
+    /// let params = Params { goal: Goal::counts([1]), ..Params::default() };
+    /// let result = decompose(&tetrahedron, &params)?;
+    /// let json = result.to_json(0, &params);
+    /// assert!(json.starts_with("{\n  \"format\": \"primdecomp\""));
+    /// let back = ResultFile::read(&json, "result.json".as_ref())?;
+    /// assert_eq!(back.primitives.len(), result.levels[0].primitives.len());
+    /// # Ok::<(), primdecomp::Error>(())
+    /// ```
+    pub fn to_json(&self, level: usize, params: &Params) -> String {
+        document(self, level, params, false)
+    }
+
+    /// [`Decomposition::to_json`] plus the stage timings under `stats.seconds`
+    /// (the command line's `--timings`): no longer byte-identical between runs.
+    ///
+    /// ```
+    /// use primdecomp::{decompose, Goal, Mesh, Params};
+    ///
+    /// let corners = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    /// let tetrahedron = Mesh::from_triangles(&corners, &[[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])?;
+    /// let params = Params { goal: Goal::counts([1]), ..Params::default() };
+    /// let result = decompose(&tetrahedron, &params)?;
+    /// assert!(result.to_json_timed(0, &params).contains("\"seconds\""));
+    /// assert!(!result.to_json(0, &params).contains("\"seconds\""));
+    /// # Ok::<(), primdecomp::Error>(())
+    /// ```
+    pub fn to_json_timed(&self, level: usize, params: &Params) -> String {
+        document(self, level, params, true)
+    }
 }
 
-/// [`to_json`] plus the stage timings under `stats.seconds` (`--timings`).
-pub fn to_json_timed(dec: &Decomposition, level: usize, params: &Params) -> String {
-    document(dec, level, params, true)
+/// [`Decomposition::to_json`].
+#[cfg(test)]
+pub(crate) fn to_json(dec: &Decomposition, level: usize, params: &Params) -> String {
+    document(dec, level, params, false)
 }
 
 fn document(dec: &Decomposition, level: usize, params: &Params, timed: bool) -> String {
@@ -330,12 +367,34 @@ fn finish(doc: &Document) -> String {
     out
 }
 
-/// The JSON document of level `level` of a per-object result (`--per-object`): as
-/// [`to_json`], with `primitives` holding every object's primitives in world
-/// coordinates ([`Objects::world_primitives`]) and `objects` each object's name,
-/// frame, share of the target and primitives in its frame. `settings.target` is the
-/// total as given (or the sum of the shares for a percentage).
-pub fn to_json_objects(objs: &Objects, level: usize, params: &Params) -> String {
+impl Objects {
+    /// The JSON document of level `level` of a per-object result (`--per-object`): as
+    /// [`Decomposition::to_json`], with `primitives` holding every object's primitives
+    /// in world coordinates ([`Objects::world_primitives`]) and `objects` each object's
+    /// name, frame, share of the target and primitives in its frame.
+    /// `settings.target` is the total as given (or the sum of the shares for a
+    /// percentage).
+    ///
+    /// ```
+    /// use primdecomp::{decompose_objects, Mesh, ObjectTarget, Params, ResultFile};
+    ///
+    /// let obj = b"o left\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n\
+    ///             o right\nv 5 0 0\nv 6 0 0\nv 5 1 0\nv 5 0 1\nf 5 7 6\nf 5 6 8\nf 5 8 7\nf 6 7 8\n";
+    /// let mesh = Mesh::parse(obj, primdecomp::MeshFormat::Obj, "two.obj".as_ref())?;
+    /// let params = Params::default();
+    /// let objects = decompose_objects(&mesh, &params, &[ObjectTarget::Total(2)])?;
+    /// let back = ResultFile::read(&objects.to_json(0, &params), "two.json".as_ref())?;
+    /// assert_eq!(back.objects.len(), 2);
+    /// assert_eq!(back.objects[0].name, "left");
+    /// # Ok::<(), primdecomp::Error>(())
+    /// ```
+    pub fn to_json(&self, level: usize, params: &Params) -> String {
+        to_json_objects(self, level, params)
+    }
+}
+
+/// [`Objects::to_json`].
+pub(crate) fn to_json_objects(objs: &Objects, level: usize, params: &Params) -> String {
     let world = objs.world_primitives(level);
     let mut counts = [0usize; 6];
     let mut bytes = 0;
@@ -443,8 +502,15 @@ pub(super) mod tests {
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
+    /// A uniformly random rotation's axes.
     fn random_axes(rng: &mut ChaCha8Rng) -> [V3; 3] {
-        crate::math::quat::random_axes(rng)
+        loop {
+            let q: [f64; 4] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+            let n2: f64 = q.iter().map(|x| x * x).sum();
+            if n2 > 1e-4 && n2 <= 1.0 {
+                return crate::math::axes_from_quat(q);
+            }
+        }
     }
 
     fn sample_primitives() -> Vec<Primitive> {
@@ -523,7 +589,7 @@ pub(super) mod tests {
     #[test]
     fn document_contract() {
         let dec = sample_decomposition();
-        let text = to_json_timed(&dec, 0, &Params::default());
+        let text = dec.to_json_timed(0, &Params::default());
         assert!(text.ends_with("}\n"));
         let v: serde_json::Value = serde_json::from_str(&text).unwrap();
         assert_eq!(v["format"], "primdecomp");
@@ -560,7 +626,7 @@ pub(super) mod tests {
 
     #[test]
     fn key_order() {
-        let text = to_json_timed(&sample_decomposition(), 0, &Params::default());
+        let text = sample_decomposition().to_json_timed(0, &Params::default());
         // Within each group, every pattern must occur after the previous one.
         let groups = [
             r#""format"|"version"|"input"|"settings"|"stats"|"primitives": ["#,
@@ -582,12 +648,12 @@ pub(super) mod tests {
     fn timings_only_when_asked() {
         let mut dec = sample_decomposition();
         let a = to_json(&dec, 0, &Params::default());
-        let ta = to_json_timed(&dec, 0, &Params::default());
+        let ta = dec.to_json_timed(0, &Params::default());
         dec.timings.stages[0].1 = 123.0;
         // Without timings the document depends only on input and settings.
         assert_eq!(a, to_json(&dec, 0, &Params::default()));
         assert!(!a.contains("\"seconds\""), "{a}");
-        let tb = to_json_timed(&dec, 0, &Params::default());
+        let tb = dec.to_json_timed(0, &Params::default());
         assert_ne!(ta, tb);
         let strip = |s: &str| {
             let mut v: serde_json::Value = serde_json::from_str(s).unwrap();

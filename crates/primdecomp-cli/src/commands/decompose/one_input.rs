@@ -13,7 +13,7 @@ use crate::exit::BadArgs;
 use crate::outputs::Guard;
 use crate::paths::output_path_for;
 use anyhow::{anyhow, bail};
-use primdecomp::{to_json, to_json_objects, to_json_timed, to_obj, write_atomic, Stage};
+use primdecomp::{write_atomic, Stage};
 use primdecomp::{Decomposition, Goal, Params};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -40,7 +40,7 @@ pub(super) fn run_one(
     let mut why = super::tiled::reason(a, input, &options);
     let loaded = match &why {
         Some(_) => None,
-        None => match primdecomp::load_with(input, &options) {
+        None => match primdecomp::Mesh::load_with(input, &options) {
             Err(e @ primdecomp::Error::TooLarge { needed, limit, .. }) if !a.per_object => {
                 why = Some(super::tiled::over(needed, limit));
                 Some(Err(e))
@@ -203,7 +203,7 @@ fn run_objects(
         written.push(json_out.path.clone());
         if dest.obj.is_some() {
             let obj_out = &outs[i * per_level + 1];
-            write_atomic(&obj_out.path, to_obj(&level, a.obj_detail).as_bytes())?;
+            write_atomic(&obj_out.path, level.to_obj(a.obj_detail).as_bytes())?;
             guard.wrote(obj_out);
             written.push(obj_out.path.clone());
         }
@@ -267,7 +267,7 @@ fn level_jsons(
     let n = objs.levels();
     let mut jsons = Vec::with_capacity(n);
     for i in 0..n {
-        let json = to_json_objects(objs, i, params);
+        let json = objs.to_json(i, params);
         let v: serde_json::Value = serde_json::from_str(&json)?;
         jsons.push((v["settings"]["target"].as_u64().unwrap_or(0) as usize, json));
     }
@@ -319,7 +319,7 @@ fn input_up(a: &DecomposeArgs, input: &Path) -> (primdecomp::Up, String) {
     use primdecomp::Up;
     match a.export_opts.up.as_deref().and_then(Up::from_axis) {
         Some(up) => (up, "given with --up".into()),
-        None => primdecomp::Format::from_path(input)
+        None => primdecomp::MeshFormat::from_path(input)
             .map(Up::of_format)
             .map_or((Up::Y, "assumed".into()), |(u, why)| (u, why.into())),
     }
@@ -347,11 +347,11 @@ fn write_outputs(
         let (i, is_obj) = (k / per_level, k % per_level == 1);
         let level = &dec.levels[i];
         let bytes = if is_obj {
-            to_obj(level, detail)
+            level.to_obj(detail)
         } else if timed {
-            to_json_timed(dec, i, params)
+            dec.to_json_timed(i, params)
         } else {
-            to_json(dec, i, params)
+            dec.to_json(i, params)
         };
         write_atomic(&out.path, bytes.as_bytes())?;
         guard.wrote(out);

@@ -21,12 +21,14 @@
 pub mod bvh;
 pub mod eigen3;
 pub mod hull;
+mod number;
 pub mod polygon;
 pub mod quat;
 pub mod sym3;
 mod vec3;
 
 pub use eigen3::eigen_sym3;
+pub use number::short;
 pub use quat::{axes_from_quat, quat_from_axes};
 pub use sym3::Sym3;
 pub use vec3::*;

@@ -249,11 +249,7 @@ fn decompose_path(
         .map_err(to_py_err)?;
     let mut dec = run_watched(py, &mesh, &params, progress.as_ref())?;
     // As the CLI records them, so that to_json() is the CLI's file byte for byte.
-    dec.input.path = Some(Path::new(path).display().to_string());
-    if let Some(format) = primdecomp::MeshFormat::from_path(Path::new(path)) {
-        let (up, why) = primdecomp::Up::of_format(format);
-        (dec.input.up, dec.input.up_from) = (Some(up), Some(why.to_string()));
-    }
+    dec.input.record_file(Path::new(path));
     Ok(NativeResult { dec, params })
 }
 

@@ -210,20 +210,30 @@ const DISTANCE_METHOD: &str = "an upper bound of the one-way distance from each 
      sampled Hausdorff)";
 
 impl Distance {
-    fn of(lv: &Level, input: &InputInfo) -> Option<Distance> {
-        let worst = lv.distance?;
+    /// A per-object level's: the farthest object's distance, without the tolerance or
+    /// byte budget (each object's is its own share).
+    fn farthest(worst: f64, input: &InputInfo) -> Distance {
         let diagonal = input.diagonal();
-        Some(Distance {
+        Distance {
             worst,
             of_diagonal: if diagonal > 0.0 {
                 worst / diagonal
             } else {
                 0.0
             },
+            tolerance: None,
+            max_bytes: None,
+            limited_by: None,
+            method: DISTANCE_METHOD,
+        }
+    }
+
+    fn of(lv: &Level, input: &InputInfo) -> Option<Distance> {
+        Some(Distance {
             tolerance: lv.tolerance,
             max_bytes: lv.max_bytes,
             limited_by: lv.shortfall,
-            method: DISTANCE_METHOD,
+            ..Distance::farthest(lv.distance?, input)
         })
     }
 }
@@ -254,6 +264,10 @@ pub(super) struct ObjectJson {
     faces: usize,
     #[serde(default)]
     pub(super) target: usize,
+    /// The farthest any of its primitives stands from it, world units (a level that
+    /// measured it: a tolerance or byte budget).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    distance: Option<f64>,
     pub(super) primitives: Vec<PrimJson>,
 }
 
@@ -417,6 +431,7 @@ pub(crate) fn to_json_objects(objs: &Objects, level: usize, params: &Params) -> 
                 scale: o.frame.scale,
                 faces: o.faces,
                 target: lv.target,
+                distance: lv.distance.map(|d| d * o.frame.scale),
                 primitives: lv
                     .primitives
                     .iter()
@@ -452,7 +467,9 @@ pub(crate) fn to_json_objects(objs: &Objects, level: usize, params: &Params) -> 
             bytes,
             partitions: 1,
             seconds: None,
-            distance: None,
+            distance: objs
+                .distance(level)
+                .map(|worst| Distance::farthest(worst, &objs.input)),
         },
         primitives,
         objects: Some(objects),

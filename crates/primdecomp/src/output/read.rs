@@ -8,6 +8,7 @@ use super::frame::Frame;
 use super::json::{ObjectJson, PrimJson};
 use crate::error::{Error, Result as CrateResult};
 use crate::math::quat::axes_from_quat;
+use crate::math::short as show;
 use crate::math::V3;
 use crate::primitive::{Capsule, Cylinder, Frustum, Obb, Primitive, Prism, Sphere};
 use serde::Deserialize;
@@ -63,21 +64,6 @@ fn check_values(p: &Primitive, scale: f64, offset: f64) -> Result<(), String> {
         ));
     }
     Ok(())
-}
-
-/// Short form of a number for messages, three significant digits: `1e60`,
-/// `2.5e-35`, `inf`.
-fn show(x: f64) -> String {
-    if x == 0.0 {
-        return "0".into();
-    }
-    let s = format!("{x:.2e}");
-    match s.split_once('e') {
-        Some((m, e)) if m.contains('.') => {
-            format!("{}e{e}", m.trim_end_matches('0').trim_end_matches('.'))
-        }
-        _ => s,
-    }
 }
 
 impl PrimJson {

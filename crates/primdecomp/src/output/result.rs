@@ -1,6 +1,7 @@
 //! What a run returns: the input's description, one [`Level`] of primitives per
 //! target, the stages' timings and the merge loop's counters.
 
+use crate::input::io::MeshFormat;
 use crate::input::up::Up;
 use crate::math::V3;
 use crate::primitive::Primitive;
@@ -32,6 +33,27 @@ pub struct InputInfo {
 }
 
 impl InputInfo {
+    /// Records that the input came from the file `path`: its name (`path`) and the up
+    /// axis its format states or assumes ([`Up::of_format`]; nothing for an extension
+    /// primdecomp does not read). The command line, Python, C and WebAssembly all
+    /// record a file's result so, which makes their JSON the same byte for byte.
+    ///
+    /// ```
+    /// use primdecomp::{InputInfo, Up};
+    ///
+    /// let mut input = InputInfo::default();
+    /// input.record_file("parts/gear.stl".as_ref());
+    /// assert_eq!(input.path.as_deref(), Some("parts/gear.stl"));
+    /// assert_eq!(input.up, Some(Up::Z)); // STL is assumed +Z up
+    /// ```
+    pub fn record_file(&mut self, path: &std::path::Path) {
+        self.path = Some(path.display().to_string());
+        if let Some(format) = MeshFormat::from_path(path) {
+            let (up, why) = Up::of_format(format);
+            (self.up, self.up_from) = (Some(up), Some(why.to_string()));
+        }
+    }
+
     /// The length of the bounding box's diagonal (what relative settings such as
     /// [`crate::Fit::min_extent`] and [`crate::Tolerance::Diagonal`] scale by).
     pub fn diagonal(&self) -> f64 {

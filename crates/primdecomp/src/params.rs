@@ -29,6 +29,14 @@ pub(crate) const MAX_PRIMITIVES: usize = 1024;
 /// The farthest any primitive of a level may stand from the input: the one-way
 /// distance from each primitive's surface to the input's surface, the quantity
 /// `primdecomp eval` reports as Hausdorff, estimated by sampling (docs/decisions/0034).
+///
+/// ```
+/// use primdecomp::Tolerance;
+///
+/// assert_eq!("1%".parse::<Tolerance>(), Ok(Tolerance::Diagonal(0.01)));
+/// assert_eq!("0.5".parse::<Tolerance>(), Ok(Tolerance::Units(0.5)));
+/// assert_eq!(Tolerance::Diagonal(0.01).in_units(200.0), 2.0);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Tolerance {
@@ -191,6 +199,15 @@ impl<'de> Deserialize<'de> for Partitions {
 /// | `fit.min_extent` | 5e-4 | thin parts get thicker primitives | flatter plates |
 /// | `plates.open_holes` | 0.01 | holes and gaps in flat surfaces stay open at lower counts | 0: the paper's pricing (a roof's rim closes into a lid) |
 /// | `plates.rim_weight` | 1 | primitives keep further off the faces beside them | 0: volume alone (a plate may stand past a wall's top as a curb) |
+///
+/// ```
+/// use primdecomp::{Goal, Params, Tolerance};
+///
+/// let params = Params { goal: Goal::tolerance(Tolerance::Diagonal(0.01)), ..Params::default() };
+/// assert!(params.validate().is_ok());
+/// assert_eq!(Params::from_json(&serde_json::to_string(&params).unwrap())?, params);
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(try_from = "json::Settings", into = "json::Settings")]
 pub struct Params {

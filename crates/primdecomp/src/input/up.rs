@@ -9,6 +9,14 @@ use crate::input::io::MeshFormat;
 use serde::{Serialize, Serializer};
 
 /// An up axis.
+///
+/// ```
+/// use primdecomp::{MeshFormat, Up};
+///
+/// assert_eq!(Up::of_format(MeshFormat::Glb).0, Up::Y);
+/// assert_eq!(Up::from_axis("z"), Some(Up::Z));
+/// assert_eq!(Up::default(), Up::Y);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Up {
     /// +Y up (glTF, Godot).

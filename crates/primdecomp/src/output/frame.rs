@@ -18,6 +18,14 @@ use crate::primitive::{Capsule, Cylinder, Frustum, Obb, Primitive, Prism, Sphere
 
 /// A similarity transform `x ↦ translation + scale · R(rotation) · x`, rotation a
 /// unit quaternion `[x, y, z, w]` (scalar last, as in the JSON contract).
+///
+/// ```
+/// use primdecomp::Frame;
+///
+/// let lifted = Frame { translation: [0.0, 0.0, 2.0], rotation: [0.0, 0.0, 0.0, 1.0], scale: 3.0 };
+/// assert_eq!(lifted.point([1.0, 0.0, 0.0]), [3.0, 0.0, 2.0]);
+/// assert_eq!(lifted.inverse_point([3.0, 0.0, 2.0]), [1.0, 0.0, 0.0]);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Frame {
     /// Where the local origin lands.

@@ -22,6 +22,14 @@ pub(crate) const MAX_DETAIL: usize = 1024;
 
 /// A closed convex polyhedron: vertices and polygons (0-based indices) wound
 /// counter-clockwise seen from outside.
+///
+/// ```
+/// use primdecomp::{Obb, Primitive};
+///
+/// let cube = Obb { center: [0.0; 3], axes: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], half: [1.0; 3] };
+/// let t = Primitive::Box(cube).tessellate(16);
+/// assert_eq!((t.vertices.len(), t.faces.len()), (8, 6));
+/// ```
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Tess {
     /// Vertex positions.

@@ -161,6 +161,16 @@ fn sizes(p: &Primitive) -> Vec<f64> {
 
 /// An object of a result as the exporters read it: name, frame and primitives in
 /// that frame. A result without `objects` is one unnamed object in the world frame.
+///
+/// ```
+/// use primdecomp::{Frame, ResultFile};
+///
+/// let doc = r#"{"format": "primdecomp", "version": 1,
+///   "primitives": [{"kind": "sphere", "center": [1, 2, 3], "radius": 0.5}]}"#;
+/// let object = &ResultFile::read(doc, "r.json".as_ref())?.objects[0];
+/// assert_eq!((object.name.as_str(), object.frame), ("", Frame::IDENTITY));
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct ResultObject {
     /// The object's name (empty for a result without `objects`).
@@ -173,6 +183,16 @@ pub struct ResultObject {
 
 /// A primdecomp JSON result read back ([`ResultFile::read`]): its primitives in world
 /// coordinates and its objects, each with its frame and its primitives in that frame.
+///
+/// ```
+/// use primdecomp::{Kind, ResultFile};
+///
+/// let doc = r#"{"format": "primdecomp", "version": 1,
+///   "primitives": [{"kind": "sphere", "center": [1, 2, 3], "radius": 0.5}]}"#;
+/// let read = ResultFile::read(doc, "r.json".as_ref())?;
+/// assert_eq!(read.primitives[0].kind(), Kind::Sphere);
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct ResultFile {
     /// Every primitive in world coordinates (the document's `primitives`).

@@ -5,6 +5,14 @@ use super::fit::AxisBounds;
 use crate::math::{dot, madd, sub, V3};
 
 /// Box with orthonormal right-handed `axes` and `half` extents along them.
+///
+/// ```
+/// use primdecomp::{Obb, Primitive};
+///
+/// let unit = Obb { center: [0.0; 3], axes: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], half: [0.5; 3] };
+/// assert_eq!(unit.volume(), 1.0);
+/// assert!(Primitive::Box(unit).contains([0.5, 0.5, -0.5], 1e-12));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Obb {
     /// Centre.

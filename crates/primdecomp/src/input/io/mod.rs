@@ -28,6 +28,13 @@ pub(crate) use ply::PlyLayout;
 pub(crate) use stl::parse_stl;
 
 /// The mesh formats [`crate::Mesh::load`] reads, chosen by the file's extension.
+///
+/// ```
+/// use primdecomp::MeshFormat;
+///
+/// assert_eq!(MeshFormat::from_path("Scan.PLY".as_ref()), Some(MeshFormat::Ply));
+/// assert_eq!(MeshFormat::from_path("notes.txt".as_ref()), None);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum MeshFormat {
     /// Wavefront OBJ (`v` and `f`, polygons kept; `o`/`g` name objects).
@@ -144,6 +151,14 @@ impl Mesh {
 /// How [`Mesh::load_with`] reads an input. `Default` is the
 /// safe setting for untrusted files: no memory limit, and glTF buffers read only from
 /// `data:` URIs, the GLB's own chunk or files inside the glTF's folder.
+///
+/// ```
+/// use primdecomp::{Error, LoadOptions, Mesh};
+///
+/// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../datasets/demo_scene.obj");
+/// let tight = LoadOptions { max_memory: Some(1 << 10), ..LoadOptions::default() };
+/// assert!(matches!(Mesh::load_with(path.as_ref(), &tight), Err(Error::TooLarge { .. })));
+/// ```
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct LoadOptions {
     /// Refuse with [`Error::TooLarge`] an input whose decomposition would need more
@@ -185,6 +200,14 @@ pub struct LoadOptions {
 /// a writer) and `O_NOCTTY`, and the *opened handle's* metadata is checked again, so a
 /// file swapped for a pipe between the two is refused too. Failing to open is
 /// [`Error::Open`]; both are the input's fault (exit code 2).
+///
+/// ```
+/// let (file, meta) = primdecomp::open_regular("Cargo.toml".as_ref())?;
+/// assert!(meta.is_file());
+/// drop(file);
+/// assert!(primdecomp::open_regular(".".as_ref()).is_err()); // a folder
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
 pub fn open_regular(path: &Path) -> Result<(File, Metadata)> {
     match open_checked(path) {
         Ok(opened) => Ok(opened),

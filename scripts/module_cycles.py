@@ -174,6 +174,9 @@ def edges(mods, mod, text):
 ROOT_ITEM = re.compile(
     r'\b(?:fn|struct|enum|const|static|type|trait|union|mod|macro_rules!)\s+([A-Za-z_]\w*)')
 
+EXTERN_ALIAS = re.compile(r'^\s*use\s+\w+\s+as\s+(\w+)\s*;', re.M)
+
+
 def through_root(mods, mod, text, own):
     """The paths of `mod` that name a re-export of the crate root (`crate::Primitive`):
     `crate::` paths anywhere (tests too), `super::` ones outside tests."""
@@ -292,6 +295,9 @@ def main():
                     for b in sorted(graph[a] & set(comp)):
                         print(f'    {name(a)} -> {name(b)}')
         own = set(ROOT_ITEM.findall(code(texts.get((), ''))))
+        # `use other_crate as name;` at the root: `crate::name::…` is the other crate
+        # itself (its home), not a re-export of this one.
+        own |= set(EXTERN_ALIAS.findall(code(texts.get((), ''))))
         for m in sorted(mods):
             if not m:
                 continue

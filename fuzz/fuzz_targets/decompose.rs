@@ -14,10 +14,7 @@
 mod contain;
 
 use arbitrary::{Result, Unstructured};
-use primdecomp::{
-    decompose, to_json, CountSearch, Dedup, Error, Goal, Mesh, Params, Partitions, Reprice,
-    Tolerance,
-};
+use primdecomp::{CountSearch, Dedup, Error, Goal, Mesh, Params, Partitions, Reprice, Tolerance, decompose};
 
 /// A number that is usually one of `typical` and sometimes any f64 at all.
 fn pick(u: &mut Unstructured, typical: &[f64]) -> Result<f64> {
@@ -236,7 +233,7 @@ fn run(data: &[u8]) -> Result<()> {
                 level.target
             );
         }
-        let text = to_json(&dec, i, &params);
+        let text = dec.to_json(i, &params);
         assert!(!text.contains("NaN") && !text.contains("inf"), "{text}");
         let json: serde_json::Value = serde_json::from_str(&text).expect("valid JSON");
         let shapes: Vec<_> = json["primitives"]

@@ -24,7 +24,7 @@ use arbitrary::{Arbitrary, Unstructured};
 use libfuzzer_sys::fuzz_target;
 use primdecomp::{Frame, ResultObject, Up};
 use primdecomp_export::{render, ExportOptions, Format, Physics};
-use primdecomp::math::quat_from_axes;
+use primdecomp_math::quat_from_axes;
 use primdecomp::{Capsule, Cylinder, Error, Frustum, Obb, Primitive, Prism, Sphere};
 use std::path::Path;
 
@@ -116,7 +116,7 @@ struct Input {
 fn axes(q: [f64; 4]) -> [[f64; 3]; 3] {
     let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
     if n.is_finite() && n > 1e-3 {
-        primdecomp::math::axes_from_quat(q.map(|x| x / n))
+        primdecomp_math::axes_from_quat(q.map(|x| x / n))
     } else {
         [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]
     }
@@ -249,7 +249,7 @@ fn check(input: &Input) {
                 for (rel, bytes) in &files.beside {
                     exports::file_name(rel).unwrap();
                     assert!(got.files.contains(rel), "{rel} is not referred to");
-                    let mesh = primdecomp::parse_mesh(bytes, primdecomp::Format::Obj, Path::new(rel))
+                    let mesh = primdecomp::Mesh::parse(bytes, primdecomp::MeshFormat::Obj, Path::new(rel))
                         .expect("a URDF mesh parses");
                     for i in 0..mesh.vertex_count() as u32 {
                         assert!(mesh.world_pos(i).iter().all(|x| x.abs() <= f32::MAX as f64));

@@ -21,7 +21,7 @@
 mod parsed;
 
 use arbitrary::Arbitrary;
-use primdecomp::{parse_mesh_with, Format, LoadOptions};
+use primdecomp::{LoadOptions, MeshFormat, parse_mesh_with};
 use serde_json::{json, Map, Value};
 use std::path::PathBuf;
 use std::sync::OnceLock;
@@ -470,8 +470,8 @@ libfuzzer_sys::fuzz_target!(|doc: Doc| {
         eprintln!("{}", String::from_utf8_lossy(&json));
     }
     let (bytes, name, format) = match &doc.glb {
-        Some(bin) => (glb(&json, bin), "t.glb", Format::Glb),
-        None => (json, "t.gltf", Format::Gltf),
+        Some(bin) => (glb(&json, bin), "t.glb", MeshFormat::Glb),
+        None => (json, "t.gltf", MeshFormat::Gltf),
     };
     let path = dir.join("g").join(name);
     let options = LoadOptions {

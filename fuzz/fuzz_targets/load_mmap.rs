@@ -1,4 +1,4 @@
-//! Arbitrary bytes through the memory-mapped loader, `primdecomp::load_with` (which
+//! Arbitrary bytes through the memory-mapped loader, `primdecomp::Mesh::load_with` (which
 //! holds the crate's one `unsafe` block, `memmap2::Mmap::map`): the bytes are written
 //! to a temporary file under each text/binary extension in turn, then mapped and
 //! parsed. The parser targets feed `parse_mesh` in-memory slices; this one checks the
@@ -18,7 +18,7 @@ libfuzzer_sys::fuzz_target!(|data: &[u8]| {
             max_memory: Some(1 << 30),
             ..Default::default()
         };
-        match primdecomp::load_with(&path, &options) {
+        match primdecomp::Mesh::load_with(&path, &options) {
             Ok(mesh) => assert!(mesh.face_count() > 0, "a mesh without faces was accepted"),
             Err(e) => {
                 let text = e.to_string();

@@ -6,5 +6,5 @@
 mod parsed;
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| {
-    parsed::check(data, primdecomp::Format::Glb, "fuzz.glb");
+    parsed::check(data, primdecomp::MeshFormat::Glb, "fuzz.glb");
 });

@@ -5,5 +5,5 @@
 mod parsed;
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| {
-    parsed::check(data, primdecomp::Format::Obj, "fuzz.obj");
+    parsed::check(data, primdecomp::MeshFormat::Obj, "fuzz.obj");
 });

@@ -5,5 +5,5 @@
 mod parsed;
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| {
-    parsed::check(data, primdecomp::Format::Off, "fuzz.off");
+    parsed::check(data, primdecomp::MeshFormat::Off, "fuzz.off");
 });

@@ -5,5 +5,5 @@
 mod parsed;
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| {
-    parsed::check(data, primdecomp::Format::Ply, "fuzz.ply");
+    parsed::check(data, primdecomp::MeshFormat::Ply, "fuzz.ply");
 });

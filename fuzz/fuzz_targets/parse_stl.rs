@@ -5,5 +5,5 @@
 mod parsed;
 
 libfuzzer_sys::fuzz_target!(|data: &[u8]| {
-    parsed::check(data, primdecomp::Format::Stl, "fuzz.stl");
+    parsed::check(data, primdecomp::MeshFormat::Stl, "fuzz.stl");
 });

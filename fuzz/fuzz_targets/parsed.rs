@@ -3,7 +3,7 @@
 //! corners, every index in range, every coordinate finite, and the re-centred mesh
 //! finite too).
 
-use primdecomp::{parse_mesh, Format, Mesh};
+use primdecomp::{Mesh, MeshFormat};
 use std::path::Path;
 
 #[allow(dead_code)] // gltf_structured calls check_mesh only
@@ -11,7 +11,7 @@ pub fn check(data: &[u8], format: Format, name: &str) {
     // A directory that does not exist: a .gltf naming an external buffer gets an
     // error instead of reading files from the fuzzing machine.
     let path = Path::new("/nonexistent-primdecomp-fuzz").join(name);
-    let mesh = match parse_mesh(data, format, &path) {
+    let mesh = match Mesh::parse(data, format, &path) {
         Ok(m) => m,
         Err(e) => {
             let msg = e.to_string();

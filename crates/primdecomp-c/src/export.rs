@@ -5,7 +5,7 @@
 use crate::args::{handle, optional_text, put, text, writable};
 use crate::result::PrimdecompResult;
 use crate::status::{guard, Failure, PrimdecompStatus};
-use primdecomp::{Frame, ResultObject, Up, DEFAULT_DETAIL};
+use primdecomp::{Frame, ResultObject, Tess, Up};
 use primdecomp_export::{render, write_export, ExportOptions, Format, Physics};
 use serde::Deserialize;
 use std::ffi::c_char;
@@ -87,7 +87,7 @@ fn export_options(o: &Options, model: &str) -> Result<ExportOptions, Failure> {
     let opts = ExportOptions {
         up,
         scale: o.scale.unwrap_or(1.0),
-        detail: o.detail.unwrap_or(DEFAULT_DETAIL),
+        detail: o.detail.unwrap_or(Tess::DEFAULT_DETAIL),
         physics,
         preview: o.preview,
         urdf_capsule: o.urdf_capsule,
@@ -116,10 +116,10 @@ fn bytes_of(
 ) -> Result<Vec<u8>, Failure> {
     let model = "primdecomp";
     Ok(match target {
-        Target::Json => primdecomp::to_json(&r.dec, level, &r.params).into_bytes(),
+        Target::Json => r.dec.to_json(level, &r.params).into_bytes(),
         Target::Obj => {
             let opts = export_options(o, model)?;
-            primdecomp::to_obj(r.level(level)?, opts.detail).into_bytes()
+            r.level(level)?.to_obj(opts.detail).into_bytes()
         }
         Target::Engine(f) => {
             let opts = export_options(o, model)?;

@@ -38,7 +38,7 @@ pub unsafe extern "C" fn primdecomp_mesh_load(
     guard(|| {
         writable(out, "out")?;
         let path = text(path, "path")?;
-        let mesh = primdecomp::load(Path::new(path))?;
+        let mesh = primdecomp::Mesh::load(Path::new(path))?;
         hand_out(out, mesh, Some(path.to_string()))
     })
 }
@@ -63,7 +63,7 @@ pub unsafe extern "C" fn primdecomp_mesh_parse(
         let data = array(bytes, len, "bytes")?;
         let name = text(name, "name")?;
         let path = Path::new(name);
-        let format = primdecomp::Format::from_path(path).ok_or_else(|| {
+        let format = primdecomp::MeshFormat::from_path(path).ok_or_else(|| {
             Failure::new(
                 PrimdecompStatus::InvalidInput,
                 format!(
@@ -71,7 +71,7 @@ pub unsafe extern "C" fn primdecomp_mesh_parse(
                 ),
             )
         })?;
-        let mesh = primdecomp::parse_mesh(data, format, path)?;
+        let mesh = primdecomp::Mesh::parse(data, format, path)?;
         hand_out(out, mesh, Some(name.to_string()))
     })
 }

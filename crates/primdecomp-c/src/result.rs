@@ -3,8 +3,8 @@
 
 use crate::args::{handle, put, writable};
 use crate::status::{guard, Failure, PrimdecompStatus};
-use primdecomp::math::quat_from_axes;
 use primdecomp::{Decomposition, Level, Params, Primitive, Shortfall};
+use primdecomp_math::quat_from_axes;
 use std::ffi::{c_char, CString};
 
 /// A finished decomposition: one level per target, and the settings that made it.
@@ -374,7 +374,7 @@ pub unsafe extern "C" fn primdecomp_result_json(
         writable(out, "out")?;
         let r = handle(result, "result")?;
         r.level(level)?;
-        let json = primdecomp::to_json(&r.dec, level, &r.params);
+        let json = r.dec.to_json(level, &r.params);
         let n = json.len();
         // JSON escapes every control character: no NUL inside.
         let text = CString::new(json).map_err(|_| Failure::argument("JSON holds a NUL"))?;

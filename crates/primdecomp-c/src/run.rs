@@ -149,15 +149,9 @@ pub unsafe extern "C" fn primdecomp_decompose(
             latest: Mutex::new(None),
         };
         let mut dec = run(mesh, &params, &watch, progress, user_data)?;
-        dec.input.path = mesh.path.clone();
-        // The up axis the input's format says, as the CLI records it (`input.up`), so that
-        // the JSON is the CLI's byte for byte.
-        let format = mesh
-            .path
-            .as_deref()
-            .and_then(|p| primdecomp::Format::from_path(p.as_ref()));
-        if let Some((up, why)) = format.map(primdecomp::Up::of_format) {
-            (dec.input.up, dec.input.up_from) = (Some(up), Some(why.to_string()));
+        // As the CLI records the file, so that the JSON is the CLI's byte for byte.
+        if let Some(path) = &mesh.path {
+            dec.input.record_file(path.as_ref());
         }
         let result = PrimdecompResult::new(dec, params);
         put(out, Box::into_raw(Box::new(result)), "out")

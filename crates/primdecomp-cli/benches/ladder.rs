@@ -93,7 +93,7 @@ fn main() {
     let keep = std::env::var("LADDER_KEEP").is_ok_and(|v| v == "1");
     let cancel = std::env::var("LADDER_CANCEL").is_ok_and(|v| v == "1");
     let mut answers = Vec::new();
-    let source = primdecomp::load(&dragon).expect("the dragon loads");
+    let source = primdecomp::Mesh::load(&dragon).expect("the dragon loads");
     println!("machine: {}", uptime());
     let mut table: Vec<(String, u64, String, String, Run)> = Vec::new();
     for rung in &rungs {
@@ -156,7 +156,7 @@ fn main() {
             }
         }
         if cancel {
-            let mesh = primdecomp::load(&path).expect("the rung loads");
+            let mesh = primdecomp::Mesh::load(&path).expect("the rung loads");
             for mode in &modes {
                 let (longest, tries) = cancel_answers(&mesh, mode);
                 eprintln!("{rung} {mode}: cancel answered within {longest:.3} s over {tries} runs");

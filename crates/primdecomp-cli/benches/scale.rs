@@ -37,7 +37,7 @@ fn main() {
         return;
     }
     let bin = PathBuf::from(env!("CARGO_BIN_EXE_primdecomp"));
-    let mesh = primdecomp::load(&dragon).expect("dragon loads");
+    let mesh = primdecomp::Mesh::load(&dragon).expect("dragon loads");
     let big_path = std::env::temp_dir().join("primdecomp_dragon_x4.ply");
     let big = subdivide(&mesh);
     write_ply(&big, &big_path);

@@ -3,8 +3,11 @@
 //! raising or lowering it does), without the paper's notation.
 
 use clap::Args;
-use primdecomp::{LoadOptions, DEFAULT_TOLERANCE, MAX_PRIMITIVES};
+use primdecomp::{Goal, LoadOptions, Tolerance};
 use std::path::PathBuf;
+
+// The cap of a run without -n, named for the help texts.
+const MAX_PRIMITIVES: usize = Goal::MAX_PRIMITIVES;
 
 /// How inputs are read (every subcommand that reads a mesh).
 #[derive(Args, Debug)]
@@ -36,7 +39,7 @@ impl LoadArgs {
 #[command(after_long_help = format!(
     "Without -n, --tolerance or --max-bytes: the fewest primitives that all stand within {} \
      of the mesh's size (its bounding-box diagonal), at most {MAX_PRIMITIVES}.",
-    DEFAULT_TOLERANCE
+    Tolerance::DEFAULT
 ))]
 pub(crate) struct DecomposeArgs {
     /// Input meshes: OBJ, PLY, STL, OFF, glTF or GLB.
@@ -72,7 +75,7 @@ pub(crate) struct DecomposeArgs {
              one result file each. The result records the distance reached and, if it could \
              not get within D, why. Default (without -n and --max-bytes): {}, at most \
              {MAX_PRIMITIVES} primitives.",
-            DEFAULT_TOLERANCE
+            Tolerance::DEFAULT
         ),
         value_name = "D",
         value_delimiter = ',',

@@ -9,7 +9,7 @@
 //! that a big scan does not start last and run alone while the other jobs idle.
 //!
 //! Memory: before loading an input a job reserves the input's estimated peak
-//! (`primdecomp::memory_needed`; the whole budget where it cannot be known) from the
+//! (`primdecomp::Mesh::memory_needed`; the whole budget where it cannot be known) from the
 //! `--max-memory` budget, and waits while the others' reservations leave too little;
 //! an input runs alone when nothing else is reserved, where the per-input limit of
 //! `LoadOptions::max_memory` applies as in a sequential run.
@@ -82,7 +82,7 @@ pub fn run_all<T: Send>(
             s.spawn(|| {
                 let pool = rayon::ThreadPoolBuilder::new().num_threads(per_job).build();
                 while let Some(&i) = order.get(next.fetch_add(1, Ordering::Relaxed)) {
-                    let held = budget.reserve(primdecomp::memory_needed(&inputs[i]));
+                    let held = budget.reserve(primdecomp::Mesh::memory_needed(&inputs[i]));
                     let r = match &pool {
                         Ok(p) => p.install(|| run(i)),
                         Err(e) => Err(anyhow::anyhow!("cannot start {per_job} threads: {e}")),

@@ -86,7 +86,7 @@ pub struct Written {
 }
 
 /// The largest manifest read back (a line is a few hundred bytes per input).
-const MAX_BYTES: u64 = primdecomp::MAX_RESULT_BYTES;
+const MAX_BYTES: u64 = primdecomp::ResultFile::MAX_BYTES;
 
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "lowercase")]

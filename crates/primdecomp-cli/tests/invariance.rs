@@ -1,7 +1,6 @@
 //! Same shape, same answer: the result must not depend on the thread count, the
 //! input's units or its position (georeferenced scans sit at 10^6 offsets).
 
-use primdecomp::to_json;
 use primdecomp::{decompose, CountSearch, Decomposition, Goal, Kind, Mesh, Params, Primitive};
 use primdecomp_testkit::shapes::{cuboid, cylinder, demo_polys, join, obj_text};
 
@@ -28,7 +27,7 @@ fn params() -> Params {
 
 /// The JSON document as written without `--timings`: compared byte for byte.
 fn stable_json(d: &Decomposition, level: usize) -> String {
-    to_json(d, level, &params())
+    d.to_json(level, &params())
 }
 
 #[test]

@@ -3,7 +3,7 @@
 //! JSON is the same bytes on 1 and 2 threads and the library's; what needs the whole
 //! mesh is refused with exit 2.
 
-use primdecomp::{decompose_tiled, to_json, Goal, LoadOptions, Params};
+use primdecomp::{decompose_tiled, Goal, LoadOptions, Params};
 use primdecomp_testkit::shapes::{icosphere, ply_bytes};
 use std::path::Path;
 use std::process::Command;
@@ -80,7 +80,7 @@ fn over_the_limit_tiles_instead_of_refusing() {
         input.retain(|k, _| !matches!(k.as_str(), "path" | "up" | "up_from"));
         v
     };
-    assert_eq!(bare(&t1), bare(&to_json(&dec, 0, &params)));
+    assert_eq!(bare(&t1), bare(&dec.to_json(0, &params)));
     // What needs the whole mesh is refused.
     let (code, _, err) = run(
         &dir,

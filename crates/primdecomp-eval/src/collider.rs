@@ -1,5 +1,5 @@
 //! Colliders to evaluate or simulate: our primitives (a primdecomp JSON document,
-//! read by [`primdecomp::read_primitives`]) or convex hulls in an OBJ file, one
+//! read by [`primdecomp::ResultFile::read`]) or convex hulls in an OBJ file, one
 //! hull per `o` object or `g` group, as CoACD and V-HACD write them.
 //!
 //! The OBJ reader follows the mesh reader's rules (global 1-based or negative
@@ -8,9 +8,9 @@
 //! of their own; objects or groups without faces are dropped. Each hull keeps only
 //! the vertices its faces use, in f64 world coordinates.
 
-use primdecomp::math::V3;
 use primdecomp::{Error, Result};
 use primdecomp::{Kind, Primitive};
+use primdecomp_math::V3;
 use std::collections::HashMap;
 use std::path::Path;
 
@@ -73,9 +73,9 @@ impl Collider {
 /// Loads a collider: `.json` is a primdecomp document, `.obj` convex hulls. Like a
 /// mesh it must be a regular file ([`primdecomp::read_regular`]: a named pipe or
 /// device is refused before reading), of at most
-/// [`primdecomp::MAX_RESULT_BYTES`].
+/// [`primdecomp::ResultFile::MAX_BYTES`].
 pub fn load(path: &Path) -> Result<Collider> {
-    let bytes = primdecomp::read_regular(path, primdecomp::MAX_RESULT_BYTES)?;
+    let bytes = primdecomp::read_regular(path, primdecomp::ResultFile::MAX_BYTES)?;
     let ext = path
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());
@@ -98,7 +98,7 @@ pub fn parse_json(bytes: &[u8], path: &Path) -> Result<Collider> {
             "the JSON document is not UTF-8",
         )
     })?;
-    let prims = primdecomp::read_primitives(text).map_err(|m| Error::format(path, m))?;
+    let prims = primdecomp::ResultFile::read(text, path)?.primitives;
     if prims.is_empty() {
         return Err(Error::format(path, "the document has no primitives"));
     }
@@ -109,7 +109,7 @@ pub fn parse_json(bytes: &[u8], path: &Path) -> Result<Collider> {
 /// with its objects ([`primdecomp::Mesh::objects`]), each fan-triangulated on the
 /// vertices its faces use.
 pub fn parse_hulls_obj(bytes: &[u8], path: &Path) -> Result<Vec<Hull>> {
-    let mesh = primdecomp::parse_mesh(bytes, primdecomp::Format::Obj, path)?;
+    let mesh = primdecomp::Mesh::parse(bytes, primdecomp::MeshFormat::Obj, path)?;
     let mut hulls = Vec::new();
     for object in mesh.objects() {
         let mut local: HashMap<u32, u32> = HashMap::new();

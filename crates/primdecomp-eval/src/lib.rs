@@ -16,7 +16,7 @@
 //! parallel, and is the same for a seed whatever the thread count: samples come from
 //! per-chunk generators and every reduction runs in sample order.
 
-pub use primdecomp::math::bvh;
+pub use primdecomp_math::bvh;
 pub mod collider;
 pub mod report;
 pub mod sample;
@@ -24,9 +24,9 @@ pub mod shape;
 
 use crate::collider::{Collider, Hull};
 use bvh::{point_tri_dist2, tri_box, Bvh};
-use primdecomp::math::{cross, dot, norm, normalize, scale, sub, V3};
 use primdecomp::Mesh;
 use primdecomp::Primitive;
+use primdecomp_math::{cross, dot, norm, normalize, scale, sub, V3};
 use rayon::prelude::*;
 use sample::{Sample, Surface};
 use shape::Piece;

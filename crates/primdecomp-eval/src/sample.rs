@@ -6,7 +6,7 @@
 //! from them in order — are the same for any thread count.
 
 use super::shape::Piece;
-use primdecomp::math::V3;
+use primdecomp_math::V3;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;

@@ -7,8 +7,8 @@
 //! is a cylinder side and two hemispheres. No tessellation: every sample lies on the
 //! true surface, and the distance is to the true surface.
 
-use primdecomp::math::{add, cross, dot, madd, norm, norm2, normalize, scale, sub, V3};
 use primdecomp::{Obb, Primitive, Prism};
+use primdecomp_math::{add, cross, dot, madd, norm, norm2, normalize, scale, sub, V3};
 use std::f64::consts::PI;
 
 /// A surface piece with a closed-form area and an area-uniform sampler.
@@ -268,7 +268,7 @@ fn seg2_dist2(x: f64, y: f64, a: [f64; 2], b: [f64; 2]) -> f64 {
 
 /// Squared distance from `p` to the surface (not the solid) of `prim`, exact.
 pub fn surface_dist2(prim: &Primitive, p: V3) -> f64 {
-    use primdecomp::math::bvh::{point_segment_dist2, point_tri_dist2};
+    use primdecomp_math::bvh::{point_segment_dist2, point_tri_dist2};
     let tris = |t: [[V3; 3]; 12]| {
         t.iter()
             .map(|t| point_tri_dist2(p, t))
@@ -305,7 +305,7 @@ mod tests {
     use rand_chacha::ChaCha8Rng;
 
     pub(crate) fn all_kinds() -> Vec<Primitive> {
-        let axes = primdecomp::math::axes_from_quat([0.3, -0.2, 0.5, 0.8]);
+        let axes = primdecomp_math::axes_from_quat([0.3, -0.2, 0.5, 0.8]);
         vec![
             Primitive::Box(Obb {
                 center: [1.0, 2.0, 3.0],

@@ -16,12 +16,12 @@
 
 use super::names::Names;
 use super::range;
-use primdecomp::math::{add, norm, normalize, scale, sub, V3};
 use primdecomp::ResultObject;
+use primdecomp::Tess;
 use primdecomp::Up;
-use primdecomp::{tessellate, Tess};
 use primdecomp::{visible, Frame};
 use primdecomp::{Kind, Primitive};
+use primdecomp_math::{add, norm, normalize, scale, sub, V3};
 use std::path::Path;
 
 /// An export format.
@@ -155,7 +155,7 @@ impl Default for ExportOptions {
         ExportOptions {
             up: Up::Y,
             scale: 1.0,
-            detail: primdecomp::DEFAULT_DETAIL,
+            detail: primdecomp::Tess::DEFAULT_DETAIL,
             physics: Physics::Khr,
             preview: false,
             urdf_capsule: false,
@@ -256,10 +256,10 @@ pub(crate) fn check_options(opts: &ExportOptions) -> Result<(), String> {
             opts.scale
         ));
     }
-    if !(3..=primdecomp::MAX_DETAIL).contains(&opts.detail) {
+    if !(3..=primdecomp::Tess::MAX_DETAIL).contains(&opts.detail) {
         return Err(format!(
             "--export-detail must be from 3 to {}, got {}",
-            primdecomp::MAX_DETAIL,
+            primdecomp::Tess::MAX_DETAIL,
             opts.detail
         ));
     }
@@ -289,7 +289,7 @@ fn tessellated_vertices(
         .flat_map(|o| &o.primitives)
         .filter(|p| preview || !native[p.kind() as usize])
         .map(|p| {
-            *per_kind[p.kind() as usize].get_or_insert_with(|| tessellate(p, detail).vertices.len())
+            *per_kind[p.kind() as usize].get_or_insert_with(|| p.tessellate(detail).vertices.len())
         })
         .fold(0usize, usize::saturating_add)
 }
@@ -408,12 +408,12 @@ pub fn prepare(
 /// so, else its conservative tessellation with `detail` segments.
 pub fn shape(p: &Primitive, native: [bool; 6], detail: usize) -> Shape {
     if !native[p.kind() as usize] {
-        return Shape::Hull(tessellate(p, detail));
+        return Shape::Hull(p.tessellate(detail));
     }
     match *p {
         Primitive::Box(b) => Shape::Box {
             center: b.center,
-            rotation: primdecomp::math::quat_from_axes(&right_handed(b.axes)),
+            rotation: primdecomp_math::quat_from_axes(&right_handed(b.axes)),
             half: b.half,
         },
         Primitive::Sphere(s) => Shape::Sphere {
@@ -447,14 +447,14 @@ pub fn shape(p: &Primitive, native: [bool; 6], detail: usize) -> Shape {
             r0: f.r0,
             r1: f.r1,
         },
-        Primitive::Prism(_) => Shape::Hull(tessellate(p, detail)),
+        Primitive::Prism(_) => Shape::Hull(p.tessellate(detail)),
     }
 }
 
 /// Box axes made right-handed (a box is symmetric: flipping the third axis changes
 /// nothing), so they form a rotation.
 fn right_handed(a: [V3; 3]) -> [V3; 3] {
-    if primdecomp::math::dot(primdecomp::math::cross(a[0], a[1]), a[2]) >= 0.0 {
+    if primdecomp_math::dot(primdecomp_math::cross(a[0], a[1]), a[2]) >= 0.0 {
         a
     } else {
         [a[0], a[1], scale(a[2], -1.0)]
@@ -465,12 +465,12 @@ fn right_handed(a: [V3; 3]) -> [V3; 3] {
 /// unit vector `a`: the shortest arc, or a half turn about an axis perpendicular to
 /// `local` when `a` is opposite.
 pub fn quat_between(local: V3, a: V3) -> [f64; 4] {
-    let d = primdecomp::math::dot(local, a);
+    let d = primdecomp_math::dot(local, a);
     if d < -1.0 + 1e-12 {
-        let (u, _) = primdecomp::circle_frame(local);
+        let (u, _) = primdecomp_math::circle_frame(local);
         return [u[0], u[1], u[2], 0.0];
     }
-    let c = primdecomp::math::cross(local, a);
+    let c = primdecomp_math::cross(local, a);
     let q = [c[0], c[1], c[2], 1.0 + d];
     let n = q.iter().map(|x| x * x).sum::<f64>().sqrt();
     q.map(|x| x / n)

@@ -25,11 +25,11 @@ use super::engine::{prepare, quat_between, ExportOptions, Format, Physics, Prepa
 use gltf_json as json;
 use json::validation::{Checked::Valid, USize64};
 use json::Index;
-use primdecomp::math::V3;
 use primdecomp::Frame;
 use primdecomp::Kind;
 use primdecomp::ResultObject;
-use primdecomp::{tessellate, Tess};
+use primdecomp::Tess;
+use primdecomp_math::V3;
 use serde_json::{json as j, Value};
 
 /// Preview colours per kind (RGBA, half transparent), in [`Kind::ALL`] order.
@@ -415,7 +415,7 @@ fn preview_tess(shape: &Shape, detail: usize) -> Tess {
             half,
         } => Primitive::Box(Obb {
             center: *center,
-            axes: primdecomp::math::axes_from_quat(*rotation),
+            axes: primdecomp_math::axes_from_quat(*rotation),
             half: *half,
         }),
         Shape::Sphere { center, radius } => Primitive::Sphere(Sphere {
@@ -439,7 +439,7 @@ fn preview_tess(shape: &Shape, detail: usize) -> Tess {
             r1: *r1,
         }),
     };
-    tessellate(&p, detail)
+    p.tessellate(detail)
 }
 
 /// Standard base64 with padding.

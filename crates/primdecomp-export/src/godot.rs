@@ -11,10 +11,10 @@
 
 use super::engine::{num, prepare, quat_between, ExportOptions, Format, Shape};
 use super::names::{ident, Names};
-use primdecomp::math::axes_from_quat;
-use primdecomp::math::V3;
 use primdecomp::visible;
 use primdecomp::ResultObject;
+use primdecomp_math::axes_from_quat;
+use primdecomp_math::V3;
 use std::fmt::Write;
 
 /// A Godot string literal: quoted, `\` and `"` escaped; control characters (which

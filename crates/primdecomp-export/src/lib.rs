@@ -5,7 +5,7 @@
 //! native shapes and which become convex hulls): docs/decisions/exports-engine-conventions.md.
 //!
 //! The input is a list of [`primdecomp::ResultObject`]s: one for a whole-mesh result,
-//! one per object of a `--per-object` result ([`primdecomp::read_objects`] reads either
+//! one per object of a `--per-object` result ([`primdecomp::ResultFile::read`] reads either
 //! from the JSON contract). [`render`] gives the bytes, [`write_export`] writes them
 //! (through temporary files and renames, [`primdecomp::write_atomic`]). Every shape is
 //! grown by [`primdecomp::Frame::GROW_REL`] of its magnitude before it is written, so
@@ -14,7 +14,7 @@
 //! [`primdecomp::Error`] naming the shape, never written.
 //!
 //! ```
-//! use primdecomp::{decompose, demo_scene, Frame, Goal, Params, ResultObject};
+//! use primdecomp::{Frame, Goal, Params, ResultObject, decompose, demo_scene};
 //! use primdecomp_export::{render, ExportOptions, Format};
 //!
 //! let result = decompose(&demo_scene(), &Params { goal: Goal::counts([40]), ..Params::default() })?;

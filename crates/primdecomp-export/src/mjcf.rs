@@ -9,9 +9,9 @@
 
 use super::engine::{prepare, quat_between, ExportOptions, Format, Shape};
 use super::xml::{nums, Xml};
-use primdecomp::math::V3;
 use primdecomp::visible;
 use primdecomp::ResultObject;
+use primdecomp_math::V3;
 
 /// Shortest `fromto` written, relative to the radius (and at least 1e-6 long):
 /// MuJoCo refuses end points too close ("fromto points too close in geom"), so a

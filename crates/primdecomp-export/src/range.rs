@@ -14,10 +14,11 @@
 //! naming it: nothing non-finite or unloadable is ever written
 //! (docs/decisions/hostile-input-limits.md).
 
-use primdecomp::math::{cross, norm, sub};
 use primdecomp::Frame;
 use primdecomp::Primitive;
 use primdecomp::Tess;
+use primdecomp_math::short as show;
+use primdecomp_math::{cross, norm, sub};
 
 /// The largest magnitude written: its square, 1e36, is within f32's range (3.4e38).
 pub const MAX_LENGTH: f64 = 1e18;
@@ -69,21 +70,6 @@ fn numbers(p: &Primitive) -> Vec<f64> {
         }
     }
     v
-}
-
-/// Short form of a number for messages, three significant digits: `1e60`,
-/// `2.5e-35`, `inf`.
-fn show(x: f64) -> String {
-    if x == 0.0 {
-        return "0".into();
-    }
-    let s = format!("{x:.2e}");
-    match s.split_once('e') {
-        Some((m, e)) if m.contains('.') => {
-            format!("{}e{e}", m.trim_end_matches('0').trim_end_matches('.'))
-        }
-        _ => s,
-    }
 }
 
 const RESCALE: &str = "give --scale (ExportOptions::scale) to bring the result into range";

@@ -11,10 +11,10 @@
 use super::engine::{prepare, quat_between, ExportOptions, Files, Format, Shape};
 use super::names::{file_name, ident, MAX_FILE_NAME};
 use super::xml::{nums, Xml};
-use primdecomp::math::axes_from_quat;
 use primdecomp::visible;
 use primdecomp::ResultObject;
 use primdecomp::Tess;
+use primdecomp_math::axes_from_quat;
 use std::fmt::Write;
 
 /// Fixed-axis roll, pitch, yaw of a unit quaternion (scalar last), from its matrix;

@@ -11,9 +11,9 @@
 
 use super::engine::{prepare, quat_between, ExportOptions, Format, Shape};
 use super::names::{ident, Names};
-use primdecomp::math::V3;
 use primdecomp::visible;
 use primdecomp::ResultObject;
+use primdecomp_math::V3;
 use std::fmt::Write;
 
 /// A USD string literal: quoted, `\` and `"` escaped; control characters first made

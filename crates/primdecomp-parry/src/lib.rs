@@ -3,7 +3,7 @@
 //! (`Collider::from(shape)`).
 //!
 //! ```
-//! use primdecomp::{decompose, demo_scene, Goal, Params};
+//! use primdecomp::{Goal, Params, decompose, demo_scene};
 //! use primdecomp_parry::compound;
 //!
 //! let result = decompose(&demo_scene(), &Params { goal: Goal::counts([40]), ..Params::default() })?;
@@ -16,7 +16,7 @@
 //!
 //! Boxes, spheres, capsules and cylinders become parry's own shapes; frustums and
 //! prisms, which parry lacks, the convex hull of their conservative tessellation
-//! ([`primdecomp::tessellate`], which contains the exact primitive). parry works in
+//! ([`primdecomp::Primitive::tessellate`], which contains the exact primitive). parry works in
 //! `f32`: each shape is placed relative to an origin near the primitives (so that
 //! `f32` keeps their detail) and grown by 2⁻¹⁸ of its size plus its distance from that
 //! origin, the margin the engine exports use (docs/decisions/exports-engine-conventions.md),
@@ -25,14 +25,14 @@
 
 use parry3d::math::{Pose, Rotation, Vector};
 use parry3d::shape::SharedShape;
-use primdecomp::math::{add, norm, quat_from_axes, scale, sub, V3};
 use primdecomp::{Kind, Primitive};
+use primdecomp_math::{add, norm, quat_from_axes, scale, sub, V3};
 
 /// How much each shape grows, relative to its size plus its distance from the origin.
 pub const GROW_REL: f64 = 1.0 / 262_144.0;
 
 /// Segments around the circles of a frustum's hull.
-const FRUSTUM_DETAIL: usize = primdecomp::DEFAULT_DETAIL;
+const FRUSTUM_DETAIL: usize = primdecomp::Tess::DEFAULT_DETAIL;
 
 /// A primitive parry cannot hold (a hull with no volume). The library's own output
 /// never has one: every primitive is at least its minimum extent thick.
@@ -149,7 +149,8 @@ fn hull(p: &Primitive, centre: V3, origin: V3, margin: f64) -> Option<(Pose, Sha
     } else {
         3
     };
-    let points: Vec<Vector> = primdecomp::tessellate(p, detail)
+    let points: Vec<Vector> = p
+        .tessellate(detail)
         .vertices
         .iter()
         .map(|&v| {

@@ -84,7 +84,7 @@ fn load<'py>(py: Python<'py>, path: &str) -> PyResult<(Bound<'py, PyArray2<f64>>
         ..Default::default()
     };
     let mesh = py
-        .allow_threads(|| catch_unwind(|| primdecomp::load_with(Path::new(path), &options)))
+        .allow_threads(|| catch_unwind(|| primdecomp::Mesh::load_with(Path::new(path), &options)))
         .map_err(|p| PyRuntimeError::new_err(panic_message(p)))?
         .map_err(to_py_err)?;
     let n = mesh.vertex_count();
@@ -256,22 +256,13 @@ fn decompose_path(
     let params = Params::from_json(settings_json).map_err(to_py_err)?;
     params.validate().map_err(to_py_err)?;
     let mesh = py
-        .allow_threads(|| catch_unwind(|| primdecomp::load(Path::new(path))))
+        .allow_threads(|| catch_unwind(|| primdecomp::Mesh::load(Path::new(path))))
         .map_err(|p| PyRuntimeError::new_err(panic_message(p)))?
         .map_err(to_py_err)?;
     let mut dec = run_watched(py, &mesh, &params, progress.as_ref())?;
-    as_the_cli_records(&mut dec, path);
+    // As the CLI records them, so that to_json() is the CLI's file byte for byte.
+    dec.input.record_file(Path::new(path));
     Ok(NativeResult { dec, params })
-}
-
-/// The input's path and up axis as the CLI records them, so that to_json() is the
-/// CLI's file byte for byte.
-pub(crate) fn as_the_cli_records(dec: &mut Decomposition, path: &str) {
-    dec.input.path = Some(Path::new(path).display().to_string());
-    if let Some(format) = primdecomp::Format::from_path(Path::new(path)) {
-        let (up, why) = primdecomp::Up::of_format(format);
-        (dec.input.up, dec.input.up_from) = (Some(up), Some(why.to_string()));
-    }
 }
 
 /// A finished decomposition and the settings that made it.
@@ -362,7 +353,7 @@ impl NativeResult {
     /// The CLI's JSON document of one level.
     fn to_json(&self, level: usize) -> PyResult<String> {
         self.level(level)?;
-        Ok(primdecomp::to_json(&self.dec, level, &self.params))
+        Ok(self.dec.to_json(level, &self.params))
     }
     /// Volumes of a level's primitives.
     fn volumes(&self, level: usize) -> PyResult<Vec<f64>> {
@@ -390,7 +381,7 @@ impl NativeResult {
         i: usize,
         detail: usize,
     ) -> PyResult<MeshArrays<'py>> {
-        let t = primdecomp::tessellate(self.primitive(level, i)?, detail);
+        let t = self.primitive(level, i)?.tessellate(detail);
         let v: Vec<Vec<f64>> = t.vertices.iter().map(|p| p.to_vec()).collect();
         Ok((PyArray2::from_vec2(py, &v)?, t.faces))
     }
@@ -406,7 +397,7 @@ impl NativeResult {
         let written = match ext.as_deref() {
             Some("json") => primdecomp::write_atomic(p, json.as_bytes()).map(|_| vec![p.into()]),
             Some("obj") => {
-                let obj = primdecomp::to_obj(self.level(level)?, primdecomp::DEFAULT_DETAIL);
+                let obj = self.level(level)?.to_obj(primdecomp::Tess::DEFAULT_DETAIL);
                 primdecomp::write_atomic(p, obj.as_bytes()).map(|_| vec![p.into()])
             }
             _ => {
@@ -418,7 +409,12 @@ impl NativeResult {
                         ))
                     })?,
                 };
-                let objs = primdecomp::read_objects(&json).map_err(PyValueError::new_err)?;
+                let objs = primdecomp::ResultFile::read(&json, "result.json".as_ref())
+                    .map_err(|e| match e {
+                        primdecomp::Error::Format { msg, .. } => PyValueError::new_err(msg),
+                        e => PyValueError::new_err(e.to_string()),
+                    })?
+                    .objects;
                 // The input's up axis where the result records it (+Y otherwise).
                 let opts = ExportOptions {
                     up: self.dec.input.up.unwrap_or_default(),

@@ -4,7 +4,7 @@
 //! and Ctrl-C watched. Bad bytes, a file other than the plan's, a tile out of range
 //! are `ValueError`s naming what is wrong; the file system's errors `OSError`s.
 
-use crate::{as_the_cli_records, to_py_err, watched, NativeResult};
+use crate::{to_py_err, watched, NativeResult};
 use primdecomp::{LoadOptions, Params, Tiled};
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
@@ -22,10 +22,10 @@ fn tiles_plan<'py>(
     progress: Option<PyObject>,
 ) -> PyResult<Bound<'py, PyBytes>> {
     let params = Params::from_json(settings_json).map_err(to_py_err)?;
-    if tiles == 0 || tiles > primdecomp::MAX_TILES {
+    if tiles == 0 || tiles > Tiled::MAX_TILES {
         return Err(pyo3::exceptions::PyValueError::new_err(format!(
             "tiles must be in 1..={}, got {tiles}",
-            primdecomp::MAX_TILES
+            Tiled::MAX_TILES
         )));
     }
     let options = LoadOptions {
@@ -85,7 +85,7 @@ fn tiles_merge(
     let slices: Vec<&[u8]> = results.iter().map(|b| b.as_bytes()).collect();
     let params = tiled.params().clone();
     let mut dec = watched(py, &params, progress.as_ref(), |p| tiled.merge(&slices, p))?;
-    as_the_cli_records(&mut dec, path);
+    dec.input.record_file(Path::new(path));
     Ok(NativeResult { dec, params })
 }
 

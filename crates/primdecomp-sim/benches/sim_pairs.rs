@@ -11,7 +11,7 @@
 //! Run: `cargo bench --bench sim_pairs` (figures in docs/results/sim.md).
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use primdecomp::tessellate;
+
 use primdecomp::{Frustum, Primitive, Prism};
 use primdecomp_sim::shapes::{self, Frame, Placed};
 use rapier3d::geometry::SharedShape;
@@ -85,7 +85,8 @@ fn cases() -> Vec<(&'static str, Placed)> {
         (
             "frustum_hull_32",
             shapes::hull(
-                &tessellate(&frustum, primdecomp_sim::frustum_shape::FRUSTUM_SEGMENTS)
+                &frustum
+                    .tessellate(primdecomp_sim::frustum_shape::FRUSTUM_SEGMENTS)
                     .vertices
                     .into_iter()
                     .map(|q| frame.point(q))

@@ -62,10 +62,10 @@ pub mod scene;
 pub mod shapes;
 
 use metrics::{Behaviour, FrameStats};
-use primdecomp::math::V3;
 use primdecomp::Mesh;
 use primdecomp::{Error, Result};
 use primdecomp_eval::collider::Collider;
+use primdecomp_math::V3;
 use scene::{Scene, World};
 use shapes::Placed;
 

@@ -2,7 +2,7 @@
 //! against the reference (the input mesh). Definitions are in [`super`]'s docs.
 
 use super::scene::Scene;
-use primdecomp::math::{norm, sub, V3};
+use primdecomp_math::{norm, sub, V3};
 use serde::Serialize;
 use std::collections::HashMap;
 

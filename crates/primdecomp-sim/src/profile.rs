@@ -8,7 +8,7 @@
 //! mesh); ball–ball pairs depend only on where the balls are, i.e. on behaviour.
 //! Figures are means per frame.
 
-use primdecomp::math::V3;
+use primdecomp_math::V3;
 use rapier3d::geometry::{
     Collider, ColliderHandle, ColliderSet, ContactPair, NarrowPhase, ShapeType,
 };

@@ -45,8 +45,8 @@
 use super::scene::{frame_of, SplitMix, BALL_RADIUS_REL, DT};
 use super::shapes::{Frame, Placed};
 use super::{placed, Entry, Geometry};
-use primdecomp::math::{add, cross, dot, norm, norm2, scale, sub, V3};
 use primdecomp::{Error, Mesh, Result};
+use primdecomp_math::{add, cross, dot, norm, norm2, scale, sub, V3};
 use rapier3d::dynamics::{RigidBodyBuilder, RigidBodyHandle};
 use rapier3d::geometry::{ColliderBuilder, Group, InteractionGroups, InteractionTestMode};
 use rapier3d::math::Vector;

@@ -5,7 +5,7 @@
 use super::profile::Profile;
 use super::scene::{BALL_RADIUS_REL, DT, GRAVITY, PERTURBATION_RADII, SCENE_DIAGONAL};
 use super::Run;
-use primdecomp::math::V3;
+use primdecomp_math::V3;
 use serde::Serialize;
 use std::fmt::Write;
 

@@ -5,8 +5,8 @@
 use super::profile::{Profile, Tally};
 use super::shapes::{Frame, Placed};
 use super::Settings;
-use primdecomp::math::{norm, sub, V3};
 use primdecomp::Mesh;
+use primdecomp_math::{norm, sub, V3};
 use rapier3d::dynamics::{RigidBodyBuilder, RigidBodyHandle};
 use rapier3d::geometry::{ColliderBuilder, SharedShape};
 use rapier3d::math::Vector;

@@ -11,11 +11,11 @@
 
 use super::frustum_shape::{FrustumShape, FRUSTUM_SEGMENTS};
 use super::prism_shape::PrismShape;
-use primdecomp::circle_frame;
-use primdecomp::math::quat_from_axes;
-use primdecomp::math::{add, cross, norm2, normalize, scale, sub, V3};
 use primdecomp::Mesh;
 use primdecomp::{Frustum, Primitive};
+use primdecomp_math::circle_frame;
+use primdecomp_math::quat_from_axes;
+use primdecomp_math::{add, cross, norm2, normalize, scale, sub, V3};
 use rapier3d::geometry::SharedShape;
 use rapier3d::math::{Pose, Rotation, Vector};
 

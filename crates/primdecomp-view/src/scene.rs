@@ -166,7 +166,7 @@ pub const MAX_EVAL_ROWS: usize = 4096;
 
 /// A file read whole: a regular file of at most `MAX_RESULT_BYTES`, in UTF-8.
 fn read_text(path: &Path) -> Result<String> {
-    let bytes = primdecomp::read_regular(path, primdecomp::MAX_RESULT_BYTES)?;
+    let bytes = primdecomp::read_regular(path, primdecomp::ResultFile::MAX_BYTES)?;
     String::from_utf8(bytes).map_err(|e| {
         Error::byte(
             path,

@@ -17,7 +17,7 @@ pub struct InputMesh {
 /// Loads any input mesh the core reads (OBJ, PLY, STL, OFF, glTF/GLB) with `options`
 /// (the memory limit, the glTF URI policy).
 pub fn load_input(path: &Path, options: &primdecomp::LoadOptions) -> Result<InputMesh> {
-    Ok(from_core_mesh(&primdecomp::load_with(path, options)?))
+    Ok(from_core_mesh(&primdecomp::Mesh::load_with(path, options)?))
 }
 
 /// The world-coordinate polygons of a mesh the core loaded.
@@ -34,7 +34,7 @@ pub fn from_core_mesh(mesh: &primdecomp::Mesh) -> InputMesh {
 
 /// The primitives of a result document (its `primitives` array).
 pub fn read_primitives(json: &str, path: &Path) -> Result<Vec<Primitive>> {
-    primdecomp::read_primitives(json).map_err(|m| Error::format(path, m))
+    Ok(primdecomp::ResultFile::read(json, path)?.primitives)
 }
 
 /// The kind of a primitive.
@@ -44,7 +44,7 @@ pub fn kind(p: &Primitive) -> Kind {
 
 /// A primitive's conservative closed tessellation: vertices and outward polygons.
 pub fn tessellate(p: &Primitive, detail: usize) -> (Vec<[f64; 3]>, Vec<Vec<u32>>) {
-    let t = primdecomp::tessellate(p, detail);
+    let t = p.tessellate(detail);
     (t.vertices, t.faces)
 }
 

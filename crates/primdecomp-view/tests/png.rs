@@ -88,9 +88,9 @@ fn result(dir: &Path, target: usize) -> Option<(PathBuf, PathBuf, PathBuf)> {
     };
     let dec = primdecomp::decompose(&mesh, &params).expect("decomposes");
     let json = dir.join("lamp.json");
-    std::fs::write(&json, primdecomp::to_json(&dec, 0, &params)).unwrap();
+    std::fs::write(&json, dec.to_json(0, &params)).unwrap();
     let obj = dir.join("tessellation.obj");
-    std::fs::write(&obj, primdecomp::to_obj(&dec.levels[0], 16)).unwrap();
+    std::fs::write(&obj, dec.levels[0].to_obj(16)).unwrap();
     Some((mesh_path, json, obj))
 }
 

@@ -19,7 +19,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         _ => return Err("usage: native_json MESH SETTINGS_JSON OUT.json [REPEAT]".into()),
     };
     let params = primdecomp::Params::from_json(settings)?;
-    let loaded = primdecomp::load(mesh.as_ref())?;
+    let loaded = primdecomp::Mesh::load(mesh.as_ref())?;
     let mut last = None;
     for _ in 0..repeat {
         let start = Instant::now();
@@ -29,6 +29,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     let mut dec = last.expect("at least one run");
     dec.input.path = Some(mesh.clone());
-    std::fs::write(out, primdecomp::to_json(&dec, 0, &params))?;
+    std::fs::write(out, dec.to_json(0, &params))?;
     Ok(())
 }

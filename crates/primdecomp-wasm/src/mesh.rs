@@ -21,12 +21,12 @@ pub struct WasmMesh {
 #[wasm_bindgen(js_name = parseMesh)]
 pub fn parse_mesh(bytes: &[u8], name: &str) -> Result<WasmMesh, JsError> {
     let path = Path::new(name);
-    let format = primdecomp::Format::from_path(path).ok_or_else(|| {
+    let format = primdecomp::MeshFormat::from_path(path).ok_or_else(|| {
         js_error(format!(
             "{name}: unknown extension: expected .obj, .ply, .stl, .off, .gltf or .glb"
         ))
     })?;
-    let mesh = primdecomp::parse_mesh(bytes, format, path).map_err(js_error)?;
+    let mesh = primdecomp::Mesh::parse(bytes, format, path).map_err(js_error)?;
     Ok(WasmMesh {
         mesh,
         path: Some(name.to_string()),

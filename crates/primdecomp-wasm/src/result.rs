@@ -81,7 +81,7 @@ impl WasmResult {
     /// settings.
     pub fn json(&self, level: usize) -> Result<String, JsError> {
         self.level(level)?;
-        Ok(primdecomp::to_json(&self.dec, level, &self.params))
+        Ok(self.dec.to_json(level, &self.params))
     }
 
     /// A level in `format` (`obj`, `gltf`, `glb`, `mjcf`, `urdf`, `usda`, `tscn`) as
@@ -103,7 +103,7 @@ impl WasmResult {
     ) -> Result<Vec<u8>, JsError> {
         let lv = self.level(level)?;
         if format.eq_ignore_ascii_case("obj") {
-            return Ok(primdecomp::to_obj(lv, detail.max(3)).into_bytes());
+            return Ok(lv.to_obj(detail.max(3)).into_bytes());
         }
         let f = Format::from_name(format).ok_or_else(|| {
             js_error(format!(
@@ -149,7 +149,7 @@ impl WasmResult {
         };
         for p in &lv.primitives {
             let base = (t.positions.len() / 3) as u32;
-            let tess = primdecomp::tessellate(p, detail.max(3));
+            let tess = p.tessellate(detail.max(3));
             for v in &tess.vertices {
                 t.positions
                     .extend((0..3).map(|k| (v[k] - self.centre[k]) as f32));

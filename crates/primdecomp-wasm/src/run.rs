@@ -80,15 +80,9 @@ pub fn decompose(
         None => primdecomp::decompose(&mesh.mesh, &params),
     };
     let mut dec = run.map_err(js_error)?;
-    dec.input.path = mesh.path.clone();
-    // The up axis the input's format says, as the CLI records it (`input.up`), so that
-    // the JSON is the CLI's byte for byte.
-    let format = mesh
-        .path
-        .as_deref()
-        .and_then(|p| primdecomp::Format::from_path(p.as_ref()));
-    if let Some((up, why)) = format.map(primdecomp::Up::of_format) {
-        (dec.input.up, dec.input.up_from) = (Some(up), Some(why.to_string()));
+    // As the CLI records the file, so that the JSON is the CLI's byte for byte.
+    if let Some(path) = &mesh.path {
+        dec.input.record_file(path.as_ref());
     }
     Ok(WasmResult::new(dec, params, mesh.mesh.centre()))
 }

@@ -11,7 +11,7 @@ use primdecomp::internals::{
     evaluator, face_pairs, face_quadrics, keep_mask, run, run_with, seed_volumes, weld, Cleanup,
     Clusters, StdHeap,
 };
-use primdecomp::{decompose, demo_scene, load, Goal, Mesh, Params};
+use primdecomp::{decompose, demo_scene, Goal, Mesh, Params};
 use std::path::PathBuf;
 use std::time::Duration;
 
@@ -45,7 +45,7 @@ fn inputs() -> Vec<Input> {
         ("large", "dragon_vrip_full.ply"),
     ] {
         if let Some(p) = corpus(file) {
-            let mesh = load(&p).expect("corpus mesh loads");
+            let mesh = Mesh::load(&p).expect("corpus mesh loads");
             v.push(Input {
                 name,
                 path: Some(p),
@@ -70,7 +70,7 @@ fn stages(c: &mut Criterion) {
         let mut g = c.benchmark_group(format!("stages/{}", inp.name));
         g.sample_size(10).warm_up_time(Duration::from_millis(500));
         if let Some(path) = &inp.path {
-            g.bench_function("load", |b| b.iter(|| load(path).unwrap()));
+            g.bench_function("load", |b| b.iter(|| Mesh::load(path).unwrap()));
         }
         g.bench_function("dedup", |b| b.iter(|| weld(m, p.fit.dedup)));
         let (welded, _) = weld(m, p.fit.dedup);
@@ -113,9 +113,7 @@ fn stages(c: &mut Criterion) {
             b.iter(|| keep_mask(m, &snap.prims, &snap.verts, &snap.members, cleanup))
         });
         let dec = decompose(m, &p).unwrap();
-        g.bench_function("output_json", |b| {
-            b.iter(|| primdecomp::to_json(&dec, 0, &p))
-        });
+        g.bench_function("output_json", |b| b.iter(|| dec.to_json(0, &p)));
         g.bench_function("end_to_end", |b| b.iter(|| decompose(m, &p).unwrap()));
         g.finish();
     }

@@ -35,7 +35,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     if times.is_empty() {
         times = vec![0.5, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 8.0];
     }
-    let mesh = primdecomp::load(path.as_ref())?;
+    let mesh = primdecomp::Mesh::load(path.as_ref())?;
     let params = Params {
         goal: Goal::counts([2000]),
         ..Params::default()

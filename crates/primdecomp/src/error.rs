@@ -164,6 +164,16 @@ pub enum Error {
 }
 
 /// What an input that is not a regular file is.
+///
+/// ```
+/// use primdecomp::{Error, FileKind, Mesh};
+///
+/// let folder = std::env::temp_dir();
+/// match Mesh::load(&folder) {
+///     Err(Error::NotAFile { kind, .. }) => assert_eq!(kind, FileKind::Directory),
+///     other => panic!("a folder is not a mesh: {other:?}"),
+/// }
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FileKind {
     /// A directory.
@@ -275,6 +285,13 @@ impl Error {
 }
 
 /// The library's result type.
+///
+/// ```
+/// fn faces(path: &std::path::Path) -> primdecomp::Result<usize> {
+///     Ok(primdecomp::Mesh::load(path)?.face_count())
+/// }
+/// assert!(faces("missing.obj".as_ref()).is_err());
+/// ```
 pub type Result<T> = std::result::Result<T, Error>;
 
 /// Bytes for a message: `1.5 GiB`, `300 MiB`, `12 KiB`.

@@ -8,7 +8,7 @@
 //!
 //! # In one page
 //!
-//! Load a mesh (OBJ, PLY, STL, OFF, glTF/GLB) with [`load`], or build one from your
+//! Load a mesh (OBJ, PLY, STL, OFF, glTF/GLB) with [`Mesh::load`], or build one from your
 //! own arrays with [`Mesh::from_triangles`] or [`Mesh::from_polygons`]; choose
 //! [`Params`] (the defaults are the paper's settings with our documented fixes);
 //! call [`decompose`]. The [`Decomposition`] holds one [`Level`] per target count,
@@ -36,9 +36,11 @@
 //! Several targets come from one pass, coarse levels of detail for free:
 //!
 //! ```
-//! use primdecomp::{decompose, demo_scene, Goal, Params};
+//! use primdecomp::{decompose, Goal, Mesh, Params};
 //!
-//! let scene = demo_scene(); // stairs, a table, pipes, a house, a torus and a washer
+//! // The built-in demo: stairs, a table, pipes, a house, a torus and a washer.
+//! let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../datasets/demo_scene.obj");
+//! let scene = Mesh::load(path.as_ref())?;
 //! let params = Params { goal: Goal::counts([200, 50]), ..Params::default() };
 //! let result = decompose(&scene, &params)?;
 //! for level in &result.levels {
@@ -49,10 +51,11 @@
 //! ```
 //!
 //! Long runs report progress and can be cancelled from another thread through a
-//! [`Progress`] ([`decompose_with`]). Results are written with [`to_json`] (the JSON
-//! contract the command line writes too, readable again with [`read_primitives`]) or
-//! as a conservative triangle mesh with [`tessellate`] / [`to_obj`] (each
-//! tessellated primitive contains the exact one). Everything is deterministic: the
+//! [`Progress`] ([`decompose_with`]). Results are written with
+//! [`Decomposition::to_json`] (the JSON contract the command line writes too, readable
+//! again with [`ResultFile::read`]) or as a conservative triangle mesh with
+//! [`Primitive::tessellate`] / [`Level::to_obj`] (each tessellated primitive contains
+//! the exact one). Everything is deterministic: the
 //! same mesh and settings give the same primitives on any number of threads.
 //!
 //! Errors are one type, [`Error`], naming the file and the line or byte offset where
@@ -67,7 +70,6 @@ mod cut;
 mod decompose;
 mod error;
 mod input;
-pub mod math;
 mod merge;
 mod output;
 mod params;
@@ -76,26 +78,22 @@ mod primitive;
 mod progress;
 mod seed;
 
+// The shared linear algebra, under the name the stages import it by.
+use primdecomp_math as math;
+
 pub use decompose::objects::{decompose_objects, ObjectResult, ObjectTarget, Objects};
-pub use decompose::tiles::{decompose_tiled, Tiled, MAX_TILES};
+pub use decompose::tiles::{decompose_tiled, Tiled};
 pub use decompose::{decompose, decompose_with};
 pub use error::{Error, FileKind, Result};
+#[cfg(feature = "demo-scene")]
 pub use input::demo::{demo_scene, demo_scene_obj};
-pub use input::io::{
-    load, load_with, memory_needed, open_regular, parse_mesh, parse_mesh_with, read_regular,
-    Format, LoadOptions,
-};
-pub use input::mesh::{Mesh, MeshObject, SkipCounts, Transform};
+pub use input::io::{open_regular, read_regular, LoadOptions, MeshFormat};
+pub use input::mesh::{Mesh, MeshObject, SkipCounts};
 pub use input::up::Up;
 pub use output::result::{Decomposition, InputInfo, Level, Shortfall, Stats, Timings};
-pub use output::{
-    circle_frame, read_objects, read_primitives, tessellate, to_json, to_json_objects,
-    to_json_timed, to_obj, visible, write_atomic, Frame, ResultObject, Tess, DEFAULT_DETAIL,
-    MAX_DETAIL, MAX_RESULT_BYTES,
-};
+pub use output::{visible, write_atomic, Frame, ResultFile, ResultObject, Tess};
 pub use params::{
     ByteSize, CountSearch, Dedup, Fit, Goal, Params, Partitions, Plates, Reprice, Speed, Tolerance,
-    DEFAULT_TOLERANCE, MAX_PRIMITIVES,
 };
 pub use primitive::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
 pub use progress::{Estimate, Eta, Progress, Stage};

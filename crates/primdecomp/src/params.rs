@@ -20,15 +20,23 @@ use serde::{Deserialize, Serialize};
 
 /// The tolerance of the default [`Goal`]: every primitive within this much of the
 /// input's diagonal, chosen from measurements over the corpus (docs/decisions/0037).
-pub const DEFAULT_TOLERANCE: Tolerance = Tolerance::Diagonal(0.02);
+pub(crate) const DEFAULT_TOLERANCE: Tolerance = Tolerance::Diagonal(0.02);
 
 /// The most primitives a level holds when no count is given: the cap of a
 /// [`Goal::Within`] without caps.
-pub const MAX_PRIMITIVES: usize = 1024;
+pub(crate) const MAX_PRIMITIVES: usize = 1024;
 
 /// The farthest any primitive of a level may stand from the input: the one-way
 /// distance from each primitive's surface to the input's surface, the quantity
 /// `primdecomp eval` reports as Hausdorff, estimated by sampling (docs/decisions/0034).
+///
+/// ```
+/// use primdecomp::Tolerance;
+///
+/// assert_eq!("1%".parse::<Tolerance>().unwrap(), Tolerance::Diagonal(0.01));
+/// assert_eq!("0.5".parse::<Tolerance>().unwrap(), Tolerance::Units(0.5));
+/// assert_eq!(Tolerance::Diagonal(0.01).in_units(200.0), 2.0);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Tolerance {
@@ -39,6 +47,17 @@ pub enum Tolerance {
 }
 
 impl Tolerance {
+    /// The tolerance of the default [`Goal`]: every primitive within 2% of the input's
+    /// diagonal, chosen from measurements over the corpus (docs/decisions/0037).
+    ///
+    /// ```
+    /// use primdecomp::Tolerance;
+    ///
+    /// assert_eq!(Tolerance::DEFAULT, Tolerance::Diagonal(0.02));
+    /// assert_eq!(Tolerance::DEFAULT.to_string(), "2%");
+    /// ```
+    pub const DEFAULT: Tolerance = DEFAULT_TOLERANCE;
+
     /// The distance in the input's units for an input whose diagonal is `diagonal`.
     ///
     /// ```
@@ -165,8 +184,8 @@ impl<'de> Deserialize<'de> for Partitions {
 /// All settings of a run: what is asked for ([`Goal`]), then what the primitives may
 /// be ([`Fit`]), how flat parts, holes and nested primitives come out ([`Plates`]),
 /// and how fast the merge runs ([`Speed`]). `Params::default()` is the recommended
-/// configuration: the fewest primitives within [`DEFAULT_TOLERANCE`] of the input, at
-/// most [`MAX_PRIMITIVES`]. Change only what you need, as in
+/// configuration: the fewest primitives within [`Tolerance::DEFAULT`] of the input, at
+/// most [`Goal::MAX_PRIMITIVES`]. Change only what you need, as in
 /// `Params { goal: Goal::counts([200, 50]), ..Params::default() }` (two levels of at
 /// most 200 and 50 primitives) or
 /// `Params { goal: Goal::tolerance(Tolerance::Diagonal(0.005)), ..Params::default() }`.
@@ -180,6 +199,14 @@ impl<'de> Deserialize<'de> for Partitions {
 /// | `fit.min_extent` | 5e-4 | thin parts get thicker primitives | flatter plates |
 /// | `plates.open_holes` | 0.01 | holes and gaps in flat surfaces stay open at lower counts | 0: the paper's pricing (a roof's rim closes into a lid) |
 /// | `plates.rim_weight` | 1 | primitives keep further off the faces beside them | 0: volume alone (a plate may stand past a wall's top as a curb) |
+///
+/// ```
+/// use primdecomp::{Goal, Params, Tolerance};
+///
+/// let params = Params { goal: Goal::tolerance(Tolerance::Diagonal(0.01)), ..Params::default() };
+/// assert!(params.validate().is_ok());
+/// assert_eq!(params.goal.targets(), vec![Goal::MAX_PRIMITIVES]); // the default cap
+/// ```
 #[derive(Clone, Debug, Default, PartialEq, Serialize, Deserialize)]
 #[serde(try_from = "json::Settings", into = "json::Settings")]
 pub struct Params {
@@ -344,12 +371,12 @@ impl Params {
     /// an error. A result's own settings give back its primitives.
     ///
     /// ```
-    /// use primdecomp::{decompose, demo_scene, to_json, Goal, Params, Plates};
+    /// use primdecomp::{decompose, demo_scene, Goal, Params, Plates};
     ///
     /// let plates = Plates { rim_weight: 0.5, ..Plates::default() };
     /// let params = Params { goal: Goal::counts([40]), plates, ..Params::default() };
     /// let first = decompose(&demo_scene(), &params)?;
-    /// let json = to_json(&first, 0, &params);
+    /// let json = first.to_json(0, &params);
     /// let again = Params::from_json(&json)?;
     /// assert_eq!(again, params);
     /// assert_eq!(decompose(&demo_scene(), &again)?.levels, first.levels);

@@ -4,7 +4,6 @@
 //! `primdecomp_testkit::contain`, which shares no code with the fitting; and the count must not
 //! exceed N (bridging makes every N reachable when no excess cap is set).
 
-use primdecomp::to_json;
 use primdecomp::{decompose, Goal, Params};
 use primdecomp_testkit::contain::{faces_enclosed, parse_primitive};
 use rayon::prelude::*;
@@ -25,7 +24,7 @@ fn corpus() -> Option<Vec<std::path::PathBuf>> {
 
 /// One mesh: its table row, or the failures found.
 fn check(path: &Path) -> Option<(String, Vec<String>)> {
-    let mesh = primdecomp::load(path).unwrap_or_else(|e| panic!("{e}"));
+    let mesh = primdecomp::Mesh::load(path).unwrap_or_else(|e| panic!("{e}"));
     let faces = mesh.face_count();
     if faces > MAX_FACES {
         return None;
@@ -45,7 +44,7 @@ fn check(path: &Path) -> Option<(String, Vec<String>)> {
     let name = path.file_name().unwrap().to_string_lossy().to_string();
     let mut failures = Vec::new();
     for (i, &target) in params.goal.targets().iter().enumerate() {
-        let json: serde_json::Value = serde_json::from_str(&to_json(&dec, i, &params)).unwrap();
+        let json: serde_json::Value = serde_json::from_str(&dec.to_json(i, &params)).unwrap();
         let shapes: Vec<_> = json["primitives"]
             .as_array()
             .unwrap()

@@ -1,5 +1,5 @@
 //! Loads every mesh of the shared corpus (`../shared/datasets/corpus/`) through
-//! `primdecomp::load` and checks it against `../shared/datasets/CATALOG.tsv`:
+//! `primdecomp::Mesh::load` and checks it against `../shared/datasets/CATALOG.tsv`:
 //! the face count (faces of arity ≥ 3 from `faces_by_arity`; `triangles` for glTF),
 //! a sane vertex count (at least `vertices_merged`, indices in range, finite
 //! coordinates), and no error. When the corpus folder is absent the test says so
@@ -71,7 +71,7 @@ fn polygon_faces(by_arity: &str) -> u64 {
 /// Loads one file and returns a description of what is wrong, if anything.
 fn check(path: &Path, row: &Row) -> Result<String, String> {
     let start = Instant::now();
-    let mesh = primdecomp::load(path).map_err(|e| format!("load failed: {e}"))?;
+    let mesh = primdecomp::Mesh::load(path).map_err(|e| format!("load failed: {e}"))?;
     let secs = start.elapsed().as_secs_f64();
     let expected = if row.format == "glb" {
         row.triangles
@@ -160,7 +160,7 @@ fn dragon_load_time() {
         return;
     }
     let start = Instant::now();
-    let mesh = primdecomp::load(&path).expect("dragon loads");
+    let mesh = primdecomp::Mesh::load(&path).expect("dragon loads");
     let ms = start.elapsed().as_secs_f64() * 1e3;
     eprintln!(
         "dragon_vrip_full.ply: {} faces loaded in {ms:.1} ms",

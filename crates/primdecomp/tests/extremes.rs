@@ -6,7 +6,6 @@
 //! seeded random rotations the demo scene keeps its primitive count and its tightness
 //! (a one-way surface distance computed here, see [`tightness`]) within 10%.
 
-use primdecomp::tessellate;
 use primdecomp::{decompose, CountSearch, Error, Goal, Mesh, Params, Primitive, Reprice, Speed};
 use primdecomp_testkit::check::assert_valid;
 use primdecomp_testkit::shapes::{self, cuboid};
@@ -268,7 +267,7 @@ fn closest_on_triangle(p: [f64; 3], a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> [f
 fn tightness(prims: &[Primitive], mesh_tris: &[[[f64; 3]; 3]]) -> f64 {
     let mut tris = Vec::new();
     for p in prims {
-        let t = tessellate(p, 24);
+        let t = p.tessellate(24);
         tris.extend(primdecomp_testkit::fan_triangles(&t.vertices, &t.faces));
     }
     let area = |t: &[[f64; 3]; 3]| {

@@ -3,7 +3,6 @@
 //! hold at most N primitives, and be the same bytes on any thread count; K = 1 must be
 //! the default run, and its JSON must not mention the setting (default output unchanged).
 
-use primdecomp::to_json;
 use primdecomp::{decompose, Goal, Mesh, Params, Partitions, Speed};
 use primdecomp_testkit::check::{
     assert_counts, assert_same_on_threads, assert_valid, check_corpus_meshes,
@@ -56,7 +55,7 @@ fn partitioned_output_encloses_the_generated_scene() {
             "K={k}: phase 1 did not run"
         );
         assert_eq!(dec.stats.partitions, k);
-        let stats = to_json(&dec, 0, &p);
+        let stats = dec.to_json(0, &p);
         let stats = &stats[stats.find("\"stats\"").expect("stats")..];
         assert!(stats.contains(&format!("\"partitions\": {k}")), "{stats}");
         assert_eq!(
@@ -87,12 +86,12 @@ fn one_partition_is_the_default_run_on_small_inputs() {
     };
     let a = decompose(&m, &default).unwrap();
     let b = decompose(&m, &params(&[60, 12], 1)).unwrap();
-    let text = to_json(&b, 0, &params(&[60, 12], 1));
+    let text = b.to_json(0, &params(&[60, 12], 1));
     assert!(
         text.contains("\"partitions\": 1,"),
         "K=1 JSON records the setting"
     );
-    assert!(to_json(&a, 0, &default).contains("\"partitions\": \"auto\","));
+    assert!(a.to_json(0, &default).contains("\"partitions\": \"auto\","));
     assert_eq!(a.stats.partitions, 1, "auto split a small input");
     assert_eq!(a.levels, b.levels);
     let big = m.face_count() / 16 + 1;
@@ -102,7 +101,9 @@ fn one_partition_is_the_default_run_on_small_inputs() {
         format!("{:?}", c1.levels[0].primitives),
         format!("{:?}", c8.levels[0].primitives)
     );
-    assert!(to_json(&c8, 0, &params(&[big], 8)).contains("\"partitions\": 8"));
+    assert!(c8
+        .to_json(0, &params(&[big], 8))
+        .contains("\"partitions\": 8"));
 }
 
 /// 0 parts is refused, not run.

@@ -3,7 +3,6 @@
 //! thread count, a threshold no cluster reaches is the exact order, and an excess-volume
 //! cap keeps the exact order (a pair over the cap has no queue entry to defer).
 
-use primdecomp::to_json;
 use primdecomp::{decompose, demo_scene, Decomposition, Fit, Goal, Mesh, Params, Reprice, Speed};
 use primdecomp_testkit::check::assert_valid;
 use primdecomp_testkit::shapes::{self, join, mesh, Polys};
@@ -35,7 +34,7 @@ fn mixed() -> Polys {
 
 /// The JSON of every level as written without `--timings` (compared byte for byte).
 fn stable(d: &Decomposition, p: &Params) -> Vec<String> {
-    (0..d.levels.len()).map(|i| to_json(d, i, p)).collect()
+    (0..d.levels.len()).map(|i| d.to_json(i, p)).collect()
 }
 
 fn run(m: &Mesh, p: &Params) -> Vec<String> {

@@ -218,8 +218,8 @@ fn truck_hood_is_a_rim_of_the_fender_beside_it() {
 /// Corpus mesh; skipped loudly when absent.
 #[test]
 fn truck_roof_has_few_basins_at_128() {
-    use primdecomp::math::{add, V3};
-    use primdecomp::tessellate;
+    use primdecomp_math::{add, V3};
+
     use primdecomp_testkit::basin::{basin_cells, centre_heights, heights, Grid};
     let Some(m) = primdecomp_testkit::corpus_mesh("truck_shrec.obj") else {
         return;
@@ -236,7 +236,7 @@ fn truck_roof_has_few_basins_at_128() {
         .primitives
         .iter()
         .flat_map(|prim| {
-            let t = tessellate(prim, 16);
+            let t = prim.tessellate(16);
             primdecomp_testkit::fan_triangles(&t.vertices, &t.faces)
         })
         .collect();

@@ -5,9 +5,7 @@
 //! errors. Every input is made here and written as binary PLY (read from the map a
 //! tile at a time) or OBJ (parsed whole).
 
-use primdecomp::{
-    decompose_tiled, load, load_with, to_json, Error, Goal, LoadOptions, Params, Tiled,
-};
+use primdecomp::{decompose_tiled, Error, Goal, LoadOptions, Mesh, Params, Tiled};
 use primdecomp_testkit::check::{assert_counts, assert_valid};
 use primdecomp_testkit::on_threads;
 use primdecomp_testkit::shapes::{
@@ -61,7 +59,7 @@ fn forced_tiles_enclose_and_are_deterministic() {
         goal: Goal::counts([40, 12]),
         ..Params::default()
     };
-    let mesh = load(&ply).unwrap();
+    let mesh = Mesh::load(&ply).unwrap();
     let runs: Vec<_> = [1, 2]
         .iter()
         .map(|&t| {
@@ -74,8 +72,8 @@ fn forced_tiles_enclose_and_are_deterministic() {
     assert_eq!(runs[0].input.faces, mesh.face_count());
     for level in 0..params.goal.targets().len() {
         assert_eq!(
-            to_json(&runs[0], level, &params),
-            to_json(&runs[1], level, &params),
+            runs[0].to_json(level, &params),
+            runs[1].to_json(level, &params),
             "1 vs 2 threads"
         );
     }
@@ -90,7 +88,7 @@ fn forced_tiles_enclose_and_are_deterministic() {
         .map(|d| (dec.input.aabb_max[d] - dec.input.aabb_min[d]).powi(2))
         .sum::<f64>()
         .sqrt();
-    let asked = primdecomp::DEFAULT_TOLERANCE.in_units(diagonal);
+    let asked = primdecomp::Tolerance::DEFAULT.in_units(diagonal);
     let tolerance = dec.levels[0].tolerance.expect("a tolerance level");
     assert!(
         (tolerance - asked).abs() <= 1e-12 * asked,
@@ -98,7 +96,7 @@ fn forced_tiles_enclose_and_are_deterministic() {
     );
     let obj = write(&dir, "scene.obj", obj_text(&polys).as_bytes());
     let dec = decompose_tiled(&obj, &params, &tiles(2), &|_, _| {}).unwrap();
-    assert_valid(&load(&obj).unwrap(), &dec, &params);
+    assert_valid(&Mesh::load(&obj).unwrap(), &dec, &params);
     std::fs::remove_dir_all(&dir).ok();
 }
 
@@ -113,7 +111,7 @@ fn a_small_memory_limit_tiles_instead_of_refusing() {
         greedy_only: true,
         ..LoadOptions::default()
     };
-    let refused = load_with(&ply, &options).unwrap_err();
+    let refused = Mesh::load_with(&ply, &options).unwrap_err();
     assert!(matches!(refused, Error::TooLarge { .. }), "{refused}");
     let params = Params {
         goal: Goal::counts([50]),
@@ -121,7 +119,7 @@ fn a_small_memory_limit_tiles_instead_of_refusing() {
     };
     let dec = decompose_tiled(&ply, &params, &options, &|_, _| {}).unwrap();
     assert!(dec.stats.tiles > 1, "{} tiles", dec.stats.tiles);
-    assert_valid(&load(&ply).unwrap(), &dec, &params);
+    assert_valid(&Mesh::load(&ply).unwrap(), &dec, &params);
     // A limit below what even the most tiles need is refused, naming the file.
     let tiny = LoadOptions {
         max_memory: Some(1 << 20),
@@ -216,8 +214,8 @@ fn plan_tiles_and_merge_apart_equal_the_tiled_run_and_refuse_bad_bytes() {
         let whole = decompose_tiled(&ply, &params, &tiles(3), &|_, _| {}).unwrap();
         for level in 0..whole.levels.len() {
             assert_eq!(
-                to_json(&merged, level, &params),
-                to_json(&whole, level, &params)
+                merged.to_json(level, &params),
+                whole.to_json(level, &params)
             );
         }
     }
@@ -303,7 +301,7 @@ fn the_top_run_holds_relative_settings_to_the_inputs_diagonal() {
         ..Params::default()
     };
     let dec = decompose_tiled(&ply, &params, &tiles(2), &|_, _| {}).unwrap();
-    assert_valid(&load(&ply).unwrap(), &dec, &params);
+    assert_valid(&Mesh::load(&ply).unwrap(), &dec, &params);
     let want = 0.02 * dec.input.diagonal();
     for p in &dec.levels[0].primitives {
         let primdecomp::Primitive::Box(b) = p else {

@@ -2,7 +2,7 @@
 //! bit for bit, so that a mesh rebuilt from them with `Mesh::from_polygons` decomposes
 //! exactly as the file does (what the Python package's `load` relies on).
 
-use primdecomp::{decompose, load, load_with, to_json, Goal, LoadOptions, Mesh, Params};
+use primdecomp::{decompose, Goal, LoadOptions, Mesh, Params};
 
 /// Coordinates whose re-centred value plus the centre is not the value read.
 const OBJ: &str = "v 0.1 0.7 1e-17\nv 3.3 0.2 0.3\nv 0.30000000000000004 2.9 0.01\nv 1.1 1.3 2.7\n\
@@ -32,8 +32,8 @@ fn kept_coordinates_are_the_files_and_decompose_like_the_file() {
         keep_world_coordinates: true,
         ..LoadOptions::default()
     };
-    let kept = load_with(&path, &options).unwrap();
-    let centred = load(&path).unwrap();
+    let kept = Mesh::load_with(&path, &options).unwrap();
+    let centred = Mesh::load(&path).unwrap();
     assert_eq!(kept.centre(), [0.0; 3]);
     assert_eq!(world(&kept), read);
     // Why the option exists: re-centring and adding the centre back is not exact here.
@@ -44,8 +44,8 @@ fn kept_coordinates_are_the_files_and_decompose_like_the_file() {
         goal: Goal::counts([2]),
         ..Params::default()
     };
-    let a = to_json(&decompose(&centred, &params).unwrap(), 0, &params);
-    let b = to_json(&decompose(&rebuilt, &params).unwrap(), 0, &params);
+    let a = decompose(&centred, &params).unwrap().to_json(0, &params);
+    let b = decompose(&rebuilt, &params).unwrap().to_json(0, &params);
     let prims = |s: &str| s[s.find("\"primitives\"").unwrap()..].to_string();
     assert_eq!(prims(&a), prims(&b));
     std::fs::remove_dir_all(&dir).ok();

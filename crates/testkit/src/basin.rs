@@ -3,7 +3,7 @@
 //! height). A collider with basins the mesh lacks holds balls in a simulation that the
 //! mesh sheds (tests/rim.rs). Independent of the fitting code: it reads triangles.
 
-use primdecomp::math::V3;
+use primdecomp_math::V3;
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 

@@ -5,7 +5,7 @@
 #![allow(dead_code)]
 
 use super::contain::{faces_enclosed, parse_primitive, Shape};
-use primdecomp::to_json;
+
 use primdecomp::{Decomposition, Mesh, Params};
 
 /// World-space corners of every face of `mesh`.
@@ -17,7 +17,7 @@ pub fn polygons(mesh: &Mesh) -> Vec<Vec<[f64; 3]>> {
 
 /// The oracle's shapes of level `level`, from the JSON we write.
 pub fn shapes(dec: &Decomposition, level: usize, params: &Params) -> Vec<Shape> {
-    let text = to_json(dec, level, params);
+    let text = dec.to_json(level, params);
     let json: serde_json::Value = serde_json::from_str(&text).expect("valid JSON");
     let prims = json["primitives"].as_array().expect("primitives");
     // serde_json writes NaN and infinities as null.
@@ -78,9 +78,9 @@ pub fn assert_same_on_threads(mesh: &Mesh, params: &Params) -> Decomposition {
         .map(|&t| super::on_threads(t, || primdecomp::decompose(mesh, params).unwrap()))
         .collect();
     for level in 0..runs[0].levels.len() {
-        let a = to_json(&runs[0], level, params);
-        assert_eq!(a, to_json(&runs[1], level, params), "1 vs 2 threads");
-        assert_eq!(a, to_json(&runs[2], level, params), "1 vs 8 threads");
+        let a = runs[0].to_json(level, params);
+        assert_eq!(a, runs[1].to_json(level, params), "1 vs 2 threads");
+        assert_eq!(a, runs[2].to_json(level, params), "1 vs 8 threads");
     }
     runs.into_iter().next().expect("three runs")
 }
@@ -111,7 +111,7 @@ pub fn check_corpus_meshes(with: impl Fn(&[usize]) -> Vec<Params>) {
         return;
     }
     for name in ["stanford_bunny.obj", "peterbilt_truck.obj"] {
-        let m = primdecomp::load(&dir.join(name)).unwrap_or_else(|e| panic!("{e}"));
+        let m = primdecomp::Mesh::load(&dir.join(name)).unwrap_or_else(|e| panic!("{e}"));
         let targets = [(m.face_count() / 100).max(1), 20];
         for p in with(&targets) {
             let dec = primdecomp::decompose(&m, &p).unwrap_or_else(|e| panic!("{name}: {e}"));

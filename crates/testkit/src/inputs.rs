@@ -412,10 +412,10 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("primdecomp-inputs-{}", std::process::id()));
         let names = write_all(&dir).unwrap();
         for name in names {
-            let m = primdecomp::load(&dir.join(name)).unwrap_or_else(|e| panic!("{e}"));
+            let m = primdecomp::Mesh::load(&dir.join(name)).unwrap_or_else(|e| panic!("{e}"));
             assert!(m.face_count() > 0, "{name}");
         }
-        let glb = primdecomp::load(&dir.join("nodes.glb")).unwrap();
+        let glb = primdecomp::Mesh::load(&dir.join("nodes.glb")).unwrap();
         assert_eq!(glb.objects().len(), 5);
         std::fs::remove_dir_all(&dir).unwrap();
     }

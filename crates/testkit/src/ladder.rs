@@ -54,7 +54,7 @@ pub fn subdivided_ply(
     // Edge points from the lower vertex id towards the higher.
     for (e, &key) in edges.iter().enumerate() {
         let (a, b) = (pos((key >> 32) as u32), pos(key as u32));
-        let len = primdecomp::math::norm(primdecomp::math::sub(b, a));
+        let len = primdecomp_math::norm(primdecomp_math::sub(b, a));
         for i in 1..s {
             let id = nv + e as u64 * per_edge + u64::from(i - 1);
             let t = f64::from(i) / f64::from(s);
@@ -66,7 +66,7 @@ pub fn subdivided_ply(
     for (f, t) in tris.iter().enumerate() {
         let [a, b, c] = t.map(pos);
         let len = [(a, b), (b, c), (c, a)]
-            .map(|(p, q)| primdecomp::math::norm(primdecomp::math::sub(q, p)))
+            .map(|(p, q)| primdecomp_math::norm(primdecomp_math::sub(q, p)))
             .into_iter()
             .fold(0.0, f64::max);
         for (id, (i, j)) in (first_inner + f as u64 * inner..).zip(inner_points(s)) {
@@ -452,7 +452,7 @@ mod tests {
             let (f, v) = subdivided_ply(&cube, levels, 7, &path).unwrap();
             assert_eq!((f, v), subdivided_counts(&cube, levels));
             assert_eq!(f, 12 * 4u64.pow(levels));
-            let m = primdecomp::load(&path).unwrap();
+            let m = primdecomp::Mesh::load(&path).unwrap();
             assert_eq!((m.face_count() as u64, m.vertex_count() as u64), (f, v));
             let first = std::fs::read(&path).unwrap();
             subdivided_ply(&cube, levels, 7, &path).unwrap();
@@ -478,7 +478,7 @@ mod tests {
     fn a_city_block_has_its_parts() {
         let path = std::env::temp_dir().join(format!("primdecomp_city_{}.ply", std::process::id()));
         let (f, v) = city_block_ply(40, 3, &path).unwrap();
-        let m = primdecomp::load(&path).unwrap();
+        let m = primdecomp::Mesh::load(&path).unwrap();
         assert_eq!((m.face_count() as u64, m.vertex_count() as u64), (f, v));
         let mut sides: Vec<(u32, u32)> = (0..m.face_count())
             .flat_map(|i| {

@@ -96,7 +96,7 @@ pub fn corpus_mesh(name: &str) -> Option<primdecomp::Mesh> {
         corpus_absent(&path);
         return None;
     }
-    Some(primdecomp::load(&path).unwrap_or_else(|e| panic!("{e}")))
+    Some(primdecomp::Mesh::load(&path).unwrap_or_else(|e| panic!("{e}")))
 }
 
 /// A uniformly random rotation's axes (rows of an orthonormal, right-handed frame),

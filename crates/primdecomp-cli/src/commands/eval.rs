@@ -55,7 +55,7 @@ pub fn run(a: EvalArgs) -> anyhow::Result<()> {
         guard.check(&[Out::flag("--json", out, out.clone())])?;
     }
     set_threads(a.threads)?;
-    let mesh = primdecomp::load_with(&a.input, &a.load.options())?;
+    let mesh = primdecomp::Mesh::load_with(&a.input, &a.load.options())?;
     let colliders = a
         .colliders
         .iter()

@@ -2,7 +2,7 @@
 
 use anyhow::bail;
 use clap::Args;
-use primdecomp::{read_objects, Frame, Level, Objects, ResultObject, Up};
+use primdecomp::{Frame, Level, Objects, ResultFile, ResultObject, Up};
 use primdecomp_export::{write_export, ExportOptions, Format, Physics};
 use std::path::{Path, PathBuf};
 
@@ -53,7 +53,7 @@ pub struct ExportArgs {
     #[arg(long, hide_short_help = true)]
     pub urdf_capsule: bool,
     /// Segments around circles of frustums (and of every preview) written as meshes.
-    #[arg(long, default_value_t = primdecomp::DEFAULT_DETAIL, hide_short_help = true)]
+    #[arg(long, default_value_t = primdecomp::Tess::DEFAULT_DETAIL, hide_short_help = true)]
     pub export_detail: usize,
 }
 
@@ -163,8 +163,9 @@ pub fn run(a: ExportCmd) -> anyhow::Result<()> {
         .collect();
     not_an_input("-o", &a.out, &inputs)?;
     let text = crate::paths::read_result(&a.result)?;
-    let objects =
-        read_objects(&text).map_err(|e| BadArgs(format!("{}: {e}", a.result.display())))?;
+    let objects = ResultFile::read(&text, &a.result)
+        .map_err(|e| BadArgs(e.to_string()))?
+        .objects;
     // The result's up axis (results made before it was recorded: +Y, as then).
     let recorded = serde_json::from_str::<serde_json::Value>(&text)
         .ok()
@@ -172,7 +173,7 @@ pub fn run(a: ExportCmd) -> anyhow::Result<()> {
     let up = recorded.unwrap_or(Up::Y);
     let (format, mut opts) = a.opts.resolve(&a.out, &model_name(&a.out), up)?;
     if let Some(input) = &a.input {
-        let mesh = primdecomp::load(input)?;
+        let mesh = primdecomp::Mesh::load(input)?;
         opts.input_mesh = Some(mesh_polygons(&mesh));
     }
     for line in wrote_lines(&write_export(&a.out, &objects, format, &opts)?) {

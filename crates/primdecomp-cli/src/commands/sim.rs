@@ -80,7 +80,7 @@ pub struct SimArgs {
 /// reports it.
 pub fn run(a: SimArgs) -> anyhow::Result<()> {
     check_outputs(&a)?;
-    let mesh = primdecomp::load_with(&a.input, &a.load.options())?;
+    let mesh = primdecomp::Mesh::load_with(&a.input, &a.load.options())?;
     if a.scenario == "projectiles" {
         return projectiles(&a, &mesh);
     }

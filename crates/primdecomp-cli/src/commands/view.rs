@@ -127,10 +127,10 @@ fn check_args(a: &ViewArgs) -> anyhow::Result<()> {
             a.png_size
         )));
     }
-    if !(3..=primdecomp::MAX_DETAIL).contains(&a.detail) {
+    if !(3..=primdecomp::Tess::MAX_DETAIL).contains(&a.detail) {
         bail!(BadArgs(format!(
             "--detail must be from 3 to {}, got {}",
-            primdecomp::MAX_DETAIL,
+            primdecomp::Tess::MAX_DETAIL,
             a.detail
         )));
     }
@@ -254,7 +254,8 @@ fn view_up(a: &ViewArgs) -> primdecomp::Up {
         let doc = doc.get("levels").and_then(|l| l.get(0)).unwrap_or(&doc);
         Up::from_axis(doc.get("input")?.get("up")?.as_str()?)
     };
-    let of_input = || Some(Up::of_format(primdecomp::Format::from_path(a.input.as_deref()?)?).0);
+    let of_input =
+        || Some(Up::of_format(primdecomp::MeshFormat::from_path(a.input.as_deref()?)?).0);
     a.up.as_deref()
         .and_then(Up::from_axis)
         .or_else(recorded)

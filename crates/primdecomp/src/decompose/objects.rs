@@ -77,6 +77,31 @@ impl Objects {
             })
             .collect()
     }
+
+    /// The farthest any primitive of level `level` stands from its object, in world
+    /// units (each object's [`crate::Level::distance`] times its frame's scale): the
+    /// largest over the objects, `None` when no object's level measured one (counts
+    /// taken greedily).
+    ///
+    /// ```
+    /// use primdecomp::{decompose_objects, Mesh, MeshFormat, ObjectTarget, Params};
+    ///
+    /// let obj = b"o a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n\
+    ///             o b\nv 5 0 0\nv 7 0 0\nv 5 2 0\nv 5 0 2\nf 5 7 6\nf 5 6 8\nf 5 8 7\nf 6 7 8\n";
+    /// let mesh = Mesh::parse(obj, MeshFormat::Obj, "two.obj".as_ref())?;
+    /// // The default goal: within 2% of each object's diagonal.
+    /// let objects = decompose_objects(&mesh, &Params::default(), &[ObjectTarget::Total(4)])?;
+    /// let farthest = objects.distance(0).expect("a tolerance run measures its distance");
+    /// let each = objects.objects.iter().map(|o| o.decomposition.levels[0].distance.unwrap());
+    /// assert_eq!(farthest, each.fold(0.0, f64::max));
+    /// # Ok::<(), primdecomp::Error>(())
+    /// ```
+    pub fn distance(&self, level: usize) -> Option<f64> {
+        self.objects
+            .iter()
+            .filter_map(|o| Some(o.decomposition.levels[level].distance? * o.frame.scale))
+            .reduce(f64::max)
+    }
 }
 
 /// Shares `total` primitives among objects of the given surface areas

@@ -43,12 +43,12 @@ const FACES_PER_GROUP: usize = 256;
 /// Histogram bins along the slab axis: the finest cut between tiles.
 const BINS: usize = 1 << 16;
 /// The most tiles a run is cut into.
-pub const MAX_TILES: usize = 4096;
+pub(crate) const MAX_TILES: usize = 4096;
 /// Bytes read from the map between releases of what was read.
 const RELEASE_EVERY: usize = 16 << 20;
 
 /// Decomposes the mesh in `path` as spatial tiles within `options.max_memory`
-/// ([`LoadOptions::tiles`] forces their number): for inputs [`crate::load_with`]
+/// ([`LoadOptions::tiles`] forces their number): for inputs [`crate::Mesh::load_with`]
 /// refuses as too large. The result has the levels [`crate::decompose`] would give,
 /// each enclosing every face, from a different merge order (the difference is
 /// measured in docs/results/out-of-core.md); `stats.tiles` says how many tiles.
@@ -68,8 +68,8 @@ const RELEASE_EVERY: usize = 16 << 20;
 /// ```
 ///
 /// # Errors
-/// What [`crate::load_with`] and [`crate::decompose`] return, and
-/// [`Error::TooLarge`] when even [`MAX_TILES`] tiles would not fit the limit (with
+/// What [`crate::Mesh::load_with`] and [`crate::decompose`] return, and
+/// [`Error::TooLarge`] when even `MAX_TILES` (4096) tiles would not fit the limit (with
 /// the need of the smallest tiles).
 pub fn decompose_tiled(
     path: &Path,
@@ -150,6 +150,13 @@ struct Identity {
 }
 
 impl Tiled {
+    /// The most tiles a run is cut into.
+    ///
+    /// ```
+    /// assert_eq!(primdecomp::Tiled::MAX_TILES, 4096);
+    /// ```
+    pub const MAX_TILES: usize = MAX_TILES;
+
     /// Plans a tiled run of the mesh in `path` with `params`: one pass over the file
     /// (its content hash, its vertices' box, its faces' histogram) cuts it into
     /// `options.tiles` tiles, or the fewest that fit `options.max_memory`.

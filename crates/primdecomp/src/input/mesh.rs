@@ -95,7 +95,7 @@ impl MeshBuilder {
 /// A polygon mesh as the engine reads it: positions in f64 struct-of-arrays,
 /// re-centred on their bounding box (so a scan a million units from the origin keeps
 /// its detail), and polygons as offsets into one index array. Nothing else from a file
-/// is kept. Build one with [`crate::load`], [`Mesh::from_triangles`] or
+/// is kept. Build one with [`crate::Mesh::load`], [`Mesh::from_triangles`] or
 /// [`Mesh::from_polygons`].
 ///
 /// ```

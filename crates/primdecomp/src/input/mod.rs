@@ -9,6 +9,7 @@
 
 pub(crate) mod adjacency;
 pub(crate) mod dedup;
+#[cfg(any(test, feature = "demo-scene"))]
 pub(crate) mod demo;
 pub(crate) mod io;
 pub(crate) mod memory;

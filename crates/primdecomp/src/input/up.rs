@@ -5,10 +5,18 @@
 //! scanners mostly write them). A result records the axis and where it came from
 //! ([`crate::InputInfo::up`]), and the exports and the viewer read it from there.
 
-use crate::input::io::Format;
+use crate::input::io::MeshFormat;
 use serde::{Serialize, Serializer};
 
 /// An up axis.
+///
+/// ```
+/// use primdecomp::{MeshFormat, Up};
+///
+/// assert_eq!(Up::of_format(MeshFormat::Glb).0, Up::Y);
+/// assert_eq!(Up::from_axis("z"), Some(Up::Z));
+/// assert_eq!(Up::default(), Up::Y);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
 pub enum Up {
     /// +Y up (glTF, Godot).
@@ -54,26 +62,26 @@ impl Up {
     /// assumed for the formats that say nothing.
     ///
     /// ```
-    /// use primdecomp::{Format, Up};
-    /// assert_eq!(Up::of_format(Format::Stl).0, Up::Z);
-    /// assert_eq!(Up::of_format(Format::Glb).0, Up::Y);
+    /// use primdecomp::{MeshFormat, Up};
+    /// assert_eq!(Up::of_format(MeshFormat::Stl).0, Up::Z);
+    /// assert_eq!(Up::of_format(MeshFormat::Glb).0, Up::Y);
     /// ```
-    pub fn of_format(format: Format) -> (Up, &'static str) {
+    pub fn of_format(format: MeshFormat) -> (Up, &'static str) {
         match format {
-            Format::Gltf | Format::Glb => (Up::Y, "glTF is +Y up by its specification"),
-            Format::Stl => (
+            MeshFormat::Gltf | MeshFormat::Glb => (Up::Y, "glTF is +Y up by its specification"),
+            MeshFormat::Stl => (
                 Up::Z,
                 "assumed: STL says nothing, and CAD and robot parts are mostly +Z up",
             ),
-            Format::Obj => (
+            MeshFormat::Obj => (
                 Up::Y,
                 "assumed: OBJ says nothing, and modelling tools mostly write +Y up",
             ),
-            Format::Ply => (
+            MeshFormat::Ply => (
                 Up::Y,
                 "assumed: PLY says nothing, and scans and modelling tools mostly write +Y up",
             ),
-            Format::Off => (
+            MeshFormat::Off => (
                 Up::Y,
                 "assumed: OFF says nothing, and modelling tools mostly write +Y up",
             ),

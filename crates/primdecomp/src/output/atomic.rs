@@ -18,6 +18,15 @@ static COUNTER: AtomicU64 = AtomicU64::new(0);
 /// is removed, the target is left as it was, and the error is [`Error::Write`]
 /// naming `path`. A symlink at `path` is replaced by a regular file; the new file
 /// gets default permissions, not the old file's.
+///
+/// ```
+/// let path = std::env::temp_dir().join(format!("primdecomp-doc-{}.txt", std::process::id()));
+/// primdecomp::write_atomic(&path, b"first")?;
+/// primdecomp::write_atomic(&path, b"second")?; // replaces it whole, never half-written
+/// assert_eq!(std::fs::read(&path)?, b"second");
+/// std::fs::remove_file(&path)?;
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     let fail = |error| Error::Write {
         path: path.to_path_buf(),

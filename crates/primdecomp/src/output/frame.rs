@@ -18,6 +18,14 @@ use crate::primitive::{Capsule, Cylinder, Frustum, Obb, Primitive, Prism, Sphere
 
 /// A similarity transform `x ↦ translation + scale · R(rotation) · x`, rotation a
 /// unit quaternion `[x, y, z, w]` (scalar last, as in the JSON contract).
+///
+/// ```
+/// use primdecomp::Frame;
+///
+/// let lifted = Frame { translation: [0.0, 0.0, 2.0], rotation: [0.0, 0.0, 0.0, 1.0], scale: 3.0 };
+/// assert_eq!(lifted.point([1.0, 0.0, 0.0]), [3.0, 0.0, 2.0]);
+/// assert_eq!(lifted.inverse_point([3.0, 0.0, 2.0]), [1.0, 0.0, 0.0]);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Frame {
     /// Where the local origin lands.
@@ -264,7 +272,7 @@ pub fn transform(p: &Primitive, f: &Frame) -> Primitive {
 fn orthonormal(a: [V3; 3]) -> [V3; 3] {
     let a0 = normalize(a[0]).unwrap_or([1.0, 0.0, 0.0]);
     let a1 = normalize(madd(a[1], a0, -dot(a[1], a0))).unwrap_or_else(|| {
-        let (u, _) = super::obj::circle_frame(a0);
+        let (u, _) = crate::math::circle_frame(a0);
         u
     });
     let a2 = cross(a0, a1);

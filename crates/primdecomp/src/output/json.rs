@@ -210,20 +210,30 @@ const DISTANCE_METHOD: &str = "an upper bound of the one-way distance from each 
      sampled Hausdorff)";
 
 impl Distance {
-    fn of(lv: &Level, input: &InputInfo) -> Option<Distance> {
-        let worst = lv.distance?;
+    /// A per-object level's: the farthest object's distance, without the tolerance or
+    /// byte budget (each object's is its own share).
+    fn farthest(worst: f64, input: &InputInfo) -> Distance {
         let diagonal = input.diagonal();
-        Some(Distance {
+        Distance {
             worst,
             of_diagonal: if diagonal > 0.0 {
                 worst / diagonal
             } else {
                 0.0
             },
+            tolerance: None,
+            max_bytes: None,
+            limited_by: None,
+            method: DISTANCE_METHOD,
+        }
+    }
+
+    fn of(lv: &Level, input: &InputInfo) -> Option<Distance> {
+        Some(Distance {
             tolerance: lv.tolerance,
             max_bytes: lv.max_bytes,
             limited_by: lv.shortfall,
-            method: DISTANCE_METHOD,
+            ..Distance::farthest(lv.distance?, input)
         })
     }
 }
@@ -254,20 +264,61 @@ pub(super) struct ObjectJson {
     faces: usize,
     #[serde(default)]
     pub(super) target: usize,
+    /// The farthest any of its primitives stands from it, world units (a level that
+    /// measured it: a tolerance or byte budget).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    distance: Option<f64>,
     pub(super) primitives: Vec<PrimJson>,
 }
 
-/// The JSON document of `dec.levels[level]` (panics if `level` is out of range):
-/// pretty-printed, 2-space indent, arrays of plain numbers on one line, ending in a
-/// newline. It depends only on the input and the settings (byte-identical across runs
-/// and thread counts): no timings.
-pub fn to_json(dec: &Decomposition, level: usize, params: &Params) -> String {
-    document(dec, level, params, false)
+impl Decomposition {
+    /// The JSON document of `self.levels[level]` (panics if `level` is out of range),
+    /// the result contract every tool reads ([`crate::ResultFile::read`]):
+    /// pretty-printed, 2-space indent, arrays of plain numbers on one line, ending in a
+    /// newline. `params` are the settings the run was given, recorded under
+    /// `settings`. It depends only on the input and the settings (byte-identical
+    /// across runs and thread counts): no timings.
+    ///
+    /// ```
+    /// use primdecomp::{decompose, Goal, Mesh, Params, ResultFile};
+    ///
+    /// let corners = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    /// let tetrahedron = Mesh::from_triangles(&corners, &[[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])?;
+    /// let params = Params { goal: Goal::counts([1]), ..Params::default() };
+    /// let result = decompose(&tetrahedron, &params)?;
+    /// let json = result.to_json(0, &params);
+    /// assert!(json.starts_with("{\n  \"format\": \"primdecomp\""));
+    /// let back = ResultFile::read(&json, "result.json".as_ref())?;
+    /// assert_eq!(back.primitives.len(), result.levels[0].primitives.len());
+    /// # Ok::<(), primdecomp::Error>(())
+    /// ```
+    pub fn to_json(&self, level: usize, params: &Params) -> String {
+        document(self, level, params, false)
+    }
+
+    /// [`Decomposition::to_json`] plus the stage timings under `stats.seconds`
+    /// (the command line's `--timings`): no longer byte-identical between runs.
+    ///
+    /// ```
+    /// use primdecomp::{decompose, Goal, Mesh, Params};
+    ///
+    /// let corners = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    /// let tetrahedron = Mesh::from_triangles(&corners, &[[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])?;
+    /// let params = Params { goal: Goal::counts([1]), ..Params::default() };
+    /// let result = decompose(&tetrahedron, &params)?;
+    /// assert!(result.to_json_timed(0, &params).contains("\"seconds\""));
+    /// assert!(!result.to_json(0, &params).contains("\"seconds\""));
+    /// # Ok::<(), primdecomp::Error>(())
+    /// ```
+    pub fn to_json_timed(&self, level: usize, params: &Params) -> String {
+        document(self, level, params, true)
+    }
 }
 
-/// [`to_json`] plus the stage timings under `stats.seconds` (`--timings`).
-pub fn to_json_timed(dec: &Decomposition, level: usize, params: &Params) -> String {
-    document(dec, level, params, true)
+/// [`Decomposition::to_json`].
+#[cfg(test)]
+pub(crate) fn to_json(dec: &Decomposition, level: usize, params: &Params) -> String {
+    document(dec, level, params, false)
 }
 
 fn document(dec: &Decomposition, level: usize, params: &Params, timed: bool) -> String {
@@ -330,12 +381,34 @@ fn finish(doc: &Document) -> String {
     out
 }
 
-/// The JSON document of level `level` of a per-object result (`--per-object`): as
-/// [`to_json`], with `primitives` holding every object's primitives in world
-/// coordinates ([`Objects::world_primitives`]) and `objects` each object's name,
-/// frame, share of the target and primitives in its frame. `settings.target` is the
-/// total as given (or the sum of the shares for a percentage).
-pub fn to_json_objects(objs: &Objects, level: usize, params: &Params) -> String {
+impl Objects {
+    /// The JSON document of level `level` of a per-object result (`--per-object`): as
+    /// [`Decomposition::to_json`], with `primitives` holding every object's primitives
+    /// in world coordinates ([`Objects::world_primitives`]) and `objects` each object's
+    /// name, frame, share of the target and primitives in its frame.
+    /// `settings.target` is the total as given (or the sum of the shares for a
+    /// percentage).
+    ///
+    /// ```
+    /// use primdecomp::{decompose_objects, Mesh, ObjectTarget, Params, ResultFile};
+    ///
+    /// let obj = b"o left\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n\
+    ///             o right\nv 5 0 0\nv 6 0 0\nv 5 1 0\nv 5 0 1\nf 5 7 6\nf 5 6 8\nf 5 8 7\nf 6 7 8\n";
+    /// let mesh = Mesh::parse(obj, primdecomp::MeshFormat::Obj, "two.obj".as_ref())?;
+    /// let params = Params::default();
+    /// let objects = decompose_objects(&mesh, &params, &[ObjectTarget::Total(2)])?;
+    /// let back = ResultFile::read(&objects.to_json(0, &params), "two.json".as_ref())?;
+    /// assert_eq!(back.objects.len(), 2);
+    /// assert_eq!(back.objects[0].name, "left");
+    /// # Ok::<(), primdecomp::Error>(())
+    /// ```
+    pub fn to_json(&self, level: usize, params: &Params) -> String {
+        to_json_objects(self, level, params)
+    }
+}
+
+/// [`Objects::to_json`].
+pub(crate) fn to_json_objects(objs: &Objects, level: usize, params: &Params) -> String {
     let world = objs.world_primitives(level);
     let mut counts = [0usize; 6];
     let mut bytes = 0;
@@ -358,6 +431,7 @@ pub fn to_json_objects(objs: &Objects, level: usize, params: &Params) -> String 
                 scale: o.frame.scale,
                 faces: o.faces,
                 target: lv.target,
+                distance: lv.distance.map(|d| d * o.frame.scale),
                 primitives: lv
                     .primitives
                     .iter()
@@ -393,7 +467,9 @@ pub fn to_json_objects(objs: &Objects, level: usize, params: &Params) -> String 
             bytes,
             partitions: 1,
             seconds: None,
-            distance: None,
+            distance: objs
+                .distance(level)
+                .map(|worst| Distance::farthest(worst, &objs.input)),
         },
         primitives,
         objects: Some(objects),
@@ -443,8 +519,15 @@ pub(super) mod tests {
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
+    /// A uniformly random rotation's axes.
     fn random_axes(rng: &mut ChaCha8Rng) -> [V3; 3] {
-        crate::math::quat::random_axes(rng)
+        loop {
+            let q: [f64; 4] = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+            let n2: f64 = q.iter().map(|x| x * x).sum();
+            if n2 > 1e-4 && n2 <= 1.0 {
+                return crate::math::axes_from_quat(q);
+            }
+        }
     }
 
     fn sample_primitives() -> Vec<Primitive> {
@@ -523,7 +606,7 @@ pub(super) mod tests {
     #[test]
     fn document_contract() {
         let dec = sample_decomposition();
-        let text = to_json_timed(&dec, 0, &Params::default());
+        let text = dec.to_json_timed(0, &Params::default());
         assert!(text.ends_with("}\n"));
         let v: serde_json::Value = serde_json::from_str(&text).unwrap();
         assert_eq!(v["format"], "primdecomp");
@@ -560,7 +643,7 @@ pub(super) mod tests {
 
     #[test]
     fn key_order() {
-        let text = to_json_timed(&sample_decomposition(), 0, &Params::default());
+        let text = sample_decomposition().to_json_timed(0, &Params::default());
         // Within each group, every pattern must occur after the previous one.
         let groups = [
             r#""format"|"version"|"input"|"settings"|"stats"|"primitives": ["#,
@@ -582,12 +665,12 @@ pub(super) mod tests {
     fn timings_only_when_asked() {
         let mut dec = sample_decomposition();
         let a = to_json(&dec, 0, &Params::default());
-        let ta = to_json_timed(&dec, 0, &Params::default());
+        let ta = dec.to_json_timed(0, &Params::default());
         dec.timings.stages[0].1 = 123.0;
         // Without timings the document depends only on input and settings.
         assert_eq!(a, to_json(&dec, 0, &Params::default()));
         assert!(!a.contains("\"seconds\""), "{a}");
-        let tb = to_json_timed(&dec, 0, &Params::default());
+        let tb = dec.to_json_timed(0, &Params::default());
         assert_ne!(ta, tb);
         let strip = |s: &str| {
             let mut v: serde_json::Value = serde_json::from_str(s).unwrap();

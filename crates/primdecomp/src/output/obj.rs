@@ -5,7 +5,7 @@
 //! caps, a UV sphere scaled by the exact factor that puts every face plane outside
 //! the sphere.
 
-use crate::math::{add, cross, dot, madd, normalize, scale, sub, V3};
+use crate::math::{add, circle_frame, cross, dot, madd, normalize, scale, sub, V3};
 use crate::output::result::Level;
 use crate::primitive::Primitive;
 use std::collections::HashMap;
@@ -13,21 +13,51 @@ use std::f64::consts::{PI, TAU};
 use std::fmt::Write;
 
 /// Segments around each circle when the caller has no preference.
-pub const DEFAULT_DETAIL: usize = 16;
+pub(crate) const DEFAULT_DETAIL: usize = 16;
 
-/// The most segments around a circle [`tessellate`] makes (a larger `detail` is
+/// The most segments around a circle [`Primitive::tessellate`] makes (a larger `detail` is
 /// taken as this): a sphere at 1024 segments already has about half a million
 /// vertices, and a detail of millions would ask for more memory than any machine has.
-pub const MAX_DETAIL: usize = 1024;
+pub(crate) const MAX_DETAIL: usize = 1024;
 
 /// A closed convex polyhedron: vertices and polygons (0-based indices) wound
 /// counter-clockwise seen from outside.
+///
+/// ```
+/// use primdecomp::{Obb, Primitive};
+///
+/// let cube = Obb { center: [0.0; 3], axes: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], half: [1.0; 3] };
+/// let t = Primitive::Box(cube).tessellate(16);
+/// assert_eq!((t.vertices.len(), t.faces.len()), (8, 6));
+/// ```
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Tess {
     /// Vertex positions.
     pub vertices: Vec<V3>,
     /// Convex polygons, each a list of indices into `vertices`.
     pub faces: Vec<Vec<u32>>,
+}
+
+impl Tess {
+    /// Segments around each circle when the caller has no preference: 16.
+    ///
+    /// ```
+    /// assert_eq!(primdecomp::Tess::DEFAULT_DETAIL, 16);
+    /// ```
+    pub const DEFAULT_DETAIL: usize = DEFAULT_DETAIL;
+
+    /// The most segments around a circle [`Primitive::tessellate`] makes (a larger
+    /// `detail` is taken as this): 1024. A sphere at 1024 segments already has about
+    /// half a million vertices, and a detail of millions would ask for more memory than
+    /// any machine has.
+    ///
+    /// ```
+    /// use primdecomp::{Primitive, Sphere, Tess};
+    ///
+    /// let ball = Primitive::Sphere(Sphere { center: [0.0; 3], radius: 1.0 });
+    /// assert_eq!(ball.tessellate(usize::MAX), ball.tessellate(Tess::MAX_DETAIL));
+    /// ```
+    pub const MAX_DETAIL: usize = MAX_DETAIL;
 }
 
 /// Quads of a hexahedron whose corner `i` sits at local signs (bit 0 → x, bit 1 → y,
@@ -79,18 +109,6 @@ impl Tess {
         }
         out
     }
-}
-
-/// Two unit vectors `u`, `v` with `u × v = a` (for unit `a`), chosen deterministically:
-/// the tessellation's circles put vertex j at `u cos t + v sin t`, t = 2πj/k.
-pub fn circle_frame(a: V3) -> (V3, V3) {
-    let k = (0..3)
-        .min_by(|&i, &j| a[i].abs().total_cmp(&a[j].abs()))
-        .unwrap_or(0);
-    let mut e = [0.0; 3];
-    e[k] = 1.0;
-    let u = normalize(cross(e, a)).unwrap_or([1.0, 0.0, 0.0]);
-    (u, cross(a, u))
 }
 
 /// Unit axis from `p0` to `p1`, or +z when they coincide.
@@ -216,9 +234,28 @@ fn right_handed(axes: &[V3; 3]) -> bool {
     dot(cross(axes[0], axes[1]), axes[2]) >= 0.0
 }
 
-/// Conservative closed tessellation of one primitive with `detail` segments around
-/// circles (at least 3); latitude bands per hemisphere: `max(1, detail / 4)`.
-pub fn tessellate(p: &Primitive, detail: usize) -> Tess {
+impl Primitive {
+    /// A conservative closed tessellation with `detail` segments around circles (at
+    /// least 3, at most [`Tess::MAX_DETAIL`]; latitude bands per hemisphere:
+    /// `max(1, detail / 4)`): the polyhedron contains the primitive, so the enclosure
+    /// guarantee holds for the mesh too.
+    ///
+    /// ```
+    /// use primdecomp::{Primitive, Sphere, Tess};
+    ///
+    /// let ball = Primitive::Sphere(Sphere { center: [0.0, 0.0, 0.0], radius: 1.0 });
+    /// let mesh = ball.tessellate(Tess::DEFAULT_DETAIL);
+    /// // Every face's plane lies outside the sphere: the tessellation encloses it.
+    /// assert!(mesh.vertices.iter().all(|v| v.iter().map(|x| x * x).sum::<f64>() >= 1.0 - 1e-12));
+    /// assert!(mesh.faces.len() > 8);
+    /// ```
+    pub fn tessellate(&self, detail: usize) -> Tess {
+        tessellate(self, detail)
+    }
+}
+
+/// [`Primitive::tessellate`].
+pub(crate) fn tessellate(p: &Primitive, detail: usize) -> Tess {
     let k = detail.clamp(3, MAX_DETAIL);
     let h = (k / 4).max(1);
     let circ = 1.0 / (PI / k as f64).cos();
@@ -259,9 +296,30 @@ pub fn tessellate(p: &Primitive, detail: usize) -> Tess {
     }
 }
 
-/// The level as OBJ text: a header comment, then per primitive `o {kind}_{index}`,
-/// its `v` lines and its `f` lines (1-based, global across objects).
-pub fn to_obj(level: &Level, detail: usize) -> String {
+impl Level {
+    /// The level as OBJ text, each primitive tessellated conservatively
+    /// ([`Primitive::tessellate`] with `detail`): a header comment, then per primitive
+    /// `o {kind}_{index}`, its `v` lines and its `f` lines (1-based, global across
+    /// objects).
+    ///
+    /// ```
+    /// use primdecomp::{decompose, Goal, Mesh, Params, Tess};
+    ///
+    /// let corners = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    /// let tetrahedron = Mesh::from_triangles(&corners, &[[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])?;
+    /// let result = decompose(&tetrahedron, &Params { goal: Goal::counts([1]), ..Params::default() })?;
+    /// let obj = result.levels[0].to_obj(Tess::DEFAULT_DETAIL);
+    /// assert!(obj.starts_with("# primdecomp: 1 primitives"));
+    /// assert_eq!(obj.lines().filter(|l| l.starts_with("o ")).count(), 1);
+    /// # Ok::<(), primdecomp::Error>(())
+    /// ```
+    pub fn to_obj(&self, detail: usize) -> String {
+        to_obj(self, detail)
+    }
+}
+
+/// [`Level::to_obj`].
+pub(crate) fn to_obj(level: &Level, detail: usize) -> String {
     let mut out = String::new();
     let _ = writeln!(
         out,

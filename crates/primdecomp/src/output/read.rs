@@ -1,16 +1,18 @@
 //! Reading a result back: the JSON result contract's documents parsed into
-//! primitives ([`read_primitives`]) or into objects with their frames
-//! ([`read_objects`]), after the header check of [`super::contract`], with every
+//! primitives and objects with their frames ([`ResultFile::read`]), after the header check of [`super::contract`], with every
 //! number checked finite and within the limits of input meshes, so nothing read
 //! overflows the arithmetic of the tools that use it.
 
 use super::contract::check_header;
 use super::frame::Frame;
 use super::json::{ObjectJson, PrimJson};
+use crate::error::{Error, Result as CrateResult};
 use crate::math::quat::axes_from_quat;
+use crate::math::short as show;
 use crate::math::V3;
 use crate::primitive::{Capsule, Cylinder, Frustum, Obb, Primitive, Prism, Sphere};
 use serde::Deserialize;
+use std::path::Path;
 
 #[derive(Deserialize)]
 struct DocumentIn {
@@ -62,21 +64,6 @@ fn check_values(p: &Primitive, scale: f64, offset: f64) -> Result<(), String> {
         ));
     }
     Ok(())
-}
-
-/// Short form of a number for messages, three significant digits: `1e60`,
-/// `2.5e-35`, `inf`.
-fn show(x: f64) -> String {
-    if x == 0.0 {
-        return "0".into();
-    }
-    let s = format!("{x:.2e}");
-    match s.split_once('e') {
-        Some((m, e)) if m.contains('.') => {
-            format!("{}e{e}", m.trim_end_matches('0').trim_end_matches('.'))
-        }
-        _ => s,
-    }
 }
 
 impl PrimJson {
@@ -174,6 +161,16 @@ fn sizes(p: &Primitive) -> Vec<f64> {
 
 /// An object of a result as the exporters read it: name, frame and primitives in
 /// that frame. A result without `objects` is one unnamed object in the world frame.
+///
+/// ```
+/// use primdecomp::{Frame, ResultFile};
+///
+/// let doc = r#"{"format": "primdecomp", "version": 1,
+///   "primitives": [{"kind": "sphere", "center": [1, 2, 3], "radius": 0.5}]}"#;
+/// let object = &ResultFile::read(doc, "r.json".as_ref())?.objects[0];
+/// assert_eq!((object.name.as_str(), object.frame), ("", Frame::IDENTITY));
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct ResultObject {
     /// The object's name (empty for a result without `objects`).
@@ -184,12 +181,76 @@ pub struct ResultObject {
     pub primitives: Vec<Primitive>,
 }
 
-/// Parses a primdecomp JSON document into its objects ([`ResultObject`]). Refuses a
-/// document whose `format` is not `"primdecomp"` or whose `version` is not 1, and
-/// primitives or object frames with numbers that are not finite or beyond the
-/// limits of input meshes (coordinates within ±1e70, sizes up to 1e60, in world
-/// coordinates).
-pub fn read_objects(json: &str) -> Result<Vec<ResultObject>, String> {
+/// A primdecomp JSON result read back ([`ResultFile::read`]): its primitives in world
+/// coordinates and its objects, each with its frame and its primitives in that frame.
+///
+/// ```
+/// use primdecomp::{Kind, ResultFile};
+///
+/// let doc = r#"{"format": "primdecomp", "version": 1,
+///   "primitives": [{"kind": "sphere", "center": [1, 2, 3], "radius": 0.5}]}"#;
+/// let read = ResultFile::read(doc, "r.json".as_ref())?;
+/// assert_eq!(read.primitives[0].kind(), Kind::Sphere);
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct ResultFile {
+    /// Every primitive in world coordinates (the document's `primitives`).
+    pub primitives: Vec<Primitive>,
+    /// One per object of a per-object result; for a result without `objects`, one
+    /// unnamed object in the world frame holding `primitives`.
+    pub objects: Vec<ResultObject>,
+}
+
+impl ResultFile {
+    /// The largest result, evaluation or settings file the tools read (with
+    /// [`crate::read_regular`]): 256 MiB holds about a million primitives, far more
+    /// than any export or viewer page takes, and parsing it stays within about a GiB.
+    pub const MAX_BYTES: u64 = 256 << 20;
+
+    /// Parses a primdecomp JSON document (`path` names it in messages). Refuses a
+    /// document whose `format` is not `"primdecomp"` or whose `version` is not 1, and
+    /// primitives or object frames with numbers that are not finite or beyond the
+    /// limits of input meshes (coordinates within ±1e70, sizes up to 1e60, in world
+    /// coordinates), with an [`Error::Format`] naming the primitive or the JSON
+    /// position.
+    ///
+    /// ```
+    /// use primdecomp::ResultFile;
+    ///
+    /// let doc = r#"{"format": "primdecomp", "version": 1,
+    ///   "primitives": [{"kind": "sphere", "center": [1, 2, 3], "radius": 0.5}]}"#;
+    /// let read = ResultFile::read(doc, "result.json".as_ref())?;
+    /// assert_eq!(read.primitives.len(), 1);
+    /// assert_eq!(read.objects[0].primitives, read.primitives);
+    /// let newer = doc.replace(r#""version": 1"#, r#""version": 2"#);
+    /// assert!(ResultFile::read(&newer, "result.json".as_ref()).is_err());
+    /// # Ok::<(), primdecomp::Error>(())
+    /// ```
+    pub fn read(json: &str, path: &Path) -> CrateResult<ResultFile> {
+        read_document(json)
+            .map(|(primitives, objects)| ResultFile {
+                primitives,
+                objects,
+            })
+            .map_err(|msg| Error::format(path, msg))
+    }
+}
+
+/// A document's objects ([`ResultFile::objects`]).
+#[cfg(test)]
+pub(crate) fn read_objects(json: &str) -> Result<Vec<ResultObject>, String> {
+    read_document(json).map(|(_, objects)| objects)
+}
+
+/// A document's world primitives ([`ResultFile::primitives`]).
+#[cfg(test)]
+pub(crate) fn read_primitives(json: &str) -> Result<Vec<Primitive>, String> {
+    read_document(json).map(|(primitives, _)| primitives)
+}
+
+/// The world primitives and the objects of a document, or what is wrong with it.
+fn read_document(json: &str) -> Result<(Vec<Primitive>, Vec<ResultObject>), String> {
     let doc: DocumentIn =
         serde_json::from_str(json).map_err(|e| format!("invalid primdecomp JSON: {e}"))?;
     check_header(doc.format.as_ref(), doc.version.as_ref())?;
@@ -204,48 +265,47 @@ pub fn read_objects(json: &str) -> Result<Vec<ResultObject>, String> {
             })
             .collect::<Result<Vec<Primitive>, String>>()
     };
-    match doc.objects {
-        None => Ok(vec![ResultObject {
+    let world = prims(doc.primitives, "", 1.0, 0.0)?;
+    let objects = match doc.objects {
+        None => vec![ResultObject {
             name: String::new(),
             frame: Frame::IDENTITY,
-            primitives: prims(doc.primitives, "", 1.0, 0.0)?,
-        }]),
-        Some(objs) => {
-            // The world primitives are checked too: every tool may read them.
-            prims(doc.primitives, "", 1.0, 0.0)?;
-            objs.into_iter()
-                .enumerate()
-                .map(|(i, o)| {
-                    let what = format!("object {i} ({:?}): ", o.name);
-                    let finite = o.translation.iter().all(|x| x.is_finite())
-                        && o.scale.is_finite()
-                        && o.scale > 0.0;
-                    if !finite {
-                        return Err(format!(
-                            "{what}translation or scale is not finite and positive"
-                        ));
-                    }
-                    let n = o.rotation.iter().map(|x| x * x).sum::<f64>().sqrt();
-                    if !(n.is_finite() && (n - 1.0).abs() < 1e-6) {
-                        return Err(format!(
-                            "{what}rotation {:?} is not a unit quaternion",
-                            o.rotation
-                        ));
-                    }
-                    let offset = o.translation.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-                    Ok(ResultObject {
-                        frame: Frame {
-                            translation: o.translation,
-                            rotation: o.rotation.map(|x| x / n),
-                            scale: o.scale,
-                        },
-                        primitives: prims(o.primitives, &what, o.scale, offset)?,
-                        name: o.name,
-                    })
+            primitives: world.clone(),
+        }],
+        Some(objs) => objs
+            .into_iter()
+            .enumerate()
+            .map(|(i, o)| {
+                let what = format!("object {i} ({:?}): ", o.name);
+                let finite = o.translation.iter().all(|x| x.is_finite())
+                    && o.scale.is_finite()
+                    && o.scale > 0.0;
+                if !finite {
+                    return Err(format!(
+                        "{what}translation or scale is not finite and positive"
+                    ));
+                }
+                let n = o.rotation.iter().map(|x| x * x).sum::<f64>().sqrt();
+                if !(n.is_finite() && (n - 1.0).abs() < 1e-6) {
+                    return Err(format!(
+                        "{what}rotation {:?} is not a unit quaternion",
+                        o.rotation
+                    ));
+                }
+                let offset = o.translation.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+                Ok(ResultObject {
+                    frame: Frame {
+                        translation: o.translation,
+                        rotation: o.rotation.map(|x| x / n),
+                        scale: o.scale,
+                    },
+                    primitives: prims(o.primitives, &what, o.scale, offset)?,
+                    name: o.name,
                 })
-                .collect()
-        }
-    }
+            })
+            .collect::<Result<Vec<ResultObject>, String>>()?,
+    };
+    Ok((world, objects))
 }
 
 /// The `kind` of a primitive as the document names it.
@@ -260,43 +320,16 @@ fn kind_name(p: &PrimJson) -> &'static str {
     }
 }
 
-/// Parses the `primitives` array of a primdecomp JSON document back into
-/// primitives (other keys are ignored; `faces` is optional). Errors name the
-/// offending primitive or the JSON position; as [`read_objects`], a document whose
-/// `format` is not `"primdecomp"` or whose `version` is not 1 is refused, and so are
-/// numbers that are not finite or beyond the limits of input meshes.
-///
-/// ```
-/// let doc = r#"{"format": "primdecomp", "version": 1,
-///   "primitives": [{"kind": "sphere", "center": [1, 2, 3], "radius": 0.5}]}"#;
-/// assert_eq!(primdecomp::read_primitives(doc)?.len(), 1);
-/// let newer = doc.replace(r#""version": 1"#, r#""version": 2"#);
-/// assert!(primdecomp::read_primitives(&newer).is_err());
-/// # Ok::<(), String>(())
-/// ```
-pub fn read_primitives(json: &str) -> Result<Vec<Primitive>, String> {
-    let doc: DocumentIn =
-        serde_json::from_str(json).map_err(|e| format!("invalid primdecomp JSON: {e}"))?;
-    check_header(doc.format.as_ref(), doc.version.as_ref())?;
-    doc.primitives
-        .into_iter()
-        .enumerate()
-        .map(|(i, p)| {
-            let kind = kind_name(&p);
-            p.into_primitive()
-                .and_then(|p| check_values(&p, 1.0, 0.0).map(|()| p))
-                .map_err(|e| format!("primitive {i} ({kind}): {e}"))
-        })
-        .collect()
-}
-
 #[cfg(test)]
 mod tests {
     use super::super::json::tests::sample_decomposition;
     use super::super::json::to_json;
     use super::*;
-    use crate::math::quat::tests::close;
     use crate::params::Params;
+
+    fn close(a: &[f64], b: &[f64], tol: f64) -> bool {
+        a.iter().zip(b).all(|(x, y)| (x - y).abs() <= tol)
+    }
 
     /// Every number of a primitive's JSON form.
     fn flat(p: &Primitive) -> Vec<f64> {

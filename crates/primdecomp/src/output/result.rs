@@ -1,12 +1,24 @@
 //! What a run returns: the input's description, one [`Level`] of primitives per
 //! target, the stages' timings and the merge loop's counters.
 
+use crate::input::io::MeshFormat;
 use crate::input::up::Up;
 use crate::math::V3;
 use crate::primitive::Primitive;
 use serde::Serialize;
 
 /// What the input was: its size and bounding box in world coordinates.
+///
+/// ```
+/// use primdecomp::{decompose, Params};
+///
+/// let corners = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+/// let tetrahedron = primdecomp::Mesh::from_triangles(&corners, &[[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])?;
+/// let input = decompose(&tetrahedron, &Params::default())?.input;
+/// assert_eq!((input.aabb_min, input.aabb_max), ([0.0; 3], [1.0; 3]));
+/// assert!((input.diagonal() - 3f64.sqrt()).abs() < 1e-12);
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct InputInfo {
     /// The file it came from, when the caller says so (the library never sets it).
@@ -32,6 +44,27 @@ pub struct InputInfo {
 }
 
 impl InputInfo {
+    /// Records that the input came from the file `path`: its name (`path`) and the up
+    /// axis its format states or assumes ([`Up::of_format`]; nothing for an extension
+    /// primdecomp does not read). The command line, Python, C and WebAssembly all
+    /// record a file's result so, which makes their JSON the same byte for byte.
+    ///
+    /// ```
+    /// use primdecomp::{InputInfo, Up};
+    ///
+    /// let mut input = InputInfo::default();
+    /// input.record_file("parts/gear.stl".as_ref());
+    /// assert_eq!(input.path.as_deref(), Some("parts/gear.stl"));
+    /// assert_eq!(input.up, Some(Up::Z)); // STL is assumed +Z up
+    /// ```
+    pub fn record_file(&mut self, path: &std::path::Path) {
+        self.path = Some(path.display().to_string());
+        if let Some(format) = MeshFormat::from_path(path) {
+            let (up, why) = Up::of_format(format);
+            (self.up, self.up_from) = (Some(up), Some(why.to_string()));
+        }
+    }
+
     /// The length of the bounding box's diagonal (what relative settings such as
     /// [`crate::Fit::min_extent`] and [`crate::Tolerance::Diagonal`] scale by).
     pub fn diagonal(&self) -> f64 {
@@ -40,6 +73,18 @@ impl InputInfo {
 }
 
 /// The result for one target count.
+///
+/// ```
+/// use primdecomp::{decompose, Goal, Params};
+///
+/// let corners = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+/// let tetrahedron = primdecomp::Mesh::from_triangles(&corners, &[[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])?;
+/// let result = decompose(&tetrahedron, &Params::default())?; // within 2% of the diagonal
+/// let level = &result.levels[0];
+/// assert!(level.distance.unwrap() <= level.tolerance.unwrap());
+/// assert_eq!(level.counts().iter().sum::<usize>(), level.primitives.len());
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct Level {
     /// The requested target N.
@@ -112,6 +157,17 @@ impl Level {
 }
 
 /// Wall-clock seconds of each stage, in run order.
+///
+/// ```
+/// use primdecomp::{decompose, Params};
+///
+/// let corners = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+/// let tetrahedron = primdecomp::Mesh::from_triangles(&corners, &[[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])?;
+/// let timings = decompose(&tetrahedron, &Params::default())?.timings;
+/// let sum: f64 = timings.stages.iter().map(|(_, s)| s).sum();
+/// assert!((timings.total() - sum).abs() < 1e-9);
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct Timings {
     /// `(stage name, seconds)`, in the order the stages ran.
@@ -130,6 +186,17 @@ impl Timings {
 }
 
 /// Counters of a run, for reports and tuning; they do not depend on the thread count.
+///
+/// ```
+/// use primdecomp::{decompose, Params};
+///
+/// let corners = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+/// let tetrahedron = primdecomp::Mesh::from_triangles(&corners, &[[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])?;
+/// let stats = decompose(&tetrahedron, &Params::default())?.stats;
+/// assert_eq!(stats.welded_vertices, 4);
+/// assert_eq!(stats.adjacency_edges, 6);
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Stats {
     /// Distinct vertices after deduplication.
@@ -160,6 +227,18 @@ pub struct Stats {
 }
 
 /// Everything a run produces.
+///
+/// ```
+/// use primdecomp::{decompose, Goal, Params};
+///
+/// let corners = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+/// let tetrahedron = primdecomp::Mesh::from_triangles(&corners, &[[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])?;
+/// let result = decompose(&tetrahedron, &Params { goal: Goal::counts([4, 1]), ..Params::default() })?;
+/// assert_eq!(result.levels.len(), 2);
+/// assert_eq!(result.input.faces, 4);
+/// assert!(result.timings.total() >= 0.0);
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
 #[derive(Clone, Debug, Default)]
 pub struct Decomposition {
     /// What the input was.

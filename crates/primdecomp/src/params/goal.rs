@@ -28,8 +28,8 @@ pub enum CountSearch {
 }
 
 /// What the user asks of a run, one level (one result) per count, tolerance or byte
-/// budget. The default: the fewest primitives within [`DEFAULT_TOLERANCE`] of the
-/// input, at most [`MAX_PRIMITIVES`].
+/// budget. The default: the fewest primitives within [`Tolerance::DEFAULT`] of the
+/// input, at most [`Goal::MAX_PRIMITIVES`].
 ///
 /// ```
 /// use primdecomp::{decompose, demo_scene, Goal, Params, Tolerance};
@@ -74,7 +74,7 @@ pub enum Goal {
     /// each hold no value, one for every level, or one per level; at least one of them
     /// holds a value.
     Within {
-        /// The most primitives of each level: none ([`MAX_PRIMITIVES`] each), one for
+        /// The most primitives of each level: none ([`Goal::MAX_PRIMITIVES`] each), one for
         /// every level, or one per level.
         caps: Vec<usize>,
         /// How far every primitive of a level may stand from the input (the one-way
@@ -92,6 +92,14 @@ impl Default for Goal {
 }
 
 impl Goal {
+    /// The most primitives a level holds when no count is given (1024): the cap of a
+    /// [`Goal::Within`] without caps.
+    ///
+    /// ```
+    /// assert_eq!(primdecomp::Goal::MAX_PRIMITIVES, 1024);
+    /// ```
+    pub const MAX_PRIMITIVES: usize = crate::params::MAX_PRIMITIVES;
+
     /// Levels of at most these counts, found by [`CountSearch::Auto`].
     pub fn counts(counts: impl Into<Vec<usize>>) -> Goal {
         Goal::Counts {
@@ -101,7 +109,7 @@ impl Goal {
     }
 
     /// One level of the fewest primitives within `tolerance` (at most
-    /// [`MAX_PRIMITIVES`]).
+    /// [`Goal::MAX_PRIMITIVES`]).
     pub fn tolerance(tolerance: Tolerance) -> Goal {
         Goal::Within {
             caps: Vec::new(),
@@ -111,7 +119,7 @@ impl Goal {
     }
 
     /// One level of the closest fit in at most `bytes` bytes (at most
-    /// [`MAX_PRIMITIVES`] primitives).
+    /// [`Goal::MAX_PRIMITIVES`] primitives).
     pub fn max_bytes(bytes: usize) -> Goal {
         Goal::Within {
             caps: Vec::new(),
@@ -133,12 +141,12 @@ impl Goal {
     }
 
     /// Each level's count (the most primitives it holds): the counts as given, or each
-    /// level's cap ([`MAX_PRIMITIVES`] where none is given).
+    /// level's cap ([`Goal::MAX_PRIMITIVES`] where none is given).
     ///
     /// ```
-    /// use primdecomp::{Goal, Tolerance, MAX_PRIMITIVES};
+    /// use primdecomp::{Goal, Tolerance};
     ///
-    /// assert_eq!(Goal::default().targets(), vec![MAX_PRIMITIVES]);
+    /// assert_eq!(Goal::default().targets(), vec![Goal::MAX_PRIMITIVES]);
     /// let chain = Goal::Within {
     ///     caps: vec![300],
     ///     tolerance: vec![Tolerance::Diagonal(0.02), Tolerance::Diagonal(0.005)],

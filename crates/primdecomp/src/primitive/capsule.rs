@@ -3,6 +3,14 @@
 use crate::math::{dot, norm2, sub, V3};
 
 /// Capsule: segment `p0`–`p1` swept by a ball of `radius`.
+///
+/// ```
+/// use primdecomp::{Capsule, Kind, Primitive};
+///
+/// let rod = Primitive::Capsule(Capsule { p0: [0.0; 3], p1: [0.0, 0.0, 2.0], radius: 0.5 });
+/// assert_eq!(rod.kind(), Kind::Capsule);
+/// assert!(rod.contains([0.0, 0.0, 2.5], 1e-12)); // the cap's tip
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Capsule {
     /// One end of the segment.

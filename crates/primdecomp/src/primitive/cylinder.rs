@@ -5,6 +5,14 @@ use super::{aabb_union, disc_aabb};
 use crate::math::{dot, norm2, normalize, sub, V3};
 
 /// Cylinder between cap centres `p0` and `p1`.
+///
+/// ```
+/// use primdecomp::{Cylinder, Primitive};
+///
+/// let can = Primitive::Cylinder(Cylinder { p0: [0.0; 3], p1: [0.0, 0.0, 1.0], radius: 1.0 });
+/// assert!(can.contains([1.0, 0.0, 1.0], 1e-12)); // on the top rim
+/// assert!(!can.contains([0.0, 0.0, 1.1], 1e-12)); // flat caps
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Cylinder {
     /// Centre of one cap.

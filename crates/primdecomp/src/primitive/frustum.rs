@@ -10,6 +10,14 @@ use crate::math::{dot, madd, norm2, normalize, sub, V3};
 const SLOPE_SLACK: f64 = 1e-12;
 
 /// Frustum between cap centres `p0` (radius `r0`) and `p1` (radius `r1`).
+///
+/// ```
+/// use primdecomp::{Frustum, Primitive};
+///
+/// let cone = Primitive::Frustum(Frustum { p0: [0.0; 3], p1: [0.0, 0.0, 1.0], r0: 1.0, r1: 0.5 });
+/// assert!(cone.contains([0.9, 0.0, 0.0], 1e-12));
+/// assert!(!cone.contains([0.9, 0.0, 1.0], 1e-12)); // the top is narrower
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Frustum {
     /// Centre of the cap of radius `r0`.

@@ -24,6 +24,14 @@ pub use sphere::Sphere;
 use crate::math::V3;
 
 /// Primitive kinds, in the order used everywhere (weights, counts, JSON).
+///
+/// ```
+/// use primdecomp::Kind;
+///
+/// assert_eq!(Kind::ALL.len(), 6);
+/// assert_eq!(Kind::Box.name(), "box");
+/// assert_eq!(Kind::Prism.bytes(), 44);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum Kind {
     /// Oriented box ([`Obb`]).
@@ -85,6 +93,15 @@ impl Kind {
 
 /// One fitted primitive. Coordinates are in whatever frame the points were in
 /// (re-centred inside the engine, world in a [`crate::Decomposition`]).
+///
+/// ```
+/// use primdecomp::{Kind, Primitive, Sphere};
+///
+/// let p = Primitive::Sphere(Sphere { center: [0.0; 3], radius: 1.0 });
+/// assert_eq!(p.kind(), Kind::Sphere);
+/// assert_eq!(p.bytes(), 16); // four 4-byte numbers, as the paper's Table 2 counts
+/// assert!(p.contains([0.0, 0.0, 1.0], 1e-12));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Primitive {
     /// An oriented box.

@@ -1,10 +1,18 @@
 //! Oriented bounding box (§3.2 "Oriented Bounding Boxes"): the foundation of every
 //! other fit, since its centre seeds them.
 
-use super::fit::Frame;
+use super::fit::AxisBounds;
 use crate::math::{dot, madd, sub, V3};
 
 /// Box with orthonormal right-handed `axes` and `half` extents along them.
+///
+/// ```
+/// use primdecomp::{Obb, Primitive};
+///
+/// let unit = Obb { center: [0.0; 3], axes: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]], half: [0.5; 3] };
+/// assert_eq!(unit.volume(), 1.0);
+/// assert!(Primitive::Box(unit).contains([0.5, 0.5, -0.5], 1e-12));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Obb {
     /// Centre.
@@ -44,7 +52,7 @@ impl Obb {
         (lo, hi)
     }
     /// The box of a frame: centre of the projected bounds, half-extents clamped to `min_half`.
-    pub(crate) fn from_frame(f: &Frame, min_half: f64) -> Obb {
+    pub(crate) fn from_frame(f: &AxisBounds, min_half: f64) -> Obb {
         let mut center = f.origin;
         let mut half = [0.0; 3];
         for k in 0..3 {

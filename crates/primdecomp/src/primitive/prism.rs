@@ -13,6 +13,16 @@ use crate::math::{dot, madd, sub, V3};
 
 /// Trapezoidal prism: a trapezoid in the local y–z plane extruded along x (see the
 /// module documentation for the frame).
+///
+/// ```
+/// use primdecomp::{Primitive, Prism};
+///
+/// // A wedge: 2 × 2 at the bottom, 2 × 1 at the top.
+/// let axes = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+/// let wedge = Prism { center: [0.0; 3], axes, hx: 1.0, hy: 1.0, hz_top: 0.5, hz_bottom: 1.0, shift: 0.0 };
+/// assert!(Primitive::Prism(wedge).contains([0.0, -1.0, -1.0], 1e-12));
+/// assert!(!Primitive::Prism(wedge).contains([0.0, 1.0, 1.0], 1e-12));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Prism {
     /// Centre.

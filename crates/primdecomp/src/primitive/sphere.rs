@@ -3,6 +3,14 @@
 use crate::math::{norm2, sub, V3};
 
 /// Ball of `radius` around `center`.
+///
+/// ```
+/// use primdecomp::Sphere;
+///
+/// let ball = Sphere { center: [0.0, 0.0, 1.0], radius: 2.0 };
+/// assert!(ball.contains([0.0, 2.0, 1.0], 0.0));
+/// assert!(!ball.contains([0.0, 0.0, 3.5], 0.0));
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Sphere {
     /// Centre.

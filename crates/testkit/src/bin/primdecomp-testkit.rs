@@ -36,7 +36,7 @@ fn main() {
 }
 
 fn faces(mesh: &str, out: &str) -> Result<(), String> {
-    let m = primdecomp::load(mesh.as_ref()).map_err(|e| e.to_string())?;
+    let m = primdecomp::Mesh::load(mesh.as_ref()).map_err(|e| e.to_string())?;
     let vertices: Vec<[f64; 3]> = (0..m.vertex_count() as u32)
         .map(|v| m.world_pos(v))
         .collect();
@@ -46,7 +46,7 @@ fn faces(mesh: &str, out: &str) -> Result<(), String> {
 }
 
 fn ladder(mesh: &str, levels: &str, out: &str) -> Result<(), String> {
-    let m = primdecomp::load(mesh.as_ref()).map_err(|e| e.to_string())?;
+    let m = primdecomp::Mesh::load(mesh.as_ref()).map_err(|e| e.to_string())?;
     let levels: u32 = levels.parse().map_err(|e| format!("LEVELS: {e}"))?;
     let (faces, _) = primdecomp_testkit::ladder::subdivided_ply(&m, levels, 49, out.as_ref())
         .map_err(|e| format!("{out}: {e}"))?;

@@ -21,7 +21,7 @@ use crate::outputs::{check_batch_dir, check_stems, names_dir, Guard, Out};
 use anyhow::{anyhow, bail};
 use dest::{default_obj, default_out, default_png, Chain, Dest};
 use one_input::{run_one, PRINT};
-use primdecomp::{Decomposition, Params, MAX_DETAIL};
+use primdecomp::{Decomposition, Params, Tess};
 use settings::{max_memory, params_from, Target};
 use std::path::{Path, PathBuf};
 use summary::print_table;
@@ -36,10 +36,11 @@ pub fn run(a: DecomposeArgs) -> anyhow::Result<()> {
                 .into()
         ));
     }
-    if !(3..=MAX_DETAIL).contains(&a.obj_detail) {
+    if !(3..=Tess::MAX_DETAIL).contains(&a.obj_detail) {
         bail!(BadArgs(format!(
             "--obj-detail must be from 3 to {}, got {}",
-            MAX_DETAIL, a.obj_detail
+            Tess::MAX_DETAIL,
+            a.obj_detail
         )));
     }
     let guard = Guard::new(a.inputs.iter().map(PathBuf::as_path));

@@ -13,7 +13,7 @@ use crate::exit::BadArgs;
 use crate::outputs::Guard;
 use crate::paths::output_path_for;
 use anyhow::{anyhow, bail};
-use primdecomp::{to_json, to_json_objects, to_json_timed, to_obj, write_atomic, Stage};
+use primdecomp::{write_atomic, Stage};
 use primdecomp::{Decomposition, Goal, Params};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -40,7 +40,7 @@ pub(super) fn run_one(
     let mut why = super::tiled::reason(a, input, &options);
     let loaded = match &why {
         Some(_) => None,
-        None => match primdecomp::load_with(input, &options) {
+        None => match primdecomp::Mesh::load_with(input, &options) {
             Err(e @ primdecomp::Error::TooLarge { needed, limit, .. }) if !a.per_object => {
                 why = Some(super::tiled::over(needed, limit));
                 Some(Err(e))
@@ -94,12 +94,17 @@ pub(super) fn run_one(
             (primdecomp::Mesh::from_triangles(&[], &[])?, params, dec)
         }
     };
-    dec.input.path = Some(input.display().to_string());
-    let up = input_up(a, input);
-    (dec.input.up, dec.input.up_from) = (Some(up.0), Some(up.1));
+    record_input(&mut dec.input, a, input);
     let now = Instant::now();
     let mut written = write_outputs(&dec, &params, dest, guard, a.obj_detail, a.timings)?;
-    written.extend(write_exports(a, &dec, dest, input, &mesh, up.0)?);
+    written.extend(write_exports(
+        a,
+        &dec,
+        dest,
+        input,
+        &mesh,
+        dec.input.up.unwrap_or_default(),
+    )?);
     let write_s = now.elapsed().as_secs_f64();
     let memory = memory.map(StageMemory::finish);
     if let Some(png) = &dest.png {
@@ -181,9 +186,7 @@ fn run_objects(
             }
             e => anyhow::Error::from(e),
         })?;
-    objs.input.path = Some(input.display().to_string());
-    let up = input_up(a, input);
-    (objs.input.up, objs.input.up_from) = (Some(up.0), Some(up.1));
+    record_input(&mut objs.input, a, input);
     let n = objs.levels();
     let mut written = Vec::new();
     let mut dec = totals(&objs);
@@ -203,7 +206,7 @@ fn run_objects(
         written.push(json_out.path.clone());
         if dest.obj.is_some() {
             let obj_out = &outs[i * per_level + 1];
-            write_atomic(&obj_out.path, to_obj(&level, a.obj_detail).as_bytes())?;
+            write_atomic(&obj_out.path, level.to_obj(a.obj_detail).as_bytes())?;
             guard.wrote(obj_out);
             written.push(obj_out.path.clone());
         }
@@ -215,7 +218,7 @@ fn run_objects(
             &Source {
                 path: input,
                 mesh,
-                up: up.0,
+                up: objs.input.up.unwrap_or_default(),
             },
         )?);
         dec.levels.push(level);
@@ -267,7 +270,7 @@ fn level_jsons(
     let n = objs.levels();
     let mut jsons = Vec::with_capacity(n);
     for i in 0..n {
-        let json = to_json_objects(objs, i, params);
+        let json = objs.to_json(i, params);
         let v: serde_json::Value = serde_json::from_str(&json)?;
         jsons.push((v["settings"]["target"].as_u64().unwrap_or(0) as usize, json));
     }
@@ -296,6 +299,19 @@ fn world_level(
             Goal::Within { max_bytes, .. } => max_bytes.first().copied(),
             _ => None,
         },
+        // The farthest object's distance, and what stopped that object nearer.
+        distance: objs.distance(i),
+        shortfall: objs
+            .objects
+            .iter()
+            .map(|o| &o.decomposition.levels[i])
+            .filter(|l| l.distance.is_some())
+            .max_by(|a, b| {
+                a.distance
+                    .unwrap_or(0.0)
+                    .total_cmp(&b.distance.unwrap_or(0.0))
+            })
+            .and_then(|l| l.shortfall),
         ..Default::default()
     }
 }
@@ -313,15 +329,17 @@ fn print_objects(objs: &primdecomp::Objects) {
     );
 }
 
-/// The input's up axis and where it came from: `--up`, else what its format says
-/// (`Up::of_format`).
-fn input_up(a: &DecomposeArgs, input: &Path) -> (primdecomp::Up, String) {
-    use primdecomp::Up;
-    match a.export_opts.up.as_deref().and_then(Up::from_axis) {
-        Some(up) => (up, "given with --up".into()),
-        None => primdecomp::Format::from_path(input)
-            .map(Up::of_format)
-            .map_or((Up::Y, "assumed".into()), |(u, why)| (u, why.into())),
+/// Records the input file and its up axis in the result: `--up`, else what its format
+/// says (`InputInfo::record_file`).
+fn record_input(info: &mut primdecomp::InputInfo, a: &DecomposeArgs, input: &Path) {
+    info.record_file(input);
+    if let Some(up) = a
+        .export_opts
+        .up
+        .as_deref()
+        .and_then(primdecomp::Up::from_axis)
+    {
+        (info.up, info.up_from) = (Some(up), Some("given with --up".into()));
     }
 }
 
@@ -347,11 +365,11 @@ fn write_outputs(
         let (i, is_obj) = (k / per_level, k % per_level == 1);
         let level = &dec.levels[i];
         let bytes = if is_obj {
-            to_obj(level, detail)
+            level.to_obj(detail)
         } else if timed {
-            to_json_timed(dec, i, params)
+            dec.to_json_timed(i, params)
         } else {
-            to_json(dec, i, params)
+            dec.to_json(i, params)
         };
         write_atomic(&out.path, bytes.as_bytes())?;
         guard.wrote(out);

@@ -5,7 +5,7 @@
 
 use super::{Identity, RELEASE_EVERY};
 use crate::error::{Error, Result};
-use crate::input::io::{format_of, open_regular, Format, LoadOptions, PlyLayout};
+use crate::input::io::{format_of, open_regular, LoadOptions, MeshFormat, PlyLayout};
 use crate::input::mesh::Mesh;
 use crate::math::V3;
 use std::path::Path;
@@ -31,7 +31,7 @@ pub(super) fn open<'p>(path: &'p Path, options: &LoadOptions) -> Result<(Source<
         hash: content_hash(&map),
     };
     let layout = match format {
-        Format::Ply => PlyLayout::of(&map, path)?,
+        MeshFormat::Ply => PlyLayout::of(&map, path)?,
         _ => None,
     };
     let source = match layout {
@@ -61,10 +61,10 @@ fn whole(path: &Path, options: &LoadOptions) -> Result<Mesh> {
     if let (Some(limit), Ok((_, meta))) = (options.max_memory, open_regular(path)) {
         // The parse maps the file whole: `load_with`'s refusal of a file over the limit.
         if meta.len() > limit {
-            crate::input::io::load_with(path, options)?;
+            Mesh::load_with(path, options)?;
         }
     }
-    let mesh = crate::input::io::load_with(path, &unlimited)?;
+    let mesh = Mesh::load_with(path, &unlimited)?;
     if let Some(limit) = options.max_memory {
         let need = mesh_bytes(
             mesh.vertex_count() as u64,

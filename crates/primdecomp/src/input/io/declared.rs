@@ -1,19 +1,19 @@
 //! The vertex, face and corner counts an input declares, read before parsing and
 //! without allocating, for the memory limit (`crate::input::memory`).
 
-use super::{text, Format};
+use super::{text, MeshFormat};
 use crate::input::memory::Counts;
 
 /// Counts an input claims, read without allocating: `None` for glTF/GLB (its counts
 /// live in the JSON; the parsed mesh is checked instead) and for files whose header
 /// does not parse (the parser reports those). Each count is capped by the most the
 /// file's size could hold, so a lying header gets the parser's precise error.
-pub(crate) fn declared_counts(bytes: &[u8], format: Format) -> Option<Counts> {
+pub(crate) fn declared_counts(bytes: &[u8], format: MeshFormat) -> Option<Counts> {
     let len = bytes.len() as u64;
     let c = match format {
-        Format::Obj => obj_counts(bytes),
-        Format::Stl => stl_counts(bytes),
-        Format::Ply => {
+        MeshFormat::Obj => obj_counts(bytes),
+        MeshFormat::Stl => stl_counts(bytes),
+        MeshFormat::Ply => {
             let (v, f) = super::ply_declared(bytes)?;
             // Smallest records: 3 one-byte coordinates; a count byte and 3 one-byte indices.
             Counts {
@@ -22,7 +22,7 @@ pub(crate) fn declared_counts(bytes: &[u8], format: Format) -> Option<Counts> {
                 corners: 3 * f.min(len / 4),
             }
         }
-        Format::Off => {
+        MeshFormat::Off => {
             let (v, f) = super::off_declared(bytes)?;
             // Smallest lines: "0 0 0\n" and "3 0 0 0\n".
             Counts {
@@ -31,7 +31,7 @@ pub(crate) fn declared_counts(bytes: &[u8], format: Format) -> Option<Counts> {
                 corners: 3 * f.min(len / 8),
             }
         }
-        Format::Gltf | Format::Glb => return None,
+        MeshFormat::Gltf | MeshFormat::Glb => return None,
     };
     Some(c)
 }
@@ -91,18 +91,18 @@ mod tests {
             faces: 2,
             corners: 7,
         };
-        assert_eq!(declared_counts(obj, Format::Obj), Some(want));
+        assert_eq!(declared_counts(obj, MeshFormat::Obj), Some(want));
         // A PLY header claiming 4e9 vertices in a 200-byte file is capped by the size.
         let ply = b"ply\nformat binary_little_endian 1.0\nelement vertex 4000000000\nproperty float x\nproperty float y\nproperty float z\nelement face 7\nproperty list uchar int vertex_indices\nend_header\n";
-        let c = declared_counts(ply, Format::Ply).unwrap();
+        let c = declared_counts(ply, MeshFormat::Ply).unwrap();
         assert_eq!((c.vertices, c.faces), (ply.len() as u64 / 3, 7));
         let off = b"OFF\n# c\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
-        let c = declared_counts(off, Format::Off).unwrap();
+        let c = declared_counts(off, MeshFormat::Off).unwrap();
         assert_eq!((c.vertices, c.faces, c.corners), (3, 1, 3));
         let mut stl = vec![0u8; 84 + 100];
         stl[80] = 200; // declares 200 triangles, holds 2
-        let c = declared_counts(&stl, Format::Stl).unwrap();
+        let c = declared_counts(&stl, MeshFormat::Stl).unwrap();
         assert_eq!((c.faces, c.vertices), (2, 6));
-        assert_eq!(declared_counts(b"{}", Format::Gltf), None);
+        assert_eq!(declared_counts(b"{}", MeshFormat::Gltf), None);
     }
 }

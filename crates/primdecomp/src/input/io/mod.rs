@@ -27,9 +27,16 @@ pub(crate) use ply::parse_ply;
 pub(crate) use ply::PlyLayout;
 pub(crate) use stl::parse_stl;
 
-/// The mesh formats [`crate::load`] reads, chosen by the file's extension.
+/// The mesh formats [`crate::Mesh::load`] reads, chosen by the file's extension.
+///
+/// ```
+/// use primdecomp::MeshFormat;
+///
+/// assert_eq!(MeshFormat::from_path("Scan.PLY".as_ref()), Some(MeshFormat::Ply));
+/// assert_eq!(MeshFormat::from_path("notes.txt".as_ref()), None);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Format {
+pub enum MeshFormat {
     /// Wavefront OBJ (`v` and `f`, polygons kept; `o`/`g` name objects).
     Obj,
     /// PLY, ASCII or binary of either byte order.
@@ -44,57 +51,121 @@ pub enum Format {
     Glb,
 }
 
-impl Format {
-    /// Format from the file extension (case-insensitive).
-    pub fn from_path(path: &Path) -> Option<Format> {
+impl MeshFormat {
+    /// The format the file's extension names (case-insensitive).
+    pub fn from_path(path: &Path) -> Option<MeshFormat> {
         let ext = path.extension()?.to_str()?.to_ascii_lowercase();
         Some(match ext.as_str() {
-            "obj" => Format::Obj,
-            "ply" => Format::Ply,
-            "stl" => Format::Stl,
-            "off" => Format::Off,
-            "gltf" => Format::Gltf,
-            "glb" => Format::Glb,
+            "obj" => MeshFormat::Obj,
+            "ply" => MeshFormat::Ply,
+            "stl" => MeshFormat::Stl,
+            "off" => MeshFormat::Off,
+            "gltf" => MeshFormat::Gltf,
+            "glb" => MeshFormat::Glb,
             _ => return None,
         })
     }
 }
 
-/// A mesh from bytes already in memory in `format` (a file received over a network,
-/// an archive member); `path` names it in messages and, for `.gltf`, is where external
-/// buffers are resolved from. Unlike [`load`] it does not refuse an empty mesh or
-/// far-flung vertices ([`crate::decompose`] does).
-///
-/// ```
-/// use primdecomp::{parse_mesh, Format};
-///
-/// let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
-/// let mesh = parse_mesh(obj, Format::Obj, "triangle.obj".as_ref())?;
-/// assert_eq!(mesh.face_count(), 1);
-/// # Ok::<(), primdecomp::Error>(())
-/// ```
-pub fn parse_mesh(bytes: &[u8], format: Format, path: &Path) -> Result<Mesh> {
-    parse_bytes(bytes, format, path).map(Mesh::from_builder)
+impl Mesh {
+    /// A mesh from bytes already in memory in `format` (a file received over a
+    /// network, an archive member); `path` names it in messages and, for `.gltf`, is
+    /// where external buffers are resolved from (only from inside its folder: the
+    /// default [`LoadOptions`]). Unlike [`Mesh::load`] it does not refuse an empty mesh
+    /// or far-flung vertices ([`crate::decompose`] does).
+    ///
+    /// ```
+    /// use primdecomp::{Mesh, MeshFormat};
+    ///
+    /// let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    /// let mesh = Mesh::parse(obj, MeshFormat::Obj, "triangle.obj".as_ref())?;
+    /// assert_eq!(mesh.face_count(), 1);
+    /// # Ok::<(), primdecomp::Error>(())
+    /// ```
+    pub fn parse(bytes: &[u8], format: MeshFormat, path: &Path) -> Result<Mesh> {
+        parse_bytes(bytes, format, path).map(Mesh::from_builder)
+    }
+
+    /// Reads the mesh in `path` (OBJ, PLY, STL, OFF, glTF/GLB, by its extension):
+    /// memory-mapped, parsed, re-centred, with the default [`LoadOptions`] (no memory
+    /// limit, glTF buffers only from inside the glTF's folder): see [`Mesh::load_with`].
+    ///
+    /// ```
+    /// use primdecomp::Mesh;
+    ///
+    /// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../datasets/demo_scene.obj");
+    /// let mesh = Mesh::load(path.as_ref())?;
+    /// assert!(mesh.objects().len() > 1);
+    /// # Ok::<(), primdecomp::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// An [`Error`] naming the file and the line or byte offset where it is malformed, an
+    /// [`Error::EmptyMesh`] when it has no polygon, [`Error::Extent`] / [`Error::Position`]
+    /// for vertices too far apart or from the origin.
+    pub fn load(path: &Path) -> Result<Mesh> {
+        load(path)
+    }
+
+    /// Opens `path` with [`open_regular`] (refusing anything but a regular file before
+    /// reading it), memory-maps and parses it, then re-centres it into a [`Mesh`].
+    /// `options.max_memory` refuses with [`Error::TooLarge`] an input whose
+    /// decomposition would need more than that by the memory model
+    /// ([`Mesh::memory_needed`]): once from the counts the file declares, before
+    /// parsing, and once from the parsed mesh, before anything else is allocated for
+    /// it. `options.allow_external_uris` is the glTF buffer policy ([`LoadOptions`]).
+    ///
+    /// ```
+    /// use primdecomp::{LoadOptions, Mesh};
+    ///
+    /// let options = LoadOptions { max_memory: Some(1 << 30), ..Default::default() };
+    /// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../datasets/demo_scene.obj");
+    /// let mesh = Mesh::load_with(path.as_ref(), &options)?;
+    /// assert!(mesh.face_count() > 0);
+    /// # Ok::<(), primdecomp::Error>(())
+    /// ```
+    pub fn load_with(path: &Path, options: &LoadOptions) -> Result<Mesh> {
+        load_with(path, options)
+    }
+
+    /// The peak memory in bytes a decomposition of `path` is expected to need (a
+    /// default run, with the merge tree's cut: a count's greedy run needs less), from
+    /// the counts its header declares, read without parsing the file; `None` where they
+    /// cannot be known before parsing (glTF/GLB, an unreadable file or one that is not
+    /// a regular file, a header that does not parse). Schedulers running several
+    /// inputs at once reserve this much per input.
+    ///
+    /// ```
+    /// use primdecomp::Mesh;
+    ///
+    /// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../datasets/demo_scene.obj");
+    /// let bytes = Mesh::memory_needed(path.as_ref()).expect("an OBJ declares its counts");
+    /// assert!(bytes > std::fs::metadata(path).unwrap().len());
+    /// assert_eq!(Mesh::memory_needed("scene.glb".as_ref()), None);
+    /// ```
+    pub fn memory_needed(path: &Path) -> Option<u64> {
+        memory_needed(path)
+    }
 }
 
-/// [`parse_mesh`] with `options` (of which only the glTF URI policy applies: a
-/// `.gltf`'s external buffers are resolved from `path`'s folder).
-pub fn parse_mesh_with(
-    bytes: &[u8],
-    format: Format,
-    path: &Path,
-    options: &LoadOptions,
-) -> Result<Mesh> {
-    parse_bytes_with(bytes, format, path, options).map(Mesh::from_builder)
-}
-
-/// How [`load_with`] (and [`parse_mesh_with`]) read an input. `Default` is the
+/// How [`Mesh::load_with`] reads an input. `Default` is the
 /// safe setting for untrusted files: no memory limit, and glTF buffers read only from
 /// `data:` URIs, the GLB's own chunk or files inside the glTF's folder.
+///
+/// ```
+/// use primdecomp::{LoadOptions, Mesh};
+///
+/// let safe = LoadOptions::default();
+/// assert_eq!((safe.max_memory, safe.allow_external_uris), (None, false));
+/// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../datasets/demo_scene.obj");
+/// let options = LoadOptions { max_memory: Some(1 << 30), ..safe };
+/// assert!(Mesh::load_with(path.as_ref(), &options)?.face_count() > 0);
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct LoadOptions {
     /// Refuse with [`Error::TooLarge`] an input whose decomposition would need more
-    /// than this many bytes by the memory model ([`memory_needed`]): once from the counts the
+    /// than this many bytes by the memory model ([`Mesh::memory_needed`]): once from the counts the
     /// file declares, before parsing, and once from the parsed mesh. `None`: no limit.
     pub max_memory: Option<u64>,
     /// The decomposition that follows takes no cut of the merge tree (its targets are
@@ -115,12 +186,12 @@ pub struct LoadOptions {
     /// returns the file's values bit for bit (re-centring and adding the centre back
     /// can change the last bit). For handing a mesh's arrays to another program (the
     /// Python package's `load`, whose arrays then decompose exactly as the file does);
-    /// [`load_with`] still refuses what it refuses with re-centring. Decomposing such a
+    /// [`Mesh::load_with`] still refuses what it refuses with re-centring. Decomposing such a
     /// mesh directly loses the precision re-centring keeps far from the origin.
     pub keep_world_coordinates: bool,
     /// [`crate::decompose_tiled`]: decompose in this many spatial tiles (at most
-    /// [`crate::MAX_TILES`]) instead of the fewest that fit `max_memory`. `None` (the
-    /// default): the fewest; [`load_with`] ignores it.
+    /// 4096) instead of the fewest that fit `max_memory`. `None` (the
+    /// default): the fewest; [`Mesh::load_with`] ignores it.
     pub tiles: Option<usize>,
 }
 
@@ -132,6 +203,14 @@ pub struct LoadOptions {
 /// a writer) and `O_NOCTTY`, and the *opened handle's* metadata is checked again, so a
 /// file swapped for a pipe between the two is refused too. Failing to open is
 /// [`Error::Open`]; both are the input's fault (exit code 2).
+///
+/// ```
+/// let (file, meta) = primdecomp::open_regular("Cargo.toml".as_ref())?;
+/// assert!(meta.is_file());
+/// drop(file);
+/// assert!(primdecomp::open_regular(".".as_ref()).is_err()); // a folder
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
 pub fn open_regular(path: &Path) -> Result<(File, Metadata)> {
     match open_checked(path) {
         Ok(opened) => Ok(opened),
@@ -225,14 +304,14 @@ pub(crate) fn open_checked(path: &Path) -> std::result::Result<(File, Metadata),
 
 /// Parses bytes already in memory as `format` with the default `LoadOptions`;
 /// `path` is used for messages (and, for `.gltf`, to resolve external buffers).
-pub(crate) fn parse_bytes(bytes: &[u8], format: Format, path: &Path) -> Result<MeshBuilder> {
+pub(crate) fn parse_bytes(bytes: &[u8], format: MeshFormat, path: &Path) -> Result<MeshBuilder> {
     parse_bytes_with(bytes, format, path, &LoadOptions::default())
 }
 
 /// `parse_bytes` with `options` (of which only the glTF URI policy applies here).
 pub(crate) fn parse_bytes_with(
     bytes: &[u8],
-    format: Format,
+    format: MeshFormat,
     path: &Path,
     options: &LoadOptions,
 ) -> Result<MeshBuilder> {
@@ -243,11 +322,11 @@ pub(crate) fn parse_bytes_with(
         ));
     }
     match format {
-        Format::Obj => parse_obj(bytes, path),
-        Format::Ply => parse_ply(bytes, path),
-        Format::Stl => parse_stl(bytes, path),
-        Format::Off => parse_off(bytes, path),
-        Format::Gltf | Format::Glb => parse_gltf_with(bytes, path, options),
+        MeshFormat::Obj => parse_obj(bytes, path),
+        MeshFormat::Ply => parse_ply(bytes, path),
+        MeshFormat::Stl => parse_stl(bytes, path),
+        MeshFormat::Off => parse_off(bytes, path),
+        MeshFormat::Gltf | MeshFormat::Glb => parse_gltf_with(bytes, path, options),
     }
 }
 
@@ -479,14 +558,9 @@ pub(crate) mod text {
     }
 }
 
-/// The peak memory in bytes a decomposition of `path` is expected to need (a default
-/// run, with the merge tree's cut: a count's greedy run needs less), from the
-/// counts its header declares, read without parsing the file; `None` where they
-/// cannot be known before parsing (glTF/GLB, an unreadable file or one that is not a
-/// regular file, a header that does not parse). Schedulers running several inputs at
-/// once reserve this much per input.
-pub fn memory_needed(path: &Path) -> Option<u64> {
-    let format = Format::from_path(path)?;
+/// [`Mesh::memory_needed`].
+pub(crate) fn memory_needed(path: &Path) -> Option<u64> {
+    let format = MeshFormat::from_path(path)?;
     let (file, meta) = open_regular(path).ok()?;
     if meta.len() == 0 {
         return None;
@@ -499,8 +573,8 @@ pub fn memory_needed(path: &Path) -> Option<u64> {
 }
 
 /// The format `path`'s extension names, or the error saying which are known.
-pub(crate) fn format_of(path: &Path) -> Result<Format> {
-    Format::from_path(path).ok_or_else(|| {
+pub(crate) fn format_of(path: &Path) -> Result<MeshFormat> {
+    MeshFormat::from_path(path).ok_or_else(|| {
         Error::format(
             path,
             "unknown extension: expected .obj, .ply, .stl, .off, .gltf or .glb",
@@ -508,45 +582,13 @@ pub(crate) fn format_of(path: &Path) -> Result<Format> {
     })
 }
 
-/// Reads the mesh in `path` (OBJ, PLY, STL, OFF, glTF/GLB, by its extension):
-/// memory-mapped, parsed, re-centred, with the default [`LoadOptions`] (no memory
-/// limit, glTF buffers only from inside the glTF's folder): see [`load_with`].
-///
-/// ```
-/// let mesh = primdecomp::load(concat!(env!("CARGO_MANIFEST_DIR"), "/../../datasets/demo_scene.obj").as_ref())?;
-/// assert_eq!(mesh.face_count(), primdecomp::demo_scene().face_count());
-/// # Ok::<(), primdecomp::Error>(())
-/// ```
-///
-/// # Errors
-/// An [`Error`] naming the file and the line or byte offset where it is malformed, an
-/// [`Error::EmptyMesh`] when it has no polygon, [`Error::Extent`] / [`Error::Position`]
-/// for vertices too far apart or from the origin.
-pub fn load(path: &Path) -> Result<Mesh> {
+/// [`Mesh::load`].
+pub(crate) fn load(path: &Path) -> Result<Mesh> {
     load_with(path, &LoadOptions::default())
 }
 
-/// Opens `path` with [`open_regular`] (refusing anything but a regular file before
-/// reading it), memory-maps and parses it, then re-centres it into a [`Mesh`].
-/// `options.max_memory` refuses with [`Error::TooLarge`] an input whose
-/// decomposition would need more than that by the memory model ([`memory_needed`]): once
-/// from the counts the file declares, before parsing, and once from the parsed mesh,
-/// before anything else is allocated for it. `options.allow_external_uris` is the
-/// glTF buffer policy ([`LoadOptions`]).
-///
-/// ```
-/// let options = primdecomp::LoadOptions {
-///     max_memory: Some(1 << 30),
-///     ..Default::default()
-/// };
-/// let mesh = primdecomp::load_with(
-///     concat!(env!("CARGO_MANIFEST_DIR"), "/../../datasets/demo_scene.obj").as_ref(),
-///     &options,
-/// )?;
-/// assert!(mesh.face_count() > 0);
-/// # Ok::<(), primdecomp::Error>(())
-/// ```
-pub fn load_with(path: &Path, options: &LoadOptions) -> Result<Mesh> {
+/// [`Mesh::load_with`].
+pub(crate) fn load_with(path: &Path, options: &LoadOptions) -> Result<Mesh> {
     let (file, meta) = open_regular(path)?;
     let format = format_of(path)?;
     let max_memory = options.max_memory;

@@ -1,4 +1,4 @@
-//! OFF (Object File Format) reader.
+//! OFF (Object File MeshFormat) reader.
 //!
 //! Reads the `OFF` keyword (the `COFF`, `NOFF`, `CNOFF`, `STOFF`, … variants too),
 //! the `vertices faces [edges]` counts (on the keyword's line or the next one), one

@@ -26,7 +26,7 @@ impl<'a> Cloud<'a> {
 
 /// Orthonormal right-handed axes (largest eigenvalue first) and the points' bounds along them.
 #[derive(Clone, Copy, Debug)]
-pub struct Frame {
+pub struct AxisBounds {
     pub origin: V3,
     pub axes: [V3; 3],
     pub lo: V3,
@@ -317,7 +317,7 @@ fn offer_all(cloud: &Cloud, axes: [V3; 3], s: &mut FitScratch, best: &mut Candid
 /// The points in the frame `axes`, their bounds and their box; the scratch holds
 /// their coordinates relative to the box's centre (§3.2: other primitives start
 /// there), none sorted yet.
-fn centred(cloud: &Cloud, axes: [V3; 3], min_half: f64, s: &mut FitScratch) -> (Frame, Obb) {
+fn centred(cloud: &Cloud, axes: [V3; 3], min_half: f64, s: &mut FitScratch) -> (AxisBounds, Obb) {
     let frame = project(cloud, axes, s);
     // Explicit 3-element arrays, not `array::map`: its `try_map` is not always inlined
     // (docs/decisions/perf-fit-loop.md).
@@ -574,7 +574,7 @@ impl<'a> Candidate<'a> {
 }
 
 /// One pass: coordinates along the axes into the scratch, with their bounds.
-fn project(cloud: &Cloud, axes: [V3; 3], s: &mut FitScratch) -> Frame {
+fn project(cloud: &Cloud, axes: [V3; 3], s: &mut FitScratch) -> AxisBounds {
     let n = cloud.len();
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
@@ -592,7 +592,7 @@ fn project(cloud: &Cloud, axes: [V3; 3], s: &mut FitScratch) -> Frame {
             (lo[k], hi[k]) = (0.0, 0.0);
         }
     }
-    Frame {
+    AxisBounds {
         origin: [0.0; 3],
         axes,
         lo,

@@ -3,7 +3,7 @@
 //! cell shadows (`cut::shadow`).
 
 /// The shoelace area of a polygon, positive when counter-clockwise.
-pub(crate) fn signed_area(p: &[[f64; 2]]) -> f64 {
+pub fn signed_area(p: &[[f64; 2]]) -> f64 {
     let n = p.len();
     0.5 * (0..n)
         .map(|i| {
@@ -14,7 +14,7 @@ pub(crate) fn signed_area(p: &[[f64; 2]]) -> f64 {
 }
 
 /// The part of the convex polygon `p` where `side ≥ 0` (`side` affine), into `out`.
-pub(crate) fn clip_by(p: &[[f64; 2]], side: impl Fn([f64; 2]) -> f64, out: &mut Vec<[f64; 2]>) {
+pub fn clip_by(p: &[[f64; 2]], side: impl Fn([f64; 2]) -> f64, out: &mut Vec<[f64; 2]>) {
     out.clear();
     for k in 0..p.len() {
         let (a, b) = (p[k], p[(k + 1) % p.len()]);
@@ -30,7 +30,7 @@ pub(crate) fn clip_by(p: &[[f64; 2]], side: impl Fn([f64; 2]) -> f64, out: &mut 
 }
 
 /// The intersection of two convex counter-clockwise polygons.
-pub(crate) fn clip(subject: &[[f64; 2]], by: &[[f64; 2]]) -> Vec<[f64; 2]> {
+pub fn clip(subject: &[[f64; 2]], by: &[[f64; 2]]) -> Vec<[f64; 2]> {
     let mut out = subject.to_vec();
     let mut input = Vec::with_capacity(out.len() + by.len());
     for i in 0..by.len() {

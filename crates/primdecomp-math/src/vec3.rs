@@ -80,7 +80,7 @@ pub fn fmin(a: f64, b: f64) -> f64 {
 }
 
 /// Min/max corners of a point stream; `([0;3],[0;3])` for an empty stream.
-pub(crate) fn aabb_of(points: impl Iterator<Item = V3>) -> (V3, V3) {
+pub fn aabb_of(points: impl Iterator<Item = V3>) -> (V3, V3) {
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
     for p in points {
@@ -93,4 +93,17 @@ pub(crate) fn aabb_of(points: impl Iterator<Item = V3>) -> (V3, V3) {
         return ([0.0; 3], [0.0; 3]);
     }
     (lo, hi)
+}
+
+/// Two unit vectors `u`, `v` with `u × v = a` (for unit `a`), chosen deterministically:
+/// primdecomp's tessellation puts vertex j of a circle around `a` at `u cos t + v sin t`,
+/// t = 2πj/k, and the exporters place their circles the same way.
+pub fn circle_frame(a: V3) -> (V3, V3) {
+    let k = (0..3)
+        .min_by(|&i, &j| a[i].abs().total_cmp(&a[j].abs()))
+        .unwrap_or(0);
+    let mut e = [0.0; 3];
+    e[k] = 1.0;
+    let u = normalize(cross(e, a)).unwrap_or([1.0, 0.0, 0.0]);
+    (u, cross(a, u))
 }

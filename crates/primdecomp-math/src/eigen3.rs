@@ -1,7 +1,7 @@
 //! Eigen-decomposition of symmetric 3×3 matrices (§3.2 takes a cluster's axes from
 //! them), in `f64`, by two paths (docs/decisions/0016-direct-eigen-solve.md):
 //!
-//! 1. **Direct** ([`deflate`]), for every matrix not within ~1e−12 of a multiple of
+//! 1. **Direct** (`deflate`), for every matrix not within ~1e−12 of a multiple of
 //!    the identity: the eigenvalue farther from the middle one in closed form (the
 //!    trigonometric formula for a symmetric 3×3), its eigenvector as the longest cross
 //!    product of two rows of `A − λI`, and the other two from one *exact* Jacobi
@@ -10,7 +10,7 @@
 //!    conditioned as the matrix allows. It is as accurate as the Jacobi path below
 //!    (table in `print_accuracy_table`) at about half the cost of a Jacobi solve
 //!    (docs/decisions/perf-eigen-solve.md has the timings).
-//! 2. **Jacobi** ([`jacobi`]), the branchless scheme of McAdams et al. 2011,
+//! 2. **Jacobi** (`jacobi`), the branchless scheme of McAdams et al. 2011,
 //!    "Computing the Singular Value Decomposition of 3×3 matrices with minimal
 //!    branching and elementary floating point operations" (its symmetric-eigenanalysis
 //!    part), for the rest: near multiples of the identity, where no eigenvalue stands
@@ -356,7 +356,7 @@ fn canonical_sign(a: V3) -> V3 {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::math::vec3::sub;
+    use crate::vec3::sub;
     use faer::{Mat, Side};
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
@@ -388,7 +388,7 @@ mod tests {
     /// Rotation matrix of a uniformly random unit quaternion (rows: the transpose of
     /// a random rotation is a random rotation).
     fn random_rotation(rng: &mut ChaCha8Rng) -> M3 {
-        crate::math::quat::random_axes(rng)
+        crate::quat::random_axes(rng)
     }
 
     /// `R diag(l) Rᵀ`.
@@ -446,7 +446,7 @@ mod tests {
             );
             let gap = (0..3).filter(|&j| j != k).map(|j| (fv[j] - fv[k]).abs());
             if gap.fold(f64::INFINITY, f64::min) > 1e-3 * big {
-                let d = norm(sub(vec, fvec[k])).min(norm(crate::math::vec3::add(vec, fvec[k])));
+                let d = norm(sub(vec, fvec[k])).min(norm(crate::vec3::add(vec, fvec[k])));
                 assert!(d <= 1e-5, "vector {k}: {m:?} {e:?} {fvec:?}");
             }
         }

@@ -9,7 +9,7 @@
 //! node exactly as far is visited, so the nearest item of least id is found whatever
 //! the visiting order or the starting guess).
 
-use super::{add, cross, dot, norm2, scale, sub, V3};
+use crate::vec3::{add, cross, dot, norm2, scale, sub, V3};
 use rayon::prelude::*;
 
 /// Items per leaf, at most, of [`Bvh::build`]'s hierarchies.

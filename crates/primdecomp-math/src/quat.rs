@@ -10,7 +10,7 @@ pub fn quat_from_axes(axes: &[[f64; 3]; 3]) -> [f64; 4] {
     // m[i][j] = row i, column j; column j is axes[j].
     let m = |i: usize, j: usize| axes[j][i];
     debug_assert!(
-        crate::math::dot(crate::math::cross(axes[0], axes[1]), axes[2]) > 0.0,
+        crate::vec3::dot(crate::vec3::cross(axes[0], axes[1]), axes[2]) > 0.0,
         "axes must be right-handed"
     );
     let (m00, m11, m22) = (m(0, 0), m(1, 1), m(2, 2));
@@ -92,14 +92,14 @@ pub fn axes_from_quat(q: [f64; 4]) -> [[f64; 3]; 3] {
 
 /// A uniformly random rotation's axes (tests only).
 #[cfg(test)]
-pub(crate) fn random_axes(rng: &mut rand_chacha::ChaCha8Rng) -> [super::V3; 3] {
+pub fn random_axes(rng: &mut rand_chacha::ChaCha8Rng) -> [super::V3; 3] {
     axes_from_quat(tests::random_quat(rng))
 }
 
 #[cfg(test)]
-pub(crate) mod tests {
+pub mod tests {
     use super::*;
-    use crate::math::{cross, dot};
+    use crate::vec3::{cross, dot};
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 

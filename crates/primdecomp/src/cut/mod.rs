@@ -29,6 +29,7 @@ pub(crate) mod tree;
 use crate::input::triangles::Triangles;
 use crate::math::{Sym3, V3};
 use crate::merge::{Evaluator, Snapshot, Workspace};
+use crate::output::result::Shortfall;
 use crate::primitive::Primitive;
 pub(crate) use choose::fits;
 use choose::worst;
@@ -86,6 +87,24 @@ pub(crate) struct Request {
     pub count: usize,
     pub bytes: Option<usize>,
     pub tolerance: Option<f64>,
+}
+
+/// One level's cut of the merge tree: its nodes' clusters and primitives as the merge
+/// loop's snapshots hold them, with what only a cut knows.
+#[derive(Clone, Debug)]
+pub(crate) struct LevelCut {
+    /// The cut's nodes as clusters with their primitives (the mesh's frame).
+    pub snapshot: Snapshot,
+    /// The farthest its primitives may stand from the input (its tolerance, or the
+    /// farthest its nodes stand), which post-processing must keep
+    /// (`postprocess::plates`).
+    pub bound: f64,
+    /// For a cut over its tolerance: what stopped it nearer; `None` otherwise.
+    pub shortfall: Option<Shortfall>,
+    /// Each primitive as the cut made it (the mesh's frame) with the upper bound of its
+    /// error the cut proved, where it proved one; post-processing leaves it as it is,
+    /// so `limits::record_limits` measures again only what it changed.
+    pub known: Vec<(Primitive, f64)>,
 }
 
 /// A node of the cut with its fitted primitive and estimated error (`exact`: else
@@ -291,7 +310,7 @@ impl<'a> Cutter<'a> {
     /// ([`Cutter::choose`]). `requests` are [`Cutter::new`]'s with the same
     /// tolerances, their counts and bytes maybe raised; the nodes fitted for earlier
     /// requests keep their fits.
-    pub(crate) fn snapshots(&mut self, requests: &[Request]) -> Vec<Snapshot> {
+    pub(crate) fn snapshots(&mut self, requests: &[Request]) -> Vec<LevelCut> {
         self.requests = requests.to_vec();
         let (explored, cuts, spare) = self.explore_and_choose(largest(requests), self.enough);
         let snaps = self.cut_snapshots(&explored, cuts);
@@ -304,7 +323,7 @@ impl<'a> Cutter<'a> {
 
     /// [`Cutter::snapshots`] of one request, with the count the least worst error
     /// leaves spent on the mean where it is a count alone ([`loose`]).
-    pub(crate) fn snapshot_loose(&mut self, request: &Request) -> Snapshot {
+    pub(crate) fn snapshot_loose(&mut self, request: &Request) -> LevelCut {
         self.loose = true;
         let snap = self.snapshots(std::slice::from_ref(request)).pop();
         self.loose = false;
@@ -313,7 +332,7 @@ impl<'a> Cutter<'a> {
 
     /// [`Cutter::snapshots`] with the rest of a count alone its cut falls short of
     /// spent on the cut's other nodes ([`Cutter::spend`]).
-    pub(crate) fn snapshots_filled(&mut self, requests: &[Request]) -> Vec<Snapshot> {
+    pub(crate) fn snapshots_filled(&mut self, requests: &[Request]) -> Vec<LevelCut> {
         self.fill_short = true;
         let snaps = self.snapshots(requests);
         self.fill_short = false;
@@ -321,7 +340,7 @@ impl<'a> Cutter<'a> {
     }
 
     /// Each request's snapshot from its cut of `explored`.
-    fn cut_snapshots(&self, explored: &Explored, cuts: Vec<Vec<u32>>) -> Vec<Snapshot> {
+    fn cut_snapshots(&self, explored: &Explored, cuts: Vec<Vec<u32>>) -> Vec<LevelCut> {
         let requests = &self.requests;
         // A chosen node's fit on its hull's vertices, unless one of its faces' points
         // (left out of the hull within its tolerance) is outside it beyond round-off:
@@ -356,7 +375,7 @@ impl<'a> Cutter<'a> {
                         ..explored.fitted[n].clone()
                     })
                     .collect();
-                Snapshot {
+                LevelCut {
                     shortfall,
                     known,
                     ..self.snapshot(explored, r, entries)
@@ -571,7 +590,7 @@ impl<'a> Cutter<'a> {
 
     /// The snapshot of one cut for `r`, its nodes in order of their faces' ranges; its
     /// bound is `r`'s tolerance or the farthest its nodes stand, if farther.
-    fn snapshot(&self, ex: &Explored, r: &Request, mut cut: Vec<Entry>) -> Snapshot {
+    fn snapshot(&self, ex: &Explored, r: &Request, mut cut: Vec<Entry>) -> LevelCut {
         let worst = cut.iter().map(|e| e.error).fold(0.0, f64::max);
         cut.sort_unstable_by_key(|e| self.start(ex, e.node));
         let mesh = self.ev.mesh;
@@ -590,9 +609,8 @@ impl<'a> Cutter<'a> {
                 v
             })
             .collect();
-        Snapshot {
+        let snapshot = Snapshot {
             target: r.count,
-            bound: Some(r.tolerance.map_or(worst, |t| t.max(worst))),
             prims: cut.iter().map(|e| e.prim).collect(),
             faces: members.iter().map(|m| m.len() as u32).collect(),
             verts,
@@ -601,6 +619,10 @@ impl<'a> Cutter<'a> {
                 .iter()
                 .map(|e| self.q_of(ex, e.node))
                 .collect::<Vec<Sym3>>(),
+        };
+        LevelCut {
+            snapshot,
+            bound: r.tolerance.map_or(worst, |t| t.max(worst)),
             shortfall: None,
             known: Vec::new(),
         }

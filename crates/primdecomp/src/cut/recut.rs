@@ -8,6 +8,7 @@
 //! on the mean, kept where its post-processed level holds as many primitives no more
 //! than a quarter farther and nearer on the mean (docs/decisions/0051).
 
+use crate::cut::LevelCut;
 use crate::cut::{mean_distance, Cutter, MergeTree, Request, SLACK};
 use crate::input::triangles::Triangles;
 use crate::merge::{Evaluator, Snapshot};
@@ -21,9 +22,9 @@ const RECUTS: usize = 4;
 /// ([`little`]; an eighth: docs/decisions/0044, amended).
 const SLOW: usize = 8;
 
-/// Post-processing (§3.4) of a cut's snapshots into levels, handed in by the caller: the
-/// caps are spent on what it keeps.
-pub(crate) type Post<'a> = dyn Fn(Vec<Snapshot>) -> Vec<Level> + 'a;
+/// Post-processing (§3.4) of each level's cut into its level, handed in by the caller:
+/// the caps are spent on what it keeps.
+pub(crate) type Postprocess<'a> = dyn Fn(&[LevelCut]) -> Vec<Level> + 'a;
 
 /// One snapshot per request cut from `tree`, each kept from the last cut whose level
 /// is within the request, carrying the request's own count.
@@ -32,15 +33,15 @@ pub(crate) fn snapshots(
     tree: &MergeTree,
     requests: &[Request],
     tris: &Triangles,
-    post: &Post<'_>,
-) -> Vec<Snapshot> {
+    postprocess: &Postprocess<'_>,
+) -> Vec<LevelCut> {
     let mut cutter = Cutter::new(ev, tree, tris, requests);
     let first = cutter.snapshots(requests);
     // Every level within its tolerance or stopped by its faces: cut once.
     if !first.iter().zip(requests).any(|(s, r)| capped(r, s)) {
         return first;
     }
-    let levels = post(first.clone());
+    let levels = postprocess(&first);
     let mut searches: Vec<Search> = (first.into_iter().zip(&levels).zip(requests))
         .map(|((snap, level), r)| Search::first(r, snap, level))
         .collect();
@@ -50,7 +51,7 @@ pub(crate) fn snapshots(
         }
         let asked: Vec<Request> = searches.iter().map(|s| s.asked).collect();
         let snaps = cutter.snapshots(&asked);
-        let levels = post(snaps.clone());
+        let levels = postprocess(&snaps);
         for ((s, snap), (level, r)) in searches
             .iter_mut()
             .zip(snaps)
@@ -59,11 +60,26 @@ pub(crate) fn snapshots(
             s.step(r, snap, level);
         }
     }
-    fill_short(&mut cutter, &mut searches, requests, (ev, tris), post);
-    loosen(&mut cutter, &mut searches, requests, (ev, tris), post);
+    fill_short(
+        &mut cutter,
+        &mut searches,
+        requests,
+        (ev, tris),
+        postprocess,
+    );
+    loosen(
+        &mut cutter,
+        &mut searches,
+        requests,
+        (ev, tris),
+        postprocess,
+    );
     (searches.into_iter().zip(requests))
-        .map(|(s, r)| Snapshot {
-            target: r.count,
+        .map(|(s, r)| LevelCut {
+            snapshot: Snapshot {
+                target: r.count,
+                ..s.kept.snapshot
+            },
             ..s.kept
         })
         .collect()
@@ -82,7 +98,7 @@ fn fill_short(
     searches: &mut [Search],
     requests: &[Request],
     (ev, tris): (&Evaluator, &Triangles),
-    post: &Post<'_>,
+    postprocess: &Postprocess<'_>,
 ) {
     let short = |s: &Search, r: &Request| {
         r.tolerance.is_none() && r.bytes.is_none() && s.level.primitives.len() < r.count
@@ -96,13 +112,13 @@ fn fill_short(
         .map(|(s, r)| if short(s, r) { *r } else { s.before })
         .collect();
     let snaps = cutter.snapshots_filled(&asked);
-    let levels = post(snaps.clone());
+    let levels = postprocess(&snaps);
     for ((s, r), (snap, level)) in searches
         .iter_mut()
         .zip(requests)
         .zip(snaps.into_iter().zip(&levels))
     {
-        let (new, old) = (bound(&snap), bound(&s.kept));
+        let (new, old) = (snap.bound, s.kept.bound);
         let more = level.primitives.len() > s.level.primitives.len();
         let nearer = || {
             new <= old || (new <= SLACK * old && mean(ev, tris, level) < mean(ev, tris, &s.level))
@@ -121,13 +137,13 @@ struct Search {
     before: Request,
     over: Option<Request>,
     settled: bool,
-    kept: Snapshot,
+    kept: LevelCut,
     level: Level,
 }
 
 impl Search {
     /// The search after the cut for the user's request `r` itself.
-    fn first(r: &Request, snap: Snapshot, level: &Level) -> Search {
+    fn first(r: &Request, snap: LevelCut, level: &Level) -> Search {
         let asked = raise(r, r, &snap, level).unwrap_or(*r);
         Search {
             asked,
@@ -146,12 +162,12 @@ impl Search {
 
     /// Takes the cut for `self.asked` (`snap`, post-processed to `level`) and says
     /// what to ask next.
-    fn step(&mut self, r: &Request, snap: Snapshot, level: &Level) {
+    fn step(&mut self, r: &Request, snap: LevelCut, level: &Level) {
         if self.settled {
             return;
         }
         // No more nodes than the cut kept: raising the caps does not help.
-        if snap.prims.len() <= self.kept.prims.len() {
+        if snap.snapshot.prims.len() <= self.kept.snapshot.prims.len() {
             self.settled = true;
             return;
         }
@@ -200,23 +216,23 @@ fn loosen(
     searches: &mut [Search],
     requests: &[Request],
     (ev, tris): (&Evaluator, &Triangles),
-    post: &Post<'_>,
+    postprocess: &Postprocess<'_>,
 ) {
     if (requests.iter()).any(|r| r.tolerance.is_some() || r.bytes.is_some()) {
         return;
     }
-    let snaps: Vec<Snapshot> = (searches.iter())
+    let snaps: Vec<LevelCut> = (searches.iter())
         .map(|s| cutter.snapshot_loose(&s.before))
         .collect();
-    let levels = post(snaps.clone());
+    let levels = postprocess(&snaps);
     let mean = |l: &Level| mean(ev, tris, l);
-    let old: Vec<f64> = searches.iter().map(|s| bound(&s.kept)).collect();
+    let old: Vec<f64> = searches.iter().map(|s| s.kept.bound).collect();
     let n = old.len();
     let mut now = old.clone();
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by_key(|&i| std::cmp::Reverse((requests[i].count, i)));
     for i in order {
-        let (level, new, s) = (&levels[i], bound(&snaps[i]), &mut searches[i]);
+        let (level, new, s) = (&levels[i], snaps[i].bound, &mut searches[i]);
         let near = within(&requests[i], level)
             && level.primitives.len() >= s.level.primitives.len()
             && new <= SLACK * old[i]
@@ -229,11 +245,6 @@ fn loosen(
         }
         (s.kept, s.level) = (snaps[i].clone(), level.clone());
     }
-}
-
-/// A cut's bound on its worst error (infinite where none was proved).
-fn bound(s: &Snapshot) -> f64 {
-    s.bound.unwrap_or(f64::INFINITY)
 }
 
 /// A level's mean distance to the input ([`mean_distance`]); levels are in world
@@ -264,7 +275,7 @@ fn within(r: &Request, level: &Level) -> bool {
 
 /// Whether a cap stopped `snap`, the cut for `r`: it has no tolerance, or the count
 /// or the bytes came first.
-fn capped(r: &Request, snap: &Snapshot) -> bool {
+fn capped(r: &Request, snap: &LevelCut) -> bool {
     r.tolerance.is_none() || matches!(snap.shortfall, Some(Shortfall::Count | Shortfall::Bytes))
 }
 
@@ -272,12 +283,12 @@ fn capped(r: &Request, snap: &Snapshot) -> bool {
 /// post-processing freed of `user`'s, where it freed some (`snap`'s nodes against
 /// `level`'s primitives) and the cut stopped short of its tolerance (or has none);
 /// `None` otherwise.
-fn raise(user: &Request, asked: &Request, snap: &Snapshot, level: &Level) -> Option<Request> {
+fn raise(user: &Request, asked: &Request, snap: &LevelCut, level: &Level) -> Option<Request> {
     if !capped(user, snap) {
         return None;
     }
-    let node_bytes: usize = snap.prims.iter().map(|p| p.bytes()).sum();
-    if snap.prims.len() == level.primitives.len() && node_bytes == level.bytes() {
+    let node_bytes: usize = snap.snapshot.prims.iter().map(|p| p.bytes()).sum();
+    if snap.snapshot.prims.len() == level.primitives.len() && node_bytes == level.bytes() {
         return None;
     }
     let free_count = user.count.saturating_sub(level.primitives.len());

@@ -108,7 +108,7 @@ impl Search {
     }
 }
 
-/// One bottom-up pass through a goal's targets (`decompose::pass::run`).
+/// One bottom-up pass through a goal's targets (`decompose::pass`).
 pub(crate) type Pass = dyn Fn(&Mesh, &Params, &dyn Progress) -> Result<Decomposition>;
 
 /// [`crate::decompose_with`] for a [`Goal::Fill`]: the first pass at the requested

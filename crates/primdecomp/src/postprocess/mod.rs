@@ -35,50 +35,52 @@ impl<'a> Input<'a> {
     }
 }
 
-/// One level per target of `params.goal` (in the order given) from the merge
-/// loop's snapshots.
+/// One level per target of `params.goal` (in the order given) from the greedy merge
+/// loop's snapshots (one per distinct target), each post-processed once.
 pub(crate) fn levels(
     ev: &Evaluator,
-    mut snaps: Vec<Snapshot>,
+    snaps: Vec<Snapshot>,
     params: &Params,
     input: &Input,
 ) -> Vec<Level> {
-    let diag = ev.mesh.diagonal();
-    let (tris, thick) = (input.tris, &input.thick);
-    for snap in &mut snaps {
-        let mut q = std::mem::take(&mut snap.q);
-        // Solid pricing: near-duplicate primitives become one (docs/decisions/0023).
-        if ev.solid.is_some() {
-            absorb::absorb(ev, snap, &mut q);
-        }
-        // Plates in one plane the merge left apart become one where that adds no
-        // area (docs/decisions/0028).
-        if ev.join_plates {
-            plates::join(ev, snap, &mut q, tris);
-        }
-        // Plates reach inward to the minimum thickness where the input is closed.
-        if let Some(input) = thick {
-            thicken::thicken(ev, input, snap, params.plates.min_thickness * diag);
-        }
-    }
-    // A cut's snapshots are one per target, in order (targets may repeat with
-    // different tolerances); the greedy pass's are found by their count.
-    let targets = params.goal.targets();
-    if params.uses_cut() && snaps.len() == targets.len() {
-        return snaps.iter().map(|s| finish(ev, s, params, diag)).collect();
-    }
-    targets
-        .iter()
+    let done: Vec<Level> = (snaps.into_iter())
+        .map(|snap| level(ev, snap, None, params, input))
+        .collect();
+    (params.goal.targets().iter())
         .map(|&n| {
-            let snap = snaps
-                .iter()
-                .find(|s| s.target == n)
-                .expect("a snapshot per target");
-            finish(ev, snap, params, diag)
+            let level = done.iter().find(|l| l.target == n);
+            level.expect("a snapshot per target").clone()
         })
         .collect()
 }
 
+/// One snapshot post-processed into its level; `bound`: a cut's, the farthest its
+/// primitives may stand from the input, which joined plates keep to.
+pub(crate) fn level(
+    ev: &Evaluator,
+    mut snap: Snapshot,
+    bound: Option<f64>,
+    params: &Params,
+    input: &Input,
+) -> Level {
+    let diag = ev.mesh.diagonal();
+    let (tris, thick) = (input.tris, &input.thick);
+    let mut q = std::mem::take(&mut snap.q);
+    // Solid pricing: near-duplicate primitives become one (docs/decisions/0023).
+    if ev.solid.is_some() {
+        absorb::absorb(ev, &mut snap, &mut q);
+    }
+    // Plates in one plane the merge left apart become one where that adds no
+    // area (docs/decisions/0028).
+    if ev.join_plates {
+        plates::join(ev, &mut snap, &mut q, tris, bound);
+    }
+    // Plates reach inward to the minimum thickness where the input is closed.
+    if let Some(input) = thick {
+        thicken::thicken(ev, input, &mut snap, params.plates.min_thickness * diag);
+    }
+    finish(ev, &snap, params, diag)
+}
 /// Removes nested primitives from one snapshot and moves it to world coordinates.
 fn finish(ev: &Evaluator, snap: &Snapshot, params: &Params, diag: f64) -> Level {
     let cleanup = Cleanup {
@@ -90,7 +92,6 @@ fn finish(ev: &Evaluator, snap: &Snapshot, params: &Params, diag: f64) -> Level 
     let mut level = Level {
         target: snap.target,
         merged_to: snap.target,
-        shortfall: snap.shortfall,
         ..Default::default()
     };
     for (i, p) in snap.prims.iter().enumerate() {

@@ -7,23 +7,23 @@
 //! within the tolerance; each level then takes, of the cuts of the nodes reached, the
 //! fewest nodes within its tolerance, or the least worst error its count and bytes
 //! allow, filled up to its count; with counts alone, the count that least worst
-//! error leaves goes to the mean distance ([`loose`]). A node over a tolerance that
+//! error leaves goes to the mean distance ([`past_worst`]). A node over a tolerance that
 //! splitting cannot bring nearer gets its nearest fit instead of its least k·V
 //! ([`nearest`]). Every node's primitive encloses its faces, so every cut encloses
 //! the mesh.
 
-mod carry;
+mod carried_parts;
+mod cell_shadow;
+mod chamfer;
 mod choose;
 pub(crate) mod error;
+mod error_memo;
 mod hulls;
 pub(crate) mod limits;
-mod loose;
-mod mean;
-mod memo;
 mod nearest;
+mod past_worst;
 pub(crate) mod recut;
-mod shadow;
-mod spend;
+mod short_count;
 pub(crate) mod tree;
 
 use crate::input::triangles::Triangles;
@@ -31,15 +31,15 @@ use crate::math::{Sym3, V3};
 use crate::merge::{Evaluator, Snapshot, Workspace};
 use crate::output::result::Shortfall;
 use crate::primitive::Primitive;
+pub(crate) use chamfer::mean_distance;
 pub(crate) use choose::fits;
 use choose::worst;
 #[cfg(test)]
 use error::error_of;
-use error::{error_until, Ask};
+use error::{error_until, StopAt};
 use hulls::{HullScratch, NodeHulls};
-pub(crate) use loose::SLACK;
-use loose::{Order, Queued};
-pub(crate) use mean::mean_distance;
+pub(crate) use past_worst::LOOSE_FACTOR;
+use past_worst::{Order, Queued};
 use rayon::prelude::*;
 use std::cmp::Ordering;
 use std::collections::{BinaryHeap, HashMap};
@@ -60,7 +60,7 @@ const FLOOR_HALVES: f64 = 4.0;
 const AHEAD_STEP: f64 = 0.85;
 
 /// [`Cutter::explore`] splits at most this many times the largest count: splits
-/// whose parts are carried add no node ([`carry`]).
+/// whose parts are carried add no node ([`carried_parts`]).
 const SPLITS_PER_COUNT: usize = 8;
 
 /// The tests compare the cuts with [`Cutter::ahead`] fitting nothing.
@@ -147,7 +147,7 @@ impl Ord for Entry {
 /// the children of split nodes), the nodes a cut can take in post-order
 /// ([`Explored::post_order`]), the nodes split, in order, with their parts, the
 /// nodes each node carries, the groups' members and bounding boxes, the hull points
-/// of nodes tested for carrying ([`carry`]) and whether the count ran out while a node was
+/// of nodes tested for carrying ([`carried_parts`]) and whether the count ran out while a node was
 /// still over the tolerance.
 #[derive(Default)]
 struct Explored {
@@ -184,10 +184,10 @@ pub(crate) struct Cutter<'a> {
     /// Whether a cut of counts alone is explored again in a loose order
     /// ([`Cutter::snapshot_loose`]).
     loose: bool,
-    /// Each node's bounding box ([`carry`]).
+    /// Each node's bounding box ([`carried_parts`]).
     boxes: Vec<(V3, V3)>,
-    /// The errors measured so far ([`memo`]).
-    measures: memo::Measures,
+    /// The errors measured so far ([`error_memo`]).
+    measures: error_memo::Measures,
 }
 
 /// One thread's buffers for fitting nodes.
@@ -227,8 +227,8 @@ impl<'a> Cutter<'a> {
                 .max(FLOOR_HALVES * ev.cfg.min_half),
             fill_short: false,
             loose: false,
-            boxes: carry::node_boxes(tree, ev.mesh),
-            measures: memo::Measures::default(),
+            boxes: carried_parts::node_boxes(tree, ev.mesh),
+            measures: error_memo::Measures::default(),
         }
     }
 
@@ -256,7 +256,7 @@ impl<'a> Cutter<'a> {
 
     /// `e`'s primitive if it encloses every point of its node's faces (a nearest fit,
     /// [`Cutter::closest`], was made on every point of them already) and of the nodes
-    /// it carries ([`carry`]: a nearest fit kept from an earlier cut may not have
+    /// it carries ([`carried_parts`]: a nearest fit kept from an earlier cut may not have
     /// had them), else the output fit on all of them. Enclosing is up to the point
     /// reduction's own tolerance (`Evaluator::hull_eps`): a fit on every point is no
     /// nearer than that either (its extreme points stand outside it by round-off),
@@ -288,7 +288,7 @@ impl<'a> Cutter<'a> {
     }
 
     fn measured(&self, node: u32, prim: Primitive, above: f64) -> Entry {
-        let ask = Ask {
+        let ask = StopAt {
             level: self.enough,
             above,
             coarse: true,
@@ -322,7 +322,7 @@ impl<'a> Cutter<'a> {
     }
 
     /// [`Cutter::snapshots`] of one request, with the count the least worst error
-    /// leaves spent on the mean where it is a count alone ([`loose`]).
+    /// leaves spent on the mean where it is a count alone ([`past_worst`]).
     pub(crate) fn snapshot_loose(&mut self, request: &Request) -> LevelCut {
         self.loose = true;
         let snap = self.snapshots(std::slice::from_ref(request)).pop();
@@ -411,7 +411,7 @@ impl<'a> Cutter<'a> {
         }
         let mut ex = self.explore(largest, enough, f64::INFINITY, &known, Order::Worst);
         let mut cuts: Vec<Vec<u32>> = self.requests.iter().map(|r| self.choose(&ex, r)).collect();
-        // A count's cut spends what the worst error leaves on the mean ([`loose`]).
+        // A count's cut spends what the worst error leaves on the mean ([`past_worst`]).
         let mut spare = Fits::new();
         let loosened = self
             .loose
@@ -461,7 +461,7 @@ impl<'a> Cutter<'a> {
         }
     }
 
-    /// Splits the node of the cut first in `order` (the worst, [`loose`]) from the
+    /// Splits the node of the cut first in `order` (the worst, [`past_worst`]) from the
     /// roots on until `largest` nodes remain or every node is within `enough` or
     /// cannot be split; errors up to `above` ([`Cutter::entry`]), fits of the nodes
     /// in `known` kept.

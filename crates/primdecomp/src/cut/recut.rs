@@ -9,18 +9,18 @@
 //! than a quarter farther and nearer on the mean (docs/decisions/0051).
 
 use crate::cut::LevelCut;
-use crate::cut::{mean_distance, Cutter, MergeTree, Request, SLACK};
+use crate::cut::{mean_distance, Cutter, MergeTree, Request, LOOSE_FACTOR};
 use crate::input::triangles::Triangles;
 use crate::merge::{Evaluator, Snapshot};
 use crate::output::result::{Level, Shortfall};
 use crate::primitive::Primitive;
 
 /// A cut is made again at most this many times with counts and bytes raised.
-const RECUTS: usize = 4;
+const MAX_RECUTS: usize = 4;
 
-/// The raises end at a round that gains less than 1/`SLOW` of its raise
-/// ([`little`]; an eighth: docs/decisions/0044, amended).
-const SLOW: usize = 8;
+/// The raises end at a round that gains less than 1/`LEAST_GAIN_ONE_IN` of its raise
+/// ([`gained_little`]; an eighth: docs/decisions/0044, amended).
+const LEAST_GAIN_ONE_IN: usize = 8;
 
 /// Post-processing (§3.4) of each level's cut into its level, handed in by the caller:
 /// the caps are spent on what it keeps.
@@ -42,10 +42,10 @@ pub(crate) fn snapshots(
         return first;
     }
     let levels = postprocess(&first);
-    let mut searches: Vec<Search> = (first.into_iter().zip(&levels).zip(requests))
-        .map(|((snap, level), r)| Search::first(r, snap, level))
+    let mut searches: Vec<LevelRecut> = (first.into_iter().zip(&levels).zip(requests))
+        .map(|((snap, level), r)| LevelRecut::first(r, snap, level))
         .collect();
-    for _ in 0..RECUTS {
+    for _ in 0..MAX_RECUTS {
         if searches.iter().all(|s| s.settled) {
             break;
         }
@@ -90,17 +90,17 @@ pub(crate) fn snapshots(
 /// more at its own count, the rest of the count spent on the cut's other nodes
 /// (`Cutter::snapshots_filled`, docs/decisions/0048), and kept where its level holds
 /// more primitives within the count and its nodes stand no farther, or no more than
-/// [`SLACK`] times farther and nearer on the mean (as [`loosen`]'s levels): a count's
+/// [`LOOSE_FACTOR`] times farther and nearer on the mean (as [`loosen`]'s levels): a count's
 /// worst error can sit on one feature no split brings nearer, and a bound a hair
 /// lower then kept one primitive of the eight asked for (docs/decisions/0054).
 fn fill_short(
     cutter: &mut Cutter,
-    searches: &mut [Search],
+    searches: &mut [LevelRecut],
     requests: &[Request],
     (ev, tris): (&Evaluator, &Triangles),
     postprocess: &Postprocess<'_>,
 ) {
-    let short = |s: &Search, r: &Request| {
+    let short = |s: &LevelRecut, r: &Request| {
         r.tolerance.is_none() && r.bytes.is_none() && s.level.primitives.len() < r.count
     };
     if !searches.iter().zip(requests).any(|(s, r)| short(s, r)) {
@@ -121,7 +121,8 @@ fn fill_short(
         let (new, old) = (snap.bound, s.kept.bound);
         let more = level.primitives.len() > s.level.primitives.len();
         let nearer = || {
-            new <= old || (new <= SLACK * old && mean(ev, tris, level) < mean(ev, tris, &s.level))
+            new <= old
+                || (new <= LOOSE_FACTOR * old && mean(ev, tris, level) < mean(ev, tris, &s.level))
         };
         if short(s, r) && more && within(r, level) && nearer() {
             (s.kept, s.level) = (snap, level.clone());
@@ -132,7 +133,7 @@ fn fill_short(
 /// One level's search: the request the cutter gets next, the one its kept cut came
 /// from, the least found over the user's caps, whether it is settled, and the kept
 /// cut with its post-processed level.
-struct Search {
+struct LevelRecut {
     asked: Request,
     before: Request,
     over: Option<Request>,
@@ -141,11 +142,11 @@ struct Search {
     level: Level,
 }
 
-impl Search {
+impl LevelRecut {
     /// The search after the cut for the user's request `r` itself.
-    fn first(r: &Request, snap: LevelCut, level: &Level) -> Search {
+    fn first(r: &Request, snap: LevelCut, level: &Level) -> LevelRecut {
         let asked = raise(r, r, &snap, level).unwrap_or(*r);
-        Search {
+        LevelRecut {
             asked,
             before: *r,
             over: None,
@@ -180,7 +181,7 @@ impl Search {
         let raised = raise(r, &self.asked, &snap, level);
         let now = (level.primitives.len(), level.bytes());
         // Most of the raise went to primitives post-processing drops again.
-        let slow = little(self.spent(), now, &self.before, &self.asked);
+        let slow = gained_little(self.spent(), now, &self.before, &self.asked);
         (self.kept, self.level, self.before) = (snap, level.clone(), self.asked);
         self.asked = match (raised, self.over) {
             (None, _) => self.asked,
@@ -206,14 +207,14 @@ fn halfway(lo: &Request, hi: &Request) -> Request {
 /// on its own (as that count alone would be cut), the count the least worst error
 /// leaves spent on the mean (`Cutter::snapshot_loose`, docs/decisions/0051). A
 /// level takes its loose cut if that is within its request, holds as many
-/// primitives as before, stands within [`SLACK`] times its kept cut and nearer on
+/// primitives as before, stands within [`LOOSE_FACTOR`] times its kept cut and nearer on
 /// the mean ([`mean_distance`]), and no level then stands farther than one that
 /// stood farther before (the largest counts first). Compared after post-processing:
 /// a cut that loses fewer primitives to nesting is raised less, so comparing the
 /// cuts alone let levels stand farther.
 fn loosen(
     cutter: &mut Cutter,
-    searches: &mut [Search],
+    searches: &mut [LevelRecut],
     requests: &[Request],
     (ev, tris): (&Evaluator, &Triangles),
     postprocess: &Postprocess<'_>,
@@ -235,7 +236,7 @@ fn loosen(
         let (level, new, s) = (&levels[i], snaps[i].bound, &mut searches[i]);
         let near = within(&requests[i], level)
             && level.primitives.len() >= s.level.primitives.len()
-            && new <= SLACK * old[i]
+            && new <= LOOSE_FACTOR * old[i]
             && mean(level) < mean(&s.level);
         let was = std::mem::replace(&mut now[i], new);
         let ordered = (0..n).all(|a| (0..n).all(|b| old[a] > old[b] || now[a] <= now[b]));
@@ -256,10 +257,12 @@ fn mean(ev: &Evaluator, tris: &Triangles, l: &Level) -> f64 {
 }
 
 /// Whether a cut for `now` (from `from`'s caps raised to `to`'s) holds less than
-/// 1/[`SLOW`] of the raise more than the level of `from` held (`was`): where nested
+/// 1/[`LEAST_GAIN_ONE_IN`] of the raise more than the level of `from` held (`was`): where nested
 /// primitives eat the raise, rounds cost more than they bring.
-fn little(was: (usize, usize), now: (usize, usize), from: &Request, to: &Request) -> bool {
-    let gain = |a: usize, b: usize, raise: usize| raise > 0 && SLOW * b.saturating_sub(a) < raise;
+fn gained_little(was: (usize, usize), now: (usize, usize), from: &Request, to: &Request) -> bool {
+    let gain = |a: usize, b: usize, raise: usize| {
+        raise > 0 && LEAST_GAIN_ONE_IN * b.saturating_sub(a) < raise
+    };
     let bytes = to
         .bytes
         .unwrap_or(0)

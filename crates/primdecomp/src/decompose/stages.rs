@@ -223,9 +223,9 @@ pub(crate) fn interior<'a>(
     ev: &Evaluator,
     params: &Params,
     tris: Option<&'a Triangles>,
-) -> Result<postprocess::Input<'a>> {
+) -> Result<postprocess::Prepared<'a>> {
     clock.step(Stage::Postprocess, "interior", || {
-        postprocess::Input::new(ev, params, tris)
+        postprocess::Prepared::new(ev, params, tris)
     })
 }
 

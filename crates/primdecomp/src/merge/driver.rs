@@ -12,10 +12,10 @@ use super::cluster::Clusters;
 use super::cost::{Evaluator, Workspace};
 use super::heap::{Candidate, Queue, RadixHeap};
 use super::lazy::{valid, Lazy, Pop};
-use super::worker::{with_pricer, Pricer, Stats};
+use super::worker::{with_pricer, Pricer, PricerCounts};
 use crate::math::hull::{hull_vertices, HullWorkspace};
 use crate::primitive::Primitive;
-use crate::progress::GoOn;
+use crate::progress::Checkpoint;
 use rayon::prelude::*;
 
 /// Pairs priced per parallel task.
@@ -231,7 +231,7 @@ fn price(ev: &Evaluator, cl: &Clusters, pairs: &[(u32, u32)]) -> Vec<Candidate> 
 }
 
 /// Runs the merge loop down to the smallest target; `targets` sorted decreasing.
-pub fn run(ev: &Evaluator, cl: Clusters, targets: &[usize], go_on: GoOn) -> MergeOutput {
+pub fn run(ev: &Evaluator, cl: Clusters, targets: &[usize], go_on: Checkpoint) -> MergeOutput {
     run_with::<RadixHeap>(ev, cl, targets, go_on)
 }
 
@@ -245,7 +245,7 @@ pub fn run_for_tree(
     cl: Clusters,
     targets: &[usize],
     hulls_over: Option<usize>,
-    go_on: GoOn,
+    go_on: Checkpoint,
 ) -> (MergeOutput, MergeLog) {
     with_pricer(ev, |p| {
         let mut log = MergeLog::default();
@@ -260,7 +260,7 @@ pub fn run_with<Q: Queue>(
     ev: &Evaluator,
     cl: Clusters,
     targets: &[usize],
-    go_on: GoOn,
+    go_on: Checkpoint,
 ) -> MergeOutput {
     run_counted::<Q>(ev, cl, targets, go_on).0
 }
@@ -271,8 +271,8 @@ fn run_counted<Q: Queue>(
     ev: &Evaluator,
     cl: Clusters,
     targets: &[usize],
-    go_on: GoOn,
-) -> (MergeOutput, Stats) {
+    go_on: Checkpoint,
+) -> (MergeOutput, PricerCounts) {
     with_pricer(ev, |p| {
         let mut log = MergeLog::default();
         let out = merge_loop::<Q>(ev, cl, targets, go_on, p, Scope::Whole, &mut log).0;
@@ -310,7 +310,7 @@ pub(super) fn merge_part(
     cl: Clusters,
     target: usize,
     traced: bool,
-    go_on: GoOn,
+    go_on: Checkpoint,
 ) -> (Clusters, MergeOutput) {
     let mut pricer = Pricer::serial(ev);
     let scope = if traced { Scope::Traced } else { Scope::Part };
@@ -325,7 +325,7 @@ fn merge_loop<Q: Queue>(
     ev: &Evaluator,
     mut cl: Clusters,
     targets: &[usize],
-    go_on: GoOn,
+    go_on: Checkpoint,
     pricer: &mut Pricer,
     scope: Scope,
     log: &mut MergeLog,
@@ -563,7 +563,12 @@ fn fraction(start: usize, live: usize, last: usize) -> f64 {
 }
 
 /// `None` when `go_on` (asked between blocks, reporting no progress yet) says stop.
-fn seed_queue<Q: Queue>(ev: &Evaluator, cl: &Clusters, heap: &mut Q, go_on: GoOn) -> Option<usize> {
+fn seed_queue<Q: Queue>(
+    ev: &Evaluator,
+    cl: &Clusters,
+    heap: &mut Q,
+    go_on: Checkpoint,
+) -> Option<usize> {
     let (n, mut priced) = (cl.len() as u32, 0);
     let mut block = Vec::with_capacity(PRICE_BLOCK);
     for a in 0..n {

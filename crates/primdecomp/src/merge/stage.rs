@@ -11,8 +11,8 @@ use crate::input::orient;
 use crate::math::Sym3;
 use crate::output::result::Stats;
 use crate::params::Params;
-use crate::progress::clock::Laps;
-use crate::progress::GoOn;
+use crate::progress::clock::PhaseTimes;
+use crate::progress::Checkpoint;
 
 /// The targets in the order the merge loop reaches them: decreasing, each once.
 pub(crate) fn merge_order(targets: &[usize]) -> Vec<usize> {
@@ -40,7 +40,7 @@ impl Surface {
         welded: &[u32],
         (offsets, adj): (Vec<u32>, Vec<u32>),
         params: &Params,
-        go_on: GoOn,
+        go_on: Checkpoint,
     ) -> Option<Surface> {
         let used = params.plates.rim_weight != 0.0 || params.plates.flush_plates;
         let signs = match used {
@@ -153,8 +153,8 @@ pub(crate) fn merge(
     first: FirstPhase,
     targets: &[usize],
     stats: &mut Stats,
-    go_on: GoOn,
-    laps: &mut Laps,
+    go_on: Checkpoint,
+    laps: &mut PhaseTimes,
 ) -> (MergeOutput, MergeLog) {
     let MergeInput {
         q,

@@ -21,17 +21,17 @@ use nested::{keep_mask, Cleanup};
 /// by the run when a step needs them, and with a minimum thickness the input as rays
 /// see it (its interior on a voxel grid), for plates thickened inward
 /// (docs/decisions/0033).
-pub(crate) struct Input<'a> {
+pub(crate) struct Prepared<'a> {
     tris: Option<&'a Triangles<'a>>,
-    thick: Option<thicken::Input<'a>>,
+    thick: Option<thicken::Interior<'a>>,
 }
 
-impl<'a> Input<'a> {
+impl<'a> Prepared<'a> {
     pub(crate) fn new(ev: &Evaluator, params: &Params, tris: Option<&'a Triangles>) -> Self {
         let thick = tris
             .filter(|_| params.plates.min_thickness > 0.0)
-            .map(|t| thicken::Input::build(ev, t));
-        Input { tris, thick }
+            .map(|t| thicken::Interior::build(ev, t));
+        Prepared { tris, thick }
     }
 }
 
@@ -41,7 +41,7 @@ pub(crate) fn levels(
     ev: &Evaluator,
     snaps: Vec<Snapshot>,
     params: &Params,
-    input: &Input,
+    input: &Prepared,
 ) -> Vec<Level> {
     let done: Vec<Level> = (snaps.into_iter())
         .map(|snap| level(ev, snap, None, params, input))
@@ -61,7 +61,7 @@ pub(crate) fn level(
     mut snap: Snapshot,
     bound: Option<f64>,
     params: &Params,
-    input: &Input,
+    input: &Prepared,
 ) -> Level {
     let diag = ev.mesh.diagonal();
     let (tris, thick) = (input.tris, &input.thick);

@@ -265,7 +265,11 @@ fn worker_sharing_merges_as_one_thread_does() {
         let (one, s1) = in_pool(1, || {
             run_counted::<RadixHeap>(ev, fresh(), &targets, &|_| true)
         });
-        assert_eq!(s1, Stats::default(), "one thread must not start a worker");
+        assert_eq!(
+            s1,
+            PricerCounts::default(),
+            "one thread must not start a worker"
+        );
         let mut used = 0;
         for _ in 0..10 {
             let (two, s2) = in_pool(2, || {

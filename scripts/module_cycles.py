@@ -211,7 +211,7 @@ ALLOWED = {
     ('primdecomp', 'cut::error', 'output'):
         "a cut node's distance is measured over its primitive's conservative tessellation, "
         "which today lives with the OBJ writer (output/obj.rs); it belongs with the primitives",
-    ('primdecomp', 'cut::mean', 'output'):
+    ('primdecomp', 'cut::chamfer', 'output'):
         "a level's mean distance is measured over the same tessellation as cut::error's",
     ('primdecomp', 'output::json', 'decompose::objects'):
         "the JSON contract writes a per-object run's settings (ObjectTarget, Objects, "

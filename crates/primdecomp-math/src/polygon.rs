@@ -1,6 +1,6 @@
 //! Convex polygons in a plane, as lists of 2D points: their area and their clipping
 //! (Sutherland–Hodgman), for plates' footprints (`postprocess::plates`) and the cut's
-//! cell shadows (`cut::shadow`).
+//! cell shadows (`cut::cell_shadow`).
 
 /// The shoelace area of a polygon, positive when counter-clockwise.
 pub fn signed_area(p: &[[f64; 2]]) -> f64 {

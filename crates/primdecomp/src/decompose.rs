@@ -1,8 +1,10 @@
 //! The library's entry points: check the settings, then one bottom-up pass
 //! ([`pass`]) or, to fill each target's budget, several (`crate::postprocess::fill`).
 
+mod cut_pass;
+mod greedy_pass;
 pub(crate) mod objects;
-pub(crate) mod pass;
+pub(crate) mod stages;
 pub(crate) mod tiles;
 
 use crate::error::Result;
@@ -10,6 +12,7 @@ use crate::input::mesh::Mesh;
 use crate::output::result::Decomposition;
 use crate::params::{short_of, Goal, Params};
 use crate::postprocess::fill;
+use crate::progress::clock::Clock;
 use crate::progress::{Progress, Silent};
 
 /// Decomposes `mesh` into primitives, one [`crate::Level`] per target in
@@ -45,9 +48,9 @@ pub fn decompose_with(
     params.validate()?;
     if let Goal::Fill { .. } = params.goal {
         // Nested primitives removed leave room: merge less to fill it.
-        return fill::fill(mesh, params, progress, &pass::run);
+        return fill::fill(mesh, params, progress, &pass);
     }
-    let mut dec = pass::run(mesh, params, progress)?;
+    let mut dec = pass(mesh, params, progress)?;
     // A greedy level post-processing left short of its count is cut from the merge
     // tree instead, as on several parts (docs/decisions/0054); the other levels stay
     // the greedy's, so each level is what its own run gives.
@@ -68,7 +71,7 @@ pub fn decompose_with(
         goal: Goal::cut_counts(short.iter().map(|&i| targets[i]).collect()),
         ..params.clone()
     };
-    let cut = pass::run(mesh, &recut, progress)?;
+    let cut = pass(mesh, &recut, progress)?;
     for (&i, level) in short.iter().zip(cut.levels) {
         dec.levels[i] = level;
     }
@@ -77,4 +80,29 @@ pub fn decompose_with(
         .stages
         .extend(recut_stages.map(|(s, t)| (format!("recut {s}"), t)));
     Ok(dec)
+}
+
+/// One pass through the goal's targets (a fill's further passes are the caller's:
+/// `postprocess::fill`): the merge graph, then the variant the goal asks for, the
+/// greedy ([`greedy_pass`]) or the cut of the merge tree ([`cut_pass`]).
+pub(crate) fn pass(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Result<Decomposition> {
+    // Far-flung vertices would overflow volumes to inf and NaN
+    // (docs/decisions/hostile-input-limits.md).
+    stages::check_input(mesh)?;
+    let mut clock = Clock::new(progress);
+    // Welded vertices and the faces sharing an edge: the merge graph (§3.4, §3.3).
+    let graph = stages::Graph::build(&mut clock, mesh, params)?;
+    // Counts on several separate parts are cuts of the merge tree: the greedy level
+    // drops the parts nested in one part's primitive (docs/decisions/0054).
+    if params.goal.count_cut() && graph.several_parts(mesh) {
+        let cut = Params {
+            goal: params.goal.as_cut(),
+            ..params.clone()
+        };
+        return cut_pass::run(mesh, &cut, graph, clock);
+    }
+    match params.uses_cut() {
+        true => cut_pass::run(mesh, params, graph, clock),
+        false => greedy_pass::run(mesh, params, graph, clock),
+    }
 }

@@ -2,7 +2,7 @@
 //! tolerance, or the least worst error the count and bytes allow, filled up to the
 //! count (docs/decisions/0032, 0034).
 
-use super::{Cutter, Explored, Request, SLACK};
+use super::{Cutter, Explored, Request, LOOSE_FACTOR};
 use crate::output::result::Shortfall;
 use std::collections::{BTreeSet, HashMap};
 
@@ -59,7 +59,7 @@ impl Cutter<'_> {
             return ex.roots.clone();
         }
         let filled = self.fill(ex, cut.clone(), &table, bounds[lo], r);
-        // A count alone still short by more than a few is filled within SLACK times its
+        // A count alone still short by more than a few is filled within LOOSE_FACTOR times its
         // least worst error: where one feature no split brings nearer sets that error,
         // a bound a hair lower must not keep one primitive of the eight asked for
         // (docs/decisions/0054).
@@ -67,7 +67,7 @@ impl Cutter<'_> {
         if !count_alone || !crate::params::short_of(filled.len(), r.count, usize::MAX) {
             return filled;
         }
-        let bound = SLACK * bounds[lo].max(worst(ex, &cut));
+        let bound = LOOSE_FACTOR * bounds[lo].max(worst(ex, &cut));
         let loose = self.costs(ex, bound, false);
         self.fill(ex, cut, &loose, bound, r)
     }

@@ -9,7 +9,7 @@
 //! triangle it is at most the largest of its vertices' distances to the input
 //! triangle nearest its centroid (tight where a face lies flush on the input). A
 //! round primitive's cell, once its search has run long, is also bounded by its
-//! shadow (`cut::shadow`, docs/decisions/0047): tight over a few input facets.
+//! shadow (`cut::cell_shadow`, docs/decisions/0047): tight over a few input facets.
 //! Centroids and vertices measured give lower bounds; a round primitive's own surface
 //! lies within a known gap of its tessellation, which is added. Measured to the
 //! nearest input triangle anywhere in the mesh (`input::triangles`): the whole mesh, as
@@ -21,7 +21,7 @@ use std::collections::BinaryHeap;
 
 use rayon::prelude::*;
 
-use super::shadow;
+use super::cell_shadow;
 use crate::input::triangles::Triangles;
 use crate::math::bvh::point_segment_dist2;
 use crate::math::{add, norm, scale, sub, V3};
@@ -41,7 +41,7 @@ const RELATIVE: f64 = 0.02;
 const ABSOLUTE: f64 = 2e-4;
 /// or this many triangles have been split (then the bound, looser, stands).
 const MAX_SPLITS: usize = 16384;
-/// A search splits this many cells before it tries their shadows (`cut::shadow`).
+/// A search splits this many cells before it tries their shadows (`cut::cell_shadow`).
 const SHADOW_AFTER: usize = 512;
 /// Shadows stop being tried in a search where fewer than one in this many gave a
 /// bound (after the first [`SHADOW_TRIAL`]).
@@ -60,13 +60,13 @@ const ROUNDS: usize = 64;
 /// [`RELATIVE`] of it or [`ABSOLUTE`] of the diagonal.
 #[cfg(test)]
 pub(crate) fn error_of(prim: &Primitive, surface: &Triangles) -> f64 {
-    error_until(prim, surface, Ask::exact(0.0))
+    error_until(prim, surface, StopAt::exact(0.0))
 }
 
 /// Whether `prim` is certainly within `bound` of the input, found with no more
 /// refinement than that answer needs.
 pub(crate) fn is_within(prim: &Primitive, surface: &Triangles, bound: f64) -> bool {
-    let ask = Ask {
+    let ask = StopAt {
         level: bound,
         above: bound,
         coarse: true,
@@ -76,7 +76,7 @@ pub(crate) fn is_within(prim: &Primitive, surface: &Triangles, bound: f64) -> bo
 
 /// How far to refine [`error_until`]'s bound.
 #[derive(Clone, Copy, Debug)]
-pub(crate) struct Ask {
+pub(crate) struct StopAt {
     /// A bound near `level` is refined until it is on one side of it (or the
     /// refinement runs out): at most `level` only if the error is, and over it only
     /// if the error is over it or the error is within [`RELATIVE`] of `level` and
@@ -89,11 +89,11 @@ pub(crate) struct Ask {
     pub coarse: bool,
 }
 
-impl Ask {
+impl StopAt {
     /// Refined to [`RELATIVE`] (and settled against `level`), no early exit.
     #[cfg(test)]
-    pub(crate) fn exact(level: f64) -> Ask {
-        Ask {
+    pub(crate) fn exact(level: f64) -> StopAt {
+        StopAt {
             level,
             above: f64::INFINITY,
             coarse: false,
@@ -103,8 +103,8 @@ impl Ask {
 
 /// An upper bound of the error of `prim`, refined best-first as `ask` says. Results
 /// at most `ask.level` mean the error is; results over `ask.above` mean it is over.
-pub(crate) fn error_until(prim: &Primitive, surface: &Triangles, ask: Ask) -> f64 {
-    let mut search = Search::new(surface);
+pub(crate) fn error_until(prim: &Primitive, surface: &Triangles, ask: StopAt) -> f64 {
+    let mut search = Refinement::new(surface);
     let start = Start::of(prim, surface, ask.above, &mut search.scratch);
     search.take(start);
     search.run(ask, MAX_SPLITS)
@@ -126,10 +126,10 @@ pub(crate) fn worst_error(
     surface: &Triangles,
     level: f64,
 ) -> f64 {
-    let mut searches: Vec<(Search, Option<f64>)> = prims
+    let mut searches: Vec<(Refinement, Option<f64>)> = prims
         .par_iter()
         .map(|p| {
-            let mut search = Search::new(surface);
+            let mut search = Refinement::new(surface);
             let start = Start::of(p, surface, f64::INFINITY, &mut search.scratch);
             search.take(start);
             (search, None)
@@ -138,7 +138,7 @@ pub(crate) fn worst_error(
     let mut low = searches.iter().map(|(s, _)| s.low).fold(0.0, f64::max);
     for _ in 0..ROUNDS {
         let t = threshold(low, level, ABSOLUTE * surface.diagonal);
-        let ask = Ask {
+        let ask = StopAt {
             level: t,
             above: t,
             coarse: true,
@@ -184,7 +184,7 @@ fn threshold(low: f64, level: f64, slack: f64) -> f64 {
 
 /// A best-first search for the largest distance over a set of triangles: the cells
 /// by bound, the largest distance measured, the splits made.
-struct Search<'a> {
+struct Refinement<'a> {
     surface: &'a Triangles<'a>,
     heap: BinaryHeap<Cell>,
     low: f64,
@@ -218,7 +218,7 @@ impl Shadows {
 #[derive(Default)]
 struct Scratch {
     stack: Vec<(f64, u32)>,
-    shadow: shadow::Scratch,
+    shadow: cell_shadow::Scratch,
 }
 
 /// A primitive's cells and the largest distance measured on them.
@@ -258,9 +258,9 @@ impl Start {
     }
 }
 
-impl<'a> Search<'a> {
+impl<'a> Refinement<'a> {
     fn new(surface: &'a Triangles) -> Self {
-        Search {
+        Refinement {
             surface,
             heap: BinaryHeap::new(),
             low: 0.0,
@@ -283,7 +283,7 @@ impl<'a> Search<'a> {
 
     /// Splits the worst cell until `ask` is answered or `max_splits` are made; the
     /// bound then (or the distance found over `ask.above`).
-    fn run(&mut self, ask: Ask, max_splits: usize) -> f64 {
+    fn run(&mut self, ask: StopAt, max_splits: usize) -> f64 {
         let slack = ABSOLUTE * self.surface.diagonal;
         while let Some(top) = self.heap.peek() {
             let (low, bound) = (self.low, top.bound.max(self.low));
@@ -316,7 +316,7 @@ impl<'a> Search<'a> {
     }
 }
 
-impl Search<'_> {
+impl Refinement<'_> {
     /// Before the worst cell is split, the bound of its shadow: tight over a few
     /// input facets, where its halves' would not be for long. Tried only on a round
     /// primitive's cells, once a search has run long (most end sooner without it,
@@ -329,7 +329,7 @@ impl Search<'_> {
             0 if cell.gap > 0.0 && self.shadows.worth(self.splits) => {
                 let shade = &mut self.scratch.shadow;
                 let below = cell.bound - cell.gap;
-                let tried = shadow::bound(&cell.tri, below, self.surface, shade);
+                let tried = cell_shadow::bound(&cell.tri, below, self.surface, shade);
                 self.shadows.count(tried.is_some());
                 match tried {
                     Some(b) => {

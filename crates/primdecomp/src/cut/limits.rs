@@ -2,7 +2,7 @@
 //! recorded on the post-processed levels.
 
 use super::error::worst_error;
-use super::Request;
+use super::{LevelCut, Request};
 use crate::input::mesh::Mesh;
 use crate::input::triangles::Triangles;
 use crate::output::result::Level;
@@ -12,20 +12,20 @@ use std::collections::HashMap;
 
 /// Records on each level what its request asked (tolerance, bytes) and the estimated
 /// farthest its primitives stand from the input ([`worst_error`], in the input's
-/// frame), `known[i]` holding the primitives level `i`'s cut made with their bounds
+/// frame), `cuts[i].known` holding the primitives level `i`'s cut made with their bounds
 /// (those post-processing left as they were need no search past them).
 pub(crate) fn record_limits(
     levels: &mut [Level],
     requests: &[Request],
-    known: &[Vec<(Primitive, f64)>],
+    cuts: &[LevelCut],
     mesh: &Mesh,
     surface: &Triangles,
 ) {
     let back = mesh.offset.map(|x| -x);
-    for ((level, r), known) in levels.iter_mut().zip(requests).zip(known) {
+    for ((level, r), cut) in levels.iter_mut().zip(requests).zip(cuts) {
         level.tolerance = r.tolerance;
         level.max_bytes = r.bytes;
-        let made = made_by_cut(known, mesh.offset);
+        let made = made_by_cut(&cut.known, mesh.offset);
         let (prims, bounds): (Vec<Primitive>, Vec<f64>) = level
             .primitives
             .iter()

@@ -7,38 +7,39 @@
 //! within the tolerance; each level then takes, of the cuts of the nodes reached, the
 //! fewest nodes within its tolerance, or the least worst error its count and bytes
 //! allow, filled up to its count; with counts alone, the count that least worst
-//! error leaves goes to the mean distance ([`loose`]). A node over a tolerance that
+//! error leaves goes to the mean distance ([`past_worst`]). A node over a tolerance that
 //! splitting cannot bring nearer gets its nearest fit instead of its least k·V
 //! ([`nearest`]). Every node's primitive encloses its faces, so every cut encloses
 //! the mesh.
 
-mod carry;
+mod carried_parts;
+mod cell_shadow;
+mod chamfer;
 mod choose;
 pub(crate) mod error;
+mod error_memo;
 mod hulls;
 pub(crate) mod limits;
-mod loose;
-mod mean;
-mod memo;
 mod nearest;
+mod past_worst;
 pub(crate) mod recut;
-mod shadow;
-mod spend;
+mod short_count;
 pub(crate) mod tree;
 
 use crate::input::triangles::Triangles;
 use crate::math::{Sym3, V3};
 use crate::merge::{Evaluator, Snapshot, Workspace};
+use crate::output::result::Shortfall;
 use crate::primitive::Primitive;
+pub(crate) use chamfer::mean_distance;
 pub(crate) use choose::fits;
 use choose::worst;
 #[cfg(test)]
 use error::error_of;
-use error::{error_until, Ask};
+use error::{error_until, StopAt};
 use hulls::{HullScratch, NodeHulls};
-pub(crate) use loose::SLACK;
-use loose::{Order, Queued};
-pub(crate) use mean::mean_distance;
+pub(crate) use past_worst::LOOSE_FACTOR;
+use past_worst::{Order, Queued};
 use rayon::prelude::*;
 use std::cmp::Ordering;
 use std::collections::{BinaryHeap, HashMap};
@@ -59,7 +60,7 @@ const FLOOR_HALVES: f64 = 4.0;
 const AHEAD_STEP: f64 = 0.85;
 
 /// [`Cutter::explore`] splits at most this many times the largest count: splits
-/// whose parts are carried add no node ([`carry`]).
+/// whose parts are carried add no node ([`carried_parts`]).
 const SPLITS_PER_COUNT: usize = 8;
 
 /// The tests compare the cuts with [`Cutter::ahead`] fitting nothing.
@@ -86,6 +87,24 @@ pub(crate) struct Request {
     pub count: usize,
     pub bytes: Option<usize>,
     pub tolerance: Option<f64>,
+}
+
+/// One level's cut of the merge tree: its nodes' clusters and primitives as the merge
+/// loop's snapshots hold them, with what only a cut knows.
+#[derive(Clone, Debug)]
+pub(crate) struct LevelCut {
+    /// The cut's nodes as clusters with their primitives (the mesh's frame).
+    pub snapshot: Snapshot,
+    /// The farthest its primitives may stand from the input (its tolerance, or the
+    /// farthest its nodes stand), which post-processing must keep
+    /// (`postprocess::plates`).
+    pub bound: f64,
+    /// For a cut over its tolerance: what stopped it nearer; `None` otherwise.
+    pub shortfall: Option<Shortfall>,
+    /// Each primitive as the cut made it (the mesh's frame) with the upper bound of its
+    /// error the cut proved, where it proved one; post-processing leaves it as it is,
+    /// so `limits::record_limits` measures again only what it changed.
+    pub known: Vec<(Primitive, f64)>,
 }
 
 /// A node of the cut with its fitted primitive and estimated error (`exact`: else
@@ -128,7 +147,7 @@ impl Ord for Entry {
 /// the children of split nodes), the nodes a cut can take in post-order
 /// ([`Explored::post_order`]), the nodes split, in order, with their parts, the
 /// nodes each node carries, the groups' members and bounding boxes, the hull points
-/// of nodes tested for carrying ([`carry`]) and whether the count ran out while a node was
+/// of nodes tested for carrying ([`carried_parts`]) and whether the count ran out while a node was
 /// still over the tolerance.
 #[derive(Default)]
 struct Explored {
@@ -165,10 +184,10 @@ pub(crate) struct Cutter<'a> {
     /// Whether a cut of counts alone is explored again in a loose order
     /// ([`Cutter::snapshot_loose`]).
     loose: bool,
-    /// Each node's bounding box ([`carry`]).
+    /// Each node's bounding box ([`carried_parts`]).
     boxes: Vec<(V3, V3)>,
-    /// The errors measured so far ([`memo`]).
-    measures: memo::Measures,
+    /// The errors measured so far ([`error_memo`]).
+    measures: error_memo::Measures,
 }
 
 /// One thread's buffers for fitting nodes.
@@ -208,8 +227,8 @@ impl<'a> Cutter<'a> {
                 .max(FLOOR_HALVES * ev.cfg.min_half),
             fill_short: false,
             loose: false,
-            boxes: carry::node_boxes(tree, ev.mesh),
-            measures: memo::Measures::default(),
+            boxes: carried_parts::node_boxes(tree, ev.mesh),
+            measures: error_memo::Measures::default(),
         }
     }
 
@@ -237,7 +256,7 @@ impl<'a> Cutter<'a> {
 
     /// `e`'s primitive if it encloses every point of its node's faces (a nearest fit,
     /// [`Cutter::closest`], was made on every point of them already) and of the nodes
-    /// it carries ([`carry`]: a nearest fit kept from an earlier cut may not have
+    /// it carries ([`carried_parts`]: a nearest fit kept from an earlier cut may not have
     /// had them), else the output fit on all of them. Enclosing is up to the point
     /// reduction's own tolerance (`Evaluator::hull_eps`): a fit on every point is no
     /// nearer than that either (its extreme points stand outside it by round-off),
@@ -269,7 +288,7 @@ impl<'a> Cutter<'a> {
     }
 
     fn measured(&self, node: u32, prim: Primitive, above: f64) -> Entry {
-        let ask = Ask {
+        let ask = StopAt {
             level: self.enough,
             above,
             coarse: true,
@@ -291,7 +310,7 @@ impl<'a> Cutter<'a> {
     /// ([`Cutter::choose`]). `requests` are [`Cutter::new`]'s with the same
     /// tolerances, their counts and bytes maybe raised; the nodes fitted for earlier
     /// requests keep their fits.
-    pub(crate) fn snapshots(&mut self, requests: &[Request]) -> Vec<Snapshot> {
+    pub(crate) fn snapshots(&mut self, requests: &[Request]) -> Vec<LevelCut> {
         self.requests = requests.to_vec();
         let (explored, cuts, spare) = self.explore_and_choose(largest(requests), self.enough);
         let snaps = self.cut_snapshots(&explored, cuts);
@@ -303,8 +322,8 @@ impl<'a> Cutter<'a> {
     }
 
     /// [`Cutter::snapshots`] of one request, with the count the least worst error
-    /// leaves spent on the mean where it is a count alone ([`loose`]).
-    pub(crate) fn snapshot_loose(&mut self, request: &Request) -> Snapshot {
+    /// leaves spent on the mean where it is a count alone ([`past_worst`]).
+    pub(crate) fn snapshot_loose(&mut self, request: &Request) -> LevelCut {
         self.loose = true;
         let snap = self.snapshots(std::slice::from_ref(request)).pop();
         self.loose = false;
@@ -313,7 +332,7 @@ impl<'a> Cutter<'a> {
 
     /// [`Cutter::snapshots`] with the rest of a count alone its cut falls short of
     /// spent on the cut's other nodes ([`Cutter::spend`]).
-    pub(crate) fn snapshots_filled(&mut self, requests: &[Request]) -> Vec<Snapshot> {
+    pub(crate) fn snapshots_filled(&mut self, requests: &[Request]) -> Vec<LevelCut> {
         self.fill_short = true;
         let snaps = self.snapshots(requests);
         self.fill_short = false;
@@ -321,7 +340,7 @@ impl<'a> Cutter<'a> {
     }
 
     /// Each request's snapshot from its cut of `explored`.
-    fn cut_snapshots(&self, explored: &Explored, cuts: Vec<Vec<u32>>) -> Vec<Snapshot> {
+    fn cut_snapshots(&self, explored: &Explored, cuts: Vec<Vec<u32>>) -> Vec<LevelCut> {
         let requests = &self.requests;
         // A chosen node's fit on its hull's vertices, unless one of its faces' points
         // (left out of the hull within its tolerance) is outside it beyond round-off:
@@ -356,7 +375,7 @@ impl<'a> Cutter<'a> {
                         ..explored.fitted[n].clone()
                     })
                     .collect();
-                Snapshot {
+                LevelCut {
                     shortfall,
                     known,
                     ..self.snapshot(explored, r, entries)
@@ -392,7 +411,7 @@ impl<'a> Cutter<'a> {
         }
         let mut ex = self.explore(largest, enough, f64::INFINITY, &known, Order::Worst);
         let mut cuts: Vec<Vec<u32>> = self.requests.iter().map(|r| self.choose(&ex, r)).collect();
-        // A count's cut spends what the worst error leaves on the mean ([`loose`]).
+        // A count's cut spends what the worst error leaves on the mean ([`past_worst`]).
         let mut spare = Fits::new();
         let loosened = self
             .loose
@@ -442,7 +461,7 @@ impl<'a> Cutter<'a> {
         }
     }
 
-    /// Splits the node of the cut first in `order` (the worst, [`loose`]) from the
+    /// Splits the node of the cut first in `order` (the worst, [`past_worst`]) from the
     /// roots on until `largest` nodes remain or every node is within `enough` or
     /// cannot be split; errors up to `above` ([`Cutter::entry`]), fits of the nodes
     /// in `known` kept.
@@ -571,7 +590,7 @@ impl<'a> Cutter<'a> {
 
     /// The snapshot of one cut for `r`, its nodes in order of their faces' ranges; its
     /// bound is `r`'s tolerance or the farthest its nodes stand, if farther.
-    fn snapshot(&self, ex: &Explored, r: &Request, mut cut: Vec<Entry>) -> Snapshot {
+    fn snapshot(&self, ex: &Explored, r: &Request, mut cut: Vec<Entry>) -> LevelCut {
         let worst = cut.iter().map(|e| e.error).fold(0.0, f64::max);
         cut.sort_unstable_by_key(|e| self.start(ex, e.node));
         let mesh = self.ev.mesh;
@@ -590,9 +609,8 @@ impl<'a> Cutter<'a> {
                 v
             })
             .collect();
-        Snapshot {
+        let snapshot = Snapshot {
             target: r.count,
-            bound: Some(r.tolerance.map_or(worst, |t| t.max(worst))),
             prims: cut.iter().map(|e| e.prim).collect(),
             faces: members.iter().map(|m| m.len() as u32).collect(),
             verts,
@@ -601,6 +619,10 @@ impl<'a> Cutter<'a> {
                 .iter()
                 .map(|e| self.q_of(ex, e.node))
                 .collect::<Vec<Sym3>>(),
+        };
+        LevelCut {
+            snapshot,
+            bound: r.tolerance.map_or(worst, |t| t.max(worst)),
             shortfall: None,
             known: Vec::new(),
         }

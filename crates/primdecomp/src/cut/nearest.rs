@@ -4,7 +4,7 @@
 //! blind to how far a corner stands off a triangle; a deviation for the cut only:
 //! docs/decisions/0041).
 
-use super::error::{error_until, Ask};
+use super::error::{error_until, StopAt};
 use super::{Cutter, Entry, Explored, Scratch};
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -52,7 +52,7 @@ impl Cutter<'_> {
             if best.error <= self.enough {
                 break;
             }
-            let ask = Ask {
+            let ask = StopAt {
                 level: self.enough,
                 above: best.error,
                 coarse: true,

@@ -8,22 +8,23 @@
 //! on the mean, kept where its post-processed level holds as many primitives no more
 //! than a quarter farther and nearer on the mean (docs/decisions/0051).
 
-use crate::cut::{mean_distance, Cutter, MergeTree, Request, SLACK};
+use crate::cut::LevelCut;
+use crate::cut::{mean_distance, Cutter, MergeTree, Request, LOOSE_FACTOR};
 use crate::input::triangles::Triangles;
 use crate::merge::{Evaluator, Snapshot};
 use crate::output::result::{Level, Shortfall};
 use crate::primitive::Primitive;
 
 /// A cut is made again at most this many times with counts and bytes raised.
-const RECUTS: usize = 4;
+const MAX_RECUTS: usize = 4;
 
-/// The raises end at a round that gains less than 1/`SLOW` of its raise
-/// ([`little`]; an eighth: docs/decisions/0044, amended).
-const SLOW: usize = 8;
+/// The raises end at a round that gains less than 1/`LEAST_GAIN_ONE_IN` of its raise
+/// ([`gained_little`]; an eighth: docs/decisions/0044, amended).
+const LEAST_GAIN_ONE_IN: usize = 8;
 
-/// Post-processing (§3.4) of a cut's snapshots into levels, handed in by the caller: the
-/// caps are spent on what it keeps.
-pub(crate) type Post<'a> = dyn Fn(Vec<Snapshot>) -> Vec<Level> + 'a;
+/// Post-processing (§3.4) of each level's cut into its level, handed in by the caller:
+/// the caps are spent on what it keeps.
+pub(crate) type Postprocess<'a> = dyn Fn(&[LevelCut]) -> Vec<Level> + 'a;
 
 /// One snapshot per request cut from `tree`, each kept from the last cut whose level
 /// is within the request, carrying the request's own count.
@@ -32,25 +33,25 @@ pub(crate) fn snapshots(
     tree: &MergeTree,
     requests: &[Request],
     tris: &Triangles,
-    post: &Post<'_>,
-) -> Vec<Snapshot> {
+    postprocess: &Postprocess<'_>,
+) -> Vec<LevelCut> {
     let mut cutter = Cutter::new(ev, tree, tris, requests);
     let first = cutter.snapshots(requests);
     // Every level within its tolerance or stopped by its faces: cut once.
     if !first.iter().zip(requests).any(|(s, r)| capped(r, s)) {
         return first;
     }
-    let levels = post(first.clone());
-    let mut searches: Vec<Search> = (first.into_iter().zip(&levels).zip(requests))
-        .map(|((snap, level), r)| Search::first(r, snap, level))
+    let levels = postprocess(&first);
+    let mut searches: Vec<LevelRecut> = (first.into_iter().zip(&levels).zip(requests))
+        .map(|((snap, level), r)| LevelRecut::first(r, snap, level))
         .collect();
-    for _ in 0..RECUTS {
+    for _ in 0..MAX_RECUTS {
         if searches.iter().all(|s| s.settled) {
             break;
         }
         let asked: Vec<Request> = searches.iter().map(|s| s.asked).collect();
         let snaps = cutter.snapshots(&asked);
-        let levels = post(snaps.clone());
+        let levels = postprocess(&snaps);
         for ((s, snap), (level, r)) in searches
             .iter_mut()
             .zip(snaps)
@@ -59,11 +60,26 @@ pub(crate) fn snapshots(
             s.step(r, snap, level);
         }
     }
-    fill_short(&mut cutter, &mut searches, requests, (ev, tris), post);
-    loosen(&mut cutter, &mut searches, requests, (ev, tris), post);
+    fill_short(
+        &mut cutter,
+        &mut searches,
+        requests,
+        (ev, tris),
+        postprocess,
+    );
+    loosen(
+        &mut cutter,
+        &mut searches,
+        requests,
+        (ev, tris),
+        postprocess,
+    );
     (searches.into_iter().zip(requests))
-        .map(|(s, r)| Snapshot {
-            target: r.count,
+        .map(|(s, r)| LevelCut {
+            snapshot: Snapshot {
+                target: r.count,
+                ..s.kept.snapshot
+            },
             ..s.kept
         })
         .collect()
@@ -74,17 +90,17 @@ pub(crate) fn snapshots(
 /// more at its own count, the rest of the count spent on the cut's other nodes
 /// (`Cutter::snapshots_filled`, docs/decisions/0048), and kept where its level holds
 /// more primitives within the count and its nodes stand no farther, or no more than
-/// [`SLACK`] times farther and nearer on the mean (as [`loosen`]'s levels): a count's
+/// [`LOOSE_FACTOR`] times farther and nearer on the mean (as [`loosen`]'s levels): a count's
 /// worst error can sit on one feature no split brings nearer, and a bound a hair
 /// lower then kept one primitive of the eight asked for (docs/decisions/0054).
 fn fill_short(
     cutter: &mut Cutter,
-    searches: &mut [Search],
+    searches: &mut [LevelRecut],
     requests: &[Request],
     (ev, tris): (&Evaluator, &Triangles),
-    post: &Post<'_>,
+    postprocess: &Postprocess<'_>,
 ) {
-    let short = |s: &Search, r: &Request| {
+    let short = |s: &LevelRecut, r: &Request| {
         r.tolerance.is_none() && r.bytes.is_none() && s.level.primitives.len() < r.count
     };
     if !searches.iter().zip(requests).any(|(s, r)| short(s, r)) {
@@ -96,16 +112,17 @@ fn fill_short(
         .map(|(s, r)| if short(s, r) { *r } else { s.before })
         .collect();
     let snaps = cutter.snapshots_filled(&asked);
-    let levels = post(snaps.clone());
+    let levels = postprocess(&snaps);
     for ((s, r), (snap, level)) in searches
         .iter_mut()
         .zip(requests)
         .zip(snaps.into_iter().zip(&levels))
     {
-        let (new, old) = (bound(&snap), bound(&s.kept));
+        let (new, old) = (snap.bound, s.kept.bound);
         let more = level.primitives.len() > s.level.primitives.len();
         let nearer = || {
-            new <= old || (new <= SLACK * old && mean(ev, tris, level) < mean(ev, tris, &s.level))
+            new <= old
+                || (new <= LOOSE_FACTOR * old && mean(ev, tris, level) < mean(ev, tris, &s.level))
         };
         if short(s, r) && more && within(r, level) && nearer() {
             (s.kept, s.level) = (snap, level.clone());
@@ -116,20 +133,20 @@ fn fill_short(
 /// One level's search: the request the cutter gets next, the one its kept cut came
 /// from, the least found over the user's caps, whether it is settled, and the kept
 /// cut with its post-processed level.
-struct Search {
+struct LevelRecut {
     asked: Request,
     before: Request,
     over: Option<Request>,
     settled: bool,
-    kept: Snapshot,
+    kept: LevelCut,
     level: Level,
 }
 
-impl Search {
+impl LevelRecut {
     /// The search after the cut for the user's request `r` itself.
-    fn first(r: &Request, snap: Snapshot, level: &Level) -> Search {
+    fn first(r: &Request, snap: LevelCut, level: &Level) -> LevelRecut {
         let asked = raise(r, r, &snap, level).unwrap_or(*r);
-        Search {
+        LevelRecut {
             asked,
             before: *r,
             over: None,
@@ -146,12 +163,12 @@ impl Search {
 
     /// Takes the cut for `self.asked` (`snap`, post-processed to `level`) and says
     /// what to ask next.
-    fn step(&mut self, r: &Request, snap: Snapshot, level: &Level) {
+    fn step(&mut self, r: &Request, snap: LevelCut, level: &Level) {
         if self.settled {
             return;
         }
         // No more nodes than the cut kept: raising the caps does not help.
-        if snap.prims.len() <= self.kept.prims.len() {
+        if snap.snapshot.prims.len() <= self.kept.snapshot.prims.len() {
             self.settled = true;
             return;
         }
@@ -164,7 +181,7 @@ impl Search {
         let raised = raise(r, &self.asked, &snap, level);
         let now = (level.primitives.len(), level.bytes());
         // Most of the raise went to primitives post-processing drops again.
-        let slow = little(self.spent(), now, &self.before, &self.asked);
+        let slow = gained_little(self.spent(), now, &self.before, &self.asked);
         (self.kept, self.level, self.before) = (snap, level.clone(), self.asked);
         self.asked = match (raised, self.over) {
             (None, _) => self.asked,
@@ -190,36 +207,36 @@ fn halfway(lo: &Request, hi: &Request) -> Request {
 /// on its own (as that count alone would be cut), the count the least worst error
 /// leaves spent on the mean (`Cutter::snapshot_loose`, docs/decisions/0051). A
 /// level takes its loose cut if that is within its request, holds as many
-/// primitives as before, stands within [`SLACK`] times its kept cut and nearer on
+/// primitives as before, stands within [`LOOSE_FACTOR`] times its kept cut and nearer on
 /// the mean ([`mean_distance`]), and no level then stands farther than one that
 /// stood farther before (the largest counts first). Compared after post-processing:
 /// a cut that loses fewer primitives to nesting is raised less, so comparing the
 /// cuts alone let levels stand farther.
 fn loosen(
     cutter: &mut Cutter,
-    searches: &mut [Search],
+    searches: &mut [LevelRecut],
     requests: &[Request],
     (ev, tris): (&Evaluator, &Triangles),
-    post: &Post<'_>,
+    postprocess: &Postprocess<'_>,
 ) {
     if (requests.iter()).any(|r| r.tolerance.is_some() || r.bytes.is_some()) {
         return;
     }
-    let snaps: Vec<Snapshot> = (searches.iter())
+    let snaps: Vec<LevelCut> = (searches.iter())
         .map(|s| cutter.snapshot_loose(&s.before))
         .collect();
-    let levels = post(snaps.clone());
+    let levels = postprocess(&snaps);
     let mean = |l: &Level| mean(ev, tris, l);
-    let old: Vec<f64> = searches.iter().map(|s| bound(&s.kept)).collect();
+    let old: Vec<f64> = searches.iter().map(|s| s.kept.bound).collect();
     let n = old.len();
     let mut now = old.clone();
     let mut order: Vec<usize> = (0..n).collect();
     order.sort_by_key(|&i| std::cmp::Reverse((requests[i].count, i)));
     for i in order {
-        let (level, new, s) = (&levels[i], bound(&snaps[i]), &mut searches[i]);
+        let (level, new, s) = (&levels[i], snaps[i].bound, &mut searches[i]);
         let near = within(&requests[i], level)
             && level.primitives.len() >= s.level.primitives.len()
-            && new <= SLACK * old[i]
+            && new <= LOOSE_FACTOR * old[i]
             && mean(level) < mean(&s.level);
         let was = std::mem::replace(&mut now[i], new);
         let ordered = (0..n).all(|a| (0..n).all(|b| old[a] > old[b] || now[a] <= now[b]));
@@ -231,11 +248,6 @@ fn loosen(
     }
 }
 
-/// A cut's bound on its worst error (infinite where none was proved).
-fn bound(s: &Snapshot) -> f64 {
-    s.bound.unwrap_or(f64::INFINITY)
-}
-
 /// A level's mean distance to the input ([`mean_distance`]); levels are in world
 /// coordinates, the input's triangles in its re-centred frame.
 fn mean(ev: &Evaluator, tris: &Triangles, l: &Level) -> f64 {
@@ -245,10 +257,12 @@ fn mean(ev: &Evaluator, tris: &Triangles, l: &Level) -> f64 {
 }
 
 /// Whether a cut for `now` (from `from`'s caps raised to `to`'s) holds less than
-/// 1/[`SLOW`] of the raise more than the level of `from` held (`was`): where nested
+/// 1/[`LEAST_GAIN_ONE_IN`] of the raise more than the level of `from` held (`was`): where nested
 /// primitives eat the raise, rounds cost more than they bring.
-fn little(was: (usize, usize), now: (usize, usize), from: &Request, to: &Request) -> bool {
-    let gain = |a: usize, b: usize, raise: usize| raise > 0 && SLOW * b.saturating_sub(a) < raise;
+fn gained_little(was: (usize, usize), now: (usize, usize), from: &Request, to: &Request) -> bool {
+    let gain = |a: usize, b: usize, raise: usize| {
+        raise > 0 && LEAST_GAIN_ONE_IN * b.saturating_sub(a) < raise
+    };
     let bytes = to
         .bytes
         .unwrap_or(0)
@@ -264,7 +278,7 @@ fn within(r: &Request, level: &Level) -> bool {
 
 /// Whether a cap stopped `snap`, the cut for `r`: it has no tolerance, or the count
 /// or the bytes came first.
-fn capped(r: &Request, snap: &Snapshot) -> bool {
+fn capped(r: &Request, snap: &LevelCut) -> bool {
     r.tolerance.is_none() || matches!(snap.shortfall, Some(Shortfall::Count | Shortfall::Bytes))
 }
 
@@ -272,12 +286,12 @@ fn capped(r: &Request, snap: &Snapshot) -> bool {
 /// post-processing freed of `user`'s, where it freed some (`snap`'s nodes against
 /// `level`'s primitives) and the cut stopped short of its tolerance (or has none);
 /// `None` otherwise.
-fn raise(user: &Request, asked: &Request, snap: &Snapshot, level: &Level) -> Option<Request> {
+fn raise(user: &Request, asked: &Request, snap: &LevelCut, level: &Level) -> Option<Request> {
     if !capped(user, snap) {
         return None;
     }
-    let node_bytes: usize = snap.prims.iter().map(|p| p.bytes()).sum();
-    if snap.prims.len() == level.primitives.len() && node_bytes == level.bytes() {
+    let node_bytes: usize = snap.snapshot.prims.iter().map(|p| p.bytes()).sum();
+    if snap.snapshot.prims.len() == level.primitives.len() && node_bytes == level.bytes() {
         return None;
     }
     let free_count = user.count.saturating_sub(level.primitives.len());

@@ -7,7 +7,7 @@
 
 use crate::input::mesh::Mesh;
 use crate::math::Sym3;
-use crate::merge::{Evaluator, MergeOutput, TreeHulls};
+use crate::merge::{Evaluator, MergeLog, MergeOutput, TreeHulls};
 use crate::params::Params;
 use std::collections::HashMap;
 
@@ -154,16 +154,18 @@ fn find(parent: &mut [u32], mut x: u32) -> u32 {
     x
 }
 
-/// The tree of `merged`'s merges (leaves: its first snapshot's clusters, or the faces
-/// when every merge was logged), with the points the loop kept for its nodes.
+/// The tree of `log`'s merges (leaves: `merged`'s first snapshot's clusters, or the
+/// faces, of operators `face_q`, when every merge was logged), with the points the loop
+/// kept for its nodes.
 pub(crate) fn merge_tree(
     ev: &Evaluator,
-    merged: &mut MergeOutput,
+    merged: &MergeOutput,
+    log: MergeLog,
     face_q: &[Sym3],
-) -> crate::cut::MergeTree {
+) -> MergeTree {
     let faces = ev.mesh.face_count();
-    let hulls = std::mem::take(&mut merged.hulls);
-    if merged.log_from_faces {
+    let hulls = log.hulls;
+    if log.from_faces {
         // Every merge is known: the leaves are single faces, so any cluster can be
         // taken apart down to its faces (the loop's first snapshot is not the leaves).
         let singles: Vec<Vec<u32>> = (0..faces as u32).map(|f| vec![f]).collect();
@@ -171,23 +173,23 @@ pub(crate) fn merge_tree(
             leaves: Vec::new(),
             ..hulls
         };
-        crate::cut::MergeTree::build(&singles, face_q, &merged.log, merges, faces)
+        MergeTree::build(&singles, face_q, &log.merges, merges, faces)
     } else {
         let leaves = &merged.snapshots[0];
-        let log = &merged.log[merged.log_at_first..];
-        let hulls = hulls.after(merged.log_at_first);
-        crate::cut::MergeTree::build(&leaves.members, &leaves.q, log, hulls, faces)
+        let hulls = hulls.after(log.at_first);
+        let merges = &log.merges[log.at_first..];
+        MergeTree::build(&leaves.members, &leaves.q, merges, hulls, faces)
     }
 }
 
 /// The face count over which the merge loop keeps a cluster's points for the merge
 /// tree: a cut's mean node's (the cut finds the hulls of larger nodes, `cut::hulls`).
-/// `None` (found from the faces) without a cut, or where the welded vertices (whose
-/// ids the loop keeps) may stand apart from the faces' own: a tolerance weld.
+/// `None` (found from the faces) where the welded vertices (whose ids the loop keeps)
+/// may stand apart from the faces' own: a tolerance weld.
 pub(crate) fn tree_hulls_over(mesh: &Mesh, params: &Params, largest: usize) -> Option<usize> {
     let welded_in_place =
         !matches!(params.fit.dedup, crate::params::Dedup::Tolerance(t) if t > 0.0);
-    (params.uses_cut() && welded_in_place).then(|| mesh.face_count() / largest.max(1))
+    welded_in_place.then(|| mesh.face_count() / largest.max(1))
 }
 
 #[cfg(test)]

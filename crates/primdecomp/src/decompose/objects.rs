@@ -230,7 +230,7 @@ pub fn decompose_objects(
         });
     }
     Ok(Objects {
-        input: crate::decompose::pass::input_info(mesh, mesh.aabb()),
+        input: crate::decompose::stages::input_info(mesh, mesh.aabb()),
         targets,
         objects,
     })

@@ -51,7 +51,7 @@ const BLOCK: usize = 1 << 14;
 pub fn face_pairs_checked(
     offsets: &[u32],
     indices: &[u32],
-    go_on: crate::progress::GoOn,
+    go_on: crate::progress::Checkpoint,
 ) -> Option<Vec<(u32, u32)>> {
     use std::sync::atomic::{AtomicU32, AtomicU64, Ordering::Relaxed};
     let faces = offsets.len().saturating_sub(1);

@@ -6,7 +6,7 @@
 
 use super::mesh::Mesh;
 use crate::params::Dedup;
-use crate::progress::GoOn;
+use crate::progress::Checkpoint;
 use rayon::prelude::*;
 use std::borrow::Cow;
 
@@ -23,7 +23,7 @@ pub fn weld(mesh: &Mesh, mode: Dedup) -> (Vec<u32>, usize) {
 pub fn weld_checked<'m>(
     mesh: &'m Mesh,
     mode: Dedup,
-    go_on: GoOn,
+    go_on: Checkpoint,
 ) -> Option<(Cow<'m, [u32]>, usize)> {
     let remap: Vec<u32> = match mode {
         Dedup::Off => Vec::new(),
@@ -63,7 +63,7 @@ const BUCKET: usize = 1 << 10;
 /// coordinates share a bucket) and each bucket sorted on its own by (coordinates,
 /// index): the groups and leaders one sort of every vertex finds, in linear time,
 /// reading the coordinates of a bucket from cache, a block of buckets at a time.
-fn exact_remap(mesh: &Mesh, go_on: GoOn) -> Option<Vec<u32>> {
+fn exact_remap(mesh: &Mesh, go_on: Checkpoint) -> Option<Vec<u32>> {
     use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
     let n = mesh.vertex_count();
     let k = |i: u32| {

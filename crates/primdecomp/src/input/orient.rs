@@ -50,7 +50,7 @@ pub fn face_signs_checked(
     welded: &[u32],
     deg: &[u32],
     adj: &[u32],
-    go_on: crate::progress::GoOn,
+    go_on: crate::progress::Checkpoint,
 ) -> Option<Vec<i8>> {
     let n = mesh.face_count();
     let mut next_check = CHECK_EVERY;

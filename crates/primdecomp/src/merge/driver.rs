@@ -12,10 +12,10 @@ use super::cluster::Clusters;
 use super::cost::{Evaluator, Workspace};
 use super::heap::{Candidate, Queue, RadixHeap};
 use super::lazy::{valid, Lazy, Pop};
-use super::worker::{with_pricer, Pricer, Stats};
+use super::worker::{with_pricer, Pricer, PricerCounts};
 use crate::math::hull::{hull_vertices, HullWorkspace};
 use crate::primitive::Primitive;
-use crate::progress::GoOn;
+use crate::progress::Checkpoint;
 use rayon::prelude::*;
 
 /// Pairs priced per parallel task.
@@ -49,16 +49,6 @@ pub struct Snapshot {
     /// Each primitive's operator (the sum of its faces' quadrics), for refits after
     /// the loop (`postprocess`).
     pub q: Vec<crate::math::Sym3>,
-    /// For a cut of the merge tree: the farthest its primitives may stand from the
-    /// input (its tolerance, or the farthest its nodes stand), which post-processing
-    /// must keep (`postprocess::plates`); `None` for the greedy snapshot.
-    pub bound: Option<f64>,
-    /// For a cut over its tolerance: what stopped it nearer; `None` otherwise.
-    pub shortfall: Option<crate::output::result::Shortfall>,
-    /// For a cut: each primitive as the cut made it (the mesh's frame) with the upper
-    /// bound of its error the cut proved, where it proved one; post-processing leaves
-    /// it as it is, so `cut::record_limits` measures again only what it changed.
-    pub known: Vec<(Primitive, f64)>,
 }
 
 #[derive(Clone, Debug, Default)]
@@ -74,15 +64,21 @@ pub struct MergeOutput {
     pub trace: Vec<Traced>,
     /// The run was told to stop ([`crate::progress`]): snapshots are missing.
     pub stopped: bool,
+}
+
+/// What the loop for the merge tree ([`run_for_tree`]) records besides its output:
+/// the merges the tree is built of (`cut::tree`).
+#[derive(Clone, Debug, Default)]
+pub struct MergeLog {
     /// Every merge of the whole input's loop in order, as a face of each merged
-    /// cluster: the merge tree's nodes (`cut::tree`). 8 bytes a merge.
-    pub log: Vec<(u32, u32)>,
-    /// How many of `log`'s merges came before the loop's first snapshot.
-    pub log_at_first: usize,
-    /// `log` holds every merge from one cluster per face (no spatial parts first):
+    /// cluster: the merge tree's nodes. 8 bytes a merge.
+    pub merges: Vec<(u32, u32)>,
+    /// How many of `merges` came before the loop's first snapshot.
+    pub at_first: usize,
+    /// `merges` holds every merge from one cluster per face (no spatial parts first):
     /// the merge tree's leaves are the faces.
-    pub log_from_faces: bool,
-    /// The points clusters were priced by, kept for the merge tree ([`run_for_tree`]).
+    pub from_faces: bool,
+    /// The points clusters were priced by, kept for the merge tree.
     pub hulls: TreeHulls,
 }
 
@@ -90,7 +86,7 @@ pub struct MergeOutput {
 /// their faces, as welded vertex ids), kept for the merge tree so that the cut need not
 /// find its nodes' hulls again (`cut::hulls`, docs/decisions/0052): those of the first
 /// snapshot's clusters, in its order, and of each logged merge's cluster of more than
-/// the asked faces, with its index in `log`.
+/// the asked faces, with its index in [`MergeLog::merges`].
 #[derive(Clone, Debug, Default)]
 pub struct TreeHulls {
     pub leaves: Vec<Vec<u32>>,
@@ -98,7 +94,7 @@ pub struct TreeHulls {
 }
 
 impl TreeHulls {
-    /// Those of the merges from `log[first]` on, their indices counted from there.
+    /// Those of the merges from `merges[first]` on, their indices counted from there.
     pub fn after(self, first: usize) -> TreeHulls {
         let merges = self.merges.into_iter();
         TreeHulls {
@@ -235,7 +231,7 @@ fn price(ev: &Evaluator, cl: &Clusters, pairs: &[(u32, u32)]) -> Vec<Candidate> 
 }
 
 /// Runs the merge loop down to the smallest target; `targets` sorted decreasing.
-pub fn run(ev: &Evaluator, cl: Clusters, targets: &[usize], go_on: GoOn) -> MergeOutput {
+pub fn run(ev: &Evaluator, cl: Clusters, targets: &[usize], go_on: Checkpoint) -> MergeOutput {
     run_with::<RadixHeap>(ev, cl, targets, go_on)
 }
 
@@ -243,16 +239,19 @@ pub fn run(ev: &Evaluator, cl: Clusters, targets: &[usize], go_on: GoOn) -> Merg
 /// holds only its clusters' faces and operators — the cut fits the nodes it keeps, so
 /// fitting the leaves and the root here would be thrown away. With `hulls_over`, the
 /// points of the first snapshot's clusters and of merged clusters of more faces are
-/// kept too ([`TreeHulls`]).
+/// kept too ([`TreeHulls`]). Returns every merge too ([`MergeLog`]).
 pub fn run_for_tree(
     ev: &Evaluator,
     cl: Clusters,
     targets: &[usize],
     hulls_over: Option<usize>,
-    go_on: GoOn,
-) -> MergeOutput {
+    go_on: Checkpoint,
+) -> (MergeOutput, MergeLog) {
     with_pricer(ev, |p| {
-        merge_loop::<RadixHeap>(ev, cl, targets, go_on, p, Scope::Tree(hulls_over)).0
+        let mut log = MergeLog::default();
+        let scope = Scope::Tree(hulls_over);
+        let out = merge_loop::<RadixHeap>(ev, cl, targets, go_on, p, scope, &mut log).0;
+        (out, log)
     })
 }
 
@@ -261,7 +260,7 @@ pub fn run_with<Q: Queue>(
     ev: &Evaluator,
     cl: Clusters,
     targets: &[usize],
-    go_on: GoOn,
+    go_on: Checkpoint,
 ) -> MergeOutput {
     run_counted::<Q>(ev, cl, targets, go_on).0
 }
@@ -272,10 +271,11 @@ fn run_counted<Q: Queue>(
     ev: &Evaluator,
     cl: Clusters,
     targets: &[usize],
-    go_on: GoOn,
-) -> (MergeOutput, Stats) {
+    go_on: Checkpoint,
+) -> (MergeOutput, PricerCounts) {
     with_pricer(ev, |p| {
-        let out = merge_loop::<Q>(ev, cl, targets, go_on, p, Scope::Whole).0;
+        let mut log = MergeLog::default();
+        let out = merge_loop::<Q>(ev, cl, targets, go_on, p, Scope::Whole, &mut log).0;
         (out, p.stats)
     })
 }
@@ -310,22 +310,25 @@ pub(super) fn merge_part(
     cl: Clusters,
     target: usize,
     traced: bool,
-    go_on: GoOn,
+    go_on: Checkpoint,
 ) -> (Clusters, MergeOutput) {
     let mut pricer = Pricer::serial(ev);
     let scope = if traced { Scope::Traced } else { Scope::Part };
-    let (out, cl) = merge_loop::<RadixHeap>(ev, cl, &[target], go_on, &mut pricer, scope);
+    let mut log = MergeLog::default();
+    let (out, cl) = merge_loop::<RadixHeap>(ev, cl, &[target], go_on, &mut pricer, scope, &mut log);
     (cl, out)
 }
 
-/// The loop of [`run_with`]; `pricer` re-prices each merged cluster's neighbours.
+/// The loop of [`run_with`]; `pricer` re-prices each merged cluster's neighbours; the
+/// whole input's loop logs its merges in `log`.
 fn merge_loop<Q: Queue>(
     ev: &Evaluator,
     mut cl: Clusters,
     targets: &[usize],
-    go_on: GoOn,
+    go_on: Checkpoint,
     pricer: &mut Pricer,
     scope: Scope,
+    log: &mut MergeLog,
 ) -> (MergeOutput, Clusters) {
     let mut out = MergeOutput::default();
     let mut heap = Q::default();
@@ -363,7 +366,7 @@ fn merge_loop<Q: Queue>(
         // queue running dry there does not bridge components first.
         if reached && (held.is_some() || heap.is_empty()) {
             if next == 0 {
-                out.log_at_first = out.log.len();
+                log.at_first = log.merges.len();
             }
             let go_on_here = || go_on(fraction(start, cl.live, last));
             while next < targets.len() && cl.live <= targets[next] {
@@ -372,7 +375,7 @@ fn merge_loop<Q: Queue>(
                     return (out, cl);
                 };
                 if next == 0 {
-                    keep_leaf_hulls(ev, &cl, scope, &mut out.hulls);
+                    keep_leaf_hulls(ev, &cl, scope, &mut log.hulls);
                 }
                 out.snapshots.push(snap);
                 next += 1;
@@ -424,8 +427,8 @@ fn merge_loop<Q: Queue>(
         let root = cl.merge(c.a, c.b, verts, c.volume);
         out.merges += 1;
         if scope.whole() {
-            out.log.push((cl.head(c.a), cl.head(c.b)));
-            keep_hull(ev, &cl, root, scope, out.log.len() - 1, &mut out.hulls);
+            log.merges.push((cl.head(c.a), cl.head(c.b)));
+            keep_hull(ev, &cl, root, scope, log.merges.len() - 1, &mut log.hulls);
         }
         if !defer(ev, &mut cl, root) {
             let nbrs = cl.resolved_neighbors(root);
@@ -444,7 +447,7 @@ fn merge_loop<Q: Queue>(
         }
     }
     if next == 0 {
-        out.log_at_first = out.log.len();
+        log.at_first = log.merges.len();
     }
     let go_on_here = || go_on(fraction(start, cl.live, last));
     while next < targets.len() {
@@ -453,7 +456,7 @@ fn merge_loop<Q: Queue>(
             return (out, cl);
         };
         if next == 0 {
-            keep_leaf_hulls(ev, &cl, scope, &mut out.hulls);
+            keep_leaf_hulls(ev, &cl, scope, &mut log.hulls);
         }
         out.snapshots.push(snap);
         next += 1;
@@ -473,7 +476,7 @@ fn keep_leaf_hulls(ev: &Evaluator, cl: &Clusters, scope: Scope, hulls: &mut Tree
     }
 }
 
-/// The points of `root`, just merged as `log[at]`, where `scope` keeps hulls of its
+/// The points of `root`, just merged as `log.merges[at]`, where `scope` keeps hulls of its
 /// size.
 fn keep_hull(
     ev: &Evaluator,
@@ -560,7 +563,12 @@ fn fraction(start: usize, live: usize, last: usize) -> f64 {
 }
 
 /// `None` when `go_on` (asked between blocks, reporting no progress yet) says stop.
-fn seed_queue<Q: Queue>(ev: &Evaluator, cl: &Clusters, heap: &mut Q, go_on: GoOn) -> Option<usize> {
+fn seed_queue<Q: Queue>(
+    ev: &Evaluator,
+    cl: &Clusters,
+    heap: &mut Q,
+    go_on: Checkpoint,
+) -> Option<usize> {
     let (n, mut priced) = (cl.len() as u32, 0);
     let mut block = Vec::with_capacity(PRICE_BLOCK);
     for a in 0..n {
@@ -768,9 +776,6 @@ pub(super) fn snapshot(
         verts: roots.par_iter().map(|&r| ev.all_verts(cl, r)).collect(),
         members: roots.par_iter().map(|&r| cl.faces(r).collect()).collect(),
         q: Vec::new(),
-        bound: None,
-        shortfall: None,
-        known: Vec::new(),
     };
     snap.q = roots.iter().map(|&r| cl.q[r as usize]).collect();
     Some(snap)

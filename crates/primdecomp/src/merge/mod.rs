@@ -17,4 +17,4 @@ pub(crate) mod worker;
 
 pub(crate) use cluster::Clusters;
 pub(crate) use cost::{Evaluator, Workspace};
-pub(crate) use driver::{run, run_for_tree, FitCounts, MergeOutput, Snapshot, TreeHulls};
+pub(crate) use driver::{run, run_for_tree, FitCounts, MergeLog, MergeOutput, Snapshot, TreeHulls};

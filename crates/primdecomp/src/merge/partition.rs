@@ -354,7 +354,7 @@ fn merge_one(
     mut pairs: Vec<(u32, u32)>,
     target: usize,
     kind: Kind,
-    progress: crate::progress::GoOn,
+    progress: crate::progress::Checkpoint,
 ) -> (Groups, MergeOutput) {
     if let FaceData::PerPart { lists, .. } = faces {
         pairs = part_pairs(part, lists);
@@ -427,7 +427,7 @@ pub fn group_clusters(
     p1: Phase1,
     faces: usize,
     lists: &Lists,
-    go_on: crate::progress::GoOn,
+    go_on: crate::progress::Checkpoint,
 ) -> Option<Clusters> {
     // Every group as (its lowest face, its part, its index there), in face order.
     let mut order: Vec<(u32, u32, u32)> = Vec::with_capacity(p1.groups());
@@ -495,7 +495,7 @@ pub fn clusters(
     q: Vec<Sym3>,
     volume: Vec<f64>,
     lists: Lists,
-    go_on: crate::progress::GoOn,
+    go_on: crate::progress::Checkpoint,
 ) -> Option<Clusters> {
     let mut cl = Clusters::with_lists(q, volume, lists);
     let mut unresolved = Vec::with_capacity(p1.groups());

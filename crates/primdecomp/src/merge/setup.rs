@@ -7,7 +7,7 @@ use crate::input::mesh::Mesh;
 use crate::math::{Sym3, V3};
 use crate::params::{Params, Reprice};
 use crate::primitive::fit::{FitConfig, FrameSearch};
-use crate::progress::GoOn;
+use crate::progress::Checkpoint;
 use rayon::prelude::*;
 
 /// Smallest half-extent or radius of any primitive, whatever the mesh and settings.
@@ -76,7 +76,7 @@ pub(crate) const SEED_BLOCK: usize = 1 << 16;
 
 /// Volume of each face's own primitive, in parallel, a block at a time (stops early,
 /// with the rest left 0, when `go_on` says so; the caller then returns cancelled).
-pub(crate) fn seed_volumes(ev: &Evaluator, q: &[Sym3], go_on: GoOn) -> Vec<f64> {
+pub(crate) fn seed_volumes(ev: &Evaluator, q: &[Sym3], go_on: Checkpoint) -> Vec<f64> {
     let mut out = vec![0.0; q.len()];
     for (b, block) in out.chunks_mut(SEED_BLOCK).enumerate() {
         let start = b * SEED_BLOCK;

@@ -5,14 +5,14 @@
 use super::components;
 use super::partition;
 use super::rim::FaceAdjacency;
-use super::{Clusters, Evaluator, MergeOutput};
+use super::{Clusters, Evaluator, MergeLog, MergeOutput};
 use crate::input::mesh::Mesh;
 use crate::input::orient;
 use crate::math::Sym3;
 use crate::output::result::Stats;
 use crate::params::Params;
-use crate::progress::clock::Laps;
-use crate::progress::GoOn;
+use crate::progress::clock::PhaseTimes;
+use crate::progress::Checkpoint;
 
 /// The targets in the order the merge loop reaches them: decreasing, each once.
 pub(crate) fn merge_order(targets: &[usize]) -> Vec<usize> {
@@ -40,7 +40,7 @@ impl Surface {
         welded: &[u32],
         (offsets, adj): (Vec<u32>, Vec<u32>),
         params: &Params,
-        go_on: GoOn,
+        go_on: Checkpoint,
     ) -> Option<Surface> {
         let used = params.plates.rim_weight != 0.0 || params.plates.flush_plates;
         let signs = match used {
@@ -74,13 +74,17 @@ pub(crate) struct MergeInput {
     pub(crate) pairs: Vec<(u32, u32)>,
     /// The pairs as neighbour lists, shared with the surface.
     pub(crate) lists: partition::Lists,
-    /// Every merge is logged for the merge tree (a goal that [`Goal::uses_cut`](crate::Goal::uses_cut)).
-    pub(crate) tree: bool,
-    /// The clusters' points are kept for the tree's nodes of more faces
-    /// (`merge::TreeHulls`).
-    pub(crate) hulls_over: Option<usize>,
+    /// For the merge tree (the cut's variant): every merge logged ([`MergeLog`]).
+    pub(crate) tree: Option<ForTree>,
     /// `Fit::tangent_eps`, for spatial parts' own operators.
     pub(crate) tangent_eps: f64,
+}
+
+/// What the merge loop keeps for the merge tree besides every merge: the points of
+/// its clusters of more than `hulls_over` faces (`merge::TreeHulls`; `None`: none).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ForTree {
+    pub(crate) hulls_over: Option<usize>,
 }
 
 /// How the merge loop starts, chosen once per run from the input and settings.
@@ -141,23 +145,23 @@ impl FirstPhase {
 }
 
 /// The merge stage: the first phase, then the global loop through the targets it did
-/// not reach. Progress is the fraction of the merges down to the last target.
+/// not reach, and for the merge tree every merge ([`MergeLog`], empty without
+/// `input.tree`). Progress is the fraction of the merges down to the last target.
 pub(crate) fn merge(
     ev: &Evaluator,
     input: MergeInput,
     first: FirstPhase,
     targets: &[usize],
     stats: &mut Stats,
-    go_on: GoOn,
-    laps: &mut Laps,
-) -> MergeOutput {
+    go_on: Checkpoint,
+    laps: &mut PhaseTimes,
+) -> (MergeOutput, MergeLog) {
     let MergeInput {
         q,
         volumes,
         pairs,
         lists,
         tree,
-        hulls_over,
         tangent_eps,
     } = input;
     let last = *targets.last().expect("validated: one target or more");
@@ -179,7 +183,7 @@ pub(crate) fn merge(
             stats.merges = p1.merges;
             add_fits(stats, p1.fits);
             if p1.stopped {
-                return MergeOutput::stopped();
+                return (MergeOutput::stopped(), MergeLog::default());
             }
             // Phase 2 starts from one cluster per group (linear in the faces). The
             // faces' pairs, operators and volumes are done with: the groups hold theirs.
@@ -190,14 +194,18 @@ pub(crate) fn merge(
                 partition::group_clusters(p1, faces, &lists, &|_| merged_so_far(so_far))
             });
             let Some(clusters) = clusters else {
-                return MergeOutput::stopped();
+                return (MergeOutput::stopped(), MergeLog::default());
             };
             (Some(clusters), Vec::new())
         }
         FirstPhase::Components(comps) => {
             let count = comps.len();
             // The merge tree needs every merge traced, whatever the targets.
-            let trace_from = if tree { usize::MAX } else { targets[0] };
+            let trace_from = if tree.is_some() {
+                usize::MAX
+            } else {
+                targets[0]
+            };
             let p1 = laps.time("components", || {
                 let (q, v, p) = (&q, &volumes, &pairs);
                 components::merge_components(ev, q, v, p, comps, trace_from, &merged_so_far)
@@ -205,7 +213,7 @@ pub(crate) fn merge(
             stats.merges = p1.merges;
             add_fits(stats, p1.fits);
             if p1.stopped {
-                return MergeOutput::stopped();
+                return (MergeOutput::stopped(), MergeLog::default());
             }
             let (early, replayed, after) =
                 components::snapshots(ev, &p1, &q, &volumes, &pairs, targets, count);
@@ -219,41 +227,49 @@ pub(crate) fn merge(
                 let so_far = stats.merges;
                 match partition::clusters(p1, q, volumes, lists, &|_| merged_so_far(so_far)) {
                     Some(cl) => (Some(cl), early),
-                    None => return MergeOutput::stopped(),
+                    None => return (MergeOutput::stopped(), MergeLog::default()),
                 }
             }
         }
     };
     let Some(clusters) = clusters else {
-        return MergeOutput {
+        let out = MergeOutput {
             snapshots: early,
-            log: tree_log,
-            log_from_faces: true,
             ..MergeOutput::default()
         };
+        let log = MergeLog {
+            merges: tree_log,
+            from_faces: true,
+            ..MergeLog::default()
+        };
+        return (out, log);
     };
     let done = stats.merges as f64;
     let rest = clusters.live.saturating_sub(last) as f64;
     let phase2 = |f: f64| go_on((done + f * rest) / total);
-    let mut out = if tree {
-        crate::merge::run_for_tree(ev, clusters, &targets[early.len()..], hulls_over, &phase2)
-    } else {
-        crate::merge::run(ev, clusters, &targets[early.len()..], &phase2)
+    let (mut out, mut log) = match tree {
+        Some(t) => {
+            super::run_for_tree(ev, clusters, &targets[early.len()..], t.hulls_over, &phase2)
+        }
+        None => {
+            let out = super::run(ev, clusters, &targets[early.len()..], &phase2);
+            (out, MergeLog::default())
+        }
     };
     // The components' merges come first in the global order.
     let before = tree_log.len() as u32;
-    out.hulls
+    log.hulls
         .merges
         .iter_mut()
         .for_each(|(at, _)| *at += before);
-    out.log.splice(0..0, tree_log);
-    out.log_from_faces = from_faces;
+    log.merges.splice(0..0, tree_log);
+    log.from_faces = from_faces;
     out.snapshots.splice(0..0, early);
     stats.bridge_edges = out.bridge_edges;
     stats.merges += out.merges;
     stats.merges_ahead += out.ahead;
     add_fits(stats, out.fits);
-    out
+    (out, log)
 }
 
 pub(crate) fn add_fits(stats: &mut Stats, fits: crate::merge::FitCounts) {

@@ -116,9 +116,9 @@ fn split(v: u64) -> (u32, usize) {
     ((v >> 32) as u32, (v & u32::MAX as u64) as usize)
 }
 
-/// Counters for tests and measurements.
+/// What the pricer shared with its worker thread, for tests and measurements.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Stats {
+pub struct PricerCounts {
     /// Batches shared with the worker.
     pub shared: u64,
     /// Neighbours the worker priced (and the main thread used).
@@ -137,7 +137,7 @@ pub struct Pricer<'p> {
     found: Vec<Option<Candidate>>,
     /// Which neighbours of the batch this thread priced.
     mine: Vec<bool>,
-    pub stats: Stats,
+    pub stats: PricerCounts,
 }
 
 /// Runs `f` with a [`Pricer`] that has a worker thread when rayon's pool has two or
@@ -185,7 +185,7 @@ impl<'p> Pricer<'p> {
             epoch: 0,
             found: Vec::new(),
             mine: Vec::new(),
-            stats: Stats::default(),
+            stats: PricerCounts::default(),
         }
     }
 

@@ -27,7 +27,7 @@ const ROUNDS: usize = 4;
 const REACH: usize = 8;
 
 /// The search for one requested target.
-struct Search {
+struct FillSearch {
     /// The N asked for.
     want: usize,
     /// Best level so far: the most primitives not above `want`, smallest T on ties.
@@ -38,8 +38,8 @@ struct Search {
     done: bool,
 }
 
-impl Search {
-    fn new(level: Level, faces: usize) -> Search {
+impl FillSearch {
+    fn new(level: Level, faces: usize) -> FillSearch {
         let want = level.target;
         let short = level.primitives.len() < want;
         // Targets above the face count merge nothing more than the face count itself.
@@ -48,7 +48,7 @@ impl Search {
         } else {
             want + 1
         };
-        Search {
+        FillSearch {
             want,
             best: level,
             hi,
@@ -108,7 +108,7 @@ impl Search {
     }
 }
 
-/// One bottom-up pass through a goal's targets (`decompose::pass::run`).
+/// One bottom-up pass through a goal's targets (`decompose::pass`).
 pub(crate) type Pass = dyn Fn(&Mesh, &Params, &dyn Progress) -> Result<Decomposition>;
 
 /// [`crate::decompose_with`] for a [`Goal::Fill`]: the first pass at the requested
@@ -132,9 +132,12 @@ pub(crate) fn fill(
     let mut dec = pass(mesh, &once, &Share::new(progress, 0.0, 0.5))?;
     let faces = mesh.face_count();
     let levels = std::mem::take(&mut dec.levels);
-    let mut searches: Vec<Search> = levels.into_iter().map(|l| Search::new(l, faces)).collect();
+    let mut searches: Vec<FillSearch> = levels
+        .into_iter()
+        .map(|l| FillSearch::new(l, faces))
+        .collect();
     for round in 1..=ROUNDS {
-        let mut targets: Vec<usize> = searches.iter().flat_map(Search::ladder).collect();
+        let mut targets: Vec<usize> = searches.iter().flat_map(FillSearch::ladder).collect();
         targets.sort_unstable();
         targets.dedup();
         if targets.is_empty() {

@@ -21,64 +21,66 @@ use nested::{keep_mask, Cleanup};
 /// by the run when a step needs them, and with a minimum thickness the input as rays
 /// see it (its interior on a voxel grid), for plates thickened inward
 /// (docs/decisions/0033).
-pub(crate) struct Input<'a> {
+pub(crate) struct Prepared<'a> {
     tris: Option<&'a Triangles<'a>>,
-    thick: Option<thicken::Input<'a>>,
+    thick: Option<thicken::Interior<'a>>,
 }
 
-impl<'a> Input<'a> {
+impl<'a> Prepared<'a> {
     pub(crate) fn new(ev: &Evaluator, params: &Params, tris: Option<&'a Triangles>) -> Self {
         let thick = tris
             .filter(|_| params.plates.min_thickness > 0.0)
-            .map(|t| thicken::Input::build(ev, t));
-        Input { tris, thick }
+            .map(|t| thicken::Interior::build(ev, t));
+        Prepared { tris, thick }
     }
 }
 
-/// One level per target of `params.goal` (in the order given) from the merge
-/// loop's snapshots.
+/// One level per target of `params.goal` (in the order given) from the greedy merge
+/// loop's snapshots (one per distinct target), each post-processed once.
 pub(crate) fn levels(
     ev: &Evaluator,
-    mut snaps: Vec<Snapshot>,
+    snaps: Vec<Snapshot>,
     params: &Params,
-    input: &Input,
+    input: &Prepared,
 ) -> Vec<Level> {
-    let diag = ev.mesh.diagonal();
-    let (tris, thick) = (input.tris, &input.thick);
-    for snap in &mut snaps {
-        let mut q = std::mem::take(&mut snap.q);
-        // Solid pricing: near-duplicate primitives become one (docs/decisions/0023).
-        if ev.solid.is_some() {
-            absorb::absorb(ev, snap, &mut q);
-        }
-        // Plates in one plane the merge left apart become one where that adds no
-        // area (docs/decisions/0028).
-        if ev.join_plates {
-            plates::join(ev, snap, &mut q, tris);
-        }
-        // Plates reach inward to the minimum thickness where the input is closed.
-        if let Some(input) = thick {
-            thicken::thicken(ev, input, snap, params.plates.min_thickness * diag);
-        }
-    }
-    // A cut's snapshots are one per target, in order (targets may repeat with
-    // different tolerances); the greedy pass's are found by their count.
-    let targets = params.goal.targets();
-    if params.uses_cut() && snaps.len() == targets.len() {
-        return snaps.iter().map(|s| finish(ev, s, params, diag)).collect();
-    }
-    targets
-        .iter()
+    let done: Vec<Level> = (snaps.into_iter())
+        .map(|snap| level(ev, snap, None, params, input))
+        .collect();
+    (params.goal.targets().iter())
         .map(|&n| {
-            let snap = snaps
-                .iter()
-                .find(|s| s.target == n)
-                .expect("a snapshot per target");
-            finish(ev, snap, params, diag)
+            let level = done.iter().find(|l| l.target == n);
+            level.expect("a snapshot per target").clone()
         })
         .collect()
 }
 
+/// One snapshot post-processed into its level; `bound`: a cut's, the farthest its
+/// primitives may stand from the input, which joined plates keep to.
+pub(crate) fn level(
+    ev: &Evaluator,
+    mut snap: Snapshot,
+    bound: Option<f64>,
+    params: &Params,
+    input: &Prepared,
+) -> Level {
+    let diag = ev.mesh.diagonal();
+    let (tris, thick) = (input.tris, &input.thick);
+    let mut q = std::mem::take(&mut snap.q);
+    // Solid pricing: near-duplicate primitives become one (docs/decisions/0023).
+    if ev.solid.is_some() {
+        absorb::absorb(ev, &mut snap, &mut q);
+    }
+    // Plates in one plane the merge left apart become one where that adds no
+    // area (docs/decisions/0028).
+    if ev.join_plates {
+        plates::join(ev, &mut snap, &mut q, tris, bound);
+    }
+    // Plates reach inward to the minimum thickness where the input is closed.
+    if let Some(input) = thick {
+        thicken::thicken(ev, input, &mut snap, params.plates.min_thickness * diag);
+    }
+    finish(ev, &snap, params, diag)
+}
 /// Removes nested primitives from one snapshot and moves it to world coordinates.
 fn finish(ev: &Evaluator, snap: &Snapshot, params: &Params, diag: f64) -> Level {
     let cleanup = Cleanup {
@@ -90,7 +92,6 @@ fn finish(ev: &Evaluator, snap: &Snapshot, params: &Params, diag: f64) -> Level 
     let mut level = Level {
         target: snap.target,
         merged_to: snap.target,
-        shortfall: snap.shortfall,
         ..Default::default()
     };
     for (i, p) in snap.prims.iter().enumerate() {

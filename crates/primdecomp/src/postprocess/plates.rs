@@ -56,10 +56,16 @@ struct Plate {
 /// Joins pairs of coplanar plates of `snap` into one plate of no more k·V, in rounds
 /// until none is left ([`in_rounds`]); `q` holds each primitive's operator and is
 /// compacted with the snapshot. A cut's snapshot keeps its bound: a joined plate
-/// standing farther from `surface` (the input) than `snap.bound` is refused
+/// standing farther from `surface` (the input) than `bound` is refused
 /// (docs/decisions/0038).
-pub fn join(ev: &Evaluator, snap: &mut Snapshot, q: &mut Vec<Sym3>, surface: Option<&Triangles>) {
-    let keeps = |p: &Primitive, snap: &Snapshot| match (snap.bound, surface) {
+pub fn join(
+    ev: &Evaluator,
+    snap: &mut Snapshot,
+    q: &mut Vec<Sym3>,
+    surface: Option<&Triangles>,
+    bound: Option<f64>,
+) {
+    let keeps = |p: &Primitive| match (bound, surface) {
         (Some(bound), Some(s)) => is_within(p, s, bound),
         _ => true,
     };
@@ -150,7 +156,7 @@ fn coplanar_pairs(
     q: &[Sym3],
     alive: &[bool],
     dirty: &[bool],
-    keeps: &(dyn Fn(&Primitive, &Snapshot) -> bool + Sync),
+    keeps: &(dyn Fn(&Primitive) -> bool + Sync),
 ) -> Vec<Candidate> {
     let floor = ev.cfg.min_half;
     let plates: Vec<(usize, Plate)> = (0..snap.prims.len())
@@ -197,7 +203,7 @@ fn coplanar_pairs(
             let joined = gain <= 0.0
                 && fit.prim.plate_axis(floor).is_some()
                 && footprint(&fit.prim, frame).is_some_and(|f| area(&f) <= most)
-                && keeps(&fit.prim, snap);
+                && keeps(&fit.prim);
             joined.then_some((gain, i, j, fit.prim))
         })
         .flatten()

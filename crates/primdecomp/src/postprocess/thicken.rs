@@ -43,15 +43,15 @@ const SKEW: [f64; 2] = [0.0123, 0.0371];
 
 /// The input as rays see it: its triangles (shared with the run, `input::triangles`)
 /// and its interior on the `--solid` voxel grid.
-pub(crate) struct Input<'a> {
+pub(crate) struct Interior<'a> {
     tris: &'a Triangles<'a>,
     solid: Solid,
 }
 
-impl<'a> Input<'a> {
+impl<'a> Interior<'a> {
     /// The interior of `ev`'s mesh beside its triangles `tris`.
-    pub fn build(ev: &Evaluator, tris: &'a Triangles) -> Input<'a> {
-        Input {
+    pub fn build(ev: &Evaluator, tris: &'a Triangles) -> Interior<'a> {
+        Interior {
             tris,
             solid: Solid::build(ev.mesh, solid::CELLS, solid::VOTES),
         }
@@ -60,7 +60,7 @@ impl<'a> Input<'a> {
 
 /// Thickens the plates of `snap` inward to `thickness` (absolute) where the input
 /// allows it (module docs); other primitives are unchanged.
-pub fn thicken(ev: &Evaluator, input: &Input, snap: &mut Snapshot, thickness: f64) {
+pub fn thicken(ev: &Evaluator, input: &Interior, snap: &mut Snapshot, thickness: f64) {
     let grown: Vec<Primitive> = (0..snap.prims.len())
         .into_par_iter()
         .map_init(Vec::new, |stack, i| {
@@ -81,7 +81,7 @@ struct Slab {
 /// prism with one-sided faces or the input behind it does not allow it.
 fn grow(
     ev: &Evaluator,
-    input: &Input,
+    input: &Interior,
     p: &Primitive,
     members: &[u32],
     thickness: f64,
@@ -171,7 +171,7 @@ fn inner_grid(p: &Primitive, slab: &Slab) -> Vec<V3> {
 /// stops the plate too) times [`DEPTH_SHARE`] caps it, and at least half the added
 /// slab's middles must lie in the input's interior; `None` otherwise.
 fn allowed(
-    input: &Input,
+    input: &Interior,
     slab: &Slab,
     samples: &[V3],
     thickness: f64,

@@ -4,7 +4,7 @@
 use crate::error::{Error, Result};
 use crate::output::result::Timings;
 use crate::progress::wallclock::Instant;
-use crate::progress::{GoOn, Progress, Stage};
+use crate::progress::{Checkpoint, Progress, Stage};
 
 /// Times each stage, reports it to the caller, and turns a cancellation into
 /// [`Error::Cancelled`] between stages (and within them through the callback).
@@ -48,7 +48,7 @@ impl<'p> Clock<'p> {
         &mut self,
         stage: Stage,
         name: &str,
-        work: impl FnOnce(GoOn) -> T,
+        work: impl FnOnce(Checkpoint) -> T,
     ) -> Result<T> {
         let p = self.progress;
         self.step(stage, name, || work(&|_| !p.cancelled()))
@@ -67,13 +67,13 @@ impl<'p> Clock<'p> {
     }
 
     /// Runs `work` as (the last step of) `stage`, timed as `name`. `work` gets a callback for
-    /// the fraction of the stage done that says whether to go on, and [`Laps`] to time
+    /// the fraction of the stage done that says whether to go on, and [`PhaseTimes`] to time
     /// phases of its own (recorded before `name`, which keeps the rest).
     pub(crate) fn stage<T>(
         &mut self,
         stage: Stage,
         name: &str,
-        work: impl FnOnce(GoOn, &mut Laps) -> T,
+        work: impl FnOnce(Checkpoint, &mut PhaseTimes) -> T,
     ) -> Result<T> {
         self.start(stage)?;
         let p = self.progress;
@@ -82,7 +82,7 @@ impl<'p> Clock<'p> {
             !p.cancelled()
         };
         let now = Instant::now();
-        let mut laps = Laps::default();
+        let mut laps = PhaseTimes::default();
         let out = work(&go_on, &mut laps);
         let mut rest = now.elapsed().as_secs_f64();
         for (lap, secs) in laps.0 {
@@ -100,9 +100,9 @@ impl<'p> Clock<'p> {
 
 /// Phases a stage times on its own (`partitions`, `regroup`, `components`).
 #[derive(Default)]
-pub(crate) struct Laps(Vec<(&'static str, f64)>);
+pub(crate) struct PhaseTimes(Vec<(&'static str, f64)>);
 
-impl Laps {
+impl PhaseTimes {
     pub(crate) fn time<T>(&mut self, name: &'static str, work: impl FnOnce() -> T) -> T {
         let now = Instant::now();
         let out = work();

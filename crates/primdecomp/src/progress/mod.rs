@@ -182,4 +182,4 @@ impl Progress for Silent {}
 
 /// The callback kernels take: report a fraction of the current stage, and learn
 /// whether to go on (false = stop now).
-pub(crate) type GoOn<'a> = &'a (dyn Fn(f64) -> bool + Sync);
+pub(crate) type Checkpoint<'a> = &'a (dyn Fn(f64) -> bool + Sync);

@@ -32,7 +32,7 @@ pub fn face_quadrics_checked(
     mesh: &Mesh,
     tangent_eps: f64,
     out: &mut Vec<Sym3>,
-    go_on: crate::progress::GoOn,
+    go_on: crate::progress::Checkpoint,
 ) {
     out.clear();
     out.resize(mesh.face_count(), Sym3::ZERO);

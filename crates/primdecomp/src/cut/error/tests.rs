@@ -92,7 +92,7 @@ fn a_capped_cylinder_over_an_open_tube_is_a_radius_off() {
 /// that bound here: a distance said to be found that was not, and a ball said to be
 /// over a tolerance it met. Its cells bounded by their centroids' distances plus
 /// their size, or by one facet, also ran out of splits at 2.2× (0047): they are
-/// bounded by their shadows now (`cut::shadow`).
+/// bounded by their shadows now (`cut::cell_shadow`).
 #[test]
 fn a_ball_over_a_faceted_sphere_is_within_its_facets_depth() {
     let (points, faces) = primdecomp_testkit::shapes::icosphere(1.0, 3);
@@ -112,11 +112,11 @@ fn a_ball_over_a_faceted_sphere_is_within_its_facets_depth() {
     let (_, gap) = tessellation(&ball, surface.diagonal);
     let most = 1.0 + 2.0 * gap - r_min;
     assert!(is_within(&ball, &surface, most));
-    let e = error_until(&ball, &surface, Ask::exact(0.0));
+    let e = error_until(&ball, &surface, StopAt::exact(0.0));
     assert!(e <= loose(most, &surface), "{e} > {most}");
 }
 
-/// What each `Ask` promises, for boxes of several sizes around a cube (the true
+/// What each `StopAt` promises, for boxes of several sizes around a cube (the true
 /// error is the corner's, |h − 1|·√5 for half extents (h, 1, 2h − 1)) and levels
 /// below, at and above it: a result at most `level` means the error is, a result
 /// over `above` that it is over, and otherwise the result bounds it from above.
@@ -131,7 +131,7 @@ fn each_ask_keeps_its_promise() {
         for level in levels {
             for above in [level, 2.0 * level + 0.1, f64::INFINITY] {
                 for coarse in [false, true] {
-                    let ask = Ask {
+                    let ask = StopAt {
                         level,
                         above,
                         coarse,

@@ -184,10 +184,16 @@ fn radix_heap_and_binary_heap_merge_identically() {
 fn the_trees_loop_keeps_the_clusters_unfitted() {
     with_demo(|ev, fresh| {
         let targets = [400, 40, 1];
-        let whole = run(ev, fresh(), &targets, &|_| true);
-        let tree = run_for_tree(ev, fresh(), &targets, None, &|_| true);
-        assert_eq!(whole.log, tree.log);
-        assert_eq!(whole.log_at_first, tree.log_at_first);
+        let (whole, whole_log) = with_pricer(ev, |p| {
+            let mut log = MergeLog::default();
+            let go_on = &|_| true;
+            let out =
+                merge_loop::<RadixHeap>(ev, fresh(), &targets, go_on, p, Scope::Whole, &mut log);
+            (out.0, log)
+        });
+        let (tree, tree_log) = run_for_tree(ev, fresh(), &targets, None, &|_| true);
+        assert_eq!(whole_log.merges, tree_log.merges);
+        assert_eq!(whole_log.at_first, tree_log.at_first);
         assert_eq!(whole.snapshots.len(), tree.snapshots.len());
         for (w, t) in whole.snapshots.iter().zip(&tree.snapshots) {
             assert!(!w.prims.is_empty() && t.prims.is_empty() && t.verts.is_empty());
@@ -206,12 +212,12 @@ fn the_trees_loop_keeps_the_clusters_unfitted() {
 fn the_trees_loop_keeps_its_clusters_hulls() {
     with_demo(|ev, fresh| {
         let over = 8;
-        let out = run_for_tree(ev, fresh(), &[400, 1], Some(over), &|_| true);
+        let (out, log) = run_for_tree(ev, fresh(), &[400, 1], Some(over), &|_| true);
         let leaves = &out.snapshots[0];
-        assert_eq!(out.hulls.leaves.len(), leaves.members.len());
-        let log = &out.log[out.log_at_first..];
+        assert_eq!(log.hulls.leaves.len(), leaves.members.len());
+        let hulls = log.hulls.clone().after(log.at_first);
+        let log = &log.merges[log.at_first..];
         let faces = ev.mesh.face_count();
-        let hulls = out.hulls.clone().after(out.log_at_first);
         let tree = crate::cut::MergeTree::build(&leaves.members, &leaves.q, log, hulls, faces);
         let tol = 1e-9 * ev.mesh.diagonal();
         let reach = |ids: &mut dyn Iterator<Item = u32>, d: V3| {
@@ -259,7 +265,11 @@ fn worker_sharing_merges_as_one_thread_does() {
         let (one, s1) = in_pool(1, || {
             run_counted::<RadixHeap>(ev, fresh(), &targets, &|_| true)
         });
-        assert_eq!(s1, Stats::default(), "one thread must not start a worker");
+        assert_eq!(
+            s1,
+            PricerCounts::default(),
+            "one thread must not start a worker"
+        );
         let mut used = 0;
         for _ in 0..10 {
             let (two, s2) = in_pool(2, || {

@@ -28,7 +28,7 @@ impl Cutter<'_> {
                 .filter(|n| open(n))
                 .map(|n| ex.fitted[n].clone())
                 .collect();
-            // Splits whose parts are carried add no node ([`super::carry`]).
+            // Splits whose parts are carried add no node ([`super::carried_parts`]).
             let mut most = short.saturating_mul(super::SPLITS_PER_COUNT);
             while short > 0 && most > 0 {
                 most -= 1;

@@ -65,7 +65,7 @@ fn answers(a: f64, r: f64, above: f64) -> bool {
 mod tests {
     use super::*;
     use crate::cut::error::tests::random_primitive;
-    use crate::cut::error::{error_until, Ask};
+    use crate::cut::error::{error_until, StopAt};
     use crate::input::triangles::Triangles;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
@@ -82,7 +82,7 @@ mod tests {
         let d = mesh.diagonal();
         let mut rng = ChaCha8Rng::seed_from_u64(5);
         let measure = |p: &Primitive, above: f64| {
-            let ask = Ask {
+            let ask = StopAt {
                 level: 0.01 * d,
                 above,
                 coarse: true,

@@ -4,7 +4,7 @@
 //! count on the nodes that set the worst error, and the cut of the count is then the
 //! only cut of the nodes reached with that many nodes: nothing is left for the mean.
 //! So a cut of counts alone is explored a second time: a node over
-//! [`SLACK`] times the least worst error the count allows is split first, worst
+//! [`LOOSE_FACTOR`] times the least worst error the count allows is split first, worst
 //! first, and the rest of the count goes where the greedy pass would have put it, to
 //! the latest merges first (the pass merges the cheapest pairs first, §3.3, so its
 //! last merges added the most volume).
@@ -15,7 +15,7 @@ use std::collections::HashMap;
 
 /// A cut of a count stands at most this many times the least worst error the count
 /// allows; within it the count goes to the latest merges.
-pub(crate) const SLACK: f64 = 1.25;
+pub(crate) const LOOSE_FACTOR: f64 = 1.25;
 
 /// The order [`Cutter::explore`] splits in: the worst node first, or, with a bound,
 /// the worst of the nodes over it first and then the latest merge.
@@ -33,7 +33,7 @@ pub(super) struct Queued {
 
 impl Order {
     /// `e` with its key; `tree` is the tree's node count (ids at or past it are
-    /// groups of spatial parts, [`super::carry`], merged before any logged merge
+    /// groups of spatial parts, [`super::carried_parts`], merged before any logged merge
     /// and so split first).
     pub(super) fn queued(self, e: Entry, tree: u32) -> Queued {
         let key = match self {
@@ -74,7 +74,7 @@ impl Ord for Queued {
 
 impl Cutter<'_> {
     /// With one request of a count alone (no tolerance, no bytes): the tree
-    /// explored again in [`Order::Loose`] under [`SLACK`] times the error of its cut
+    /// explored again in [`Order::Loose`] under [`LOOSE_FACTOR`] times the error of its cut
     /// of `ex` (the one of `cuts`), the fits of `known` and `ex` kept, and the cut
     /// where the loose splits stopped (where that stands within the bound and the
     /// count; else the one chosen from the nodes reached) — if it stands within the
@@ -93,7 +93,7 @@ impl Cutter<'_> {
         if r.tolerance.is_some() || r.bytes.is_some() {
             return None;
         }
-        let bound = SLACK * worst(ex, cut);
+        let bound = LOOSE_FACTOR * worst(ex, cut);
         // Groups are numbered anew by each exploration.
         let tree = self.tree.nodes.len() as u32;
         known.extend(

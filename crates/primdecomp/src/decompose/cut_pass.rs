@@ -1,0 +1,83 @@
+//! The cut variant of a pass (docs/decisions/0032, a deviation from §3.3): merging
+//! goes on to one cluster, every merge logged as the merge tree, and each level is
+//! the cut of that tree its tolerance, byte budget or count asks for, post-processed
+//! (§3.4) with its distance to the input recorded.
+
+use super::stages::{self, evaluator_of, merge_stage, Graph, Seeds};
+use crate::cut::{limits, recut, tree, LevelCut, LEAVES_PER_TARGET};
+use crate::error::{Error, Result};
+use crate::input::mesh::Mesh;
+use crate::merge::stage::{merge_order, FirstPhase, ForTree};
+use crate::output::result::{Decomposition, Level};
+use crate::params::Params;
+use crate::postprocess;
+use crate::progress::clock::Clock;
+use crate::progress::Stage;
+
+/// The levels of `params.goal`, each a cut of the merge tree, post-processed.
+pub(crate) fn run(
+    mesh: &Mesh,
+    params: &Params,
+    mut graph: Graph,
+    mut clock: Clock,
+) -> Result<Decomposition> {
+    let largest = params.goal.targets().into_iter().max().unwrap_or(1);
+    // The tree's leaves (a snapshot of a few times the largest target, needed only
+    // after spatial parts: below) up to its roots (docs/decisions/0032, 0034).
+    let leaves = largest.saturating_mul(LEAVES_PER_TARGET);
+    let mut targets = merge_order(&[leaves.min(mesh.face_count()).max(largest), 1]);
+    // Where the merge loop starts: spatial parts merge down to their share of the
+    // largest count's groups, the greedy's own, and the tree's leaves come from the
+    // global loop after them (docs/decisions/0042); or components, or the faces.
+    let first = FirstPhase::choose(mesh, params, &graph.pairs, targets[0], largest);
+    let from_faces = !matches!(first, FirstPhase::Parts { .. });
+    // One operator per face (§3.1), the faces' surface and the input's interior.
+    let (seeds, around) = Seeds::build(&mut clock, mesh, params, &mut graph, &first)?;
+    let ev = evaluator_of(mesh, &graph, params, &around);
+    // One primitive per face seeds the volumes (Alg. 1, line 2).
+    let volumes = stages::seed(&mut clock, &ev, seeds.quadrics(), &first)?;
+    // Without spatial parts every merge is logged and the tree's leaves are the faces:
+    // the leaf snapshot would be fitted for nothing. Those leaves keep their operators.
+    let mut face_q = Vec::new();
+    if from_faces {
+        targets = vec![1];
+        face_q = seeds.quadrics().to_vec();
+    }
+    let keep = ForTree {
+        hulls_over: tree::tree_hulls_over(mesh, params, largest),
+    };
+    let (input, mut stats) = seeds.merge_input(volumes, &around, Some(keep), params);
+    // Merging down to the roots, every merge logged: the merge tree (Alg. 1's loop).
+    let (merged, log) = merge_stage(&mut clock, &ev, (input, first), &targets, &mut stats)?;
+    if merged.stopped {
+        return Err(Error::Cancelled);
+    }
+    // The input's triangles, once, for the cut's distances and thickened plates, and
+    // its interior for plates thickened inward (--min-thickness).
+    let tris = stages::triangles(&mut clock, mesh, true)?.ok_or(Error::Cancelled)?;
+    let reads = stages::interior(&mut clock, &ev, params, Some(&tris))?;
+    // Post-processing (§3.4) is the step each cut is measured after: plates joined
+    // within the cut's bound, duplicates absorbed, nested primitives removed.
+    let postprocess = |cuts: &[LevelCut]| -> Vec<Level> {
+        (cuts.iter())
+            .map(|c| Level {
+                shortfall: c.shortfall,
+                ..postprocess::level(&ev, c.snapshot.clone(), Some(c.bound), params, &reads)
+            })
+            .collect()
+    };
+    // The cut of the merge tree at each target where the error is (0032), its counts
+    // and bytes spent on what post-processing keeps (0044).
+    let requests = limits::requests(params, mesh);
+    let cuts = clock.stage(Stage::Postprocess, "cut", |_, _| {
+        let tree = tree::merge_tree(&ev, &merged, log, &face_q);
+        recut::snapshots(&ev, &tree, &requests, &tris, &postprocess)
+    })?;
+    // The kept cuts post-processed, back to world coordinates.
+    let mut levels = clock.stage(Stage::Postprocess, "postprocess", |_, _| postprocess(&cuts))?;
+    // What each level asked and how far its primitives stand from the input.
+    clock.stage(Stage::Postprocess, "distance", |_, _| {
+        limits::record_limits(&mut levels, &requests, &cuts, mesh, &tris)
+    })?;
+    Ok(stages::decomposition(mesh, &graph, levels, clock, stats))
+}

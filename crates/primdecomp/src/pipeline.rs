@@ -148,9 +148,14 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
     })?;
     // The input's triangles, once, for the cut's distances and thickened plates.
     let cut = params.uses_cut() && !merged.stopped;
-    let tris = clock.step(Stage::Postprocess, "triangles", || {
-        (cut || params.plates.min_thickness > 0.0).then(|| Triangles::new(mesh))
+    let tris = clock.step_checked(Stage::Postprocess, "triangles", |go_on| {
+        (cut || params.plates.min_thickness > 0.0).then(|| Triangles::new_checked(mesh, go_on))
     })?;
+    let tris = match tris {
+        Some(None) => return Err(Error::Cancelled),
+        Some(Some(tris)) => Some(tris),
+        None => None,
+    };
     // The input's interior, once, for plates thickened inward (--min-thickness).
     let post = clock.step(Stage::Postprocess, "interior", || {
         postprocess::Input::new(&ev, params, tris.as_ref())

@@ -15,7 +15,7 @@ It lists, and exits 1 if there is any:
 - back-stage imports, in the crates of LAYERS: a stage's module importing from a later
   stage (the core's order is input -> seed -> merge -> cut -> postprocess -> output),
   a foundation (math, primitive) importing from a stage, or either importing from a
-  driver at the top (decompose, pipeline, ...). Top-level modules may import anything;
+  driver at the top (decompose, ...). Top-level modules may import anything;
   ALLOWED lists the exceptions, each with its reason.
 
 Usage: scripts/module_cycles.py [CRATE_DIR...] (default: every crates/*/src)."""

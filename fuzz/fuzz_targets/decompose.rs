@@ -86,7 +86,7 @@ fn params(u: &mut Unstructured) -> Result<Params> {
         k => Partitions::Fixed([2, 3, 8][k as usize - 1]),
     };
     // After that (an exhausted input reads false, as grown): the budget search's extra
-    // passes (budget.rs) on hostile input.
+    // passes (postprocess/fill.rs) on hostile input.
     let fill = u.arbitrary::<bool>()?;
     // Once `outward_weight` (removed: docs/decisions/0022); read still.
     if u.int_in_range(0..=3)? == 1 {

@@ -1,15 +1,16 @@
 //! The library's entry points: check the settings, then one bottom-up pass
-//! ([`crate::pipeline`]) or, to fill each target's budget, several (`crate::budget`).
+//! ([`pass`]) or, to fill each target's budget, several (`crate::postprocess::fill`).
 
 pub(crate) mod objects;
+pub(crate) mod pass;
 pub(crate) mod tiles;
 
 use crate::error::Result;
 use crate::input::mesh::Mesh;
 use crate::output::result::Decomposition;
 use crate::params::{short_of, Goal, Params};
+use crate::postprocess::fill;
 use crate::progress::{Progress, Silent};
-use crate::{budget, pipeline};
 
 /// Decomposes `mesh` into primitives, one [`crate::Level`] per target in
 /// `params.goal` (§3), one per count, tolerance or byte budget ([`crate::Goal`]):
@@ -44,9 +45,9 @@ pub fn decompose_with(
     params.validate()?;
     if let Goal::Fill { .. } = params.goal {
         // Nested primitives removed leave room: merge less to fill it.
-        return budget::fill(mesh, params, progress);
+        return fill::fill(mesh, params, progress, &pass::run);
     }
-    let mut dec = pipeline::run(mesh, params, progress)?;
+    let mut dec = pass::run(mesh, params, progress)?;
     // A greedy level post-processing left short of its count is cut from the merge
     // tree instead, as on several parts (docs/decisions/0054); the other levels stay
     // the greedy's, so each level is what its own run gives.
@@ -67,7 +68,7 @@ pub fn decompose_with(
         goal: Goal::cut_counts(short.iter().map(|&i| targets[i]).collect()),
         ..params.clone()
     };
-    let cut = pipeline::run(mesh, &recut, progress)?;
+    let cut = pass::run(mesh, &recut, progress)?;
     for (&i, level) in short.iter().zip(cut.levels) {
         dec.levels[i] = level;
     }

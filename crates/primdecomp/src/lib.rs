@@ -63,7 +63,6 @@
 // Loops over the three axes index several parallel arrays; iterators obscure them.
 #![allow(clippy::needless_range_loop)]
 
-mod budget;
 mod cut;
 mod decompose;
 mod error;
@@ -72,11 +71,9 @@ pub mod math;
 mod merge;
 mod output;
 mod params;
-mod pipeline;
 mod postprocess;
 mod primitive;
 mod progress;
-mod recut;
 mod seed;
 
 pub use decompose::objects::{decompose_objects, ObjectResult, ObjectTarget, Objects};
@@ -120,9 +117,9 @@ pub mod internals {
     use crate::merge::driver::MergeOutput;
     pub use crate::merge::heap::StdHeap;
     pub use crate::merge::rim::{FaceAdjacency, Surroundings};
+    pub use crate::merge::setup::evaluator;
     pub use crate::merge::worker::with_pricer;
     pub use crate::params::{AUTO_MIN_FACES, AUTO_PARTS};
-    pub use crate::pipeline::evaluator;
     pub use crate::postprocess::nested::{keep_mask, Cleanup};
 
     /// Faces sharing an edge, by the welded indices `welded`.
@@ -135,7 +132,7 @@ pub mod internals {
 
     /// Each face's seed volume.
     pub fn seed_volumes(ev: &Evaluator, q: &[Sym3]) -> Vec<f64> {
-        crate::pipeline::seed_volumes(ev, q, &|_| true)
+        crate::merge::setup::seed_volumes(ev, q, &|_| true)
     }
 
     /// The merge loop through `targets` (decreasing).

@@ -1,4 +1,4 @@
-//! `Goal::Fill` (src/budget.rs): a target N that post-processing left short is met
+//! `Goal::Fill` (src/postprocess/fill.rs): a target N that post-processing left short is met
 //! by merging less. Each result must hold at most N primitives, at least as many as
 //! the plain run, enclose every face (the independent oracle), be exactly the plain
 //! engine's level at the merge target it reports, and not depend on the thread count.

@@ -36,7 +36,7 @@ impl Measures {
         }
         let r = measure();
         let mut map = self.by_box.lock().unwrap_or_else(|e| e.into_inner());
-        map.entry(super::key(prim))
+        map.entry(super::limits::key(prim))
             .or_default()
             .push((*prim, above, r));
         r
@@ -45,7 +45,7 @@ impl Measures {
     /// The answer a measure of `prim` with `above` would give, if one kept tells.
     fn get(&self, prim: &Primitive, above: f64) -> Option<f64> {
         let map = self.by_box.lock().unwrap_or_else(|e| e.into_inner());
-        let kept = map.get(&super::key(prim))?;
+        let kept = map.get(&super::limits::key(prim))?;
         kept.iter()
             .filter(|(p, _, _)| p == prim)
             .find(|&&(_, a, r)| answers(a, r, above))

@@ -13,12 +13,15 @@
 //! the mesh.
 
 mod carry;
+mod choose;
 pub(crate) mod error;
 mod hulls;
+pub(crate) mod limits;
 mod loose;
 mod mean;
 mod memo;
 mod nearest;
+pub(crate) mod recut;
 mod shadow;
 mod spend;
 pub(crate) mod tree;
@@ -26,18 +29,19 @@ pub(crate) mod tree;
 use crate::input::triangles::Triangles;
 use crate::math::{Sym3, V3};
 use crate::merge::{Evaluator, Snapshot, Workspace};
-use crate::output::result::Shortfall;
 use crate::primitive::Primitive;
+pub(crate) use choose::fits;
+use choose::worst;
 #[cfg(test)]
 use error::error_of;
-use error::{error_until, worst_error, Ask};
+use error::{error_until, Ask};
 use hulls::{HullScratch, NodeHulls};
 pub(crate) use loose::SLACK;
 use loose::{Order, Queued};
 pub(crate) use mean::mean_distance;
 use rayon::prelude::*;
 use std::cmp::Ordering;
-use std::collections::{BTreeSet, BinaryHeap, HashMap};
+use std::collections::{BinaryHeap, HashMap};
 pub(crate) use tree::MergeTree;
 
 /// With spatial parts merged first (their merges are not logged), the tree's leaves
@@ -138,18 +142,6 @@ struct Explored {
     bounds: HashMap<u32, (V3, V3)>,
     points: HashMap<u32, Vec<V3>>,
     capped: bool,
-}
-
-/// What the cut of a node's subtree costs under one error bound: its nodes and bytes,
-/// its worst error, the least worst error any cut of the subtree reaches, and whether
-/// the node itself is kept (else its parts' cuts).
-#[derive(Clone, Copy, Default)]
-struct Cost {
-    count: usize,
-    bytes: usize,
-    worst: f64,
-    best: f64,
-    own: bool,
 }
 
 /// What a cut is made from: the fit settings, the tree, its nodes' hulls and the
@@ -577,168 +569,6 @@ impl<'a> Cutter<'a> {
         ready
     }
 
-    /// With a tolerance, the cut of fewest nodes within it, if the caps allow it.
-    fn within(&self, ex: &Explored, r: &Request) -> Option<Vec<u32>> {
-        let cut = self.cheapest(ex, r.tolerance?, r.bytes.is_some());
-        fits(r, totals(ex, &cut)).then_some(cut)
-    }
-
-    /// The cut for `r`: with a tolerance the fewest nodes within it if the caps allow,
-    /// else the least error bound the caps allow (searched over the nodes' errors),
-    /// then filled — splits in the order they were made, while both children stay
-    /// within the bound and the caps allow — so that the count is used.
-    fn choose(&self, ex: &Explored, r: &Request) -> Vec<u32> {
-        if let Some(cut) = self.within(ex, r) {
-            return cut;
-        }
-        let mut bounds: Vec<f64> = ex.ids.iter().map(|n| ex.fitted[n].error).collect();
-        bounds.push(0.0);
-        bounds.sort_unstable_by(f64::total_cmp);
-        bounds.dedup();
-        let ok = |i: usize| {
-            fits(
-                r,
-                totals(ex, &self.cheapest(ex, bounds[i], r.bytes.is_some())),
-            )
-        };
-        // The least bound whose cheapest cut fits (feasibility only grows with it).
-        let (mut lo, mut hi) = (0, bounds.len().saturating_sub(1));
-        while lo < hi {
-            let mid = (lo + hi) / 2;
-            match ok(mid) {
-                true => hi = mid,
-                false => lo = mid + 1,
-            }
-        }
-        let table = self.costs(ex, bounds[lo], r.bytes.is_some());
-        let cut = collect(ex, &table, &ex.roots);
-        if !fits(r, totals(ex, &cut)) {
-            // Nothing fits the caps (more roots than the count): the roots.
-            return ex.roots.clone();
-        }
-        let filled = self.fill(ex, cut.clone(), &table, bounds[lo], r);
-        // A count alone still short by more than a few is filled within SLACK times its
-        // least worst error: where one feature no split brings nearer sets that error,
-        // a bound a hair lower must not keep one primitive of the eight asked for
-        // (docs/decisions/0054).
-        let count_alone = r.tolerance.is_none() && r.bytes.is_none();
-        if !count_alone || !crate::params::short_of(filled.len(), r.count, usize::MAX) {
-            return filled;
-        }
-        let bound = SLACK * bounds[lo].max(worst(ex, &cut));
-        let loose = self.costs(ex, bound, false);
-        self.fill(ex, cut, &loose, bound, r)
-    }
-
-    /// The cut of fewest nodes (of least bytes with `by_bytes`) whose every node's
-    /// error is at most `bound`, or where no cut of its subtree is, the least reached
-    /// ([`Cutter::costs`]).
-    fn cheapest(&self, ex: &Explored, bound: f64, by_bytes: bool) -> Vec<u32> {
-        let table = self.costs(ex, bound, by_bytes);
-        collect(ex, &table, &ex.roots)
-    }
-
-    /// For every explored node, the cheapest cut of its subtree whose every node's
-    /// error is at most the node's bound: `bound`, or the least worst error any cut of
-    /// the explored subtree reaches if that is more (a leaf, or a split that does not
-    /// help, is kept rather than made worse). One pass over the ids in increasing
-    /// order sees children first.
-    fn costs(&self, ex: &Explored, bound: f64, by_bytes: bool) -> HashMap<u32, Cost> {
-        let mut cost: HashMap<u32, Cost> = HashMap::with_capacity(ex.ids.len());
-        let key = |c: &Cost| match by_bytes {
-            true => (c.bytes, c.count),
-            false => (c.count, c.bytes),
-        };
-        for &n in &ex.ids {
-            let e = &ex.fitted[&n];
-            let kids = ex.parts.get(&n).map(|parts| {
-                parts.iter().fold(Cost::default(), |k, c| {
-                    let c = cost[c];
-                    Cost {
-                        count: k.count + c.count,
-                        bytes: k.bytes + c.bytes,
-                        worst: k.worst.max(c.worst),
-                        best: k.best.max(c.best),
-                        own: false,
-                    }
-                })
-            });
-            let best = kids.map_or(e.error, |k| k.best.min(e.error));
-            let limit = bound.max(best);
-            let own = Cost {
-                count: 1,
-                bytes: e.bytes(),
-                worst: e.error,
-                best,
-                own: true,
-            };
-            let chosen = match kids {
-                Some(k) if k.worst <= limit && (e.error > limit || key(&k) < key(&own)) => k,
-                _ => own,
-            };
-            cost.insert(n, Cost { best, ..chosen });
-        }
-        cost
-    }
-
-    /// `cut` with the splits of the sequence applied, in order, wherever the node is
-    /// in the cut, the cheapest cut of its parts by `table` (`bound`'s costs)
-    /// stays within `bound` (or the least the node's subtree reaches) and the caps
-    /// still hold: the node is replaced by that cut.
-    fn fill(
-        &self,
-        ex: &Explored,
-        cut: Vec<u32>,
-        table: &HashMap<u32, Cost>,
-        bound: f64,
-        r: &Request,
-    ) -> Vec<u32> {
-        let (mut count, mut bytes) = totals(ex, &cut);
-        let mut set: BTreeSet<u32> = cut.into_iter().collect();
-        for &n in &ex.splits {
-            if count >= r.count {
-                break;
-            }
-            if !set.contains(&n) {
-                continue;
-            }
-            let parts = &ex.parts[&n];
-            let worst = parts.iter().map(|c| table[c].worst).fold(0.0, f64::max);
-            if worst > bound.max(table[&n].best) {
-                continue;
-            }
-            let sub = collect(ex, table, parts);
-            let (c, b) = totals(ex, &sub);
-            let more = bytes + b - ex.fitted[&n].bytes();
-            if count + c - 1 > r.count || r.bytes.is_some_and(|cap| more > cap) {
-                continue;
-            }
-            set.remove(&n);
-            set.extend(sub);
-            count += c - 1;
-            bytes = more;
-        }
-        set.into_iter().collect()
-    }
-
-    /// Why `cut` stands over `r`'s tolerance, if it does: the count, where the count
-    /// stopped the splits or a cut of the nodes reached is within it with more nodes;
-    /// the bytes, where that cut needs more; else the faces ([`Shortfall`]).
-    fn shortfall(&self, ex: &Explored, r: &Request, cut: &[u32]) -> Option<Shortfall> {
-        let t = r.tolerance?;
-        if worst(ex, cut) <= t {
-            return None;
-        }
-        let nearest = self.cheapest(ex, t, r.bytes.is_some());
-        let (count, _) = totals(ex, &nearest);
-        Some(match worst(ex, &nearest) <= t {
-            true if count > r.count => Shortfall::Count,
-            true => Shortfall::Bytes,
-            false if ex.capped => Shortfall::Count,
-            false => Shortfall::Faces,
-        })
-    }
-
     /// The snapshot of one cut for `r`, its nodes in order of their faces' ranges; its
     /// bound is `r`'s tolerance or the farthest its nodes stand, if farther.
     fn snapshot(&self, ex: &Explored, r: &Request, mut cut: Vec<Entry>) -> Snapshot {
@@ -777,104 +607,9 @@ impl<'a> Cutter<'a> {
     }
 }
 
-/// Records on each level what its request asked (tolerance, bytes) and the estimated
-/// farthest its primitives stand from the input ([`worst_error`], in the input's
-/// frame), `known[i]` holding the primitives level `i`'s cut made with their bounds
-/// (those post-processing left as they were need no search past them).
-pub(crate) fn record_limits(
-    levels: &mut [crate::output::result::Level],
-    requests: &[Request],
-    known: &[Vec<(Primitive, f64)>],
-    mesh: &crate::input::mesh::Mesh,
-    surface: &Triangles,
-) {
-    let back = mesh.offset.map(|x| -x);
-    for ((level, r), known) in levels.iter_mut().zip(requests).zip(known) {
-        level.tolerance = r.tolerance;
-        level.max_bytes = r.bytes;
-        let made = made_by_cut(known, mesh.offset);
-        let (prims, bounds): (Vec<Primitive>, Vec<f64>) = level
-            .primitives
-            .iter()
-            .map(|p| {
-                made.get(&key(p))
-                    .and_then(|v| v.iter().find(|m| m.world == *p))
-                    .map_or((p.translated(back), f64::INFINITY), |m| (m.cut, m.bound))
-            })
-            .unzip();
-        let worst = worst_error(&prims, &bounds, surface, r.tolerance.unwrap_or(0.0));
-        level.distance = Some(worst);
-        if r.tolerance.is_some_and(|t| worst <= t) {
-            level.shortfall = None;
-        }
-    }
-}
-
-/// A primitive the cut made, as it made it and in world coordinates, with the upper
-/// bound of its error it proved.
-struct Made {
-    cut: Primitive,
-    world: Primitive,
-    bound: f64,
-}
-
-/// The cut's primitives with a proved bound, by their world primitive's [`key`].
-/// Only those whose move to world coordinates is a translation: a round one is
-/// padded there, so the bound proved before would not be the world primitive's.
-fn made_by_cut(
-    known: &[(Primitive, f64)],
-    offset: crate::math::V3,
-) -> HashMap<[u64; 6], Vec<Made>> {
-    let mut made: HashMap<[u64; 6], Vec<Made>> = HashMap::new();
-    for &(cut, bound) in known {
-        let world = cut.to_world(offset);
-        if world == cut.translated(offset) {
-            let m = Made { cut, world, bound };
-            made.entry(key(&world)).or_default().push(m);
-        }
-    }
-    made
-}
-
-/// A primitive's bounding box's bits: equal primitives have equal keys.
-fn key(p: &Primitive) -> [u64; 6] {
-    let (lo, hi) = p.aabb();
-    [lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]].map(f64::to_bits)
-}
-
 /// The largest count the requests ask for.
 fn largest(requests: &[Request]) -> usize {
     requests.iter().map(|r| r.count).max().unwrap_or(1)
-}
-
-/// The cheapest cuts of `from`'s subtrees by `table` ([`Cutter::costs`]), joined.
-fn collect(ex: &Explored, table: &HashMap<u32, Cost>, from: &[u32]) -> Vec<u32> {
-    let mut cut = Vec::new();
-    let mut stack: Vec<u32> = from.to_vec();
-    while let Some(n) = stack.pop() {
-        let c = table[&n];
-        if c.own {
-            cut.push(n);
-        } else {
-            stack.extend(&ex.parts[&n]);
-        }
-    }
-    cut
-}
-
-/// Whether a cut of `c` = (nodes, bytes) meets `r`'s caps.
-pub(crate) fn fits(r: &Request, c: (usize, usize)) -> bool {
-    c.0 <= r.count && r.bytes.is_none_or(|b| c.1 <= b)
-}
-
-/// The largest error of the nodes of `cut`.
-fn worst(ex: &Explored, cut: &[u32]) -> f64 {
-    cut.iter().map(|n| ex.fitted[n].error).fold(0.0, f64::max)
-}
-
-/// The node count and bytes of `cut`.
-fn totals(ex: &Explored, cut: &[u32]) -> (usize, usize) {
-    (cut.len(), cut.iter().map(|n| ex.fitted[n].bytes()).sum())
 }
 
 #[cfg(test)]

@@ -5,8 +5,10 @@
 //! (children's ranges side by side), with the node's operator Q — enough to refit any
 //! node's primitive (`Evaluator::fit_output` on the range's faces and Q).
 
+use crate::input::mesh::Mesh;
 use crate::math::Sym3;
-use crate::merge::TreeHulls;
+use crate::merge::{Evaluator, MergeOutput, TreeHulls};
+use crate::params::Params;
 use std::collections::HashMap;
 
 /// No child: the node is a leaf (a cluster of the fine snapshot).
@@ -150,6 +152,42 @@ fn find(parent: &mut [u32], mut x: u32) -> u32 {
         x = g;
     }
     x
+}
+
+/// The tree of `merged`'s merges (leaves: its first snapshot's clusters, or the faces
+/// when every merge was logged), with the points the loop kept for its nodes.
+pub(crate) fn merge_tree(
+    ev: &Evaluator,
+    merged: &mut MergeOutput,
+    face_q: &[Sym3],
+) -> crate::cut::MergeTree {
+    let faces = ev.mesh.face_count();
+    let hulls = std::mem::take(&mut merged.hulls);
+    if merged.log_from_faces {
+        // Every merge is known: the leaves are single faces, so any cluster can be
+        // taken apart down to its faces (the loop's first snapshot is not the leaves).
+        let singles: Vec<Vec<u32>> = (0..faces as u32).map(|f| vec![f]).collect();
+        let merges = crate::merge::TreeHulls {
+            leaves: Vec::new(),
+            ..hulls
+        };
+        crate::cut::MergeTree::build(&singles, face_q, &merged.log, merges, faces)
+    } else {
+        let leaves = &merged.snapshots[0];
+        let log = &merged.log[merged.log_at_first..];
+        let hulls = hulls.after(merged.log_at_first);
+        crate::cut::MergeTree::build(&leaves.members, &leaves.q, log, hulls, faces)
+    }
+}
+
+/// The face count over which the merge loop keeps a cluster's points for the merge
+/// tree: a cut's mean node's (the cut finds the hulls of larger nodes, `cut::hulls`).
+/// `None` (found from the faces) without a cut, or where the welded vertices (whose
+/// ids the loop keeps) may stand apart from the faces' own: a tolerance weld.
+pub(crate) fn tree_hulls_over(mesh: &Mesh, params: &Params, largest: usize) -> Option<usize> {
+    let welded_in_place =
+        !matches!(params.fit.dedup, crate::params::Dedup::Tolerance(t) if t > 0.0);
+    (params.uses_cut() && welded_in_place).then(|| mesh.face_count() / largest.max(1))
 }
 
 #[cfg(test)]

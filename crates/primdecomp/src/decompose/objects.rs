@@ -205,7 +205,7 @@ pub fn decompose_objects(
         });
     }
     Ok(Objects {
-        input: crate::pipeline::input_info(mesh, mesh.aabb()),
+        input: crate::decompose::pass::input_info(mesh, mesh.aabb()),
         targets,
         objects,
     })

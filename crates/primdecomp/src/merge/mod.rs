@@ -11,6 +11,8 @@ pub(crate) mod heap;
 mod lazy;
 pub(crate) mod partition;
 pub(crate) mod rim;
+pub(crate) mod setup;
+pub(crate) mod stage;
 pub(crate) mod worker;
 
 pub(crate) use cluster::Clusters;

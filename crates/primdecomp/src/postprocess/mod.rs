@@ -5,6 +5,7 @@
 //! ([`nested`]) and is moved back to world coordinates.
 
 pub(crate) mod absorb;
+pub(crate) mod fill;
 pub(crate) mod nested;
 pub(crate) mod plates;
 pub(crate) mod thicken;
@@ -16,7 +17,7 @@ use crate::params::Params;
 use nested::{keep_mask, Cleanup};
 
 /// What post-processing reads of the input besides the evaluator, made once per run
-/// (a cut may post-process its levels several times, `recut`): its triangles, built
+/// (a cut may post-process its levels several times, `cut::recut`): its triangles, built
 /// by the run when a step needs them, and with a minimum thickness the input as rays
 /// see it (its interior on a voxel grid), for plates thickened inward
 /// (docs/decisions/0033).

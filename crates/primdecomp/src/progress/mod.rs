@@ -4,6 +4,7 @@
 //! cancelled run stops within one check interval of every loop (a few thousand merges,
 //! a block of seed fits) and returns [`crate::Error::Cancelled`].
 
+pub(crate) mod clock;
 pub(crate) mod wallclock;
 
 /// A stage of a run, in the order they run.

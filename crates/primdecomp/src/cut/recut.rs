@@ -12,8 +12,6 @@ use crate::cut::{mean_distance, Cutter, MergeTree, Request, SLACK};
 use crate::input::triangles::Triangles;
 use crate::merge::{Evaluator, Snapshot};
 use crate::output::result::{Level, Shortfall};
-use crate::params::Params;
-use crate::postprocess;
 use crate::primitive::Primitive;
 
 /// A cut is made again at most this many times with counts and bytes raised.
@@ -23,6 +21,10 @@ const RECUTS: usize = 4;
 /// ([`little`]; an eighth: docs/decisions/0044, amended).
 const SLOW: usize = 8;
 
+/// Post-processing (§3.4) of a cut's snapshots into levels, handed in by the caller: the
+/// caps are spent on what it keeps.
+pub(crate) type Post<'a> = dyn Fn(Vec<Snapshot>) -> Vec<Level> + 'a;
+
 /// One snapshot per request cut from `tree`, each kept from the last cut whose level
 /// is within the request, carrying the request's own count.
 pub(crate) fn snapshots(
@@ -30,8 +32,7 @@ pub(crate) fn snapshots(
     tree: &MergeTree,
     requests: &[Request],
     tris: &Triangles,
-    params: &Params,
-    post: &postprocess::Input,
+    post: &Post<'_>,
 ) -> Vec<Snapshot> {
     let mut cutter = Cutter::new(ev, tree, tris, requests);
     let first = cutter.snapshots(requests);
@@ -39,7 +40,7 @@ pub(crate) fn snapshots(
     if !first.iter().zip(requests).any(|(s, r)| capped(r, s)) {
         return first;
     }
-    let levels = postprocess::levels(ev, first.clone(), params, post);
+    let levels = post(first.clone());
     let mut searches: Vec<Search> = (first.into_iter().zip(&levels).zip(requests))
         .map(|((snap, level), r)| Search::first(r, snap, level))
         .collect();
@@ -49,7 +50,7 @@ pub(crate) fn snapshots(
         }
         let asked: Vec<Request> = searches.iter().map(|s| s.asked).collect();
         let snaps = cutter.snapshots(&asked);
-        let levels = postprocess::levels(ev, snaps.clone(), params, post);
+        let levels = post(snaps.clone());
         for ((s, snap), (level, r)) in searches
             .iter_mut()
             .zip(snaps)
@@ -58,20 +59,8 @@ pub(crate) fn snapshots(
             s.step(r, snap, level);
         }
     }
-    fill_short(
-        &mut cutter,
-        &mut searches,
-        requests,
-        (ev, tris),
-        (params, post),
-    );
-    loosen(
-        &mut cutter,
-        &mut searches,
-        requests,
-        (ev, tris),
-        (params, post),
-    );
+    fill_short(&mut cutter, &mut searches, requests, (ev, tris), post);
+    loosen(&mut cutter, &mut searches, requests, (ev, tris), post);
     (searches.into_iter().zip(requests))
         .map(|(s, r)| Snapshot {
             target: r.count,
@@ -93,7 +82,7 @@ fn fill_short(
     searches: &mut [Search],
     requests: &[Request],
     (ev, tris): (&Evaluator, &Triangles),
-    (params, post): (&Params, &postprocess::Input),
+    post: &Post<'_>,
 ) {
     let short = |s: &Search, r: &Request| {
         r.tolerance.is_none() && r.bytes.is_none() && s.level.primitives.len() < r.count
@@ -107,7 +96,7 @@ fn fill_short(
         .map(|(s, r)| if short(s, r) { *r } else { s.before })
         .collect();
     let snaps = cutter.snapshots_filled(&asked);
-    let levels = postprocess::levels(ev, snaps.clone(), params, post);
+    let levels = post(snaps.clone());
     for ((s, r), (snap, level)) in searches
         .iter_mut()
         .zip(requests)
@@ -211,7 +200,7 @@ fn loosen(
     searches: &mut [Search],
     requests: &[Request],
     (ev, tris): (&Evaluator, &Triangles),
-    (params, post): (&Params, &postprocess::Input),
+    post: &Post<'_>,
 ) {
     if (requests.iter()).any(|r| r.tolerance.is_some() || r.bytes.is_some()) {
         return;
@@ -219,7 +208,7 @@ fn loosen(
     let snaps: Vec<Snapshot> = (searches.iter())
         .map(|s| cutter.snapshot_loose(&s.before))
         .collect();
-    let levels = postprocess::levels(ev, snaps.clone(), params, post);
+    let levels = post(snaps.clone());
     let mean = |l: &Level| mean(ev, tris, l);
     let old: Vec<f64> = searches.iter().map(|s| bound(&s.kept)).collect();
     let n = old.len();

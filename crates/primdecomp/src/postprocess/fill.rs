@@ -16,7 +16,6 @@ use crate::error::Result;
 use crate::input::mesh::Mesh;
 use crate::output::result::{Decomposition, Level};
 use crate::params::{CountSearch, Goal, Params};
-use crate::pipeline;
 use crate::progress::wallclock::Instant;
 use crate::progress::{Progress, Stage};
 
@@ -109,10 +108,18 @@ impl Search {
     }
 }
 
+/// One bottom-up pass through a goal's targets (`decompose::pass::run`).
+pub(crate) type Pass = dyn Fn(&Mesh, &Params, &dyn Progress) -> Result<Decomposition>;
+
 /// [`crate::decompose_with`] for a [`Goal::Fill`]: the first pass at the requested
-/// targets, then up to [`ROUNDS`] ladder passes for the targets the post-processing
-/// left short; the merge stage's progress runs over all of them.
-pub(crate) fn fill(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Result<Decomposition> {
+/// targets, then up to [`ROUNDS`] ladder passes (`pass`) for the targets the
+/// post-processing left short; the merge stage's progress runs over all of them.
+pub(crate) fn fill(
+    mesh: &Mesh,
+    params: &Params,
+    progress: &dyn Progress,
+    pass: &Pass,
+) -> Result<Decomposition> {
     // The passes are greedy levels, which fill refines (never cuts, 0054).
     let once = Params {
         goal: Goal::Counts {
@@ -122,7 +129,7 @@ pub(crate) fn fill(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Res
         ..params.clone()
     };
     // Progress: the first pass is the first half, each round an equal share of the rest.
-    let mut dec = pipeline::run(mesh, &once, &Share::new(progress, 0.0, 0.5))?;
+    let mut dec = pass(mesh, &once, &Share::new(progress, 0.0, 0.5))?;
     let faces = mesh.face_count();
     let levels = std::mem::take(&mut dec.levels);
     let mut searches: Vec<Search> = levels.into_iter().map(|l| Search::new(l, faces)).collect();
@@ -140,7 +147,7 @@ pub(crate) fn fill(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Res
             goal: once.goal.with_targets(targets),
             ..once.clone()
         };
-        let run = pipeline::run(mesh, &ladder, &Share::new(progress, start, share))?;
+        let run = pass(mesh, &ladder, &Share::new(progress, start, share))?;
         dec.stats.merges += run.stats.merges;
         dec.stats.fits_seeded += run.stats.fits_seeded;
         dec.stats.fits_at_once += run.stats.fits_at_once;

@@ -1,0 +1,263 @@
+//! The merge stage as one pass runs it: how the loop starts (one cluster per face,
+//! spatial parts or connected components first, [`FirstPhase`]), what it consumes
+//! ([`MergeInput`], the faces' [`Surface`]) and the loop through the targets.
+
+use super::components;
+use super::partition;
+use super::rim::FaceAdjacency;
+use super::{Clusters, Evaluator, MergeOutput};
+use crate::input::mesh::Mesh;
+use crate::input::orient;
+use crate::math::Sym3;
+use crate::output::result::Stats;
+use crate::params::Params;
+use crate::progress::clock::Laps;
+use crate::progress::GoOn;
+
+/// The targets in the order the merge loop reaches them: decreasing, each once.
+pub(crate) fn merge_order(targets: &[usize]) -> Vec<usize> {
+    let mut t = targets.to_vec();
+    t.sort_unstable_by(|a, b| b.cmp(a));
+    t.dedup();
+    t
+}
+
+/// What the output fits need of the faces around each cluster: the faces' neighbour
+/// lists and which side of each is outside (empty when no output fit reads them).
+pub(crate) struct Surface {
+    pub(crate) offsets: std::sync::Arc<[u32]>,
+    pub(crate) adj: std::sync::Arc<[u32]>,
+    pub(crate) signs: Vec<i8>,
+    /// Whether an output fit reads the surface (else only the clusters do).
+    used: bool,
+}
+
+impl Surface {
+    /// From the faces' neighbour lists (`adjacency::neighbour_lists`); `None` when
+    /// `go_on` said stop.
+    pub(crate) fn build(
+        mesh: &Mesh,
+        welded: &[u32],
+        (offsets, adj): (Vec<u32>, Vec<u32>),
+        params: &Params,
+        go_on: GoOn,
+    ) -> Option<Surface> {
+        let used = params.plates.rim_weight != 0.0 || params.plates.flush_plates;
+        let signs = match used {
+            true => orient::face_signs_checked(mesh, welded, &offsets, &adj, go_on)?,
+            false => Vec::new(),
+        };
+        Some(Surface {
+            offsets: offsets.into(),
+            adj: adj.into(),
+            signs,
+            used,
+        })
+    }
+
+    pub(crate) fn adjacency(&self) -> FaceAdjacency<'_> {
+        match self.used {
+            true => FaceAdjacency {
+                offsets: &self.offsets,
+                adj: &self.adj,
+            },
+            false => FaceAdjacency::default(),
+        }
+    }
+}
+
+/// What the merge loop consumes: the faces' operators and seed volumes, and the
+/// adjacent pairs (its clusters take the adjacency over).
+pub(crate) struct MergeInput {
+    pub(crate) q: Vec<Sym3>,
+    pub(crate) volumes: Vec<f64>,
+    pub(crate) pairs: Vec<(u32, u32)>,
+    /// The pairs as neighbour lists, shared with the surface.
+    pub(crate) lists: partition::Lists,
+    /// Every merge is logged for the merge tree (a goal that [`Goal::uses_cut`](crate::Goal::uses_cut)).
+    pub(crate) tree: bool,
+    /// The clusters' points are kept for the tree's nodes of more faces
+    /// (`merge::TreeHulls`).
+    pub(crate) hulls_over: Option<usize>,
+    /// `Fit::tangent_eps`, for spatial parts' own operators.
+    pub(crate) tangent_eps: f64,
+}
+
+/// How the merge loop starts, chosen once per run from the input and settings.
+pub(crate) enum FirstPhase {
+    /// Alg. 1 as is: one cluster per face.
+    Faces,
+    /// `parts` spatial parts merged in parallel first, down to their share of
+    /// `target`'s groups (`merge::partition`; docs/decisions/0017, 0019 and 0042).
+    Parts { parts: usize, target: usize },
+    /// Each connected component merged whole first, groups of them in parallel
+    /// (`merge::components`); the same clusters the global loop reaches.
+    Components(Vec<Vec<u32>>),
+}
+
+impl FirstPhase {
+    /// `first`: the loop's first target; `largest`: the largest count requested.
+    pub(crate) fn choose(
+        mesh: &Mesh,
+        params: &Params,
+        pairs: &[(u32, u32)],
+        first: usize,
+        largest: usize,
+    ) -> Self {
+        let faces = mesh.face_count();
+        // Parts only where the faces outnumber what phase 1 would leave.
+        let parts = if faces > partition::phase1_size(first) {
+            params.speed.partitions.parts(faces)
+        } else {
+            1
+        };
+        if parts > 1 {
+            return FirstPhase::Parts {
+                parts,
+                target: largest.min(first),
+            };
+        }
+        // A cap can refuse merges and leave a component in pieces, which the
+        // components phase does not claim to reproduce.
+        if faces < components::MIN_FACES || params.fit.max_excess_volume.is_some() {
+            return FirstPhase::Faces;
+        }
+        let comps = components::components(faces, pairs);
+        let largest_comp = comps.iter().map(Vec::len).max().unwrap_or(0);
+        if components::applies(faces, comps.len(), largest_comp, false) {
+            FirstPhase::Components(comps)
+        } else {
+            FirstPhase::Faces
+        }
+    }
+
+    /// Spatial parts merged in parallel first (1 = none).
+    pub(crate) fn parts(&self) -> usize {
+        match self {
+            FirstPhase::Parts { parts, .. } => *parts,
+            _ => 1,
+        }
+    }
+}
+
+/// The merge stage: the first phase, then the global loop through the targets it did
+/// not reach. Progress is the fraction of the merges down to the last target.
+pub(crate) fn merge(
+    ev: &Evaluator,
+    input: MergeInput,
+    first: FirstPhase,
+    targets: &[usize],
+    stats: &mut Stats,
+    go_on: GoOn,
+    laps: &mut Laps,
+) -> MergeOutput {
+    let MergeInput {
+        q,
+        volumes,
+        pairs,
+        lists,
+        tree,
+        hulls_over,
+        tangent_eps,
+    } = input;
+    let last = *targets.last().expect("validated: one target or more");
+    let total = ev.mesh.face_count().saturating_sub(last).max(1) as f64;
+    let merged_so_far = |m: usize| go_on(m as f64 / total);
+    // Every merge the replayed components did, in the global order.
+    let mut tree_log = Vec::new();
+    let from_faces = !matches!(first, FirstPhase::Parts { .. });
+    let (clusters, early) = match first {
+        FirstPhase::Faces => (Some(Clusters::with_lists(q, volumes, lists)), Vec::new()),
+        FirstPhase::Parts { parts, target } => {
+            let p1 = laps.time("partitions", || {
+                let faces = partition::FaceData::PerPart {
+                    tangent_eps,
+                    lists: &lists,
+                };
+                partition::merge_parts(ev, faces, target, parts, &merged_so_far)
+            });
+            stats.merges = p1.merges;
+            add_fits(stats, p1.fits);
+            if p1.stopped {
+                return MergeOutput::stopped();
+            }
+            // Phase 2 starts from one cluster per group (linear in the faces). The
+            // faces' pairs, operators and volumes are done with: the groups hold theirs.
+            drop((pairs, q, volumes));
+            let so_far = stats.merges;
+            let faces = ev.mesh.face_count();
+            let clusters = laps.time("regroup", || {
+                partition::group_clusters(p1, faces, &lists, &|_| merged_so_far(so_far))
+            });
+            let Some(clusters) = clusters else {
+                return MergeOutput::stopped();
+            };
+            (Some(clusters), Vec::new())
+        }
+        FirstPhase::Components(comps) => {
+            let count = comps.len();
+            // The merge tree needs every merge traced, whatever the targets.
+            let trace_from = if tree { usize::MAX } else { targets[0] };
+            let p1 = laps.time("components", || {
+                let (q, v, p) = (&q, &volumes, &pairs);
+                components::merge_components(ev, q, v, p, comps, trace_from, &merged_so_far)
+            });
+            stats.merges = p1.merges;
+            add_fits(stats, p1.fits);
+            if p1.stopped {
+                return MergeOutput::stopped();
+            }
+            let (early, replayed, after) =
+                components::snapshots(ev, &p1, &q, &volumes, &pairs, targets, count);
+            tree_log = after;
+            if early.len() == targets.len() {
+                // Every target reached: the output holds the replayed merges only.
+                (stats.merges, stats.merges_past) = (replayed, p1.merges - replayed);
+                (None, early)
+            } else {
+                // The global loop goes on to the targets below the component count.
+                let so_far = stats.merges;
+                match partition::clusters(p1, q, volumes, lists, &|_| merged_so_far(so_far)) {
+                    Some(cl) => (Some(cl), early),
+                    None => return MergeOutput::stopped(),
+                }
+            }
+        }
+    };
+    let Some(clusters) = clusters else {
+        return MergeOutput {
+            snapshots: early,
+            log: tree_log,
+            log_from_faces: true,
+            ..MergeOutput::default()
+        };
+    };
+    let done = stats.merges as f64;
+    let rest = clusters.live.saturating_sub(last) as f64;
+    let phase2 = |f: f64| go_on((done + f * rest) / total);
+    let mut out = if tree {
+        crate::merge::run_for_tree(ev, clusters, &targets[early.len()..], hulls_over, &phase2)
+    } else {
+        crate::merge::run(ev, clusters, &targets[early.len()..], &phase2)
+    };
+    // The components' merges come first in the global order.
+    let before = tree_log.len() as u32;
+    out.hulls
+        .merges
+        .iter_mut()
+        .for_each(|(at, _)| *at += before);
+    out.log.splice(0..0, tree_log);
+    out.log_from_faces = from_faces;
+    out.snapshots.splice(0..0, early);
+    stats.bridge_edges = out.bridge_edges;
+    stats.merges += out.merges;
+    stats.merges_ahead += out.ahead;
+    add_fits(stats, out.fits);
+    out
+}
+
+pub(crate) fn add_fits(stats: &mut Stats, fits: crate::merge::FitCounts) {
+    stats.fits_seeded += fits.seed;
+    stats.fits_at_once += fits.eager;
+    stats.fits_when_popped += fits.lazy;
+}

@@ -26,19 +26,24 @@ const SLOW: usize = 8;
 pub(crate) type Post<'a> = dyn Fn(Vec<Snapshot>) -> Vec<Level> + 'a;
 
 /// One snapshot per request cut from `tree`, each kept from the last cut whose level
-/// is within the request, carrying the request's own count.
+/// is within the request, carrying the request's own count; `None` when `go_on` said
+/// stop (asked between the cutter's splits and between cuts).
 pub(crate) fn snapshots(
     ev: &Evaluator,
     tree: &MergeTree,
     requests: &[Request],
     tris: &Triangles,
     post: &Post<'_>,
-) -> Vec<Snapshot> {
-    let mut cutter = Cutter::new(ev, tree, tris, requests);
+    go_on: crate::progress::GoOn,
+) -> Option<Vec<Snapshot>> {
+    let mut cutter = Cutter::new(ev, tree, tris, requests, go_on);
     let first = cutter.snapshots(requests);
+    if cutter.stopped() {
+        return None;
+    }
     // Every level within its tolerance or stopped by its faces: cut once.
     if !first.iter().zip(requests).any(|(s, r)| capped(r, s)) {
-        return first;
+        return Some(first);
     }
     let levels = post(first.clone());
     let mut searches: Vec<Search> = (first.into_iter().zip(&levels).zip(requests))
@@ -50,6 +55,9 @@ pub(crate) fn snapshots(
         }
         let asked: Vec<Request> = searches.iter().map(|s| s.asked).collect();
         let snaps = cutter.snapshots(&asked);
+        if cutter.stopped() {
+            return None;
+        }
         let levels = post(snaps.clone());
         for ((s, snap), (level, r)) in searches
             .iter_mut()
@@ -60,13 +68,18 @@ pub(crate) fn snapshots(
         }
     }
     fill_short(&mut cutter, &mut searches, requests, (ev, tris), post);
+    if cutter.stopped() {
+        return None;
+    }
     loosen(&mut cutter, &mut searches, requests, (ev, tris), post);
-    (searches.into_iter().zip(requests))
-        .map(|(s, r)| Snapshot {
-            target: r.count,
-            ..s.kept
-        })
-        .collect()
+    if cutter.stopped() {
+        return None;
+    }
+    let kept = (searches.into_iter().zip(requests)).map(|(s, r)| Snapshot {
+        target: r.count,
+        ..s.kept
+    });
+    Some(kept.collect())
 }
 
 /// A level of a count alone that the raises left short of it (its worst node's
@@ -96,6 +109,9 @@ fn fill_short(
         .map(|(s, r)| if short(s, r) { *r } else { s.before })
         .collect();
     let snaps = cutter.snapshots_filled(&asked);
+    if cutter.stopped() {
+        return;
+    }
     let levels = post(snaps.clone());
     for ((s, r), (snap, level)) in searches
         .iter_mut()
@@ -208,6 +224,9 @@ fn loosen(
     let snaps: Vec<Snapshot> = (searches.iter())
         .map(|s| cutter.snapshot_loose(&s.before))
         .collect();
+    if cutter.stopped() {
+        return;
+    }
     let levels = post(snaps.clone());
     let mean = |l: &Level| mean(ev, tris, l);
     let old: Vec<f64> = searches.iter().map(|s| bound(&s.kept)).collect();

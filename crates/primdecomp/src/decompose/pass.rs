@@ -164,11 +164,13 @@ pub(crate) fn run(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Resu
     // The cut of the merge tree at each target where the error is (docs/decisions/0032), its
     // counts and bytes spent on what post-processing keeps.
     if let (true, Some(tris)) = (cut, &tris) {
-        merged.snapshots = clock.stage(Stage::Postprocess, "cut", |_, _| {
-            let tree = tree::merge_tree(&ev, &mut merged, &face_q);
-            let post = |snaps| postprocess::levels(&ev, snaps, params, &post);
-            recut::snapshots(&ev, &tree, &requests, tris, &post)
-        })?;
+        merged.snapshots = clock
+            .stage(Stage::Postprocess, "cut", |go_on, _| {
+                let tree = tree::merge_tree(&ev, &mut merged, &face_q);
+                let post = |snaps| postprocess::levels(&ev, snaps, params, &post);
+                recut::snapshots(&ev, &tree, &requests, tris, &post, go_on)
+            })?
+            .ok_or(Error::Cancelled)?;
     }
     // The bounds the cut proved, for the distances of what post-processing keeps.
     let known: Vec<Vec<(crate::primitive::Primitive, f64)>> = merged

@@ -133,3 +133,29 @@ fn a_cancelled_run_stops_at_its_next_check() {
         }
     }
 }
+
+/// The merge tree's cut (the default goal, a tolerance) asks whether to go on as
+/// it splits: cancelled at its first question (the post-processing stage's second
+/// report, the first being the stage's start), the run returns `Cancelled` after a
+/// few more reports, not at the end of the cut.
+#[test]
+fn a_cut_stops_at_its_next_split() {
+    let mesh = sphere(60, 100);
+    let params = Params::default();
+    let asked = std::sync::atomic::AtomicUsize::new(0);
+    let r = recorder(|s, _| s == Stage::Postprocess && asked.fetch_add(1, Relaxed) == 1);
+    let run = decompose_with(&mesh, &params, &r);
+    assert!(
+        matches!(run, Err(Error::Cancelled)),
+        "the cut ran to its end: {:?}",
+        run.map(|d| d.levels.len())
+    );
+    let seen = r.seen.into_inner().unwrap();
+    let after = seen.iter().filter(|s| s.2).count();
+    assert!(after <= 5, "{after} reports after the cancel: {seen:?}");
+    // Cancelled inside the cut: the stage never ends.
+    let ends = seen
+        .iter()
+        .filter(|s| s.0 == Stage::Postprocess && s.1 == 1.0);
+    assert_eq!(ends.count(), 0, "{seen:?}");
+}

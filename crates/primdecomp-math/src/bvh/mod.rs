@@ -11,6 +11,7 @@
 
 use crate::vec3::{add, cross, dot, norm2, scale, sub, V3};
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicBool, Ordering::Relaxed};
 
 /// Items per leaf, at most, of [`Bvh::build`]'s hierarchies.
 pub const LEAF: usize = 4;
@@ -55,26 +56,46 @@ impl Bvh {
     /// centre, then its leaf's box). For large inputs queried a few times, where a
     /// table of boxes and small leaves would cost more memory than the queries save.
     pub fn build_by(count: usize, leaf: usize, bbox: &(dyn Fn(u32) -> (V3, V3) + Sync)) -> Bvh {
-        Bvh::build_with(count, leaf, bbox, |c| c)
+        Bvh::build_with(count, leaf, bbox, |c| c, &|_| true).unwrap_or_default()
+    }
+
+    /// [`Bvh::build_by`] that asks `go_on` whether to go on before splitting each
+    /// node of [`CHECK_AT`] items or more (a few milliseconds of work apart) and
+    /// stops (`None`) when it says no: a large input's build answers a cancel.
+    pub fn build_by_checked(
+        count: usize,
+        leaf: usize,
+        bbox: &(dyn Fn(u32) -> (V3, V3) + Sync),
+        go_on: &(dyn Fn(f64) -> bool + Sync),
+    ) -> Option<Bvh> {
+        Bvh::build_with(count, leaf, bbox, |c| c, go_on)
     }
 
     /// [`Bvh::build_by`] with the items' centres rounded to f32 for the splits: a
     /// table of 16 bytes an item instead of 32, a tree as good for queries whose
     /// answers do not depend on its shape (whether any item meets a ray), not the
     /// same tree.
-    pub fn build_coarse(count: usize, leaf: usize, bbox: &(dyn Fn(u32) -> (V3, V3) + Sync)) -> Bvh {
-        Bvh::build_with(count, leaf, bbox, |c| c.map(|x| x as f32))
+    /// It asks `go_on` whether to go on as [`Bvh::build_by_checked`] does.
+    pub fn build_coarse(
+        count: usize,
+        leaf: usize,
+        bbox: &(dyn Fn(u32) -> (V3, V3) + Sync),
+        go_on: &(dyn Fn(f64) -> bool + Sync),
+    ) -> Option<Bvh> {
+        Bvh::build_with(count, leaf, bbox, |c| c.map(|x| x as f32), go_on)
     }
 
-    /// The build, each item's centre kept as `keep` makes it.
+    /// The build, each item's centre kept as `keep` makes it; `None` when `go_on`
+    /// said stop.
     fn build_with<C: Centre>(
         count: usize,
         leaf: usize,
         bbox: &(dyn Fn(u32) -> (V3, V3) + Sync),
         keep: impl Fn(V3) -> C + Sync,
-    ) -> Bvh {
+        go_on: &(dyn Fn(f64) -> bool + Sync),
+    ) -> Option<Bvh> {
         if count == 0 {
-            return Bvh::default();
+            return Some(Bvh::default());
         }
         let leaf = leaf.max(1);
         let sizes = Sizes::new(count, leaf);
@@ -98,12 +119,17 @@ impl Bvh {
                 }
             })
             .collect();
-        let build = Build { bbox, sizes };
+        let build = Build {
+            bbox,
+            sizes,
+            go_on,
+            stopped: AtomicBool::new(false),
+        };
         build.subtree(root, below, 1, &mut span, 0);
-        Bvh {
+        (!build.stopped.into_inner()).then(|| Bvh {
             nodes,
             items: span.iter().map(|it| it.id).collect(),
-        }
+        })
     }
 
     /// The smallest `dist2(item)` over all items, with that item (or `u32::MAX` when
@@ -382,10 +408,16 @@ impl Sizes {
     }
 }
 
+/// Nodes of at least this many items ask whether to go on before they split.
+pub const CHECK_AT: usize = 1 << 16;
+
 /// What building a subtree reads.
 struct Build<'a> {
     bbox: &'a (dyn Fn(u32) -> (V3, V3) + Sync),
     sizes: Sizes,
+    go_on: &'a (dyn Fn(f64) -> bool + Sync),
+    /// `go_on` said stop: the nodes left are not built.
+    stopped: AtomicBool,
 }
 
 /// An item being placed: its box's centroid and its id.
@@ -438,6 +470,10 @@ impl Build<'_> {
                 }
             }
             (node.first, node.count) = (first as u32, count as u32);
+            return;
+        }
+        if count >= CHECK_AT && (self.stopped.load(Relaxed) || !(self.go_on)(0.0)) {
+            self.stopped.store(true, Relaxed);
             return;
         }
         let (mut clo, mut chi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);

@@ -237,3 +237,35 @@ fn first_ray_hits_match_brute_force() {
     });
     assert_eq!(away, (10.0, u32::MAX));
 }
+
+/// A build told to stop returns nothing, after asking a few times (once per node of
+/// `CHECK_AT` items or more, not per item); one told to go on is the unchecked build.
+#[test]
+fn a_checked_build_stops_when_told_and_is_the_same_when_not() {
+    use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
+    let n = 4 * CHECK_AT + 3;
+    let bbox = |i: u32| {
+        let x = f64::from(i.wrapping_mul(2_654_435_761) % 1000);
+        (
+            [x, f64::from(i % 7), 0.0],
+            [x + 1.0, f64::from(i % 7) + 1.0, 1.0],
+        )
+    };
+    let asked = AtomicUsize::new(0);
+    let go_on = |_: f64| {
+        asked.fetch_add(1, Relaxed);
+        true
+    };
+    let checked = Bvh::build_by_checked(n, LEAF, &bbox, &go_on).expect("not stopped");
+    assert_eq!(
+        format!("{checked:?}"),
+        format!("{:?}", Bvh::build_by(n, LEAF, &bbox))
+    );
+    // The nodes of 4, 2 and 1 × CHECK_AT items or more: 1 + 2 + 4.
+    assert_eq!(asked.load(Relaxed), 7);
+    let stop = |_: f64| false;
+    assert!(Bvh::build_by_checked(n, LEAF, &bbox, &stop).is_none());
+    assert!(Bvh::build_coarse(n, 16, &bbox, &stop).is_none());
+    // Too few items to ask: built whole.
+    assert!(Bvh::build_by_checked(CHECK_AT - 1, LEAF, &bbox, &stop).is_some());
+}

@@ -188,6 +188,10 @@ pub(crate) struct Cutter<'a> {
     boxes: Vec<(V3, V3)>,
     /// The errors measured so far ([`error_memo`]).
     measures: error_memo::Measures,
+    /// Asked whether to go on before each split and each round of fits ahead.
+    go_on: crate::progress::Checkpoint<'a>,
+    /// `go_on` said stop: what the cutter returns since is not a cut to keep.
+    stopped: std::sync::atomic::AtomicBool,
 }
 
 /// One thread's buffers for fitting nodes.
@@ -206,6 +210,7 @@ impl<'a> Cutter<'a> {
         tree: &'a MergeTree,
         surface: &'a Triangles,
         requests: &[Request],
+        go_on: crate::progress::Checkpoint<'a>,
     ) -> Self {
         let largest = largest(requests);
         // Nodes of fewer faces than a cut of `largest` nodes holds on average have no
@@ -229,7 +234,23 @@ impl<'a> Cutter<'a> {
             loose: false,
             boxes: carried_parts::node_boxes(tree, ev.mesh),
             measures: error_memo::Measures::default(),
+            go_on,
+            stopped: std::sync::atomic::AtomicBool::new(false),
         }
+    }
+
+    /// Whether `go_on` has said stop (the snapshots since are not cuts to keep).
+    pub(crate) fn stopped(&self) -> bool {
+        self.stopped.load(std::sync::atomic::Ordering::Relaxed)
+    }
+
+    /// Asks `go_on` (once it said stop, no more): whether to go on.
+    fn goes_on(&self) -> bool {
+        if !self.stopped() && !(self.go_on)(0.0) {
+            self.stopped
+                .store(true, std::sync::atomic::Ordering::Relaxed);
+        }
+        !self.stopped()
     }
 
     /// Node `n`'s output fit on its hull's vertices and boundary faces, and its error
@@ -499,7 +520,7 @@ impl<'a> Cutter<'a> {
         // Splits whose parts are carried add no node; the chains they walk down are
         // long but not endless.
         let most = largest.saturating_mul(SPLITS_PER_COUNT);
-        while count < largest && ex.splits.len() < most {
+        while count < largest && ex.splits.len() < most && self.goes_on() {
             let Some(Queued { e, .. }) = heap.pop() else {
                 break;
             };
@@ -556,7 +577,7 @@ impl<'a> Cutter<'a> {
         let mut threshold = (top * AHEAD_STEP).max(enough);
         let mut count = roots.len();
         let mut ready = HashMap::new();
-        while !frontier.is_empty() {
+        while !frontier.is_empty() && self.goes_on() {
             let (batch, rest): (Vec<_>, Vec<_>) =
                 frontier.into_iter().partition(|f| f.0 > threshold);
             frontier = rest;

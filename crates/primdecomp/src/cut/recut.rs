@@ -27,19 +27,24 @@ const LEAST_GAIN_ONE_IN: usize = 8;
 pub(crate) type Postprocess<'a> = dyn Fn(&[LevelCut]) -> Vec<Level> + 'a;
 
 /// One snapshot per request cut from `tree`, each kept from the last cut whose level
-/// is within the request, carrying the request's own count.
+/// is within the request, carrying the request's own count; `None` when `go_on` said
+/// stop (asked between the cutter's splits and between cuts).
 pub(crate) fn snapshots(
     ev: &Evaluator,
     tree: &MergeTree,
     requests: &[Request],
     tris: &Triangles,
     postprocess: &Postprocess<'_>,
-) -> Vec<LevelCut> {
-    let mut cutter = Cutter::new(ev, tree, tris, requests);
+    go_on: crate::progress::Checkpoint,
+) -> Option<Vec<LevelCut>> {
+    let mut cutter = Cutter::new(ev, tree, tris, requests, go_on);
     let first = cutter.snapshots(requests);
+    if cutter.stopped() {
+        return None;
+    }
     // Every level within its tolerance or stopped by its faces: cut once.
     if !first.iter().zip(requests).any(|(s, r)| capped(r, s)) {
-        return first;
+        return Some(first);
     }
     let levels = postprocess(&first);
     let mut searches: Vec<LevelRecut> = (first.into_iter().zip(&levels).zip(requests))
@@ -51,6 +56,9 @@ pub(crate) fn snapshots(
         }
         let asked: Vec<Request> = searches.iter().map(|s| s.asked).collect();
         let snaps = cutter.snapshots(&asked);
+        if cutter.stopped() {
+            return None;
+        }
         let levels = postprocess(&snaps);
         for ((s, snap), (level, r)) in searches
             .iter_mut()
@@ -67,6 +75,9 @@ pub(crate) fn snapshots(
         (ev, tris),
         postprocess,
     );
+    if cutter.stopped() {
+        return None;
+    }
     loosen(
         &mut cutter,
         &mut searches,
@@ -74,15 +85,17 @@ pub(crate) fn snapshots(
         (ev, tris),
         postprocess,
     );
-    (searches.into_iter().zip(requests))
-        .map(|(s, r)| LevelCut {
-            snapshot: Snapshot {
-                target: r.count,
-                ..s.kept.snapshot
-            },
-            ..s.kept
-        })
-        .collect()
+    if cutter.stopped() {
+        return None;
+    }
+    let kept = (searches.into_iter().zip(requests)).map(|(s, r)| LevelCut {
+        snapshot: Snapshot {
+            target: r.count,
+            ..s.kept.snapshot
+        },
+        ..s.kept
+    });
+    Some(kept.collect())
 }
 
 /// A level of a count alone that the raises left short of it (its worst node's
@@ -112,6 +125,9 @@ fn fill_short(
         .map(|(s, r)| if short(s, r) { *r } else { s.before })
         .collect();
     let snaps = cutter.snapshots_filled(&asked);
+    if cutter.stopped() {
+        return;
+    }
     let levels = postprocess(&snaps);
     for ((s, r), (snap, level)) in searches
         .iter_mut()
@@ -225,6 +241,9 @@ fn loosen(
     let snaps: Vec<LevelCut> = (searches.iter())
         .map(|s| cutter.snapshot_loose(&s.before))
         .collect();
+    if cutter.stopped() {
+        return;
+    }
     let levels = postprocess(&snaps);
     let mean = |l: &Level| mean(ev, tris, l);
     let old: Vec<f64> = searches.iter().map(|s| s.kept.bound).collect();

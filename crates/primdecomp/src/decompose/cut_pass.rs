@@ -69,10 +69,12 @@ pub(crate) fn run(
     // The cut of the merge tree at each target where the error is (0032), its counts
     // and bytes spent on what post-processing keeps (0044).
     let requests = limits::requests(params, mesh);
-    let cuts = clock.stage(Stage::Postprocess, "cut", |_, _| {
-        let tree = tree::merge_tree(&ev, &merged, log, &face_q);
-        recut::snapshots(&ev, &tree, &requests, &tris, &postprocess)
-    })?;
+    let cuts = clock
+        .stage(Stage::Postprocess, "cut", |go_on, _| {
+            let tree = tree::merge_tree(&ev, &merged, log, &face_q);
+            recut::snapshots(&ev, &tree, &requests, &tris, &postprocess, go_on)
+        })?
+        .ok_or(Error::Cancelled)?;
     // The kept cuts post-processed, back to world coordinates.
     let mut levels = clock.stage(Stage::Postprocess, "postprocess", |_, _| postprocess(&cuts))?;
     // What each level asked and how far its primitives stand from the input.

@@ -211,9 +211,15 @@ pub(crate) fn triangles<'m>(
     mesh: &'m Mesh,
     needed: bool,
 ) -> Result<Option<Triangles<'m>>> {
-    clock.step(Stage::Postprocess, "triangles", || {
-        needed.then(|| Triangles::new(mesh))
-    })
+    let tris = clock.step_checked(Stage::Postprocess, "triangles", |go_on| {
+        needed.then(|| Triangles::new_checked(mesh, go_on))
+    })?;
+    // The hierarchy's build asks whether to go on; `None` inside is its stop.
+    match tris {
+        Some(None) => Err(Error::Cancelled),
+        Some(Some(tris)) => Ok(Some(tris)),
+        None => Ok(None),
+    }
 }
 
 /// What post-processing reads of the input, once: with a minimum thickness, the

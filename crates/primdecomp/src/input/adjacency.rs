@@ -39,6 +39,9 @@ pub fn face_pairs(offsets: &[u32], indices: &[u32]) -> Vec<(u32, u32)> {
 
 /// Vertices per block of the edge lists (a parallel task, and a check of `go_on`).
 const BLOCK: usize = 1 << 14;
+/// Faces per block of the passes over the faces' sides (a check of `go_on` after
+/// each: a few milliseconds apart).
+const FACE_BLOCK: usize = 1 << 20;
 
 /// [`face_pairs`] that reports the fraction done to `go_on` between blocks of
 /// vertices and stops (`None`) when it says so.
@@ -60,41 +63,53 @@ pub fn face_pairs_checked(
         "CSR offsets start at 0"
     );
     let verts = indices.par_iter().max().map_or(0, |&m| m as usize + 1);
-    // Each face's sides (a, b), a ≠ b, by chunks of faces.
-    let sides = |visit: &(dyn Fn(u32, u32, u32) + Sync)| {
-        (0..faces).into_par_iter().with_min_len(4096).for_each(|f| {
-            let idx = &indices[offsets[f] as usize..offsets[f + 1] as usize];
-            for i in 0..idx.len() {
-                let (a, b) = (idx[i], idx[(i + 1) % idx.len()]);
-                if a != b {
-                    visit(a.min(b), a.max(b), f as u32);
+    // Each face's sides (a, b), a ≠ b, by chunks of faces, a block of faces at a
+    // time with a check of `go_on` (from `done` to `done + 0.25`) after each; false
+    // when it said stop.
+    let sides = |visit: &(dyn Fn(u32, u32, u32) + Sync), done: f64| {
+        (0..faces).step_by(FACE_BLOCK).all(|f0| {
+            let f1 = (f0 + FACE_BLOCK).min(faces);
+            (f0..f1).into_par_iter().with_min_len(4096).for_each(|f| {
+                let idx = &indices[offsets[f] as usize..offsets[f + 1] as usize];
+                for i in 0..idx.len() {
+                    let (a, b) = (idx[i], idx[(i + 1) % idx.len()]);
+                    if a != b {
+                        visit(a.min(b), a.max(b), f as u32);
+                    }
                 }
-            }
+            });
+            go_on(done + 0.25 * f1 as f64 / faces as f64)
         })
     };
     let count: Vec<AtomicU32> = (0..verts + 1).map(|_| AtomicU32::new(0)).collect();
-    sides(&|lo, _, _| {
-        count[lo as usize + 1].fetch_add(1, Relaxed);
-    });
+    let counted = sides(
+        &|lo, _, _| {
+            count[lo as usize + 1].fetch_add(1, Relaxed);
+        },
+        0.0,
+    );
+    if !counted {
+        return None;
+    }
     let mut start: Vec<u32> = count.into_iter().map(AtomicU32::into_inner).collect();
     for v in 0..verts {
         start[v + 1] += start[v];
     }
-    if !go_on(0.25) {
-        return None;
-    }
     // The records in their vertex's bucket, in any order (sorted below).
     let next: Vec<AtomicU32> = start[..verts].iter().map(|&s| AtomicU32::new(s)).collect();
     let records: Vec<AtomicU64> = (0..start[verts]).map(|_| AtomicU64::new(0)).collect();
-    sides(&|lo, hi, f| {
-        let at = next[lo as usize].fetch_add(1, Relaxed);
-        records[at as usize].store((u64::from(hi) << 32) | u64::from(f), Relaxed);
-    });
-    drop(next);
-    let mut records: Vec<u64> = records.into_iter().map(AtomicU64::into_inner).collect();
-    if !go_on(0.5) {
+    let placed = sides(
+        &|lo, hi, f| {
+            let at = next[lo as usize].fetch_add(1, Relaxed);
+            records[at as usize].store((u64::from(hi) << 32) | u64::from(f), Relaxed);
+        },
+        0.25,
+    );
+    if !placed {
         return None;
     }
+    drop(next);
+    let mut records: Vec<u64> = records.into_iter().map(AtomicU64::into_inner).collect();
     // Blocks of vertices own disjoint runs of records.
     let mut blocks = Vec::new();
     let mut rest = &mut records[..];

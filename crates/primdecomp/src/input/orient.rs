@@ -57,6 +57,9 @@ pub fn face_signs_checked(
     let off = &mesh.face_offsets;
     let face = |f: usize| &welded[off[f] as usize..off[f + 1] as usize];
     let neighbours = |f: usize| &adj[deg[f] as usize..deg[f + 1] as usize];
+    // Most of the walk's work is finding each pair's shared edge: done first, for
+    // every face at once (the walk below only reads it).
+    let relations = relations_checked(n, &face, &neighbours, go_on)?;
     let mut sign = vec![0i8; n];
     // Face ids as u32 (the engine's), 4 bytes a face of a patch spanning the input.
     let mut queue: VecDeque<u32> = VecDeque::new();
@@ -81,8 +84,12 @@ pub fn face_signs_checked(
                 }
             }
             let mut crossed = 0;
-            for &g in neighbours(f) {
-                let Some(rel) = manifold_relation(face(f), g, neighbours(f), &face) else {
+            for (slot, &g) in neighbours(f).iter().enumerate() {
+                let rel = match Relations::packed(relations[f], slot) {
+                    Some(packed) => packed,
+                    None => manifold_relation(face(f), g, neighbours(f), &face),
+                };
+                let Some(rel) = rel else {
                     continue;
                 };
                 crossed += 1;
@@ -96,7 +103,10 @@ pub fn face_signs_checked(
         }
         let quota = visibility::SAMPLED_FACES * members.len() / n.max(1);
         let seen = if open && quota > 0 {
-            let grid = grid.get_or_insert_with(|| RayTree::build(mesh));
+            if grid.is_none() {
+                grid = Some(RayTree::build_checked(mesh, go_on)?);
+            }
+            let grid = grid.as_ref()?;
             visibility::vote(grid, &members, &sign, quota)
         } else {
             None
@@ -112,6 +122,71 @@ pub fn face_signs_checked(
         }
     }
     Some(sign)
+}
+
+/// Each face's [`manifold_relation`] with its first [`Relations::SLOTS`] neighbours,
+/// packed in a byte (two bits a neighbour: 0 none, 1 agree, 2 opposed), or
+/// [`Relations::UNPACKED`] for a face of more neighbours (the walk finds those
+/// itself). In parallel blocks of [`CHECK_EVERY`] faces, each checking `go_on`;
+/// `None` when it said stop. One byte a face, the same for any thread count.
+fn relations_checked<'a>(
+    n: usize,
+    face: &(impl Fn(usize) -> &'a [u32] + Sync),
+    neighbours: &(impl Fn(usize) -> &'a [u32] + Sync),
+    go_on: crate::progress::Checkpoint,
+) -> Option<Vec<u8>> {
+    use rayon::prelude::*;
+    let mut packed = vec![0u8; n];
+    let stopped = std::sync::atomic::AtomicBool::new(false);
+    packed
+        .par_chunks_mut(CHECK_EVERY)
+        .enumerate()
+        .for_each(|(block, out)| {
+            if stopped.load(std::sync::atomic::Ordering::Relaxed) || !go_on(0.0) {
+                stopped.store(true, std::sync::atomic::Ordering::Relaxed);
+                return;
+            }
+            for (i, byte) in out.iter_mut().enumerate() {
+                let f = block * CHECK_EVERY + i;
+                let around = neighbours(f);
+                *byte = match around.len() > Relations::SLOTS {
+                    true => Relations::UNPACKED,
+                    false => around.iter().enumerate().fold(0, |acc, (slot, &g)| {
+                        let code = match manifold_relation(face(f), g, around, face) {
+                            None => 0,
+                            Some(1) => 1,
+                            Some(_) => 2,
+                        };
+                        acc | code << (2 * slot)
+                    }),
+                };
+            }
+        });
+    (!stopped.into_inner()).then_some(packed)
+}
+
+/// How [`relations_checked`] packs a face's relations in a byte.
+struct Relations;
+
+impl Relations {
+    /// Neighbours a byte holds.
+    const SLOTS: usize = 4;
+    /// A face of more neighbours than [`Relations::SLOTS`]: every code 3, which no
+    /// relation packs to.
+    const UNPACKED: u8 = u8::MAX;
+
+    /// The relation with neighbour `slot` as packed (`Some(None)`: no manifold shared
+    /// edge), or `None` when the face's are not packed.
+    fn packed(byte: u8, slot: usize) -> Option<Option<i8>> {
+        match byte {
+            Relations::UNPACKED => None,
+            _ => Some(match (byte >> (2 * slot)) & 3 {
+                1 => Some(1),
+                2 => Some(-1),
+                _ => None,
+            }),
+        }
+    }
 }
 
 /// Whether polygon `a` (welded indices) and face `g` agree across their shared edge
@@ -197,6 +272,41 @@ mod tests {
         let welded: Vec<u32> = m.face_indices.clone();
         let pairs = super::super::adjacency::face_pairs(&m.face_offsets, &welded);
         face_signs(m, &welded, &pairs)
+    }
+
+    /// The packed relations are what `manifold_relation` says for every neighbour of a
+    /// face of at most four; a face of more is left to the walk. The cube with one
+    /// face reversed (opposed neighbours) and a fin on one of its edges (a third face
+    /// there: no manifold relation across it, and a fifth neighbour for two faces).
+    #[test]
+    fn packed_relations_are_the_walks() {
+        let c = cube(&[2]);
+        let mut v: Vec<V3> = (0..8).map(|i| c.pos(i)).collect();
+        v.push([5.0, 5.0, 5.0]);
+        let mut f: Vec<Vec<u32>> = (0..6).map(|i| c.face(i).to_vec()).collect();
+        let e = &f[0];
+        f.push(vec![e[0], e[1], 8]);
+        let m = Mesh::from_polygons(&v, &f).unwrap();
+        let welded = m.face_indices.clone();
+        let pairs = super::super::adjacency::face_pairs(&m.face_offsets, &welded);
+        let (deg, adj) = super::super::adjacency::neighbour_lists(m.face_count(), &pairs);
+        let off = &m.face_offsets;
+        let face = |f: usize| &welded[off[f] as usize..off[f + 1] as usize];
+        let nbrs = |f: usize| &adj[deg[f] as usize..deg[f + 1] as usize];
+        let packed = relations_checked(m.face_count(), &face, &nbrs, &|_| true).unwrap();
+        let (mut unpacked, mut opposed) = (0, 0);
+        for (f, &byte) in packed.iter().enumerate() {
+            for (slot, &g) in nbrs(f).iter().enumerate() {
+                let walk = manifold_relation(face(f), g, nbrs(f), &face);
+                match Relations::packed(byte, slot) {
+                    Some(rel) => assert_eq!(rel, walk, "face {f}, neighbour {g}"),
+                    None => unpacked += 1,
+                }
+                opposed += usize::from(walk == Some(-1));
+            }
+        }
+        assert!(unpacked > 0 && opposed > 0);
+        assert!(relations_checked(m.face_count(), &face, &nbrs, &|_| false).is_none());
     }
 
     /// Every face of the cube ends up facing outward, whichever faces were reversed in

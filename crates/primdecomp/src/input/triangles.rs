@@ -25,7 +25,17 @@ pub(crate) struct Triangles<'m> {
 
 impl<'m> Triangles<'m> {
     /// The surface of every face of `mesh`.
+    #[cfg(test)]
     pub(crate) fn new(mesh: &'m Mesh) -> Triangles<'m> {
+        Triangles::new_checked(mesh, &|_| true).expect("never told to stop")
+    }
+
+    /// [`Triangles::new`] that asks `go_on` whether to go on while the hierarchy is
+    /// built ([`Bvh::build_by_checked`]); `None` when it said stop.
+    pub(crate) fn new_checked(
+        mesh: &'m Mesh,
+        go_on: crate::progress::Checkpoint,
+    ) -> Option<Triangles<'m>> {
         // Each face's fan as vertex indices (the faces themselves when all are
         // triangles), then the corners, in the hierarchy's order.
         let all_triangles = mesh.face_indices.len() == 3 * mesh.face_count();
@@ -51,14 +61,14 @@ impl<'m> Triangles<'m> {
         // Boxes from the corners as the build asks (no table of 48 bytes a
         // triangle), the hierarchy `Bvh::build` makes.
         let bbox = |i: u32| tri_box(&fan(i).map(|v| mesh.pos(v)));
-        let bvh = Bvh::build_by(count, crate::math::bvh::LEAF, &bbox);
+        let bvh = Bvh::build_by_checked(count, crate::math::bvh::LEAF, &bbox, go_on)?;
         let tris = bvh.order().iter().map(|&i| fan(i)).collect();
-        Triangles {
+        Some(Triangles {
             bvh,
             tris,
             mesh,
             diagonal: mesh.diagonal(),
-        }
+        })
     }
 
     /// Triangle `k`'s corners (`k` in the hierarchy's order).

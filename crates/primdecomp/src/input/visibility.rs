@@ -37,19 +37,29 @@ pub struct RayTree<'a> {
 
 impl<'a> RayTree<'a> {
     /// Every face of `mesh` under the hierarchy (its box from its own vertices).
+    #[cfg(test)]
     pub fn build(mesh: &'a Mesh) -> RayTree<'a> {
+        RayTree::build_checked(mesh, &|_| true).expect("never told to stop")
+    }
+
+    /// [`RayTree::build`] that asks `go_on` whether to go on while the hierarchy is
+    /// built; `None` when it said stop.
+    pub fn build_checked(
+        mesh: &'a Mesh,
+        go_on: crate::progress::Checkpoint,
+    ) -> Option<RayTree<'a>> {
         let (lo, hi) = mesh.aabb();
         let bbox = |f: u32| {
             let vs = mesh.face(f as usize);
             crate::math::aabb_of(vs.iter().map(|&v| mesh.pos(v)))
         };
-        RayTree {
+        Some(RayTree {
             mesh,
             // Whether any face blocks a ray does not depend on the tree: centres in
             // f32 halve the build's table (16 bytes a face).
-            bvh: Bvh::build_coarse(mesh.face_count(), LEAF, &bbox),
+            bvh: Bvh::build_coarse(mesh.face_count(), LEAF, &bbox, go_on)?,
             eps: 1e-9 * norm(sub(hi, lo)).max(f64::MIN_POSITIVE),
-        }
+        })
     }
 
     /// Whether the ray from `p` along unit `d` meets a face other than `own` (at a
@@ -122,15 +132,22 @@ fn unit(v: V3) -> V3 {
 /// face's centroid), or `None` when none has area: > 0 when the patch's present
 /// winding faces outside.
 pub fn vote(grid: &RayTree, members: &[u32], sign: &[i8], quota: usize) -> Option<f64> {
+    use rayon::prelude::*;
     let mesh = grid.mesh;
-    let (mut sum, mut area) = (0.0, 0.0);
     let q = quota.clamp(1, members.len().max(1));
-    for i in 0..q.min(members.len()) {
-        let f = members[i * members.len() / q];
-        let Some((n, c, len)) = super::mesh::outward_normal_and_centre(mesh, sign, f) else {
-            continue;
-        };
-        sum += 0.5 * len * f64::from(grid.side_score(c, n, f));
+    // The rays in parallel, summed in the faces' order (the same sum on any thread
+    // count).
+    let scores: Vec<Option<(f64, i32)>> = (0..q.min(members.len()))
+        .into_par_iter()
+        .map(|i| {
+            let f = members[i * members.len() / q];
+            let (n, c, len) = super::mesh::outward_normal_and_centre(mesh, sign, f)?;
+            Some((len, grid.side_score(c, n, f)))
+        })
+        .collect();
+    let (mut sum, mut area) = (0.0, 0.0);
+    for (len, score) in scores.into_iter().flatten() {
+        sum += 0.5 * len * f64::from(score);
         area += 0.5 * len;
     }
     (area > 0.0).then(|| sum / area)

@@ -21,7 +21,7 @@
 mod parsed;
 
 use arbitrary::Arbitrary;
-use primdecomp::{LoadOptions, MeshFormat, parse_mesh_with};
+use primdecomp::{LoadOptions, Mesh, MeshFormat};
 use serde_json::{json, Map, Value};
 use std::path::PathBuf;
 use std::sync::OnceLock;
@@ -478,7 +478,7 @@ libfuzzer_sys::fuzz_target!(|doc: Doc| {
         allow_external_uris: doc.allow_external_uris,
         ..LoadOptions::default()
     };
-    match parse_mesh_with(&bytes, format, &path, &options) {
+    match Mesh::parse_with(&bytes, format, &path, &options) {
         Ok(b) => {
             assert!(
                 doc.allow_external_uris || !outside,

@@ -7,7 +7,7 @@ use primdecomp::{Mesh, MeshFormat};
 use std::path::Path;
 
 #[allow(dead_code)] // gltf_structured calls check_mesh only
-pub fn check(data: &[u8], format: Format, name: &str) {
+pub fn check(data: &[u8], format: MeshFormat, name: &str) {
     // A directory that does not exist: a .gltf naming an external buffer gets an
     // error instead of reading files from the fuzzing machine.
     let path = Path::new("/nonexistent-primdecomp-fuzz").join(name);

@@ -86,6 +86,27 @@ impl Mesh {
         parse_bytes(bytes, format, path).map(Mesh::from_builder)
     }
 
+    /// [`Mesh::parse`] with `options`, of which only the glTF URI policy applies
+    /// (`allow_external_uris`: a `.gltf`'s buffers from anywhere `path` points).
+    ///
+    /// ```
+    /// use primdecomp::{LoadOptions, Mesh, MeshFormat};
+    ///
+    /// let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    /// let options = LoadOptions::default();
+    /// let mesh = Mesh::parse_with(obj, MeshFormat::Obj, "t.obj".as_ref(), &options)?;
+    /// assert_eq!(mesh.face_count(), 1);
+    /// # Ok::<(), primdecomp::Error>(())
+    /// ```
+    pub fn parse_with(
+        bytes: &[u8],
+        format: MeshFormat,
+        path: &Path,
+        options: &LoadOptions,
+    ) -> Result<Mesh> {
+        parse_bytes_with(bytes, format, path, options).map(Mesh::from_builder)
+    }
+
     /// Reads the mesh in `path` (OBJ, PLY, STL, OFF, glTF/GLB, by its extension):
     /// memory-mapped, parsed, re-centred, with the default [`LoadOptions`] (no memory
     /// limit, glTF buffers only from inside the glTF's folder): see [`Mesh::load_with`].

@@ -110,7 +110,7 @@ pub fn decompose_tiled(
 /// runs, and the plan and tile index a result was made for.
 ///
 /// ```
-/// use primdecomp::{decompose_tiled, to_json, Goal, LoadOptions, Params, Tiled};
+/// use primdecomp::{decompose_tiled, Goal, LoadOptions, Params, Tiled};
 ///
 /// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../datasets/demo_scene.obj");
 /// let params = Params { goal: Goal::counts([20]), ..Params::default() };
@@ -123,7 +123,7 @@ pub fn decompose_tiled(
 ///     .collect::<Result<Vec<_>, _>>()?;
 /// let merged = plan.merge(&tiles, &|_, _| {})?;
 /// let whole = decompose_tiled(path.as_ref(), &params, &options, &|_, _| {})?;
-/// assert_eq!(to_json(&merged, 0, &params), to_json(&whole, 0, &params));
+/// assert_eq!(merged.to_json(0, &params), whole.to_json(0, &params));
 /// // A result altered on the way is refused.
 /// let mut bad = tiles[0].clone();
 /// bad[40] ^= 1;

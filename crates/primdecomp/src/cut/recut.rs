@@ -68,23 +68,20 @@ pub(crate) fn snapshots(
             s.step(r, snap, level);
         }
     }
-    fill_short(
-        &mut cutter,
-        &mut searches,
-        requests,
-        (ev, tris),
-        postprocess,
-    );
-    if cutter.stopped() {
-        return None;
+    // The short levels filled, then the counts' levels explored loosely; each step
+    // ends at once when told to stop.
+    for step in [fill_short, loosen] {
+        if cutter.stopped() {
+            return None;
+        }
+        step(
+            &mut cutter,
+            &mut searches,
+            requests,
+            (ev, tris),
+            postprocess,
+        );
     }
-    loosen(
-        &mut cutter,
-        &mut searches,
-        requests,
-        (ev, tris),
-        postprocess,
-    );
     if cutter.stopped() {
         return None;
     }

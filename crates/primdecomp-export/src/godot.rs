@@ -10,27 +10,12 @@
 //! escaped.
 
 use super::engine::{num, prepare, quat_between, ExportOptions, Format, Shape};
-use super::names::{ident, Names};
+use super::names::{ident, quote, Names};
 use primdecomp::visible;
 use primdecomp::ResultObject;
 use primdecomp_math::axes_from_quat;
 use primdecomp_math::V3;
 use std::fmt::Write;
-
-/// A Godot string literal: quoted, `\` and `"` escaped; control characters (which
-/// Godot's strings cannot all hold: a NUL ends them) first made [`visible`].
-pub fn quote(s: &str) -> String {
-    let mut out = String::from("\"");
-    for c in visible(s).chars() {
-        match c {
-            '\\' => out.push_str("\\\\"),
-            '"' => out.push_str("\\\""),
-            c => out.push(c),
-        }
-    }
-    out.push('"');
-    out
-}
 
 /// `Transform3D(…)` of rotation `q` (scalar last) and origin `t`.
 pub fn transform(q: [f64; 4], t: V3) -> String {

@@ -17,6 +17,7 @@
 //! 5. [`file_name`] caps file names at [`MAX_FILE_NAME`] bytes, keeping them distinct
 //!    with a hash of the whole name when cut.
 
+use primdecomp::visible;
 use std::collections::{HashMap, HashSet};
 
 /// The longest file name (bytes) an export writes: the common limit of Linux, macOS
@@ -98,6 +99,23 @@ impl Names {
             }
         }
     }
+}
+
+/// A double-quoted string for Godot's `.tscn` and USD's `.usda` alike: `\\` and `"`
+/// escaped, control characters first made [`visible`] (a NUL would end the string in
+/// both engines).
+pub fn quote(s: &str) -> String {
+    let mut out = String::with_capacity(s.len() + 2);
+    out.push('"');
+    for c in visible(s).chars() {
+        match c {
+            '\\' => out.push_str("\\\\"),
+            '"' => out.push_str("\\\""),
+            c => out.push(c),
+        }
+    }
+    out.push('"');
+    out
 }
 
 #[cfg(test)]

@@ -10,27 +10,11 @@
 //! name is kept in a `primdecomp:name` string, escaped.
 
 use super::engine::{prepare, quat_between, ExportOptions, Format, Shape};
-use super::names::{ident, Names};
+use super::names::{ident, quote, Names};
 use primdecomp::visible;
 use primdecomp::ResultObject;
 use primdecomp_math::V3;
 use std::fmt::Write;
-
-/// A USD string literal: quoted, `\` and `"` escaped; control characters first made
-/// [`visible`] (USD strings are C strings underneath: a NUL would end them).
-pub fn quote(s: &str) -> String {
-    let mut out = String::with_capacity(s.len() + 2);
-    out.push('"');
-    for c in visible(s).chars() {
-        match c {
-            '\\' => out.push_str("\\\\"),
-            '"' => out.push_str("\\\""),
-            c => out.push(c),
-        }
-    }
-    out.push('"');
-    out
-}
 
 fn tuple(v: &[f64]) -> String {
     let s: Vec<String> = v.iter().map(|&x| super::engine::num(x)).collect();

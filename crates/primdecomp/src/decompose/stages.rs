@@ -11,9 +11,10 @@ use crate::input::solid::{self, Solid};
 use crate::input::triangles::Triangles;
 use crate::input::{adjacency, dedup};
 use crate::math::{Sym3, V3};
-use crate::merge::setup::{evaluator, seed_volumes};
+use crate::merge::cost::InputView;
+use crate::merge::setup::{pricing, seed_volumes};
 use crate::merge::stage::{merge, FirstPhase, ForTree, MergeInput, Surface};
-use crate::merge::{components, Evaluator, MergeLog, MergeOutput};
+use crate::merge::{components, Fitter, MergeLog, MergeOutput};
 use crate::output::result::{Decomposition, InputInfo, Level, Stats};
 use crate::params::Params;
 use crate::postprocess;
@@ -161,19 +162,24 @@ impl Seeds {
     }
 }
 
-/// The fit settings made absolute for this input ([`evaluator`]) with the faces'
-/// surface and the interior.
-pub(crate) fn evaluator_of<'a>(
+/// Fits and prices over the input's view — the mesh, its welded faces, the faces'
+/// surface and the interior — with the settings made absolute for it ([`pricing`]).
+pub(crate) fn fitter_of<'a>(
     mesh: &'a Mesh,
     graph: &'a Graph,
     params: &Params,
     around: &'a Around,
-) -> Evaluator<'a> {
-    Evaluator {
+) -> Fitter<'a> {
+    let input = InputView {
+        mesh,
+        welded: &graph.welded,
         face_sign: &around.surface.signs,
         face_adj: around.surface.adjacency(),
         solid: around.solid.as_ref(),
-        ..evaluator(mesh, &graph.welded, params, graph.bounds)
+    };
+    Fitter {
+        input,
+        pricing: pricing(params, graph.bounds),
     }
 }
 
@@ -181,7 +187,7 @@ pub(crate) fn evaluator_of<'a>(
 /// its own).
 pub(crate) fn seed(
     clock: &mut Clock,
-    ev: &Evaluator,
+    ev: &Fitter,
     q: &[Sym3],
     first: &FirstPhase,
 ) -> Result<Vec<f64>> {
@@ -195,7 +201,7 @@ pub(crate) fn seed(
 /// added to `stats`.
 pub(crate) fn merge_stage(
     clock: &mut Clock,
-    ev: &Evaluator,
+    ev: &Fitter,
     (input, first): (MergeInput, FirstPhase),
     targets: &[usize],
     stats: &mut Stats,
@@ -226,12 +232,12 @@ pub(crate) fn triangles<'m>(
 /// input's interior for plates thickened inward (--min-thickness).
 pub(crate) fn interior<'a>(
     clock: &mut Clock,
-    ev: &Evaluator,
+    mesh: &Mesh,
     params: &Params,
     tris: Option<&'a Triangles>,
 ) -> Result<postprocess::Prepared<'a>> {
     clock.step(Stage::Postprocess, "interior", || {
-        postprocess::Prepared::new(ev, params, tris)
+        postprocess::Prepared::new(mesh, params, tris)
     })
 }
 

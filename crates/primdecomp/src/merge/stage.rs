@@ -5,7 +5,7 @@
 use super::components;
 use super::partition;
 use super::rim::FaceAdjacency;
-use super::{Clusters, Evaluator, MergeLog, MergeOutput};
+use super::{Clusters, Fitter, MergeLog, MergeOutput};
 use crate::input::mesh::Mesh;
 use crate::input::orient;
 use crate::math::Sym3;
@@ -148,7 +148,7 @@ impl FirstPhase {
 /// not reach, and for the merge tree every merge ([`MergeLog`], empty without
 /// `input.tree`). Progress is the fraction of the merges down to the last target.
 pub(crate) fn merge(
-    ev: &Evaluator,
+    ev: &Fitter,
     input: MergeInput,
     first: FirstPhase,
     targets: &[usize],
@@ -165,7 +165,7 @@ pub(crate) fn merge(
         tangent_eps,
     } = input;
     let last = *targets.last().expect("validated: one target or more");
-    let total = ev.mesh.face_count().saturating_sub(last).max(1) as f64;
+    let total = ev.input.mesh.face_count().saturating_sub(last).max(1) as f64;
     let merged_so_far = |m: usize| go_on(m as f64 / total);
     // Every merge the replayed components did, in the global order.
     let mut tree_log = Vec::new();
@@ -189,7 +189,7 @@ pub(crate) fn merge(
             // faces' pairs, operators and volumes are done with: the groups hold theirs.
             drop((pairs, q, volumes));
             let so_far = stats.merges;
-            let faces = ev.mesh.face_count();
+            let faces = ev.input.mesh.face_count();
             let clusters = laps.time("regroup", || {
                 partition::group_clusters(p1, faces, &lists, &|_| merged_so_far(so_far))
             });

@@ -46,9 +46,10 @@ pub(crate) fn run(
     let keep = ForTree {
         hulls_over: tree::tree_hulls_over(mesh, params, largest),
     };
-    let (input, mut stats) = seeds.merge_input(volumes, &around, Some(keep), params);
+    let (input, mut stats) = seeds.merge_input(volumes, &around, params);
     // Merging down to the roots, every merge logged: the merge tree (Alg. 1's loop).
-    let (merged, log) = merge_stage(&mut clock, &ev, (input, first), &targets, &mut stats)?;
+    let to_roots = (&targets[..], keep);
+    let (merged, log) = merge_stage(&mut clock, &ev, (input, first), to_roots, &mut stats)?;
     if merged.stopped {
         return Err(Error::Cancelled);
     }

@@ -5,7 +5,7 @@
 use super::stages::{self, fitter_of, merge_stage, Graph, Seeds};
 use crate::error::Result;
 use crate::input::mesh::Mesh;
-use crate::merge::stage::{merge_order, FirstPhase};
+use crate::merge::stage::{merge_order, AtTargets, FirstPhase};
 use crate::output::result::Decomposition;
 use crate::params::Params;
 use crate::postprocess;
@@ -30,9 +30,11 @@ pub(crate) fn run(
     let ev = fitter_of(mesh, &graph, params, &around);
     // One primitive per face seeds the volumes (Alg. 1, line 2).
     let volumes = stages::seed(&mut clock, &ev, seeds.quadrics(), &first)?;
-    let (input, mut stats) = seeds.merge_input(volumes, &around, None, params);
-    // Greedy merging down through every target in one pass (Alg. 1's loop).
-    let (merged, _) = merge_stage(&mut clock, &ev, (input, first), &targets, &mut stats)?;
+    let (input, mut stats) = seeds.merge_input(volumes, &around, params);
+    // Greedy merging down through every target in one pass (Alg. 1's loop), keeping
+    // the clusters at each.
+    let at = (&targets[..], AtTargets);
+    let (merged, ()) = merge_stage(&mut clock, &ev, (input, first), at, &mut stats)?;
     // The input's triangles, once, for thickened plates (--min-thickness), and its
     // interior for plates thickened inward.
     let tris = stages::triangles(&mut clock, mesh, params.plates.min_thickness > 0.0)?;

@@ -13,8 +13,8 @@ use crate::input::{adjacency, dedup};
 use crate::math::{Sym3, V3};
 use crate::merge::cost::InputView;
 use crate::merge::setup::{pricing, seed_volumes};
-use crate::merge::stage::{merge, FirstPhase, ForTree, MergeInput, Surface};
-use crate::merge::{components, Fitter, MergeLog, MergeOutput};
+use crate::merge::stage::{merge, FirstPhase, Keep, MergeInput, Surface};
+use crate::merge::{components, Fitter, MergeOutput};
 use crate::output::result::{Decomposition, InputInfo, Level, Stats};
 use crate::params::Params;
 use crate::postprocess;
@@ -141,13 +141,12 @@ impl Seeds {
         &self.q
     }
 
-    /// What the merge loop consumes, with the faces' seed `volumes` and, for the
-    /// merge tree, what it keeps of its merges; and the run's counters.
+    /// What the merge loop consumes, with the faces' seed `volumes`; and the run's
+    /// counters.
     pub(crate) fn merge_input(
         self,
         volumes: Vec<f64>,
         around: &Around,
-        tree: Option<ForTree>,
         params: &Params,
     ) -> (MergeInput, Stats) {
         let input = MergeInput {
@@ -155,7 +154,6 @@ impl Seeds {
             volumes,
             pairs: self.pairs,
             lists: (around.surface.offsets.clone(), around.surface.adj.clone()),
-            tree,
             tangent_eps: params.fit.tangent_eps,
         };
         (input, self.stats)
@@ -197,17 +195,18 @@ pub(crate) fn seed(
     })
 }
 
-/// The merge stage: the loop from `first` through `targets` on `input`, its counts
+/// The merge stage: the loop from `first` through `targets` on `input`, keeping what
+/// the pass asks besides the snapshots (`keep`: nothing, or the merge tree), its counts
 /// added to `stats`.
-pub(crate) fn merge_stage(
+pub(crate) fn merge_stage<K: Keep>(
     clock: &mut Clock,
     ev: &Fitter,
     (input, first): (MergeInput, FirstPhase),
-    targets: &[usize],
+    (targets, keep): (&[usize], K),
     stats: &mut Stats,
-) -> Result<(MergeOutput, MergeLog)> {
+) -> Result<(MergeOutput, K::Log)> {
     clock.stage(Stage::Merge, "merge", |go_on, laps| {
-        merge(ev, input, first, targets, stats, go_on, laps)
+        merge(ev, input, first, targets, keep, stats, go_on, laps)
     })
 }
 

@@ -8,7 +8,7 @@
 
 use criterion::{criterion_group, criterion_main, BatchSize, Criterion};
 use primdecomp::internals::{
-    evaluator, face_pairs, face_quadrics, keep_mask, run, run_with, seed_volumes, weld, Cleanup,
+    face_pairs, face_quadrics, fitter, keep_mask, run, run_with, seed_volumes, weld, Cleanup,
     Clusters, StdHeap,
 };
 use primdecomp::{decompose, demo_scene, Goal, Mesh, Params};
@@ -83,7 +83,7 @@ fn stages(c: &mut Criterion) {
         g.bench_function("quadrics", |b| {
             b.iter(|| face_quadrics(m, p.fit.tangent_eps, &mut q_bench))
         });
-        let ev = evaluator(m, &welded, &p, m.aabb());
+        let ev = fitter(m, &welded, &p, m.aabb());
         g.bench_function("seed", |b| b.iter(|| seed_volumes(&ev, &q)));
         let vols = seed_volumes(&ev, &q);
         let fresh = || Clusters::new(q.clone(), vols.clone(), &pairs);

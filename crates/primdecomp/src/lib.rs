@@ -111,11 +111,11 @@ pub mod internals {
     pub use crate::input::orient::face_signs_of_lists;
     use crate::math::Sym3;
     pub use crate::merge::cluster::Clusters;
-    pub use crate::merge::cost::{Evaluator, Workspace};
+    pub use crate::merge::cost::{Fitter, Workspace};
     use crate::merge::driver::MergeOutput;
     pub use crate::merge::heap::StdHeap;
     pub use crate::merge::rim::{FaceAdjacency, Surroundings};
-    pub use crate::merge::setup::evaluator;
+    pub use crate::merge::setup::fitter;
     pub use crate::merge::worker::with_pricer;
     pub use crate::params::{AUTO_MIN_FACES, AUTO_PARTS};
     pub use crate::postprocess::nested::{keep_mask, Cleanup};
@@ -129,18 +129,18 @@ pub mod internals {
     pub use crate::seed::quadric::face_quadrics;
 
     /// Each face's seed volume.
-    pub fn seed_volumes(ev: &Evaluator, q: &[Sym3]) -> Vec<f64> {
+    pub fn seed_volumes(ev: &Fitter, q: &[Sym3]) -> Vec<f64> {
         crate::merge::setup::seed_volumes(ev, q, &|_| true)
     }
 
     /// The merge loop through `targets` (decreasing).
-    pub fn run(ev: &Evaluator, cl: Clusters, targets: &[usize]) -> MergeOutput {
+    pub fn run(ev: &Fitter, cl: Clusters, targets: &[usize]) -> MergeOutput {
         crate::merge::driver::run(ev, cl, targets, &|_| true)
     }
 
     /// The merge loop on another queue.
     pub fn run_with<Q: crate::merge::heap::Queue>(
-        ev: &Evaluator,
+        ev: &Fitter,
         cl: Clusters,
         targets: &[usize],
     ) -> MergeOutput {

@@ -4,7 +4,7 @@
 //! here counts every thread, so this file holds this one test only: the harness's main
 //! thread just waits for it.
 
-use primdecomp::internals::{with_pricer, Clusters, Evaluator};
+use primdecomp::internals::{with_pricer, Clusters, Fitter};
 use primdecomp_testkit::demo::{grow, with_demo};
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
@@ -50,7 +50,7 @@ fn shared_repricing_allocates_nothing_once_warm() {
 /// Runs up to 50 rounds over every live cluster's batch, on a two-thread pool (so the
 /// pricer has its worker); passes once a round allocated nothing while the worker
 /// priced neighbours.
-fn priced_cleanly(ev: &Evaluator, mut cl: Clusters) {
+fn priced_cleanly(ev: &Fitter, mut cl: Clusters) {
     let roots = cl.roots();
     let batches: Vec<(u32, Vec<u32>)> = roots
         .iter()

@@ -1,19 +1,19 @@
 //! The demo scene as merge-stage input, for the allocation tests.
 
 use primdecomp::internals::{
-    evaluator, face_pairs, face_quadrics, seed_volumes, weld, Clusters, Evaluator,
+    face_pairs, face_quadrics, fitter, seed_volumes, weld, Clusters, Fitter,
 };
 use primdecomp::{demo_scene, Params};
 
-/// Runs `f` on the demo scene's evaluator, its single-face clusters and adjacent pairs.
-pub fn with_demo<R>(f: impl FnOnce(&Evaluator, Clusters, Vec<(u32, u32)>) -> R) -> R {
+/// Runs `f` on the demo scene's fitter, its single-face clusters and adjacent pairs.
+pub fn with_demo<R>(f: impl FnOnce(&Fitter, Clusters, Vec<(u32, u32)>) -> R) -> R {
     let mesh = demo_scene();
     let p = Params::default();
     let (welded, _) = weld(&mesh, p.fit.dedup);
     let pairs = face_pairs(&mesh, &welded);
     let mut q = Vec::new();
     face_quadrics(&mesh, p.fit.tangent_eps, &mut q);
-    let ev = evaluator(&mesh, &welded, &p, mesh.aabb());
+    let ev = fitter(&mesh, &welded, &p, mesh.aabb());
     let vols = seed_volumes(&ev, &q);
     let cl = Clusters::new(q, vols, &pairs);
     f(&ev, cl, pairs)
@@ -21,7 +21,7 @@ pub fn with_demo<R>(f: impl FnOnce(&Evaluator, Clusters, Vec<(u32, u32)>) -> R) 
 
 /// Merges the clusters of the first `n` adjacent pairs, so that candidates span
 /// multi-face point lists too.
-pub fn grow(ev: &Evaluator, cl: &mut Clusters, pairs: &[(u32, u32)], n: usize) {
+pub fn grow(ev: &Fitter, cl: &mut Clusters, pairs: &[(u32, u32)], n: usize) {
     for &(a, b) in pairs.iter().take(n) {
         let (ra, rb) = (cl.find(a), cl.find(b));
         if ra != rb {

@@ -28,7 +28,7 @@ pub(crate) mod tree;
 
 use crate::input::triangles::Triangles;
 use crate::math::{Sym3, V3};
-use crate::merge::{Evaluator, Snapshot, Workspace};
+use crate::merge::{Fitter, Snapshot, Workspace};
 use crate::output::result::Shortfall;
 use crate::primitive::Primitive;
 pub(crate) use chamfer::mean_distance;
@@ -166,7 +166,7 @@ struct Explored {
 /// What a cut is made from: the fit settings, the tree, its nodes' hulls and the
 /// input's surface.
 pub(crate) struct Cutter<'a> {
-    ev: &'a Evaluator<'a>,
+    ev: &'a Fitter<'a>,
     tree: &'a MergeTree,
     hulls: NodeHulls<'a>,
     /// What [`Cutter::snapshots`] was last asked.
@@ -206,7 +206,7 @@ impl<'a> Cutter<'a> {
     /// The cutter of `tree` for `requests` (their counts and bytes may be raised
     /// later, [`Cutter::snapshots`]; their tolerances stay).
     pub(crate) fn new(
-        ev: &'a Evaluator<'a>,
+        ev: &'a Fitter<'a>,
         tree: &'a MergeTree,
         surface: &'a Triangles,
         requests: &[Request],
@@ -220,7 +220,13 @@ impl<'a> Cutter<'a> {
         Cutter {
             ev,
             tree,
-            hulls: NodeHulls::build(tree, ev.mesh, ev.face_adj, ev.hull_eps, stored),
+            hulls: NodeHulls::build(
+                tree,
+                ev.input.mesh,
+                ev.input.face_adj,
+                ev.pricing.hull_eps,
+                stored,
+            ),
             requests: requests.to_vec(),
             fitted: HashMap::new(),
             surface,
@@ -229,10 +235,10 @@ impl<'a> Cutter<'a> {
                 .map(|r| r.tolerance)
                 .try_fold(f64::INFINITY, |m, t| t.map(|t| m.min(t)))
                 .unwrap_or(0.0)
-                .max(FLOOR_HALVES * ev.cfg.min_half),
+                .max(FLOOR_HALVES * ev.pricing.fit.min_half),
             fill_short: false,
             loose: false,
-            boxes: carried_parts::node_boxes(tree, ev.mesh),
+            boxes: carried_parts::node_boxes(tree, ev.input.mesh),
             measures: error_memo::Measures::default(),
             go_on,
             stopped: std::sync::atomic::AtomicBool::new(false),
@@ -279,15 +285,15 @@ impl<'a> Cutter<'a> {
     /// [`Cutter::closest`], was made on every point of them already) and of the nodes
     /// it carries ([`carried_parts`]: a nearest fit kept from an earlier cut may not have
     /// had them), else the output fit on all of them. Enclosing is up to the point
-    /// reduction's own tolerance (`Evaluator::hull_eps`): a fit on every point is no
+    /// reduction's own tolerance (`Fitter::hull_eps`): a fit on every point is no
     /// nearer than that either (its extreme points stand outside it by round-off),
     /// and would be the same.
     fn enclosing(&self, ex: &Explored, e: &Entry, ws: &mut Workspace) -> Primitive {
-        let mesh = self.ev.mesh;
+        let mesh = self.ev.input.mesh;
         let inside = |&f: &u32| {
             mesh.face(f as usize)
                 .iter()
-                .all(|&v| e.prim.contains(mesh.pos(v), self.ev.hull_eps))
+                .all(|&v| e.prim.contains(mesh.pos(v), self.ev.pricing.hull_eps))
         };
         let nodes = self.covered(ex, e.node);
         let own = self.members(ex, e.node).len();
@@ -614,7 +620,7 @@ impl<'a> Cutter<'a> {
     fn snapshot(&self, ex: &Explored, r: &Request, mut cut: Vec<Entry>) -> LevelCut {
         let worst = cut.iter().map(|e| e.error).fold(0.0, f64::max);
         cut.sort_unstable_by_key(|e| self.start(ex, e.node));
-        let mesh = self.ev.mesh;
+        let mesh = self.ev.input.mesh;
         let members: Vec<Vec<u32>> = cut
             .iter()
             .map(|e| self.faces_of(ex, e.node).collect())

@@ -36,7 +36,7 @@ impl Cutter<'_> {
     }
 
     /// Node `e` refitted as the least-error candidate of every kind in every frame
-    /// ([`Evaluator::output_candidates`]), or kept if none is nearer: where the cut
+    /// ([`Fitter::output_candidates`]), or kept if none is nearer: where the cut
     /// cannot split, the fit's k·V (a volume, blind to how far a corner stands off a
     /// triangle) no longer chooses (docs/decisions/0041). The candidates enclose the
     /// nodes it carries too.

@@ -11,7 +11,7 @@
 use crate::cut::LevelCut;
 use crate::cut::{mean_distance, Cutter, MergeTree, Request, LOOSE_FACTOR};
 use crate::input::triangles::Triangles;
-use crate::merge::{Evaluator, Snapshot};
+use crate::merge::{Fitter, Snapshot};
 use crate::output::result::{Level, Shortfall};
 use crate::primitive::Primitive;
 
@@ -30,7 +30,7 @@ pub(crate) type Postprocess<'a> = dyn Fn(&[LevelCut]) -> Vec<Level> + 'a;
 /// is within the request, carrying the request's own count; `None` when `go_on` said
 /// stop (asked between the cutter's splits and between cuts).
 pub(crate) fn snapshots(
-    ev: &Evaluator,
+    ev: &Fitter,
     tree: &MergeTree,
     requests: &[Request],
     tris: &Triangles,
@@ -107,7 +107,7 @@ fn fill_short(
     cutter: &mut Cutter,
     searches: &mut [LevelRecut],
     requests: &[Request],
-    (ev, tris): (&Evaluator, &Triangles),
+    (ev, tris): (&Fitter, &Triangles),
     postprocess: &Postprocess<'_>,
 ) {
     let short = |s: &LevelRecut, r: &Request| {
@@ -229,7 +229,7 @@ fn loosen(
     cutter: &mut Cutter,
     searches: &mut [LevelRecut],
     requests: &[Request],
-    (ev, tris): (&Evaluator, &Triangles),
+    (ev, tris): (&Fitter, &Triangles),
     postprocess: &Postprocess<'_>,
 ) {
     if (requests.iter()).any(|r| r.tolerance.is_some() || r.bytes.is_some()) {
@@ -266,8 +266,8 @@ fn loosen(
 
 /// A level's mean distance to the input ([`mean_distance`]); levels are in world
 /// coordinates, the input's triangles in its re-centred frame.
-fn mean(ev: &Evaluator, tris: &Triangles, l: &Level) -> f64 {
-    let back = ev.mesh.offset.map(|x| -x);
+fn mean(ev: &Fitter, tris: &Triangles, l: &Level) -> f64 {
+    let back = ev.input.mesh.offset.map(|x| -x);
     let prims: Vec<Primitive> = l.primitives.iter().map(|p| p.translated(back)).collect();
     mean_distance(&prims, tris)
 }

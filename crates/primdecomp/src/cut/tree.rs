@@ -3,11 +3,11 @@
 //! snapshot are its leaves, every merge after that snapshot a node naming its two
 //! children, and each node's faces a contiguous range of one permutation of the faces
 //! (children's ranges side by side), with the node's operator Q — enough to refit any
-//! node's primitive (`Evaluator::fit_output` on the range's faces and Q).
+//! node's primitive (`Fitter::fit_output` on the range's faces and Q).
 
 use crate::input::mesh::Mesh;
 use crate::math::Sym3;
-use crate::merge::{Evaluator, MergeLog, MergeOutput, TreeHulls};
+use crate::merge::{Fitter, MergeLog, MergeOutput, TreeHulls};
 use crate::params::Params;
 use std::collections::HashMap;
 
@@ -158,12 +158,12 @@ fn find(parent: &mut [u32], mut x: u32) -> u32 {
 /// faces, of operators `face_q`, when every merge was logged), with the points the loop
 /// kept for its nodes.
 pub(crate) fn merge_tree(
-    ev: &Evaluator,
+    ev: &Fitter,
     merged: &MergeOutput,
     log: MergeLog,
     face_q: &[Sym3],
 ) -> MergeTree {
-    let faces = ev.mesh.face_count();
+    let faces = ev.input.mesh.face_count();
     let hulls = log.hulls;
     if log.from_faces {
         // Every merge is known: the leaves are single faces, so any cluster can be

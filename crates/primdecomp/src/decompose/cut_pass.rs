@@ -3,7 +3,7 @@
 //! the cut of that tree its tolerance, byte budget or count asks for, post-processed
 //! (§3.4) with its distance to the input recorded.
 
-use super::stages::{self, evaluator_of, merge_stage, Graph, Seeds};
+use super::stages::{self, fitter_of, merge_stage, Graph, Seeds};
 use crate::cut::{limits, recut, tree, LevelCut, LEAVES_PER_TARGET};
 use crate::error::{Error, Result};
 use crate::input::mesh::Mesh;
@@ -33,7 +33,7 @@ pub(crate) fn run(
     let from_faces = !matches!(first, FirstPhase::Parts { .. });
     // One operator per face (§3.1), the faces' surface and the input's interior.
     let (seeds, around) = Seeds::build(&mut clock, mesh, params, &mut graph, &first)?;
-    let ev = evaluator_of(mesh, &graph, params, &around);
+    let ev = fitter_of(mesh, &graph, params, &around);
     // One primitive per face seeds the volumes (Alg. 1, line 2).
     let volumes = stages::seed(&mut clock, &ev, seeds.quadrics(), &first)?;
     // Without spatial parts every merge is logged and the tree's leaves are the faces:
@@ -46,16 +46,17 @@ pub(crate) fn run(
     let keep = ForTree {
         hulls_over: tree::tree_hulls_over(mesh, params, largest),
     };
-    let (input, mut stats) = seeds.merge_input(volumes, &around, Some(keep), params);
+    let (input, mut stats) = seeds.merge_input(volumes, &around, params);
     // Merging down to the roots, every merge logged: the merge tree (Alg. 1's loop).
-    let (merged, log) = merge_stage(&mut clock, &ev, (input, first), &targets, &mut stats)?;
+    let to_roots = (&targets[..], keep);
+    let (merged, log) = merge_stage(&mut clock, &ev, (input, first), to_roots, &mut stats)?;
     if merged.stopped {
         return Err(Error::Cancelled);
     }
     // The input's triangles, once, for the cut's distances and thickened plates, and
     // its interior for plates thickened inward (--min-thickness).
     let tris = stages::triangles(&mut clock, mesh, true)?.ok_or(Error::Cancelled)?;
-    let reads = stages::interior(&mut clock, &ev, params, Some(&tris))?;
+    let reads = stages::interior(&mut clock, mesh, params, Some(&tris))?;
     // Post-processing (§3.4) is the step each cut is measured after: plates joined
     // within the cut's bound, duplicates absorbed, nested primitives removed.
     let postprocess = |cuts: &[LevelCut]| -> Vec<Level> {

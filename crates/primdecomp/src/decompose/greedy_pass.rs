@@ -2,10 +2,10 @@
 //! first stops at each count asked, and the clusters alive there, post-processed
 //! (§3.4), are its level.
 
-use super::stages::{self, evaluator_of, merge_stage, Graph, Seeds};
+use super::stages::{self, fitter_of, merge_stage, Graph, Seeds};
 use crate::error::Result;
 use crate::input::mesh::Mesh;
-use crate::merge::stage::{merge_order, FirstPhase};
+use crate::merge::stage::{merge_order, AtTargets, FirstPhase};
 use crate::output::result::Decomposition;
 use crate::params::Params;
 use crate::postprocess;
@@ -27,16 +27,18 @@ pub(crate) fn run(
     let first = FirstPhase::choose(mesh, params, &graph.pairs, targets[0], targets[0]);
     // One operator per face (§3.1), the faces' surface and the input's interior.
     let (seeds, around) = Seeds::build(&mut clock, mesh, params, &mut graph, &first)?;
-    let ev = evaluator_of(mesh, &graph, params, &around);
+    let ev = fitter_of(mesh, &graph, params, &around);
     // One primitive per face seeds the volumes (Alg. 1, line 2).
     let volumes = stages::seed(&mut clock, &ev, seeds.quadrics(), &first)?;
-    let (input, mut stats) = seeds.merge_input(volumes, &around, None, params);
-    // Greedy merging down through every target in one pass (Alg. 1's loop).
-    let (merged, _) = merge_stage(&mut clock, &ev, (input, first), &targets, &mut stats)?;
+    let (input, mut stats) = seeds.merge_input(volumes, &around, params);
+    // Greedy merging down through every target in one pass (Alg. 1's loop), keeping
+    // the clusters at each.
+    let at = (&targets[..], AtTargets);
+    let (merged, ()) = merge_stage(&mut clock, &ev, (input, first), at, &mut stats)?;
     // The input's triangles, once, for thickened plates (--min-thickness), and its
     // interior for plates thickened inward.
     let tris = stages::triangles(&mut clock, mesh, params.plates.min_thickness > 0.0)?;
-    let reads = stages::interior(&mut clock, &ev, params, tris.as_ref())?;
+    let reads = stages::interior(&mut clock, mesh, params, tris.as_ref())?;
     // Plates joined, duplicates absorbed, nested primitives removed, back to world
     // coordinates (§3.4).
     let levels = clock.stage(Stage::Postprocess, "postprocess", |_, _| {

@@ -11,9 +11,10 @@ use crate::input::solid::{self, Solid};
 use crate::input::triangles::Triangles;
 use crate::input::{adjacency, dedup};
 use crate::math::{Sym3, V3};
-use crate::merge::setup::{evaluator, seed_volumes};
-use crate::merge::stage::{merge, FirstPhase, ForTree, MergeInput, Surface};
-use crate::merge::{components, Evaluator, MergeLog, MergeOutput};
+use crate::merge::cost::InputView;
+use crate::merge::setup::{pricing, seed_volumes};
+use crate::merge::stage::{merge, FirstPhase, Keep, MergeInput, Surface};
+use crate::merge::{components, Fitter, MergeOutput};
 use crate::output::result::{Decomposition, InputInfo, Level, Stats};
 use crate::params::Params;
 use crate::postprocess;
@@ -140,13 +141,12 @@ impl Seeds {
         &self.q
     }
 
-    /// What the merge loop consumes, with the faces' seed `volumes` and, for the
-    /// merge tree, what it keeps of its merges; and the run's counters.
+    /// What the merge loop consumes, with the faces' seed `volumes`; and the run's
+    /// counters.
     pub(crate) fn merge_input(
         self,
         volumes: Vec<f64>,
         around: &Around,
-        tree: Option<ForTree>,
         params: &Params,
     ) -> (MergeInput, Stats) {
         let input = MergeInput {
@@ -154,26 +154,30 @@ impl Seeds {
             volumes,
             pairs: self.pairs,
             lists: (around.surface.offsets.clone(), around.surface.adj.clone()),
-            tree,
             tangent_eps: params.fit.tangent_eps,
         };
         (input, self.stats)
     }
 }
 
-/// The fit settings made absolute for this input ([`evaluator`]) with the faces'
-/// surface and the interior.
-pub(crate) fn evaluator_of<'a>(
+/// Fits and prices over the input's view — the mesh, its welded faces, the faces'
+/// surface and the interior — with the settings made absolute for it ([`pricing`]).
+pub(crate) fn fitter_of<'a>(
     mesh: &'a Mesh,
     graph: &'a Graph,
     params: &Params,
     around: &'a Around,
-) -> Evaluator<'a> {
-    Evaluator {
+) -> Fitter<'a> {
+    let input = InputView {
+        mesh,
+        welded: &graph.welded,
         face_sign: &around.surface.signs,
         face_adj: around.surface.adjacency(),
         solid: around.solid.as_ref(),
-        ..evaluator(mesh, &graph.welded, params, graph.bounds)
+    };
+    Fitter {
+        input,
+        pricing: pricing(params, graph.bounds),
     }
 }
 
@@ -181,7 +185,7 @@ pub(crate) fn evaluator_of<'a>(
 /// its own).
 pub(crate) fn seed(
     clock: &mut Clock,
-    ev: &Evaluator,
+    ev: &Fitter,
     q: &[Sym3],
     first: &FirstPhase,
 ) -> Result<Vec<f64>> {
@@ -191,17 +195,18 @@ pub(crate) fn seed(
     })
 }
 
-/// The merge stage: the loop from `first` through `targets` on `input`, its counts
+/// The merge stage: the loop from `first` through `targets` on `input`, keeping what
+/// the pass asks besides the snapshots (`keep`: nothing, or the merge tree), its counts
 /// added to `stats`.
-pub(crate) fn merge_stage(
+pub(crate) fn merge_stage<K: Keep>(
     clock: &mut Clock,
-    ev: &Evaluator,
+    ev: &Fitter,
     (input, first): (MergeInput, FirstPhase),
-    targets: &[usize],
+    (targets, keep): (&[usize], K),
     stats: &mut Stats,
-) -> Result<(MergeOutput, MergeLog)> {
+) -> Result<(MergeOutput, K::Log)> {
     clock.stage(Stage::Merge, "merge", |go_on, laps| {
-        merge(ev, input, first, targets, stats, go_on, laps)
+        merge(ev, input, first, targets, keep, stats, go_on, laps)
     })
 }
 
@@ -226,12 +231,12 @@ pub(crate) fn triangles<'m>(
 /// input's interior for plates thickened inward (--min-thickness).
 pub(crate) fn interior<'a>(
     clock: &mut Clock,
-    ev: &Evaluator,
+    mesh: &Mesh,
     params: &Params,
     tris: Option<&'a Triangles>,
 ) -> Result<postprocess::Prepared<'a>> {
     clock.step(Stage::Postprocess, "interior", || {
-        postprocess::Prepared::new(ev, params, tris)
+        postprocess::Prepared::new(mesh, params, tris)
     })
 }
 

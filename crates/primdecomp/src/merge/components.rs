@@ -30,7 +30,7 @@
 //! the corpus, docs/decisions/perf-components-merged-apart.md.
 
 use super::cluster::Clusters;
-use super::cost::Evaluator;
+use super::cost::Fitter;
 use super::driver::{snapshot, Scope, Snapshot, Traced};
 use super::partition::{self, Kind, Phase1};
 use crate::math::Sym3;
@@ -134,7 +134,7 @@ fn groups(comps: Vec<Vec<u32>>) -> (Vec<Vec<u32>>, Vec<usize>) {
 /// them: when the largest target is at least the number of components (`usize::MAX`
 /// traces them for the merge tree, `cut::tree`).
 pub fn merge_components(
-    ev: &Evaluator,
+    ev: &Fitter,
     q: &[Sym3],
     volume: &[f64],
     pairs: &[(u32, u32)],
@@ -159,7 +159,7 @@ pub fn merge_components(
 /// many merges the last of them holds, and every merge of the global order, each as a
 /// face of each merged cluster (the merge tree's from single faces, `cut::tree`).
 pub fn snapshots(
-    ev: &Evaluator,
+    ev: &Fitter,
     p1: &Phase1,
     q: &[Sym3],
     volume: &[f64],
@@ -189,7 +189,7 @@ pub fn snapshots(
                 .get(k)
                 .is_some_and(|&(g, i)| traces[g as usize][i as usize].free)
         };
-        while ev.free_merges && free(m) {
+        while ev.pricing.free_merges && free(m) {
             m += 1;
         }
         for &(g, i) in &order[done..m] {

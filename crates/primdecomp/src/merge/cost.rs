@@ -18,7 +18,7 @@ use crate::primitive::fit::{fit_skewed_prism, thorough_frames};
 use crate::primitive::{fit_best, frame, Cloud, FitScratch, Kind, Primitive};
 
 /// Faces whose outward normal is within about 0.8° of a plate's axis face along it
-/// ([`Evaluator::flush`]): a flat cluster's faces lie at round-off from it.
+/// ([`Fitter::flush`]): a flat cluster's faces lie at round-off from it.
 const PARALLEL: f64 = 0.9999;
 
 /// Per-thread reusable buffers: the gathered points and the fit's scratch.
@@ -62,54 +62,83 @@ pub struct Side<'s> {
     pub t: u32,
 }
 
-/// Everything needed to price a merge: positions, welded faces and fit settings.
+/// The input as the merge and the stages after it read it: its positions, welded
+/// faces, the surface around each face and its interior. Built once per run from the
+/// input stages' results (`decompose::stages::Around`); a spatial part prices on its
+/// own sub-mesh's view (`merge::partition`).
 #[derive(Clone, Copy, Debug)]
-pub struct Evaluator<'a> {
-    pub mesh: &'a Mesh,
+pub struct InputView<'a> {
+    pub(crate) mesh: &'a Mesh,
     /// Welded face indices (same CSR offsets as the mesh).
-    pub welded: &'a [u32],
-    pub cfg: FitConfig,
-    /// Largest excess volume one merge may add (absolute); `INFINITY` = no limit.
-    pub max_excess: f64,
-    /// Costs are rounded to multiples of this volume (a fixed fraction of the input's
-    /// diagonal cubed), so that round-off from units or position cannot reorder merges
-    /// whose exact costs tie — coplanar merges cost exactly 0, and there are many.
-    pub cost_unit: f64,
-    /// Factor on the cost of a merge whose points are coplanar (≥ 1): such merges are
-    /// priced as if primitives were `Plates::open_holes` thick instead of the minimum
-    /// extent (area across gaps and holes costs that thickness); 1 = off.
-    pub flat_scale: f64,
-    /// Distance below which a point counts as on a hull face (point reduction only).
-    pub hull_eps: f64,
-    /// Merges whose clusters' neighbour lists hold at least this many entries are
-    /// re-priced lazily (`Speed::reprice`); `u32::MAX` = always at once (exact).
-    pub defer_degree: u32,
+    pub(crate) welded: &'a [u32],
     /// Per face, ±1: the winding that faces outward (`input::orient`); empty = the
-    /// faces' own windings (set only when `rim_weight` > 0 or `flush_plates`).
-    pub face_sign: &'a [i8],
+    /// faces' own windings (set only when `Plates::rim_weight` > 0 or `flush_plates`).
+    pub(crate) face_sign: &'a [i8],
+    /// The input's face adjacency, for the output clusters' rims (read only when
+    /// `Pricing::rim_weight` > 0); empty = no rims (set when `face_sign` is).
+    pub(crate) face_adj: FaceAdjacency<'a>,
     /// The input's interior (`Plates::solid`,
     /// docs/decisions/0023-merges-priced-by-the-air-they-add.md): merges are priced by the
     /// volume their primitive adds outside it; `None` = the paper's whole volume.
-    pub solid: Option<&'a Solid>,
-    /// `Plates::rim_weight`: the rim reach's weight in the output frame choice
-    /// (docs/decisions/0024-output-primitives-priced-by-rim-reach.md).
-    pub rim_weight: f64,
-    /// The input's face adjacency, for the output clusters' rims (read only when
-    /// `rim_weight` > 0); empty = no rims (set when `face_sign` is).
-    pub face_adj: FaceAdjacency<'a>,
-    /// `Plates::join_coplanar`: free merges into plates run before a target's snapshot
-    /// (`merge::driver::free`, docs/decisions/0025).
-    pub free_merges: bool,
-    /// Coplanar plates a target's snapshot holds are joined where that adds no area
-    /// (`postprocess::plates`, docs/decisions/0028): `Plates::join_coplanar` too, apart
-    /// in tests that check the loop's free merges alone.
-    pub join_plates: bool,
-    /// `Plates::flush_plates`: output plates lie flush on their faces
-    /// (docs/decisions/0026-output-plates-lie-flush.md).
-    pub flush_plates: bool,
+    pub(crate) solid: Option<&'a Solid>,
 }
 
-impl<'a> Evaluator<'a> {
+impl<'a> InputView<'a> {
+    /// The view of `mesh` with welded indices `welded` alone: no surface, no interior.
+    pub fn new(mesh: &'a Mesh, welded: &'a [u32]) -> Self {
+        InputView {
+            mesh,
+            welded,
+            face_sign: &[],
+            face_adj: FaceAdjacency::default(),
+            solid: None,
+        }
+    }
+}
+
+/// The settings made absolute for one input (`merge::setup::pricing`): how merges are
+/// priced (§3.3), when the merge loop re-prices and merges free, and how output
+/// primitives are chosen.
+#[derive(Clone, Copy, Debug)]
+pub struct Pricing {
+    /// The kinds, weights, floor half-extent and frame search of every fit.
+    pub(crate) fit: FitConfig,
+    /// Largest excess volume one merge may add (absolute); `INFINITY` = no limit.
+    pub(crate) max_excess: f64,
+    /// Costs are rounded to multiples of this volume (a fixed fraction of the input's
+    /// diagonal cubed), so that round-off from units or position cannot reorder merges
+    /// whose exact costs tie — coplanar merges cost exactly 0, and there are many.
+    pub(crate) cost_unit: f64,
+    /// Factor on the cost of a merge whose points are coplanar (≥ 1): such merges are
+    /// priced as if primitives were `Plates::open_holes` thick instead of the minimum
+    /// extent (area across gaps and holes costs that thickness); 1 = off.
+    pub(crate) flat_scale: f64,
+    /// Distance below which a point counts as on a hull face (point reduction only).
+    pub(crate) hull_eps: f64,
+    /// Merges whose clusters' neighbour lists hold at least this many entries are
+    /// re-priced lazily (`Speed::reprice`); `u32::MAX` = always at once (exact).
+    pub(crate) defer_degree: u32,
+    /// `Plates::join_coplanar`: free merges into plates run before a target's snapshot
+    /// (`merge::driver::free`, docs/decisions/0025).
+    pub(crate) free_merges: bool,
+    /// `Plates::rim_weight`: the rim reach's weight in the output frame choice
+    /// (docs/decisions/0024-output-primitives-priced-by-rim-reach.md).
+    pub(crate) rim_weight: f64,
+    /// `Plates::flush_plates`: output plates lie flush on their faces
+    /// (docs/decisions/0026-output-plates-lie-flush.md).
+    pub(crate) flush_plates: bool,
+}
+
+/// Fits primitives to clusters of one input and prices their merges: the input's view
+/// with the settings made absolute for it. The merge loop, the cut and post-processing
+/// fit through it.
+#[derive(Clone, Copy, Debug)]
+pub struct Fitter<'a> {
+    pub(crate) input: InputView<'a>,
+    pub(crate) pricing: Pricing,
+}
+
+impl<'a> Fitter<'a> {
     /// The points priced for cluster `c`: a single face's own indices until it merges,
     /// then the hull vertices of its faces (`merge::driver` keeps them reduced).
     pub fn verts<'b>(&'b self, cl: &'b Clusters, c: u32) -> &'b [u32] {
@@ -123,14 +152,14 @@ impl<'a> Evaluator<'a> {
 
     /// Welded vertex indices of face `f`.
     fn face(&self, f: u32) -> &'a [u32] {
-        let o = &self.mesh.face_offsets;
-        &self.welded[o[f as usize] as usize..o[f as usize + 1] as usize]
+        let o = &self.input.mesh.face_offsets;
+        &self.input.welded[o[f as usize] as usize..o[f as usize + 1] as usize]
     }
 
     /// Appends the positions of vertices `vs`: one exact-size `extend` per coordinate
     /// (a capacity check per call, not per point).
     fn push_points(&self, vs: &[u32], ws: &mut Workspace) {
-        let m = self.mesh;
+        let m = self.input.mesh;
         ws.x.extend(vs.iter().map(|&v| m.x[v as usize]));
         ws.y.extend(vs.iter().map(|&v| m.y[v as usize]));
         ws.z.extend(vs.iter().map(|&v| m.z[v as usize]));
@@ -149,7 +178,9 @@ impl<'a> Evaluator<'a> {
     /// The share of `prim` outside the input (1 unless `solid` is set): the part of
     /// its volume a merge is priced for (docs/decisions/0023-merges-priced-by-the-air-they-add.md).
     pub fn air(&self, prim: &Primitive) -> f64 {
-        self.solid.map_or(1.0, |s| 1.0 - s.inside_fraction(prim))
+        self.input
+            .solid
+            .map_or(1.0, |s| 1.0 - s.inside_fraction(prim))
     }
 
     /// The primitive of face `f` alone, with its operator `q` (before any merge), in
@@ -162,7 +193,7 @@ impl<'a> Evaluator<'a> {
         self.push_points(self.face(f), ws);
         let cfg = FitConfig {
             frames: FrameSearch::Eigen,
-            ..self.cfg
+            ..self.pricing.fit
         };
         self.fit_points(q, &cfg, ws)
     }
@@ -206,7 +237,7 @@ impl<'a> Evaluator<'a> {
     fn gather(&self, faces: impl Iterator<Item = u32>, ws: &mut Workspace) {
         ws.clear();
         for f in faces {
-            self.push_points(self.mesh.face(f as usize), ws);
+            self.push_points(self.input.mesh.face(f as usize), ws);
         }
     }
 
@@ -256,13 +287,13 @@ impl<'a> Evaluator<'a> {
         thorough_frames(&all, q, &mut ws.fit, &mut ws.frames);
         let kinds = Kind::ALL
             .into_iter()
-            .filter(|&k| self.cfg.enabled[k as usize]);
+            .filter(|&k| self.pricing.fit.enabled[k as usize]);
         for kind in kinds {
             let mut enabled = [false; 6];
             enabled[kind as usize] = true;
             let cfg = FitConfig {
                 enabled,
-                ..self.cfg
+                ..self.pricing.fit
             };
             for &axes in &ws.frames {
                 out.push(fit_frame(&all, axes, &cfg, &mut ws.fit).prim);
@@ -274,7 +305,7 @@ impl<'a> Evaluator<'a> {
                 }
             }
         }
-        if self.flush_plates {
+        if self.pricing.flush_plates {
             for p in out.iter_mut() {
                 self.flush(faces.clone(), ws, p);
             }
@@ -283,15 +314,15 @@ impl<'a> Evaluator<'a> {
 
     /// Whether output fits price the rim reach (`Plates::rim_weight`).
     pub fn prices_rims(&self) -> bool {
-        self.rim_weight > 0.0 && !self.face_adj.is_empty()
+        self.pricing.rim_weight > 0.0 && !self.input.face_adj.is_empty()
     }
 
     fn surroundings(&self) -> Surroundings<'a> {
         Surroundings {
-            mesh: self.mesh,
-            welded: self.welded,
-            adj: self.face_adj,
-            signs: self.face_sign,
+            mesh: self.input.mesh,
+            welded: self.input.welded,
+            adj: self.input.face_adj,
+            signs: self.input.face_sign,
         }
     }
 
@@ -310,14 +341,14 @@ impl<'a> Evaluator<'a> {
         // stay priced as before.
         let cfg = FitConfig {
             frames: FrameSearch::Thorough,
-            ..self.cfg
+            ..self.pricing.fit
         };
         let mut fit = if ws.rims.is_empty() {
             self.fit_on_hull(q, &cfg, ws, on_hull)
         } else {
             self.fit_priced(q, &cfg, ws, on_hull)
         };
-        if self.flush_plates {
+        if self.pricing.flush_plates {
             self.flush(faces, ws, &mut fit.prim);
         }
         fit
@@ -331,13 +362,13 @@ impl<'a> Evaluator<'a> {
     /// same all along that axis, so the faces stay inside. `ws` holds the faces' points
     /// as gathered for the fit.
     fn flush(&self, faces: impl Iterator<Item = u32>, ws: &Workspace, prim: &mut Primitive) {
-        let Some(axis) = prim.plate_axis(self.cfg.min_half) else {
+        let Some(axis) = prim.plate_axis(self.pricing.fit.min_half) else {
             return;
         };
         // The faces' common outward side along the axis: +1 or −1, 0 when they disagree.
         let mut side = 0.0;
         for f in faces {
-            let Some((n, _)) = outward_normal(self.mesh, self.face_sign, f) else {
+            let Some((n, _)) = outward_normal(self.input.mesh, self.input.face_sign, f) else {
                 continue;
             };
             let c = dot(n, axis);
@@ -382,7 +413,7 @@ impl<'a> Evaluator<'a> {
         let hull = Cloud { x, y, z };
         thorough_frames(&hull, q, &mut ws.fit, &mut ws.frames);
         let rims = &ws.rims;
-        let w = self.rim_weight;
+        let w = self.pricing.rim_weight;
         let penalty = |p: &Primitive, cost, limit| rim_penalty(p, rims, w, cost, limit);
         let mut best: Option<(f64, [V3; 3])> = None;
         for &axes in &ws.frames {
@@ -414,7 +445,7 @@ impl<'a> Evaluator<'a> {
             &ws.x,
             &ws.y,
             &ws.z,
-            self.hull_eps,
+            self.pricing.hull_eps,
             &mut ws.hull,
             &mut ws.keep,
         );
@@ -459,7 +490,7 @@ impl<'a> Evaluator<'a> {
     pub fn all_verts(&self, cl: &Clusters, c: u32) -> Vec<u32> {
         let mut v: Vec<u32> = cl
             .faces(c)
-            .flat_map(|f| self.mesh.face(f as usize).iter().copied())
+            .flat_map(|f| self.input.mesh.face(f as usize).iter().copied())
             .collect();
         v.sort_unstable();
         v.dedup();
@@ -498,22 +529,22 @@ impl<'a> Evaluator<'a> {
         self.push_points(a.verts, ws);
         self.push_points(b.verts, ws);
         let q = a.q.add(&b.q);
-        let fit = self.fit_points(&q, &self.cfg, ws);
+        let fit = self.fit_points(&q, &self.pricing.fit, ws);
         let air = self.air(&fit.prim);
         let volume = fit.volume * air;
         let before = a.volume + b.volume;
-        if volume - before > self.max_excess {
+        if volume - before > self.pricing.max_excess {
             return None;
         }
         let mut cost = fit.cost * air - before;
         let flat = ws.fit.was_flat();
         // A coplanar merge's volumes are all area × 2·floor, so scaling its cost is
         // pricing it at the thicker floor (Plates::open_holes).
-        if self.flat_scale > 1.0 && flat {
-            cost *= self.flat_scale;
+        if self.pricing.flat_scale > 1.0 && flat {
+            cost *= self.pricing.flat_scale;
         }
         let c = Candidate {
-            cost: (cost / self.cost_unit).round(),
+            cost: (cost / self.pricing.cost_unit).round(),
             volume,
             a: a.id,
             b: b.id,

@@ -9,7 +9,7 @@
 
 use super::bridge::{nearest_pairs, BRIDGE_K};
 use super::cluster::Clusters;
-use super::cost::{Evaluator, Workspace};
+use super::cost::{Fitter, Workspace};
 use super::heap::{Candidate, Queue, RadixHeap};
 use super::lazy::{valid, Lazy, Pop};
 use super::worker::{with_pricer, Pricer, PricerCounts};
@@ -82,7 +82,7 @@ pub struct MergeLog {
     pub hulls: TreeHulls,
 }
 
-/// The points the loop priced clusters by ([`Evaluator::verts`]: the hull vertices of
+/// The points the loop priced clusters by ([`Fitter::verts`]: the hull vertices of
 /// their faces, as welded vertex ids), kept for the merge tree so that the cut need not
 /// find its nodes' hulls again (`cut::hulls`, docs/decisions/0052): those of the first
 /// snapshot's clusters, in its order, and of each logged merge's cluster of more than
@@ -206,7 +206,7 @@ impl Stamps {
 }
 
 /// Prices pairs in parallel chunks, in place; the output order equals the input order.
-fn price(ev: &Evaluator, cl: &Clusters, pairs: &[(u32, u32)]) -> Vec<Candidate> {
+fn price(ev: &Fitter, cl: &Clusters, pairs: &[(u32, u32)]) -> Vec<Candidate> {
     let none = Candidate {
         cost: f64::NAN,
         volume: 0.0,
@@ -231,7 +231,7 @@ fn price(ev: &Evaluator, cl: &Clusters, pairs: &[(u32, u32)]) -> Vec<Candidate> 
 }
 
 /// Runs the merge loop down to the smallest target; `targets` sorted decreasing.
-pub fn run(ev: &Evaluator, cl: Clusters, targets: &[usize], go_on: Checkpoint) -> MergeOutput {
+pub fn run(ev: &Fitter, cl: Clusters, targets: &[usize], go_on: Checkpoint) -> MergeOutput {
     run_with::<RadixHeap>(ev, cl, targets, go_on)
 }
 
@@ -241,7 +241,7 @@ pub fn run(ev: &Evaluator, cl: Clusters, targets: &[usize], go_on: Checkpoint) -
 /// points of the first snapshot's clusters and of merged clusters of more faces are
 /// kept too ([`TreeHulls`]). Returns every merge too ([`MergeLog`]).
 pub fn run_for_tree(
-    ev: &Evaluator,
+    ev: &Fitter,
     cl: Clusters,
     targets: &[usize],
     hulls_over: Option<usize>,
@@ -257,7 +257,7 @@ pub fn run_for_tree(
 
 /// [`run`] with a chosen queue (the benchmarks compare them; the order is the same).
 pub fn run_with<Q: Queue>(
-    ev: &Evaluator,
+    ev: &Fitter,
     cl: Clusters,
     targets: &[usize],
     go_on: Checkpoint,
@@ -268,7 +268,7 @@ pub fn run_with<Q: Queue>(
 /// [`run_with`], sharing re-pricing batches with a worker thread (`merge::worker`) when
 /// rayon's pool has two threads or more; also returns the pricer's counters.
 fn run_counted<Q: Queue>(
-    ev: &Evaluator,
+    ev: &Fitter,
     cl: Clusters,
     targets: &[usize],
     go_on: Checkpoint,
@@ -306,7 +306,7 @@ impl Scope {
 /// adjacency runs out, reporting progress as [`run`] does; returns the clusters and
 /// the merge counts (and, when `traced`, every merge: [`Traced`]).
 pub(super) fn merge_part(
-    ev: &Evaluator,
+    ev: &Fitter,
     cl: Clusters,
     target: usize,
     traced: bool,
@@ -322,7 +322,7 @@ pub(super) fn merge_part(
 /// The loop of [`run_with`]; `pricer` re-prices each merged cluster's neighbours; the
 /// whole input's loop logs its merges in `log`.
 fn merge_loop<Q: Queue>(
-    ev: &Evaluator,
+    ev: &Fitter,
     mut cl: Clusters,
     targets: &[usize],
     go_on: Checkpoint,
@@ -341,7 +341,7 @@ fn merge_loop<Q: Queue>(
     }
     let mut purge_at = (heap.len() + heap.len() / 4).max(PURGE_MIN);
     let mut stamps = Stamps {
-        mark: vec![0; ev.mesh.vertex_count()],
+        mark: vec![0; ev.input.mesh.vertex_count()],
         epoch: 0,
     };
     let mut reducer = Reducer::default();
@@ -396,7 +396,7 @@ fn merge_loop<Q: Queue>(
                 Step::Stop => break,
             },
         };
-        if reached && !(ev.free_merges && free(&c)) {
+        if reached && !(ev.pricing.free_merges && free(&c)) {
             held = Some(c);
             continue;
         }
@@ -466,7 +466,7 @@ fn merge_loop<Q: Queue>(
 
 /// The points of the live clusters, the first snapshot's (the merge tree's leaves),
 /// where `scope` keeps hulls.
-fn keep_leaf_hulls(ev: &Evaluator, cl: &Clusters, scope: Scope, hulls: &mut TreeHulls) {
+fn keep_leaf_hulls(ev: &Fitter, cl: &Clusters, scope: Scope, hulls: &mut TreeHulls) {
     if let Scope::Tree(Some(_)) = scope {
         hulls.leaves = cl
             .roots()
@@ -479,7 +479,7 @@ fn keep_leaf_hulls(ev: &Evaluator, cl: &Clusters, scope: Scope, hulls: &mut Tree
 /// The points of `root`, just merged as `log.merges[at]`, where `scope` keeps hulls of its
 /// size.
 fn keep_hull(
-    ev: &Evaluator,
+    ev: &Fitter,
     cl: &Clusters,
     root: u32,
     scope: Scope,
@@ -520,7 +520,7 @@ enum Step {
 /// Pops the queue's next entry and classifies it (lazy deletion, `lazy.rs`); when the
 /// queue runs dry, bridges components (§3.4) — except in a part, which just stops.
 fn next_step<Q: Queue>(
-    ev: &Evaluator,
+    ev: &Fitter,
     cl: &mut Clusters,
     heap: &mut Q,
     lazy: &mut Lazy,
@@ -564,7 +564,7 @@ fn fraction(start: usize, live: usize, last: usize) -> f64 {
 
 /// `None` when `go_on` (asked between blocks, reporting no progress yet) says stop.
 fn seed_queue<Q: Queue>(
-    ev: &Evaluator,
+    ev: &Fitter,
     cl: &Clusters,
     heap: &mut Q,
     go_on: Checkpoint,
@@ -594,8 +594,8 @@ fn seed_queue<Q: Queue>(
 /// Drops stale entries: lazy deletion's would otherwise outnumber the live pairs many
 /// times over (memory); dropping them keeps the order unchanged. Deferred pairs'
 /// entries are kept: they are the pairs' only keys.
-fn purge<Q: Queue>(ev: &Evaluator, cl: &Clusters, lazy: &mut Lazy, heap: &mut Q) {
-    if ev.defer_degree == u32::MAX {
+fn purge<Q: Queue>(ev: &Fitter, cl: &Clusters, lazy: &mut Lazy, heap: &mut Q) {
+    if ev.pricing.defer_degree == u32::MAX {
         heap.retain(|c| valid(cl, c));
     } else {
         heap.retain(|c| lazy.keep(cl, c));
@@ -605,9 +605,9 @@ fn purge<Q: Queue>(ev: &Evaluator, cl: &Clusters, lazy: &mut Lazy, heap: &mut Q)
 
 /// Whether the merge that made `root` leaves its pairs to [`Lazy`] instead of
 /// re-pricing them at once: its neighbour list (resolved once it doubles) reaches
-/// `ev.defer_degree`.
-fn defer(ev: &Evaluator, cl: &mut Clusters, root: u32) -> bool {
-    let limit = ev.defer_degree as usize;
+/// `ev.pricing.defer_degree`.
+fn defer(ev: &Fitter, cl: &mut Clusters, root: u32) -> bool {
+    let limit = ev.pricing.defer_degree as usize;
     if cl.neighbor_len(root) < limit {
         return false;
     }
@@ -630,7 +630,7 @@ struct Reducer {
 /// convex function (or minimises a concave one) over the points, so the hull vertices
 /// give the same primitive as all points (docs/decisions/0010).
 fn merged_points(
-    ev: &Evaluator,
+    ev: &Fitter,
     cl: &Clusters,
     a: u32,
     b: u32,
@@ -648,12 +648,19 @@ fn merged_points(
     r.y.clear();
     r.z.clear();
     for &v in &out {
-        let p = ev.mesh.pos(v);
+        let p = ev.input.mesh.pos(v);
         r.x.push(p[0]);
         r.y.push(p[1]);
         r.z.push(p[2]);
     }
-    hull_vertices(&r.x, &r.y, &r.z, ev.hull_eps, &mut r.hull, &mut r.keep);
+    hull_vertices(
+        &r.x,
+        &r.y,
+        &r.z,
+        ev.pricing.hull_eps,
+        &mut r.hull,
+        &mut r.keep,
+    );
     r.keep.iter().map(|&i| out[i as usize]).collect()
 }
 
@@ -672,7 +679,7 @@ struct Ahead {
 /// otherwise its points wait until it is popped still fresh (neither cluster changed
 /// since it was priced, so the same points) or another entry takes its place.
 fn look_ahead<Q: Queue>(
-    ev: &Evaluator,
+    ev: &Fitter,
     cl: &Clusters,
     heap: &mut Q,
     ahead: &mut Option<Ahead>,
@@ -700,7 +707,7 @@ fn look_ahead<Q: Queue>(
 }
 
 /// Links every live cluster to its nearest clusters by centroid (`bridge.rs`).
-fn bridge(ev: &Evaluator, cl: &mut Clusters) -> Vec<(u32, u32)> {
+fn bridge(ev: &Fitter, cl: &mut Clusters) -> Vec<(u32, u32)> {
     let roots = cl.roots();
     let centroids: Vec<[f64; 3]> = roots.iter().map(|&r| centroid(ev, cl, r)).collect();
     let pairs: Vec<(u32, u32)> = nearest_pairs(&centroids, BRIDGE_K)
@@ -715,11 +722,11 @@ fn bridge(ev: &Evaluator, cl: &mut Clusters) -> Vec<(u32, u32)> {
     pairs
 }
 
-fn centroid(ev: &Evaluator, cl: &Clusters, c: u32) -> [f64; 3] {
+fn centroid(ev: &Fitter, cl: &Clusters, c: u32) -> [f64; 3] {
     let vs = ev.verts(cl, c);
     let mut s = [0.0; 3];
     for &v in vs {
-        let p = ev.mesh.pos(v);
+        let p = ev.input.mesh.pos(v);
         (0..3).for_each(|k| s[k] += p[k]);
     }
     s.map(|x| x / vs.len().max(1) as f64)
@@ -731,7 +738,7 @@ fn centroid(ev: &Evaluator, cl: &Clusters, c: u32) -> [f64; 3] {
 /// `None` when `go_on` says stop while the output primitives are fitted (asked
 /// before every 64 clusters on each thread).
 pub(super) fn snapshot(
-    ev: &Evaluator,
+    ev: &Fitter,
     cl: &Clusters,
     target: usize,
     scope: Scope,

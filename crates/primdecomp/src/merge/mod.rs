@@ -16,5 +16,5 @@ pub(crate) mod stage;
 pub(crate) mod worker;
 
 pub(crate) use cluster::Clusters;
-pub(crate) use cost::{Evaluator, Workspace};
+pub(crate) use cost::{Fitter, Workspace};
 pub(crate) use driver::{run, run_for_tree, FitCounts, MergeLog, MergeOutput, Snapshot, TreeHulls};

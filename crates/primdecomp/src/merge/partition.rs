@@ -20,7 +20,7 @@
 //! across part boundaries wait for phase 2).
 
 use super::cluster::{Clusters, Group};
-use super::cost::Evaluator;
+use super::cost::{Fitter, InputView, Pricing};
 use super::driver::{merge_part, FitCounts, MergeOutput, Traced};
 use crate::input::mesh::Mesh;
 use crate::math::Sym3;
@@ -150,14 +150,14 @@ pub fn phase1_size(largest_target: usize) -> usize {
 /// the input's adjacent face pairs; `merged` is told, now and then, how many merges
 /// all parts have done so far (progress only).
 pub fn merge_parts(
-    ev: &Evaluator,
+    ev: &Fitter,
     faces: FaceData,
     largest_target: usize,
     k: usize,
     merged: &(dyn Fn(usize) -> bool + Sync),
 ) -> Phase1 {
-    let parts = split(ev.mesh, k);
-    let all = ev.mesh.face_count() as u128;
+    let parts = split(ev.input.mesh, k);
+    let all = ev.input.mesh.face_count() as u128;
     let size = phase1_size(largest_target) as u128;
     let targets = parts
         .iter()
@@ -177,7 +177,7 @@ pub enum FaceData<'a> {
     },
     /// Computed by each part for its own faces, as the whole input's stages compute
     /// them (`seed::quadric::face_quadric` with this tangent weight,
-    /// [`Evaluator::seed_volume`], the pairs from `lists`): no per-face operator,
+    /// [`Fitter::seed_volume`], the pairs from `lists`): no per-face operator,
     /// volume or pair outlives its part (56 bytes a face held through phase 1
     /// before).
     PerPart { tangent_eps: f64, lists: &'a Lists },
@@ -199,7 +199,7 @@ pub(super) enum Kind {
 /// parallel, one task per part, as `kind` says.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn merge_groups(
-    ev: &Evaluator,
+    ev: &Fitter,
     faces: FaceData,
     parts: &[Vec<u32>],
     targets: Vec<usize>,
@@ -207,7 +207,7 @@ pub(super) fn merge_groups(
     merged: &(dyn Fn(usize) -> bool + Sync),
 ) -> Phase1 {
     let local_pairs = match faces {
-        FaceData::Given { pairs, .. } => pairs_by_part(parts, pairs, ev.mesh.face_count()),
+        FaceData::Given { pairs, .. } => pairs_by_part(parts, pairs, ev.input.mesh.face_count()),
         FaceData::PerPart { .. } => vec![Vec::new(); parts.len()],
     };
     let done: Vec<AtomicUsize> = parts.iter().map(|_| AtomicUsize::new(0)).collect();
@@ -315,14 +315,14 @@ fn part_pairs(part: &[u32], (offsets, adj): &Lists) -> Vec<(u32, u32)> {
 }
 
 /// `part`'s operators and seed volumes, from `faces` or computed for it.
-fn part_seeds(ev: &Evaluator, faces: FaceData, part: &[u32]) -> (Vec<Sym3>, Vec<f64>) {
+fn part_seeds(ev: &Fitter, faces: FaceData, part: &[u32]) -> (Vec<Sym3>, Vec<f64>) {
     match faces {
         FaceData::Given { q, volume, .. } => (
             part.iter().map(|&f| q[f as usize]).collect(),
             part.iter().map(|&f| volume[f as usize]).collect(),
         ),
         FaceData::PerPart { tangent_eps, .. } => {
-            let mesh = ev.mesh;
+            let mesh = ev.input.mesh;
             let q: Vec<Sym3> = part
                 .iter()
                 .map(|&f| {
@@ -348,7 +348,7 @@ fn part_seeds(ev: &Evaluator, faces: FaceData, part: &[u32]) -> (Vec<Sym3>, Vec<
 /// are its adjacent pairs in local ids when `faces` gives them.
 #[allow(clippy::too_many_arguments)]
 fn merge_one(
-    ev: &Evaluator,
+    ev: &Fitter,
     faces: FaceData,
     part: &[u32],
     mut pairs: Vec<(u32, u32)>,
@@ -360,22 +360,25 @@ fn merge_one(
         pairs = part_pairs(part, lists);
     }
     let (q, volume) = part_seeds(ev, faces, part);
-    let (sub, sub_welded, global) = sub_mesh(ev.mesh, ev.welded, part);
+    let (sub, sub_welded, global) = sub_mesh(ev.input.mesh, ev.input.welded, part);
     // Same fit settings, cost grid and hull tolerance as the whole input's.
-    let sub_ev = Evaluator {
-        mesh: &sub,
-        welded: &sub_welded,
-        // Indexed by the whole input's faces; a part fits no output primitives.
-        face_sign: &[],
-        face_adj: crate::merge::rim::FaceAdjacency::default(),
-        // Lazy greedy for every merge of a part unless re-pricing is exact: faster at
-        // about the same quality (docs/decisions/0019-large-inputs-merged-in-parts.md).
-        defer_degree: if kind == Kind::Spatial && ev.defer_degree != u32::MAX {
-            0
-        } else {
-            ev.defer_degree
+    let sub_ev = Fitter {
+        // No surface (indexed by the whole input's faces; a part fits no output
+        // primitives), the same interior.
+        input: InputView {
+            solid: ev.input.solid,
+            ..InputView::new(&sub, &sub_welded)
         },
-        ..*ev
+        pricing: Pricing {
+            // Lazy greedy for every merge of a part unless re-pricing is exact: faster at
+            // about the same quality (docs/decisions/0019-large-inputs-merged-in-parts.md).
+            defer_degree: if kind == Kind::Spatial && ev.pricing.defer_degree != u32::MAX {
+                0
+            } else {
+                ev.pricing.defer_degree
+            },
+            ..ev.pricing
+        },
     };
     let cl = Clusters::new(q, volume, &pairs);
     drop(pairs);

@@ -1,8 +1,8 @@
-//! The merge's settings made absolute for one input ([`evaluator`]) and each face's
+//! The merge's settings made absolute for one input ([`pricing`]) and each face's
 //! seed volume (Alg. 1, line 2).
 
-use super::rim::FaceAdjacency;
-use super::{Evaluator, Workspace};
+use super::cost::{InputView, Pricing};
+use super::{Fitter, Workspace};
 use crate::input::mesh::Mesh;
 use crate::math::{Sym3, V3};
 use crate::params::{Params, Reprice};
@@ -24,25 +24,18 @@ pub(crate) const MIN_HALF: f64 = 1e-90;
 /// Merge costs are compared on a grid of this fraction of the diagonal cubed (2^-40).
 pub(crate) const COST_GRID: f64 = 1.0 / (1u64 << 40) as f64;
 
-/// Fit settings with the minimum extent and excess cap made absolute for this input,
-/// whose used vertices span `bounds` (re-centred, from [`Mesh::aabb`]). The surface
-/// and interior fields are left empty for the caller.
-pub fn evaluator<'a>(
-    mesh: &'a Mesh,
-    welded: &'a [u32],
-    params: &Params,
-    bounds: (V3, V3),
-) -> Evaluator<'a> {
+/// The settings made absolute for an input whose used vertices span `bounds`
+/// (re-centred, from [`Mesh::aabb`]): the minimum extent, the excess cap, the cost
+/// grid and the hull tolerance scale with its diagonal.
+pub fn pricing(params: &Params, bounds: (V3, V3)) -> Pricing {
     let (lo, hi) = bounds;
     let diag = crate::math::norm(crate::math::sub(hi, lo));
     let min_half = (params.fit.min_extent * diag).max(MIN_HALF);
     let aabb_volume: f64 = (0..3)
         .map(|k| (hi[k] - lo[k]).max(2.0 * min_half))
         .product();
-    Evaluator {
-        mesh,
-        welded,
-        cfg: FitConfig {
+    Pricing {
+        fit: FitConfig {
             weights: params.fit.weights,
             enabled: params.fit.kinds,
             min_half,
@@ -61,13 +54,24 @@ pub fn evaluator<'a>(
         // 0/0 = NaN, which the merge loop drops like a merge over the excess cap.
         cost_unit: COST_GRID * diag.max(min_half).powi(3),
         hull_eps: 1e-12 * diag.max(min_half),
-        face_sign: &[],
-        solid: None,
         rim_weight: params.plates.rim_weight,
-        face_adj: FaceAdjacency::default(),
         free_merges: params.plates.join_coplanar,
-        join_plates: params.plates.join_coplanar,
         flush_plates: params.plates.flush_plates,
+    }
+}
+
+/// A [`Fitter`] on `mesh` with welded indices `welded` alone (no surface, no
+/// interior), its settings made absolute by [`pricing`] (the tests' and benchmarks').
+#[cfg(any(test, feature = "test-internals"))]
+pub fn fitter<'a>(
+    mesh: &'a Mesh,
+    welded: &'a [u32],
+    params: &Params,
+    bounds: (V3, V3),
+) -> Fitter<'a> {
+    Fitter {
+        input: InputView::new(mesh, welded),
+        pricing: pricing(params, bounds),
     }
 }
 
@@ -76,7 +80,7 @@ pub(crate) const SEED_BLOCK: usize = 1 << 16;
 
 /// Volume of each face's own primitive, in parallel, a block at a time (stops early,
 /// with the rest left 0, when `go_on` says so; the caller then returns cancelled).
-pub(crate) fn seed_volumes(ev: &Evaluator, q: &[Sym3], go_on: Checkpoint) -> Vec<f64> {
+pub(crate) fn seed_volumes(ev: &Fitter, q: &[Sym3], go_on: Checkpoint) -> Vec<f64> {
     let mut out = vec![0.0; q.len()];
     for (b, block) in out.chunks_mut(SEED_BLOCK).enumerate() {
         let start = b * SEED_BLOCK;

@@ -5,7 +5,7 @@
 use super::components;
 use super::partition;
 use super::rim::FaceAdjacency;
-use super::{Clusters, Evaluator, MergeLog, MergeOutput};
+use super::{Clusters, Fitter, MergeLog, MergeOutput};
 use crate::input::mesh::Mesh;
 use crate::input::orient;
 use crate::math::Sym3;
@@ -74,17 +74,91 @@ pub(crate) struct MergeInput {
     pub(crate) pairs: Vec<(u32, u32)>,
     /// The pairs as neighbour lists, shared with the surface.
     pub(crate) lists: partition::Lists,
-    /// For the merge tree (the cut's variant): every merge logged ([`MergeLog`]).
-    pub(crate) tree: Option<ForTree>,
     /// `Fit::tangent_eps`, for spatial parts' own operators.
     pub(crate) tangent_eps: f64,
 }
 
-/// What the merge loop keeps for the merge tree besides every merge: the points of
-/// its clusters of more than `hulls_over` faces (`merge::TreeHulls`; `None`: none).
+/// What a pass keeps of the merge loop besides the clusters at its targets: nothing
+/// (the greedy pass, [`AtTargets`]) or every merge, the merge tree (the cut's,
+/// [`ForTree`]). The merge stage runs alike for both but for these three points.
+pub(crate) trait Keep {
+    /// What the merge stage returns besides its output.
+    type Log: Default;
+    /// Whether the components phase traces every merge (the tree needs every one
+    /// whatever the targets), not only those from the first target on.
+    fn traces_every_merge(&self) -> bool;
+    /// The global loop from `cl` through `targets` (decreasing).
+    fn run(
+        &self,
+        ev: &Fitter,
+        cl: Clusters,
+        targets: &[usize],
+        go_on: Checkpoint,
+    ) -> (MergeOutput, Self::Log);
+    /// The stage's log: the components phase's merges `replayed` (in the global
+    /// order) before the global loop's `log`; `from_faces`: no spatial parts ran first.
+    fn join(replayed: Vec<(u32, u32)>, log: Self::Log, from_faces: bool) -> Self::Log;
+}
+
+/// The greedy pass keeps the clusters at its targets only (the snapshots).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct AtTargets;
+
+impl Keep for AtTargets {
+    type Log = ();
+
+    fn traces_every_merge(&self) -> bool {
+        false
+    }
+
+    fn run(
+        &self,
+        ev: &Fitter,
+        cl: Clusters,
+        targets: &[usize],
+        go_on: Checkpoint,
+    ) -> (MergeOutput, ()) {
+        (super::run(ev, cl, targets, go_on), ())
+    }
+
+    fn join(_: Vec<(u32, u32)>, _: (), _: bool) {}
+}
+
+/// The cut keeps every merge ([`MergeLog`]), and the points of the clusters of more
+/// than `hulls_over` faces (`merge::TreeHulls`; `None`: none).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct ForTree {
     pub(crate) hulls_over: Option<usize>,
+}
+
+impl Keep for ForTree {
+    type Log = MergeLog;
+
+    fn traces_every_merge(&self) -> bool {
+        true
+    }
+
+    fn run(
+        &self,
+        ev: &Fitter,
+        cl: Clusters,
+        targets: &[usize],
+        go_on: Checkpoint,
+    ) -> (MergeOutput, MergeLog) {
+        super::run_for_tree(ev, cl, targets, self.hulls_over, go_on)
+    }
+
+    fn join(replayed: Vec<(u32, u32)>, mut log: MergeLog, from_faces: bool) -> MergeLog {
+        // The components' merges come first in the global order.
+        let before = replayed.len() as u32;
+        log.hulls
+            .merges
+            .iter_mut()
+            .for_each(|(at, _)| *at += before);
+        log.merges.splice(0..0, replayed);
+        log.from_faces = from_faces;
+        log
+    }
 }
 
 /// How the merge loop starts, chosen once per run from the input and settings.
@@ -145,30 +219,31 @@ impl FirstPhase {
 }
 
 /// The merge stage: the first phase, then the global loop through the targets it did
-/// not reach, and for the merge tree every merge ([`MergeLog`], empty without
-/// `input.tree`). Progress is the fraction of the merges down to the last target.
-pub(crate) fn merge(
-    ev: &Evaluator,
+/// not reach, and what `keep` asks besides ([`Keep`]). Progress is the fraction of the
+/// merges down to the last target.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn merge<K: Keep>(
+    ev: &Fitter,
     input: MergeInput,
     first: FirstPhase,
     targets: &[usize],
+    keep: K,
     stats: &mut Stats,
     go_on: Checkpoint,
     laps: &mut PhaseTimes,
-) -> (MergeOutput, MergeLog) {
+) -> (MergeOutput, K::Log) {
     let MergeInput {
         q,
         volumes,
         pairs,
         lists,
-        tree,
         tangent_eps,
     } = input;
     let last = *targets.last().expect("validated: one target or more");
-    let total = ev.mesh.face_count().saturating_sub(last).max(1) as f64;
+    let total = ev.input.mesh.face_count().saturating_sub(last).max(1) as f64;
     let merged_so_far = |m: usize| go_on(m as f64 / total);
     // Every merge the replayed components did, in the global order.
-    let mut tree_log = Vec::new();
+    let mut components_log = Vec::new();
     let from_faces = !matches!(first, FirstPhase::Parts { .. });
     let (clusters, early) = match first {
         FirstPhase::Faces => (Some(Clusters::with_lists(q, volumes, lists)), Vec::new()),
@@ -183,25 +258,25 @@ pub(crate) fn merge(
             stats.merges = p1.merges;
             add_fits(stats, p1.fits);
             if p1.stopped {
-                return (MergeOutput::stopped(), MergeLog::default());
+                return (MergeOutput::stopped(), K::Log::default());
             }
             // Phase 2 starts from one cluster per group (linear in the faces). The
             // faces' pairs, operators and volumes are done with: the groups hold theirs.
             drop((pairs, q, volumes));
             let so_far = stats.merges;
-            let faces = ev.mesh.face_count();
+            let faces = ev.input.mesh.face_count();
             let clusters = laps.time("regroup", || {
                 partition::group_clusters(p1, faces, &lists, &|_| merged_so_far(so_far))
             });
             let Some(clusters) = clusters else {
-                return (MergeOutput::stopped(), MergeLog::default());
+                return (MergeOutput::stopped(), K::Log::default());
             };
             (Some(clusters), Vec::new())
         }
         FirstPhase::Components(comps) => {
             let count = comps.len();
-            // The merge tree needs every merge traced, whatever the targets.
-            let trace_from = if tree.is_some() {
+            // The merge tree needs every merge traced, whatever the targets (`Keep`).
+            let trace_from = if keep.traces_every_merge() {
                 usize::MAX
             } else {
                 targets[0]
@@ -213,11 +288,11 @@ pub(crate) fn merge(
             stats.merges = p1.merges;
             add_fits(stats, p1.fits);
             if p1.stopped {
-                return (MergeOutput::stopped(), MergeLog::default());
+                return (MergeOutput::stopped(), K::Log::default());
             }
             let (early, replayed, after) =
                 components::snapshots(ev, &p1, &q, &volumes, &pairs, targets, count);
-            tree_log = after;
+            components_log = after;
             if early.len() == targets.len() {
                 // Every target reached: the output holds the replayed merges only.
                 (stats.merges, stats.merges_past) = (replayed, p1.merges - replayed);
@@ -227,7 +302,7 @@ pub(crate) fn merge(
                 let so_far = stats.merges;
                 match partition::clusters(p1, q, volumes, lists, &|_| merged_so_far(so_far)) {
                     Some(cl) => (Some(cl), early),
-                    None => return (MergeOutput::stopped(), MergeLog::default()),
+                    None => return (MergeOutput::stopped(), K::Log::default()),
                 }
             }
         }
@@ -237,33 +312,13 @@ pub(crate) fn merge(
             snapshots: early,
             ..MergeOutput::default()
         };
-        let log = MergeLog {
-            merges: tree_log,
-            from_faces: true,
-            ..MergeLog::default()
-        };
-        return (out, log);
+        return (out, K::join(components_log, K::Log::default(), true));
     };
     let done = stats.merges as f64;
     let rest = clusters.live.saturating_sub(last) as f64;
     let phase2 = |f: f64| go_on((done + f * rest) / total);
-    let (mut out, mut log) = match tree {
-        Some(t) => {
-            super::run_for_tree(ev, clusters, &targets[early.len()..], t.hulls_over, &phase2)
-        }
-        None => {
-            let out = super::run(ev, clusters, &targets[early.len()..], &phase2);
-            (out, MergeLog::default())
-        }
-    };
-    // The components' merges come first in the global order.
-    let before = tree_log.len() as u32;
-    log.hulls
-        .merges
-        .iter_mut()
-        .for_each(|(at, _)| *at += before);
-    log.merges.splice(0..0, tree_log);
-    log.from_faces = from_faces;
+    let (mut out, log) = keep.run(ev, clusters, &targets[early.len()..], &phase2);
+    let log = K::join(components_log, log, from_faces);
     out.snapshots.splice(0..0, early);
     stats.bridge_edges = out.bridge_edges;
     stats.merges += out.merges;

@@ -12,7 +12,7 @@
 //! - both threads claim neighbours one at a time from that counter, so a worker that
 //!   wakes late only takes what is left;
 //! - the main thread prices from the clusters, the worker from the snapshot (the same
-//!   arithmetic, `Evaluator::candidate_of`); the worker's results go back through the
+//!   arithmetic, `Fitter::candidate_of`); the worker's results go back through the
 //!   job with their neighbour index, and the main thread pushes every candidate in
 //!   neighbour order: the queue sees exactly the serial sequence, on any thread count;
 //! - if the worker has not finished its share a few fits' time after the main thread
@@ -25,7 +25,7 @@
 //! clusters, only the copy.
 
 use super::cluster::Clusters;
-use super::cost::{Evaluator, Side, Workspace};
+use super::cost::{Fitter, Side, Workspace};
 use super::heap::Candidate;
 use crate::math::Sym3;
 use crate::progress::wallclock::Instant;
@@ -130,7 +130,7 @@ pub struct PricerCounts {
 
 /// Re-prices batches of merges, on two threads when it has a worker.
 pub struct Pricer<'p> {
-    ev: &'p Evaluator<'p>,
+    ev: &'p Fitter<'p>,
     ws: Workspace,
     link: Option<(&'p Shared, Thread)>,
     epoch: u32,
@@ -143,7 +143,7 @@ pub struct Pricer<'p> {
 /// Runs `f` with a [`Pricer`] that has a worker thread when rayon's pool has two or
 /// more threads (none under `--threads 1`); the worker stops when `f` returns or
 /// unwinds.
-pub fn with_pricer<R>(ev: &Evaluator, f: impl FnOnce(&mut Pricer<'_>) -> R) -> R {
+pub fn with_pricer<R>(ev: &Fitter, f: impl FnOnce(&mut Pricer<'_>) -> R) -> R {
     if rayon::current_num_threads() < 2 {
         return f(&mut Pricer::new(ev, None));
     }
@@ -173,11 +173,11 @@ impl Drop for Pricer<'_> {
 impl<'p> Pricer<'p> {
     /// A pricer without a worker (phase 1 of `Speed::partitions`: one per part, the
     /// parts themselves run in parallel).
-    pub(super) fn serial(ev: &'p Evaluator<'p>) -> Self {
+    pub(super) fn serial(ev: &'p Fitter<'p>) -> Self {
         Pricer::new(ev, None)
     }
 
-    fn new(ev: &'p Evaluator<'p>, link: Option<(&'p Shared, Thread)>) -> Self {
+    fn new(ev: &'p Fitter<'p>, link: Option<(&'p Shared, Thread)>) -> Self {
         Pricer {
             ev,
             ws: Workspace::default(),
@@ -322,7 +322,7 @@ impl Drop for DeadOnUnwind<'_> {
 }
 
 /// The worker: waits for a batch, prices the neighbours it claims from the snapshot.
-fn work(ev: &Evaluator, sh: &Shared) {
+fn work(ev: &Fitter, sh: &Shared) {
     let _guard = DeadOnUnwind(sh);
     let mut ws = Workspace::default();
     let mut seen = 0u32;
@@ -341,7 +341,7 @@ fn work(ev: &Evaluator, sh: &Shared) {
 
 /// Claims neighbours of `job` one at a time while its batch is open, prices each from
 /// the snapshot and reports progress through `done`.
-fn price_claimed(ev: &Evaluator, sh: &Shared, job: &mut Job, ws: &mut Workspace) {
+fn price_claimed(ev: &Fitter, sh: &Shared, job: &mut Job, ws: &mut Workspace) {
     let mut finished = 0u64;
     loop {
         let cur = sh.claim.0.load(Acquire);

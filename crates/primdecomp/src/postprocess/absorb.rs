@@ -16,7 +16,7 @@ use rayon::prelude::*;
 
 use super::plates::{in_rounds, Candidate};
 use crate::math::{Sym3, V3};
-use crate::merge::{Evaluator, Snapshot, Workspace};
+use crate::merge::{Fitter, Snapshot, Workspace};
 
 /// How much larger than the larger of two primitives their union's fit may be, as a
 /// share of the smaller one's volume: a near duplicate adds almost nothing, while a
@@ -32,7 +32,7 @@ const NESTED_TOL_REL: f64 = 1e-9;
 /// Replaces near-duplicate pairs of `snap`'s primitives by their union's fit, in rounds
 /// until none is left, the least growth first (`plates::in_rounds`); `q` holds each
 /// primitive's operator and is compacted with the snapshot.
-pub fn absorb(ev: &Evaluator, snap: &mut Snapshot, q: &mut Vec<Sym3>) {
+pub fn absorb(ev: &Fitter, snap: &mut Snapshot, q: &mut Vec<Sym3>) {
     in_rounds(snap, q, |snap, q, alive, dirty| {
         near_duplicates(ev, snap, q, alive, dirty)
     });
@@ -43,7 +43,7 @@ pub fn absorb(ev: &Evaluator, snap: &mut Snapshot, q: &mut Vec<Sym3>) {
 /// nested removal of §3.4 drops those), and whose union's fit grows the larger by at
 /// most [`ABSORB`] of the smaller, with that growth and fit.
 fn near_duplicates(
-    ev: &Evaluator,
+    ev: &Fitter,
     snap: &Snapshot,
     q: &[Sym3],
     alive: &[bool],
@@ -56,12 +56,12 @@ fn near_duplicates(
         .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
         .filter(|&(i, j)| live(i, j) && overlaps(boxes[i], boxes[j]))
         .collect();
-    let tol = NESTED_TOL_REL * ev.mesh.diagonal().max(f64::MIN_POSITIVE);
+    let tol = NESTED_TOL_REL * ev.input.mesh.diagonal().max(f64::MIN_POSITIVE);
     let holds = |i: usize, j: usize| {
         let p = &snap.prims[i];
         snap.verts[j]
             .iter()
-            .all(|&v| p.contains(ev.mesh.pos(v), tol))
+            .all(|&v| p.contains(ev.input.mesh.pos(v), tol))
     };
     pairs
         .par_iter()

@@ -10,13 +10,15 @@ pub(crate) mod nested;
 pub(crate) mod plates;
 pub(crate) mod thicken;
 
+use crate::input::mesh::Mesh;
 use crate::input::triangles::Triangles;
-use crate::merge::{Evaluator, Snapshot};
+use crate::merge::cost::InputView;
+use crate::merge::{Fitter, Snapshot};
 use crate::output::result::Level;
 use crate::params::Params;
 use nested::{keep_mask, Cleanup};
 
-/// What post-processing reads of the input besides the evaluator, made once per run
+/// What post-processing reads of the input besides the fitter, made once per run
 /// (a cut may post-process its levels several times, `cut::recut`): its triangles, built
 /// by the run when a step needs them, and with a minimum thickness the input as rays
 /// see it (its interior on a voxel grid), for plates thickened inward
@@ -27,10 +29,10 @@ pub(crate) struct Prepared<'a> {
 }
 
 impl<'a> Prepared<'a> {
-    pub(crate) fn new(ev: &Evaluator, params: &Params, tris: Option<&'a Triangles>) -> Self {
+    pub(crate) fn new(mesh: &Mesh, params: &Params, tris: Option<&'a Triangles>) -> Self {
         let thick = tris
             .filter(|_| params.plates.min_thickness > 0.0)
-            .map(|t| thicken::Interior::build(ev, t));
+            .map(|t| thicken::Interior::build(mesh, t));
         Prepared { tris, thick }
     }
 }
@@ -38,7 +40,7 @@ impl<'a> Prepared<'a> {
 /// One level per target of `params.goal` (in the order given) from the greedy merge
 /// loop's snapshots (one per distinct target), each post-processed once.
 pub(crate) fn levels(
-    ev: &Evaluator,
+    ev: &Fitter,
     snaps: Vec<Snapshot>,
     params: &Params,
     input: &Prepared,
@@ -57,38 +59,43 @@ pub(crate) fn levels(
 /// One snapshot post-processed into its level; `bound`: a cut's, the farthest its
 /// primitives may stand from the input, which joined plates keep to.
 pub(crate) fn level(
-    ev: &Evaluator,
+    ev: &Fitter,
     mut snap: Snapshot,
     bound: Option<f64>,
     params: &Params,
     input: &Prepared,
 ) -> Level {
-    let diag = ev.mesh.diagonal();
+    let diag = ev.input.mesh.diagonal();
     let (tris, thick) = (input.tris, &input.thick);
     let mut q = std::mem::take(&mut snap.q);
     // Solid pricing: near-duplicate primitives become one (docs/decisions/0023).
-    if ev.solid.is_some() {
+    if ev.input.solid.is_some() {
         absorb::absorb(ev, &mut snap, &mut q);
     }
     // Plates in one plane the merge left apart become one where that adds no
     // area (docs/decisions/0028).
-    if ev.join_plates {
+    if params.plates.join_coplanar {
         plates::join(ev, &mut snap, &mut q, tris, bound);
     }
     // Plates reach inward to the minimum thickness where the input is closed.
     if let Some(input) = thick {
-        thicken::thicken(ev, input, &mut snap, params.plates.min_thickness * diag);
+        thicken::thicken(
+            &ev.input,
+            input,
+            &mut snap,
+            params.plates.min_thickness * diag,
+        );
     }
-    finish(ev, &snap, params, diag)
+    finish(&ev.input, &snap, params, diag)
 }
 /// Removes nested primitives from one snapshot and moves it to world coordinates.
-fn finish(ev: &Evaluator, snap: &Snapshot, params: &Params, diag: f64) -> Level {
+fn finish(view: &InputView, snap: &Snapshot, params: &Params, diag: f64) -> Level {
     let cleanup = Cleanup {
         diagonal: diag,
         remove_nested: params.plates.remove_nested,
         thin_box_half: params.plates.remove_thin_boxes.map(|t| t * diag),
     };
-    let keep = keep_mask(ev.mesh, &snap.prims, &snap.verts, &snap.members, cleanup);
+    let keep = keep_mask(view.mesh, &snap.prims, &snap.verts, &snap.members, cleanup);
     let mut level = Level {
         target: snap.target,
         merged_to: snap.target,
@@ -96,7 +103,7 @@ fn finish(ev: &Evaluator, snap: &Snapshot, params: &Params, diag: f64) -> Level 
     };
     for (i, p) in snap.prims.iter().enumerate() {
         if keep[i] {
-            level.primitives.push(p.to_world(ev.mesh.offset));
+            level.primitives.push(p.to_world(view.mesh.offset));
             level.faces.push(snap.faces[i]);
         }
     }

@@ -22,7 +22,7 @@ use crate::cut::error::is_within;
 use crate::input::triangles::Triangles;
 use crate::math::polygon::{clip, signed_area};
 use crate::math::{add, cross, dot, madd, normalize, scale, Sym3, V3};
-use crate::merge::{Evaluator, Snapshot, Workspace};
+use crate::merge::{Fitter, Snapshot, Workspace};
 use crate::primitive::frame::convex_hull_2d;
 use crate::primitive::Primitive;
 
@@ -59,7 +59,7 @@ struct Plate {
 /// standing farther from `surface` (the input) than `bound` is refused
 /// (docs/decisions/0038).
 pub fn join(
-    ev: &Evaluator,
+    ev: &Fitter,
     snap: &mut Snapshot,
     q: &mut Vec<Sym3>,
     surface: Option<&Triangles>,
@@ -151,14 +151,14 @@ fn plate(p: &Primitive, floor: f64) -> Option<Plate> {
 /// than the two that covers at most [`SPILL`] more than they do, with that difference
 /// and fit.
 fn coplanar_pairs(
-    ev: &Evaluator,
+    ev: &Fitter,
     snap: &Snapshot,
     q: &[Sym3],
     alive: &[bool],
     dirty: &[bool],
     keeps: &(dyn Fn(&Primitive) -> bool + Sync),
 ) -> Vec<Candidate> {
-    let floor = ev.cfg.min_half;
+    let floor = ev.pricing.fit.min_half;
     let plates: Vec<(usize, Plate)> = (0..snap.prims.len())
         .filter(|&i| alive[i])
         .filter_map(|i| plate(&snap.prims[i], floor).map(|p| (i, p)))
@@ -181,7 +181,7 @@ fn coplanar_pairs(
         }
     }
     pairs.sort_unstable();
-    let kv = |p: &Primitive| ev.cfg.weights[p.kind() as usize] * p.volume();
+    let kv = |p: &Primitive| ev.pricing.fit.weights[p.kind() as usize] * p.volume();
     let scratch = || (Workspace::default(), Vec::new(), Vec::new());
     pairs
         .par_iter()
@@ -191,7 +191,7 @@ fn coplanar_pairs(
             let most = both / (1.0 - SPILL);
             // The union's plate holds both clusters' points, so its footprint holds
             // their hull: a pair whose hull already covers more is refused unfitted.
-            let flat = |v: &u32| project(ev.mesh.pos(*v), frame);
+            let flat = |v: &u32| project(ev.input.mesh.pos(*v), frame);
             pts.clear();
             pts.extend(snap.verts[i].iter().chain(&snap.verts[j]).map(flat));
             if hull_area(pts, hull) > most * (1.0 + 1e-9) {

@@ -18,11 +18,12 @@
 
 use rayon::prelude::*;
 
-use crate::input::mesh::outward_normal;
+use crate::input::mesh::{outward_normal, Mesh};
 use crate::input::solid::{self, Solid};
 use crate::input::triangles::Triangles;
 use crate::math::{dot, madd, V3};
-use crate::merge::{Evaluator, Snapshot};
+use crate::merge::cost::InputView;
+use crate::merge::Snapshot;
 use crate::primitive::Primitive;
 
 /// Share of the input's depth behind a plate (from its outer side along its inward
@@ -49,23 +50,23 @@ pub(crate) struct Interior<'a> {
 }
 
 impl<'a> Interior<'a> {
-    /// The interior of `ev`'s mesh beside its triangles `tris`.
-    pub fn build(ev: &Evaluator, tris: &'a Triangles) -> Interior<'a> {
+    /// The interior of `mesh` beside its triangles `tris`.
+    pub fn build(mesh: &Mesh, tris: &'a Triangles) -> Interior<'a> {
         Interior {
             tris,
-            solid: Solid::build(ev.mesh, solid::CELLS, solid::VOTES),
+            solid: Solid::build(mesh, solid::CELLS, solid::VOTES),
         }
     }
 }
 
 /// Thickens the plates of `snap` inward to `thickness` (absolute) where the input
 /// allows it (module docs); other primitives are unchanged.
-pub fn thicken(ev: &Evaluator, input: &Interior, snap: &mut Snapshot, thickness: f64) {
+pub fn thicken(view: &InputView, input: &Interior, snap: &mut Snapshot, thickness: f64) {
     let grown: Vec<Primitive> = (0..snap.prims.len())
         .into_par_iter()
         .map_init(Vec::new, |stack, i| {
             let p = &snap.prims[i];
-            grow(ev, input, p, &snap.members[i], thickness, stack).unwrap_or(*p)
+            grow(view, input, p, &snap.members[i], thickness, stack).unwrap_or(*p)
         })
         .collect();
     snap.prims = grown;
@@ -80,7 +81,7 @@ struct Slab {
 /// `p` grown inward to at most `thickness`, or `None` when it is not a thin box or
 /// prism with one-sided faces or the input behind it does not allow it.
 fn grow(
-    ev: &Evaluator,
+    view: &InputView,
     input: &Interior,
     p: &Primitive,
     members: &[u32],
@@ -98,24 +99,31 @@ fn grow(
     if thick.partial_cmp(&thickness) != Some(std::cmp::Ordering::Less) {
         return None;
     }
-    let side = outward_side(ev, members, axis)?;
+    let side = outward_side(view, members, axis)?;
     let slab = Slab {
         n: axis.map(|c| c * side),
         thick,
     };
     let samples = inner_grid(p, &slab);
-    let target = allowed(input, &slab, &samples, thickness, ev.mesh.diagonal(), stack)?;
+    let target = allowed(
+        input,
+        &slab,
+        &samples,
+        thickness,
+        view.mesh.diagonal(),
+        stack,
+    )?;
     // Round-off in the new centre must not pull the outer side in off its faces.
-    let pad = 1e-12 * ev.mesh.diagonal();
+    let pad = 1e-12 * view.mesh.diagonal();
     (target > thick * (1.0 + 1e-9)).then(|| widened(p, &slab, target, pad))
 }
 
 /// +1 or −1: the side of `axis` the faces of `members` face (area-weighted mean
 /// cosine of their outward normals at least [`ONE_SIDE`] either way), else `None`.
-fn outward_side(ev: &Evaluator, members: &[u32], axis: V3) -> Option<f64> {
+fn outward_side(view: &InputView, members: &[u32], axis: V3) -> Option<f64> {
     let (mut sum, mut area) = (0.0, 0.0);
     for &f in members {
-        if let Some((n, len)) = outward_normal(ev.mesh, ev.face_sign, f) {
+        if let Some((n, len)) = outward_normal(view.mesh, view.face_sign, f) {
             sum += len * dot(n, axis);
             area += len;
         }

@@ -167,7 +167,7 @@ impl Primitive {
     }
     /// The unit axis along which this primitive is a plate at most `2·floor` thick with
     /// the same cross-section all through (a box's thinnest axis, a prism's extrusion
-    /// axis, a cylinder's axis), for `merge::Evaluator`'s flush plates
+    /// axis, a cylinder's axis), for `merge::Fitter`'s flush plates
     /// (docs/decisions/0026); `None` for any other shape.
     pub(crate) fn plate_axis(&self, floor: f64) -> Option<V3> {
         let thin = |h: f64| h <= floor * (1.0 + 1e-9);

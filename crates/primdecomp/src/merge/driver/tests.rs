@@ -1,13 +1,13 @@
 use super::*;
 use crate::input::{adjacency, dedup};
 use crate::math::{dot, V3};
-use crate::merge::setup::evaluator;
+use crate::merge::setup::fitter;
 use crate::params::{Params, Plates, Reprice, Speed};
 use crate::seed::quadric;
 
-/// Runs `f` on the demo scene's evaluator and a maker of its single-face clusters.
+/// Runs `f` on the demo scene's fitter and a maker of its single-face clusters.
 pub(in crate::merge) fn with_demo<R>(
-    f: impl FnOnce(&Evaluator, &(dyn Fn() -> Clusters + Sync)) -> R,
+    f: impl FnOnce(&Fitter, &(dyn Fn() -> Clusters + Sync)) -> R,
 ) -> R {
     with_demo_using(Params::default(), f)
 }
@@ -15,7 +15,7 @@ pub(in crate::merge) fn with_demo<R>(
 /// [`with_demo`] under the settings `p`.
 fn with_demo_using<R>(
     p: Params,
-    f: impl FnOnce(&Evaluator, &(dyn Fn() -> Clusters + Sync)) -> R,
+    f: impl FnOnce(&Fitter, &(dyn Fn() -> Clusters + Sync)) -> R,
 ) -> R {
     let mesh = crate::input::demo::demo_scene();
     with_input(&mesh, &p, |ev, q, vols, pairs| {
@@ -23,19 +23,19 @@ fn with_demo_using<R>(
     })
 }
 
-/// Runs `f` on `mesh`'s evaluator under `p`, with the faces' operators, their
+/// Runs `f` on `mesh`'s fitter under `p`, with the faces' operators, their
 /// seed volumes and the adjacent face pairs (the driver's inputs, as `decompose`
 /// builds them).
 pub(in crate::merge) fn with_input<R>(
     mesh: &crate::input::mesh::Mesh,
     p: &Params,
-    f: impl FnOnce(&Evaluator, &[crate::math::Sym3], &[f64], &[(u32, u32)]) -> R,
+    f: impl FnOnce(&Fitter, &[crate::math::Sym3], &[f64], &[(u32, u32)]) -> R,
 ) -> R {
     let (welded, _) = dedup::weld(mesh, p.fit.dedup);
     let pairs = adjacency::face_pairs(&mesh.face_offsets, &welded);
     let mut q = Vec::new();
     quadric::face_quadrics(mesh, p.fit.tangent_eps, &mut q);
-    let ev = evaluator(mesh, &welded, p, mesh.aabb());
+    let ev = fitter(mesh, &welded, p, mesh.aabb());
     let vols = crate::merge::setup::seed_volumes(&ev, &q, &|_| true);
     f(&ev, &q, &vols, &pairs)
 }
@@ -109,13 +109,7 @@ fn free_merges_carry_the_greedy_order_on() {
         };
         // Above the face count (1,829) no merge is needed: only free ones run.
         let targets = [5000, 1000, 400, 40];
-        let with = with_demo_using(free, |ev, fresh| {
-            let loop_only = Evaluator {
-                join_plates: false,
-                ..*ev
-            };
-            run(&loop_only, fresh(), &targets, &|_| true)
-        });
+        let with = with_demo_using(free, |ev, fresh| run(ev, fresh(), &targets, &|_| true));
         let counts: Vec<usize> = with.snapshots.iter().map(|s| s.prims.len()).collect();
         assert!(
             counts.iter().zip(&targets).all(|(c, t)| c <= t),
@@ -217,11 +211,11 @@ fn the_trees_loop_keeps_its_clusters_hulls() {
         assert_eq!(log.hulls.leaves.len(), leaves.members.len());
         let hulls = log.hulls.clone().after(log.at_first);
         let log = &log.merges[log.at_first..];
-        let faces = ev.mesh.face_count();
+        let faces = ev.input.mesh.face_count();
         let tree = crate::cut::MergeTree::build(&leaves.members, &leaves.q, log, hulls, faces);
-        let tol = 1e-9 * ev.mesh.diagonal();
+        let tol = 1e-9 * ev.input.mesh.diagonal();
         let reach = |ids: &mut dyn Iterator<Item = u32>, d: V3| {
-            ids.map(|v| dot(d, ev.mesh.pos(v)))
+            ids.map(|v| dot(d, ev.input.mesh.pos(v)))
                 .fold(f64::NEG_INFINITY, f64::max)
         };
         let mut inner = 0;
@@ -236,7 +230,7 @@ fn the_trees_loop_keeps_its_clusters_hulls() {
             let own = || {
                 tree.faces(n)
                     .iter()
-                    .flat_map(|&f| ev.mesh.face(f as usize))
+                    .flat_map(|&f| ev.input.mesh.face(f as usize))
                     .copied()
             };
             for k in 0..64 {

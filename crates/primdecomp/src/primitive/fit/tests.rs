@@ -442,7 +442,7 @@ fn always_turns_nearly_flat_clusters_onto_their_edges() {
 /// `Thorough` is never costlier than `Always`; it finds an axis-aligned box tilted
 /// about a non-normal axis of Q (docs/decisions/0021-thorough-output-frame-search.md); and its
 /// frame search on the hull's
-/// vertices, refitted on every point (`Evaluator::fit_cluster_exact`), gives the
+/// vertices, refitted on every point (`Fitter::fit_cluster_exact`), gives the
 /// fit of the search on every point.
 #[test]
 fn thorough_search_and_its_hull_shortcut() {

@@ -243,7 +243,7 @@ impl ExportOptions {
     /// opts.scale = 0.0;
     /// assert!(opts.validate().is_err());
     /// ```
-    pub fn validate(&self) -> primdecomp::Result<()> {
+    pub fn validate(&self) -> Result<(), primdecomp::Error> {
         check_options(self).map_err(primdecomp::Error::InvalidParams)
     }
 }

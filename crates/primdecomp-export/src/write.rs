@@ -8,9 +8,12 @@
 //! fails, so a failed export leaves nothing behind.
 
 use super::engine::{check_options, ExportOptions, Files, Format};
+use primdecomp::Error;
 use primdecomp::ResultObject;
-use primdecomp::{Error, Result};
 use std::path::{Component, Path, PathBuf};
+
+/// Results with the library's one error type.
+type Result<T> = std::result::Result<T, Error>;
 
 /// Writes `objects` as `format` to `path` (each file through a temporary file and a
 /// rename; files beside it first, the main file last). Refuses with

@@ -129,7 +129,7 @@ fn build_mesh(
     offsets: Option<&[u32]>,
     arity: usize,
     indices: &[u32],
-) -> primdecomp::Result<Mesh> {
+) -> Result<Mesh, primdecomp::Error> {
     // SAFETY: [f64; 3] has the alignment of f64 and no padding; the Python side
     // passes a C-contiguous (N,3) array.
     let pos: &[[f64; 3]] =
@@ -164,7 +164,7 @@ pub(crate) fn watched<T: Send>(
     py: Python<'_>,
     params: &Params,
     callback: Option<&PyObject>,
-    work: impl FnOnce(&dyn Progress) -> primdecomp::Result<T> + Send,
+    work: impl FnOnce(&dyn Progress) -> Result<T, primdecomp::Error> + Send,
 ) -> PyResult<T> {
     let shared = Shared {
         cancel: AtomicBool::new(false),
@@ -187,7 +187,7 @@ pub(crate) fn watched<T: Send>(
                     if reported != now {
                         // The Python side passes a callback of three arguments (it
                         // wraps one of two): stage, its fraction, seconds left.
-                        let left = eta.update(stage, f).seconds_left;
+                        let left = eta.seconds_left(stage, f);
                         cb.call1(py, (stage.name(), f, left))?;
                     }
                 }

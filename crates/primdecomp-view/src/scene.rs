@@ -5,9 +5,12 @@ use crate::geometry::Parts;
 use crate::palette;
 use crate::simplify::{self, Display};
 use crate::source;
-use primdecomp::{Error, Primitive, Result};
+use primdecomp::{Error, Primitive};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
+
+/// Results with the library's one error type.
+type Result<T> = std::result::Result<T, Error>;
 
 /// How a scene is built.
 #[derive(Clone, Debug)]

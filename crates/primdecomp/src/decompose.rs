@@ -75,9 +75,8 @@ pub fn decompose_with(
     for (&i, level) in short.iter().zip(cut.levels) {
         dec.levels[i] = level;
     }
-    let recut_stages = cut.timings.stages.into_iter();
+    let recut_stages = cut.timings.into_iter();
     dec.timings
-        .stages
         .extend(recut_stages.map(|(s, t)| (format!("recut {s}"), t)));
     Ok(dec)
 }

@@ -285,14 +285,7 @@ impl Error {
 }
 
 /// The library's result type.
-///
-/// ```
-/// fn faces(path: &std::path::Path) -> primdecomp::Result<usize> {
-///     Ok(primdecomp::Mesh::load(path)?.face_count())
-/// }
-/// assert!(faces("missing.obj".as_ref()).is_err());
-/// ```
-pub type Result<T> = std::result::Result<T, Error>;
+pub(crate) type Result<T> = std::result::Result<T, Error>;
 
 /// Bytes for a message: `1.5 GiB`, `300 MiB`, `12 KiB`.
 pub(crate) fn show_bytes(b: u64) -> String {

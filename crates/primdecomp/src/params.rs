@@ -11,7 +11,7 @@ mod goal;
 mod json;
 mod spelling;
 
-pub use goal::{CountSearch, Goal};
+pub use goal::{CountSearch, Goal, Target};
 pub use spelling::ByteSize;
 
 use crate::error::{Error, Result};

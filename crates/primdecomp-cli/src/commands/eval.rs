@@ -60,7 +60,7 @@ pub fn run(a: EvalArgs) -> anyhow::Result<()> {
         .colliders
         .iter()
         .map(|p| primdecomp_eval::collider::load(p))
-        .collect::<primdecomp::Result<Vec<_>>>()?;
+        .collect::<Result<Vec<_>, primdecomp::Error>>()?;
     let input = primdecomp_eval::Input::new(&mesh);
     let rows: Vec<(String, primdecomp_eval::Metrics)> = a
         .colliders

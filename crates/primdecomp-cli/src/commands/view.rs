@@ -202,7 +202,7 @@ fn levels_and_peers(
         .compare
         .iter()
         .map(|p| scene::load_peer(p, None))
-        .collect::<primdecomp::Result<Vec<_>>>()?;
+        .collect::<Result<Vec<_>, primdecomp::Error>>()?;
     // A page shows a bounded number of parts and triangles: coarser circles first.
     let hulls = peers.iter().map(|c| c.parts.len()).sum();
     let hull_triangles = peers.iter().map(|c| c.parts.triangles.len()).sum();

@@ -267,7 +267,7 @@ fn build() -> Scene {
 /// ```
 /// let scene = primdecomp::demo_scene();
 /// assert_eq!(scene.face_count(), 1829);
-/// assert_eq!(scene.objects()[0].name, "stairs_step_0");
+/// assert_eq!(scene.objects()[0].0, "stairs_step_0");
 /// ```
 pub fn demo_scene() -> Mesh {
     let s = build();

@@ -210,7 +210,7 @@ pub struct LoadOptions {
     /// [`Mesh::load_with`] still refuses what it refuses with re-centring. Decomposing such a
     /// mesh directly loses the precision re-centring keeps far from the origin.
     pub keep_world_coordinates: bool,
-    /// [`crate::decompose_tiled`]: decompose in this many spatial tiles (at most
+    /// [`crate::Tiled::decompose`]: decompose in this many spatial tiles (at most
     /// 4096) instead of the fewest that fit `max_memory`. `None` (the
     /// default): the fewest; [`Mesh::load_with`] ignores it.
     pub tiles: Option<usize>,

@@ -74,11 +74,11 @@ impl Collider {
 }
 
 /// Loads a collider: `.json` is a primdecomp document, `.obj` convex hulls. Like a
-/// mesh it must be a regular file ([`primdecomp::read_regular`]: a named pipe or
+/// mesh it must be a regular file ([`primdecomp_files::read_regular`]: a named pipe or
 /// device is refused before reading), of at most
 /// [`primdecomp::ResultFile::MAX_BYTES`].
 pub fn load(path: &Path) -> Result<Collider> {
-    let bytes = primdecomp::read_regular(path, primdecomp::ResultFile::MAX_BYTES)?;
+    let bytes = primdecomp_files::read_regular(path, primdecomp::ResultFile::MAX_BYTES)?;
     let ext = path
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());

@@ -16,11 +16,12 @@
 
 use super::names::Names;
 use super::range;
+use primdecomp::Frame;
 use primdecomp::ResultObject;
 use primdecomp::Tess;
 use primdecomp::Up;
-use primdecomp::{visible, Frame};
 use primdecomp::{Kind, Primitive};
+use primdecomp_files::visible;
 use primdecomp_math::{add, norm, normalize, scale, sub, V3};
 use std::path::Path;
 

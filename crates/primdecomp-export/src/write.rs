@@ -65,10 +65,10 @@ fn place(
     for (rel, bytes) in &files.beside {
         let p = dir.join(rel);
         folders(dir, Path::new(rel), made)?;
-        primdecomp::write_atomic(&p, bytes)?;
+        primdecomp_files::write_atomic(&p, bytes)?;
         written.push(p);
     }
-    primdecomp::write_atomic(path, &files.main)?;
+    primdecomp_files::write_atomic(path, &files.main)?;
     written.push(path.to_path_buf());
     Ok(())
 }
@@ -99,7 +99,7 @@ fn folders(dir: &Path, rel: &Path, made: &mut Vec<PathBuf>) -> Result<()> {
                         "is a symbolic link (to {}); the export's files are never written \
                          through a link in the output folder: remove it, or choose another \
                          output name",
-                        primdecomp::visible(&to.to_string_lossy())
+                        primdecomp_files::visible(&to.to_string_lossy())
                     ),
                 ));
             }

@@ -43,7 +43,7 @@ pub(crate) fn to_py_err(e: Error) -> PyErr {
         }
         Error::NotAFile {
             path,
-            kind: primdecomp::FileKind::Directory,
+            kind: primdecomp_files::FileKind::Directory,
         } => PyOSError::new_err((EISDIR, "Is a directory", path.display().to_string())),
         Error::NotAFile { .. } => PyOSError::new_err(e.to_string()),
         Error::Cancelled => PyKeyboardInterrupt::new_err(e.to_string()),
@@ -395,10 +395,14 @@ impl NativeResult {
             .and_then(|e| e.to_str())
             .map(str::to_ascii_lowercase);
         let written = match ext.as_deref() {
-            Some("json") => primdecomp::write_atomic(p, json.as_bytes()).map(|_| vec![p.into()]),
+            Some("json") => primdecomp_files::write_atomic(p, json.as_bytes())
+                .map(|_| vec![p.into()])
+                .map_err(Error::from),
             Some("obj") => {
                 let obj = self.level(level)?.to_obj(primdecomp::Tess::DEFAULT_DETAIL);
-                primdecomp::write_atomic(p, obj.as_bytes()).map(|_| vec![p.into()])
+                primdecomp_files::write_atomic(p, obj.as_bytes())
+                    .map(|_| vec![p.into()])
+                    .map_err(Error::from)
             }
             _ => {
                 let format = match ext.as_deref() {

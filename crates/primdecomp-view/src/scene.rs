@@ -169,7 +169,7 @@ pub const MAX_EVAL_ROWS: usize = 4096;
 
 /// A file read whole: a regular file of at most `MAX_RESULT_BYTES`, in UTF-8.
 fn read_text(path: &Path) -> Result<String> {
-    let bytes = primdecomp::read_regular(path, primdecomp::ResultFile::MAX_BYTES)?;
+    let bytes = primdecomp_files::read_regular(path, primdecomp::ResultFile::MAX_BYTES)?;
     String::from_utf8(bytes).map_err(|e| {
         Error::byte(
             path,
@@ -516,7 +516,7 @@ pub fn input_from(path: &Path, mesh: &source::InputMesh, opts: &Options) -> Inpu
 /// cut to 40 characters.
 fn show(v: Option<&Value>) -> String {
     let s = v.map_or("absent".to_string(), |v| {
-        primdecomp::visible(&v.to_string())
+        primdecomp_files::visible(&v.to_string())
     });
     if s.chars().count() > 40 {
         format!("{}…", s.chars().take(40).collect::<String>())

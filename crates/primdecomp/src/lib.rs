@@ -84,14 +84,14 @@ use primdecomp_math as math;
 pub use decompose::objects::{ObjectResult, Objects};
 pub use decompose::tiles::Tiled;
 pub use decompose::{decompose, decompose_with};
-pub use error::{Error, FileKind};
+pub use error::Error;
 #[cfg(feature = "demo-scene")]
 pub use input::demo::{demo_scene, demo_scene_obj};
-pub use input::io::{open_regular, read_regular, LoadOptions, MeshFormat};
+pub use input::io::{LoadOptions, MeshFormat};
 pub use input::mesh::Mesh;
 pub use input::up::Up;
 pub use output::result::{Decomposition, InputInfo, Level, Shortfall, Stats};
-pub use output::{visible, write_atomic, Frame, ResultFile, ResultObject, Tess};
+pub use output::{Frame, ResultFile, ResultObject, Tess};
 pub use params::{
     ByteSize, CountSearch, Dedup, Fit, Goal, Params, Partitions, Plates, Reprice, Speed, Target,
     Tolerance,

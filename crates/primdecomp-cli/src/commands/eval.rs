@@ -8,7 +8,7 @@ use crate::exit::{print, println};
 use crate::outputs::{Guard, Out};
 use anyhow::bail;
 use clap::Args;
-use primdecomp::write_atomic;
+use primdecomp_files::write_atomic;
 use std::path::PathBuf;
 
 /// `primdecomp eval`. The sampling-error figures in the help come from

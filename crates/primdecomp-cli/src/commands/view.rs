@@ -8,7 +8,8 @@ use crate::outputs::{Guard, Out};
 use crate::paths::memory_limit;
 use anyhow::bail;
 use clap::Args;
-use primdecomp::{write_atomic, LoadOptions};
+use primdecomp::LoadOptions;
+use primdecomp_files::write_atomic;
 use primdecomp_view::scene;
 use std::path::{Path, PathBuf};
 

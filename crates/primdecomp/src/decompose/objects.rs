@@ -21,7 +21,21 @@ use crate::primitive::Primitive;
 /// The sharing rule of a total target, as stated in the JSON and `--help`.
 pub const SHARE_RULE: &str = "a total count N is shared by the objects: one each, the other N - k (k objects) in proportion to surface area, largest remainder (ties to the earlier object); with N < k each object still gets one. A percentage applies to each object's faces.";
 
-/// One object's result.
+/// One object's result ([`Objects::objects`]).
+///
+/// ```
+/// use primdecomp::{Mesh, MeshFormat, Objects, Params, Target};
+///
+/// let obj = b"o a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n\
+///             o b\nv 5 0 0\nv 7 0 0\nv 5 2 0\nv 5 0 2\nf 5 7 6\nf 5 6 8\nf 5 8 7\nf 6 7 8\n";
+/// let mesh = Mesh::parse(obj, MeshFormat::Obj, "two.obj".as_ref())?;
+/// let objects = Objects::decompose(&mesh, &Params::default(), &[Target::Count(2)])?;
+/// let b = &objects.objects[1];
+/// assert_eq!((b.name.as_str(), b.faces), ("b", 4));
+/// assert!(b.area > objects.objects[0].area); // twice the size: four times the area
+/// assert_eq!(b.decomposition.levels.len(), 1);
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
 #[derive(Clone, Debug)]
 pub struct ObjectResult {
     /// The name the file gives it (empty for faces before the first OBJ name).
@@ -37,7 +51,25 @@ pub struct ObjectResult {
     pub decomposition: Decomposition,
 }
 
-/// The per-object result of a whole input.
+/// The per-object result of a whole input: each named part (an OBJ `o`/`g`, a glTF
+/// mesh node, [`Mesh::objects`]) decomposed on its own and named
+/// ([`Objects::decompose`]); written as one JSON by [`Objects::to_json`].
+///
+/// ```
+/// use primdecomp::{Mesh, MeshFormat, Objects, Params, Target};
+///
+/// let obj = b"o a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n\
+///             o b\nv 5 0 0\nv 7 0 0\nv 5 2 0\nv 5 0 2\nf 5 7 6\nf 5 6 8\nf 5 8 7\nf 6 7 8\n";
+/// let mesh = Mesh::parse(obj, MeshFormat::Obj, "two.obj".as_ref())?;
+/// // 4 primitives shared by the two objects, and 100% of each object's faces.
+/// let targets = [Target::Count(4), Target::Percent(100.0)];
+/// let objects = Objects::decompose(&mesh, &Params::default(), &targets)?;
+/// assert_eq!(objects.levels(), 2);
+/// let names: Vec<&str> = objects.objects.iter().map(|o| o.name.as_str()).collect();
+/// assert_eq!(names, ["a", "b"]);
+/// assert!(!objects.world_primitives(0).is_empty());
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
 #[derive(Clone, Debug, Default)]
 pub struct Objects {
     /// The whole input (as [`Decomposition::input`]).

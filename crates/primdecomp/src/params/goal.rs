@@ -44,6 +44,17 @@ impl Target {
 }
 
 /// How a [`Goal::Counts`] level of N primitives is found.
+///
+/// ```
+/// use primdecomp::{decompose, demo_scene, CountSearch, Goal, Params};
+///
+/// // The paper's greedy pass alone, the fastest.
+/// let goal = Goal::Counts { counts: vec![40], search: CountSearch::Greedy };
+/// let level = &decompose(&demo_scene(), &Params { goal, ..Params::default() })?.levels[0];
+/// assert!(level.primitives.len() <= 40);
+/// assert_eq!(level.distance, None); // only a cut measures its distance
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum CountSearch {
     /// The greedy pass's level at N, cut from the merge tree instead where that level

@@ -7,7 +7,14 @@
 pub(crate) mod clock;
 pub(crate) mod wallclock;
 
-/// A stage of a run, in the order they run.
+/// A stage of a run, in the order they run, as [`Progress::update`] reports it.
+///
+/// ```
+/// use primdecomp::Stage;
+///
+/// let names: Vec<&str> = Stage::ALL.iter().map(|s| s.name()).collect();
+/// assert_eq!(names, ["dedup", "adjacency", "quadrics", "seed", "merge", "postprocess"]);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Stage {
     /// Welding vertices at the same position (§3.4).

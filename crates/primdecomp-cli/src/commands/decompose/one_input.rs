@@ -13,9 +13,10 @@ use crate::exit::BadArgs;
 use crate::outputs::Guard;
 use crate::paths::output_path_for;
 use anyhow::{anyhow, bail};
+use primdecomp::Stage;
 use primdecomp::Target;
-use primdecomp::{write_atomic, Stage};
 use primdecomp::{Decomposition, Goal, Params};
+use primdecomp_files::write_atomic;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 

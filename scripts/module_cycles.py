@@ -214,7 +214,7 @@ ALLOWED = {
     ('primdecomp', 'cut::chamfer', 'output'):
         "a level's mean distance is measured over the same tessellation as cut::error's",
     ('primdecomp', 'output::json', 'decompose::objects'):
-        "the JSON contract writes a per-object run's settings (ObjectTarget, Objects, "
+        "the JSON contract writes a per-object run's settings (Objects, "
         "SHARE_RULE), which the per-object entry defines beside the run",
 }
 

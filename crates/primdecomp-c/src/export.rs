@@ -183,7 +183,8 @@ pub unsafe extern "C" fn primdecomp_result_export(
             Target::Engine(f) => {
                 write_export(path, &objects(r, level)?, f, &export_options(&o, &stem)?)?;
             }
-            _ => primdecomp::write_atomic(path, &bytes_of(r, level, target, &o)?)?,
+            _ => primdecomp_files::write_atomic(path, &bytes_of(r, level, target, &o)?)
+                .map_err(primdecomp::Error::from)?,
         }
         Ok(())
     })

@@ -104,7 +104,7 @@ fn main() {
             // seconds added up give when each started).
             let mut by_step: Vec<String> = Vec::new();
             let mut from = 0.0;
-            for (name, t) in &dec.timings.stages {
+            for (name, t) in &dec.timings {
                 let longest = stretches
                     .iter()
                     .filter(|s| (from..from + t).contains(&s.2))

@@ -7,8 +7,12 @@
 #[error("{0}")]
 pub struct BadArgs(pub String);
 
-/// 2 for bad input or settings (the library's errors say which they are), 1 else.
+/// 2 for bad input or settings (the library's and its files' errors say which they
+/// are), 1 else.
 pub fn code(e: &anyhow::Error) -> i32 {
+    if let Some(fe) = e.downcast_ref::<primdecomp_files::Error>() {
+        return fe.exit_code();
+    }
     match e.downcast_ref::<primdecomp::Error>() {
         Some(pe) => pe.exit_code(),
         None if e.downcast_ref::<BadArgs>().is_some() => 2,
@@ -24,11 +28,11 @@ pub fn report(e: &anyhow::Error) -> i32 {
 
 /// Text as the terminal is shown it: control characters (ESC, BEL, a carriage
 /// return…) in file and object names, or in a file's bytes quoted by a message, are
-/// written as visible escapes (`\u{1b}`, `primdecomp::visible`) instead of
+/// written as visible escapes (`\u{1b}`, `primdecomp_files::visible`) instead of
 /// acting on the terminal; line ends between lines stay.
 pub fn terminal(text: &str) -> String {
     text.split('\n')
-        .map(primdecomp::visible)
+        .map(primdecomp_files::visible)
         .collect::<Vec<_>>()
         .join("\n")
 }

@@ -165,7 +165,7 @@ impl Manifest {
             }
         }
         // A file of our own, whatever was there (a link, a hard link, a pipe).
-        primdecomp::write_atomic(&path, kept.as_bytes())?;
+        primdecomp_files::write_atomic(&path, kept.as_bytes())?;
         let file = open_no_follow(&path, true)
             .with_context(|| format!("{}: cannot open the manifest", path.display()))?;
         Ok(Manifest {
@@ -327,9 +327,9 @@ fn read_own(path: &Path) -> anyhow::Result<Option<String>> {
     if meta.file_type().is_symlink() {
         return Err(refuse("is a symbolic link".into()));
     }
-    let file = match primdecomp::open_regular(path) {
+    let file = match primdecomp_files::open_regular(path) {
         Ok((file, _)) => file,
-        Err(primdecomp::Error::NotAFile { kind, .. }) => {
+        Err(primdecomp_files::Error::NotAFile { kind, .. }) => {
             return Err(refuse(format!("is {kind}, not a regular file")))
         }
         Err(e) => return Err(e.into()),

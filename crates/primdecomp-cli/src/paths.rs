@@ -50,7 +50,7 @@ pub fn level_labels(counts: &[usize], tolerance: &[Tolerance], bytes: &[usize]) 
 /// [`primdecomp::ResultFile::MAX_BYTES`] (a pipe or device is refused before
 /// reading, a larger file from its size), in UTF-8.
 pub fn read_result(path: &Path) -> anyhow::Result<String> {
-    let bytes = primdecomp::read_regular(path, primdecomp::ResultFile::MAX_BYTES)?;
+    let bytes = primdecomp_files::read_regular(path, primdecomp::ResultFile::MAX_BYTES)?;
     String::from_utf8(bytes).map_err(|e| {
         primdecomp::Error::ParseByte {
             path: path.to_path_buf(),

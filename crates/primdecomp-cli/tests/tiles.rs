@@ -3,7 +3,7 @@
 //! JSON is the same bytes on 1 and 2 threads and the library's; what needs the whole
 //! mesh is refused with exit 2.
 
-use primdecomp::{decompose_tiled, Goal, LoadOptions, Params};
+use primdecomp::{Goal, LoadOptions, Params, Tiled};
 use primdecomp_testkit::shapes::{icosphere, ply_bytes};
 use std::path::Path;
 use std::process::Command;
@@ -72,7 +72,7 @@ fn over_the_limit_tiles_instead_of_refusing() {
         tiles: Some(3),
         ..LoadOptions::default()
     };
-    let dec = decompose_tiled(&dir.join("ball.ply"), &params, &options, &|_, _| {}).unwrap();
+    let dec = Tiled::decompose(&dir.join("ball.ply"), &params, &options, &|_, _| {}).unwrap();
     // The same document but for where the CLI says the input came from.
     let bare = |text: &str| {
         let mut v: serde_json::Value = serde_json::from_str(text).unwrap();

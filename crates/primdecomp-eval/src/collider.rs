@@ -8,11 +8,14 @@
 //! of their own; objects or groups without faces are dropped. Each hull keeps only
 //! the vertices its faces use, in f64 world coordinates.
 
-use primdecomp::{Error, Result};
+use primdecomp::Error;
 use primdecomp::{Kind, Primitive};
 use primdecomp_math::V3;
 use std::collections::HashMap;
 use std::path::Path;
+
+/// Results with the library's one error type.
+type Result<T> = std::result::Result<T, Error>;
 
 /// One convex hull as a triangle mesh: `triangles` index `positions`.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -71,11 +74,11 @@ impl Collider {
 }
 
 /// Loads a collider: `.json` is a primdecomp document, `.obj` convex hulls. Like a
-/// mesh it must be a regular file ([`primdecomp::read_regular`]: a named pipe or
+/// mesh it must be a regular file ([`primdecomp_files::read_regular`]: a named pipe or
 /// device is refused before reading), of at most
 /// [`primdecomp::ResultFile::MAX_BYTES`].
 pub fn load(path: &Path) -> Result<Collider> {
-    let bytes = primdecomp::read_regular(path, primdecomp::ResultFile::MAX_BYTES)?;
+    let bytes = primdecomp_files::read_regular(path, primdecomp::ResultFile::MAX_BYTES)?;
     let ext = path
         .extension()
         .map(|e| e.to_string_lossy().to_ascii_lowercase());
@@ -111,10 +114,10 @@ pub fn parse_json(bytes: &[u8], path: &Path) -> Result<Collider> {
 pub fn parse_hulls_obj(bytes: &[u8], path: &Path) -> Result<Vec<Hull>> {
     let mesh = primdecomp::Mesh::parse(bytes, primdecomp::MeshFormat::Obj, path)?;
     let mut hulls = Vec::new();
-    for object in mesh.objects() {
+    for (_, faces) in mesh.objects() {
         let mut local: HashMap<u32, u32> = HashMap::new();
         let mut hull = Hull::default();
-        for f in object.faces {
+        for f in faces {
             let mut ids = mesh.face(f).iter().map(|&c| {
                 let next = hull.positions.len() as u32;
                 let l = *local.entry(c).or_insert(next);

@@ -16,11 +16,12 @@
 
 use super::names::Names;
 use super::range;
+use primdecomp::Frame;
 use primdecomp::ResultObject;
 use primdecomp::Tess;
 use primdecomp::Up;
-use primdecomp::{visible, Frame};
 use primdecomp::{Kind, Primitive};
+use primdecomp_files::visible;
 use primdecomp_math::{add, norm, normalize, scale, sub, V3};
 use std::path::Path;
 
@@ -243,7 +244,7 @@ impl ExportOptions {
     /// opts.scale = 0.0;
     /// assert!(opts.validate().is_err());
     /// ```
-    pub fn validate(&self) -> primdecomp::Result<()> {
+    pub fn validate(&self) -> Result<(), primdecomp::Error> {
         check_options(self).map_err(primdecomp::Error::InvalidParams)
     }
 }

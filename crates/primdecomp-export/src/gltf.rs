@@ -243,7 +243,7 @@ pub fn to_gltf(
     root.push(json::Scene {
         extensions: None,
         extras: Default::default(),
-        name: Some(primdecomp::visible(&opts.model)),
+        name: Some(primdecomp_files::visible(&opts.model)),
         nodes,
     });
     root.scene = Some(Index::new(0));

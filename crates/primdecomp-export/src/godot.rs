@@ -11,8 +11,8 @@
 
 use super::engine::{num, prepare, quat_between, ExportOptions, Format, Shape};
 use super::names::{ident, quote, Names};
-use primdecomp::visible;
 use primdecomp::ResultObject;
+use primdecomp_files::visible;
 use primdecomp_math::axes_from_quat;
 use primdecomp_math::V3;
 use std::fmt::Write;

@@ -7,7 +7,7 @@
 //! The input is a list of [`primdecomp::ResultObject`]s: one for a whole-mesh result,
 //! one per object of a `--per-object` result ([`primdecomp::ResultFile::read`] reads either
 //! from the JSON contract). [`render`] gives the bytes, [`write_export`] writes them
-//! (through temporary files and renames, [`primdecomp::write_atomic`]). Every shape is
+//! (through temporary files and renames, [`primdecomp_files::write_atomic`]). Every shape is
 //! grown by [`primdecomp::Frame::GROW_REL`] of its magnitude before it is written, so
 //! the enclosure guarantee survives the consumer's 32-bit rounding; a result a format's
 //! readers could not load (numbers beyond 32-bit floats) is refused with a

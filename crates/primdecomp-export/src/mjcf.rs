@@ -9,8 +9,8 @@
 
 use super::engine::{prepare, quat_between, ExportOptions, Format, Shape};
 use super::xml::{nums, Xml};
-use primdecomp::visible;
 use primdecomp::ResultObject;
+use primdecomp_files::visible;
 use primdecomp_math::V3;
 
 /// Shortest `fromto` written, relative to the radius (and at least 1e-6 long):

@@ -2,7 +2,7 @@
 //! name and any output file name gives a well-formed, loadable file whose names are
 //! still readable and still unique.
 //!
-//! 1. [`primdecomp::visible`]: characters no format may hold raw (C0 and C1 control characters,
+//! 1. [`primdecomp_files::visible`]: characters no format may hold raw (C0 and C1 control characters,
 //!    DEL, the non-characters U+FFFE and U+FFFF, and the bidirectional overrides that
 //!    make text display in another order than it is stored) are written as the
 //!    visible escape `\u{1b}`. Every name a writer puts in a file goes through it; XML
@@ -17,7 +17,7 @@
 //! 5. [`file_name`] caps file names at [`MAX_FILE_NAME`] bytes, keeping them distinct
 //!    with a hash of the whole name when cut.
 
-use primdecomp::visible;
+use primdecomp_files::visible;
 use std::collections::{HashMap, HashSet};
 
 /// The longest file name (bytes) an export writes: the common limit of Linux, macOS

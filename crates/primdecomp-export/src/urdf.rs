@@ -11,9 +11,9 @@
 use super::engine::{prepare, quat_between, ExportOptions, Files, Format, Shape};
 use super::names::{file_name, ident, MAX_FILE_NAME};
 use super::xml::{nums, Xml};
-use primdecomp::visible;
 use primdecomp::ResultObject;
 use primdecomp::Tess;
+use primdecomp_files::visible;
 use primdecomp_math::axes_from_quat;
 use std::fmt::Write;
 

@@ -11,8 +11,8 @@
 
 use super::engine::{prepare, quat_between, ExportOptions, Format, Shape};
 use super::names::{ident, quote, Names};
-use primdecomp::visible;
 use primdecomp::ResultObject;
+use primdecomp_files::visible;
 use primdecomp_math::V3;
 use std::fmt::Write;
 

@@ -8,9 +8,12 @@
 //! fails, so a failed export leaves nothing behind.
 
 use super::engine::{check_options, ExportOptions, Files, Format};
+use primdecomp::Error;
 use primdecomp::ResultObject;
-use primdecomp::{Error, Result};
 use std::path::{Component, Path, PathBuf};
+
+/// Results with the library's one error type.
+type Result<T> = std::result::Result<T, Error>;
 
 /// Writes `objects` as `format` to `path` (each file through a temporary file and a
 /// rename; files beside it first, the main file last). Refuses with
@@ -62,10 +65,10 @@ fn place(
     for (rel, bytes) in &files.beside {
         let p = dir.join(rel);
         folders(dir, Path::new(rel), made)?;
-        primdecomp::write_atomic(&p, bytes)?;
+        primdecomp_files::write_atomic(&p, bytes)?;
         written.push(p);
     }
-    primdecomp::write_atomic(path, &files.main)?;
+    primdecomp_files::write_atomic(path, &files.main)?;
     written.push(path.to_path_buf());
     Ok(())
 }
@@ -96,7 +99,7 @@ fn folders(dir: &Path, rel: &Path, made: &mut Vec<PathBuf>) -> Result<()> {
                         "is a symbolic link (to {}); the export's files are never written \
                          through a link in the output folder: remove it, or choose another \
                          output name",
-                        primdecomp::visible(&to.to_string_lossy())
+                        primdecomp_files::visible(&to.to_string_lossy())
                     ),
                 ));
             }

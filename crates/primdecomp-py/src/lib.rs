@@ -43,7 +43,7 @@ pub(crate) fn to_py_err(e: Error) -> PyErr {
         }
         Error::NotAFile {
             path,
-            kind: primdecomp::FileKind::Directory,
+            kind: primdecomp_files::FileKind::Directory,
         } => PyOSError::new_err((EISDIR, "Is a directory", path.display().to_string())),
         Error::NotAFile { .. } => PyOSError::new_err(e.to_string()),
         Error::Cancelled => PyKeyboardInterrupt::new_err(e.to_string()),
@@ -129,7 +129,7 @@ fn build_mesh(
     offsets: Option<&[u32]>,
     arity: usize,
     indices: &[u32],
-) -> primdecomp::Result<Mesh> {
+) -> Result<Mesh, primdecomp::Error> {
     // SAFETY: [f64; 3] has the alignment of f64 and no padding; the Python side
     // passes a C-contiguous (N,3) array.
     let pos: &[[f64; 3]] =
@@ -164,7 +164,7 @@ pub(crate) fn watched<T: Send>(
     py: Python<'_>,
     params: &Params,
     callback: Option<&PyObject>,
-    work: impl FnOnce(&dyn Progress) -> primdecomp::Result<T> + Send,
+    work: impl FnOnce(&dyn Progress) -> Result<T, primdecomp::Error> + Send,
 ) -> PyResult<T> {
     let shared = Shared {
         cancel: AtomicBool::new(false),
@@ -187,7 +187,7 @@ pub(crate) fn watched<T: Send>(
                     if reported != now {
                         // The Python side passes a callback of three arguments (it
                         // wraps one of two): stage, its fraction, seconds left.
-                        let left = eta.update(stage, f).seconds_left;
+                        let left = eta.seconds_left(stage, f);
                         cb.call1(py, (stage.name(), f, left))?;
                     }
                 }
@@ -395,10 +395,14 @@ impl NativeResult {
             .and_then(|e| e.to_str())
             .map(str::to_ascii_lowercase);
         let written = match ext.as_deref() {
-            Some("json") => primdecomp::write_atomic(p, json.as_bytes()).map(|_| vec![p.into()]),
+            Some("json") => primdecomp_files::write_atomic(p, json.as_bytes())
+                .map(|_| vec![p.into()])
+                .map_err(Error::from),
             Some("obj") => {
                 let obj = self.level(level)?.to_obj(primdecomp::Tess::DEFAULT_DETAIL);
-                primdecomp::write_atomic(p, obj.as_bytes()).map(|_| vec![p.into()])
+                primdecomp_files::write_atomic(p, obj.as_bytes())
+                    .map(|_| vec![p.into()])
+                    .map_err(Error::from)
             }
             _ => {
                 let format = match ext.as_deref() {

@@ -62,12 +62,15 @@ pub mod scene;
 pub mod shapes;
 
 use metrics::{Behaviour, FrameStats};
+use primdecomp::Error;
 use primdecomp::Mesh;
-use primdecomp::{Error, Result};
 use primdecomp_eval::collider::Collider;
 use primdecomp_math::V3;
 use scene::{Scene, World};
 use shapes::Placed;
+
+/// Results with the library's one error type.
+type Result<T> = std::result::Result<T, Error>;
 
 /// Run settings. `Default` is the paper's 5,000 balls and 1,000 frames.
 #[derive(Clone, Debug, PartialEq)]

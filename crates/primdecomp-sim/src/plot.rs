@@ -128,7 +128,7 @@ pub enum PlotError {
     },
     /// It could not be written.
     #[error(transparent)]
-    Write(#[from] primdecomp::Error),
+    Write(#[from] primdecomp_files::Error),
 }
 
 /// Writes the plot to `path` atomically.
@@ -137,7 +137,7 @@ pub fn write_png(run: &Run, title: &str, path: &Path) -> std::result::Result<(),
         path: path.to_path_buf(),
         msg,
     })?;
-    Ok(primdecomp::write_atomic(path, &bytes)?)
+    Ok(primdecomp_files::write_atomic(path, &bytes)?)
 }
 
 #[cfg(test)]

@@ -45,13 +45,16 @@
 use super::scene::{frame_of, SplitMix, BALL_RADIUS_REL, DT};
 use super::shapes::{Frame, Placed};
 use super::{placed, Entry, Geometry};
-use primdecomp::{Error, Mesh, Result};
+use primdecomp::{Error, Mesh};
 use primdecomp_math::{add, cross, dot, norm, norm2, scale, sub, V3};
 use rapier3d::dynamics::{RigidBodyBuilder, RigidBodyHandle};
 use rapier3d::geometry::{ColliderBuilder, Group, InteractionGroups, InteractionTestMode};
 use rapier3d::math::Vector;
 use rapier3d::parry::query::Ray;
 use rapier3d::pipeline::PhysicsWorld;
+
+/// Results with the library's one error type.
+type Result<T> = std::result::Result<T, Error>;
 
 /// Named speeds in ball diameters per frame (see the module documentation).
 pub const SPEEDS: [(&str, f64); 4] = [

@@ -21,7 +21,7 @@ pub fn page(scene: &Scene, title: &str) -> String {
         &[
             (
                 "__PRIMDECOMP_TITLE__",
-                &escape_html(&primdecomp::visible(title)),
+                &escape_html(&primdecomp_files::visible(title)),
             ),
             ("__PRIMDECOMP_VIEWER_JS__", VIEWER_JS),
             ("__PRIMDECOMP_DATA__", &data),

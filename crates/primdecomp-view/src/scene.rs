@@ -5,9 +5,12 @@ use crate::geometry::Parts;
 use crate::palette;
 use crate::simplify::{self, Display};
 use crate::source;
-use primdecomp::{Error, Primitive, Result};
+use primdecomp::{Error, Primitive};
 use serde_json::Value;
 use std::path::{Path, PathBuf};
+
+/// Results with the library's one error type.
+type Result<T> = std::result::Result<T, Error>;
 
 /// How a scene is built.
 #[derive(Clone, Debug)]
@@ -166,7 +169,7 @@ pub const MAX_EVAL_ROWS: usize = 4096;
 
 /// A file read whole: a regular file of at most `MAX_RESULT_BYTES`, in UTF-8.
 fn read_text(path: &Path) -> Result<String> {
-    let bytes = primdecomp::read_regular(path, primdecomp::ResultFile::MAX_BYTES)?;
+    let bytes = primdecomp_files::read_regular(path, primdecomp::ResultFile::MAX_BYTES)?;
     String::from_utf8(bytes).map_err(|e| {
         Error::byte(
             path,
@@ -513,7 +516,7 @@ pub fn input_from(path: &Path, mesh: &source::InputMesh, opts: &Options) -> Inpu
 /// cut to 40 characters.
 fn show(v: Option<&Value>) -> String {
     let s = v.map_or("absent".to_string(), |v| {
-        primdecomp::visible(&v.to_string())
+        primdecomp_files::visible(&v.to_string())
     });
     if s.chars().count() > 40 {
         format!("{}…", s.chars().take(40).collect::<String>())

@@ -3,9 +3,12 @@
 //! primitive and loading peer hulls. (The core's public API is being reorganised;
 //! these are the only call sites to move.)
 
-use primdecomp::{Error, Result};
+use primdecomp::Error;
 use primdecomp::{Kind, Primitive};
 use std::path::Path;
+
+/// Results with the library's one error type.
+type Result<T> = std::result::Result<T, Error>;
 
 /// An input mesh as polygons in world coordinates.
 pub struct InputMesh {

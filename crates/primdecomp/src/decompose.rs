@@ -39,7 +39,22 @@ pub fn decompose(mesh: &Mesh, params: &Params) -> Result<Decomposition> {
 
 /// [`decompose`], reporting each stage's progress to `progress` and stopping with
 /// [`crate::Error::Cancelled`] soon after `progress.cancelled()` turns true (see
-/// [`Progress`] for an example).
+/// [`Progress`] for a progress that cancels).
+///
+/// ```
+/// use primdecomp::{decompose_with, Mesh, Params, Stage};
+/// use std::sync::Mutex;
+///
+/// let corners = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+/// let tetrahedron = Mesh::from_triangles(&corners, &[[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])?;
+/// let seen = Mutex::new(Vec::new());
+/// let result = decompose_with(&tetrahedron, &Params::default(), &|stage: Stage, _done: f64| {
+///     seen.lock().unwrap().push(stage)
+/// })?;
+/// assert_eq!(result.levels.len(), 1);
+/// assert!(seen.into_inner().unwrap().contains(&Stage::Merge));
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
 pub fn decompose_with(
     mesh: &Mesh,
     params: &Params,
@@ -75,9 +90,8 @@ pub fn decompose_with(
     for (&i, level) in short.iter().zip(cut.levels) {
         dec.levels[i] = level;
     }
-    let recut_stages = cut.timings.stages.into_iter();
+    let recut_stages = cut.timings.into_iter();
     dec.timings
-        .stages
         .extend(recut_stages.map(|(s, t)| (format!("recut {s}"), t)));
     Ok(dec)
 }

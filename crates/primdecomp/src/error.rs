@@ -1,10 +1,23 @@
 //! The library's one error type. Every variant carries what a user needs to fix the
 //! input: the file, and the line or byte offset where parsing stopped.
 
+use primdecomp_files::reason;
+pub(crate) use primdecomp_files::show_bytes;
 use std::path::PathBuf;
 
 /// Everything that can go wrong in primdecomp. Kernels never return this; only I/O,
-/// parsing, parameter validation and the driver do.
+/// parsing, parameter validation and the driver do. Its message names the file and
+/// where in it; [`Error::exit_code`] tells the input's fault (2) from the system's (1).
+///
+/// ```
+/// use primdecomp::{Error, Mesh, MeshFormat};
+///
+/// let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n";
+/// let err = Mesh::parse(obj, MeshFormat::Obj, "broken.obj".as_ref()).unwrap_err();
+/// assert!(matches!(err, Error::ParseLine { line: 4, .. }), "{err}");
+/// assert!(err.to_string().starts_with("broken.obj:4: "));
+/// assert_eq!(err.exit_code(), 2);
+/// ```
 #[derive(Debug, thiserror::Error)]
 pub enum Error {
     /// The file was opened but could not be mapped or read (a device, memory or
@@ -36,7 +49,7 @@ pub enum Error {
         /// The file.
         path: PathBuf,
         /// What it is instead.
-        kind: FileKind,
+        kind: primdecomp_files::FileKind,
     },
     /// A glTF buffer's URI was refused or names nothing usable: a path outside the
     /// glTF's folder without [`LoadOptions::allow_external_uris`], a URL scheme
@@ -163,89 +176,24 @@ pub enum Error {
     },
 }
 
-/// What an input that is not a regular file is.
-///
-/// ```
-/// use primdecomp::{Error, FileKind, Mesh};
-///
-/// let folder = std::env::temp_dir();
-/// match Mesh::load(&folder) {
-///     Err(Error::NotAFile { kind, .. }) => assert_eq!(kind, FileKind::Directory),
-///     other => panic!("a folder is not a mesh: {other:?}"),
-/// }
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum FileKind {
-    /// A directory.
-    Directory,
-    /// A named pipe (FIFO).
-    NamedPipe,
-    /// A Unix socket.
-    Socket,
-    /// A character device (`/dev/zero`, a terminal).
-    CharDevice,
-    /// A block device (a disk).
-    BlockDevice,
-    /// Anything else that is not a regular file.
-    Other,
-}
-
-impl FileKind {
-    /// The kind of a file that is not a regular file; `None` for a regular file.
-    pub(crate) fn of(meta: &std::fs::Metadata) -> Option<FileKind> {
-        let t = meta.file_type();
-        if t.is_file() {
-            return None;
+impl From<primdecomp_files::Error> for Error {
+    /// The same failure in the core's words (the same message and exit code).
+    fn from(e: primdecomp_files::Error) -> Error {
+        use primdecomp_files::Error as E;
+        match e {
+            E::Open { path, error } => Error::Open { path, error },
+            E::NotAFile { path, kind } => Error::NotAFile { path, kind },
+            E::Io { path, error } => Error::Io { path, error },
+            E::Write { path, error } => Error::Write { path, error },
+            E::TooLarge { path, size, max } => Error::Format {
+                path,
+                msg: format!(
+                    "the file holds {}, more than the {} read from a file of this kind",
+                    show_bytes(size),
+                    show_bytes(max)
+                ),
+            },
         }
-        if t.is_dir() {
-            return Some(FileKind::Directory);
-        }
-        #[cfg(unix)]
-        {
-            use std::os::unix::fs::FileTypeExt;
-            let kinds = [
-                (t.is_fifo(), FileKind::NamedPipe),
-                (t.is_socket(), FileKind::Socket),
-                (t.is_char_device(), FileKind::CharDevice),
-                (t.is_block_device(), FileKind::BlockDevice),
-            ];
-            if let Some((_, k)) = kinds.iter().find(|(is, _)| *is) {
-                return Some(*k);
-            }
-        }
-        Some(FileKind::Other)
-    }
-}
-
-impl std::fmt::Display for FileKind {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(match self {
-            FileKind::Directory => "a directory",
-            FileKind::NamedPipe => "a named pipe (FIFO)",
-            FileKind::Socket => "a socket",
-            FileKind::CharDevice => "a character device",
-            FileKind::BlockDevice => "a block device",
-            FileKind::Other => "neither a regular file nor a directory",
-        })
-    }
-}
-
-/// An OS error as the end of a sentence: lower case, without the "(os error N)"
-/// that `std` appends, and a symbolic-link loop called one.
-pub(crate) fn reason(e: &std::io::Error) -> String {
-    #[cfg(unix)]
-    if e.raw_os_error() == Some(libc::ELOOP) {
-        return "too many levels of symbolic links (a symbolic link loop?)".into();
-    }
-    let text = e.to_string();
-    let text = match text.rfind(" (os error ") {
-        Some(i) if text.ends_with(')') => &text[..i],
-        _ => &text,
-    };
-    let mut c = text.chars();
-    match c.next() {
-        Some(first) => first.to_lowercase().chain(c).collect(),
-        None => String::new(),
     }
 }
 
@@ -285,39 +233,4 @@ impl Error {
 }
 
 /// The library's result type.
-///
-/// ```
-/// fn faces(path: &std::path::Path) -> primdecomp::Result<usize> {
-///     Ok(primdecomp::Mesh::load(path)?.face_count())
-/// }
-/// assert!(faces("missing.obj".as_ref()).is_err());
-/// ```
-pub type Result<T> = std::result::Result<T, Error>;
-
-/// Bytes for a message: `1.5 GiB`, `300 MiB`, `12 KiB`.
-pub(crate) fn show_bytes(b: u64) -> String {
-    const UNITS: [&str; 5] = ["bytes", "KiB", "MiB", "GiB", "TiB"];
-    let mut v = b as f64;
-    let mut u = 0;
-    while v >= 1024.0 && u + 1 < UNITS.len() {
-        v /= 1024.0;
-        u += 1;
-    }
-    if u == 0 || v >= 100.0 {
-        format!("{v:.0} {}", UNITS[u])
-    } else {
-        format!("{v:.1} {}", UNITS[u])
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn sizes_in_messages() {
-        assert_eq!(show_bytes(3 << 29), "1.5 GiB");
-        assert_eq!(show_bytes(300 << 20), "300 MiB");
-        assert_eq!(show_bytes(12), "12 bytes");
-    }
-}
+pub(crate) type Result<T> = std::result::Result<T, Error>;

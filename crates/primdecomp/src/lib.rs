@@ -81,22 +81,23 @@ mod seed;
 // The shared linear algebra, under the name the stages import it by.
 use primdecomp_math as math;
 
-pub use decompose::objects::{decompose_objects, ObjectResult, ObjectTarget, Objects};
-pub use decompose::tiles::{decompose_tiled, Tiled};
+pub use decompose::objects::{ObjectResult, Objects};
+pub use decompose::tiles::Tiled;
 pub use decompose::{decompose, decompose_with};
-pub use error::{Error, FileKind, Result};
+pub use error::Error;
 #[cfg(feature = "demo-scene")]
 pub use input::demo::{demo_scene, demo_scene_obj};
-pub use input::io::{open_regular, read_regular, LoadOptions, MeshFormat};
-pub use input::mesh::{Mesh, MeshObject, SkipCounts};
+pub use input::io::{LoadOptions, MeshFormat};
+pub use input::mesh::Mesh;
 pub use input::up::Up;
-pub use output::result::{Decomposition, InputInfo, Level, Shortfall, Stats, Timings};
-pub use output::{visible, write_atomic, Frame, ResultFile, ResultObject, Tess};
+pub use output::result::{Decomposition, InputInfo, Level, Shortfall, Stats};
+pub use output::{Frame, ResultFile, ResultObject, Tess};
 pub use params::{
-    ByteSize, CountSearch, Dedup, Fit, Goal, Params, Partitions, Plates, Reprice, Speed, Tolerance,
+    ByteSize, CountSearch, Dedup, Fit, Goal, Params, Partitions, Plates, Reprice, Speed, Target,
+    Tolerance,
 };
 pub use primitive::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
-pub use progress::{Estimate, Eta, Progress, Stage};
+pub use progress::{Eta, Progress, Stage};
 
 /// The stages one by one, for the project's own tests and benchmarks (feature
 /// `test-internals`, which the workspace's test helpers turn on). Not part of the

@@ -11,7 +11,7 @@ mod goal;
 mod json;
 mod spelling;
 
-pub use goal::{CountSearch, Goal};
+pub use goal::{CountSearch, Goal, Target};
 pub use spelling::ByteSize;
 
 use crate::error::{Error, Result};
@@ -80,6 +80,16 @@ impl Tolerance {
 }
 
 /// How vertices at (nearly) the same position are merged before building adjacency (§3.4).
+///
+/// ```
+/// use primdecomp::{Dedup, Fit, Params};
+///
+/// // Weld vertices within 1e-6 of each other (a mesh exported with cracks).
+/// let p = Params { fit: Fit { dedup: Dedup::Tolerance(1e-6), ..Fit::default() }, ..Params::default() };
+/// assert!(p.validate().is_ok());
+/// assert_eq!("exact".parse::<Dedup>()?, Fit::default().dedup);
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Dedup {
@@ -92,6 +102,15 @@ pub enum Dedup {
 }
 
 /// When a merged cluster's candidate merges with its neighbours are re-priced (§3.3, Alg. 1).
+///
+/// ```
+/// use primdecomp::{Params, Reprice, Speed};
+///
+/// // The paper's exact order of merges (needed by `Fit::max_excess_volume`).
+/// let p = Params { speed: Speed { reprice: Reprice::Exact, ..Speed::default() }, ..Params::default() };
+/// assert!(p.validate().is_ok());
+/// assert_eq!(Reprice::Deferred { min_degree: 64 }.to_string(), "64");
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Reprice {
@@ -109,6 +128,15 @@ pub enum Reprice {
 
 /// How many spatial parts the faces are split into and merged in parallel before the
 /// global merge loop (docs/decisions/0017 and 0019).
+///
+/// ```
+/// use primdecomp::{Params, Partitions, Speed};
+///
+/// // One global greedy loop, as the paper's Alg. 1, whatever the input's size.
+/// let p = Params { speed: Speed { partitions: Partitions::Fixed(1), ..Speed::default() }, ..Params::default() };
+/// assert!(p.validate().is_ok());
+/// assert_eq!(Speed::default().partitions, Partitions::Auto);
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Partitions {
     /// Inputs of at least 524,288 faces: 16 parts, or one per 65,536 faces if more

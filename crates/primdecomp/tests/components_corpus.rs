@@ -45,10 +45,10 @@ fn components_apart_equal_the_global_loop_on_corpus_meshes() {
         // it for the bones (26) at 8 and the truck (59) at 1%, 32 and 8.
         let targets = [f, f / 10, f / 100, 32, 8];
         let apart = decompose(&m, &params(&targets, None)).unwrap();
-        let stages: Vec<&str> = apart.timings.stages.iter().map(|s| s.0.as_str()).collect();
+        let stages: Vec<&str> = apart.timings.iter().map(|s| s.0.as_str()).collect();
         assert!(stages.contains(&"components"), "{name}: {stages:?}");
         let global = decompose(&m, &params(&targets, Some(1e12))).unwrap();
-        let global_stages: Vec<&str> = global.timings.stages.iter().map(|s| s.0.as_str()).collect();
+        let global_stages: Vec<&str> = global.timings.iter().map(|s| s.0.as_str()).collect();
         assert!(
             !global_stages.contains(&"components"),
             "{name}: {global_stages:?}"

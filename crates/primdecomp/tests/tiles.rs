@@ -1,11 +1,11 @@
-//! Out-of-core tiles (`primdecomp::decompose_tiled`, src/tiles.rs): a tiled run must
+//! Out-of-core tiles (`primdecomp::Tiled::decompose`, src/tiles.rs): a tiled run must
 //! enclose every input face (checked by the independent oracle,
 //! `primdecomp_testkit::contain`), be the same bytes on 1 and 2 threads, run within a
 //! memory limit that refuses the input read whole, and turn bad input into the usual
 //! errors. Every input is made here and written as binary PLY (read from the map a
 //! tile at a time) or OBJ (parsed whole).
 
-use primdecomp::{decompose_tiled, Error, Goal, LoadOptions, Mesh, Params, Tiled};
+use primdecomp::{Error, Goal, LoadOptions, Mesh, Params, Tiled};
 use primdecomp_testkit::check::{assert_counts, assert_valid};
 use primdecomp_testkit::on_threads;
 use primdecomp_testkit::shapes::{
@@ -64,7 +64,7 @@ fn forced_tiles_enclose_and_are_deterministic() {
         .iter()
         .map(|&t| {
             on_threads(t, || {
-                decompose_tiled(&ply, &params, &tiles(3), &|_, _| {}).unwrap()
+                Tiled::decompose(&ply, &params, &tiles(3), &|_, _| {}).unwrap()
             })
         })
         .collect();
@@ -81,7 +81,7 @@ fn forced_tiles_enclose_and_are_deterministic() {
     assert_counts(&runs[0], "tiled");
     // The default run (a tolerance, cut from the merge tree) on tiles encloses too.
     let default = Params::default();
-    let dec = decompose_tiled(&ply, &default, &tiles(4), &|_, _| {}).unwrap();
+    let dec = Tiled::decompose(&ply, &default, &tiles(4), &|_, _| {}).unwrap();
     assert_valid(&mesh, &dec, &default);
     // Its tolerance is the share of the input's diagonal asked for, not of the boxes'.
     let diagonal = (0..3)
@@ -95,7 +95,7 @@ fn forced_tiles_enclose_and_are_deterministic() {
         "{tolerance} against {asked}"
     );
     let obj = write(&dir, "scene.obj", obj_text(&polys).as_bytes());
-    let dec = decompose_tiled(&obj, &params, &tiles(2), &|_, _| {}).unwrap();
+    let dec = Tiled::decompose(&obj, &params, &tiles(2), &|_, _| {}).unwrap();
     assert_valid(&Mesh::load(&obj).unwrap(), &dec, &params);
     std::fs::remove_dir_all(&dir).ok();
 }
@@ -117,7 +117,7 @@ fn a_small_memory_limit_tiles_instead_of_refusing() {
         goal: Goal::counts([50]),
         ..Params::default()
     };
-    let dec = decompose_tiled(&ply, &params, &options, &|_, _| {}).unwrap();
+    let dec = Tiled::decompose(&ply, &params, &options, &|_, _| {}).unwrap();
     assert!(dec.stats.tiles > 1, "{} tiles", dec.stats.tiles);
     assert_valid(&Mesh::load(&ply).unwrap(), &dec, &params);
     // A limit below what even the most tiles need is refused, naming the file.
@@ -125,7 +125,7 @@ fn a_small_memory_limit_tiles_instead_of_refusing() {
         max_memory: Some(1 << 20),
         ..options
     };
-    let e = decompose_tiled(&ply, &params, &tiny, &|_, _| {}).unwrap_err();
+    let e = Tiled::decompose(&ply, &params, &tiny, &|_, _| {}).unwrap_err();
     assert!(e.to_string().contains("ball.ply"), "{e}");
     assert_eq!(e.exit_code(), 2);
     std::fs::remove_dir_all(&dir).ok();
@@ -143,7 +143,7 @@ fn bad_input_fails_with_the_usual_errors() {
     };
     let run = |name: &str, bytes: &[u8]| {
         let path = write(&dir, name, bytes);
-        let e = decompose_tiled(&path, &params, &tiles(2), &|_, _| {}).unwrap_err();
+        let e = Tiled::decompose(&path, &params, &tiles(2), &|_, _| {}).unwrap_err();
         assert_eq!(e.exit_code(), 2, "{e}");
         assert!(matches!(e, Error::ParseByte { .. }), "{name}: {e}");
         e.to_string()
@@ -185,7 +185,7 @@ fn bad_input_fails_with_the_usual_errors() {
 }
 
 /// The three steps apart (plan, each tile, merge), through their bytes, give
-/// `decompose_tiled`'s JSON byte for byte; bytes altered, cut, of another version,
+/// `Tiled::decompose`'s JSON byte for byte; bytes altered, cut, of another version,
 /// another plan, another tile or another file are refused with an error naming what
 /// is wrong, never trusted.
 #[test]
@@ -211,7 +211,7 @@ fn plan_tiles_and_merge_apart_equal_the_tiled_run_and_refuse_bad_bytes() {
             .map(|t| plan.run_tile(&ply, t, &|_, _| {}).unwrap())
             .collect();
         let merged = plan.merge(&results, &|_, _| {}).unwrap();
-        let whole = decompose_tiled(&ply, &params, &tiles(3), &|_, _| {}).unwrap();
+        let whole = Tiled::decompose(&ply, &params, &tiles(3), &|_, _| {}).unwrap();
         for level in 0..whole.levels.len() {
             assert_eq!(
                 merged.to_json(level, &params),
@@ -300,7 +300,7 @@ fn the_top_run_holds_relative_settings_to_the_inputs_diagonal() {
         },
         ..Params::default()
     };
-    let dec = decompose_tiled(&ply, &params, &tiles(2), &|_, _| {}).unwrap();
+    let dec = Tiled::decompose(&ply, &params, &tiles(2), &|_, _| {}).unwrap();
     assert_valid(&Mesh::load(&ply).unwrap(), &dec, &params);
     let want = 0.02 * dec.input.diagonal();
     for p in &dec.levels[0].primitives {

@@ -2,7 +2,7 @@
 
 use crate::exit::println;
 use clap::Args;
-use primdecomp::write_atomic;
+use primdecomp_files::write_atomic;
 use std::path::PathBuf;
 
 /// `primdecomp demo-scene`.

@@ -8,7 +8,7 @@ use crate::exit::{print, println};
 use crate::outputs::{Guard, Out};
 use anyhow::bail;
 use clap::Args;
-use primdecomp::write_atomic;
+use primdecomp_files::write_atomic;
 use std::path::PathBuf;
 
 /// `primdecomp eval`. The sampling-error figures in the help come from
@@ -60,7 +60,7 @@ pub fn run(a: EvalArgs) -> anyhow::Result<()> {
         .colliders
         .iter()
         .map(|p| primdecomp_eval::collider::load(p))
-        .collect::<primdecomp::Result<Vec<_>>>()?;
+        .collect::<Result<Vec<_>, primdecomp::Error>>()?;
     let input = primdecomp_eval::Input::new(&mesh);
     let rows: Vec<(String, primdecomp_eval::Metrics)> = a
         .colliders

@@ -8,7 +8,7 @@ use crate::exit::{print, println};
 use crate::outputs::{Guard, Out};
 use anyhow::anyhow;
 use clap::Args;
-use primdecomp::write_atomic;
+use primdecomp_files::write_atomic;
 use primdecomp_sim::{Entry, Geometry, Run as SimRun, Settings as SimSettings};
 use std::path::{Path, PathBuf};
 

@@ -8,7 +8,8 @@ use crate::outputs::{Guard, Out};
 use crate::paths::memory_limit;
 use anyhow::bail;
 use clap::Args;
-use primdecomp::{write_atomic, LoadOptions};
+use primdecomp::LoadOptions;
+use primdecomp_files::write_atomic;
 use primdecomp_view::scene;
 use std::path::{Path, PathBuf};
 
@@ -202,7 +203,7 @@ fn levels_and_peers(
         .compare
         .iter()
         .map(|p| scene::load_peer(p, None))
-        .collect::<primdecomp::Result<Vec<_>>>()?;
+        .collect::<Result<Vec<_>, primdecomp::Error>>()?;
     // A page shows a bounded number of parts and triangles: coarser circles first.
     let hulls = peers.iter().map(|c| c.parts.len()).sum();
     let hull_triangles = peers.iter().map(|c| c.parts.triangles.len()).sum();

@@ -15,22 +15,27 @@ use crate::error::Result;
 use crate::input::mesh::Mesh;
 use crate::output::frame::{conservative, Frame};
 use crate::output::result::{Decomposition, InputInfo};
-use crate::params::Params;
+use crate::params::{Params, Target};
 use crate::primitive::Primitive;
 
 /// The sharing rule of a total target, as stated in the JSON and `--help`.
 pub const SHARE_RULE: &str = "a total count N is shared by the objects: one each, the other N - k (k objects) in proportion to surface area, largest remainder (ties to the earlier object); with N < k each object still gets one. A percentage applies to each object's faces.";
 
-/// A target as given on the command line.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum ObjectTarget {
-    /// A total primitive count shared by the objects (one each, the rest in proportion to surface area).
-    Total(usize),
-    /// A percentage of each object's faces (at least one primitive each).
-    Percent(f64),
-}
-
-/// One object's result.
+/// One object's result ([`Objects::objects`]).
+///
+/// ```
+/// use primdecomp::{Mesh, MeshFormat, Objects, Params, Target};
+///
+/// let obj = b"o a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n\
+///             o b\nv 5 0 0\nv 7 0 0\nv 5 2 0\nv 5 0 2\nf 5 7 6\nf 5 6 8\nf 5 8 7\nf 6 7 8\n";
+/// let mesh = Mesh::parse(obj, MeshFormat::Obj, "two.obj".as_ref())?;
+/// let objects = Objects::decompose(&mesh, &Params::default(), &[Target::Count(2)])?;
+/// let b = &objects.objects[1];
+/// assert_eq!((b.name.as_str(), b.faces), ("b", 4));
+/// assert!(b.area > objects.objects[0].area); // twice the size: four times the area
+/// assert_eq!(b.decomposition.levels.len(), 1);
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
 #[derive(Clone, Debug)]
 pub struct ObjectResult {
     /// The name the file gives it (empty for faces before the first OBJ name).
@@ -46,13 +51,31 @@ pub struct ObjectResult {
     pub decomposition: Decomposition,
 }
 
-/// The per-object result of a whole input.
+/// The per-object result of a whole input: each named part (an OBJ `o`/`g`, a glTF
+/// mesh node, [`Mesh::objects`]) decomposed on its own and named
+/// ([`Objects::decompose`]); written as one JSON by [`Objects::to_json`].
+///
+/// ```
+/// use primdecomp::{Mesh, MeshFormat, Objects, Params, Target};
+///
+/// let obj = b"o a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n\
+///             o b\nv 5 0 0\nv 7 0 0\nv 5 2 0\nv 5 0 2\nf 5 7 6\nf 5 6 8\nf 5 8 7\nf 6 7 8\n";
+/// let mesh = Mesh::parse(obj, MeshFormat::Obj, "two.obj".as_ref())?;
+/// // 4 primitives shared by the two objects, and 100% of each object's faces.
+/// let targets = [Target::Count(4), Target::Percent(100.0)];
+/// let objects = Objects::decompose(&mesh, &Params::default(), &targets)?;
+/// assert_eq!(objects.levels(), 2);
+/// let names: Vec<&str> = objects.objects.iter().map(|o| o.name.as_str()).collect();
+/// assert_eq!(names, ["a", "b"]);
+/// assert!(!objects.world_primitives(0).is_empty());
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
 #[derive(Clone, Debug, Default)]
 pub struct Objects {
     /// The whole input (as [`Decomposition::input`]).
     pub input: InputInfo,
     /// The targets as given, one per level, largest first.
-    pub targets: Vec<ObjectTarget>,
+    pub targets: Vec<Target>,
     /// Each object's result, in the file's order.
     pub objects: Vec<ObjectResult>,
 }
@@ -84,13 +107,13 @@ impl Objects {
     /// taken greedily).
     ///
     /// ```
-    /// use primdecomp::{decompose_objects, Mesh, MeshFormat, ObjectTarget, Params};
+    /// use primdecomp::{Mesh, MeshFormat, Objects, Params, Target};
     ///
     /// let obj = b"o a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n\
     ///             o b\nv 5 0 0\nv 7 0 0\nv 5 2 0\nv 5 0 2\nf 5 7 6\nf 5 6 8\nf 5 8 7\nf 6 7 8\n";
     /// let mesh = Mesh::parse(obj, MeshFormat::Obj, "two.obj".as_ref())?;
     /// // The default goal: within 2% of each object's diagonal.
-    /// let objects = decompose_objects(&mesh, &Params::default(), &[ObjectTarget::Total(4)])?;
+    /// let objects = Objects::decompose(&mesh, &Params::default(), &[Target::Count(4)])?;
     /// let farthest = objects.distance(0).expect("a tolerance run measures its distance");
     /// let each = objects.objects.iter().map(|o| o.decomposition.levels[0].distance.unwrap());
     /// assert_eq!(farthest, each.fold(0.0, f64::max));
@@ -156,84 +179,79 @@ fn area(mesh: &Mesh, faces: std::ops::Range<usize>) -> f64 {
     faces.map(|f| 0.5 * crate::math::norm(mesh.newell(f))).sum()
 }
 
-/// The most objects [`decompose_objects`] takes: each object is a decomposition of
+/// The most objects [`Objects::decompose`] takes: each object is a decomposition of
 /// its own (about 0.3 ms of set-up each, measured on 40,000 one-triangle groups), so a
 /// million groups would run for minutes to give a million single primitives.
 pub(crate) const MAX_OBJECTS: usize = 65_536;
 
-/// Decomposes each object of `mesh` ([`Mesh::objects`]) on its own, with `params`
-/// but the targets of `targets` (shared or per object, see the module doc); levels
-/// come largest target first, as `decompose`'s. Deterministic: the objects run one
-/// after another, each on all threads.
-pub fn decompose_objects(
-    mesh: &Mesh,
-    params: &Params,
-    targets: &[ObjectTarget],
-) -> Result<Objects> {
-    let parts = mesh.objects();
-    if parts.len() > MAX_OBJECTS {
-        return Err(crate::error::Error::InvalidParams(format!(
-            "the mesh has {} objects; per-object decomposition takes at most {MAX_OBJECTS} \
-             (each is decomposed on its own): decompose the mesh whole",
-            parts.len()
-        )));
-    }
-    let areas: Vec<f64> = parts.iter().map(|o| area(mesh, o.faces.clone())).collect();
-    // Levels in decompose's order: largest first (percentages by their value, counts
-    // by theirs; a mix keeps the given order among equals).
-    let mut targets = targets.to_vec();
-    let key = |t: &ObjectTarget| match *t {
-        ObjectTarget::Total(n) => n as f64,
-        ObjectTarget::Percent(p) => p * mesh.face_count() as f64 / 100.0,
-    };
-    targets.sort_by(|a, b| key(b).total_cmp(&key(a)));
-    targets.dedup();
-    // Per target, each object's share.
-    let shares: Vec<Vec<usize>> = targets
-        .iter()
-        .map(|t| match *t {
-            ObjectTarget::Total(n) => share_targets(n, &areas),
-            ObjectTarget::Percent(p) => parts
-                .iter()
-                .map(|o| ((o.faces.len() as f64 * p / 100.0).round() as usize).max(1))
-                .collect(),
-        })
-        .collect();
-    let mut objects = Vec::with_capacity(parts.len());
-    for (i, part) in parts.iter().enumerate() {
-        let frame = part.transform.map(Frame::from_matrix).unwrap_or_default();
-        let sub = sub_mesh(mesh, part.faces.clone(), &frame)?;
-        let mine: Vec<usize> = shares.iter().map(|s| s[i]).collect();
-        let p = Params {
-            goal: params.goal.with_targets(mine.clone()),
-            ..params.clone()
+impl Objects {
+    /// Decomposes each object of `mesh` ([`Mesh::objects`]) on its own, with `params`
+    /// but the targets of `targets` (shared or per object, see the module doc); levels
+    /// come largest target first, as `decompose`'s. Deterministic: the objects run one
+    /// after another, each on all threads.
+    pub fn decompose(mesh: &Mesh, params: &Params, targets: &[Target]) -> Result<Objects> {
+        let parts = mesh.parts();
+        if parts.len() > MAX_OBJECTS {
+            return Err(crate::error::Error::InvalidParams(format!(
+                "the mesh has {} objects; per-object decomposition takes at most {MAX_OBJECTS} \
+                 (each is decomposed on its own): decompose the mesh whole",
+                parts.len()
+            )));
+        }
+        let areas: Vec<f64> = parts.iter().map(|o| area(mesh, o.faces.clone())).collect();
+        // Levels in decompose's order: largest first (percentages by their value, counts
+        // by theirs; a mix keeps the given order among equals).
+        let mut targets = targets.to_vec();
+        let key = |t: &Target| match *t {
+            Target::Count(n) => n as f64,
+            Target::Percent(p) => p * mesh.face_count() as f64 / 100.0,
         };
-        let dec = decompose(&sub, &p)?;
-        // decompose gives one level per distinct target, largest first; expand to
-        // one per requested target.
-        let levels = mine
+        targets.sort_by(|a, b| key(b).total_cmp(&key(a)));
+        targets.dedup();
+        // Per target, each object's share.
+        let shares: Vec<Vec<usize>> = targets
             .iter()
-            .map(|t| {
-                dec.levels
-                    .iter()
-                    .find(|l| l.target == *t)
-                    .cloned()
-                    .unwrap_or_default()
+            .map(|t| match *t {
+                Target::Count(n) => share_targets(n, &areas),
+                Target::Percent(_) => parts.iter().map(|o| t.count(o.faces.len())).collect(),
             })
             .collect();
-        objects.push(ObjectResult {
-            name: part.name.to_string(),
-            frame,
-            faces: part.faces.len(),
-            area: areas[i],
-            decomposition: Decomposition { levels, ..dec },
-        });
+        let mut objects = Vec::with_capacity(parts.len());
+        for (i, part) in parts.iter().enumerate() {
+            let frame = part.transform.map(Frame::from_matrix).unwrap_or_default();
+            let sub = sub_mesh(mesh, part.faces.clone(), &frame)?;
+            let mine: Vec<usize> = shares.iter().map(|s| s[i]).collect();
+            let p = Params {
+                goal: params.goal.with_targets(mine.clone()),
+                ..params.clone()
+            };
+            let dec = decompose(&sub, &p)?;
+            // decompose gives one level per distinct target, largest first; expand to
+            // one per requested target.
+            let levels = mine
+                .iter()
+                .map(|t| {
+                    dec.levels
+                        .iter()
+                        .find(|l| l.target == *t)
+                        .cloned()
+                        .unwrap_or_default()
+                })
+                .collect();
+            objects.push(ObjectResult {
+                name: part.name.to_string(),
+                frame,
+                faces: part.faces.len(),
+                area: areas[i],
+                decomposition: Decomposition { levels, ..dec },
+            });
+        }
+        Ok(Objects {
+            input: crate::decompose::stages::input_info(mesh, mesh.aabb()),
+            targets,
+            objects,
+        })
     }
-    Ok(Objects {
-        input: crate::decompose::stages::input_info(mesh, mesh.aabb()),
-        targets,
-        objects,
-    })
 }
 
 /// The faces `faces` of `mesh` with only their vertices, in `frame`'s coordinates.

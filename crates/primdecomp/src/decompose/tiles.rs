@@ -47,70 +47,72 @@ pub(crate) const MAX_TILES: usize = 4096;
 /// Bytes read from the map between releases of what was read.
 const RELEASE_EVERY: usize = 16 << 20;
 
-/// Decomposes the mesh in `path` as spatial tiles within `options.max_memory`
-/// ([`LoadOptions::tiles`] forces their number): for inputs [`crate::Mesh::load_with`]
-/// refuses as too large. The result has the levels [`crate::decompose`] would give,
-/// each enclosing every face, from a different merge order (the difference is
-/// measured in docs/results/out-of-core.md); `stats.tiles` says how many tiles.
-/// Deterministic for any thread count. The same as [`Tiled::plan`], then
-/// [`Tiled::run_tile`] for each tile and [`Tiled::merge`], with the file opened once.
-///
-/// ```
-/// use primdecomp::{decompose_tiled, Goal, LoadOptions, Params};
-///
-/// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../datasets/demo_scene.obj");
-/// let options = LoadOptions { tiles: Some(2), ..LoadOptions::default() };
-/// let params = Params { goal: Goal::counts([20]), ..Params::default() };
-/// let result = decompose_tiled(path.as_ref(), &params, &options, &|_, _| {})?;
-/// assert_eq!(result.stats.tiles, 2);
-/// assert!(result.levels[0].primitives.len() <= 20);
-/// # Ok::<(), primdecomp::Error>(())
-/// ```
-///
-/// # Errors
-/// What [`crate::Mesh::load_with`] and [`crate::decompose`] return, and
-/// [`Error::TooLarge`] when even `MAX_TILES` (4096) tiles would not fit the limit (with
-/// the need of the smallest tiles).
-pub fn decompose_tiled(
-    path: &Path,
-    params: &Params,
-    options: &LoadOptions,
-    progress: &dyn Progress,
-) -> Result<Decomposition> {
-    params.validate()?;
-    let started = Instant::now();
-    let (source, input) = open(path, options)?;
-    let tiled = Tiled::of(&source, input, path, params, options)?;
-    let mut timings = vec![("plan".to_string(), started.elapsed().as_secs_f64())];
-    let now = Instant::now();
-    let mut local = vec![u32::MAX; source.vertex_count()];
-    let mut results = Vec::with_capacity(tiled.plan.tiles);
-    for t in 0..tiled.plan.tiles {
-        if progress.cancelled() {
-            return Err(Error::Cancelled);
+impl Tiled {
+    /// Decomposes the mesh in `path` as spatial tiles within `options.max_memory`
+    /// ([`LoadOptions::tiles`] forces their number): for inputs [`crate::Mesh::load_with`]
+    /// refuses as too large. The result has the levels [`crate::decompose`] would give,
+    /// each enclosing every face, from a different merge order (the difference is
+    /// measured in docs/results/out-of-core.md); `stats.tiles` says how many tiles.
+    /// Deterministic for any thread count. The same as [`Tiled::plan`], then
+    /// [`Tiled::run_tile`] for each tile and [`Tiled::merge`], with the file opened once.
+    ///
+    /// ```
+    /// use primdecomp::{Goal, LoadOptions, Params, Tiled};
+    ///
+    /// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../datasets/demo_scene.obj");
+    /// let options = LoadOptions { tiles: Some(2), ..LoadOptions::default() };
+    /// let params = Params { goal: Goal::counts([20]), ..Params::default() };
+    /// let result = Tiled::decompose(path.as_ref(), &params, &options, &|_, _| {})?;
+    /// assert_eq!(result.stats.tiles, 2);
+    /// assert!(result.levels[0].primitives.len() <= 20);
+    /// # Ok::<(), primdecomp::Error>(())
+    /// ```
+    ///
+    /// # Errors
+    /// What [`crate::Mesh::load_with`] and [`crate::decompose`] return, and
+    /// [`Error::TooLarge`] when even `MAX_TILES` (4096) tiles would not fit the limit (with
+    /// the need of the smallest tiles).
+    pub fn decompose(
+        path: &Path,
+        params: &Params,
+        options: &LoadOptions,
+        progress: &dyn Progress,
+    ) -> Result<Decomposition> {
+        params.validate()?;
+        let started = Instant::now();
+        let (source, input) = open(path, options)?;
+        let tiled = Tiled::of(&source, input, path, params, options)?;
+        let mut timings = vec![("plan".to_string(), started.elapsed().as_secs_f64())];
+        let now = Instant::now();
+        let mut local = vec![u32::MAX; source.vertex_count()];
+        let mut results = Vec::with_capacity(tiled.plan.tiles);
+        for t in 0..tiled.plan.tiles {
+            if progress.cancelled() {
+                return Err(Error::Cancelled);
+            }
+            results.push(tiled.tile_of(&source, t, &mut local, progress)?);
         }
-        results.push(tiled.tile_of(&source, t, &mut local, progress)?);
+        timings.push(("tiles".to_string(), now.elapsed().as_secs_f64()));
+        drop(source);
+        let mut dec = tiled.merge(&results, progress)?;
+        timings.append(&mut dec.timings);
+        dec.timings = timings;
+        Ok(dec)
     }
-    timings.push(("tiles".to_string(), now.elapsed().as_secs_f64()));
-    drop(source);
-    let mut dec = tiled.merge(&results, progress)?;
-    timings.append(&mut dec.timings.stages);
-    dec.timings.stages = timings;
-    Ok(dec)
 }
 
 /// A tiled run in three steps that can run on different machines (a Ray cluster;
 /// the Python package's `primdecomp.ray_tiles`): [`Tiled::plan`] reads the file once
 /// and cuts it into tiles; [`Tiled::run_tile`] decomposes one tile, anywhere the same
 /// file can be read; [`Tiled::merge`] merges every tile's result into the
-/// [`Decomposition`] [`decompose_tiled`] gives, byte for byte. The plan and the tile
+/// [`Decomposition`] [`Tiled::decompose`] gives, byte for byte. The plan and the tile
 /// results travel as bytes ([`Tiled::to_bytes`], [`Tiled::from_bytes`]; the format
 /// is in `decompose/tiles/bytes.rs`), each checked when read: magic, version,
 /// checksum, every count and number, the input's size and content hash when a tile
 /// runs, and the plan and tile index a result was made for.
 ///
 /// ```
-/// use primdecomp::{decompose_tiled, Goal, LoadOptions, Params, Tiled};
+/// use primdecomp::{Goal, LoadOptions, Params, Tiled};
 ///
 /// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../datasets/demo_scene.obj");
 /// let params = Params { goal: Goal::counts([20]), ..Params::default() };
@@ -122,7 +124,7 @@ pub fn decompose_tiled(
 ///     .map(|t| plan.run_tile(path.as_ref(), t, &|_, _| {}))
 ///     .collect::<Result<Vec<_>, _>>()?;
 /// let merged = plan.merge(&tiles, &|_, _| {})?;
-/// let whole = decompose_tiled(path.as_ref(), &params, &options, &|_, _| {})?;
+/// let whole = Tiled::decompose(path.as_ref(), &params, &options, &|_, _| {})?;
 /// assert_eq!(merged.to_json(0, &params), whole.to_json(0, &params));
 /// // A result altered on the way is refused.
 /// let mut bad = tiles[0].clone();
@@ -162,7 +164,7 @@ impl Tiled {
     /// `options.tiles` tiles, or the fewest that fit `options.max_memory`.
     ///
     /// # Errors
-    /// What [`decompose_tiled`] returns before its first tile.
+    /// What [`Tiled::decompose`] returns before its first tile.
     pub fn plan(path: &Path, params: &Params, options: &LoadOptions) -> Result<Tiled> {
         params.validate()?;
         let (source, input) = open(path, options)?;
@@ -200,7 +202,7 @@ impl Tiled {
     ///
     /// # Errors
     /// [`Error::InvalidParams`] for a tile out of range; [`Error::Format`] when the
-    /// file's size or content hash is not the plan's; what [`decompose_tiled`]
+    /// file's size or content hash is not the plan's; what [`Tiled::decompose`]
     /// returns for the file and the tile's run ([`Error::Cancelled`] included).
     pub fn run_tile(&self, path: &Path, tile: usize, progress: &dyn Progress) -> Result<Vec<u8>> {
         self.in_range(tile)?;
@@ -239,7 +241,7 @@ impl Tiled {
 
     /// Merges every tile's result (`tiles[t]` of tile `t`, each checked as
     /// [`Tiled::check_tile`] does) on top with the plan's settings: the
-    /// [`Decomposition`] of [`decompose_tiled`], without its `plan` and `tiles`
+    /// [`Decomposition`] of [`Tiled::decompose`], without its `plan` and `tiles`
     /// timings.
     ///
     /// # Errors

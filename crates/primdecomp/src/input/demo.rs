@@ -267,7 +267,7 @@ fn build() -> Scene {
 /// ```
 /// let scene = primdecomp::demo_scene();
 /// assert_eq!(scene.face_count(), 1829);
-/// assert_eq!(scene.objects()[0].name, "stairs_step_0");
+/// assert_eq!(scene.objects()[0].0, "stairs_step_0");
 /// ```
 pub fn demo_scene() -> Mesh {
     let s = build();
@@ -285,6 +285,15 @@ pub fn demo_scene() -> Mesh {
 /// The demo scene ([`demo_scene`]) as OBJ text: each object's new vertices follow its
 /// `o` line, then its faces (1-based, global indices). This is
 /// `datasets/demo_scene.obj`.
+///
+/// ```
+/// use primdecomp::{demo_scene, demo_scene_obj, Mesh, MeshFormat};
+///
+/// let text = demo_scene_obj();
+/// let mesh = Mesh::parse(text.as_bytes(), MeshFormat::Obj, "demo_scene.obj".as_ref())?;
+/// assert_eq!(mesh.face_count(), demo_scene().face_count());
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
 pub fn demo_scene_obj() -> String {
     let s = build();
     let faces: usize = s.objects.iter().map(|o| o.faces.len()).sum();

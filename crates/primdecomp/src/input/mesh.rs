@@ -20,11 +20,11 @@ pub(crate) const MAX_POSITION: f64 = 1e70;
 
 /// What a reader skipped, so that a caller can say it ([`Mesh::skipped`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct SkipCounts {
+pub(crate) struct SkipCounts {
     /// `l` elements, 2-vertex "faces" and other faces with fewer than 3 distinct indices.
-    pub short_faces: u64,
+    pub(crate) short_faces: u64,
     /// Non-triangle glTF primitives (points, lines) and similar unsupported elements.
-    pub other: u64,
+    pub(crate) other: u64,
 }
 
 /// What a parser produces: world coordinates in f64 and CSR polygons.
@@ -129,14 +129,14 @@ pub struct Mesh {
 
 /// A named part of a mesh: an OBJ `o` object or `g` group, with its faces.
 #[derive(Clone, Debug, PartialEq)]
-pub struct MeshObject<'a> {
+pub(crate) struct MeshObject<'a> {
     /// The name the file gives it; empty for faces before the first name.
-    pub name: &'a str,
+    pub(crate) name: &'a str,
     /// Its faces, a contiguous range of face indices.
-    pub faces: std::ops::Range<usize>,
+    pub(crate) faces: std::ops::Range<usize>,
     /// For a glTF mesh node, its world transform (the faces are already in world
     /// coordinates); `None` for OBJ objects and files without nodes.
-    pub transform: Option<&'a Transform>,
+    pub(crate) transform: Option<&'a Transform>,
 }
 
 impl Mesh {
@@ -232,10 +232,28 @@ impl Mesh {
         Ok(Mesh::from_builder(b))
     }
 
-    /// The mesh's named objects in file order, each with its faces; one unnamed
+    /// The mesh's named objects in file order, each its name (empty for faces before
+    /// the first name) and its faces, a contiguous range of face indices; one unnamed
     /// object holding every face when the file names none. Objects without faces are
-    /// left out.
-    pub fn objects(&self) -> Vec<MeshObject<'_>> {
+    /// left out. An OBJ file's `o` objects and `g` groups, a glTF file's mesh nodes.
+    ///
+    /// ```
+    /// use primdecomp::{Mesh, MeshFormat};
+    ///
+    /// let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\no lid\nf 1 2 3\no sides\nf 1 2 4\nf 1 4 3\n";
+    /// let mesh = Mesh::parse(obj, MeshFormat::Obj, "box.obj".as_ref())?;
+    /// assert_eq!(mesh.objects(), [("lid", 0..1), ("sides", 1..3)]);
+    /// # Ok::<(), primdecomp::Error>(())
+    /// ```
+    pub fn objects(&self) -> Vec<(&str, std::ops::Range<usize>)> {
+        self.parts()
+            .into_iter()
+            .map(|o| (o.name, o.faces))
+            .collect()
+    }
+
+    /// [`Mesh::objects`] with each glTF node's world transform.
+    pub(crate) fn parts(&self) -> Vec<MeshObject<'_>> {
         let n = self.face_count();
         if self.object_starts.is_empty() {
             return vec![MeshObject {
@@ -263,9 +281,20 @@ impl Mesh {
         self.offset
     }
 
-    /// What the reader (or constructor) skipped.
-    pub fn skipped(&self) -> SkipCounts {
-        self.skipped
+    /// What the reader (or constructor) skipped: faces with fewer than 3 distinct
+    /// vertices (OBJ `l` elements, 2-vertex faces), then other elements it does not
+    /// read (glTF points and lines).
+    ///
+    /// ```
+    /// use primdecomp::{Mesh, MeshFormat};
+    ///
+    /// let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nl 1 2\n";
+    /// let mesh = Mesh::parse(obj, MeshFormat::Obj, "bits.obj".as_ref())?;
+    /// assert_eq!(mesh.skipped(), (1, 0)); // the line
+    /// # Ok::<(), primdecomp::Error>(())
+    /// ```
+    pub fn skipped(&self) -> (u64, u64) {
+        (self.skipped.short_faces, self.skipped.other)
     }
 
     /// Number of polygon faces.

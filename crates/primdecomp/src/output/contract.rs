@@ -12,7 +12,7 @@ pub(crate) const VERSION: u64 = 1;
 /// A JSON value for a message: compact, control characters made visible, cut to 40
 /// characters.
 fn show_value(v: &serde_json::Value) -> String {
-    let s = super::visible::visible(&v.to_string());
+    let s = primdecomp_files::visible(&v.to_string());
     if s.chars().count() > 40 {
         format!("{}…", s.chars().take(40).collect::<String>())
     } else {

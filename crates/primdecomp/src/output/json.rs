@@ -5,11 +5,12 @@
 //! rotations as scalar-last unit quaternions. The reverse direction is
 //! [`super::read`].
 
-use crate::decompose::objects::{ObjectTarget, Objects, SHARE_RULE};
+use crate::decompose::objects::{Objects, SHARE_RULE};
 use crate::math::quat::quat_from_axes;
 use crate::math::V3;
-use crate::output::result::{Decomposition, InputInfo, Level, Timings};
+use crate::output::result::{Decomposition, InputInfo, Level};
 use crate::params::Params;
+use crate::params::Target;
 use crate::primitive::{Kind, Primitive};
 use serde::ser::{SerializeMap, Serializer};
 use serde::{Deserialize, Serialize};
@@ -134,15 +135,15 @@ impl Serialize for Counts {
 }
 
 /// Stage timings in run order, then `"total"`.
-struct Seconds<'a>(&'a Timings);
+struct Seconds<'a>(&'a Decomposition);
 
 impl Serialize for Seconds<'_> {
     fn serialize<S: Serializer>(&self, s: S) -> Result<S::Ok, S::Error> {
-        let mut m = s.serialize_map(Some(self.0.stages.len() + 1))?;
-        for (stage, secs) in &self.0.stages {
+        let mut m = s.serialize_map(Some(self.0.timings.len() + 1))?;
+        for (stage, secs) in &self.0.timings {
             m.serialize_entry(stage, secs)?;
         }
-        m.serialize_entry("total", &self.0.total())?;
+        m.serialize_entry("total", &self.0.seconds())?;
         m.end()
     }
 }
@@ -365,7 +366,7 @@ fn document(dec: &Decomposition, level: usize, params: &Params, timed: bool) -> 
             primitives: lv.primitives.len(),
             bytes: lv.bytes(),
             partitions: dec.stats.partitions,
-            seconds: timed.then_some(Seconds(&dec.timings)),
+            seconds: timed.then_some(Seconds(dec)),
             distance: Distance::of(lv, &dec.input),
         },
         primitives,
@@ -390,13 +391,13 @@ impl Objects {
     /// percentage).
     ///
     /// ```
-    /// use primdecomp::{decompose_objects, Mesh, ObjectTarget, Params, ResultFile};
+    /// use primdecomp::{Mesh, Objects, Params, ResultFile, Target};
     ///
     /// let obj = b"o left\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n\
     ///             o right\nv 5 0 0\nv 6 0 0\nv 5 1 0\nv 5 0 1\nf 5 7 6\nf 5 6 8\nf 5 8 7\nf 6 7 8\n";
     /// let mesh = Mesh::parse(obj, primdecomp::MeshFormat::Obj, "two.obj".as_ref())?;
     /// let params = Params::default();
-    /// let objects = decompose_objects(&mesh, &params, &[ObjectTarget::Total(2)])?;
+    /// let objects = Objects::decompose(&mesh, &params, &[Target::Count(2)])?;
     /// let back = ResultFile::read(&objects.to_json(0, &params), "two.json".as_ref())?;
     /// assert_eq!(back.objects.len(), 2);
     /// assert_eq!(back.objects[0].name, "left");
@@ -447,8 +448,8 @@ pub(crate) fn to_json_objects(objs: &Objects, level: usize, params: &Params) -> 
         .map(|(p, &f)| PrimJson::new(p, f))
         .collect();
     let (target, share_rule, percent) = match objs.targets[level] {
-        ObjectTarget::Total(n) => (n, Some(SHARE_RULE), None),
-        ObjectTarget::Percent(p) => (objects.iter().map(|o| o.target).sum(), None, Some(p)),
+        Target::Count(n) => (n, Some(SHARE_RULE), None),
+        Target::Percent(p) => (objects.iter().map(|o| o.target).sum(), None, Some(p)),
     };
     let doc = Document {
         format: super::contract::FORMAT,
@@ -596,9 +597,7 @@ pub(super) mod tests {
                 ..Default::default()
             },
             levels: vec![level],
-            timings: Timings {
-                stages: vec![("load".into(), 0.25), ("merge".into(), 1.5)],
-            },
+            timings: vec![("load".into(), 0.25), ("merge".into(), 1.5)],
             ..Default::default()
         }
     }
@@ -666,7 +665,7 @@ pub(super) mod tests {
         let mut dec = sample_decomposition();
         let a = to_json(&dec, 0, &Params::default());
         let ta = dec.to_json_timed(0, &Params::default());
-        dec.timings.stages[0].1 = 123.0;
+        dec.timings[0].1 = 123.0;
         // Without timings the document depends only on input and settings.
         assert_eq!(a, to_json(&dec, 0, &Params::default()));
         assert!(!a.contains("\"seconds\""), "{a}");

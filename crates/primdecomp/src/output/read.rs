@@ -204,7 +204,7 @@ pub struct ResultFile {
 
 impl ResultFile {
     /// The largest result, evaluation or settings file the tools read (with
-    /// [`crate::read_regular`]): 256 MiB holds about a million primitives, far more
+    /// [`primdecomp_files::read_regular`]): 256 MiB holds about a million primitives, far more
     /// than any export or viewer page takes, and parsing it stays within about a GiB.
     pub const MAX_BYTES: u64 = 256 << 20;
 

@@ -156,35 +156,6 @@ impl Level {
     }
 }
 
-/// Wall-clock seconds of each stage, in run order.
-///
-/// ```
-/// use primdecomp::{decompose, Params};
-///
-/// let corners = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
-/// let tetrahedron = primdecomp::Mesh::from_triangles(&corners, &[[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])?;
-/// let timings = decompose(&tetrahedron, &Params::default())?.timings;
-/// let sum: f64 = timings.stages.iter().map(|(_, s)| s).sum();
-/// assert!((timings.total() - sum).abs() < 1e-9);
-/// # Ok::<(), primdecomp::Error>(())
-/// ```
-#[derive(Clone, Debug, Default, Serialize)]
-pub struct Timings {
-    /// `(stage name, seconds)`, in the order the stages ran.
-    pub stages: Vec<(String, f64)>,
-}
-
-impl Timings {
-    pub(crate) fn push(&mut self, stage: &str, seconds: f64) {
-        self.stages.push((stage.to_string(), seconds));
-    }
-
-    /// Sum of the stages' seconds.
-    pub fn total(&self) -> f64 {
-        self.stages.iter().map(|s| s.1).sum()
-    }
-}
-
 /// Counters of a run, for reports and tuning; they do not depend on the thread count.
 ///
 /// ```
@@ -221,7 +192,7 @@ pub struct Stats {
     pub fits_when_popped: usize,
     /// Spatial parts merged in parallel before the global loop (1 = none).
     pub partitions: usize,
-    /// Out-of-core tiles the input was decomposed in ([`crate::decompose_tiled`]; 0 =
+    /// Out-of-core tiles the input was decomposed in ([`crate::Tiled::decompose`]; 0 =
     /// read whole).
     pub tiles: usize,
 }
@@ -236,7 +207,7 @@ pub struct Stats {
 /// let result = decompose(&tetrahedron, &Params { goal: Goal::counts([4, 1]), ..Params::default() })?;
 /// assert_eq!(result.levels.len(), 2);
 /// assert_eq!(result.input.faces, 4);
-/// assert!(result.timings.total() >= 0.0);
+/// assert!(result.seconds() >= 0.0);
 /// # Ok::<(), primdecomp::Error>(())
 /// ```
 #[derive(Clone, Debug, Default)]
@@ -245,8 +216,28 @@ pub struct Decomposition {
     pub input: InputInfo,
     /// One level per target, in the order the targets were given.
     pub levels: Vec<Level>,
-    /// Seconds per stage.
-    pub timings: Timings,
+    /// Wall-clock seconds of each stage, `(stage name, seconds)` in the order the
+    /// stages ran ([`Decomposition::seconds`] sums them).
+    pub timings: Vec<(String, f64)>,
     /// The merge loop's counters.
     pub stats: Stats,
+}
+
+impl Decomposition {
+    /// The wall-clock seconds of the run: the sum of [`Decomposition::timings`].
+    ///
+    /// ```
+    /// use primdecomp::{decompose, Params};
+    ///
+    /// let corners = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    /// let tetrahedron = primdecomp::Mesh::from_triangles(&corners, &[[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]])?;
+    /// let result = decompose(&tetrahedron, &Params::default())?;
+    /// let sum: f64 = result.timings.iter().map(|(_, s)| s).sum();
+    /// assert!((result.seconds() - sum).abs() < 1e-9);
+    /// assert!(result.timings.iter().any(|(stage, _)| stage == "merge"));
+    /// # Ok::<(), primdecomp::Error>(())
+    /// ```
+    pub fn seconds(&self) -> f64 {
+        self.timings.iter().map(|s| s.1).sum()
+    }
 }

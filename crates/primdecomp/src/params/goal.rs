@@ -7,7 +7,54 @@
 use super::{Tolerance, DEFAULT_TOLERANCE, MAX_LEVELS, MAX_PRIMITIVES};
 use crate::error::{Error, Result};
 
+/// A count as a user gives it (`-n 100`, `-n 1%`): a number of primitives, or a
+/// percentage of the input's faces, resolved once the input is known
+/// ([`Target::count`]). For a per-object run ([`crate::Objects::decompose`]) a count
+/// is the total over the objects and a percentage applies to each object's faces.
+/// Spelled `100` or `1%` ([`FromStr`](std::str::FromStr), [`Display`](std::fmt::Display)).
+///
+/// ```
+/// use primdecomp::Target;
+///
+/// let targets: Vec<Target> = ["200", "1%"].iter().map(|t| t.parse()).collect::<Result<_, _>>()?;
+/// assert_eq!(targets, [Target::Count(200), Target::Percent(1.0)]);
+/// assert_eq!(targets[1].count(50_000), 500); // 1% of 50,000 faces
+/// assert_eq!(targets[1].to_string(), "1%");
+/// assert!("0".parse::<Target>().is_err() && "150%".parse::<Target>().is_err());
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Target {
+    /// This many primitives (for a per-object run, shared by the objects: one each, the
+    /// rest in proportion to surface area).
+    Count(usize),
+    /// This percentage (above 0, at most 100) of the faces (of each object's faces, for a
+    /// per-object run), at least one primitive.
+    Percent(f64),
+}
+
+impl Target {
+    /// The count for an input of `faces` faces: a percentage's rounded, at least 1.
+    pub fn count(self, faces: usize) -> usize {
+        match self {
+            Target::Count(n) => n,
+            Target::Percent(p) => ((faces as f64 * p / 100.0).round() as usize).max(1),
+        }
+    }
+}
+
 /// How a [`Goal::Counts`] level of N primitives is found.
+///
+/// ```
+/// use primdecomp::{decompose, demo_scene, CountSearch, Goal, Params};
+///
+/// // The paper's greedy pass alone, the fastest.
+/// let goal = Goal::Counts { counts: vec![40], search: CountSearch::Greedy };
+/// let level = &decompose(&demo_scene(), &Params { goal, ..Params::default() })?.levels[0];
+/// assert!(level.primitives.len() <= 40);
+/// assert_eq!(level.distance, None); // only a cut measures its distance
+/// # Ok::<(), primdecomp::Error>(())
+/// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum CountSearch {
     /// The greedy pass's level at N, cut from the merge tree instead where that level
@@ -166,7 +213,7 @@ impl Goal {
     }
 
     /// The same goal at other counts: a count goal's counts, a fill's, or the caps of
-    /// a tolerance or byte budget (as [`crate::decompose_objects`] shares a count
+    /// a tolerance or byte budget (as [`crate::Objects::decompose`] shares a count
     /// among objects).
     ///
     /// ```

@@ -4,7 +4,7 @@
 //! when a word is wrong. A parse error is [`Error::InvalidParams`] with what was
 //! expected and what was given; the caller names the flag or keyword.
 
-use super::{Dedup, Partitions, Reprice, Tolerance};
+use super::{Dedup, Partitions, Reprice, Target, Tolerance};
 use crate::error::Error;
 use crate::primitive::Kind;
 use std::fmt::{self, Display, Formatter};
@@ -158,6 +158,39 @@ impl Display for Partitions {
         match self {
             Partitions::Auto => f.write_str("auto"),
             Partitions::Fixed(k) => write!(f, "{k}"),
+        }
+    }
+}
+
+/// A positive count (`200`) or a percentage of the faces above 0 and at most 100 (`1%`).
+impl FromStr for Target {
+    type Err = Error;
+
+    fn from_str(t: &str) -> Result<Target, Error> {
+        let t = t.trim();
+        let bad = || {
+            invalid(format!(
+                "expected a positive count or a percentage like 1%, got '{t}'"
+            ))
+        };
+        match t.strip_suffix('%') {
+            Some(p) => match p.trim().parse::<f64>() {
+                Ok(v) if v > 0.0 && v <= 100.0 => Ok(Target::Percent(v)),
+                _ => Err(bad()),
+            },
+            None => match t.parse::<usize>() {
+                Ok(v) if v > 0 => Ok(Target::Count(v)),
+                _ => Err(bad()),
+            },
+        }
+    }
+}
+
+impl Display for Target {
+    fn fmt(&self, f: &mut Formatter<'_>) -> fmt::Result {
+        match self {
+            Target::Count(n) => write!(f, "{n}"),
+            Target::Percent(p) => write!(f, "{}%", brief(*p)),
         }
     }
 }

@@ -159,7 +159,7 @@ pub(crate) fn fill(
             s.update(&run.levels);
         }
         dec.timings
-            .push(&format!("fill {round}"), now.elapsed().as_secs_f64());
+            .push((format!("fill {round}"), now.elapsed().as_secs_f64()));
     }
     dec.levels = searches.into_iter().map(|s| s.best).collect();
     progress.update(Stage::Merge, 1.0);

@@ -2,7 +2,6 @@
 //! caller's [`Progress`] and stops the run when it is cancelled.
 
 use crate::error::{Error, Result};
-use crate::output::result::Timings;
 use crate::progress::wallclock::Instant;
 use crate::progress::{Checkpoint, Progress, Stage};
 
@@ -10,7 +9,7 @@ use crate::progress::{Checkpoint, Progress, Stage};
 /// [`Error::Cancelled`] between stages (and within them through the callback).
 pub(crate) struct Clock<'p> {
     progress: &'p dyn Progress,
-    pub(crate) timings: Timings,
+    pub(crate) timings: Vec<(String, f64)>,
     /// The stage reported last: a stage run in several steps starts (0) once.
     current: Option<Stage>,
 }
@@ -19,7 +18,7 @@ impl<'p> Clock<'p> {
     pub(crate) fn new(progress: &'p dyn Progress) -> Self {
         Clock {
             progress,
-            timings: Timings::default(),
+            timings: Vec::new(),
             current: None,
         }
     }
@@ -35,7 +34,8 @@ impl<'p> Clock<'p> {
         self.start(stage)?;
         let now = Instant::now();
         let out = work();
-        self.timings.push(name, now.elapsed().as_secs_f64());
+        self.timings
+            .push((name.to_string(), now.elapsed().as_secs_f64()));
         match self.progress.cancelled() {
             true => Err(Error::Cancelled),
             false => Ok(out),
@@ -86,10 +86,10 @@ impl<'p> Clock<'p> {
         let out = work(&go_on, &mut laps);
         let mut rest = now.elapsed().as_secs_f64();
         for (lap, secs) in laps.0 {
-            self.timings.push(lap, secs);
+            self.timings.push((lap.to_string(), secs));
             rest -= secs;
         }
-        self.timings.push(name, rest.max(0.0));
+        self.timings.push((name.to_string(), rest.max(0.0)));
         if p.cancelled() {
             return Err(Error::Cancelled);
         }

@@ -7,7 +7,14 @@
 pub(crate) mod clock;
 pub(crate) mod wallclock;
 
-/// A stage of a run, in the order they run.
+/// A stage of a run, in the order they run, as [`Progress::update`] reports it.
+///
+/// ```
+/// use primdecomp::Stage;
+///
+/// let names: Vec<&str> = Stage::ALL.iter().map(|s| s.name()).collect();
+/// assert_eq!(names, ["dedup", "adjacency", "quadrics", "seed", "merge", "postprocess"]);
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Stage {
     /// Welding vertices at the same position (§3.4).
@@ -102,34 +109,20 @@ impl<F: Fn(Stage, f64) + Sync> Progress for F {
     }
 }
 
-/// Where a run stands, for a progress display: the stage running, the fraction of
-/// it done, the fraction of the whole run done, and the seconds left (estimated;
-/// `None` until a second has passed and a percent is done).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Estimate {
-    /// The stage running.
-    pub stage: Stage,
-    /// The fraction of `stage` done, 0 to 1.
-    pub fraction: f64,
-    /// The fraction of the whole run done, 0 to 1.
-    pub overall: f64,
-    /// The seconds left, extrapolated from the time spent on `overall`.
-    pub seconds_left: Option<f64>,
-}
-
-/// Turns the reports of a run ([`Progress::update`]) into [`Estimate`]s of the whole
-/// run: each stage counts for its share of a run's time, as the scale ladder
-/// measured it from 871k to 56M faces (`cargo bench -p primdecomp-cli --bench
-/// ladder`), a cut's share where the run cuts the merge tree (a tolerance, a byte
-/// target or the default run).
+/// Estimates how far a run has come, and the seconds left, from its reports
+/// ([`Progress::update`]): each stage counts for its share of a run's time, as the
+/// scale ladder measured it from 871k to 56M faces (`cargo bench -p primdecomp-cli
+/// --bench ladder`), a cut's share where the run cuts the merge tree (a tolerance, a
+/// byte target or the default run).
 ///
 /// ```
 /// use primdecomp::{Eta, Goal, Params, Stage};
 ///
 /// let eta = Eta::new(&Params { goal: Goal::counts([100]), ..Params::default() });
-/// let e = eta.update(Stage::Merge, 0.5);
-/// assert!(e.overall > 0.3 && e.overall < 0.9);
-/// assert_eq!(e.seconds_left, None); // too early to say
+/// let overall = eta.overall(Stage::Merge, 0.5);
+/// assert!(overall > 0.3 && overall < 0.9);
+/// assert_eq!(eta.seconds_left(Stage::Merge, 0.5), None); // too early to say
+/// assert_eq!(eta.overall(Stage::Postprocess, 1.0), 1.0);
 /// ```
 #[derive(Debug)]
 pub struct Eta {
@@ -157,21 +150,22 @@ impl Eta {
         }
     }
 
-    /// The estimate when `stage` has done `fraction` of its work.
-    pub fn update(&self, stage: Stage, fraction: f64) -> Estimate {
+    /// The fraction of the whole run done, 0 to 1, when `stage` has done `fraction`
+    /// (0 to 1) of its work.
+    pub fn overall(&self, stage: Stage, fraction: f64) -> f64 {
         let fraction = fraction.clamp(0.0, 1.0);
         let i = Stage::ALL.iter().position(|&s| s == stage).unwrap_or(0);
         let done: f64 = self.shares[..i].iter().sum::<f64>() + self.shares[i] * fraction;
-        let overall = (done / self.shares.iter().sum::<f64>()).clamp(0.0, 1.0);
+        (done / self.shares.iter().sum::<f64>()).clamp(0.0, 1.0)
+    }
+
+    /// The seconds left when `stage` has done `fraction` of its work, extrapolated
+    /// from the time spent on what is done ([`Eta::overall`]); `None` until a second
+    /// has passed and a percent is done.
+    pub fn seconds_left(&self, stage: Stage, fraction: f64) -> Option<f64> {
+        let overall = self.overall(stage, fraction);
         let spent = self.start.elapsed().as_secs_f64();
-        let seconds_left =
-            (spent >= 1.0 && overall >= 0.01).then(|| spent * (1.0 - overall) / overall);
-        Estimate {
-            stage,
-            fraction,
-            overall,
-            seconds_left,
-        }
+        (spent >= 1.0 && overall >= 0.01).then(|| spent * (1.0 - overall) / overall)
     }
 }
 

@@ -2,9 +2,9 @@
 //! the level suffixes ([`output_path_for`]), which of them are known before
 //! decomposing, and what `--resume` may take as an input's outputs.
 
-use super::settings::Target;
 use crate::outputs::Out;
 use crate::paths::{level_labels, output_path_for};
+use primdecomp::Target;
 use primdecomp::{Goal, Params, Tolerance};
 use std::path::{Path, PathBuf};
 

@@ -21,8 +21,9 @@ use crate::outputs::{check_batch_dir, check_stems, names_dir, Guard, Out};
 use anyhow::{anyhow, bail};
 use dest::{default_obj, default_out, default_png, Chain, Dest};
 use one_input::{run_one, PRINT};
+use primdecomp::Target;
 use primdecomp::{Decomposition, Params, Tess};
-use settings::{max_memory, params_from, Target};
+use settings::{max_memory, params_from};
 use std::path::{Path, PathBuf};
 use summary::print_table;
 

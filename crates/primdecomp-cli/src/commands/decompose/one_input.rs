@@ -3,7 +3,7 @@
 
 use super::dest::Dest;
 use super::progress::Shown;
-use super::settings::{load_options, resolve_targets, Target};
+use super::settings::{load_options, resolve_targets};
 use super::summary::print_summary;
 use super::timings::{print_timings, StageMemory};
 use crate::args::DecomposeArgs;
@@ -13,8 +13,10 @@ use crate::exit::BadArgs;
 use crate::outputs::Guard;
 use crate::paths::output_path_for;
 use anyhow::{anyhow, bail};
-use primdecomp::{write_atomic, Stage};
+use primdecomp::Stage;
+use primdecomp::Target;
 use primdecomp::{Decomposition, Goal, Params};
+use primdecomp_files::write_atomic;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -60,7 +62,7 @@ pub(super) fn run_one(
             if a.per_object {
                 let (mut dec, written) =
                     run_objects(a, input, &params, targets, &mesh, dest, guard)?;
-                dec.timings.stages.insert(0, ("load".into(), load_s));
+                dec.timings.insert(0, ("load".into(), load_s));
                 return Ok((dec, written));
             }
             let shown = Shown::new(&params, mesh.face_count(), a, beside_others);
@@ -71,7 +73,7 @@ pub(super) fn run_one(
                 shown.update(stage, f);
             })?;
             shown.finish();
-            dec.timings.stages.insert(0, ("load".into(), load_s));
+            dec.timings.insert(0, ("load".into(), load_s));
             (mesh, params, dec)
         }
         (refused, why) => {
@@ -127,7 +129,7 @@ pub(super) fn run_one(
             memory.as_deref(),
         );
     } else if !a.quiet {
-        println!("time      {:.2} s", dec.timings.total() + write_s);
+        println!("time      {:.2} s", dec.seconds() + write_s);
     }
     Ok((dec, written))
 }
@@ -171,7 +173,6 @@ fn run_objects(
     dest: &Dest,
     guard: &Guard,
 ) -> anyhow::Result<(Decomposition, Vec<PathBuf>)> {
-    use primdecomp::decompose_objects;
     if a.obj_detail < 3 {
         bail!(BadArgs(format!(
             "--obj-detail must be at least 3, got {}",
@@ -179,19 +180,15 @@ fn run_objects(
         )));
     }
     let now = Instant::now();
-    let mut objs =
-        decompose_objects(mesh, params, &object_targets(targets)).map_err(|e| match e {
-            primdecomp::Error::InvalidParams(m) => {
-                BadArgs(format!("{}: {m}", input.display())).into()
-            }
-            e => anyhow::Error::from(e),
-        })?;
+    let mut objs = primdecomp::Objects::decompose(mesh, params, targets).map_err(|e| match e {
+        primdecomp::Error::InvalidParams(m) => BadArgs(format!("{}: {m}", input.display())).into(),
+        e => anyhow::Error::from(e),
+    })?;
     record_input(&mut objs.input, a, input);
     let n = objs.levels();
     let mut written = Vec::new();
     let mut dec = totals(&objs);
     dec.timings
-        .stages
         .push(("decompose".into(), now.elapsed().as_secs_f64()));
     let jsons = level_jsons(&objs, params)?;
     // The names are known only now (a percentage's count): check them before writing.
@@ -229,19 +226,6 @@ fn run_objects(
         print_summary(&dec, mesh, &written, a.verbose);
     }
     Ok((dec, written))
-}
-
-/// `-n` for `--per-object`: a count is the total over the objects, a percentage each
-/// object's share of its own faces.
-fn object_targets(targets: &[Target]) -> Vec<primdecomp::ObjectTarget> {
-    use primdecomp::ObjectTarget;
-    targets
-        .iter()
-        .map(|t| match *t {
-            Target::Count(n) => ObjectTarget::Total(n),
-            Target::Percent(p) => ObjectTarget::Percent(p),
-        })
-        .collect()
 }
 
 /// A decomposition standing for all of `objs` in the summary: their input and the sums

@@ -49,14 +49,13 @@ impl Shown {
         if self.bar.is_none() && self.lines.is_none() {
             return;
         }
-        let e = self.eta.update(stage, fraction);
-        let left = e
-            .seconds_left
+        let (fraction, overall) = (fraction.clamp(0.0, 1.0), self.eta.overall(stage, fraction));
+        let left = (self.eta.seconds_left(stage, fraction))
             .map_or(String::new(), |s| format!("about {} left", duration(s)));
         if let Some(b) = &self.bar {
-            b.set_message(format!("{} {:.0}%", stage.name(), 100.0 * e.fraction));
+            b.set_message(format!("{} {:.0}%", stage.name(), 100.0 * fraction));
             b.set_prefix(left.clone());
-            b.set_position((e.overall * 1000.0) as u64);
+            b.set_position((overall * 1000.0) as u64);
         }
         if let Some(last) = &self.lines {
             // A line as each stage starts, and every few seconds within one.
@@ -66,8 +65,8 @@ impl Shown {
                 eprintln!(
                     "progress  {} {:.0}%, run {:.0}%{}",
                     stage.name(),
-                    100.0 * e.fraction,
-                    100.0 * e.overall,
+                    100.0 * fraction,
+                    100.0 * overall,
                     if left.is_empty() {
                         left
                     } else {

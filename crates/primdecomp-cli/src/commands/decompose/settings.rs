@@ -7,7 +7,7 @@ use crate::args::DecomposeArgs;
 use crate::exit::BadArgs;
 use crate::paths::memory_limit;
 use primdecomp::LoadOptions;
-use primdecomp::{ByteSize, CountSearch, Goal, Kind, Params, Reprice, Tolerance};
+use primdecomp::{ByteSize, CountSearch, Goal, Kind, Params, Reprice, Target, Tolerance};
 use std::path::Path;
 use std::str::FromStr;
 
@@ -231,44 +231,13 @@ pub(super) fn max_memory(a: &DecomposeArgs) -> anyhow::Result<Option<u64>> {
     memory_limit(&a.max_memory)
 }
 
-/// A target as given: a count, or a percentage of the input's faces.
-#[derive(Clone, Copy, Debug)]
-pub(super) enum Target {
-    Count(usize),
-    Percent(f64),
-}
-
-/// `-n`: each value a positive count or a percentage of the faces.
+/// `-n`: each value a positive count or a percentage of the faces ([`Target`]'s
+/// spelling).
 pub(super) fn parse_targets(raw: &[String]) -> anyhow::Result<Vec<Target>> {
-    raw.iter()
-        .map(|t| {
-            let t = t.trim();
-            let bad = || {
-                BadArgs(format!(
-                    "-n: expected a positive count or a percentage like 1%, got '{t}'"
-                ))
-            };
-            match t.strip_suffix('%') {
-                Some(p) => match p.trim().parse::<f64>() {
-                    Ok(v) if v > 0.0 && v <= 100.0 => Ok(Target::Percent(v)),
-                    _ => Err(bad().into()),
-                },
-                None => match t.parse::<usize>() {
-                    Ok(v) if v > 0 => Ok(Target::Count(v)),
-                    _ => Err(bad().into()),
-                },
-            }
-        })
-        .collect()
+    raw.iter().map(|t| spelled("-n", t)).collect()
 }
 
 /// The counts of `targets` for an input of `faces` faces (a percentage's at least 1).
 pub(super) fn resolve_targets(targets: &[Target], faces: usize) -> Vec<usize> {
-    targets
-        .iter()
-        .map(|t| match *t {
-            Target::Count(n) => n,
-            Target::Percent(p) => ((faces as f64 * p / 100.0).round() as usize).max(1),
-        })
-        .collect()
+    targets.iter().map(|t| t.count(faces)).collect()
 }

@@ -41,11 +41,10 @@ pub(super) fn print_summary(
         };
         println!("up        +{} ({from}{change})", up.axis().to_uppercase());
     }
-    let skipped = mesh.skipped();
-    if skipped.short_faces + skipped.other > 0 {
+    let (short_faces, other) = mesh.skipped();
+    if short_faces + other > 0 {
         println!(
-            "skipped   {} faces with fewer than 3 vertices or lines, {} other elements",
-            skipped.short_faces, skipped.other
+            "skipped   {short_faces} faces with fewer than 3 vertices or lines, {other} other elements"
         );
     }
     for l in &dec.levels {
@@ -174,7 +173,7 @@ pub(super) fn print_table(rows: &[Decomposition]) {
                 c[4],
                 c[5],
                 l.bytes(),
-                d.timings.total()
+                d.seconds()
             );
         }
     }

@@ -1,14 +1,14 @@
-//! `decompose` in out-of-core tiles (`primdecomp::decompose_tiled`): when `--tiles`
+//! `decompose` in out-of-core tiles (`primdecomp::Tiled::decompose`): when `--tiles`
 //! asks for them or the input would need more than `--max-memory` read whole. The
 //! mesh is never held whole, so what needs it is refused: `--per-object`, `--png`,
 //! `--export-preview`, and `-n` as a percentage. `one_input` writes the result.
 
 use super::dest::Dest;
 use super::progress::Shown;
-use super::settings::Target;
 use crate::args::DecomposeArgs;
 use crate::exit::BadArgs;
 use anyhow::bail;
+use primdecomp::Target;
 use primdecomp::{Decomposition, LoadOptions, Params, Stage};
 use std::path::Path;
 
@@ -94,7 +94,7 @@ pub(super) fn decompose(
         ..options.clone()
     };
     let shown = Shown::new(&params, usize::MAX, a, beside_others);
-    let dec = primdecomp::decompose_tiled(input, &params, &options, &|s: Stage, f: f64| {
+    let dec = primdecomp::Tiled::decompose(input, &params, &options, &|s: Stage, f: f64| {
         shown.update(s, f)
     })?;
     shown.finish();

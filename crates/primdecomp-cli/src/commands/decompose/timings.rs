@@ -17,14 +17,13 @@ pub(super) fn print_timings(
 ) {
     let stages: Vec<String> = dec
         .timings
-        .stages
         .iter()
         .map(|(s, t)| format!("{s} {t:.3}"))
         .collect();
     println!(
         "seconds   {}, write {write_s:.3} | total {:.3}",
         stages.join(", "),
-        dec.timings.total() + write_s
+        dec.seconds() + write_s
     );
     let st = &dec.stats;
     if verbose {

@@ -5,9 +5,10 @@
 
 use super::{Identity, RELEASE_EVERY};
 use crate::error::{Error, Result};
-use crate::input::io::{format_of, open_regular, LoadOptions, MeshFormat, PlyLayout};
+use crate::input::io::{format_of, LoadOptions, MeshFormat, PlyLayout};
 use crate::input::mesh::Mesh;
 use crate::math::V3;
+use primdecomp_files::open_regular;
 use std::path::Path;
 
 /// Opens the mesh in `path` for a tiled run: the memory-mapped binary PLY, or the

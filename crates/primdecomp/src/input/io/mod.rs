@@ -13,9 +13,10 @@ mod off;
 mod ply;
 mod stl;
 
-use crate::error::{Error, FileKind, Result};
+use crate::error::{Error, Result};
 use crate::input::mesh::{Mesh, MeshBuilder};
-use std::fs::{File, Metadata};
+use primdecomp_files::open_regular;
+
 use std::path::Path;
 
 pub(crate) use self::gltf::parse_gltf_with;
@@ -210,117 +211,10 @@ pub struct LoadOptions {
     /// [`Mesh::load_with`] still refuses what it refuses with re-centring. Decomposing such a
     /// mesh directly loses the precision re-centring keeps far from the origin.
     pub keep_world_coordinates: bool,
-    /// [`crate::decompose_tiled`]: decompose in this many spatial tiles (at most
+    /// [`crate::Tiled::decompose`]: decompose in this many spatial tiles (at most
     /// 4096) instead of the fewest that fit `max_memory`. `None` (the
     /// default): the fewest; [`Mesh::load_with`] ignores it.
     pub tiles: Option<usize>,
-}
-
-/// Opens `path` for reading and returns it with its metadata, or refuses it with
-/// [`Error::NotAFile`] unless it is a regular file (after following symbolic links).
-///
-/// The path is `stat`ed first, so a socket or device is refused without being
-/// opened; then it is opened with `O_NONBLOCK` (opening a named pipe never waits for
-/// a writer) and `O_NOCTTY`, and the *opened handle's* metadata is checked again, so a
-/// file swapped for a pipe between the two is refused too. Failing to open is
-/// [`Error::Open`]; both are the input's fault (exit code 2).
-///
-/// ```
-/// let (file, meta) = primdecomp::open_regular("Cargo.toml".as_ref())?;
-/// assert!(meta.is_file());
-/// drop(file);
-/// assert!(primdecomp::open_regular(".".as_ref()).is_err()); // a folder
-/// # Ok::<(), primdecomp::Error>(())
-/// ```
-pub fn open_regular(path: &Path) -> Result<(File, Metadata)> {
-    match open_checked(path) {
-        Ok(opened) => Ok(opened),
-        Err(OpenFail::Open(error)) => Err(Error::Open {
-            path: path.to_path_buf(),
-            error,
-        }),
-        Err(OpenFail::NotAFile(kind)) => Err(Error::NotAFile {
-            path: path.to_path_buf(),
-            kind,
-        }),
-        Err(OpenFail::Read(error)) => Err(Error::Io {
-            path: path.to_path_buf(),
-            error,
-        }),
-    }
-}
-
-/// Reads all of `path`, which must be a regular file ([`open_regular`]: a pipe or
-/// device is refused before anything is read) of at most `max_bytes` bytes: a larger
-/// file (a sparse file of terabytes, say) is refused from its size before reading,
-/// and no more than `max_bytes + 1` bytes are ever read, should it grow meanwhile.
-/// For the small documents the tools read whole: results, settings, evaluations.
-///
-/// ```
-/// let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../datasets/demo_scene.obj");
-/// assert!(primdecomp::read_regular(path.as_ref(), 1 << 30)?.starts_with(b"#"));
-/// let refused = primdecomp::read_regular(path.as_ref(), 1000).unwrap_err();
-/// assert!(refused.to_string().contains("more than the 1000 bytes"), "{refused}");
-/// assert!(primdecomp::read_regular("/dev/zero".as_ref(), 1000).is_err());
-/// # Ok::<(), primdecomp::Error>(())
-/// ```
-pub fn read_regular(path: &Path, max_bytes: u64) -> Result<Vec<u8>> {
-    use std::io::Read;
-    let (file, meta) = open_regular(path)?;
-    let too_large = |size: u64| {
-        Error::format(
-            path,
-            format!(
-                "the file holds {}, more than the {} read from a file of this kind",
-                crate::error::show_bytes(size),
-                crate::error::show_bytes(max_bytes)
-            ),
-        )
-    };
-    if meta.len() > max_bytes {
-        return Err(too_large(meta.len()));
-    }
-    let mut bytes = Vec::with_capacity(meta.len() as usize);
-    (&file)
-        .take(max_bytes.saturating_add(1))
-        .read_to_end(&mut bytes)
-        .map_err(|error| Error::Io {
-            path: path.to_path_buf(),
-            error,
-        })?;
-    if bytes.len() as u64 > max_bytes {
-        return Err(too_large(bytes.len() as u64));
-    }
-    Ok(bytes)
-}
-
-/// Why [`open_checked`] failed, without a path: the glTF reader words these as
-/// reasons a buffer URI is unusable.
-pub(crate) enum OpenFail {
-    Open(std::io::Error),
-    NotAFile(FileKind),
-    /// The opened handle's metadata could not be read.
-    Read(std::io::Error),
-}
-
-pub(crate) fn open_checked(path: &Path) -> std::result::Result<(File, Metadata), OpenFail> {
-    let meta = std::fs::metadata(path).map_err(OpenFail::Open)?;
-    if let Some(kind) = FileKind::of(&meta) {
-        return Err(OpenFail::NotAFile(kind));
-    }
-    let mut options = std::fs::OpenOptions::new();
-    options.read(true);
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::OpenOptionsExt;
-        options.custom_flags(libc::O_NONBLOCK | libc::O_NOCTTY);
-    }
-    let file = options.open(path).map_err(OpenFail::Open)?;
-    let meta = file.metadata().map_err(OpenFail::Read)?;
-    match FileKind::of(&meta) {
-        Some(kind) => Err(OpenFail::NotAFile(kind)),
-        None => Ok((file, meta)),
-    }
 }
 
 /// Parses bytes already in memory as `format` with the default `LoadOptions`;

@@ -19,14 +19,15 @@
 //! strips and fans become triangles; points and lines primitives are counted in
 //! [`SkipCounts::other`](crate::input::mesh::SkipCounts::other).
 
-use super::{open_checked, LoadOptions, OpenFail};
-use crate::error::{reason, Error, Result};
+use super::LoadOptions;
+use crate::error::{Error, Result};
 use crate::input::mesh::MeshBuilder;
 use gltf::accessor::sparse::IndexType;
 use gltf::accessor::{DataType, Dimensions};
 use gltf::json::validation::Validate;
 use gltf::mesh::Mode;
 use gltf::scene::Transform;
+use primdecomp_files::{open_regular, reason, Error as FileError};
 use std::borrow::Cow;
 use std::io::Read;
 use std::path::{Component, Path, PathBuf};
@@ -342,12 +343,13 @@ impl UriAt<'_> {
             path: file.to_path_buf(),
             error,
         };
-        let (handle, meta) = open_checked(open).map_err(|e| match e {
-            OpenFail::Open(e) => self.cannot_open(file, &e),
-            OpenFail::NotAFile(kind) => self.refuse(format!(
+        let (handle, meta) = open_regular(open).map_err(|e| match e {
+            FileError::Open { error, .. } => self.cannot_open(file, &error),
+            FileError::NotAFile { kind, .. } => self.refuse(format!(
                 "names {shown}, which is {kind}, not a regular file"
             )),
-            OpenFail::Read(error) => io(error),
+            FileError::Io { error, .. } => io(error),
+            e => e.into(),
         })?;
         if meta.len() < len as u64 {
             return Err(self.refuse(format!(

@@ -14,7 +14,7 @@ fn hidden(c: char) -> bool {
 /// `s` with each `hidden` character written as `\u{…}` (lowercase hex).
 ///
 /// ```
-/// use primdecomp::visible;
+/// use primdecomp_files::visible;
 /// assert_eq!(visible("a\u{1b}[31mb\u{0}"), "a\\u{1b}[31mb\\u{0}");
 /// assert_eq!(visible("plain name, 日本"), "plain name, 日本");
 /// ```

@@ -2,7 +2,7 @@
 //! `fsync` it, then `rename` it over the target, so a reader (or a crash) never sees
 //! a half-written result. Also the naming rule for one output file per target.
 
-use crate::error::{Error, Result};
+use crate::Error;
 use std::fs::{self, OpenOptions};
 use std::io::{self, Write};
 use std::path::Path;
@@ -21,13 +21,13 @@ static COUNTER: AtomicU64 = AtomicU64::new(0);
 ///
 /// ```
 /// let path = std::env::temp_dir().join(format!("primdecomp-doc-{}.txt", std::process::id()));
-/// primdecomp::write_atomic(&path, b"first")?;
-/// primdecomp::write_atomic(&path, b"second")?; // replaces it whole, never half-written
+/// primdecomp_files::write_atomic(&path, b"first")?;
+/// primdecomp_files::write_atomic(&path, b"second")?; // replaces it whole, never half-written
 /// assert_eq!(std::fs::read(&path)?, b"second");
 /// std::fs::remove_file(&path)?;
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
-pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Error> {
     let fail = |error| Error::Write {
         path: path.to_path_buf(),
         error,

@@ -437,37 +437,56 @@ fn capsule_bound(radial: f64, extent: f64, min_half: f64) -> f64 {
 
 /// Squared extents of the centred points gathered in one pass: the sphere's and each
 /// axis' radial reach, and for the profile bounds, per axis `y` and side of `y = 0`
-/// (0: `u_y ≥ 0`, 1: `u_y < 0`), the largest `u_z²` for each axis `z` and the
+/// (0: `u_y ≥ 0`, 1: `u_y < 0`), the largest `u_z²` for each other axis `z` and the
 /// largest radial reach around `y`.
 struct Extents {
     r2: f64,
     radial2: [f64; 3],
+    /// `side[y][z]`, `z ≠ y` (the diagonal stays 0: no bound uses it).
     side: [[[f64; 2]; 3]; 3],
     side_radial2: [[f64; 2]; 3],
 }
 
 impl Extents {
+    /// Branchless: each side's maxima take the point's value or 0 (every value is a
+    /// square or a sum of squares, ≥ +0, and every maximum starts at +0, so a 0 leaves
+    /// it unchanged), in registers, where indexing by the side kept them in memory.
+    /// The same maxima as testing the side per point: max is exact and ignores order.
     fn of(s: &FitScratch) -> Extents {
         let [u0, u1, u2] = &s.u;
+        let n = u0.len();
+        let (u1, u2) = (&u1[..n], &u2[..n]);
+        // Per axis y, on the side u_y ≥ 0 (`pos`) and u_y < 0 (`neg`): the maxima of
+        // (radial reach around y, u_z² for the next axis z, for the one after).
+        let mut pos = [[0.0f64; 3]; 3];
+        let mut neg = [[0.0f64; 3]; 3];
+        let mut r2 = 0.0;
+        for i in 0..n {
+            let u = [u0[i], u1[i], u2[i]];
+            let sq = [u[0] * u[0], u[1] * u[1], u[2] * u[2]];
+            r2 = fmax(r2, sq[0] + sq[1] + sq[2]);
+            let radial = [sq[1] + sq[2], sq[0] + sq[2], sq[0] + sq[1]];
+            for y in 0..3 {
+                let v = [radial[y], sq[(y + 1) % 3], sq[(y + 2) % 3]];
+                let below = u[y] < 0.0;
+                for j in 0..3 {
+                    let (p, m) = if below { (0.0, v[j]) } else { (v[j], 0.0) };
+                    pos[y][j] = fmax(pos[y][j], p);
+                    neg[y][j] = fmax(neg[y][j], m);
+                }
+            }
+        }
         let mut e = Extents {
-            r2: 0.0,
+            r2,
             radial2: [0.0; 3],
             side: [[[0.0; 2]; 3]; 3],
             side_radial2: [[0.0; 2]; 3],
         };
-        for i in 0..u0.len() {
-            let u = [u0[i], u1[i], u2[i]];
-            let sq = [u[0] * u[0], u[1] * u[1], u[2] * u[2]];
-            e.r2 = fmax(e.r2, sq[0] + sq[1] + sq[2]);
-            let radial = [sq[1] + sq[2], sq[0] + sq[2], sq[0] + sq[1]];
-            for y in 0..3 {
-                e.radial2[y] = fmax(e.radial2[y], radial[y]);
-                let side = usize::from(u[y] < 0.0);
-                e.side_radial2[y][side] = fmax(e.side_radial2[y][side], radial[y]);
-                for z in 0..3 {
-                    e.side[y][z][side] = fmax(e.side[y][z][side], sq[z]);
-                }
-            }
+        for y in 0..3 {
+            e.side_radial2[y] = [pos[y][0], neg[y][0]];
+            e.radial2[y] = fmax(pos[y][0], neg[y][0]);
+            e.side[y][(y + 1) % 3] = [pos[y][1], neg[y][1]];
+            e.side[y][(y + 2) % 3] = [pos[y][2], neg[y][2]];
         }
         e
     }

@@ -348,3 +348,45 @@ fn a_cut_short_of_its_count_says_why() {
     assert_eq!(code, Some(0), "{out}");
     assert!(!out.contains("no more primitives"), "{out}");
 }
+
+/// `--per-object` holds each object to the tolerance of its own diagonal, not the
+/// whole mesh's: the summary gives the farthest distance as a share of the whole
+/// mesh's diagonal and says how many objects stand within their own tolerance,
+/// rather than comparing with the whole mesh's tolerance.
+#[test]
+fn a_per_object_summary_counts_objects_within_their_own_tolerance() {
+    let d = dir("per-object");
+    let (big, small) = (
+        cuboid([0.0, 0.0, 0.0], [10.0, 10.0, 10.0]),
+        cuboid([20.0, 0.0, 0.0], [20.5, 0.5, 0.5]),
+    );
+    let faces = big.1.len();
+    let text = obj_text(&join(&[big, small]));
+    let mut obj = String::new();
+    let mut f = 0;
+    for line in text.lines() {
+        if line.starts_with("f ") {
+            match f {
+                0 => obj += "o big\n",
+                n if n == faces => obj += "o small\n",
+                _ => {}
+            }
+            f += 1;
+        }
+        obj += line;
+        obj += "\n";
+    }
+    std::fs::write(d.join("two.obj"), obj).unwrap();
+    let (code, out) = run(
+        &d,
+        &["decompose", "two.obj", "--per-object", "-o", "two.json"],
+    );
+    assert_eq!(code, Some(0), "{out}");
+    assert!(out.contains("objects   2"), "{out}");
+    assert!(out.contains("of the whole mesh's diagonal"), "{out}");
+    assert!(
+        out.contains("2 of 2 objects within their own tolerance"),
+        "{out}"
+    );
+    assert!(!out.contains("within the tolerance"), "{out}");
+}

@@ -118,7 +118,7 @@ pub(super) fn run_one(
         if let Some(why) = &why {
             println!("tiles     {}: {why}", dec.stats.tiles);
         }
-        print_summary(&dec, &mesh, &written, a.verbose);
+        print_summary(&dec, &mesh, &written, a.verbose, None);
     }
     if a.verbose || a.timings {
         print_timings(
@@ -223,7 +223,7 @@ fn run_objects(
     let _out = PRINT.lock();
     if !a.quiet {
         print_objects(&objs);
-        print_summary(&dec, mesh, &written, a.verbose);
+        print_summary(&dec, mesh, &written, a.verbose, Some(&objs));
     }
     Ok((dec, written))
 }

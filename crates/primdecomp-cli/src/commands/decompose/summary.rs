@@ -8,12 +8,14 @@ use primdecomp::{Decomposition, Kind};
 use std::path::{Path, PathBuf};
 
 /// The input, its up axis, skipped elements, one line per level and the files
-/// written; with `verbose` also the welding and adjacency counts.
+/// written; with `verbose` also the welding and adjacency counts. `objects`: the
+/// objects of a `--per-object` run, each held to its own tolerance.
 pub(super) fn print_summary(
     dec: &Decomposition,
     mesh: &primdecomp::Mesh,
     written: &[PathBuf],
     verbose: bool,
+    objects: Option<&primdecomp::Objects>,
 ) {
     let i = &dec.input;
     let welded = match verbose {
@@ -47,7 +49,7 @@ pub(super) fn print_summary(
             "skipped   {short_faces} faces with fewer than 3 vertices or lines, {other} other elements"
         );
     }
-    for l in &dec.levels {
+    for (level, l) in dec.levels.iter().enumerate() {
         let c = l.counts();
         let kinds: Vec<String> = Kind::ALL
             .iter()
@@ -60,7 +62,10 @@ pub(super) fn print_summary(
             l.primitives.len(),
             kinds.join(", "),
             l.bytes(),
-            reach(l, dec.input.diagonal()),
+            match objects {
+                Some(objects) => reach_of_objects(l, dec.input.diagonal(), objects, level),
+                None => reach(l, dec.input.diagonal()),
+            },
             few(l, dec.input.faces)
         );
     }
@@ -107,6 +112,64 @@ fn reach(l: &primdecomp::Level, diagonal: f64) -> String {
         };
     }
     s + ")"
+}
+
+/// [`reach`] for a level of a `--per-object` run: each object is held to its own
+/// tolerance (a share of its own diagonal), not the whole mesh's, so the line says how
+/// many objects stand within theirs and names those that do not.
+fn reach_of_objects(
+    l: &primdecomp::Level,
+    diagonal: f64,
+    objects: &primdecomp::Objects,
+    level: usize,
+) -> String {
+    let Some(d) = l.distance else {
+        return String::new();
+    };
+    if l.tolerance.is_none() {
+        return reach(l, diagonal);
+    }
+    let over: Vec<(&str, Option<primdecomp::Shortfall>)> = (objects.objects.iter())
+        .map(|o| (o.name.as_str(), &o.decomposition.levels[level]))
+        .filter(|(_, own)| own.distance.zip(own.tolerance).is_some_and(|(d, t)| d > t))
+        .map(|(name, own)| (name, own.shortfall))
+        .collect();
+    let n = objects.objects.len();
+    let mut s = format!(
+        "; farthest {d:.4} from the mesh ({:.2}% of the whole mesh's diagonal); {} of {n} \
+         objects within their own tolerance",
+        100.0 * d / diagonal.max(f64::MIN_POSITIVE),
+        n - over.len()
+    );
+    if !over.is_empty() {
+        let names: Vec<String> = (over.iter().take(5))
+            .map(|(name, _)| format!("{name:?}"))
+            .collect();
+        let more = match over.len() > 5 {
+            true => format!(" and {} more", over.len() - 5),
+            false => String::new(),
+        };
+        // What stopped them nearer, when it is the same for all (a count is each
+        // object's share of the level's).
+        let why = match over.iter().all(|(_, why)| *why == over[0].1) {
+            false => String::new(),
+            true => match over[0].1 {
+                Some(primdecomp::Shortfall::Count) => format!(
+                    ": their share of the cap of {} primitives comes first (-n raises it)",
+                    l.target
+                ),
+                why => {
+                    let own = primdecomp::Level {
+                        shortfall: why,
+                        ..Default::default()
+                    };
+                    format!(": {}", shortfall(&own))
+                }
+            },
+        };
+        s += &format!(", over it: {}{more}{why}", names.join(", "));
+    }
+    s
 }
 
 /// Why a level of a count alone holds fewer primitives than asked, for the summary

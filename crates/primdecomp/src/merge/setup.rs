@@ -1,9 +1,8 @@
 //! The merge's settings made absolute for one input ([`pricing`]) and each face's
 //! seed volume (Alg. 1, line 2).
 
-use super::cost::{InputView, Pricing};
+use super::cost::Pricing;
 use super::{Fitter, Workspace};
-use crate::input::mesh::Mesh;
 use crate::math::{Sym3, V3};
 use crate::params::{Params, Reprice};
 use crate::primitive::fit::{FitConfig, FrameSearch};
@@ -64,13 +63,13 @@ pub fn pricing(params: &Params, bounds: (V3, V3)) -> Pricing {
 /// interior), its settings made absolute by [`pricing`] (the tests' and benchmarks').
 #[cfg(any(test, feature = "test-internals"))]
 pub fn fitter<'a>(
-    mesh: &'a Mesh,
+    mesh: &'a crate::input::mesh::Mesh,
     welded: &'a [u32],
     params: &Params,
     bounds: (V3, V3),
 ) -> Fitter<'a> {
     Fitter {
-        input: InputView::new(mesh, welded),
+        input: super::cost::InputView::new(mesh, welded),
         pricing: pricing(params, bounds),
     }
 }

@@ -2,6 +2,7 @@
 # The test command (README.md). Runs, each in its own section:
 #   documents every relative link resolves, every decision record opens with its
 #            header and the records' index matches them, ARCHITECTURE.md's API table names what lib.rs makes public (scripts/check_docs.py);
+#   embedder the core and its sibling crates built without test features, no warnings;
 #   rust     every Rust test of the workspace (unit, property, paper-claim, corpus-wide
 #            and CLI tests, doctests), built once: the consumer checks below use the
 #            binaries this build makes, so nothing is compiled twice;
@@ -81,6 +82,18 @@ if python3 scripts/module_cycles.py; then
   row modules 1 0 0 "cycles, crate-root imports, back-stage imports: none"
 else
   row modules 0 1 0 "scripts/module_cycles.py found the imports above"
+fi
+
+# ---------------------------------------------------------------- embedder build
+section "embedder build: the core and the crates beside it as an embedder compiles them (no test features): no warnings"
+# The workspace's tests turn on `test-internals`; code behind it can leave imports that
+# only an embedder's build sees, so those crates are checked alone.
+cargo check --release --lib -p primdecomp -p primdecomp-math -p primdecomp-files -p primdecomp-export \
+  --message-format short 2>&1 | tee "$work/embedder.log" | grep -E "(^|: )(warning|error)" || true
+if grep -qE "(^|: )(warning|error)" "$work/embedder.log" || ! grep -q "Finished" "$work/embedder.log"; then
+  row embedder 0 1 0 "warnings or errors above (cargo check --release --lib -p primdecomp …)"
+else
+  row embedder 1 0 0 "primdecomp, -math, -files, -export: no warnings"
 fi
 
 # ---------------------------------------------------------------- system packages

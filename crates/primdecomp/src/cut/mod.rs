@@ -382,6 +382,20 @@ impl<'a> Cutter<'a> {
     /// Each request's snapshot from its cut of `explored`.
     fn cut_snapshots(&self, explored: &Explored, cuts: Vec<Vec<u32>>) -> Vec<LevelCut> {
         let requests = &self.requests;
+        if self.stopped() {
+            // Told to stop: every caller asks `stopped` before reading a snapshot, so
+            // none gathers the faces and points of every node of the cut.
+            let empty = |r: &Request| LevelCut {
+                snapshot: Snapshot {
+                    target: r.count,
+                    ..Snapshot::default()
+                },
+                bound: 0.0,
+                shortfall: None,
+                known: Vec::new(),
+            };
+            return requests.iter().map(empty).collect();
+        }
         // A chosen node's fit on its hull's vertices, unless one of its faces' points
         // (left out of the hull within its tolerance) is outside it beyond round-off:
         // then its fit on every point ([`Cutter::enclosing`]).

@@ -13,9 +13,13 @@
 //! Run: `cargo bench -p primdecomp-cli --bench cancel`. Settings, by environment:
 //! - `CANCEL_INPUTS` (default the corpus's dragon): mesh files, comma-separated (the
 //!   ladder's rungs: `primdecomp-testkit ladder DRAGON LEVELS OUT.ply`);
-//! - `CANCEL_MODES` (default `n2000,default`): `-n 2000` and the default run.
+//! - `CANCEL_MODES` (default `n2000,default`): `-n 2000` and the default run;
+//! - `CANCEL_TRACE` (seconds, unset: off): where the stretches longer than this open
+//!   and close, the core's frames of the two calls' stacks (a stack captured at every
+//!   call: slower, for finding a stretch's code, not for its length).
 
 use primdecomp::Progress;
+use std::backtrace::Backtrace;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering::Relaxed};
 use std::sync::Mutex;
 use std::time::Instant;
@@ -30,6 +34,11 @@ struct Probe {
     /// Each kept stretch: its seconds, the number of the call that opened it and
     /// when that was (s since the start).
     stretches: Mutex<Vec<(f64, u64, f64)>>,
+    /// `CANCEL_TRACE`: the threshold, the last call's stack, and each longer
+    /// stretch's seconds, opening time and the stacks that opened and closed it.
+    trace: Option<f64>,
+    last_stack: Mutex<Option<Backtrace>>,
+    traced: Mutex<Vec<(f64, f64, Backtrace, Backtrace)>>,
 }
 
 /// Stretches shorter than this are not kept (s).
@@ -44,6 +53,17 @@ impl Progress for Probe {
         if gap > KEPT {
             let at = (gap, call.saturating_sub(1), before as f64 * 1e-9);
             self.stretches.lock().expect("no panic").push(at);
+        }
+        if let Some(over) = self.trace {
+            let here = Backtrace::force_capture();
+            let mut last = self.last_stack.lock().expect("no panic");
+            if gap > over {
+                let opened = last.take().unwrap_or_else(Backtrace::disabled);
+                let closed = Backtrace::force_capture();
+                let at = (gap, before as f64 * 1e-9, opened, closed);
+                self.traced.lock().expect("no panic").push(at);
+            }
+            *last = Some(here);
         }
         false
     }
@@ -96,10 +116,16 @@ fn main() {
                 last: AtomicU64::new(0),
                 calls: AtomicU64::new(0),
                 stretches: Mutex::new(Vec::new()),
+                trace: std::env::var("CANCEL_TRACE")
+                    .ok()
+                    .and_then(|s| s.parse().ok()),
+                last_stack: Mutex::new(None),
+                traced: Mutex::new(Vec::new()),
             };
             let dec = primdecomp::decompose_with(&mesh, &params, &probe).expect("the run");
             let secs = probe.start.elapsed().as_secs_f64();
             let stretches = probe.stretches.into_inner().expect("no panic");
+            print_traced(probe.traced.into_inner().expect("no panic"));
             // Each timed step's longest stretch, by where it opened (the steps'
             // seconds added up give when each started).
             let mut by_step: Vec<String> = Vec::new();
@@ -129,6 +155,33 @@ fn main() {
                 answer.map_or("finished first".into(), |a| format!("{a:.3}")),
             );
         }
+    }
+}
+
+/// The core's frames of each traced stretch's two stacks, longest first.
+fn print_traced(mut traced: Vec<(f64, f64, Backtrace, Backtrace)>) {
+    traced.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let core = |bt: &Backtrace| {
+        let text = bt.to_string();
+        let names: Vec<String> = text
+            .lines()
+            .filter_map(|l| l.trim().split_once(": ").map(|(_, name)| name.to_string()))
+            .filter(|n| {
+                let skip = [
+                    "std::", "core::", "alloc::", "<alloc", "<core", "cancel::", "rayon",
+                ];
+                !skip.iter().any(|s| n.starts_with(s)) && !n.contains("Progress")
+            })
+            .take(6)
+            .collect();
+        names.join(" < ")
+    };
+    for (gap, at, opened, closed) in traced.iter().take(12) {
+        eprintln!(
+            "stretch {gap:.3} s from {at:.2} s\n  opened: {}\n  closed: {}",
+            core(opened),
+            core(closed)
+        );
     }
 }
 

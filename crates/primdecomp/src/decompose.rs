@@ -7,7 +7,7 @@ pub(crate) mod objects;
 pub(crate) mod stages;
 pub(crate) mod tiles;
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::input::mesh::Mesh;
 use crate::output::result::Decomposition;
 use crate::params::{short_of, Goal, Params};
@@ -108,7 +108,8 @@ pub(crate) fn pass(mesh: &Mesh, params: &Params, progress: &dyn Progress) -> Res
     let graph = stages::Graph::build(&mut clock, mesh, params)?;
     // Counts on several separate parts are cuts of the merge tree: the greedy level
     // drops the parts nested in one part's primitive (docs/decisions/0054).
-    if params.goal.count_cut() && graph.several_parts(mesh) {
+    let several = || graph.several_parts(mesh, &|| !progress.cancelled());
+    if params.goal.count_cut() && several().ok_or(Error::Cancelled)? {
         let cut = Params {
             goal: params.goal.as_cut(),
             ..params.clone()

@@ -109,16 +109,21 @@ impl Bvh {
         let (root, below) = nodes.split_first_mut().expect("one node or more");
         // The splits move each item's centroid with its id, so that they read
         // memory in order; the boxes are read again for the leaves.
-        let mut span: Vec<Item<C>> = (0..count as u32)
-            .into_par_iter()
-            .map(|i| {
+        // A block of items at a time, asking `go_on` after each.
+        let mut span: Vec<Item<C>> = Vec::with_capacity(count);
+        for i0 in (0..count).step_by(CHECK_AT << 4) {
+            let items = (i0 as u32..(i0 + (CHECK_AT << 4)).min(count) as u32).into_par_iter();
+            span.par_extend(items.map(|i| {
                 let (lo, hi) = bbox(i);
                 Item {
                     c: keep(scale(add(lo, hi), 0.5)),
                     id: i,
                 }
-            })
-            .collect();
+            }));
+            if !go_on(0.0) {
+                return None;
+            }
+        }
         let build = Build {
             bbox,
             sizes,

@@ -267,6 +267,7 @@ impl Cutter<'_> {
             return e.clone();
         }
         let prim = match ex.groups.contains_key(&n) {
+            true if !self.goes_on() => super::STAND_IN,
             true => {
                 let q = self.q_of(ex, n);
                 (self.ev)

@@ -104,7 +104,21 @@ impl StopAt {
 /// An upper bound of the error of `prim`, refined best-first as `ask` says. Results
 /// at most `ask.level` mean the error is; results over `ask.above` mean it is over.
 pub(crate) fn error_until(prim: &Primitive, surface: &Triangles, ask: StopAt) -> f64 {
-    let mut search = Refinement::new(surface);
+    error_until_checked(prim, surface, ask, &|| true)
+}
+
+/// [`error_until`] asking `go_on` every [`SPLITS_PER_CHECK`] splits; once it says
+/// stop, the bound as it stands (a number for a run that keeps nothing).
+pub(crate) fn error_until_checked(
+    prim: &Primitive,
+    surface: &Triangles,
+    ask: StopAt,
+    go_on: &(dyn Fn() -> bool + Sync),
+) -> f64 {
+    let mut search = Refinement {
+        go_on,
+        ..Refinement::new(surface)
+    };
     let start = Start::of(prim, surface, ask.above, &mut search.scratch);
     search.take(start);
     search.run(ask, MAX_SPLITS)
@@ -191,7 +205,13 @@ struct Refinement<'a> {
     splits: usize,
     shadows: Shadows,
     scratch: Scratch,
+    /// Asked every [`SPLITS_PER_CHECK`] splits whether to go on: a search over a
+    /// large primitive near millions of faces runs for seconds.
+    go_on: &'a (dyn Fn() -> bool + Sync),
 }
+
+/// Splits of a search between two asks of its `go_on`.
+const SPLITS_PER_CHECK: usize = 64;
 
 /// How often a search's shadows were tried, and how often they gave a bound.
 #[derive(Default)]
@@ -267,6 +287,7 @@ impl<'a> Refinement<'a> {
             splits: 0,
             shadows: Shadows::default(),
             scratch: Scratch::default(),
+            go_on: &|| true,
         }
     }
 
@@ -297,6 +318,9 @@ impl<'a> Refinement<'a> {
             let undecided = low <= ask.level && ask.level < bound;
             let close = bound <= low + slack.max(RELATIVE * low);
             if (close && !undecided) || self.splits == max_splits {
+                return bound;
+            }
+            if self.splits % SPLITS_PER_CHECK == SPLITS_PER_CHECK - 1 && !(self.go_on)() {
                 return bound;
             }
             let mut cell = self.heap.pop().expect("peeked");

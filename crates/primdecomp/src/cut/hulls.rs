@@ -12,6 +12,7 @@ use crate::math::hull::{hull_vertices, HullWorkspace};
 use crate::merge::rim::FaceAdjacency;
 use rayon::prelude::*;
 use std::collections::HashMap;
+use std::sync::atomic::{AtomicBool, Ordering::Relaxed};
 
 /// Nodes of at most this many faces are never stored: their sets are found from
 /// their faces when asked, which costs about as much as reading stored ones.
@@ -65,6 +66,7 @@ impl<'a> NodeHulls<'a> {
     /// own thread (children before parents). Hull points within `eps` of a hull face
     /// may be dropped (`math::hull`'s guarantee); boundaries are left empty when `adj`
     /// is.
+    #[cfg(test)]
     pub(crate) fn build(
         tree: &'a MergeTree,
         mesh: &'a Mesh,
@@ -72,6 +74,19 @@ impl<'a> NodeHulls<'a> {
         eps: f64,
         small: usize,
     ) -> Self {
+        Self::build_checked(tree, mesh, adj, eps, small, &|_| true).0
+    }
+
+    /// [`Self::build`] asking `go_on` before each subtree's task; with false when it
+    /// said stop (the tasks not started then are left out: a cutter stops at once).
+    pub(crate) fn build_checked(
+        tree: &'a MergeTree,
+        mesh: &'a Mesh,
+        adj: FaceAdjacency<'a>,
+        eps: f64,
+        small: usize,
+        go_on: crate::progress::Checkpoint,
+    ) -> (Self, bool) {
         let mut at = vec![0u32; mesh.face_count()];
         for (i, &f) in tree.order.iter().enumerate() {
             at[f as usize] = i as u32;
@@ -89,9 +104,19 @@ impl<'a> NodeHulls<'a> {
         // few nodes above them, children before parents.
         let grain = (mesh.face_count() / TASKS).max(sets.small);
         let tasks = sets.tasks(grain);
+        let stop = AtomicBool::new(false);
         let mut stored: HashMap<u32, NodeSets> = tasks
             .par_iter()
-            .map_init(HullScratch::default, |s, &r| sets.subtree(r, s))
+            .map_init(HullScratch::default, |s, &r| {
+                // Once told to stop, no task asks again.
+                match !stop.load(Relaxed) && go_on(0.0) {
+                    true => sets.subtree(r, s),
+                    false => {
+                        stop.store(true, Relaxed);
+                        Vec::new()
+                    }
+                }
+            })
             .flatten_iter()
             .collect();
         let tops: Vec<(u32, NodeSets)> = (tree.roots.par_iter())
@@ -99,7 +124,8 @@ impl<'a> NodeHulls<'a> {
             .collect();
         stored.extend(tops);
         sets.stored = stored;
-        sets
+        let whole = !stop.load(Relaxed);
+        (sets, whole)
     }
 
     /// The sets of the nodes above the subtrees of `grain` faces ([`Self::splits`])

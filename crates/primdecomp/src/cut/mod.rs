@@ -36,7 +36,7 @@ pub(crate) use choose::fits;
 use choose::worst;
 #[cfg(test)]
 use error::error_of;
-use error::{error_until, StopAt};
+use error::{error_until_checked, StopAt};
 use hulls::{HullScratch, NodeHulls};
 pub(crate) use past_worst::LOOSE_FACTOR;
 use past_worst::{Order, Queued};
@@ -217,16 +217,18 @@ impl<'a> Cutter<'a> {
         // hull kept: exploring fits few of them (a tolerance's cut is mostly smaller
         // than its cap), and those are gathered from their faces when fitted.
         let stored = tree.order.len() / largest.max(1);
+        let (hulls, whole) = NodeHulls::build_checked(
+            tree,
+            ev.input.mesh,
+            ev.input.face_adj,
+            ev.pricing.hull_eps,
+            stored,
+            go_on,
+        );
         Cutter {
             ev,
             tree,
-            hulls: NodeHulls::build(
-                tree,
-                ev.input.mesh,
-                ev.input.face_adj,
-                ev.pricing.hull_eps,
-                stored,
-            ),
+            hulls,
             requests: requests.to_vec(),
             fitted: HashMap::new(),
             surface,
@@ -241,7 +243,7 @@ impl<'a> Cutter<'a> {
             boxes: carried_parts::node_boxes(tree, ev.input.mesh),
             measures: error_memo::Measures::default(),
             go_on,
-            stopped: std::sync::atomic::AtomicBool::new(false),
+            stopped: std::sync::atomic::AtomicBool::new(!whole),
         }
     }
 
@@ -270,8 +272,12 @@ impl<'a> Cutter<'a> {
         self.measured(n, prim, above)
     }
 
-    /// Node `n`'s output fit on its hull's vertices and boundary faces.
+    /// Node `n`'s output fit on its hull's vertices and boundary faces (a stand-in
+    /// once told to stop: [`STAND_IN`]).
     fn fit(&self, n: u32, s: &mut Scratch) -> Primitive {
+        if !self.goes_on() {
+            return STAND_IN;
+        }
         let sets = self.hulls.of(n, &mut s.hull);
         let faces = self.tree.faces(n).iter().copied();
         let q = &self.tree.nodes[n as usize].q;
@@ -299,7 +305,7 @@ impl<'a> Cutter<'a> {
         let own = self.members(ex, e.node).len();
         let (own, carried) = nodes.split_at(own);
         let within = |nodes: &[u32]| nodes.iter().all(|&c| self.tree.faces(c).iter().all(inside));
-        if (e.closest || within(own)) && within(carried) {
+        if !self.goes_on() || (e.closest || within(own)) && within(carried) {
             return e.prim;
         }
         let q = self.q_of(ex, e.node);
@@ -315,12 +321,25 @@ impl<'a> Cutter<'a> {
     }
 
     fn measured(&self, node: u32, prim: Primitive, above: f64) -> Entry {
+        if !self.goes_on() {
+            // Told to stop: nothing measured is kept.
+            let error = 0.0;
+            let (exact, closest) = (true, false);
+            return Entry {
+                error,
+                node,
+                prim,
+                exact,
+                closest,
+            };
+        }
         let ask = StopAt {
             level: self.enough,
             above,
             coarse: true,
         };
-        let error = (self.measures).of(&prim, above, || error_until(&prim, self.surface, ask));
+        let measure = || error_until_checked(&prim, self.surface, ask, &|| self.goes_on());
+        let error = (self.measures).of(&prim, above, measure);
         Entry {
             error,
             node,
@@ -369,6 +388,20 @@ impl<'a> Cutter<'a> {
     /// Each request's snapshot from its cut of `explored`.
     fn cut_snapshots(&self, explored: &Explored, cuts: Vec<Vec<u32>>) -> Vec<LevelCut> {
         let requests = &self.requests;
+        if self.stopped() {
+            // Told to stop: every caller asks `stopped` before reading a snapshot, so
+            // none gathers the faces and points of every node of the cut.
+            let empty = |r: &Request| LevelCut {
+                snapshot: Snapshot {
+                    target: r.count,
+                    ..Snapshot::default()
+                },
+                bound: 0.0,
+                shortfall: None,
+                known: Vec::new(),
+            };
+            return requests.iter().map(empty).collect();
+        }
         // A chosen node's fit on its hull's vertices, unless one of its faces' points
         // (left out of the hull within its tolerance) is outside it beyond round-off:
         // then its fit on every point ([`Cutter::enclosing`]).
@@ -655,6 +688,14 @@ impl<'a> Cutter<'a> {
         }
     }
 }
+
+/// What the cutter returns for a fit once it was told to stop: a fit or a
+/// measure over millions of faces takes seconds, and nothing the cutter makes after
+/// the stop is kept (a cancel answers without them).
+const STAND_IN: Primitive = Primitive::Sphere(crate::primitive::sphere::Sphere {
+    center: [0.0; 3],
+    radius: 0.0,
+});
 
 /// The largest count the requests ask for.
 fn largest(requests: &[Request]) -> usize {

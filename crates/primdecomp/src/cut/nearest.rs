@@ -41,6 +41,9 @@ impl Cutter<'_> {
     /// triangle) no longer chooses (docs/decisions/0041). The candidates enclose the
     /// nodes it carries too.
     fn closest(&self, ex: &Explored, e: &Entry, s: &mut Scratch) -> Entry {
+        if !self.goes_on() {
+            return e.clone();
+        }
         let q = self.q_of(ex, e.node);
         let faces = self.faces_of(ex, e.node);
         (self.ev).output_candidates(faces, &q, &mut s.ws, &mut s.candidates);

@@ -56,14 +56,15 @@ impl<'m> Graph<'m> {
         })
     }
 
-    /// Whether the faces form several separate parts (faces welded to a point join none).
-    pub(crate) fn several_parts(&self, mesh: &Mesh) -> bool {
+    /// Whether the faces form several separate parts (faces welded to a point join none);
+    /// `None` when `go_on` said stop.
+    pub(crate) fn several_parts(&self, mesh: &Mesh, go_on: &dyn Fn() -> bool) -> Option<bool> {
         let welded = &self.welded;
         let point = |f: usize| {
             let corners = &welded[mesh.face_offsets[f] as usize..mesh.face_offsets[f + 1] as usize];
             corners.iter().all(|&v| v == corners[0])
         };
-        components::several(mesh.face_count(), &self.pairs, point)
+        components::several(mesh.face_count(), &self.pairs, point, go_on)
     }
 }
 
@@ -114,7 +115,8 @@ impl Seeds {
         let mut pairs = Some(std::mem::take(&mut graph.pairs));
         let surface = clock
             .step_checked(Stage::Seed, "surface", |go_on| {
-                let lists = adjacency::neighbour_lists(mesh.face_count(), pairs.as_ref()?);
+                let lists =
+                    adjacency::neighbour_lists_checked(mesh.face_count(), pairs.as_ref()?, go_on)?;
                 if per_part {
                     pairs = None;
                 }

@@ -11,23 +11,39 @@ const ALL_PAIRS_UP_TO: usize = 4;
 /// The pairs as neighbour lists of `n` faces, CSR: face `f`'s neighbours are
 /// `adj[offsets[f]..offsets[f + 1]]`, in the pairs' order.
 pub fn neighbour_lists(n: usize, pairs: &[(u32, u32)]) -> (Vec<u32>, Vec<u32>) {
+    neighbour_lists_checked(n, pairs, &|_| true).expect("never told to stop")
+}
+
+/// [`neighbour_lists`] asking `go_on` after each [`FACE_BLOCK`] pairs of its two
+/// passes; `None` when it said stop.
+pub fn neighbour_lists_checked(
+    n: usize,
+    pairs: &[(u32, u32)],
+    go_on: crate::progress::Checkpoint,
+) -> Option<(Vec<u32>, Vec<u32>)> {
     let mut offsets = vec![0u32; n + 1];
-    for &(a, b) in pairs {
-        offsets[a as usize + 1] += 1;
-        offsets[b as usize + 1] += 1;
+    for block in pairs.chunks(FACE_BLOCK) {
+        for &(a, b) in block {
+            offsets[a as usize + 1] += 1;
+            offsets[b as usize + 1] += 1;
+        }
+        go_on(0.0).then_some(())?;
     }
     for i in 0..n {
         offsets[i + 1] += offsets[i];
     }
     let mut fill = offsets.clone();
     let mut adj = vec![0u32; 2 * pairs.len()];
-    for &(a, b) in pairs {
-        adj[fill[a as usize] as usize] = b;
-        fill[a as usize] += 1;
-        adj[fill[b as usize] as usize] = a;
-        fill[b as usize] += 1;
+    for block in pairs.chunks(FACE_BLOCK) {
+        for &(a, b) in block {
+            adj[fill[a as usize] as usize] = b;
+            fill[a as usize] += 1;
+            adj[fill[b as usize] as usize] = a;
+            fill[b as usize] += 1;
+        }
+        go_on(0.0).then_some(())?;
     }
-    (offsets, adj)
+    Some((offsets, adj))
 }
 
 /// Sorted, unique pairs `(a, b)` with `a < b` of faces sharing an edge. `offsets` and
@@ -138,11 +154,43 @@ pub fn face_pairs_checked(
         })
         .collect();
     drop(records);
-    let mut pairs = Vec::with_capacity(lists.iter().flatten().map(Vec::len).sum());
-    for l in lists {
-        pairs.extend(l?);
+    let lists: Vec<Vec<(u32, u32)>> = lists.into_iter().collect::<Option<_>>()?;
+    sorted_pairs(lists, faces, go_on)
+}
+
+/// The pairs of `lists` sorted and each once, as one sort of all of them gives: a
+/// counting sort on the first face, then each face's few pairs sorted on their own,
+/// asking `go_on` after each list and each [`FACE_BLOCK`] faces (one sort of every
+/// pair is seconds without a check at 14M faces); `None` when it said stop.
+fn sorted_pairs(
+    lists: Vec<Vec<(u32, u32)>>,
+    faces: usize,
+    go_on: crate::progress::Checkpoint,
+) -> Option<Vec<(u32, u32)>> {
+    let mut start = vec![0u32; faces + 1];
+    for l in &lists {
+        l.iter().for_each(|&(a, _)| start[a as usize + 1] += 1);
+        go_on(0.9).then_some(())?;
     }
-    pairs.par_sort_unstable();
+    for f in 0..faces {
+        start[f + 1] += start[f];
+    }
+    let mut next = start.clone();
+    let mut pairs = vec![(0u32, 0u32); start[faces] as usize];
+    for l in lists {
+        for (a, b) in l {
+            pairs[next[a as usize] as usize] = (a, b);
+            next[a as usize] += 1;
+        }
+        go_on(0.9).then_some(())?;
+    }
+    drop(next);
+    for f0 in (0..faces).step_by(FACE_BLOCK) {
+        for f in f0..(f0 + FACE_BLOCK).min(faces) {
+            pairs[start[f] as usize..start[f + 1] as usize].sort_unstable();
+        }
+        go_on(0.9).then_some(())?;
+    }
     pairs.dedup();
     pairs.shrink_to_fit();
     Some(pairs)

@@ -44,21 +44,36 @@ const GROUPS: usize = 16;
 
 /// Whether the faces form more than one connected component (by shared edges),
 /// leaving out the faces `point` says are points (all corners welded into one
-/// vertex: no part of the surface, as the dragon's nine).
-pub(crate) fn several(faces: usize, pairs: &[(u32, u32)], point: impl Fn(usize) -> bool) -> bool {
+/// vertex: no part of the surface, as the dragon's nine). `None` when `go_on`, asked
+/// every `BLOCK` pairs and faces, said stop.
+pub(crate) fn several(
+    faces: usize,
+    pairs: &[(u32, u32)],
+    point: impl Fn(usize) -> bool,
+    go_on: &dyn Fn() -> bool,
+) -> Option<bool> {
+    const BLOCK: usize = 1 << 20;
     let mut parent: Vec<u32> = (0..faces as u32).collect();
-    for &(a, b) in pairs {
-        let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
-        parent[ra.max(rb) as usize] = ra.min(rb);
+    for block in pairs.chunks(BLOCK) {
+        for &(a, b) in block {
+            let (ra, rb) = (root(&mut parent, a), root(&mut parent, b));
+            parent[ra.max(rb) as usize] = ra.min(rb);
+        }
+        if !go_on() {
+            return None;
+        }
     }
     let mut first = None;
     for f in (0..faces).filter(|&f| !point(f)) {
+        if f % BLOCK == 0 && !go_on() {
+            return None;
+        }
         let r = root(&mut parent, f as u32);
         if *first.get_or_insert(r) != r {
-            return true;
+            return Some(true);
         }
     }
-    false
+    Some(false)
 }
 
 /// The root of `x` in a union-find forest, halving the path on the way.

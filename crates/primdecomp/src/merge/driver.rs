@@ -20,7 +20,7 @@ use rayon::prelude::*;
 
 /// Pairs priced per parallel task.
 const CHUNK: usize = 1024;
-/// The loop reports progress and checks whether to stop every this many merges: a
+/// The loop reports progress and checks whether to stop every this many steps: a
 /// few milliseconds of a part's loop, and well under a second of the global loop's
 /// after parts of a 56M-face input (about 2 ms a merge there: large clusters).
 const CHECK_EVERY: usize = 256;
@@ -359,7 +359,14 @@ fn merge_loop<Q: Queue>(
     // The greedy order's next merge, popped at a target but not free: applied after
     // that target's snapshot.
     let mut held: Option<Candidate> = None;
+    // Steps of the loop (a merge, or an entry re-priced or dropped when popped).
+    let mut steps = 0usize;
     loop {
+        steps += 1;
+        if steps % CHECK_EVERY == 0 && !go_on(fraction(start, cl.live, last)) {
+            out.stopped = true;
+            return (out, cl);
+        }
         let reached = next < targets.len() && cl.live <= targets[next];
         // A target's snapshot waits for free merges into plates
         // (docs/decisions/0025-free-merges-into-plates.md); the
@@ -440,10 +447,6 @@ fn merge_loop<Q: Queue>(
             out.fits.eager += nbrs.len();
             cl.mark_repriced(root);
             batch.drain(..).for_each(|c| heap.push(c));
-        }
-        if out.merges % CHECK_EVERY == 0 && !go_on(fraction(start, cl.live, last)) {
-            out.stopped = true;
-            return (out, cl);
         }
     }
     if next == 0 {

@@ -9,6 +9,7 @@ pub(crate) mod cost;
 pub(crate) mod driver;
 pub(crate) mod heap;
 mod lazy;
+mod median;
 pub(crate) mod partition;
 pub(crate) mod rim;
 pub(crate) mod setup;

@@ -22,8 +22,10 @@
 use super::cluster::{Clusters, Group};
 use super::cost::{Fitter, InputView, Pricing};
 use super::driver::{merge_part, FitCounts, MergeOutput, Traced};
+use super::median::{self, BLOCK};
 use crate::input::mesh::Mesh;
 use crate::math::Sym3;
+use crate::progress::Checkpoint;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
 
@@ -81,14 +83,25 @@ impl Phase1 {
 /// ordering faces by (coordinate, face index). Each part's faces are increasing; every
 /// face is in exactly one part; part sizes differ by at most one per level of
 /// splitting (`k` not a power of two: proportional shares). Independent of threads.
+#[cfg(test)]
 pub fn split(mesh: &Mesh, k: usize) -> Vec<Vec<u32>> {
-    let centroids: Vec<[f64; 3]> = (0..mesh.face_count())
-        .into_par_iter()
-        .with_min_len(4096)
-        .map(|f| centroid(mesh, f))
-        .collect();
-    let mut ids: Vec<u32> = (0..mesh.face_count() as u32).collect();
-    split_into(&mut ids, &centroids, k.max(1))
+    split_checked(mesh, k, &|_| true).expect("never told to stop")
+}
+
+/// `split` asking `go_on` every `median::BLOCK` faces of a pass; `None` when it
+/// said stop.
+fn split_checked(mesh: &Mesh, k: usize, go_on: Checkpoint) -> Option<Vec<Vec<u32>>> {
+    let n = mesh.face_count();
+    let mut centroids: Vec<[f64; 3]> = Vec::with_capacity(n);
+    for f0 in (0..n).step_by(BLOCK) {
+        let fs = (f0..(f0 + BLOCK).min(n)).into_par_iter().with_min_len(4096);
+        centroids.par_extend(fs.map(|f| centroid(mesh, f)));
+        if !go_on(0.0) {
+            return None;
+        }
+    }
+    let mut ids: Vec<u32> = (0..n as u32).collect();
+    split_into(&mut ids, &centroids, k.max(1), go_on)
 }
 
 fn centroid(mesh: &Mesh, f: usize) -> [f64; 3] {
@@ -103,40 +116,58 @@ fn centroid(mesh: &Mesh, f: usize) -> [f64; 3] {
 
 /// The parts of `ids` in order; the two halves of each split are split in parallel
 /// (their results do not depend on which thread runs them).
-fn split_into(ids: &mut [u32], c: &[[f64; 3]], k: usize) -> Vec<Vec<u32>> {
+fn split_into(
+    ids: &mut [u32],
+    c: &[[f64; 3]],
+    k: usize,
+    go_on: Checkpoint,
+) -> Option<Vec<Vec<u32>>> {
+    // A check per node: below a block, a node's passes ask nothing themselves.
+    go_on(0.0).then_some(())?;
     if k == 1 {
         let mut part = ids.to_vec();
         part.sort_unstable();
-        return vec![part];
+        return Some(vec![part]);
     }
-    let axis = longest_axis(ids, c);
+    let axis = longest_axis(ids, c, go_on)?;
     let left = k / 2;
     let m = (ids.len() as u128 * left as u128 / k as u128) as usize;
-    if m > 0 && m < ids.len() {
-        ids.select_nth_unstable_by(m, |&a, &b| {
-            c[a as usize][axis]
-                .total_cmp(&c[b as usize][axis])
-                .then(a.cmp(&b))
-        });
+    let order = |a: u32, b: u32| {
+        c[a as usize][axis]
+            .total_cmp(&c[b as usize][axis])
+            .then(a.cmp(&b))
+    };
+    if !median::select(ids, m, &order, go_on) {
+        return None;
     }
     let (lo, hi) = ids.split_at_mut(m);
-    let (mut parts, rest) = rayon::join(|| split_into(lo, c, left), || split_into(hi, c, k - left));
-    parts.extend(rest);
-    parts
+    let (parts, rest) = rayon::join(
+        || split_into(lo, c, left, go_on),
+        || split_into(hi, c, k - left, go_on),
+    );
+    let mut parts = parts?;
+    parts.extend(rest?);
+    Some(parts)
 }
 
-/// The axis along which the centroids of `ids` spread farthest (the lowest on ties).
-fn longest_axis(ids: &[u32], c: &[[f64; 3]]) -> usize {
+/// The axis along which the centroids of `ids` spread farthest (the lowest on ties);
+/// `None` when `go_on`, asked after each full block of faces, said stop.
+fn longest_axis(ids: &[u32], c: &[[f64; 3]], go_on: Checkpoint) -> Option<usize> {
     let mut lo = [f64::INFINITY; 3];
     let mut hi = [f64::NEG_INFINITY; 3];
-    for &f in ids {
-        for k in 0..3 {
-            lo[k] = lo[k].min(c[f as usize][k]);
-            hi[k] = hi[k].max(c[f as usize][k]);
+    for block in ids.chunks(BLOCK) {
+        for &f in block {
+            for k in 0..3 {
+                lo[k] = lo[k].min(c[f as usize][k]);
+                hi[k] = hi[k].max(c[f as usize][k]);
+            }
+        }
+        if block.len() == BLOCK && !go_on(0.0) {
+            return None;
         }
     }
     let ext = [0, 1, 2].map(|k| hi[k] - lo[k]);
-    (0..3).fold(0, |best, k| if ext[k] > ext[best] { k } else { best })
+    Some((0..3).fold(0, |best, k| if ext[k] > ext[best] { k } else { best }))
 }
 
 /// Phase 2's starting size: `GROUPS_PER_TARGET` × the largest target.
@@ -156,7 +187,12 @@ pub fn merge_parts(
     k: usize,
     merged: &(dyn Fn(usize) -> bool + Sync),
 ) -> Phase1 {
-    let parts = split(ev.input.mesh, k);
+    let Some(parts) = split_checked(ev.input.mesh, k, &|_| merged(0)) else {
+        return Phase1 {
+            stopped: true,
+            ..Phase1::default()
+        };
+    };
     let all = ev.input.mesh.face_count() as u128;
     let size = phase1_size(largest_target) as u128;
     let targets = parts

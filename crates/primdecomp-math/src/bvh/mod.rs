@@ -109,9 +109,13 @@ impl Bvh {
         let (root, below) = nodes.split_first_mut().expect("one node or more");
         // The splits move each item's centroid with its id, so that they read
         // memory in order; the boxes are read again for the leaves.
-        // A block of items at a time, asking `go_on` after each.
+        // A block of items at a time, asking `go_on` between blocks (a build of
+        // fewer items than one block asks only at its nodes).
         let mut span: Vec<Item<C>> = Vec::with_capacity(count);
         for i0 in (0..count).step_by(CHECK_AT << 4) {
+            if i0 > 0 && !go_on(0.0) {
+                return None;
+            }
             let items = (i0 as u32..(i0 + (CHECK_AT << 4)).min(count) as u32).into_par_iter();
             span.par_extend(items.map(|i| {
                 let (lo, hi) = bbox(i);
@@ -120,9 +124,6 @@ impl Bvh {
                     id: i,
                 }
             }));
-            if !go_on(0.0) {
-                return None;
-            }
         }
         let build = Build {
             bbox,

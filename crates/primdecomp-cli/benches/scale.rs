@@ -18,6 +18,9 @@
 use primdecomp::Mesh;
 use std::collections::HashMap;
 use std::io::Write;
+#[path = "shared/meshopt_time.rs"]
+mod meshopt_time;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
@@ -132,26 +135,9 @@ fn cli_run(bin: &Path, input: &Path, extra: &[&str]) -> (f64, f64) {
 
 /// Median seconds of meshopt's simplifier down to `TARGET` triangles.
 fn meshopt_runs(m: &Mesh) -> f64 {
-    let pos: Vec<[f32; 3]> = (0..m.vertex_count() as u32)
-        .map(|v| m.pos(v).map(|c| c as f32))
-        .collect();
-    let idx: Vec<u32> = (0..m.face_count())
-        .flat_map(|f| m.face(f).to_vec())
-        .collect();
+    let (pos, idx) = meshopt_time::flat(m);
     let t = (0..RUNS)
-        .map(|_| {
-            let start = Instant::now();
-            let out = meshopt::simplify_decoder(
-                &idx,
-                &pos,
-                3 * TARGET,
-                1.0,
-                meshopt::SimplifyOptions::None,
-                None,
-            );
-            std::hint::black_box(out);
-            start.elapsed().as_secs_f64()
-        })
+        .map(|_| meshopt_time::simplify_seconds(&idx, &pos, TARGET))
         .collect();
     median(t)
 }

@@ -14,6 +14,9 @@
 //!   comma-separated, run in turn within each round;
 //! - `THROUGHPUT_ROUNDS` (default 3).
 
+#[path = "shared/meshopt_time.rs"]
+mod meshopt_time;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
@@ -38,24 +41,14 @@ fn main() {
         .and_then(|s| s.parse().ok())
         .unwrap_or(3);
     let mesh = primdecomp::Mesh::load(&dragon).expect("the dragon loads");
-    let (pos, idx) = flat(&mesh);
+    let (pos, idx) = meshopt_time::flat(&mesh);
     println!("load average before: {}", uptime());
     // Per binary, mode, threads: the least wall and that run's CPU seconds.
     let cells = bins.len() * 4;
     let mut best = vec![(f64::INFINITY, 0.0); cells];
     let mut meshopt = f64::INFINITY;
     for round in 0..rounds {
-        let start = Instant::now();
-        let out = meshopt::simplify_decoder(
-            &idx,
-            &pos,
-            3 * TARGET,
-            1.0,
-            meshopt::SimplifyOptions::None,
-            None,
-        );
-        std::hint::black_box(out);
-        meshopt = meshopt.min(start.elapsed().as_secs_f64());
+        meshopt = meshopt.min(meshopt_time::simplify_seconds(&idx, &pos, TARGET));
         for (b, bin) in bins.iter().enumerate() {
             for (m, mode) in ["n2000", "default"].iter().enumerate() {
                 for (t, threads) in ["1", "2"].iter().enumerate() {
@@ -93,21 +86,6 @@ fn main() {
             );
         }
     }
-}
-
-/// The mesh's positions in f32 and its faces' corners (fan-triangulated).
-fn flat(m: &primdecomp::Mesh) -> (Vec<[f32; 3]>, Vec<u32>) {
-    let pos = (0..m.vertex_count() as u32)
-        .map(|v| m.pos(v).map(|c| c as f32))
-        .collect();
-    let mut idx = Vec::with_capacity(3 * m.face_count());
-    for f in 0..m.face_count() {
-        let v = m.face(f);
-        for k in 2..v.len() {
-            idx.extend([v[0], v[k - 1], v[k]]);
-        }
-    }
-    (pos, idx)
 }
 
 /// Wall seconds of one CLI run (load to written JSON) and the CPU seconds its

@@ -145,9 +145,10 @@ fn reach_of_objects(
         let names: Vec<String> = (over.iter().take(5))
             .map(|(name, _)| format!("{name:?}"))
             .collect();
-        let more = match over.len() > 5 {
-            true => format!(" and {} more", over.len() - 5),
-            false => String::new(),
+        let more = if over.len() > 5 {
+            format!(" and {} more", over.len() - 5)
+        } else {
+            String::new()
         };
         // What stopped them nearer, when it is the same for all (a count is each
         // object's share of the level's).

@@ -269,3 +269,45 @@ fn a_checked_build_stops_when_told_and_is_the_same_when_not() {
     // Too few items to ask: built whole.
     assert!(Bvh::build_by_checked(CHECK_AT - 1, LEAF, &bbox, &stop).is_some());
 }
+
+/// A node's median selection over millions of items asks too (unless the build
+/// cannot unwind), the hierarchy the same as unchecked; told to stop inside the
+/// root's selection, the build stops there.
+#[test]
+#[cfg(panic = "unwind")]
+fn a_large_selection_asks_as_it_goes_and_builds_the_same() {
+    use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
+    let n = 3 << 20;
+    let bbox = |i: u32| {
+        let x = f64::from(i.wrapping_mul(2_654_435_761) % 100_003);
+        (
+            [x, f64::from(i % 7), 0.0],
+            [x + 1.0, f64::from(i % 7) + 1.0, 1.0],
+        )
+    };
+    let asked = AtomicUsize::new(0);
+    let go_on = |_: f64| {
+        asked.fetch_add(1, Relaxed);
+        true
+    };
+    let checked = Bvh::build_by_checked(n, LEAF, &bbox, &go_on).expect("not stopped");
+    assert_eq!(
+        format!("{checked:?}"),
+        format!("{:?}", Bvh::build_by(n, LEAF, &bbox))
+    );
+    // Asks before splits (nodes of CHECK_AT items or more) and between the
+    // centroids' blocks: fewer than were made.
+    fn splits(count: usize) -> usize {
+        match count >= CHECK_AT {
+            true => 1 + splits(count / 2) + splits(count - count / 2),
+            false => 0,
+        }
+    }
+    let blocks = n.div_ceil(CHECK_AT << 4) - 1;
+    assert!(asked.load(Relaxed) > splits(n) + blocks, "{asked:?}");
+    // Stopped at the first ask after the root's own: inside its selection.
+    let after = AtomicUsize::new(0);
+    let once = |_: f64| after.fetch_add(1, Relaxed) <= blocks;
+    assert!(Bvh::build_by_checked(n, LEAF, &bbox, &once).is_none());
+    assert_eq!(after.load(Relaxed), blocks + 2);
+}

@@ -270,6 +270,39 @@ mod tests {
         assert_eq!(distinct, 6);
     }
 
+    /// Welding more vertices and corners than a block asks between blocks of every
+    /// pass, more often for more vertices, with the same result as never asking;
+    /// told to stop, it stops.
+    #[test]
+    fn a_large_weld_asks_between_blocks() {
+        use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
+        // Vertex 2k + 1 repeats vertex 2k; triangles of consecutive vertices.
+        let mesh = |n: usize| {
+            let p: Vec<[f64; 3]> = (0..n)
+                .map(|i| [(i / 2) as f64, (i / 2 % 7) as f64, 0.5])
+                .collect();
+            let tris: Vec<Vec<u32>> = (0..n as u32 / 3)
+                .map(|t| vec![3 * t, 3 * t + 1, 3 * t + 2])
+                .collect();
+            Mesh::from_polygons(&p, &tris).unwrap()
+        };
+        let asks = |m: &Mesh| {
+            let asked = AtomicUsize::new(0);
+            let go_on = |_: f64| asked.fetch_add(1, Relaxed) < usize::MAX;
+            let (faces, distinct) = weld_checked(m, Dedup::Exact, &go_on).expect("not stopped");
+            assert_eq!((faces.into_owned(), distinct), weld(m, Dedup::Exact));
+            asked.into_inner()
+        };
+        let (small, large) = (mesh(3 * BLOCK / 4), mesh(3 * BLOCK));
+        let (a, b) = (asks(&small), asks(&large));
+        // Two passes over the vertices and two over the corners, each 2 blocks more.
+        assert!(b >= a + 8, "{a} asks, then {b}");
+        let asked = AtomicUsize::new(0);
+        let once = |_: f64| asked.fetch_add(1, Relaxed) < 1;
+        assert!(weld_checked(&large, Dedup::Exact, &once).is_none());
+        assert_eq!(asked.into_inner(), 2);
+    }
+
     #[test]
     fn negative_zero_equals_zero() {
         let p = [

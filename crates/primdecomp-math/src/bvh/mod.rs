@@ -109,7 +109,16 @@ impl Bvh {
             first: 0,
             count: 0,
         };
-        let mut nodes = vec![empty; sizes.nodes(count)];
+        // Written a block at a time, asking between (two nodes for every few items:
+        // at 56M items, a gigabyte and more).
+        let total = sizes.nodes(count);
+        let mut nodes = Vec::with_capacity(total);
+        for n0 in (0..total).step_by(CHECK_AT << 4) {
+            if n0 > 0 && !go_on(0.0) {
+                return None;
+            }
+            nodes.resize((n0 + (CHECK_AT << 4)).min(total), empty);
+        }
         let (root, below) = nodes.split_first_mut().expect("one node or more");
         // The splits move each item's centroid with its id, so that they read
         // memory in order; the boxes are read again for the leaves.

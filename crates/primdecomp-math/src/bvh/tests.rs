@@ -289,15 +289,17 @@ fn a_large_selection_asks_as_it_goes_and_builds_the_same() {
     let n = 3 << 20;
     let bbox = spread(100_003);
     let asked = asks_building(n, &bbox);
-    // Asks before splits (nodes of CHECK_AT items or more) and between the
-    // centroids' blocks: fewer than were made.
+    // Asks before splits (nodes of CHECK_AT items or more) and between blocks:
+    // fewer than were made.
     fn splits(count: usize) -> usize {
         match count >= CHECK_AT {
             true => 1 + splits(count / 2) + splits(count - count / 2),
             false => 0,
         }
     }
-    let blocks = n.div_ceil(CHECK_AT << 4) - 1;
+    // Asks between the blocks of nodes written and of centroids.
+    let nodes = Sizes::new(n, LEAF).nodes(n);
+    let blocks = nodes.div_ceil(CHECK_AT << 4) - 1 + n.div_ceil(CHECK_AT << 4) - 1;
     assert!(asked > splits(n) + blocks, "{asked}");
     // Stopped at the first ask after the root's own: inside its selection.
     let after = AtomicUsize::new(0);

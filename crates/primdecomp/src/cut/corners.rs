@@ -14,8 +14,8 @@ const BLOCK: usize = 1 << 16;
 
 /// The distinct vertices of `faces`' corners, increasing: sorted for a node of
 /// fewer than [`MARKED_FROM`] faces, else marked in a bitset over the mesh's
-/// vertices and read back in order (the same list), asking `go_on` every
-/// [`BLOCK`] faces or words; `None` when it said stop.
+/// vertices and read back in order (the same list), asking `go_on` first and
+/// every [`BLOCK`] faces or words; `None` when it said stop.
 pub(super) fn distinct_corners(
     mesh: &Mesh,
     faces: &[u32],
@@ -26,6 +26,9 @@ pub(super) fn distinct_corners(
             .flat_map(|&f| mesh.face(f as usize).iter().copied())
             .collect::<Vec<u32>>()
     };
+    if !go_on() {
+        return None;
+    }
     if faces.len() < MARKED_FROM {
         let mut v = corners(faces);
         v.sort_unstable();
@@ -97,5 +100,6 @@ mod tests {
         };
         assert_eq!(distinct_corners(&mesh, &faces, once), None);
         assert_eq!(asked.get(), 3);
+        assert_eq!(distinct_corners(&mesh, &faces[..9], || false), None);
     }
 }

@@ -19,9 +19,9 @@ pub fn weld(mesh: &Mesh, mode: Dedup) -> (Vec<u32>, usize) {
 /// [`weld`] that reports the fraction done to `go_on` and stops (`None`) when it
 /// says so: exact welding asks between blocks of fixed work (buckets, and
 /// [`BLOCK`] vertices or corners of each pass), so a cancel waits for one block,
-/// not a pass over the input (the tolerance weld asks only at its end). Where no vertex moves (no duplicates, or
-/// welding off) the welded indices are the mesh's own, borrowed: no copy of 12
-/// bytes a face.
+/// not a pass over the input (the tolerance weld's sort and union-find do not
+/// ask). Where no vertex moves (no duplicates, or welding off) the welded indices
+/// are the mesh's own, borrowed: no copy of 12 bytes a face.
 pub fn weld_checked<'m>(
     mesh: &'m Mesh,
     mode: Dedup,

@@ -11,6 +11,9 @@
 
 use crate::vec3::{add, cross, dot, norm2, scale, sub, V3};
 use rayon::prelude::*;
+use std::cmp::Ordering;
+#[cfg(panic = "unwind")]
+use std::panic::AssertUnwindSafe;
 use std::sync::atomic::{AtomicBool, Ordering::Relaxed};
 
 /// Items per leaf, at most, of [`Bvh::build`]'s hierarchies.
@@ -60,8 +63,9 @@ impl Bvh {
     }
 
     /// [`Bvh::build_by`] that asks `go_on` whether to go on before splitting each
-    /// node of [`CHECK_AT`] items or more (a few milliseconds of work apart) and
-    /// stops (`None`) when it says no: a large input's build answers a cancel.
+    /// node of [`CHECK_AT`] items or more (a few milliseconds of work apart), and
+    /// within such a node's median selection, and stops (`None`) when it says no: a
+    /// large input's build answers a cancel. The same hierarchy either way.
     pub fn build_by_checked(
         count: usize,
         leaf: usize,
@@ -105,7 +109,16 @@ impl Bvh {
             first: 0,
             count: 0,
         };
-        let mut nodes = vec![empty; sizes.nodes(count)];
+        // Written a block at a time, asking between (two nodes for every few items:
+        // at 56M items, a gigabyte and more).
+        let total = sizes.nodes(count);
+        let mut nodes = Vec::with_capacity(total);
+        for n0 in (0..total).step_by(CHECK_AT << 4) {
+            if n0 > 0 && !go_on(0.0) {
+                return None;
+            }
+            nodes.resize((n0 + (CHECK_AT << 4)).min(total), empty);
+        }
         let (root, below) = nodes.split_first_mut().expect("one node or more");
         // The splits move each item's centroid with its id, so that they read
         // memory in order; the boxes are read again for the leaves.
@@ -492,9 +505,12 @@ impl Build<'_> {
             .max_by(|&a, &b| (chi[a] - clo[a]).total_cmp(&(chi[b] - clo[b])))
             .unwrap_or(0);
         let mid = count / 2;
-        span.select_nth_unstable_by(mid, |a, b| {
-            a.c.at(axis).total_cmp(&b.c.at(axis)).then(a.id.cmp(&b.id))
-        });
+        let by_axis =
+            |a: &Item<C>, b: &Item<C>| a.c.at(axis).total_cmp(&b.c.at(axis)).then(a.id.cmp(&b.id));
+        if !self.select(span, mid, by_axis) {
+            self.stopped.store(true, Relaxed);
+            return;
+        }
         (node.first, node.count) = (at as u32, 0);
         let (kids, rest) = below.split_at_mut(2);
         let (left, right) = kids.split_at_mut(1);
@@ -513,6 +529,49 @@ impl Build<'_> {
         for k in 0..3 {
             (node.lo[k], node.hi[k]) = (l.lo[k].min(r.lo[k]), l.hi[k].max(r.hi[k]));
         }
+    }
+}
+
+/// Comparisons of a node's median selection between two asks of `go_on` (tens of
+/// milliseconds of work).
+#[cfg(panic = "unwind")]
+const COMPARES_PER_CHECK: u64 = 1 << 22;
+
+/// A stop asked for inside a selection's comparison, unwound to [`Build::select`].
+#[cfg(panic = "unwind")]
+struct Stopped;
+
+impl Build<'_> {
+    /// `span.select_nth_unstable_by(mid, cmp)`: the same call, so the same order of
+    /// the items (which decides the order inside the leaves). A node of [`CHECK_AT`]
+    /// items or more asks `go_on` every [`COMPARES_PER_CHECK`] comparisons (the
+    /// root's selection over every item is otherwise seconds long at 56M items);
+    /// where it says stop the selection is left by unwinding (`resume_unwind`: no
+    /// panic hook runs, nothing is printed), `span` stays a permutation of its
+    /// items and the result is false. A build without unwinding (`panic = "abort"`)
+    /// asks only before each split.
+    fn select<T>(&self, span: &mut [T], mid: usize, cmp: impl Fn(&T, &T) -> Ordering) -> bool {
+        #[cfg(panic = "unwind")]
+        if span.len() >= CHECK_AT {
+            let mut compares = 0u64;
+            let checked = |a: &T, b: &T| {
+                compares += 1;
+                if compares % COMPARES_PER_CHECK == 0 && !(self.go_on)(0.0) {
+                    std::panic::resume_unwind(Box::new(Stopped));
+                }
+                cmp(a, b)
+            };
+            let run = AssertUnwindSafe(|| {
+                span.select_nth_unstable_by(mid, checked);
+            });
+            return match std::panic::catch_unwind(run) {
+                Ok(()) => true,
+                Err(stop) if stop.is::<Stopped>() => false,
+                Err(other) => std::panic::resume_unwind(other),
+            };
+        }
+        span.select_nth_unstable_by(mid, cmp);
+        true
     }
 }
 

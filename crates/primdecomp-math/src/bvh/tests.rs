@@ -238,34 +238,72 @@ fn first_ray_hits_match_brute_force() {
     assert_eq!(away, (10.0, u32::MAX));
 }
 
-/// A build told to stop returns nothing, after asking a few times (once per node of
-/// `CHECK_AT` items or more, not per item); one told to go on is the unchecked build.
-#[test]
-fn a_checked_build_stops_when_told_and_is_the_same_when_not() {
+/// Boxes of unit size along x at `i · 2654435761 mod m`, in 7 rows along y.
+fn spread(m: u32) -> impl Fn(u32) -> (V3, V3) + Sync {
+    move |i: u32| {
+        let x = f64::from(i.wrapping_mul(2_654_435_761) % m);
+        let y = f64::from(i % 7);
+        ([x, y, 0.0], [x + 1.0, y + 1.0, 1.0])
+    }
+}
+
+/// How many times a checked build of `n` items asks to go on, asserting it builds
+/// what the unchecked build does.
+fn asks_building(n: usize, bbox: &(dyn Fn(u32) -> (V3, V3) + Sync)) -> usize {
     use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
-    let n = 4 * CHECK_AT + 3;
-    let bbox = |i: u32| {
-        let x = f64::from(i.wrapping_mul(2_654_435_761) % 1000);
-        (
-            [x, f64::from(i % 7), 0.0],
-            [x + 1.0, f64::from(i % 7) + 1.0, 1.0],
-        )
-    };
     let asked = AtomicUsize::new(0);
     let go_on = |_: f64| {
         asked.fetch_add(1, Relaxed);
         true
     };
-    let checked = Bvh::build_by_checked(n, LEAF, &bbox, &go_on).expect("not stopped");
+    let checked = Bvh::build_by_checked(n, LEAF, bbox, &go_on).expect("not stopped");
     assert_eq!(
         format!("{checked:?}"),
-        format!("{:?}", Bvh::build_by(n, LEAF, &bbox))
+        format!("{:?}", Bvh::build_by(n, LEAF, bbox))
     );
+    asked.into_inner()
+}
+
+/// A build told to stop returns nothing, after asking a few times (once per node of
+/// `CHECK_AT` items or more, not per item); one told to go on is the unchecked build.
+#[test]
+fn a_checked_build_stops_when_told_and_is_the_same_when_not() {
+    let n = 4 * CHECK_AT + 3;
+    let bbox = spread(1000);
     // The nodes of 4, 2 and 1 × CHECK_AT items or more: 1 + 2 + 4.
-    assert_eq!(asked.load(Relaxed), 7);
+    assert_eq!(asks_building(n, &bbox), 7);
     let stop = |_: f64| false;
     assert!(Bvh::build_by_checked(n, LEAF, &bbox, &stop).is_none());
     assert!(Bvh::build_coarse(n, 16, &bbox, &stop).is_none());
     // Too few items to ask: built whole.
     assert!(Bvh::build_by_checked(CHECK_AT - 1, LEAF, &bbox, &stop).is_some());
+}
+
+/// A node's median selection over millions of items asks too (unless the build
+/// cannot unwind), the hierarchy the same as unchecked; told to stop inside the
+/// root's selection, the build stops there.
+#[test]
+#[cfg(panic = "unwind")]
+fn a_large_selection_asks_as_it_goes_and_builds_the_same() {
+    use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
+    let n = 3 << 20;
+    let bbox = spread(100_003);
+    let asked = asks_building(n, &bbox);
+    // Asks before splits (nodes of CHECK_AT items or more) and between blocks:
+    // fewer than were made.
+    fn splits(count: usize) -> usize {
+        match count >= CHECK_AT {
+            true => 1 + splits(count / 2) + splits(count - count / 2),
+            false => 0,
+        }
+    }
+    // Asks between the blocks of nodes written and of centroids.
+    let nodes = Sizes::new(n, LEAF).nodes(n);
+    let blocks = nodes.div_ceil(CHECK_AT << 4) - 1 + n.div_ceil(CHECK_AT << 4) - 1;
+    assert!(asked > splits(n) + blocks, "{asked}");
+    // Stopped at the first ask after the root's own: inside its selection.
+    let after = AtomicUsize::new(0);
+    let once = |_: f64| after.fetch_add(1, Relaxed) <= blocks;
+    assert!(Bvh::build_by_checked(n, LEAF, &bbox, &once).is_none());
+    assert_eq!(after.load(Relaxed), blocks + 2);
 }

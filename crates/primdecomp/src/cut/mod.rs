@@ -16,6 +16,7 @@ mod carried_parts;
 mod cell_shadow;
 mod chamfer;
 mod choose;
+mod corners;
 pub(crate) mod error;
 mod error_memo;
 mod hulls;
@@ -304,8 +305,13 @@ impl<'a> Cutter<'a> {
         let nodes = self.covered(ex, e.node);
         let own = self.members(ex, e.node).len();
         let (own, carried) = nodes.split_at(own);
-        let within = |nodes: &[u32]| nodes.iter().all(|&c| self.tree.faces(c).iter().all(inside));
-        if !self.goes_on() || (e.closest || within(own)) && within(carried) {
+        // Asking every `FACES_PER_CHECK` faces (a node may hold millions); false
+        // once told to stop, which returns the fit (no stopped cut is kept).
+        let within = |nodes: &[u32]| {
+            let mut faces = nodes.iter().flat_map(|&c| self.tree.faces(c)).enumerate();
+            faces.all(|(i, f)| (i % FACES_PER_CHECK != 0 || self.goes_on()) && inside(f))
+        };
+        if !self.goes_on() || (e.closest || within(own)) && within(carried) || self.stopped() {
             return e.prim;
         }
         let q = self.q_of(ex, e.node);
@@ -654,20 +660,19 @@ impl<'a> Cutter<'a> {
         let worst = cut.iter().map(|e| e.error).fold(0.0, f64::max);
         cut.sort_unstable_by_key(|e| self.start(ex, e.node));
         let mesh = self.ev.input.mesh;
+        // Asking before each node and within a large one's corners: once told to
+        // stop, nothing is gathered (no caller reads a stopped cutter's snapshot).
         let members: Vec<Vec<u32>> = cut
             .iter()
-            .map(|e| self.faces_of(ex, e.node).collect())
+            .map(|e| match self.goes_on() {
+                true => self.faces_of(ex, e.node).collect(),
+                false => Vec::new(),
+            })
             .collect();
         let verts = members
             .par_iter()
-            .map(|faces| {
-                let mut v: Vec<u32> = (faces.iter())
-                    .flat_map(|&f| mesh.face(f as usize).iter().copied())
-                    .collect();
-                v.sort_unstable();
-                v.dedup();
-                v
-            })
+            .map(|faces| corners::distinct_corners(mesh, faces, || self.goes_on()))
+            .map(Option::unwrap_or_default)
             .collect();
         let snapshot = Snapshot {
             target: r.count,
@@ -696,6 +701,9 @@ const STAND_IN: Primitive = Primitive::Sphere(crate::primitive::sphere::Sphere {
     center: [0.0; 3],
     radius: 0.0,
 });
+
+/// Faces tested for containment between two asks of `go_on` (milliseconds).
+const FACES_PER_CHECK: usize = 1 << 16;
 
 /// The largest count the requests ask for.
 fn largest(requests: &[Request]) -> usize {

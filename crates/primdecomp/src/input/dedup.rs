@@ -16,10 +16,12 @@ pub fn weld(mesh: &Mesh, mode: Dedup) -> (Vec<u32>, usize) {
     weld_checked(mesh, mode, &|_| true).map_or_else(Default::default, |(f, d)| (f.into_owned(), d))
 }
 
-/// [`weld`] that reports the fraction done to `go_on` (exact welding, by blocks)
-/// and stops (`None`) when it says so. Where no vertex moves (no duplicates, or
-/// welding off) the welded indices are the mesh's own, borrowed: no copy of 12
-/// bytes a face.
+/// [`weld`] that reports the fraction done to `go_on` and stops (`None`) when it
+/// says so: exact welding asks between blocks of fixed work (buckets, and
+/// [`BLOCK`] vertices or corners of each pass), so a cancel waits for one block,
+/// not a pass over the input (the tolerance weld's sort and union-find do not
+/// ask). Where no vertex moves (no duplicates, or welding off) the welded indices
+/// are the mesh's own, borrowed: no copy of 12 bytes a face.
 pub fn weld_checked<'m>(
     mesh: &'m Mesh,
     mode: Dedup,
@@ -33,19 +35,52 @@ pub fn weld_checked<'m>(
     };
     let moved = (remap.par_iter().enumerate()).any(|(v, &r)| r as usize != v);
     let faces: Cow<'m, [u32]> = match moved {
-        true => Cow::Owned(
-            mesh.face_indices
-                .par_iter()
-                .with_min_len(1 << 14)
-                .map(|&v| remap[v as usize])
-                .collect(),
-        ),
+        true => Cow::Owned(remapped(&mesh.face_indices, &remap, go_on)?),
         false => Cow::Borrowed(&mesh.face_indices),
     };
     let mut used = vec![false; mesh.vertex_count()];
-    faces.iter().for_each(|&v| used[v as usize] = true);
+    for (b, block) in faces.chunks(BLOCK).enumerate() {
+        if b > 0 && !go_on(0.95) {
+            return None;
+        }
+        block.iter().for_each(|&v| used[v as usize] = true);
+    }
     let distinct = used.iter().filter(|&&u| u).count();
     Some((faces, distinct))
+}
+
+/// Items a pass over every vertex or corner handles between two checks of `go_on`
+/// (milliseconds of work, whatever the input's size).
+const BLOCK: usize = 1 << 20;
+
+/// Every corner in `corners` mapped through `remap`, in parallel within blocks of
+/// [`BLOCK`] and asking `go_on` between them; `None` when it said stop.
+fn remapped(corners: &[u32], remap: &[u32], go_on: Checkpoint) -> Option<Vec<u32>> {
+    let mut out = Vec::with_capacity(corners.len());
+    for (b, block) in corners.chunks(BLOCK).enumerate() {
+        if b > 0 && !go_on(0.9) {
+            return None;
+        }
+        let mapped = block.par_iter().with_min_len(1 << 14);
+        out.par_extend(mapped.map(|&v| remap[v as usize]));
+    }
+    Some(out)
+}
+
+/// Runs `f` on every index below `n`, in parallel within blocks of [`BLOCK`], asking
+/// `go_on` (reporting `fraction`) between them; false when it said stop.
+fn each_in_blocks(n: usize, fraction: f64, go_on: Checkpoint, f: impl Fn(u32) + Sync) -> bool {
+    for from in (0..n).step_by(BLOCK) {
+        if from > 0 && !go_on(fraction) {
+            return false;
+        }
+        let to = (from + BLOCK).min(n);
+        (from as u32..to as u32)
+            .into_par_iter()
+            .with_min_len(1 << 14)
+            .for_each(&f);
+    }
+    true
 }
 
 /// Bit pattern of a coordinate with −0 folded onto +0.
@@ -78,12 +113,12 @@ fn exact_remap(mesh: &Mesh, go_on: Checkpoint) -> Option<Vec<u32>> {
         (h.wrapping_mul(0x9E37_79B9_7F4A_7C15) >> 32) as usize & (buckets - 1)
     };
     let count: Vec<AtomicU32> = (0..buckets + 1).map(|_| AtomicU32::new(0)).collect();
-    (0..n as u32)
-        .into_par_iter()
-        .with_min_len(1 << 14)
-        .for_each(|i| {
-            count[bucket(i) + 1].fetch_add(1, Relaxed);
-        });
+    let counted = each_in_blocks(n, 0.0, go_on, |i| {
+        count[bucket(i) + 1].fetch_add(1, Relaxed);
+    });
+    if !counted {
+        return None;
+    }
     let mut start: Vec<u32> = count.into_iter().map(AtomicU32::into_inner).collect();
     for b in 0..buckets {
         start[b + 1] += start[b];
@@ -93,13 +128,13 @@ fn exact_remap(mesh: &Mesh, go_on: Checkpoint) -> Option<Vec<u32>> {
         .map(|&s| AtomicU32::new(s))
         .collect();
     let order: Vec<AtomicU32> = (0..n).map(|_| AtomicU32::new(0)).collect();
-    (0..n as u32)
-        .into_par_iter()
-        .with_min_len(1 << 14)
-        .for_each(|i| {
-            let at = next[bucket(i)].fetch_add(1, Relaxed);
-            order[at as usize].store(i, Relaxed);
-        });
+    let placed = each_in_blocks(n, 0.2, go_on, |i| {
+        let at = next[bucket(i)].fetch_add(1, Relaxed);
+        order[at as usize].store(i, Relaxed);
+    });
+    if !placed {
+        return None;
+    }
     drop(next);
     let mut order: Vec<u32> = order.into_iter().map(AtomicU32::into_inner).collect();
     if !go_on(0.4) {
@@ -233,6 +268,39 @@ mod tests {
         let (f, distinct) = weld(&m, Dedup::Off);
         assert_eq!(f, m.face_indices);
         assert_eq!(distinct, 6);
+    }
+
+    /// Welding more vertices and corners than a block asks between blocks of every
+    /// pass, more often for more vertices, with the same result as never asking;
+    /// told to stop, it stops.
+    #[test]
+    fn a_large_weld_asks_between_blocks() {
+        use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
+        // Vertex 2k + 1 repeats vertex 2k; triangles of consecutive vertices.
+        let mesh = |n: usize| {
+            let p: Vec<[f64; 3]> = (0..n)
+                .map(|i| [(i / 2) as f64, (i / 2 % 7) as f64, 0.5])
+                .collect();
+            let tris: Vec<Vec<u32>> = (0..n as u32 / 3)
+                .map(|t| vec![3 * t, 3 * t + 1, 3 * t + 2])
+                .collect();
+            Mesh::from_polygons(&p, &tris).unwrap()
+        };
+        let asks = |m: &Mesh| {
+            let asked = AtomicUsize::new(0);
+            let go_on = |_: f64| asked.fetch_add(1, Relaxed) < usize::MAX;
+            let (faces, distinct) = weld_checked(m, Dedup::Exact, &go_on).expect("not stopped");
+            assert_eq!((faces.into_owned(), distinct), weld(m, Dedup::Exact));
+            asked.into_inner()
+        };
+        let (small, large) = (mesh(3 * BLOCK / 4), mesh(3 * BLOCK));
+        let (a, b) = (asks(&small), asks(&large));
+        // Two passes over the vertices and two over the corners, each 2 blocks more.
+        assert!(b >= a + 8, "{a} asks, then {b}");
+        let asked = AtomicUsize::new(0);
+        let once = |_: f64| asked.fetch_add(1, Relaxed) < 1;
+        assert!(weld_checked(&large, Dedup::Exact, &once).is_none());
+        assert_eq!(asked.into_inner(), 2);
     }
 
     #[test]

@@ -62,7 +62,14 @@ impl<'m> Triangles<'m> {
         // triangle), the hierarchy `Bvh::build` makes.
         let bbox = |i: u32| tri_box(&fan(i).map(|v| mesh.pos(v)));
         let bvh = Bvh::build_by_checked(count, crate::math::bvh::LEAF, &bbox, go_on)?;
-        let tris = bvh.order().iter().map(|&i| fan(i)).collect();
+        // In blocks, asking between them (a pass over every triangle).
+        let mut tris = Vec::with_capacity(count);
+        for (b, block) in bvh.order().chunks(1 << 20).enumerate() {
+            if b > 0 && !go_on(0.0) {
+                return None;
+            }
+            tris.extend(block.iter().map(|&i| fan(i)));
+        }
         Some(Triangles {
             bvh,
             tris,

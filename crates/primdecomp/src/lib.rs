@@ -92,12 +92,9 @@ pub use input::mesh::Mesh;
 pub use input::up::Up;
 pub use output::result::{Decomposition, InputInfo, Level, Shortfall, Stats};
 pub use output::{Frame, ResultFile, ResultObject, Tess};
-pub use params::{
-    ByteSize, CountSearch, Dedup, Fit, Goal, Params, Partitions, Plates, Reprice, Speed, Target,
-    Tolerance,
-};
+pub use params::{Dedup, Fit, Goal, Params, Partitions, Plates, Reprice, Speed, Target, Tolerance};
 pub use primitive::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
-pub use progress::{Eta, Progress, Stage};
+pub use progress::{Progress, Stage};
 
 /// The stages one by one, for the project's own tests and benchmarks (feature
 /// `test-internals`, which the workspace's test helpers turn on). Not part of the

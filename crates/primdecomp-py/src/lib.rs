@@ -433,6 +433,19 @@ impl NativeResult {
     }
 }
 
+/// The weights `text` spells (`kind=w,…`, none for empty) over the defaults, as the
+/// settings' JSON writes them: `{"box": 1.0, …}`.
+fn weights(text: &str) -> Result<String, Error> {
+    let mut fit = primdecomp::Fit::default();
+    if !text.is_empty() {
+        fit.set_weights(text)?;
+    }
+    let by_kind: serde_json::Map<String, serde_json::Value> = (primdecomp::Kind::ALL.iter())
+        .map(|&k| (k.name().to_string(), fit.weights[k as usize].into()))
+        .collect();
+    Ok(serde_json::Value::Object(by_kind).to_string())
+}
+
 /// The native module; the public API is in python/primdecomp/__init__.py.
 /// A setting's value as a user spells it ("1%", "4K", "exact", "auto", "box"), read
 /// by the library's own `FromStr` (as the CLI reads its flags), given back as the JSON
@@ -451,6 +464,8 @@ fn spelled(key: &str, text: &str) -> PyResult<String> {
         "reprice" => json::<primdecomp::Reprice>(text),
         "partitions" => json::<primdecomp::Partitions>(text),
         "kind" => text.parse::<primdecomp::Kind>().map(|k| format!("\"{k}\"")),
+        // A dict's `kind=w` pairs over the defaults: every kind's weight by name.
+        "weights" => weights(text),
         "max_bytes" => match primdecomp::Goal::parse_bytes(text) {
             Ok(b) if b > 0 && b <= usize::MAX as u64 => Ok(b.to_string()),
             _ => Err(Error::InvalidParams(format!(

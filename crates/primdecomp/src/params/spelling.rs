@@ -5,7 +5,7 @@
 //! when a word is wrong. A parse error is [`Error::InvalidParams`] with what was
 //! expected and what was given; the caller names the flag or keyword.
 
-use super::{Dedup, Goal, Partitions, Reprice, Target, Tolerance};
+use super::{Dedup, Fit, Goal, Partitions, Reprice, Target, Tolerance};
 use crate::error::Error;
 use crate::primitive::Kind;
 use std::fmt::{self, Display, Formatter};
@@ -253,6 +253,58 @@ impl Display for Dedup {
 /// assert_eq!(Kind::Frustum.to_string(), "frustum");
 /// # Ok::<(), primdecomp::Error>(())
 /// ```
+impl Fit {
+    /// Sets the weights of the kinds `spelled` names, as a user writes them:
+    /// `kind=w` pairs separated by commas (`frustum=3,box=1.2`); the kinds it does not
+    /// name keep theirs. A word that is not `kind=w`, a kind that does not exist or a
+    /// weight that is not a number is refused with what was expected and what was
+    /// given, and nothing is changed; [`crate::Params::validate`] refuses weights that
+    /// are not positive.
+    ///
+    /// ```
+    /// use primdecomp::{Fit, Kind};
+    ///
+    /// let mut fit = Fit::default();
+    /// fit.set_weights("frustum=3, box=1.5")?;
+    /// assert_eq!(fit.weights[Kind::Frustum as usize], 3.0);
+    /// assert_eq!(fit.weights[Kind::Box as usize], 1.5);
+    /// assert!(fit.set_weights("cone=2").is_err());
+    /// assert!(fit.set_weights("box").is_err());
+    /// # Ok::<(), primdecomp::Error>(())
+    /// ```
+    pub fn set_weights(&mut self, spelled: &str) -> Result<(), Error> {
+        let mut weights = self.weights;
+        for pair in spelled.split(',') {
+            let (k, v) = pair
+                .split_once('=')
+                .ok_or_else(|| invalid(format!("expected kind=value, got '{pair}'")))?;
+            let kind: Kind = k.parse()?;
+            weights[kind as usize] =
+                (v.trim().parse()).map_err(|_| invalid(format!("'{v}' is not a number")))?;
+        }
+        self.weights = weights;
+        Ok(())
+    }
+
+    /// Every kind's weight as [`Fit::set_weights`] reads it back, in [`Kind::ALL`]'s
+    /// order.
+    ///
+    /// ```
+    /// use primdecomp::Fit;
+    ///
+    /// let spelled = Fit::default().weights_spelled();
+    /// assert_eq!(spelled, "box=1,sphere=1,capsule=1,cylinder=1.05,frustum=2.1,prism=1.4");
+    /// let mut fit = Fit { weights: [2.0; 6], ..Fit::default() };
+    /// fit.set_weights(&spelled)?;
+    /// assert_eq!(fit, Fit::default());
+    /// # Ok::<(), primdecomp::Error>(())
+    /// ```
+    pub fn weights_spelled(&self) -> String {
+        let pairs = Kind::ALL.map(|k| format!("{k}={}", brief(self.weights[k as usize])));
+        pairs.join(",")
+    }
+}
+
 impl FromStr for Kind {
     type Err = Error;
 

@@ -153,14 +153,7 @@ fn set_parsed(p: &mut Params, a: &DecomposeArgs) -> anyhow::Result<()> {
         p.speed.partitions = spelled("--partitions", k)?;
     }
     for w in &a.weights {
-        let (k, v) = w
-            .split_once('=')
-            .ok_or_else(|| BadArgs(format!("--weights: expected kind=value, got '{w}'")))?;
-        let kind: Kind = spelled("", k)?;
-        p.fit.weights[kind as usize] = v
-            .trim()
-            .parse()
-            .map_err(|_| BadArgs(format!("--weights: '{v}' is not a number")))?;
+        p.fit.set_weights(w).map_err(|e| flagged("--weights", e))?;
     }
     if !a.kinds.is_empty() {
         p.fit.kinds = [false; 6];
@@ -183,16 +176,20 @@ pub(crate) fn spelled<T: FromStr<Err = primdecomp::Error>>(
     flag: &str,
     s: &str,
 ) -> anyhow::Result<T> {
-    s.parse().map_err(|e| {
-        let words = match e {
-            primdecomp::Error::InvalidParams(m) => m,
-            e => e.to_string(),
-        };
-        match flag {
-            "" => BadArgs(words).into(),
-            flag => BadArgs(format!("{flag}: {words}")).into(),
-        }
-    })
+    s.parse().map_err(|e| flagged(flag, e))
+}
+
+/// The library's words for a wrong value after the flag's name (`flag` empty: the
+/// words alone).
+fn flagged(flag: &str, e: primdecomp::Error) -> anyhow::Error {
+    let words = match e {
+        primdecomp::Error::InvalidParams(m) => m,
+        e => e.to_string(),
+    };
+    match flag {
+        "" => BadArgs(words).into(),
+        flag => BadArgs(format!("{flag}: {words}")).into(),
+    }
 }
 
 /// `--max-bytes`: a positive byte count, optionally with K, M or G.

@@ -18,7 +18,8 @@ pub(crate) const MAX_EXTENT: f64 = 1e60;
 /// exceed 1e154 at the top of the f64 range, and squaring them overflows.
 pub(crate) const MAX_POSITION: f64 = 1e70;
 
-/// What a reader skipped, so that a caller can say it ([`Mesh::skipped`]).
+/// What a reader skipped, so that a caller can say it ([`Mesh::skipped_faces`],
+/// [`Mesh::skipped_other`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub(crate) struct SkipCounts {
     /// `l` elements, 2-vertex "faces" and other faces with fewer than 3 distinct indices.
@@ -213,7 +214,7 @@ impl Mesh {
     /// A mesh of polygons (triangles, quads, n-gons; each a list of indices into
     /// `positions`, world coordinates). Polygons are kept whole: the engine treats a
     /// planar quad as one face. Polygons of fewer than 3 corners are skipped and
-    /// counted ([`Mesh::skipped`]), as the file readers do.
+    /// counted ([`Mesh::skipped_faces`]), as the file readers do.
     ///
     /// # Errors
     /// [`crate::Error::Format`] naming the first non-finite coordinate or index out of

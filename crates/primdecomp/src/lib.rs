@@ -127,21 +127,21 @@ pub mod internals {
     pub use crate::seed::quadric::face_quadrics;
 
     /// Each face's seed volume.
-    pub fn seed_volumes(ev: &Fitter, q: &[Sym3]) -> Vec<f64> {
-        crate::merge::setup::seed_volumes(ev, q, &|_| true)
+    pub fn seed_volumes(fitter: &Fitter, q: &[Sym3]) -> Vec<f64> {
+        crate::merge::setup::seed_volumes(fitter, q, &|_| true)
     }
 
     /// The merge loop through `targets` (decreasing).
-    pub fn run(ev: &Fitter, cl: Clusters, targets: &[usize]) -> MergeOutput {
-        crate::merge::driver::run(ev, cl, targets, &|_| true)
+    pub fn run(fitter: &Fitter, cl: Clusters, targets: &[usize]) -> MergeOutput {
+        crate::merge::driver::run(fitter, cl, targets, &|_| true)
     }
 
     /// The merge loop on another queue.
     pub fn run_with<Q: crate::merge::heap::Queue>(
-        ev: &Fitter,
+        fitter: &Fitter,
         cl: Clusters,
         targets: &[usize],
     ) -> MergeOutput {
-        crate::merge::driver::run_with::<Q>(ev, cl, targets, &|_| true)
+        crate::merge::driver::run_with::<Q>(fitter, cl, targets, &|_| true)
     }
 }

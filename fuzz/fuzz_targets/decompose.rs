@@ -14,7 +14,7 @@
 mod contain;
 
 use arbitrary::{Result, Unstructured};
-use primdecomp::{CountSearch, Dedup, Error, Goal, Mesh, Params, Partitions, Reprice, Tolerance, decompose};
+use primdecomp::{Dedup, Error, Goal, Mesh, Params, Partitions, Reprice, Tolerance, decompose};
 
 /// A number that is usually one of `typical` and sometimes any f64 at all.
 fn pick(u: &mut Unstructured, typical: &[f64]) -> Result<f64> {
@@ -136,10 +136,7 @@ fn params(u: &mut Unstructured) -> Result<Params> {
             max_bytes,
         },
         (false, true) if targets.is_empty() => Goal::default(),
-        (false, true) if cut => Goal::Counts {
-            counts: targets,
-            search: CountSearch::Cut,
-        },
+        (false, true) if cut => Goal::Cut { counts: targets },
         (false, true) => Goal::counts(targets),
     };
     Ok(p)

@@ -3,7 +3,7 @@
 //! raising or lowering it does), without the paper's notation.
 
 use clap::Args;
-use primdecomp::{Goal, LoadOptions, Tolerance};
+use primdecomp::{Fit, Goal, LoadOptions, Tolerance};
 use std::path::PathBuf;
 
 // The cap of a run without -n, named for the help texts.
@@ -185,11 +185,14 @@ pub(crate) struct DecomposeArgs {
     )]
     pub kinds: Vec<String>,
     /// Cost factor per kind: a heavier kind is chosen less often.
-    ///
-    /// Defaults box=1,sphere=1,capsule=1,cylinder=1.05,frustum=2.1,prism=1.4, which
-    /// prefer the kinds engines test fastest. Give only the kinds you change.
     #[arg(
         long,
+        long_help = format!(
+            "Cost factor per kind: a heavier kind is chosen less often.\n\n\
+             Defaults {}, which prefer the kinds engines test fastest. Give only the kinds \
+             you change.",
+            Fit::default().weights_spelled()
+        ),
         value_delimiter = ',',
         value_name = "KIND=W,…",
         hide_short_help = true,

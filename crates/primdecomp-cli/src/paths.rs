@@ -74,15 +74,11 @@ pub fn memory_limit(s: &str) -> anyhow::Result<Option<u64>> {
     Ok(match s.trim() {
         "none" => None,
         "available" => available_memory(),
-        s => Some(
-            s.parse::<primdecomp::ByteSize>()
-                .map(|b| b.0)
-                .map_err(|_| {
-                    BadArgs(format!(
-                        "--max-memory: expected a size like 8G, 'available' or 'none', got '{s}'"
-                    ))
-                })?,
-        ),
+        s => Some(primdecomp::Goal::parse_bytes(s).map_err(|_| {
+            BadArgs(format!(
+                "--max-memory: expected a size like 8G, 'available' or 'none', got '{s}'"
+            ))
+        })?),
     })
 }
 

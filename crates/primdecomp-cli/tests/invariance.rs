@@ -1,7 +1,7 @@
 //! Same shape, same answer: the result must not depend on the thread count, the
 //! input's units or its position (georeferenced scans sit at 10^6 offsets).
 
-use primdecomp::{decompose, CountSearch, Decomposition, Goal, Kind, Mesh, Params, Primitive};
+use primdecomp::{decompose, Decomposition, Goal, Kind, Mesh, Params, Primitive};
 use primdecomp_testkit::shapes::{cuboid, cylinder, demo_polys, join, obj_text};
 
 fn demo_mesh(scale: f64, offset: [f64; 3]) -> Mesh {
@@ -17,9 +17,8 @@ fn demo_mesh(scale: f64, offset: [f64; 3]) -> Mesh {
 /// hold for (at scale 1e-6 and offset 1e6 a cut of the demo chose other nodes).
 fn params() -> Params {
     Params {
-        goal: Goal::Counts {
+        goal: Goal::Greedy {
             counts: vec![120, 40],
-            search: CountSearch::Greedy,
         },
         ..Default::default()
     }

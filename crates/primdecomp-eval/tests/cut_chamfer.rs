@@ -5,7 +5,7 @@
 //! count the least worst error leaves now goes to the latest merges, within 1.25
 //! times that error.
 
-use primdecomp::{decompose, CountSearch, Goal, Mesh, Params};
+use primdecomp::{decompose, Goal, Mesh, Params};
 use primdecomp_eval::collider::Collider;
 use primdecomp_eval::{evaluate, Input, Metrics};
 
@@ -14,12 +14,13 @@ use primdecomp_eval::{evaluate, Input, Metrics};
 /// count).
 fn measured(m: &Mesh, counts: &[usize], cut: bool) -> Metrics {
     let p = Params {
-        goal: Goal::Counts {
-            counts: counts.to_vec(),
-            // Without a cut, the greedy pass's level to compare with (docs/decisions/0054).
-            search: match cut {
-                true => CountSearch::Cut,
-                false => CountSearch::Greedy,
+        // Without a cut, the greedy pass's level to compare with (docs/decisions/0054).
+        goal: match cut {
+            true => Goal::Cut {
+                counts: counts.to_vec(),
+            },
+            false => Goal::Greedy {
+                counts: counts.to_vec(),
             },
         },
         ..Params::default()

@@ -172,7 +172,7 @@ pub(crate) fn watched<T: Send>(
     };
     let mut raised: Option<PyErr> = None;
     let mut reported: Option<(Stage, f64)> = None;
-    let eta = primdecomp::Eta::new(params);
+    let start = std::time::Instant::now();
     let out = std::thread::scope(|s| {
         let worker = s.spawn(|| catch_unwind(AssertUnwindSafe(|| work(&shared))));
         while !worker.is_finished() {
@@ -187,7 +187,8 @@ pub(crate) fn watched<T: Send>(
                     if reported != now {
                         // The Python side passes a callback of three arguments (it
                         // wraps one of two): stage, its fraction, seconds left.
-                        let left = eta.seconds_left(stage, f);
+                        let spent = start.elapsed().as_secs_f64();
+                        let left = stage.seconds_left(f, params, spent);
                         cb.call1(py, (stage.name(), f, left))?;
                     }
                 }
@@ -432,6 +433,19 @@ impl NativeResult {
     }
 }
 
+/// The weights `text` spells (`kind=w,…`, none for empty) over the defaults, as the
+/// settings' JSON writes them: `{"box": 1.0, …}`.
+fn weights(text: &str) -> Result<String, Error> {
+    let mut fit = primdecomp::Fit::default();
+    if !text.is_empty() {
+        fit.set_weights(text)?;
+    }
+    let by_kind: serde_json::Map<String, serde_json::Value> = (primdecomp::Kind::ALL.iter())
+        .map(|&k| (k.name().to_string(), fit.weights[k as usize].into()))
+        .collect();
+    Ok(serde_json::Value::Object(by_kind).to_string())
+}
+
 /// The native module; the public API is in python/primdecomp/__init__.py.
 /// A setting's value as a user spells it ("1%", "4K", "exact", "auto", "box"), read
 /// by the library's own `FromStr` (as the CLI reads its flags), given back as the JSON
@@ -450,8 +464,10 @@ fn spelled(key: &str, text: &str) -> PyResult<String> {
         "reprice" => json::<primdecomp::Reprice>(text),
         "partitions" => json::<primdecomp::Partitions>(text),
         "kind" => text.parse::<primdecomp::Kind>().map(|k| format!("\"{k}\"")),
-        "max_bytes" => match text.parse::<primdecomp::ByteSize>() {
-            Ok(primdecomp::ByteSize(b)) if b > 0 && b <= usize::MAX as u64 => Ok(b.to_string()),
+        // A dict's `kind=w` pairs over the defaults: every kind's weight by name.
+        "weights" => weights(text),
+        "max_bytes" => match primdecomp::Goal::parse_bytes(text) {
+            Ok(b) if b > 0 && b <= usize::MAX as u64 => Ok(b.to_string()),
             _ => Err(Error::InvalidParams(format!(
                 "expected a positive byte count such as 4096 or 4K, got '{text}'"
             ))),

@@ -83,14 +83,14 @@ fn stages(c: &mut Criterion) {
         g.bench_function("quadrics", |b| {
             b.iter(|| face_quadrics(m, p.fit.tangent_eps, &mut q_bench))
         });
-        let ev = fitter(m, &welded, &p, m.aabb());
-        g.bench_function("seed", |b| b.iter(|| seed_volumes(&ev, &q)));
-        let vols = seed_volumes(&ev, &q);
+        let fitter = fitter(m, &welded, &p, m.aabb());
+        g.bench_function("seed", |b| b.iter(|| seed_volumes(&fitter, &q)));
+        let vols = seed_volumes(&fitter, &q);
         let fresh = || Clusters::new(q.clone(), vols.clone(), &pairs);
         g.bench_function("merge", |b| {
             b.iter_batched(
                 fresh,
-                |cl| run(&ev, cl, &p.goal.targets()),
+                |cl| run(&fitter, cl, &p.goal.targets()),
                 BatchSize::LargeInput,
             )
         });
@@ -98,11 +98,11 @@ fn stages(c: &mut Criterion) {
         g.bench_function("merge_binary_heap", |b| {
             b.iter_batched(
                 fresh,
-                |cl| run_with::<StdHeap>(&ev, cl, &p.goal.targets()),
+                |cl| run_with::<StdHeap>(&fitter, cl, &p.goal.targets()),
                 BatchSize::LargeInput,
             )
         });
-        let merged = run(&ev, fresh(), &p.goal.targets());
+        let merged = run(&fitter, fresh(), &p.goal.targets());
         let snap = &merged.snapshots[0];
         let cleanup = Cleanup {
             diagonal: m.diagonal(),

@@ -92,12 +92,9 @@ pub use input::mesh::Mesh;
 pub use input::up::Up;
 pub use output::result::{Decomposition, InputInfo, Level, Shortfall, Stats};
 pub use output::{Frame, ResultFile, ResultObject, Tess};
-pub use params::{
-    ByteSize, CountSearch, Dedup, Fit, Goal, Params, Partitions, Plates, Reprice, Speed, Target,
-    Tolerance,
-};
+pub use params::{Dedup, Fit, Goal, Params, Partitions, Plates, Reprice, Speed, Target, Tolerance};
 pub use primitive::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
-pub use progress::{Eta, Progress, Stage};
+pub use progress::{Progress, Stage};
 
 /// The stages one by one, for the project's own tests and benchmarks (feature
 /// `test-internals`, which the workspace's test helpers turn on). Not part of the
@@ -130,21 +127,21 @@ pub mod internals {
     pub use crate::seed::quadric::face_quadrics;
 
     /// Each face's seed volume.
-    pub fn seed_volumes(ev: &Fitter, q: &[Sym3]) -> Vec<f64> {
-        crate::merge::setup::seed_volumes(ev, q, &|_| true)
+    pub fn seed_volumes(fitter: &Fitter, q: &[Sym3]) -> Vec<f64> {
+        crate::merge::setup::seed_volumes(fitter, q, &|_| true)
     }
 
     /// The merge loop through `targets` (decreasing).
-    pub fn run(ev: &Fitter, cl: Clusters, targets: &[usize]) -> MergeOutput {
-        crate::merge::driver::run(ev, cl, targets, &|_| true)
+    pub fn run(fitter: &Fitter, cl: Clusters, targets: &[usize]) -> MergeOutput {
+        crate::merge::driver::run(fitter, cl, targets, &|_| true)
     }
 
     /// The merge loop on another queue.
     pub fn run_with<Q: crate::merge::heap::Queue>(
-        ev: &Fitter,
+        fitter: &Fitter,
         cl: Clusters,
         targets: &[usize],
     ) -> MergeOutput {
-        crate::merge::driver::run_with::<Q>(ev, cl, targets, &|_| true)
+        crate::merge::driver::run_with::<Q>(fitter, cl, targets, &|_| true)
     }
 }

@@ -11,8 +11,7 @@ mod goal;
 mod json;
 mod spelling;
 
-pub use goal::{CountSearch, Goal, Target};
-pub use spelling::ByteSize;
+pub use goal::{Goal, Target};
 
 use crate::error::{Error, Result};
 use crate::primitive::Kind;

@@ -43,8 +43,8 @@ fn allocations() -> u64 {
 
 #[test]
 fn pricing_merges_allocates_nothing_once_warm() {
-    with_demo(|ev, mut cl, pairs| {
-        grow(ev, &mut cl, &pairs, 1500);
+    with_demo(|fitter, mut cl, pairs| {
+        grow(fitter, &mut cl, &pairs, 1500);
         let live: Vec<(u32, u32)> = pairs
             .iter()
             .map(|&(a, b)| (cl.find(a), cl.find(b)))
@@ -56,13 +56,13 @@ fn pricing_merges_allocates_nothing_once_warm() {
         // Warm-up: the workspace grows to the largest candidate.
         let priced = pairs
             .iter()
-            .filter(|&&(a, b)| ev.candidate(&cl, a, b, &mut ws).is_some())
+            .filter(|&&(a, b)| fitter.candidate(&cl, a, b, &mut ws).is_some())
             .count();
         assert!(priced > 1000, "only {priced} pairs priced");
         let before = allocations();
         let mut cost = 0.0;
         for &(a, b) in &pairs {
-            if let Some((c, _)) = ev.candidate(&cl, a, b, &mut ws) {
+            if let Some((c, _)) = fitter.candidate(&cl, a, b, &mut ws) {
                 cost += c.cost;
             }
         }
@@ -80,11 +80,11 @@ fn pricing_merges_allocates_nothing_once_warm() {
 /// The counter works: a fresh workspace does allocate on its first candidate.
 #[test]
 fn counter_sees_a_cold_workspace_allocate() {
-    with_demo(|ev, cl, pairs| {
+    with_demo(|fitter, cl, pairs| {
         let before = allocations();
         let mut ws = Workspace::default();
         let (a, b) = pairs[0];
-        let _ = ev.candidate(&cl, a, b, &mut ws);
+        let _ = fitter.candidate(&cl, a, b, &mut ws);
         assert!(allocations() > before);
     });
 }

@@ -41,16 +41,16 @@ static GLOBAL: Counting = Counting;
 /// nothing while the worker priced neighbours, and fails if no round of many does.
 #[test]
 fn shared_repricing_allocates_nothing_once_warm() {
-    with_demo(|ev, mut cl, pairs| {
-        grow(ev, &mut cl, &pairs, 1500);
-        priced_cleanly(ev, cl)
+    with_demo(|fitter, mut cl, pairs| {
+        grow(fitter, &mut cl, &pairs, 1500);
+        priced_cleanly(fitter, cl)
     });
 }
 
 /// Runs up to 50 rounds over every live cluster's batch, on a two-thread pool (so the
 /// pricer has its worker); passes once a round allocated nothing while the worker
 /// priced neighbours.
-fn priced_cleanly(ev: &Fitter, mut cl: Clusters) {
+fn priced_cleanly(fitter: &Fitter, mut cl: Clusters) {
     let roots = cl.roots();
     let batches: Vec<(u32, Vec<u32>)> = roots
         .iter()
@@ -63,7 +63,7 @@ fn priced_cleanly(ev: &Fitter, mut cl: Clusters) {
         .build()
         .expect("pool");
     let clean = pool.install(|| {
-        with_pricer(ev, |pricer| {
+        with_pricer(fitter, |pricer| {
             let mut cost = 0.0;
             for _ in 0..50 {
                 let (allocs, worker) = (ALLOCS.load(Relaxed), pricer.stats.by_worker);

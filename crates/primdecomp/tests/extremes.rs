@@ -6,7 +6,7 @@
 //! seeded random rotations the demo scene keeps its primitive count and its tightness
 //! (a one-way surface distance computed here, see [`tightness`]) within 10%.
 
-use primdecomp::{decompose, CountSearch, Error, Goal, Mesh, Params, Primitive, Reprice, Speed};
+use primdecomp::{decompose, Error, Goal, Mesh, Params, Primitive, Reprice, Speed};
 use primdecomp_testkit::check::assert_valid;
 use primdecomp_testkit::shapes::{self, cuboid};
 use rand::{Rng, SeedableRng};
@@ -328,9 +328,8 @@ fn tightness(prims: &[Primitive], mesh_tris: &[[[f64; 3]; 3]]) -> f64 {
 fn random_rotations_keep_count_and_tightness() {
     let (base, faces) = primdecomp_testkit::shapes::demo_polys();
     let greedy = Params {
-        goal: Goal::Counts {
+        goal: Goal::Greedy {
             counts: vec![120, 40],
-            search: CountSearch::Greedy,
         },
         ..params(&[120, 40])
     };

@@ -3,7 +3,7 @@
 //! the plain run, enclose every face (the independent oracle), be exactly the plain
 //! engine's level at the merge target it reports, and not depend on the thread count.
 
-use primdecomp::{decompose, CountSearch, Goal, Mesh, Params};
+use primdecomp::{decompose, Goal, Mesh, Params};
 use primdecomp_testkit::check::{assert_counts, assert_same_on_threads, assert_valid};
 use primdecomp_testkit::shapes::{cuboid, join, mesh};
 
@@ -14,10 +14,7 @@ fn params(targets: &[usize], fill: bool) -> Params {
     Params {
         goal: match fill {
             true => Goal::Fill { counts },
-            false => Goal::Counts {
-                counts,
-                search: CountSearch::Greedy,
-            },
+            false => Goal::Greedy { counts },
         },
         ..Default::default()
     }

@@ -7,7 +7,7 @@
 //! across one adds volume), keep every face enclosed (the independent containment
 //! oracle, `primdecomp_testkit::contain`) and not depend on the thread count.
 
-use primdecomp::{decompose, CountSearch, Goal, Mesh, Params, Plates};
+use primdecomp::{decompose, Goal, Mesh, Params, Plates};
 use primdecomp_testkit::check::{assert_same_on_threads, assert_valid, shapes};
 use primdecomp_testkit::contain::shape_contains;
 use primdecomp_testkit::shapes::{cuboid, flat_grid, join, mesh, plate_with_hole};
@@ -15,9 +15,8 @@ use primdecomp_testkit::shapes::{cuboid, flat_grid, join, mesh, plate_with_hole}
 fn params(targets: &[usize], free: bool) -> Params {
     Params {
         // The greedy pass these merges happen in (docs/decisions/0054).
-        goal: Goal::Counts {
+        goal: Goal::Greedy {
             counts: targets.to_vec(),
-            search: CountSearch::Greedy,
         },
         plates: Plates {
             join_coplanar: free,

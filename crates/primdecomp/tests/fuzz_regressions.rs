@@ -1,9 +1,7 @@
 //! Inputs the fuzzers (`fuzz/`) found to break an invariant, each reduced to a test
 //! that failed before its fix. The comment on each says what must happen and why.
 
-use primdecomp::{
-    decompose, CountSearch, Dedup, Error, Fit, Goal, Kind, Mesh, Params, Plates, Speed,
-};
+use primdecomp::{decompose, Dedup, Error, Fit, Goal, Kind, Mesh, Params, Plates, Speed};
 use primdecomp_testkit::check::assert_valid;
 
 /// `fuzz/fuzz_targets/decompose.rs`, first run: one triangle at a 1e-30 scale welded
@@ -54,10 +52,7 @@ fn transitive_tolerance_weld_keeps_every_face_enclosed() {
         // The merge tree's cut too, whose nodes' points must be the faces' own, not
         // the welded ones the merge loop priced them by (docs/decisions/0052).
         let cut = Params {
-            goal: Goal::Counts {
-                counts: vec![n],
-                search: CountSearch::Cut,
-            },
+            goal: Goal::Cut { counts: vec![n] },
             ..params
         };
         assert_valid(&mesh, &decompose(&mesh, &cut).unwrap(), &cut);

@@ -3,7 +3,7 @@
 //! `Plates::open_holes` (`--flat-merge-extent`): the same for merges of
 //! coplanar clusters only.
 
-use primdecomp::{decompose, demo_scene, CountSearch, Error, Goal, Mesh, Params, Plates};
+use primdecomp::{decompose, demo_scene, Error, Goal, Mesh, Params, Plates};
 use primdecomp_testkit::check::assert_valid;
 use primdecomp_testkit::corpus_mesh;
 
@@ -23,9 +23,8 @@ fn roof_centre_covered(mesh: &Mesh, p: &Params) -> bool {
 /// parts is otherwise a cut of the merge tree: docs/decisions/0054).
 fn with_flat(target: usize, flat: f64) -> Params {
     Params {
-        goal: Goal::Counts {
+        goal: Goal::Greedy {
             counts: vec![target],
-            search: CountSearch::Greedy,
         },
         plates: Plates {
             open_holes: flat,

@@ -8,7 +8,7 @@
 //! Whether a curb stands is decided by the independent containment oracle
 //! (`primdecomp_testkit::contain`), from points just above the top.
 
-use primdecomp::{decompose, demo_scene, CountSearch, Goal, Mesh, Params, Plates};
+use primdecomp::{decompose, demo_scene, Goal, Mesh, Params, Plates};
 use primdecomp_testkit::check::{assert_same_on_threads, assert_valid, shapes};
 use primdecomp_testkit::contain::shape_contains;
 
@@ -16,9 +16,8 @@ fn params(targets: &[usize], w: f64) -> Params {
     Params {
         // The greedy pass's output fits, whose rims this measures (a count on several
         // parts is otherwise a cut of the merge tree: docs/decisions/0054).
-        goal: Goal::Counts {
+        goal: Goal::Greedy {
             counts: targets.to_vec(),
-            search: CountSearch::Greedy,
         },
         plates: Plates {
             rim_weight: w,

@@ -4,16 +4,15 @@
 //! keep the enclosure and thread independence; and a closed part must fill into solid
 //! primitives where the paper's pricing leaves it a shell of plates.
 
-use primdecomp::{decompose, demo_scene, CountSearch, Goal, Params, Plates};
+use primdecomp::{decompose, demo_scene, Goal, Params, Plates};
 use primdecomp_testkit::check::{assert_default_output, assert_same_on_threads, assert_valid};
 use primdecomp_testkit::shapes::{cuboid, cylinder, join, mesh};
 
 fn params(targets: &[usize], solid: bool) -> Params {
     Params {
         // The greedy pass's pricing, which this measures (docs/decisions/0054).
-        goal: Goal::Counts {
+        goal: Goal::Greedy {
             counts: targets.to_vec(),
-            search: CountSearch::Greedy,
         },
         plates: Plates {
             solid,

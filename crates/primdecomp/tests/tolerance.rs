@@ -4,7 +4,7 @@
 //! comes from one pass, and on a multi-part corpus mesh a larger count never stands
 //! farther from the input.
 
-use primdecomp::{decompose, CountSearch, Goal, Kind, Params, Tolerance};
+use primdecomp::{decompose, Goal, Kind, Params, Tolerance};
 use primdecomp_testkit::check::assert_valid;
 use primdecomp_testkit::shapes::{cuboid, cylinder, join, mesh, uv_sphere};
 
@@ -98,9 +98,8 @@ fn multi_part_mesh_improves_with_count() {
         return;
     };
     let p = Params {
-        goal: Goal::Counts {
+        goal: Goal::Cut {
             counts: vec![16, 64, 256],
-            search: CountSearch::Cut,
         },
         ..Params::default()
     };
@@ -154,9 +153,8 @@ fn a_count_is_filled_where_the_worst_node_splits_no_nearer() {
 /// declared distance over the diagonal.
 fn cut_at(m: &primdecomp::Mesh, counts: &[usize]) -> Vec<(usize, f64)> {
     let p = Params {
-        goal: Goal::Counts {
+        goal: Goal::Cut {
             counts: counts.to_vec(),
-            search: CountSearch::Cut,
         },
         ..Params::default()
     };

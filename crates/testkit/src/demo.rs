@@ -13,20 +13,20 @@ pub fn with_demo<R>(f: impl FnOnce(&Fitter, Clusters, Vec<(u32, u32)>) -> R) -> 
     let pairs = face_pairs(&mesh, &welded);
     let mut q = Vec::new();
     face_quadrics(&mesh, p.fit.tangent_eps, &mut q);
-    let ev = fitter(&mesh, &welded, &p, mesh.aabb());
-    let vols = seed_volumes(&ev, &q);
+    let fitter = fitter(&mesh, &welded, &p, mesh.aabb());
+    let vols = seed_volumes(&fitter, &q);
     let cl = Clusters::new(q, vols, &pairs);
-    f(&ev, cl, pairs)
+    f(&fitter, cl, pairs)
 }
 
 /// Merges the clusters of the first `n` adjacent pairs, so that candidates span
 /// multi-face point lists too.
-pub fn grow(ev: &Fitter, cl: &mut Clusters, pairs: &[(u32, u32)], n: usize) {
+pub fn grow(fitter: &Fitter, cl: &mut Clusters, pairs: &[(u32, u32)], n: usize) {
     for &(a, b) in pairs.iter().take(n) {
         let (ra, rb) = (cl.find(a), cl.find(b));
         if ra != rb {
-            let mut verts = ev.all_verts(cl, ra);
-            verts.extend(ev.all_verts(cl, rb));
+            let mut verts = fitter.all_verts(cl, ra);
+            verts.extend(fitter.all_verts(cl, rb));
             verts.sort_unstable();
             verts.dedup();
             cl.merge(ra, rb, verts, 1.0);

@@ -11,6 +11,7 @@ decomposition runs with the GIL released, Ctrl-C raises KeyboardInterrupt.
 
 import json as _json
 import inspect as _inspect
+import math as _math
 
 import numpy as _np
 
@@ -230,7 +231,6 @@ def _progress(callback):
 
 
 _KINDS = ("box", "sphere", "capsule", "cylinder", "frustum", "prism")
-_WEIGHTS = {"box": 1.0, "sphere": 1.0, "capsule": 1.0, "cylinder": 1.05, "frustum": 2.1, "prism": 1.4}
 _NUMBERS = ("tangent_eps", "min_extent", "max_excess_volume", "remove_thin_boxes", "open_holes",
             "rim_weight", "min_thickness")
 _FLAGS = ("remove_nested", "flush_plates", "join_coplanar", "solid", "fill", "greedy", "cut")
@@ -282,15 +282,17 @@ def _kinds(v):
 
 
 def _weights(v):
-    """Cost factors per kind: a dict of the kinds to change ({'frustum': 3})."""
+    """Cost factors per kind: a dict of the kinds to change ({'frustum': 3}), read by the
+    library's own reader of the CLI's `--weights kind=w,…` (the others keep their
+    defaults)."""
     if not isinstance(v, dict):
         raise ValueError(f"weights: expected a dict of kind to factor such as {{'frustum': 3.0}}, got {v!r}")
-    out = dict(_WEIGHTS)
-    for k, w in v.items():
+    for w in v.values():
         if not _number(w):
             raise ValueError(f"weights: {w!r} is not a number")
-        out[_kind(k)] = float(w)
-    return out
+        if not _math.isfinite(w):
+            raise ValueError("settings: numbers must be finite (no NaN or infinity)")
+    return _spelled("weights", ",".join(f"{k}={float(w)!r}" for k, w in v.items()))
 
 
 def _settings(settings, where="decompose"):

@@ -270,7 +270,7 @@ impl Cutter<'_> {
             true if !self.goes_on() => super::STAND_IN,
             true => {
                 let q = self.q_of(ex, n);
-                (self.ev)
+                (self.fitter)
                     .fit_output(self.faces_of(ex, n), &q, &mut s.ws)
                     .prim
             }
@@ -331,14 +331,14 @@ impl Cutter<'_> {
             let points = nodes.iter().flat_map(|&m| self.points(m, s)).collect();
             ex.points.insert(c, points);
         }
-        let eps = self.ev.pricing.hull_eps;
+        let eps = self.fitter.pricing.hull_eps;
         ex.points[&c].iter().all(|&p| prim.contains(p, eps))
     }
 
     /// Whether one of two siblings, fitted as `ea` and `eb`, lies inside the other's
     /// primitive: the split is a step of a chain, which [`Cutter::descend`] walks.
     pub(super) fn carries(&self, [ea, eb]: [&Entry; 2], s: &mut HullScratch) -> bool {
-        let eps = self.ev.pricing.hull_eps;
+        let eps = self.fitter.pricing.hull_eps;
         let mut inside = |e: &Entry, o: &Entry| {
             let by_box = self.by_box(self.boxes[e.node as usize], &o.prim);
             by_box.unwrap_or_else(|| {
@@ -352,7 +352,7 @@ impl Cutter<'_> {
 
     /// Node `c`'s hull points (the tree's node).
     fn points(&self, c: u32, s: &mut HullScratch) -> Vec<V3> {
-        let mesh = self.ev.input.mesh;
+        let mesh = self.fitter.input.mesh;
         (self.hulls.of(c, s).hull.iter())
             .map(|&v| mesh.pos(v))
             .collect()
@@ -362,7 +362,7 @@ impl Cutter<'_> {
     /// tells: not if it pokes out of `prim`'s bounding box, so if its corners are
     /// inside `prim` (convex); `None` otherwise.
     fn by_box(&self, (lo, hi): (V3, V3), prim: &Primitive) -> Option<bool> {
-        let eps = self.ev.pricing.hull_eps;
+        let eps = self.fitter.pricing.hull_eps;
         let (plo, phi) = prim.aabb();
         if (0..3).any(|k| lo[k] < plo[k] - eps || hi[k] > phi[k] + eps) {
             return Some(false);

@@ -167,7 +167,7 @@ struct Explored {
 /// What a cut is made from: the fit settings, the tree, its nodes' hulls and the
 /// input's surface.
 pub(crate) struct Cutter<'a> {
-    ev: &'a Fitter<'a>,
+    fitter: &'a Fitter<'a>,
     tree: &'a MergeTree,
     hulls: NodeHulls<'a>,
     /// What [`Cutter::snapshots`] was last asked.
@@ -207,7 +207,7 @@ impl<'a> Cutter<'a> {
     /// The cutter of `tree` for `requests` (their counts and bytes may be raised
     /// later, [`Cutter::snapshots`]; their tolerances stay).
     pub(crate) fn new(
-        ev: &'a Fitter<'a>,
+        fitter: &'a Fitter<'a>,
         tree: &'a MergeTree,
         surface: &'a Triangles,
         requests: &[Request],
@@ -220,14 +220,14 @@ impl<'a> Cutter<'a> {
         let stored = tree.order.len() / largest.max(1);
         let (hulls, whole) = NodeHulls::build_checked(
             tree,
-            ev.input.mesh,
-            ev.input.face_adj,
-            ev.pricing.hull_eps,
+            fitter.input.mesh,
+            fitter.input.face_adj,
+            fitter.pricing.hull_eps,
             stored,
             go_on,
         );
         Cutter {
-            ev,
+            fitter,
             tree,
             hulls,
             requests: requests.to_vec(),
@@ -238,10 +238,10 @@ impl<'a> Cutter<'a> {
                 .map(|r| r.tolerance)
                 .try_fold(f64::INFINITY, |m, t| t.map(|t| m.min(t)))
                 .unwrap_or(0.0)
-                .max(FLOOR_HALVES * ev.pricing.fit.min_half),
+                .max(FLOOR_HALVES * fitter.pricing.fit.min_half),
             fill_short: false,
             loose: false,
-            boxes: carried_parts::node_boxes(tree, ev.input.mesh),
+            boxes: carried_parts::node_boxes(tree, fitter.input.mesh),
             measures: error_memo::Measures::default(),
             go_on,
             stopped: std::sync::atomic::AtomicBool::new(!whole),
@@ -283,7 +283,7 @@ impl<'a> Cutter<'a> {
         let faces = self.tree.faces(n).iter().copied();
         let q = &self.tree.nodes[n as usize].q;
         let outside = |g| self.hulls.outside(n, g);
-        (self.ev)
+        (self.fitter)
             .fit_on_vertices(faces, sets.hull, sets.boundary, outside, q, &mut s.ws)
             .prim
     }
@@ -296,11 +296,11 @@ impl<'a> Cutter<'a> {
     /// nearer than that either (its extreme points stand outside it by round-off),
     /// and would be the same.
     fn enclosing(&self, ex: &Explored, e: &Entry, ws: &mut Workspace) -> Primitive {
-        let mesh = self.ev.input.mesh;
+        let mesh = self.fitter.input.mesh;
         let inside = |&f: &u32| {
             mesh.face(f as usize)
                 .iter()
-                .all(|&v| e.prim.contains(mesh.pos(v), self.ev.pricing.hull_eps))
+                .all(|&v| e.prim.contains(mesh.pos(v), self.fitter.pricing.hull_eps))
         };
         let nodes = self.covered(ex, e.node);
         let own = self.members(ex, e.node).len();
@@ -315,7 +315,9 @@ impl<'a> Cutter<'a> {
             return e.prim;
         }
         let q = self.q_of(ex, e.node);
-        self.ev.fit_output(self.faces_of(ex, e.node), &q, ws).prim
+        self.fitter
+            .fit_output(self.faces_of(ex, e.node), &q, ws)
+            .prim
     }
 
     /// `e` with its error measured up to `above`, unless it is already exact.
@@ -659,7 +661,7 @@ impl<'a> Cutter<'a> {
     fn snapshot(&self, ex: &Explored, r: &Request, mut cut: Vec<Entry>) -> LevelCut {
         let worst = cut.iter().map(|e| e.error).fold(0.0, f64::max);
         cut.sort_unstable_by_key(|e| self.start(ex, e.node));
-        let mesh = self.ev.input.mesh;
+        let mesh = self.fitter.input.mesh;
         // Asking before each node and within a large one's corners: once told to
         // stop, nothing is gathered (no caller reads a stopped cutter's snapshot).
         let members: Vec<Vec<u32>> = cut

@@ -46,7 +46,7 @@ impl Cutter<'_> {
         }
         let q = self.q_of(ex, e.node);
         let faces = self.faces_of(ex, e.node);
-        (self.ev).output_candidates(faces, &q, &mut s.ws, &mut s.candidates);
+        (self.fitter).output_candidates(faces, &q, &mut s.ws, &mut s.candidates);
         let mut best = Entry {
             closest: true,
             ..self.remeasured(e, f64::INFINITY)

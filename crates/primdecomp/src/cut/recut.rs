@@ -30,14 +30,14 @@ pub(crate) type Postprocess<'a> = dyn Fn(&[LevelCut]) -> Vec<Level> + 'a;
 /// is within the request, carrying the request's own count; `None` when `go_on` said
 /// stop (asked between the cutter's splits and between cuts).
 pub(crate) fn snapshots(
-    ev: &Fitter,
+    fitter: &Fitter,
     tree: &MergeTree,
     requests: &[Request],
     tris: &Triangles,
     postprocess: &Postprocess<'_>,
     go_on: crate::progress::Checkpoint,
 ) -> Option<Vec<LevelCut>> {
-    let mut cutter = Cutter::new(ev, tree, tris, requests, go_on);
+    let mut cutter = Cutter::new(fitter, tree, tris, requests, go_on);
     let first = cutter.snapshots(requests);
     if cutter.stopped() {
         return None;
@@ -78,7 +78,7 @@ pub(crate) fn snapshots(
             &mut cutter,
             &mut searches,
             requests,
-            (ev, tris),
+            (fitter, tris),
             postprocess,
         );
     }
@@ -107,7 +107,7 @@ fn fill_short(
     cutter: &mut Cutter,
     searches: &mut [LevelRecut],
     requests: &[Request],
-    (ev, tris): (&Fitter, &Triangles),
+    (fitter, tris): (&Fitter, &Triangles),
     postprocess: &Postprocess<'_>,
 ) {
     let short = |s: &LevelRecut, r: &Request| {
@@ -135,7 +135,8 @@ fn fill_short(
         let more = level.primitives.len() > s.level.primitives.len();
         let nearer = || {
             new <= old
-                || (new <= LOOSE_FACTOR * old && mean(ev, tris, level) < mean(ev, tris, &s.level))
+                || (new <= LOOSE_FACTOR * old
+                    && mean(fitter, tris, level) < mean(fitter, tris, &s.level))
         };
         if short(s, r) && more && within(r, level) && nearer() {
             (s.kept, s.level) = (snap, level.clone());
@@ -229,7 +230,7 @@ fn loosen(
     cutter: &mut Cutter,
     searches: &mut [LevelRecut],
     requests: &[Request],
-    (ev, tris): (&Fitter, &Triangles),
+    (fitter, tris): (&Fitter, &Triangles),
     postprocess: &Postprocess<'_>,
 ) {
     if (requests.iter()).any(|r| r.tolerance.is_some() || r.bytes.is_some()) {
@@ -242,7 +243,7 @@ fn loosen(
         return;
     }
     let levels = postprocess(&snaps);
-    let mean = |l: &Level| mean(ev, tris, l);
+    let mean = |l: &Level| mean(fitter, tris, l);
     let old: Vec<f64> = searches.iter().map(|s| s.kept.bound).collect();
     let n = old.len();
     let mut now = old.clone();
@@ -266,8 +267,8 @@ fn loosen(
 
 /// A level's mean distance to the input ([`mean_distance`]); levels are in world
 /// coordinates, the input's triangles in its re-centred frame.
-fn mean(ev: &Fitter, tris: &Triangles, l: &Level) -> f64 {
-    let back = ev.input.mesh.offset.map(|x| -x);
+fn mean(fitter: &Fitter, tris: &Triangles, l: &Level) -> f64 {
+    let back = fitter.input.mesh.offset.map(|x| -x);
     let prims: Vec<Primitive> = l.primitives.iter().map(|p| p.translated(back)).collect();
     mean_distance(&prims, tris)
 }

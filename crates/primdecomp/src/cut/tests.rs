@@ -2,7 +2,7 @@
 
 use super::*;
 use crate::decompose::decompose;
-use crate::params::{CountSearch, Goal, Params, Tolerance};
+use crate::params::{Goal, Params, Tolerance};
 
 /// A closed cube within 1% of its diagonal is one box, whatever the cap; an
 /// icosphere one round primitive; a tolerance tighter than the cube's faces allow
@@ -191,9 +191,8 @@ fn worst_error(mesh: &crate::input::mesh::Mesh, prims: &[Primitive]) -> f64 {
 fn cuts_enclose_and_improve_with_n() {
     let mesh = crate::input::demo::demo_scene();
     let p = Params {
-        goal: Goal::Counts {
+        goal: Goal::Cut {
             counts: vec![4, 16, 64],
-            search: CountSearch::Cut,
         },
         ..Params::default()
     };
@@ -233,10 +232,7 @@ fn one_target_is_the_root() {
         ..Params::default()
     };
     let cut = Params {
-        goal: Goal::Counts {
-            counts: vec![1],
-            search: CountSearch::Cut,
-        },
+        goal: Goal::Cut { counts: vec![1] },
         ..greedy.clone()
     };
     let a = decompose(&mesh, &greedy).expect("greedy");
@@ -320,10 +316,7 @@ fn caps_are_spent_on_what_post_processing_keeps() {
         assert_eq!((l.target, l.max_bytes), (1024, Some(bytes)));
     }
     let p = Params {
-        goal: Goal::Counts {
-            counts: vec![40],
-            search: CountSearch::Cut,
-        },
+        goal: Goal::Cut { counts: vec![40] },
         ..Params::default()
     };
     let l = &decompose(&mesh, &p).expect("decomposes").levels[0];

@@ -158,12 +158,12 @@ fn find(parent: &mut [u32], mut x: u32) -> u32 {
 /// faces, of operators `face_q`, when every merge was logged), with the points the loop
 /// kept for its nodes.
 pub(crate) fn merge_tree(
-    ev: &Fitter,
+    fitter: &Fitter,
     merged: &MergeOutput,
     log: MergeLog,
     face_q: &[Sym3],
 ) -> MergeTree {
-    let faces = ev.input.mesh.face_count();
+    let faces = fitter.input.mesh.face_count();
     let hulls = log.hulls;
     if log.from_faces {
         // Every merge is known: the leaves are single faces, so any cluster can be

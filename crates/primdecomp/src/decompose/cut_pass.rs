@@ -33,9 +33,9 @@ pub(crate) fn run(
     let from_faces = !matches!(first, FirstPhase::Parts { .. });
     // One operator per face (§3.1), the faces' surface and the input's interior.
     let (seeds, around) = Seeds::build(&mut clock, mesh, params, &mut graph, &first)?;
-    let ev = fitter_of(mesh, &graph, params, &around);
+    let fitter = fitter_of(mesh, &graph, params, &around);
     // One primitive per face seeds the volumes (Alg. 1, line 2).
-    let volumes = stages::seed(&mut clock, &ev, seeds.quadrics(), &first)?;
+    let volumes = stages::seed(&mut clock, &fitter, seeds.quadrics(), &first)?;
     // Without spatial parts every merge is logged and the tree's leaves are the faces:
     // the leaf snapshot would be fitted for nothing. Those leaves keep their operators.
     let mut face_q = Vec::new();
@@ -49,7 +49,7 @@ pub(crate) fn run(
     let (input, mut stats) = seeds.merge_input(volumes, &around, params);
     // Merging down to the roots, every merge logged: the merge tree (Alg. 1's loop).
     let to_roots = (&targets[..], keep);
-    let (merged, log) = merge_stage(&mut clock, &ev, (input, first), to_roots, &mut stats)?;
+    let (merged, log) = merge_stage(&mut clock, &fitter, (input, first), to_roots, &mut stats)?;
     if merged.stopped {
         return Err(Error::Cancelled);
     }
@@ -63,7 +63,7 @@ pub(crate) fn run(
         (cuts.iter())
             .map(|c| Level {
                 shortfall: c.shortfall,
-                ..postprocess::level(&ev, c.snapshot.clone(), Some(c.bound), params, &reads)
+                ..postprocess::level(&fitter, c.snapshot.clone(), Some(c.bound), params, &reads)
             })
             .collect()
     };
@@ -72,8 +72,8 @@ pub(crate) fn run(
     let requests = limits::requests(params, mesh);
     let cuts = clock
         .stage(Stage::Postprocess, "cut", |go_on, _| {
-            let tree = tree::merge_tree(&ev, &merged, log, &face_q);
-            recut::snapshots(&ev, &tree, &requests, &tris, &postprocess, go_on)
+            let tree = tree::merge_tree(&fitter, &merged, log, &face_q);
+            recut::snapshots(&fitter, &tree, &requests, &tris, &postprocess, go_on)
         })?
         .ok_or(Error::Cancelled)?;
     // The kept cuts post-processed, back to world coordinates.

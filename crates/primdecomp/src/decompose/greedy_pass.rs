@@ -27,14 +27,14 @@ pub(crate) fn run(
     let first = FirstPhase::choose(mesh, params, &graph.pairs, targets[0], targets[0]);
     // One operator per face (§3.1), the faces' surface and the input's interior.
     let (seeds, around) = Seeds::build(&mut clock, mesh, params, &mut graph, &first)?;
-    let ev = fitter_of(mesh, &graph, params, &around);
+    let fitter = fitter_of(mesh, &graph, params, &around);
     // One primitive per face seeds the volumes (Alg. 1, line 2).
-    let volumes = stages::seed(&mut clock, &ev, seeds.quadrics(), &first)?;
+    let volumes = stages::seed(&mut clock, &fitter, seeds.quadrics(), &first)?;
     let (input, mut stats) = seeds.merge_input(volumes, &around, params);
     // Greedy merging down through every target in one pass (Alg. 1's loop), keeping
     // the clusters at each.
     let at = (&targets[..], AtTargets);
-    let (merged, ()) = merge_stage(&mut clock, &ev, (input, first), at, &mut stats)?;
+    let (merged, ()) = merge_stage(&mut clock, &fitter, (input, first), at, &mut stats)?;
     // The input's triangles, once, for thickened plates (--min-thickness), and its
     // interior for plates thickened inward.
     let tris = stages::triangles(&mut clock, mesh, params.plates.min_thickness > 0.0)?;
@@ -42,7 +42,7 @@ pub(crate) fn run(
     // Plates joined, duplicates absorbed, nested primitives removed, back to world
     // coordinates (§3.4).
     let levels = clock.stage(Stage::Postprocess, "postprocess", |_, _| {
-        postprocess::levels(&ev, merged.snapshots, params, &reads)
+        postprocess::levels(&fitter, merged.snapshots, params, &reads)
     })?;
     Ok(stages::decomposition(mesh, &graph, levels, clock, stats))
 }

@@ -187,13 +187,13 @@ pub(crate) fn fitter_of<'a>(
 /// its own).
 pub(crate) fn seed(
     clock: &mut Clock,
-    ev: &Fitter,
+    fitter: &Fitter,
     q: &[Sym3],
     first: &FirstPhase,
 ) -> Result<Vec<f64>> {
     clock.stage(Stage::Seed, "seed", |go_on, _| match first {
         FirstPhase::Parts { .. } => Vec::new(),
-        _ => seed_volumes(ev, q, go_on),
+        _ => seed_volumes(fitter, q, go_on),
     })
 }
 
@@ -202,13 +202,13 @@ pub(crate) fn seed(
 /// added to `stats`.
 pub(crate) fn merge_stage<K: Keep>(
     clock: &mut Clock,
-    ev: &Fitter,
+    fitter: &Fitter,
     (input, first): (MergeInput, FirstPhase),
     (targets, keep): (&[usize], K),
     stats: &mut Stats,
 ) -> Result<(MergeOutput, K::Log)> {
     clock.stage(Stage::Merge, "merge", |go_on, laps| {
-        merge(ev, input, first, targets, keep, stats, go_on, laps)
+        merge(fitter, input, first, targets, keep, stats, go_on, laps)
     })
 }
 

@@ -26,7 +26,7 @@ use crate::input::io::LoadOptions;
 use crate::input::mesh::{Mesh, MeshBuilder};
 use crate::math::V3;
 use crate::output::result::Decomposition;
-use crate::params::{CountSearch, Fit, Goal, Params, Tolerance};
+use crate::params::{Fit, Goal, Params, Tolerance};
 use crate::primitive::Kind;
 use crate::progress::wallclock::Instant;
 use crate::progress::{Progress, Stage};
@@ -592,9 +592,8 @@ fn tile_params(params: &Params, groups: usize) -> Params {
     kinds[Kind::Box as usize] = true;
     kinds[Kind::Prism as usize] = true;
     Params {
-        goal: Goal::Counts {
+        goal: Goal::Greedy {
             counts: vec![groups],
-            search: CountSearch::Greedy,
         },
         fit: Fit {
             kinds,

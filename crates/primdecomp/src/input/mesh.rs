@@ -18,7 +18,8 @@ pub(crate) const MAX_EXTENT: f64 = 1e60;
 /// exceed 1e154 at the top of the f64 range, and squaring them overflows.
 pub(crate) const MAX_POSITION: f64 = 1e70;
 
-/// What a reader skipped, so that a caller can say it ([`Mesh::skipped`]).
+/// What a reader skipped, so that a caller can say it ([`Mesh::skipped_faces`],
+/// [`Mesh::skipped_other`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub(crate) struct SkipCounts {
     /// `l` elements, 2-vertex "faces" and other faces with fewer than 3 distinct indices.
@@ -213,7 +214,7 @@ impl Mesh {
     /// A mesh of polygons (triangles, quads, n-gons; each a list of indices into
     /// `positions`, world coordinates). Polygons are kept whole: the engine treats a
     /// planar quad as one face. Polygons of fewer than 3 corners are skipped and
-    /// counted ([`Mesh::skipped`]), as the file readers do.
+    /// counted ([`Mesh::skipped_faces`]), as the file readers do.
     ///
     /// # Errors
     /// [`crate::Error::Format`] naming the first non-finite coordinate or index out of
@@ -281,20 +282,35 @@ impl Mesh {
         self.offset
     }
 
-    /// What the reader (or constructor) skipped: faces with fewer than 3 distinct
-    /// vertices (OBJ `l` elements, 2-vertex faces), then other elements it does not
-    /// read (glTF points and lines).
+    /// Faces the reader (or constructor) skipped because they have fewer than 3
+    /// distinct vertices (OBJ `l` elements, 2-vertex faces).
     ///
     /// ```
     /// use primdecomp::{Mesh, MeshFormat};
     ///
     /// let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nl 1 2\n";
     /// let mesh = Mesh::parse(obj, MeshFormat::Obj, "bits.obj".as_ref())?;
-    /// assert_eq!(mesh.skipped(), (1, 0)); // the line
+    /// assert_eq!(mesh.skipped_faces(), 1); // the line
+    /// assert_eq!(mesh.skipped_other(), 0);
     /// # Ok::<(), primdecomp::Error>(())
     /// ```
-    pub fn skipped(&self) -> (u64, u64) {
-        (self.skipped.short_faces, self.skipped.other)
+    pub fn skipped_faces(&self) -> u64 {
+        self.skipped.short_faces
+    }
+
+    /// Elements the reader skipped because it does not read them (glTF points and
+    /// lines), besides [`Mesh::skipped_faces`].
+    ///
+    /// ```
+    /// use primdecomp::{Mesh, MeshFormat};
+    ///
+    /// let obj = b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    /// let mesh = Mesh::parse(obj, MeshFormat::Obj, "one.obj".as_ref())?;
+    /// assert_eq!(mesh.skipped_other(), 0);
+    /// # Ok::<(), primdecomp::Error>(())
+    /// ```
+    pub fn skipped_other(&self) -> u64 {
+        self.skipped.other
     }
 
     /// Number of polygon faces.

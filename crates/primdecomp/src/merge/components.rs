@@ -149,7 +149,7 @@ fn groups(comps: Vec<Vec<u32>>) -> (Vec<Vec<u32>>, Vec<usize>) {
 /// them: when the largest target is at least the number of components (`usize::MAX`
 /// traces them for the merge tree, `cut::tree`).
 pub fn merge_components(
-    ev: &Fitter,
+    fitter: &Fitter,
     q: &[Sym3],
     volume: &[f64],
     pairs: &[(u32, u32)],
@@ -161,7 +161,7 @@ pub fn merge_components(
     let (parts, targets) = groups(comps);
     let kind = Kind::Components { traced };
     let faces = partition::FaceData::Given { q, volume, pairs };
-    partition::merge_groups(ev, faces, &parts, targets, kind, merged)
+    partition::merge_groups(fitter, faces, &parts, targets, kind, merged)
 }
 
 /// The global loop's snapshots at every target of `targets` (decreasing) that is at
@@ -174,7 +174,7 @@ pub fn merge_components(
 /// many merges the last of them holds, and every merge of the global order, each as a
 /// face of each merged cluster (the merge tree's from single faces, `cut::tree`).
 pub fn snapshots(
-    ev: &Fitter,
+    fitter: &Fitter,
     p1: &Phase1,
     q: &[Sym3],
     volume: &[f64],
@@ -204,7 +204,7 @@ pub fn snapshots(
                 .get(k)
                 .is_some_and(|&(g, i)| traces[g as usize][i as usize].free)
         };
-        while ev.pricing.free_merges && free(m) {
+        while fitter.pricing.free_merges && free(m) {
             m += 1;
         }
         for &(g, i) in &order[done..m] {
@@ -213,7 +213,7 @@ pub fn snapshots(
         }
         done = m;
         // The components' loops ran to the end: replaying them is not cancelled.
-        out.extend(snapshot(ev, &cl, target, Scope::Whole, &|| true));
+        out.extend(snapshot(fitter, &cl, target, Scope::Whole, &|| true));
     }
     (out, done, order.iter().map(pair).collect())
 }
@@ -249,20 +249,20 @@ mod tests {
 
     /// [`same_as_global`] on `mesh`.
     fn same_as_global_on(mesh: &crate::input::mesh::Mesh, p: Params, targets: &[usize]) {
-        with_input(mesh, &p, |ev, q, vols, pairs| {
+        with_input(mesh, &p, |fitter, q, vols, pairs| {
             let comps = components(mesh.face_count(), pairs);
             let count = comps.len();
             let fresh = || Clusters::new(q.to_vec(), vols.to_vec(), pairs);
-            let global = run(ev, fresh(), targets, &|_| true);
-            let p1 = merge_components(ev, q, vols, pairs, comps, targets[0], &|_| true);
-            let mut split = snapshots(ev, &p1, q, vols, pairs, targets, count).0;
+            let global = run(fitter, fresh(), targets, &|_| true);
+            let p1 = merge_components(fitter, q, vols, pairs, comps, targets[0], &|_| true);
+            let mut split = snapshots(fitter, &p1, q, vols, pairs, targets, count).0;
             let rest = &targets[split.len()..];
             if !rest.is_empty() {
                 let (o, a) = crate::input::adjacency::neighbour_lists(q.len(), pairs);
                 let lists = (o.into(), a.into());
                 let cl = partition::clusters(p1, q.to_vec(), vols.to_vec(), lists, &|_| true)
                     .expect("not stopped");
-                split.extend(run(ev, cl, rest, &|_| true).snapshots);
+                split.extend(run(fitter, cl, rest, &|_| true).snapshots);
             }
             assert_eq!(global.snapshots.len(), split.len());
             let sorted = |m: &[Vec<u32>]| {

@@ -206,7 +206,7 @@ impl Stamps {
 }
 
 /// Prices pairs in parallel chunks, in place; the output order equals the input order.
-fn price(ev: &Fitter, cl: &Clusters, pairs: &[(u32, u32)]) -> Vec<Candidate> {
+fn price(fitter: &Fitter, cl: &Clusters, pairs: &[(u32, u32)]) -> Vec<Candidate> {
     let none = Candidate {
         cost: f64::NAN,
         volume: 0.0,
@@ -220,7 +220,7 @@ fn price(ev: &Fitter, cl: &Clusters, pairs: &[(u32, u32)]) -> Vec<Candidate> {
         .zip(pairs.par_chunks(CHUNK))
         .for_each_init(Workspace::default, |ws, (slots, chunk)| {
             for (slot, &(a, b)) in slots.iter_mut().zip(chunk) {
-                if let Some((c, _)) = ev.candidate(cl, a, b, ws) {
+                if let Some((c, _)) = fitter.candidate(cl, a, b, ws) {
                     *slot = c;
                 }
             }
@@ -231,8 +231,8 @@ fn price(ev: &Fitter, cl: &Clusters, pairs: &[(u32, u32)]) -> Vec<Candidate> {
 }
 
 /// Runs the merge loop down to the smallest target; `targets` sorted decreasing.
-pub fn run(ev: &Fitter, cl: Clusters, targets: &[usize], go_on: Checkpoint) -> MergeOutput {
-    run_with::<RadixHeap>(ev, cl, targets, go_on)
+pub fn run(fitter: &Fitter, cl: Clusters, targets: &[usize], go_on: Checkpoint) -> MergeOutput {
+    run_with::<RadixHeap>(fitter, cl, targets, go_on)
 }
 
 /// [`run`] for the merge tree (`cut`): the same merges, but each target's snapshot
@@ -241,41 +241,41 @@ pub fn run(ev: &Fitter, cl: Clusters, targets: &[usize], go_on: Checkpoint) -> M
 /// points of the first snapshot's clusters and of merged clusters of more faces are
 /// kept too ([`TreeHulls`]). Returns every merge too ([`MergeLog`]).
 pub fn run_for_tree(
-    ev: &Fitter,
+    fitter: &Fitter,
     cl: Clusters,
     targets: &[usize],
     hulls_over: Option<usize>,
     go_on: Checkpoint,
 ) -> (MergeOutput, MergeLog) {
-    with_pricer(ev, |p| {
+    with_pricer(fitter, |p| {
         let mut log = MergeLog::default();
         let scope = Scope::Tree(hulls_over);
-        let out = merge_loop::<RadixHeap>(ev, cl, targets, go_on, p, scope, &mut log).0;
+        let out = merge_loop::<RadixHeap>(fitter, cl, targets, go_on, p, scope, &mut log).0;
         (out, log)
     })
 }
 
 /// [`run`] with a chosen queue (the benchmarks compare them; the order is the same).
 pub fn run_with<Q: Queue>(
-    ev: &Fitter,
+    fitter: &Fitter,
     cl: Clusters,
     targets: &[usize],
     go_on: Checkpoint,
 ) -> MergeOutput {
-    run_counted::<Q>(ev, cl, targets, go_on).0
+    run_counted::<Q>(fitter, cl, targets, go_on).0
 }
 
 /// [`run_with`], sharing re-pricing batches with a worker thread (`merge::worker`) when
 /// rayon's pool has two threads or more; also returns the pricer's counters.
 fn run_counted<Q: Queue>(
-    ev: &Fitter,
+    fitter: &Fitter,
     cl: Clusters,
     targets: &[usize],
     go_on: Checkpoint,
 ) -> (MergeOutput, PricerCounts) {
-    with_pricer(ev, |p| {
+    with_pricer(fitter, |p| {
         let mut log = MergeLog::default();
-        let out = merge_loop::<Q>(ev, cl, targets, go_on, p, Scope::Whole, &mut log).0;
+        let out = merge_loop::<Q>(fitter, cl, targets, go_on, p, Scope::Whole, &mut log).0;
         (out, p.stats)
     })
 }
@@ -306,23 +306,24 @@ impl Scope {
 /// adjacency runs out, reporting progress as [`run`] does; returns the clusters and
 /// the merge counts (and, when `traced`, every merge: [`Traced`]).
 pub(super) fn merge_part(
-    ev: &Fitter,
+    fitter: &Fitter,
     cl: Clusters,
     target: usize,
     traced: bool,
     go_on: Checkpoint,
 ) -> (Clusters, MergeOutput) {
-    let mut pricer = Pricer::serial(ev);
+    let mut pricer = Pricer::serial(fitter);
     let scope = if traced { Scope::Traced } else { Scope::Part };
     let mut log = MergeLog::default();
-    let (out, cl) = merge_loop::<RadixHeap>(ev, cl, &[target], go_on, &mut pricer, scope, &mut log);
+    let (out, cl) =
+        merge_loop::<RadixHeap>(fitter, cl, &[target], go_on, &mut pricer, scope, &mut log);
     (cl, out)
 }
 
 /// The loop of [`run_with`]; `pricer` re-prices each merged cluster's neighbours; the
 /// whole input's loop logs its merges in `log`.
 fn merge_loop<Q: Queue>(
-    ev: &Fitter,
+    fitter: &Fitter,
     mut cl: Clusters,
     targets: &[usize],
     go_on: Checkpoint,
@@ -332,7 +333,7 @@ fn merge_loop<Q: Queue>(
 ) -> (MergeOutput, Clusters) {
     let mut out = MergeOutput::default();
     let mut heap = Q::default();
-    match seed_queue(ev, &cl, &mut heap, go_on) {
+    match seed_queue(fitter, &cl, &mut heap, go_on) {
         Some(priced) => out.fits.seed += priced,
         None => {
             out.stopped = true;
@@ -341,7 +342,7 @@ fn merge_loop<Q: Queue>(
     }
     let mut purge_at = (heap.len() + heap.len() / 4).max(PURGE_MIN);
     let mut stamps = Stamps {
-        mark: vec![0; ev.input.mesh.vertex_count()],
+        mark: vec![0; fitter.input.mesh.vertex_count()],
         epoch: 0,
     };
     let mut reducer = Reducer::default();
@@ -377,12 +378,12 @@ fn merge_loop<Q: Queue>(
             }
             let go_on_here = || go_on(fraction(start, cl.live, last));
             while next < targets.len() && cl.live <= targets[next] {
-                let Some(snap) = snapshot(ev, &cl, targets[next], scope, &go_on_here) else {
+                let Some(snap) = snapshot(fitter, &cl, targets[next], scope, &go_on_here) else {
                     out.stopped = true;
                     return (out, cl);
                 };
                 if next == 0 {
-                    keep_leaf_hulls(ev, &cl, scope, &mut log.hulls);
+                    keep_leaf_hulls(fitter, &cl, scope, &mut log.hulls);
                 }
                 out.snapshots.push(snap);
                 next += 1;
@@ -393,7 +394,9 @@ fn merge_loop<Q: Queue>(
         }
         let c = match held.take() {
             Some(c) => c,
-            None => match next_step(ev, &mut cl, &mut heap, &mut lazy, &mut ws, &mut out, scope) {
+            None => match next_step(
+                fitter, &mut cl, &mut heap, &mut lazy, &mut ws, &mut out, scope,
+            ) {
                 Step::Merge(c) => c,
                 Step::Repriced(c) => {
                     top.popped(&c);
@@ -403,7 +406,7 @@ fn merge_loop<Q: Queue>(
                 Step::Stop => break,
             },
         };
-        if reached && !(ev.pricing.free_merges && free(&c)) {
+        if reached && !(fitter.pricing.free_merges && free(&c)) {
             held = Some(c);
             continue;
         }
@@ -420,7 +423,7 @@ fn merge_loop<Q: Queue>(
             });
         }
         if heap.len() > purge_at {
-            purge(ev, &cl, &mut lazy, &mut heap);
+            purge(fitter, &cl, &mut lazy, &mut heap);
             purge_at = (heap.len() + heap.len() / 4).max(PURGE_MIN);
         }
         // Fresh, so neither cluster changed since it was priced: a look-ahead's points hold.
@@ -429,20 +432,35 @@ fn merge_loop<Q: Queue>(
                 out.ahead += 1;
                 k.verts
             }
-            None => merged_points(ev, &cl, c.a, c.b, &mut stamps, &mut reducer),
+            None => merged_points(fitter, &cl, c.a, c.b, &mut stamps, &mut reducer),
         };
         let root = cl.merge(c.a, c.b, verts, c.volume);
         out.merges += 1;
         if scope.whole() {
             log.merges.push((cl.head(c.a), cl.head(c.b)));
-            keep_hull(ev, &cl, root, scope, log.merges.len() - 1, &mut log.hulls);
+            keep_hull(
+                fitter,
+                &cl,
+                root,
+                scope,
+                log.merges.len() - 1,
+                &mut log.hulls,
+            );
         }
-        if !defer(ev, &mut cl, root) {
+        if !defer(fitter, &mut cl, root) {
             let nbrs = cl.resolved_neighbors(root);
             // While the worker prices the batch, reduce the points of the likely next
             // merge (the serial part of the next step).
-            let meanwhile =
-                || look_ahead(ev, &cl, &mut heap, &mut ahead, &mut stamps, &mut reducer);
+            let meanwhile = || {
+                look_ahead(
+                    fitter,
+                    &cl,
+                    &mut heap,
+                    &mut ahead,
+                    &mut stamps,
+                    &mut reducer,
+                )
+            };
             pricer.price(&cl, root, &nbrs, meanwhile, |c| batch.push(c));
             out.fits.eager += nbrs.len();
             cl.mark_repriced(root);
@@ -454,12 +472,12 @@ fn merge_loop<Q: Queue>(
     }
     let go_on_here = || go_on(fraction(start, cl.live, last));
     while next < targets.len() {
-        let Some(snap) = snapshot(ev, &cl, targets[next], scope, &go_on_here) else {
+        let Some(snap) = snapshot(fitter, &cl, targets[next], scope, &go_on_here) else {
             out.stopped = true;
             return (out, cl);
         };
         if next == 0 {
-            keep_leaf_hulls(ev, &cl, scope, &mut log.hulls);
+            keep_leaf_hulls(fitter, &cl, scope, &mut log.hulls);
         }
         out.snapshots.push(snap);
         next += 1;
@@ -469,12 +487,12 @@ fn merge_loop<Q: Queue>(
 
 /// The points of the live clusters, the first snapshot's (the merge tree's leaves),
 /// where `scope` keeps hulls.
-fn keep_leaf_hulls(ev: &Fitter, cl: &Clusters, scope: Scope, hulls: &mut TreeHulls) {
+fn keep_leaf_hulls(fitter: &Fitter, cl: &Clusters, scope: Scope, hulls: &mut TreeHulls) {
     if let Scope::Tree(Some(_)) = scope {
         hulls.leaves = cl
             .roots()
             .iter()
-            .map(|&r| ev.verts(cl, r).to_vec())
+            .map(|&r| fitter.verts(cl, r).to_vec())
             .collect();
     }
 }
@@ -482,7 +500,7 @@ fn keep_leaf_hulls(ev: &Fitter, cl: &Clusters, scope: Scope, hulls: &mut TreeHul
 /// The points of `root`, just merged as `log.merges[at]`, where `scope` keeps hulls of its
 /// size.
 fn keep_hull(
-    ev: &Fitter,
+    fitter: &Fitter,
     cl: &Clusters,
     root: u32,
     scope: Scope,
@@ -491,7 +509,9 @@ fn keep_hull(
 ) {
     if let Scope::Tree(Some(over)) = scope {
         if cl.face_count[root as usize] as usize > over {
-            hulls.merges.push((at as u32, ev.verts(cl, root).to_vec()));
+            hulls
+                .merges
+                .push((at as u32, fitter.verts(cl, root).to_vec()));
         }
     }
 }
@@ -523,7 +543,7 @@ enum Step {
 /// Pops the queue's next entry and classifies it (lazy deletion, `lazy.rs`); when the
 /// queue runs dry, bridges components (§3.4) — except in a part, which just stops.
 fn next_step<Q: Queue>(
-    ev: &Fitter,
+    fitter: &Fitter,
     cl: &mut Clusters,
     heap: &mut Q,
     lazy: &mut Lazy,
@@ -535,10 +555,10 @@ fn next_step<Q: Queue>(
         if !scope.whole() {
             return Step::Stop;
         }
-        let bridged = bridge(ev, cl);
+        let bridged = bridge(fitter, cl);
         out.bridge_edges += bridged.len();
         out.fits.seed += bridged.len();
-        let fresh = price(ev, cl, &bridged);
+        let fresh = price(fitter, cl, &bridged);
         if fresh.is_empty() {
             return Step::Stop;
         }
@@ -550,7 +570,7 @@ fn next_step<Q: Queue>(
         Pop::Drop => Step::Again,
         Pop::Reprice(a, b) => {
             out.fits.lazy += 1;
-            if let Some((fresh, _)) = ev.candidate(cl, a, b, ws) {
+            if let Some((fresh, _)) = fitter.candidate(cl, a, b, ws) {
                 heap.push(fresh);
             }
             Step::Repriced(c)
@@ -567,7 +587,7 @@ fn fraction(start: usize, live: usize, last: usize) -> f64 {
 
 /// `None` when `go_on` (asked between blocks, reporting no progress yet) says stop.
 fn seed_queue<Q: Queue>(
-    ev: &Fitter,
+    fitter: &Fitter,
     cl: &Clusters,
     heap: &mut Q,
     go_on: Checkpoint,
@@ -584,7 +604,9 @@ fn seed_queue<Q: Queue>(
         block.extend(nbrs.iter().copied().filter(|b| pair(b)).map(|b| (a, b)));
         if block.len() >= PRICE_BLOCK || a + 1 == n {
             priced += block.len();
-            price(ev, cl, &block).into_iter().for_each(|c| heap.push(c));
+            price(fitter, cl, &block)
+                .into_iter()
+                .for_each(|c| heap.push(c));
             block.clear();
             if !go_on(0.0) {
                 return None;
@@ -597,8 +619,8 @@ fn seed_queue<Q: Queue>(
 /// Drops stale entries: lazy deletion's would otherwise outnumber the live pairs many
 /// times over (memory); dropping them keeps the order unchanged. Deferred pairs'
 /// entries are kept: they are the pairs' only keys.
-fn purge<Q: Queue>(ev: &Fitter, cl: &Clusters, lazy: &mut Lazy, heap: &mut Q) {
-    if ev.pricing.defer_degree == u32::MAX {
+fn purge<Q: Queue>(fitter: &Fitter, cl: &Clusters, lazy: &mut Lazy, heap: &mut Q) {
+    if fitter.pricing.defer_degree == u32::MAX {
         heap.retain(|c| valid(cl, c));
     } else {
         heap.retain(|c| lazy.keep(cl, c));
@@ -608,9 +630,9 @@ fn purge<Q: Queue>(ev: &Fitter, cl: &Clusters, lazy: &mut Lazy, heap: &mut Q) {
 
 /// Whether the merge that made `root` leaves its pairs to [`Lazy`] instead of
 /// re-pricing them at once: its neighbour list (resolved once it doubles) reaches
-/// `ev.pricing.defer_degree`.
-fn defer(ev: &Fitter, cl: &mut Clusters, root: u32) -> bool {
-    let limit = ev.pricing.defer_degree as usize;
+/// `fitter.pricing.defer_degree`.
+fn defer(fitter: &Fitter, cl: &mut Clusters, root: u32) -> bool {
+    let limit = fitter.pricing.defer_degree as usize;
     if cl.neighbor_len(root) < limit {
         return false;
     }
@@ -633,7 +655,7 @@ struct Reducer {
 /// convex function (or minimises a concave one) over the points, so the hull vertices
 /// give the same primitive as all points (docs/decisions/0010).
 fn merged_points(
-    ev: &Fitter,
+    fitter: &Fitter,
     cl: &Clusters,
     a: u32,
     b: u32,
@@ -641,7 +663,7 @@ fn merged_points(
     r: &mut Reducer,
 ) -> Vec<u32> {
     st.next();
-    let (va, vb) = (ev.verts(cl, a), ev.verts(cl, b));
+    let (va, vb) = (fitter.verts(cl, a), fitter.verts(cl, b));
     let mut out = Vec::with_capacity(va.len() + vb.len());
     out.extend(va.iter().chain(vb).copied().filter(|&v| st.first(v)));
     if out.len() <= HULL_MIN {
@@ -651,7 +673,7 @@ fn merged_points(
     r.y.clear();
     r.z.clear();
     for &v in &out {
-        let p = ev.input.mesh.pos(v);
+        let p = fitter.input.mesh.pos(v);
         r.x.push(p[0]);
         r.y.push(p[1]);
         r.z.push(p[2]);
@@ -660,7 +682,7 @@ fn merged_points(
         &r.x,
         &r.y,
         &r.z,
-        ev.pricing.hull_eps,
+        fitter.pricing.hull_eps,
         &mut r.hull,
         &mut r.keep,
     );
@@ -682,7 +704,7 @@ struct Ahead {
 /// otherwise its points wait until it is popped still fresh (neither cluster changed
 /// since it was priced, so the same points) or another entry takes its place.
 fn look_ahead<Q: Queue>(
-    ev: &Fitter,
+    fitter: &Fitter,
     cl: &Clusters,
     heap: &mut Q,
     ahead: &mut Option<Ahead>,
@@ -705,14 +727,14 @@ fn look_ahead<Q: Queue>(
     if ahead.as_ref().is_some_and(|k| k.c == c) {
         return;
     }
-    let verts = merged_points(ev, cl, c.a, c.b, st, r);
+    let verts = merged_points(fitter, cl, c.a, c.b, st, r);
     *ahead = Some(Ahead { c, verts });
 }
 
 /// Links every live cluster to its nearest clusters by centroid (`bridge.rs`).
-fn bridge(ev: &Fitter, cl: &mut Clusters) -> Vec<(u32, u32)> {
+fn bridge(fitter: &Fitter, cl: &mut Clusters) -> Vec<(u32, u32)> {
     let roots = cl.roots();
-    let centroids: Vec<[f64; 3]> = roots.iter().map(|&r| centroid(ev, cl, r)).collect();
+    let centroids: Vec<[f64; 3]> = roots.iter().map(|&r| centroid(fitter, cl, r)).collect();
     let pairs: Vec<(u32, u32)> = nearest_pairs(&centroids, BRIDGE_K)
         .into_iter()
         .map(|(i, j)| (roots[i as usize], roots[j as usize]))
@@ -725,11 +747,11 @@ fn bridge(ev: &Fitter, cl: &mut Clusters) -> Vec<(u32, u32)> {
     pairs
 }
 
-fn centroid(ev: &Fitter, cl: &Clusters, c: u32) -> [f64; 3] {
-    let vs = ev.verts(cl, c);
+fn centroid(fitter: &Fitter, cl: &Clusters, c: u32) -> [f64; 3] {
+    let vs = fitter.verts(cl, c);
     let mut s = [0.0; 3];
     for &v in vs {
-        let p = ev.input.mesh.pos(v);
+        let p = fitter.input.mesh.pos(v);
         (0..3).for_each(|k| s[k] += p[k]);
     }
     s.map(|x| x / vs.len().max(1) as f64)
@@ -741,7 +763,7 @@ fn centroid(ev: &Fitter, cl: &Clusters, c: u32) -> [f64; 3] {
 /// `None` when `go_on` says stop while the output primitives are fitted (asked
 /// before every 64 clusters on each thread).
 pub(super) fn snapshot(
-    ev: &Fitter,
+    fitter: &Fitter,
     cl: &Clusters,
     target: usize,
     scope: Scope,
@@ -771,7 +793,7 @@ pub(super) fn snapshot(
             go_on().then(|| {
                 chunk
                     .iter()
-                    .map(|&r| ev.fit_cluster_exact(cl, r, ws).prim)
+                    .map(|&r| fitter.fit_cluster_exact(cl, r, ws).prim)
                     .collect::<Vec<_>>()
             })
         })
@@ -783,7 +805,7 @@ pub(super) fn snapshot(
         target,
         prims,
         faces: roots.iter().map(|&r| cl.face_count[r as usize]).collect(),
-        verts: roots.par_iter().map(|&r| ev.all_verts(cl, r)).collect(),
+        verts: roots.par_iter().map(|&r| fitter.all_verts(cl, r)).collect(),
         members: roots.par_iter().map(|&r| cl.faces(r).collect()).collect(),
         q: Vec::new(),
     };

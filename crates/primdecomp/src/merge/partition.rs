@@ -181,25 +181,25 @@ pub fn phase1_size(largest_target: usize) -> usize {
 /// the input's adjacent face pairs; `merged` is told, now and then, how many merges
 /// all parts have done so far (progress only).
 pub fn merge_parts(
-    ev: &Fitter,
+    fitter: &Fitter,
     faces: FaceData,
     largest_target: usize,
     k: usize,
     merged: &(dyn Fn(usize) -> bool + Sync),
 ) -> Phase1 {
-    let Some(parts) = split_checked(ev.input.mesh, k, &|_| merged(0)) else {
+    let Some(parts) = split_checked(fitter.input.mesh, k, &|_| merged(0)) else {
         return Phase1 {
             stopped: true,
             ..Phase1::default()
         };
     };
-    let all = ev.input.mesh.face_count() as u128;
+    let all = fitter.input.mesh.face_count() as u128;
     let size = phase1_size(largest_target) as u128;
     let targets = parts
         .iter()
         .map(|part| (size * part.len() as u128).div_ceil(all.max(1)).max(1) as usize)
         .collect();
-    merge_groups(ev, faces, &parts, targets, Kind::Spatial, merged)
+    merge_groups(fitter, faces, &parts, targets, Kind::Spatial, merged)
 }
 
 /// What phase 1 reads of each face: its operator, seed volume and adjacent pairs.
@@ -235,7 +235,7 @@ pub(super) enum Kind {
 /// parallel, one task per part, as `kind` says.
 #[allow(clippy::too_many_arguments)]
 pub(super) fn merge_groups(
-    ev: &Fitter,
+    fitter: &Fitter,
     faces: FaceData,
     parts: &[Vec<u32>],
     targets: Vec<usize>,
@@ -243,7 +243,9 @@ pub(super) fn merge_groups(
     merged: &(dyn Fn(usize) -> bool + Sync),
 ) -> Phase1 {
     let local_pairs = match faces {
-        FaceData::Given { pairs, .. } => pairs_by_part(parts, pairs, ev.input.mesh.face_count()),
+        FaceData::Given { pairs, .. } => {
+            pairs_by_part(parts, pairs, fitter.input.mesh.face_count())
+        }
         FaceData::PerPart { .. } => vec![Vec::new(); parts.len()],
     };
     let done: Vec<AtomicUsize> = parts.iter().map(|_| AtomicUsize::new(0)).collect();
@@ -263,7 +265,7 @@ pub(super) fn merge_groups(
             if !merged(done.iter().map(|d| d.load(Relaxed)).sum()) {
                 return (Groups::default(), MergeOutput::stopped());
             }
-            merge_one(ev, faces, part, lp, target, kind, &report)
+            merge_one(fitter, faces, part, lp, target, kind, &report)
         })
         .collect();
     let mut out = Phase1::default();
@@ -351,14 +353,14 @@ fn part_pairs(part: &[u32], (offsets, adj): &Lists) -> Vec<(u32, u32)> {
 }
 
 /// `part`'s operators and seed volumes, from `faces` or computed for it.
-fn part_seeds(ev: &Fitter, faces: FaceData, part: &[u32]) -> (Vec<Sym3>, Vec<f64>) {
+fn part_seeds(fitter: &Fitter, faces: FaceData, part: &[u32]) -> (Vec<Sym3>, Vec<f64>) {
     match faces {
         FaceData::Given { q, volume, .. } => (
             part.iter().map(|&f| q[f as usize]).collect(),
             part.iter().map(|&f| volume[f as usize]).collect(),
         ),
         FaceData::PerPart { tangent_eps, .. } => {
-            let mesh = ev.input.mesh;
+            let mesh = fitter.input.mesh;
             let q: Vec<Sym3> = part
                 .iter()
                 .map(|&f| {
@@ -373,7 +375,7 @@ fn part_seeds(ev: &Fitter, faces: FaceData, part: &[u32]) -> (Vec<Sym3>, Vec<f64
             let volume = part
                 .iter()
                 .zip(&q)
-                .map(|(&f, q)| ev.seed_volume(f, q, &mut ws))
+                .map(|(&f, q)| fitter.seed_volume(f, q, &mut ws))
                 .collect();
             (q, volume)
         }
@@ -384,7 +386,7 @@ fn part_seeds(ev: &Fitter, faces: FaceData, part: &[u32]) -> (Vec<Sym3>, Vec<f64
 /// are its adjacent pairs in local ids when `faces` gives them.
 #[allow(clippy::too_many_arguments)]
 fn merge_one(
-    ev: &Fitter,
+    fitter: &Fitter,
     faces: FaceData,
     part: &[u32],
     mut pairs: Vec<(u32, u32)>,
@@ -395,25 +397,25 @@ fn merge_one(
     if let FaceData::PerPart { lists, .. } = faces {
         pairs = part_pairs(part, lists);
     }
-    let (q, volume) = part_seeds(ev, faces, part);
-    let (sub, sub_welded, global) = sub_mesh(ev.input.mesh, ev.input.welded, part);
+    let (q, volume) = part_seeds(fitter, faces, part);
+    let (sub, sub_welded, global) = sub_mesh(fitter.input.mesh, fitter.input.welded, part);
     // Same fit settings, cost grid and hull tolerance as the whole input's.
     let sub_ev = Fitter {
         // No surface (indexed by the whole input's faces; a part fits no output
         // primitives), the same interior.
         input: InputView {
-            solid: ev.input.solid,
+            solid: fitter.input.solid,
             ..InputView::new(&sub, &sub_welded)
         },
         pricing: Pricing {
             // Lazy greedy for every merge of a part unless re-pricing is exact: faster at
             // about the same quality (docs/decisions/0019-large-inputs-merged-in-parts.md).
-            defer_degree: if kind == Kind::Spatial && ev.pricing.defer_degree != u32::MAX {
+            defer_degree: if kind == Kind::Spatial && fitter.pricing.defer_degree != u32::MAX {
                 0
             } else {
-                ev.pricing.defer_degree
+                fitter.pricing.defer_degree
             },
-            ..ev.pricing
+            ..fitter.pricing
         },
     };
     let cl = Clusters::new(q, volume, &pairs);
@@ -671,13 +673,13 @@ mod tests {
         let mesh = grid_z(24, |i, j| ((i * 7 + j * 13) % 5) as f64 * 0.3);
         let p = crate::params::Params::default();
         let (mut cl, pairs) =
-            crate::merge::driver::tests::with_input(&mesh, &p, |ev, q, vols, pairs| {
+            crate::merge::driver::tests::with_input(&mesh, &p, |fitter, q, vols, pairs| {
                 let given = FaceData::Given {
                     q,
                     volume: vols,
                     pairs,
                 };
-                let p1 = merge_parts(ev, given, 4, 4, &|_| true);
+                let p1 = merge_parts(fitter, given, 4, 4, &|_| true);
                 (
                     {
                         let (o, a) = crate::input::adjacency::neighbour_lists(q.len(), pairs);
@@ -714,7 +716,7 @@ mod tests {
     fn groups_start_phase_two_as_faces_do() {
         let mesh = grid_z(24, |i, j| ((i * 7 + j * 13) % 5) as f64 * 0.3);
         let p = crate::params::Params::default();
-        crate::merge::driver::tests::with_input(&mesh, &p, |ev, q, vols, pairs| {
+        crate::merge::driver::tests::with_input(&mesh, &p, |fitter, q, vols, pairs| {
             let (o, a) = crate::input::adjacency::neighbour_lists(q.len(), pairs);
             let lists: Lists = (o.into(), a.into());
             let given = FaceData::Given {
@@ -726,10 +728,10 @@ mod tests {
                 tangent_eps: p.fit.tangent_eps,
                 lists: &lists,
             };
-            let p1 = merge_parts(ev, given, 4, 4, &|_| true);
+            let p1 = merge_parts(fitter, given, 4, 4, &|_| true);
             let old = clusters(p1, q.to_vec(), vols.to_vec(), lists.clone(), &|_| true);
             let mut old = old.expect("not stopped");
-            let p1 = merge_parts(ev, own, 4, 4, &|_| true);
+            let p1 = merge_parts(fitter, own, 4, 4, &|_| true);
             let mut new = group_clusters(p1, q.len(), &lists, &|_| true).expect("not stopped");
             let (ro, rn) = (old.roots(), new.roots());
             assert!(ro.len() > 4);

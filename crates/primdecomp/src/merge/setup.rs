@@ -79,7 +79,7 @@ pub(crate) const SEED_BLOCK: usize = 1 << 16;
 
 /// Volume of each face's own primitive, in parallel, a block at a time (stops early,
 /// with the rest left 0, when `go_on` says so; the caller then returns cancelled).
-pub(crate) fn seed_volumes(ev: &Fitter, q: &[Sym3], go_on: Checkpoint) -> Vec<f64> {
+pub(crate) fn seed_volumes(fitter: &Fitter, q: &[Sym3], go_on: Checkpoint) -> Vec<f64> {
     let mut out = vec![0.0; q.len()];
     for (b, block) in out.chunks_mut(SEED_BLOCK).enumerate() {
         let start = b * SEED_BLOCK;
@@ -89,7 +89,7 @@ pub(crate) fn seed_volumes(ev: &Fitter, q: &[Sym3], go_on: Checkpoint) -> Vec<f6
             .with_min_len(1024)
             .for_each_init(Workspace::default, |ws, (i, v)| {
                 let f = start + i;
-                *v = ev.seed_volume(f as u32, &q[f], ws);
+                *v = fitter.seed_volume(f as u32, &q[f], ws);
             });
         if !go_on((start + block.len()) as f64 / q.len().max(1) as f64) {
             break;

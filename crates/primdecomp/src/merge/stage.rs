@@ -90,7 +90,7 @@ pub(crate) trait Keep {
     /// The global loop from `cl` through `targets` (decreasing).
     fn run(
         &self,
-        ev: &Fitter,
+        fitter: &Fitter,
         cl: Clusters,
         targets: &[usize],
         go_on: Checkpoint,
@@ -113,12 +113,12 @@ impl Keep for AtTargets {
 
     fn run(
         &self,
-        ev: &Fitter,
+        fitter: &Fitter,
         cl: Clusters,
         targets: &[usize],
         go_on: Checkpoint,
     ) -> (MergeOutput, ()) {
-        (super::run(ev, cl, targets, go_on), ())
+        (super::run(fitter, cl, targets, go_on), ())
     }
 
     fn join(_: Vec<(u32, u32)>, _: (), _: bool) {}
@@ -140,12 +140,12 @@ impl Keep for ForTree {
 
     fn run(
         &self,
-        ev: &Fitter,
+        fitter: &Fitter,
         cl: Clusters,
         targets: &[usize],
         go_on: Checkpoint,
     ) -> (MergeOutput, MergeLog) {
-        super::run_for_tree(ev, cl, targets, self.hulls_over, go_on)
+        super::run_for_tree(fitter, cl, targets, self.hulls_over, go_on)
     }
 
     fn join(replayed: Vec<(u32, u32)>, mut log: MergeLog, from_faces: bool) -> MergeLog {
@@ -223,7 +223,7 @@ impl FirstPhase {
 /// merges down to the last target.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn merge<K: Keep>(
-    ev: &Fitter,
+    fitter: &Fitter,
     input: MergeInput,
     first: FirstPhase,
     targets: &[usize],
@@ -240,7 +240,7 @@ pub(crate) fn merge<K: Keep>(
         tangent_eps,
     } = input;
     let last = *targets.last().expect("validated: one target or more");
-    let total = ev.input.mesh.face_count().saturating_sub(last).max(1) as f64;
+    let total = fitter.input.mesh.face_count().saturating_sub(last).max(1) as f64;
     let merged_so_far = |m: usize| go_on(m as f64 / total);
     // Every merge the replayed components did, in the global order.
     let mut components_log = Vec::new();
@@ -253,7 +253,7 @@ pub(crate) fn merge<K: Keep>(
                     tangent_eps,
                     lists: &lists,
                 };
-                partition::merge_parts(ev, faces, target, parts, &merged_so_far)
+                partition::merge_parts(fitter, faces, target, parts, &merged_so_far)
             });
             stats.merges = p1.merges;
             add_fits(stats, p1.fits);
@@ -264,7 +264,7 @@ pub(crate) fn merge<K: Keep>(
             // faces' pairs, operators and volumes are done with: the groups hold theirs.
             drop((pairs, q, volumes));
             let so_far = stats.merges;
-            let faces = ev.input.mesh.face_count();
+            let faces = fitter.input.mesh.face_count();
             let clusters = laps.time("regroup", || {
                 partition::group_clusters(p1, faces, &lists, &|_| merged_so_far(so_far))
             });
@@ -283,7 +283,7 @@ pub(crate) fn merge<K: Keep>(
             };
             let p1 = laps.time("components", || {
                 let (q, v, p) = (&q, &volumes, &pairs);
-                components::merge_components(ev, q, v, p, comps, trace_from, &merged_so_far)
+                components::merge_components(fitter, q, v, p, comps, trace_from, &merged_so_far)
             });
             stats.merges = p1.merges;
             add_fits(stats, p1.fits);
@@ -291,7 +291,7 @@ pub(crate) fn merge<K: Keep>(
                 return (MergeOutput::stopped(), K::Log::default());
             }
             let (early, replayed, after) =
-                components::snapshots(ev, &p1, &q, &volumes, &pairs, targets, count);
+                components::snapshots(fitter, &p1, &q, &volumes, &pairs, targets, count);
             components_log = after;
             if early.len() == targets.len() {
                 // Every target reached: the output holds the replayed merges only.
@@ -317,7 +317,7 @@ pub(crate) fn merge<K: Keep>(
     let done = stats.merges as f64;
     let rest = clusters.live.saturating_sub(last) as f64;
     let phase2 = |f: f64| go_on((done + f * rest) / total);
-    let (mut out, log) = keep.run(ev, clusters, &targets[early.len()..], &phase2);
+    let (mut out, log) = keep.run(fitter, clusters, &targets[early.len()..], &phase2);
     let log = K::join(components_log, log, from_faces);
     out.snapshots.splice(0..0, early);
     stats.bridge_edges = out.bridge_edges;

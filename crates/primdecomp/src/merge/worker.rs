@@ -130,7 +130,7 @@ pub struct PricerCounts {
 
 /// Re-prices batches of merges, on two threads when it has a worker.
 pub struct Pricer<'p> {
-    ev: &'p Fitter<'p>,
+    fitter: &'p Fitter<'p>,
     ws: Workspace,
     link: Option<(&'p Shared, Thread)>,
     epoch: u32,
@@ -143,21 +143,21 @@ pub struct Pricer<'p> {
 /// Runs `f` with a [`Pricer`] that has a worker thread when rayon's pool has two or
 /// more threads (none under `--threads 1`); the worker stops when `f` returns or
 /// unwinds.
-pub fn with_pricer<R>(ev: &Fitter, f: impl FnOnce(&mut Pricer<'_>) -> R) -> R {
+pub fn with_pricer<R>(fitter: &Fitter, f: impl FnOnce(&mut Pricer<'_>) -> R) -> R {
     if rayon::current_num_threads() < 2 {
-        return f(&mut Pricer::new(ev, None));
+        return f(&mut Pricer::new(fitter, None));
     }
     let shared = Shared::default();
     thread::scope(|s| {
         // No thread to be had: everything is priced here (same results).
         let link = thread::Builder::new()
             .name("primdecomp-reprice".into())
-            .spawn_scoped(s, || work(ev, &shared))
+            .spawn_scoped(s, || work(fitter, &shared))
             .ok()
             .map(|h| (&shared, h.thread().clone()));
         // The pricer drops when `f` returns or unwinds, which stops the worker before
         // the scope joins it.
-        f(&mut Pricer::new(ev, link))
+        f(&mut Pricer::new(fitter, link))
     })
 }
 
@@ -173,13 +173,13 @@ impl Drop for Pricer<'_> {
 impl<'p> Pricer<'p> {
     /// A pricer without a worker (phase 1 of `Speed::partitions`: one per part, the
     /// parts themselves run in parallel).
-    pub(super) fn serial(ev: &'p Fitter<'p>) -> Self {
-        Pricer::new(ev, None)
+    pub(super) fn serial(fitter: &'p Fitter<'p>) -> Self {
+        Pricer::new(fitter, None)
     }
 
-    fn new(ev: &'p Fitter<'p>, link: Option<(&'p Shared, Thread)>) -> Self {
+    fn new(fitter: &'p Fitter<'p>, link: Option<(&'p Shared, Thread)>) -> Self {
         Pricer {
-            ev,
+            fitter,
             ws: Workspace::default(),
             link,
             epoch: 0,
@@ -208,10 +208,10 @@ impl<'p> Pricer<'p> {
             Some((sh, _)) if nbrs.len() >= 2 => self.publish(sh, cl, root, nbrs).then_some(sh),
             _ => None,
         };
-        let ev = self.ev;
+        let fitter = self.fitter;
         let Some(sh) = shared else {
             for &n in nbrs {
-                if let Some((c, _)) = ev.candidate(cl, root, n, &mut self.ws) {
+                if let Some((c, _)) = fitter.candidate(cl, root, n, &mut self.ws) {
                     push(c);
                 }
             }
@@ -229,7 +229,9 @@ impl<'p> Pricer<'p> {
             if i >= nbrs.len() {
                 break;
             }
-            self.found[i] = ev.candidate(cl, root, nbrs[i], &mut self.ws).map(|c| c.0);
+            self.found[i] = fitter
+                .candidate(cl, root, nbrs[i], &mut self.ws)
+                .map(|c| c.0);
             self.mine[i] = true;
             mine += 1;
         }
@@ -256,9 +258,9 @@ impl<'p> Pricer<'p> {
         job.slots.clear();
         job.verts.clear();
         job.results.clear();
-        job.push(self.ev.side(cl, root));
+        job.push(self.fitter.side(cl, root));
         for &n in nbrs {
-            job.push(self.ev.side(cl, n));
+            job.push(self.fitter.side(cl, n));
         }
         drop(job);
         self.epoch = epoch;
@@ -303,7 +305,10 @@ impl<'p> Pricer<'p> {
     fn take_back(&mut self, cl: &Clusters, root: u32, nbrs: &[u32]) {
         for (i, &n) in nbrs.iter().enumerate() {
             if !self.mine[i] {
-                self.found[i] = self.ev.candidate(cl, root, n, &mut self.ws).map(|c| c.0);
+                self.found[i] = self
+                    .fitter
+                    .candidate(cl, root, n, &mut self.ws)
+                    .map(|c| c.0);
             }
         }
         self.stats.taken_back += 1;
@@ -322,7 +327,7 @@ impl Drop for DeadOnUnwind<'_> {
 }
 
 /// The worker: waits for a batch, prices the neighbours it claims from the snapshot.
-fn work(ev: &Fitter, sh: &Shared) {
+fn work(fitter: &Fitter, sh: &Shared) {
     let _guard = DeadOnUnwind(sh);
     let mut ws = Workspace::default();
     let mut seen = 0u32;
@@ -334,14 +339,14 @@ fn work(ev: &Fitter, sh: &Shared) {
         // Otherwise the job was refilled for a later batch: go round again.
         if job.epoch == epoch {
             seen = epoch;
-            price_claimed(ev, sh, &mut job, &mut ws);
+            price_claimed(fitter, sh, &mut job, &mut ws);
         }
     }
 }
 
 /// Claims neighbours of `job` one at a time while its batch is open, prices each from
 /// the snapshot and reports progress through `done`.
-fn price_claimed(ev: &Fitter, sh: &Shared, job: &mut Job, ws: &mut Workspace) {
+fn price_claimed(fitter: &Fitter, sh: &Shared, job: &mut Job, ws: &mut Workspace) {
     let mut finished = 0u64;
     loop {
         let cur = sh.claim.0.load(Acquire);
@@ -359,7 +364,7 @@ fn price_claimed(ev: &Fitter, sh: &Shared, job: &mut Job, ws: &mut Workspace) {
         {
             continue;
         }
-        let c = ev.candidate_of(job.side(0), job.side(i + 1), ws);
+        let c = fitter.candidate_of(job.side(0), job.side(i + 1), ws);
         job.results.push((i as u32, c.map(|c| c.0)));
         finished += 1;
         sh.done.0.store((epoch as u64) << 32 | finished, Release);
@@ -421,17 +426,17 @@ mod tests {
     /// The pricer hands over the same candidates, in the same order, as the serial loop.
     #[test]
     fn shared_batches_price_like_the_serial_loop() {
-        with_demo(|ev, fresh| {
+        with_demo(|fitter, fresh| {
             let mut cl = fresh();
             let batches = batches(&mut cl);
             let mut ws = Workspace::default();
             let serial: Vec<Candidate> = batches
                 .iter()
                 .flat_map(|(r, ns)| ns.iter().map(|&n| (*r, n)).collect::<Vec<_>>())
-                .filter_map(|(r, n)| ev.candidate(&cl, r, n, &mut ws).map(|c| c.0))
+                .filter_map(|(r, n)| fitter.candidate(&cl, r, n, &mut ws).map(|c| c.0))
                 .collect();
             let (shared, stats) = in_pool(2, || {
-                with_pricer(ev, |p| {
+                with_pricer(fitter, |p| {
                     let mut out = Vec::new();
                     for (r, ns) in &batches {
                         p.price(&cl, *r, ns, || {}, |c| out.push(c));
@@ -447,12 +452,12 @@ mod tests {
     /// A panic in the merge loop stops the worker: the scope joins it, no hang.
     #[test]
     fn a_panic_in_the_loop_stops_the_worker() {
-        with_demo(|ev, fresh| {
+        with_demo(|fitter, fresh| {
             let mut cl = fresh();
             let batches = batches(&mut cl);
             let r = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
                 in_pool(2, || {
-                    with_pricer(ev, |p| {
+                    with_pricer(fitter, |p| {
                         let (r, ns) = &batches[0];
                         p.price(&cl, *r, ns, || {}, |_| {});
                         panic!("the loop fails");
@@ -467,9 +472,9 @@ mod tests {
     /// one thread starts no worker at all.
     #[test]
     fn early_exit_and_one_thread() {
-        with_demo(|ev, _| {
-            assert!(in_pool(2, || with_pricer(ev, |p| p.link.is_some())));
-            assert!(in_pool(1, || with_pricer(ev, |p| p.link.is_none())));
+        with_demo(|fitter, _| {
+            assert!(in_pool(2, || with_pricer(fitter, |p| p.link.is_some())));
+            assert!(in_pool(1, || with_pricer(fitter, |p| p.link.is_none())));
         });
     }
 }

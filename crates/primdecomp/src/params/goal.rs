@@ -43,37 +43,6 @@ impl Target {
     }
 }
 
-/// How a [`Goal::Counts`] level of N primitives is found.
-///
-/// ```
-/// use primdecomp::{decompose, demo_scene, CountSearch, Goal, Params};
-///
-/// // The paper's greedy pass alone, the fastest.
-/// let goal = Goal::Counts { counts: vec![40], search: CountSearch::Greedy };
-/// let level = &decompose(&demo_scene(), &Params { goal, ..Params::default() })?.levels[0];
-/// assert!(level.primitives.len() <= 40);
-/// assert_eq!(level.distance, None); // only a cut measures its distance
-/// # Ok::<(), primdecomp::Error>(())
-/// ```
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum CountSearch {
-    /// The greedy pass's level at N, cut from the merge tree instead where that level
-    /// loses what the count asked for: on an input of several separate parts (the
-    /// parts nested in one large primitive are dropped, so -n 32 could give 5), or
-    /// where post-processing left it short of N by more than a few
-    /// (docs/decisions/0054-counts-on-several-parts.md).
-    #[default]
-    Auto,
-    /// The greedy pass's level, never cut again: the paper's, the fastest.
-    Greedy,
-    /// Always a cut of the merge tree: the node whose primitive stands farthest from
-    /// the input (a bound of the one-way distance, docs/decisions/0040) is split until
-    /// N remain or none is worth splitting; of the cuts reached, the one of at most N
-    /// nodes whose worst node stands nearest is kept, then filled to N
-    /// (docs/decisions/0032 and 0034).
-    Cut,
-}
-
 /// What the user asks of a run, one level (one result) per count, tolerance or byte
 /// budget. The default: the fewest primitives within [`Tolerance::DEFAULT`] of the
 /// input, at most [`Goal::MAX_PRIMITIVES`].
@@ -100,12 +69,50 @@ pub enum CountSearch {
 pub enum Goal {
     /// One level per count, each of at most that many primitives: fewer where nested
     /// primitives are removed and where coplanar faces merge for free
-    /// ([`Plates::join_coplanar`](crate::Plates::join_coplanar)).
+    /// ([`Plates::join_coplanar`](crate::Plates::join_coplanar)). Each is the greedy
+    /// pass's level at N ([`Goal::Greedy`]), cut from the merge tree instead
+    /// ([`Goal::Cut`]) where that level loses what the count asked for: on an input of
+    /// several separate parts (the parts nested in one large primitive are dropped, so
+    /// -n 32 could give 5), or where post-processing left it short of N by more than a
+    /// few (docs/decisions/0054-counts-on-several-parts.md).
     Counts {
         /// The counts, one level each, in the order given.
         counts: Vec<usize>,
-        /// How each count's level is found.
-        search: CountSearch,
+    },
+    /// Counts taken from the greedy pass's levels, never cut again: the paper's, the
+    /// fastest (`--greedy`).
+    ///
+    /// ```
+    /// use primdecomp::{decompose, demo_scene, Goal, Params};
+    ///
+    /// let goal = Goal::Greedy { counts: vec![40] };
+    /// let level = &decompose(&demo_scene(), &Params { goal, ..Params::default() })?.levels[0];
+    /// assert!(level.primitives.len() <= 40);
+    /// assert_eq!(level.distance, None); // only a cut measures its distance
+    /// # Ok::<(), primdecomp::Error>(())
+    /// ```
+    Greedy {
+        /// The counts, one level each, in the order given.
+        counts: Vec<usize>,
+    },
+    /// Counts that are always cuts of the merge tree (`--cut`): the node whose
+    /// primitive stands farthest from the input (a bound of the one-way distance,
+    /// docs/decisions/0040) is split until N remain or none is worth splitting; of the
+    /// cuts reached, the one of at most N nodes whose worst node stands nearest is
+    /// kept, then filled to N (docs/decisions/0032 and 0034).
+    ///
+    /// ```
+    /// use primdecomp::{decompose, demo_scene, Goal, Params};
+    ///
+    /// let goal = Goal::Cut { counts: vec![40] };
+    /// let level = &decompose(&demo_scene(), &Params { goal, ..Params::default() })?.levels[0];
+    /// assert!(level.primitives.len() <= 40);
+    /// assert!(level.distance.is_some()); // a cut measures how far it stands
+    /// # Ok::<(), primdecomp::Error>(())
+    /// ```
+    Cut {
+        /// The counts, one level each, in the order given.
+        counts: Vec<usize>,
     },
     /// Greedy levels filled to their counts: where removing nested primitives leaves
     /// fewer than N, merge less (up to 8N) so the level holds as many primitives as fit
@@ -147,11 +154,10 @@ impl Goal {
     /// ```
     pub const MAX_PRIMITIVES: usize = crate::params::MAX_PRIMITIVES;
 
-    /// Levels of at most these counts, found by [`CountSearch::Auto`].
+    /// Levels of at most these counts, found as [`Goal::Counts`] says.
     pub fn counts(counts: impl Into<Vec<usize>>) -> Goal {
         Goal::Counts {
             counts: counts.into(),
-            search: CountSearch::Auto,
         }
     }
 
@@ -178,7 +184,10 @@ impl Goal {
     /// The number of levels (results) this goal makes.
     pub fn levels(&self) -> usize {
         match self {
-            Goal::Counts { counts, .. } | Goal::Fill { counts } => counts.len(),
+            Goal::Counts { counts }
+            | Goal::Greedy { counts }
+            | Goal::Cut { counts }
+            | Goal::Fill { counts } => counts.len(),
             Goal::Within {
                 caps,
                 tolerance,
@@ -203,7 +212,10 @@ impl Goal {
     /// ```
     pub fn targets(&self) -> Vec<usize> {
         match self {
-            Goal::Counts { counts, .. } | Goal::Fill { counts } => counts.clone(),
+            Goal::Counts { counts }
+            | Goal::Greedy { counts }
+            | Goal::Cut { counts }
+            | Goal::Fill { counts } => counts.clone(),
             Goal::Within { caps, .. } => match caps.len() {
                 0 => vec![MAX_PRIMITIVES; self.levels()],
                 1 => vec![caps[0]; self.levels()],
@@ -223,10 +235,9 @@ impl Goal {
     /// ```
     pub fn with_targets(&self, targets: Vec<usize>) -> Goal {
         match self {
-            Goal::Counts { search, .. } => Goal::Counts {
-                counts: targets,
-                search: *search,
-            },
+            Goal::Counts { .. } => Goal::Counts { counts: targets },
+            Goal::Greedy { .. } => Goal::Greedy { counts: targets },
+            Goal::Cut { .. } => Goal::Cut { counts: targets },
             Goal::Fill { .. } => Goal::Fill { counts: targets },
             Goal::Within {
                 tolerance,
@@ -241,7 +252,7 @@ impl Goal {
     }
 
     /// Whether levels are cuts of the merge tree (a tolerance, a byte budget or
-    /// [`CountSearch::Cut`]), which needs more memory than the greedy merge alone
+    /// [`Goal::Cut`]), which needs more memory than the greedy merge alone
     /// ([`LoadOptions::greedy_only`](crate::LoadOptions::greedy_only)).
     ///
     /// ```
@@ -251,34 +262,18 @@ impl Goal {
     /// assert!(Goal::default().uses_cut(), "a tolerance is a cut of the merge tree");
     /// ```
     pub fn uses_cut(&self) -> bool {
-        matches!(
-            self,
-            Goal::Within { .. }
-                | Goal::Counts {
-                    search: CountSearch::Cut,
-                    ..
-                }
-        )
+        matches!(self, Goal::Within { .. } | Goal::Cut { .. })
     }
 
     /// Whether counts may become cuts of the merge tree where the greedy level falls
-    /// short ([`CountSearch::Auto`]).
+    /// short ([`Goal::Counts`]).
     pub(crate) fn count_cut(&self) -> bool {
-        matches!(
-            self,
-            Goal::Counts {
-                search: CountSearch::Auto,
-                ..
-            }
-        )
+        matches!(self, Goal::Counts { .. })
     }
 
     /// The counts of these levels, met by a cut of the merge tree.
     pub(crate) fn cut_counts(counts: Vec<usize>) -> Goal {
-        Goal::Counts {
-            counts,
-            search: CountSearch::Cut,
-        }
+        Goal::Cut { counts }
     }
 
     /// This goal with its counts found by a cut of the merge tree (a tolerance or byte

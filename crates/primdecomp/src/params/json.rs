@@ -5,7 +5,7 @@
 //! `greedy`, `fill`) become one [`Goal`], and a combination no goal can be
 //! (a greedy or filled tolerance, fill without counts) is refused with its reason.
 
-use super::{CountSearch, Dedup, Fit, Goal, Params, Partitions, Plates, Reprice, Speed, Tolerance};
+use super::{Dedup, Fit, Goal, Params, Partitions, Plates, Reprice, Speed, Tolerance};
 use serde::{Deserialize, Serialize};
 
 /// Every setting under its JSON key, in the order results write them.
@@ -77,7 +77,8 @@ impl From<Params> for Settings {
         let (mut tolerance, mut max_bytes) = (Vec::new(), Vec::new());
         let (mut fill, mut greedy) = (false, false);
         match &p.goal {
-            Goal::Counts { search, .. } => greedy = *search == CountSearch::Greedy,
+            Goal::Greedy { .. } => greedy = true,
+            Goal::Counts { .. } | Goal::Cut { .. } => {}
             Goal::Fill { .. } => fill = true,
             Goal::Within {
                 tolerance: t,
@@ -176,10 +177,7 @@ fn goal(s: &Settings) -> Result<Goal, String> {
         },
         () if s.fill => Goal::Fill { counts },
         () if counts.is_empty() => Goal::default(),
-        () if s.greedy => Goal::Counts {
-            counts,
-            search: CountSearch::Greedy,
-        },
+        () if s.greedy => Goal::Greedy { counts },
         () if s.cut => Goal::cut_counts(counts),
         () => Goal::counts(counts),
     })

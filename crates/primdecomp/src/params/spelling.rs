@@ -1,10 +1,11 @@
 //! How a user spells each setting's value ("1%", "4K", "exact", "auto", "box"): one
-//! [`FromStr`] and one [`Display`] per value type, used by the command line and the
+//! [`FromStr`] and one [`Display`] per value type (a byte count, a plain number, is
+//! read by [`Goal::parse_bytes`]), used by the command line and the
 //! Python keywords alike, so that each reads the same words and says the same thing
 //! when a word is wrong. A parse error is [`Error::InvalidParams`] with what was
 //! expected and what was given; the caller names the flag or keyword.
 
-use super::{Dedup, Partitions, Reprice, Target, Tolerance};
+use super::{Dedup, Fit, Goal, Partitions, Reprice, Target, Tolerance};
 use crate::error::Error;
 use crate::primitive::Kind;
 use std::fmt::{self, Display, Formatter};
@@ -75,25 +76,21 @@ impl Display for Tolerance {
     }
 }
 
-/// A byte count, optionally with K, M, G or T (powers of 1024; `KB`, `KiB` read the
-/// same): a byte budget (`--max-bytes`) or a memory limit (`--max-memory`).
-///
-/// ```
-/// use primdecomp::ByteSize;
-///
-/// assert_eq!("4K".parse::<ByteSize>()?, ByteSize(4096));
-/// assert_eq!("1.5GiB".parse::<ByteSize>()?, ByteSize(3 << 29));
-/// assert_eq!(ByteSize(4096).to_string(), "4K");
-/// assert_eq!(ByteSize(1000).to_string(), "1000");
-/// # Ok::<(), primdecomp::Error>(())
-/// ```
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord)]
-pub struct ByteSize(pub u64);
-
-impl FromStr for ByteSize {
-    type Err = Error;
-
-    fn from_str(s: &str) -> Result<ByteSize, Error> {
+impl Goal {
+    /// A byte count as the user writes it, optionally with K, M, G or T (powers of
+    /// 1024; `KB`, `KiB` read the same): a byte budget ([`Goal::max_bytes`],
+    /// `--max-bytes`) or a memory limit (`--max-memory`). Zero reads as zero; a goal
+    /// refuses it ([`crate::Params::validate`]).
+    ///
+    /// ```
+    /// use primdecomp::Goal;
+    ///
+    /// assert_eq!(Goal::parse_bytes("4K")?, 4096);
+    /// assert_eq!(Goal::parse_bytes("1.5GiB")?, 3 << 29);
+    /// assert!(Goal::parse_bytes("lots").is_err());
+    /// # Ok::<(), primdecomp::Error>(())
+    /// ```
+    pub fn parse_bytes(s: &str) -> Result<u64, Error> {
         let bad = || {
             invalid(format!(
                 "expected a byte count such as 4096 or 4K, got '{s}'"
@@ -111,34 +108,12 @@ impl FromStr for ByteSize {
         let v: f64 = num.trim().parse().map_err(|_| bad())?;
         let bytes = v * (1u64 << shift) as f64;
         match v.is_finite() && v >= 0.0 && bytes < u64::MAX as f64 {
-            true => Ok(ByteSize(bytes as u64)),
+            true => Ok(bytes as u64),
             false => Err(bad()),
         }
     }
 }
 
-impl Display for ByteSize {
-    fn fmt(&self, f: &mut Formatter<'_>) -> fmt::Result {
-        let unit = [(40, "T"), (30, "G"), (20, "M"), (10, "K")]
-            .into_iter()
-            .find(|&(shift, _)| self.0 >= 1 << shift && self.0 % (1 << shift) == 0);
-        match unit {
-            Some((shift, u)) => write!(f, "{}{u}", self.0 >> shift),
-            None => write!(f, "{}", self.0),
-        }
-    }
-}
-
-/// `auto` or a count of parts.
-///
-/// ```
-/// use primdecomp::Partitions;
-///
-/// assert_eq!("auto".parse::<Partitions>()?, Partitions::Auto);
-/// assert_eq!("8".parse::<Partitions>()?, Partitions::Fixed(8));
-/// assert_eq!(Partitions::Fixed(8).to_string(), "8");
-/// # Ok::<(), primdecomp::Error>(())
-/// ```
 impl FromStr for Partitions {
     type Err = Error;
 
@@ -278,6 +253,58 @@ impl Display for Dedup {
 /// assert_eq!(Kind::Frustum.to_string(), "frustum");
 /// # Ok::<(), primdecomp::Error>(())
 /// ```
+impl Fit {
+    /// Sets the weights of the kinds `spelled` names, as a user writes them:
+    /// `kind=w` pairs separated by commas (`frustum=3,box=1.2`); the kinds it does not
+    /// name keep theirs. A word that is not `kind=w`, a kind that does not exist or a
+    /// weight that is not a number is refused with what was expected and what was
+    /// given, and nothing is changed; [`crate::Params::validate`] refuses weights that
+    /// are not positive.
+    ///
+    /// ```
+    /// use primdecomp::{Fit, Kind};
+    ///
+    /// let mut fit = Fit::default();
+    /// fit.set_weights("frustum=3, box=1.5")?;
+    /// assert_eq!(fit.weights[Kind::Frustum as usize], 3.0);
+    /// assert_eq!(fit.weights[Kind::Box as usize], 1.5);
+    /// assert!(fit.set_weights("cone=2").is_err());
+    /// assert!(fit.set_weights("box").is_err());
+    /// # Ok::<(), primdecomp::Error>(())
+    /// ```
+    pub fn set_weights(&mut self, spelled: &str) -> Result<(), Error> {
+        let mut weights = self.weights;
+        for pair in spelled.split(',') {
+            let (k, v) = pair
+                .split_once('=')
+                .ok_or_else(|| invalid(format!("expected kind=value, got '{pair}'")))?;
+            let kind: Kind = k.parse()?;
+            weights[kind as usize] =
+                (v.trim().parse()).map_err(|_| invalid(format!("'{v}' is not a number")))?;
+        }
+        self.weights = weights;
+        Ok(())
+    }
+
+    /// Every kind's weight as [`Fit::set_weights`] reads it back, in [`Kind::ALL`]'s
+    /// order.
+    ///
+    /// ```
+    /// use primdecomp::Fit;
+    ///
+    /// let spelled = Fit::default().weights_spelled();
+    /// assert_eq!(spelled, "box=1,sphere=1,capsule=1,cylinder=1.05,frustum=2.1,prism=1.4");
+    /// let mut fit = Fit { weights: [2.0; 6], ..Fit::default() };
+    /// fit.set_weights(&spelled)?;
+    /// assert_eq!(fit, Fit::default());
+    /// # Ok::<(), primdecomp::Error>(())
+    /// ```
+    pub fn weights_spelled(&self) -> String {
+        let pairs = Kind::ALL.map(|k| format!("{k}={}", brief(self.weights[k as usize])));
+        pairs.join(",")
+    }
+}
+
 impl FromStr for Kind {
     type Err = Error;
 
@@ -313,10 +340,6 @@ mod tests {
             assert_eq!(t.to_string().parse::<Tolerance>().unwrap(), t, "{t}");
         }
         assert_eq!(Tolerance::Diagonal(0.07).to_string(), "7%");
-        for b in [0, 1, 1000, 4096, 3 << 29, 5 << 40] {
-            let s = ByteSize(b).to_string();
-            assert_eq!(s.parse::<ByteSize>().unwrap(), ByteSize(b), "{s}");
-        }
         for p in [Partitions::Auto, Partitions::Fixed(16)] {
             assert_eq!(p.to_string().parse::<Partitions>().unwrap(), p);
         }
@@ -342,15 +365,16 @@ mod tests {
         assert!(msg("1mm".parse::<Tolerance>().unwrap_err()).contains("got '1mm'"));
         assert!(msg("-1%".parse::<Tolerance>().unwrap_err()).contains("'-1%' is not positive"));
         assert!(msg("100%".parse::<Tolerance>().unwrap_err()).contains("percentage"));
-        assert!(msg("lots".parse::<ByteSize>().unwrap_err()).contains("got 'lots'"));
-        assert!("-1G".parse::<ByteSize>().is_err());
+        assert!(msg(Goal::parse_bytes("lots").unwrap_err()).contains("got 'lots'"));
+        assert!(Goal::parse_bytes("-1G").is_err());
         for (s, b) in [
             ("1048576", 1 << 20),
             ("512M", 512 << 20),
             ("8g", 8 << 30),
             ("2KB", 2048),
+            ("0", 0),
         ] {
-            assert_eq!(s.parse::<ByteSize>().unwrap(), ByteSize(b), "{s}");
+            assert_eq!(Goal::parse_bytes(s).unwrap(), b, "{s}");
         }
         assert!(msg("some".parse::<Partitions>().unwrap_err()).contains("auto or a count"));
         assert!(msg("cone".parse::<Kind>().unwrap_err()).contains("unknown primitive kind 'cone'"));

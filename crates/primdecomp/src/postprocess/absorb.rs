@@ -32,9 +32,9 @@ const NESTED_TOL_REL: f64 = 1e-9;
 /// Replaces near-duplicate pairs of `snap`'s primitives by their union's fit, in rounds
 /// until none is left, the least growth first (`plates::in_rounds`); `q` holds each
 /// primitive's operator and is compacted with the snapshot.
-pub fn absorb(ev: &Fitter, snap: &mut Snapshot, q: &mut Vec<Sym3>) {
+pub fn absorb(fitter: &Fitter, snap: &mut Snapshot, q: &mut Vec<Sym3>) {
     in_rounds(snap, q, |snap, q, alive, dirty| {
-        near_duplicates(ev, snap, q, alive, dirty)
+        near_duplicates(fitter, snap, q, alive, dirty)
     });
 }
 
@@ -43,7 +43,7 @@ pub fn absorb(ev: &Fitter, snap: &mut Snapshot, q: &mut Vec<Sym3>) {
 /// nested removal of §3.4 drops those), and whose union's fit grows the larger by at
 /// most [`ABSORB`] of the smaller, with that growth and fit.
 fn near_duplicates(
-    ev: &Fitter,
+    fitter: &Fitter,
     snap: &Snapshot,
     q: &[Sym3],
     alive: &[bool],
@@ -56,12 +56,12 @@ fn near_duplicates(
         .flat_map(|i| (i + 1..n).map(move |j| (i, j)))
         .filter(|&(i, j)| live(i, j) && overlaps(boxes[i], boxes[j]))
         .collect();
-    let tol = NESTED_TOL_REL * ev.input.mesh.diagonal().max(f64::MIN_POSITIVE);
+    let tol = NESTED_TOL_REL * fitter.input.mesh.diagonal().max(f64::MIN_POSITIVE);
     let holds = |i: usize, j: usize| {
         let p = &snap.prims[i];
         snap.verts[j]
             .iter()
-            .all(|&v| p.contains(ev.input.mesh.pos(v), tol))
+            .all(|&v| p.contains(fitter.input.mesh.pos(v), tol))
     };
     pairs
         .par_iter()
@@ -69,7 +69,7 @@ fn near_duplicates(
         .map_init(Workspace::default, |ws, &(i, j)| {
             let (vi, vj) = (snap.prims[i].volume(), snap.prims[j].volume());
             let faces = snap.members[i].iter().chain(&snap.members[j]).copied();
-            let fit = ev.fit_output(faces, &q[i].add(&q[j]), ws);
+            let fit = fitter.fit_output(faces, &q[i].add(&q[j]), ws);
             let growth = (fit.prim.volume() - vi.max(vj)) / vi.min(vj);
             (growth <= ABSORB).then_some((growth, i, j, fit.prim))
         })

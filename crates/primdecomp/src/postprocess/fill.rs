@@ -15,7 +15,7 @@
 use crate::error::Result;
 use crate::input::mesh::Mesh;
 use crate::output::result::{Decomposition, Level};
-use crate::params::{CountSearch, Goal, Params};
+use crate::params::{Goal, Params};
 use crate::progress::wallclock::Instant;
 use crate::progress::{Progress, Stage};
 
@@ -122,9 +122,8 @@ pub(crate) fn fill(
 ) -> Result<Decomposition> {
     // The passes are greedy levels, which fill refines (never cuts, 0054).
     let once = Params {
-        goal: Goal::Counts {
+        goal: Goal::Greedy {
             counts: params.goal.targets(),
-            search: CountSearch::Greedy,
         },
         ..params.clone()
     };

@@ -40,13 +40,13 @@ impl<'a> Prepared<'a> {
 /// One level per target of `params.goal` (in the order given) from the greedy merge
 /// loop's snapshots (one per distinct target), each post-processed once.
 pub(crate) fn levels(
-    ev: &Fitter,
+    fitter: &Fitter,
     snaps: Vec<Snapshot>,
     params: &Params,
     input: &Prepared,
 ) -> Vec<Level> {
     let done: Vec<Level> = (snaps.into_iter())
-        .map(|snap| level(ev, snap, None, params, input))
+        .map(|snap| level(fitter, snap, None, params, input))
         .collect();
     (params.goal.targets().iter())
         .map(|&n| {
@@ -59,34 +59,34 @@ pub(crate) fn levels(
 /// One snapshot post-processed into its level; `bound`: a cut's, the farthest its
 /// primitives may stand from the input, which joined plates keep to.
 pub(crate) fn level(
-    ev: &Fitter,
+    fitter: &Fitter,
     mut snap: Snapshot,
     bound: Option<f64>,
     params: &Params,
     input: &Prepared,
 ) -> Level {
-    let diag = ev.input.mesh.diagonal();
+    let diag = fitter.input.mesh.diagonal();
     let (tris, thick) = (input.tris, &input.thick);
     let mut q = std::mem::take(&mut snap.q);
     // Solid pricing: near-duplicate primitives become one (docs/decisions/0023).
-    if ev.input.solid.is_some() {
-        absorb::absorb(ev, &mut snap, &mut q);
+    if fitter.input.solid.is_some() {
+        absorb::absorb(fitter, &mut snap, &mut q);
     }
     // Plates in one plane the merge left apart become one where that adds no
     // area (docs/decisions/0028).
     if params.plates.join_coplanar {
-        plates::join(ev, &mut snap, &mut q, tris, bound);
+        plates::join(fitter, &mut snap, &mut q, tris, bound);
     }
     // Plates reach inward to the minimum thickness where the input is closed.
     if let Some(input) = thick {
         thicken::thicken(
-            &ev.input,
+            &fitter.input,
             input,
             &mut snap,
             params.plates.min_thickness * diag,
         );
     }
-    finish(&ev.input, &snap, params, diag)
+    finish(&fitter.input, &snap, params, diag)
 }
 /// Removes nested primitives from one snapshot and moves it to world coordinates.
 fn finish(view: &InputView, snap: &Snapshot, params: &Params, diag: f64) -> Level {

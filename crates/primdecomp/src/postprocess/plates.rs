@@ -59,7 +59,7 @@ struct Plate {
 /// standing farther from `surface` (the input) than `bound` is refused
 /// (docs/decisions/0038).
 pub fn join(
-    ev: &Fitter,
+    fitter: &Fitter,
     snap: &mut Snapshot,
     q: &mut Vec<Sym3>,
     surface: Option<&Triangles>,
@@ -70,7 +70,7 @@ pub fn join(
         _ => true,
     };
     in_rounds(snap, q, |snap, q, alive, dirty| {
-        coplanar_pairs(ev, snap, q, alive, dirty, &keeps)
+        coplanar_pairs(fitter, snap, q, alive, dirty, &keeps)
     });
 }
 
@@ -151,14 +151,14 @@ fn plate(p: &Primitive, floor: f64) -> Option<Plate> {
 /// than the two that covers at most [`SPILL`] more than they do, with that difference
 /// and fit.
 fn coplanar_pairs(
-    ev: &Fitter,
+    fitter: &Fitter,
     snap: &Snapshot,
     q: &[Sym3],
     alive: &[bool],
     dirty: &[bool],
     keeps: &(dyn Fn(&Primitive) -> bool + Sync),
 ) -> Vec<Candidate> {
-    let floor = ev.pricing.fit.min_half;
+    let floor = fitter.pricing.fit.min_half;
     let plates: Vec<(usize, Plate)> = (0..snap.prims.len())
         .filter(|&i| alive[i])
         .filter_map(|i| plate(&snap.prims[i], floor).map(|p| (i, p)))
@@ -181,7 +181,7 @@ fn coplanar_pairs(
         }
     }
     pairs.sort_unstable();
-    let kv = |p: &Primitive| ev.pricing.fit.weights[p.kind() as usize] * p.volume();
+    let kv = |p: &Primitive| fitter.pricing.fit.weights[p.kind() as usize] * p.volume();
     let scratch = || (Workspace::default(), Vec::new(), Vec::new());
     pairs
         .par_iter()
@@ -191,14 +191,14 @@ fn coplanar_pairs(
             let most = both / (1.0 - SPILL);
             // The union's plate holds both clusters' points, so its footprint holds
             // their hull: a pair whose hull already covers more is refused unfitted.
-            let flat = |v: &u32| project(ev.input.mesh.pos(*v), frame);
+            let flat = |v: &u32| project(fitter.input.mesh.pos(*v), frame);
             pts.clear();
             pts.extend(snap.verts[i].iter().chain(&snap.verts[j]).map(flat));
             if hull_area(pts, hull) > most * (1.0 + 1e-9) {
                 return None;
             }
             let faces = snap.members[i].iter().chain(&snap.members[j]).copied();
-            let fit = ev.fit_output(faces, &q[i].add(&q[j]), ws);
+            let fit = fitter.fit_output(faces, &q[i].add(&q[j]), ws);
             let gain = kv(&fit.prim) - (kv(a) + kv(b));
             let joined = gain <= 0.0
                 && fit.prim.plate_axis(floor).is_some()

@@ -109,62 +109,60 @@ impl<F: Fn(Stage, f64) + Sync> Progress for F {
     }
 }
 
-/// Estimates how far a run has come, and the seconds left, from its reports
-/// ([`Progress::update`]): each stage counts for its share of a run's time, as the
-/// scale ladder measured it from 871k to 56M faces (`cargo bench -p primdecomp-cli
-/// --bench ladder`), a cut's share where the run cuts the merge tree (a tolerance, a
-/// byte target or the default run).
-///
-/// ```
-/// use primdecomp::{Eta, Goal, Params, Stage};
-///
-/// let eta = Eta::new(&Params { goal: Goal::counts([100]), ..Params::default() });
-/// let overall = eta.overall(Stage::Merge, 0.5);
-/// assert!(overall > 0.3 && overall < 0.9);
-/// assert_eq!(eta.seconds_left(Stage::Merge, 0.5), None); // too early to say
-/// assert_eq!(eta.overall(Stage::Postprocess, 1.0), 1.0);
-/// ```
-#[derive(Debug)]
-pub struct Eta {
-    start: crate::progress::wallclock::Instant,
-    /// Each stage's share of the run, in [`Stage::ALL`]'s order.
-    shares: [f64; 6],
-}
-
 /// Shares of a greedy run (a count): dedup, adjacency, quadrics, seed, merge,
 /// post-processing.
 const GREEDY_SHARES: [f64; 6] = [0.02, 0.04, 0.02, 0.12, 0.78, 0.02];
 /// Shares of a run that cuts the merge tree (its cut is post-processing's).
 const CUT_SHARES: [f64; 6] = [0.02, 0.03, 0.01, 0.09, 0.55, 0.30];
 
-impl Eta {
-    /// An estimate for a run of `params`, starting now.
-    pub fn new(params: &crate::params::Params) -> Eta {
-        Eta {
-            start: crate::progress::wallclock::Instant::now(),
-            shares: if params.uses_cut() {
-                CUT_SHARES
-            } else {
-                GREEDY_SHARES
-            },
-        }
-    }
-
-    /// The fraction of the whole run done, 0 to 1, when `stage` has done `fraction`
-    /// (0 to 1) of its work.
-    pub fn overall(&self, stage: Stage, fraction: f64) -> f64 {
+impl Stage {
+    /// The fraction of a whole run of `params` done, 0 to 1, when this stage has done
+    /// `fraction` (0 to 1) of its work ([`Progress::update`]'s report). Each stage
+    /// counts for its share of a run's time, as the scale ladder measured it from 871k
+    /// to 56M faces (`cargo bench -p primdecomp-cli --bench ladder`), a cut's share
+    /// where the run cuts the merge tree (a tolerance, a byte target or the default
+    /// run).
+    ///
+    /// ```
+    /// use primdecomp::{Goal, Params, Stage};
+    ///
+    /// let params = Params { goal: Goal::counts([100]), ..Params::default() };
+    /// let overall = Stage::Merge.overall(0.5, &params);
+    /// assert!(overall > 0.3 && overall < 0.9);
+    /// assert_eq!(Stage::Postprocess.overall(1.0, &params), 1.0);
+    /// ```
+    pub fn overall(self, fraction: f64, params: &crate::params::Params) -> f64 {
+        let shares = match params.uses_cut() {
+            true => CUT_SHARES,
+            false => GREEDY_SHARES,
+        };
         let fraction = fraction.clamp(0.0, 1.0);
-        let i = Stage::ALL.iter().position(|&s| s == stage).unwrap_or(0);
-        let done: f64 = self.shares[..i].iter().sum::<f64>() + self.shares[i] * fraction;
-        (done / self.shares.iter().sum::<f64>()).clamp(0.0, 1.0)
+        let i = Stage::ALL.iter().position(|&s| s == self).unwrap_or(0);
+        let done: f64 = shares[..i].iter().sum::<f64>() + shares[i] * fraction;
+        (done / shares.iter().sum::<f64>()).clamp(0.0, 1.0)
     }
 
-    /// The seconds left when `stage` has done `fraction` of its work, extrapolated
-    /// from the time spent on what is done ([`Eta::overall`]); `None` until a second
-    /// has passed and a percent is done.
-    pub fn seconds_left(&self, stage: Stage, fraction: f64) -> Option<f64> {
-        let overall = self.overall(stage, fraction);
-        let spent = self.start.elapsed().as_secs_f64();
+    /// The seconds left in a run of `params` that has spent `spent` seconds when this
+    /// stage has done `fraction` of its work, extrapolated from the time spent on what
+    /// is done ([`Stage::overall`]); `None` until a second has passed and a percent is
+    /// done.
+    ///
+    /// ```
+    /// use primdecomp::{Goal, Params, Stage};
+    ///
+    /// let params = Params { goal: Goal::counts([100]), ..Params::default() };
+    /// assert_eq!(Stage::Merge.seconds_left(0.5, &params, 0.2), None); // too early to say
+    /// let overall = Stage::Merge.overall(0.5, &params);
+    /// let left = Stage::Merge.seconds_left(0.5, &params, 10.0).unwrap();
+    /// assert!((left - 10.0 * (1.0 - overall) / overall).abs() < 1e-9);
+    /// ```
+    pub fn seconds_left(
+        self,
+        fraction: f64,
+        params: &crate::params::Params,
+        spent: f64,
+    ) -> Option<f64> {
+        let overall = self.overall(fraction, params);
         (spent >= 1.0 && overall >= 0.01).then(|| spent * (1.0 - overall) / overall)
     }
 }

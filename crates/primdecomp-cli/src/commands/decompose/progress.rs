@@ -1,5 +1,5 @@
 //! `decompose`'s progress: a bar on a terminal, `--progress` lines elsewhere, with
-//! the time left from the library's [`primdecomp::Eta`].
+//! the time left from the library's estimate ([`Stage::seconds_left`]).
 
 use crate::args::DecomposeArgs;
 use crate::exit::eprintln;
@@ -11,7 +11,9 @@ use std::time::Instant;
 /// or nothing (quiet, several inputs at once, a small input, or stderr not a terminal
 /// without `--progress`).
 pub(super) struct Shown {
-    eta: primdecomp::Eta,
+    /// The run's settings (which stages' shares the estimate takes) and its start.
+    params: Params,
+    start: Instant,
     bar: Option<indicatif::ProgressBar>,
     /// `--progress` off a terminal: when the last line was printed, and its stage.
     lines: Option<std::sync::Mutex<(Instant, Option<Stage>)>>,
@@ -26,7 +28,6 @@ impl Shown {
         beside_others: bool,
     ) -> Shown {
         use std::io::IsTerminal;
-        let eta = primdecomp::Eta::new(params);
         let wanted = !a.quiet && !beside_others && (a.progress || faces >= 100_000);
         let terminal = std::io::stderr().is_terminal();
         let bar = (wanted && terminal).then(|| {
@@ -41,7 +42,12 @@ impl Shown {
         });
         let lines = (wanted && !terminal && a.progress)
             .then(|| std::sync::Mutex::new((Instant::now(), None)));
-        Shown { eta, bar, lines }
+        Shown {
+            params: params.clone(),
+            start: Instant::now(),
+            bar,
+            lines,
+        }
     }
 
     /// `stage` is `fraction` done: moves the bar, or prints a line when one is due.
@@ -49,8 +55,10 @@ impl Shown {
         if self.bar.is_none() && self.lines.is_none() {
             return;
         }
-        let (fraction, overall) = (fraction.clamp(0.0, 1.0), self.eta.overall(stage, fraction));
-        let left = (self.eta.seconds_left(stage, fraction))
+        let fraction = fraction.clamp(0.0, 1.0);
+        let overall = stage.overall(fraction, &self.params);
+        let spent = self.start.elapsed().as_secs_f64();
+        let left = (stage.seconds_left(fraction, &self.params, spent))
             .map_or(String::new(), |s| format!("about {} left", duration(s)));
         if let Some(b) = &self.bar {
             b.set_message(format!("{} {:.0}%", stage.name(), 100.0 * fraction));

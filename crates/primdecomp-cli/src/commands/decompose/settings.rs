@@ -7,7 +7,7 @@ use crate::args::DecomposeArgs;
 use crate::exit::BadArgs;
 use crate::paths::memory_limit;
 use primdecomp::LoadOptions;
-use primdecomp::{ByteSize, CountSearch, Goal, Kind, Params, Reprice, Target, Tolerance};
+use primdecomp::{Goal, Kind, Params, Reprice, Target, Tolerance};
 use std::path::Path;
 use std::str::FromStr;
 
@@ -66,9 +66,13 @@ fn goal_from(a: &DecomposeArgs, file: &Goal) -> anyhow::Result<(Goal, Vec<Target
     };
     let mut targets = match (&a.targets, file) {
         (Some(t), _) => Some(parse_targets(t)?),
-        (None, Goal::Counts { counts, .. } | Goal::Fill { counts }) if !given => {
-            Some(counts.iter().map(|&n| Target::Count(n)).collect())
-        }
+        (
+            None,
+            Goal::Counts { counts }
+            | Goal::Greedy { counts }
+            | Goal::Cut { counts }
+            | Goal::Fill { counts },
+        ) if !given => Some(counts.iter().map(|&n| Target::Count(n)).collect()),
         _ => None,
     };
     let within = !tolerance.is_empty() || !max_bytes.is_empty();
@@ -96,12 +100,15 @@ fn goal_from(a: &DecomposeArgs, file: &Goal) -> anyhow::Result<(Goal, Vec<Target
         Some(_) if a.fill => Goal::Fill {
             counts: counts(&targets),
         },
-        Some(_) => Goal::Counts {
-            counts: counts(&targets),
-            search: match (a.greedy, a.cut) {
-                (true, _) => CountSearch::Greedy,
-                (_, true) => CountSearch::Cut,
-                _ => CountSearch::Auto,
+        Some(_) => match (a.greedy, a.cut) {
+            (true, _) => Goal::Greedy {
+                counts: counts(&targets),
+            },
+            (_, true) => Goal::Cut {
+                counts: counts(&targets),
+            },
+            _ => Goal::Counts {
+                counts: counts(&targets),
             },
         },
     };
@@ -146,14 +153,7 @@ fn set_parsed(p: &mut Params, a: &DecomposeArgs) -> anyhow::Result<()> {
         p.speed.partitions = spelled("--partitions", k)?;
     }
     for w in &a.weights {
-        let (k, v) = w
-            .split_once('=')
-            .ok_or_else(|| BadArgs(format!("--weights: expected kind=value, got '{w}'")))?;
-        let kind: Kind = spelled("", k)?;
-        p.fit.weights[kind as usize] = v
-            .trim()
-            .parse()
-            .map_err(|_| BadArgs(format!("--weights: '{v}' is not a number")))?;
+        p.fit.set_weights(w).map_err(|e| flagged("--weights", e))?;
     }
     if !a.kinds.is_empty() {
         p.fit.kinds = [false; 6];
@@ -176,22 +176,26 @@ pub(crate) fn spelled<T: FromStr<Err = primdecomp::Error>>(
     flag: &str,
     s: &str,
 ) -> anyhow::Result<T> {
-    s.parse().map_err(|e| {
-        let words = match e {
-            primdecomp::Error::InvalidParams(m) => m,
-            e => e.to_string(),
-        };
-        match flag {
-            "" => BadArgs(words).into(),
-            flag => BadArgs(format!("{flag}: {words}")).into(),
-        }
-    })
+    s.parse().map_err(|e| flagged(flag, e))
+}
+
+/// The library's words for a wrong value after the flag's name (`flag` empty: the
+/// words alone).
+fn flagged(flag: &str, e: primdecomp::Error) -> anyhow::Error {
+    let words = match e {
+        primdecomp::Error::InvalidParams(m) => m,
+        e => e.to_string(),
+    };
+    match flag {
+        "" => BadArgs(words).into(),
+        flag => BadArgs(format!("{flag}: {words}")).into(),
+    }
 }
 
 /// `--max-bytes`: a positive byte count, optionally with K, M or G.
 fn parse_bytes(b: &str) -> anyhow::Result<usize> {
-    match b.parse::<ByteSize>() {
-        Ok(ByteSize(v)) if v > 0 && v <= usize::MAX as u64 => Ok(v as usize),
+    match Goal::parse_bytes(b) {
+        Ok(v) if v > 0 && v <= usize::MAX as u64 => Ok(v as usize),
         _ => Err(BadArgs(format!(
             "--max-bytes: expected a positive byte count such as 4096 or 4K, got '{b}'"
         ))

@@ -43,7 +43,7 @@ pub(super) fn print_summary(
         };
         println!("up        +{} ({from}{change})", up.axis().to_uppercase());
     }
-    let (short_faces, other) = mesh.skipped();
+    let (short_faces, other) = (mesh.skipped_faces(), mesh.skipped_other());
     if short_faces + other > 0 {
         println!(
             "skipped   {short_faces} faces with fewer than 3 vertices or lines, {other} other elements"

@@ -18,8 +18,8 @@ fn with_demo_using<R>(
     f: impl FnOnce(&Fitter, &(dyn Fn() -> Clusters + Sync)) -> R,
 ) -> R {
     let mesh = crate::input::demo::demo_scene();
-    with_input(&mesh, &p, |ev, q, vols, pairs| {
-        f(ev, &|| Clusters::new(q.to_vec(), vols.to_vec(), pairs))
+    with_input(&mesh, &p, |fitter, q, vols, pairs| {
+        f(fitter, &|| Clusters::new(q.to_vec(), vols.to_vec(), pairs))
     })
 }
 
@@ -35,9 +35,9 @@ pub(in crate::merge) fn with_input<R>(
     let pairs = adjacency::face_pairs(&mesh.face_offsets, &welded);
     let mut q = Vec::new();
     quadric::face_quadrics(mesh, p.fit.tangent_eps, &mut q);
-    let ev = fitter(mesh, &welded, p, mesh.aabb());
-    let vols = crate::merge::setup::seed_volumes(&ev, &q, &|_| true);
-    f(&ev, &q, &vols, &pairs)
+    let fitter = fitter(mesh, &welded, p, mesh.aabb());
+    let vols = crate::merge::setup::seed_volumes(&fitter, &q, &|_| true);
+    f(&fitter, &q, &vols, &pairs)
 }
 
 /// Exact, fully deferred and the default re-pricing: the modes order tests run under.
@@ -64,13 +64,13 @@ fn look_ahead_keeps_the_serial_order() {
             },
             ..Params::default()
         };
-        with_demo_using(p, |ev, fresh| {
+        with_demo_using(p, |fitter, fresh| {
             let targets = [400, 150, 40, 1];
             let one = in_pool(1, || {
-                run_with::<RadixHeap>(ev, fresh(), &targets, &|_| true)
+                run_with::<RadixHeap>(fitter, fresh(), &targets, &|_| true)
             });
             let two = in_pool(2, || {
-                run_with::<RadixHeap>(ev, fresh(), &targets, &|_| true)
+                run_with::<RadixHeap>(fitter, fresh(), &targets, &|_| true)
             });
             assert_same(&one, &two);
             assert_eq!(one.ahead, 0, "no worker, no look-ahead");
@@ -109,7 +109,9 @@ fn free_merges_carry_the_greedy_order_on() {
         };
         // Above the face count (1,829) no merge is needed: only free ones run.
         let targets = [5000, 1000, 400, 40];
-        let with = with_demo_using(free, |ev, fresh| run(ev, fresh(), &targets, &|_| true));
+        let with = with_demo_using(free, |fitter, fresh| {
+            run(fitter, fresh(), &targets, &|_| true)
+        });
         let counts: Vec<usize> = with.snapshots.iter().map(|s| s.prims.len()).collect();
         assert!(
             counts.iter().zip(&targets).all(|(c, t)| c <= t),
@@ -121,7 +123,9 @@ fn free_merges_carry_the_greedy_order_on() {
         );
         let mut lower = counts.clone();
         lower.dedup();
-        let without = with_demo_using(exact, |ev, fresh| run(ev, fresh(), &lower, &|_| true));
+        let without = with_demo_using(exact, |fitter, fresh| {
+            run(fitter, fresh(), &lower, &|_| true)
+        });
         for s in &with.snapshots {
             let t = without.snapshots.iter().find(|t| t.target == s.prims.len());
             let t = t.expect("a snapshot at each count");
@@ -162,10 +166,10 @@ fn radix_heap_and_binary_heap_merge_identically() {
             },
             ..Params::default()
         };
-        with_demo_using(p, |ev, fresh| {
+        with_demo_using(p, |fitter, fresh| {
             let targets = [400, 150, 40, 1];
-            let a = run_with::<RadixHeap>(ev, fresh(), &targets, &|_| true);
-            let b = run_with::<crate::merge::heap::StdHeap>(ev, fresh(), &targets, &|_| true);
+            let a = run_with::<RadixHeap>(fitter, fresh(), &targets, &|_| true);
+            let b = run_with::<crate::merge::heap::StdHeap>(fitter, fresh(), &targets, &|_| true);
             assert_same(&a, &b);
         });
     }
@@ -176,16 +180,23 @@ fn radix_heap_and_binary_heap_merge_identically() {
 /// only those, so fitting them would be thrown away.
 #[test]
 fn the_trees_loop_keeps_the_clusters_unfitted() {
-    with_demo(|ev, fresh| {
+    with_demo(|fitter, fresh| {
         let targets = [400, 40, 1];
-        let (whole, whole_log) = with_pricer(ev, |p| {
+        let (whole, whole_log) = with_pricer(fitter, |p| {
             let mut log = MergeLog::default();
             let go_on = &|_| true;
-            let out =
-                merge_loop::<RadixHeap>(ev, fresh(), &targets, go_on, p, Scope::Whole, &mut log);
+            let out = merge_loop::<RadixHeap>(
+                fitter,
+                fresh(),
+                &targets,
+                go_on,
+                p,
+                Scope::Whole,
+                &mut log,
+            );
             (out.0, log)
         });
-        let (tree, tree_log) = run_for_tree(ev, fresh(), &targets, None, &|_| true);
+        let (tree, tree_log) = run_for_tree(fitter, fresh(), &targets, None, &|_| true);
         assert_eq!(whole_log.merges, tree_log.merges);
         assert_eq!(whole_log.at_first, tree_log.at_first);
         assert_eq!(whole.snapshots.len(), tree.snapshots.len());
@@ -204,18 +215,18 @@ fn the_trees_loop_keeps_the_clusters_unfitted() {
 /// (docs/decisions/0052).
 #[test]
 fn the_trees_loop_keeps_its_clusters_hulls() {
-    with_demo(|ev, fresh| {
+    with_demo(|fitter, fresh| {
         let over = 8;
-        let (out, log) = run_for_tree(ev, fresh(), &[400, 1], Some(over), &|_| true);
+        let (out, log) = run_for_tree(fitter, fresh(), &[400, 1], Some(over), &|_| true);
         let leaves = &out.snapshots[0];
         assert_eq!(log.hulls.leaves.len(), leaves.members.len());
         let hulls = log.hulls.clone().after(log.at_first);
         let log = &log.merges[log.at_first..];
-        let faces = ev.input.mesh.face_count();
+        let faces = fitter.input.mesh.face_count();
         let tree = crate::cut::MergeTree::build(&leaves.members, &leaves.q, log, hulls, faces);
-        let tol = 1e-9 * ev.input.mesh.diagonal();
+        let tol = 1e-9 * fitter.input.mesh.diagonal();
         let reach = |ids: &mut dyn Iterator<Item = u32>, d: V3| {
-            ids.map(|v| dot(d, ev.input.mesh.pos(v)))
+            ids.map(|v| dot(d, fitter.input.mesh.pos(v)))
                 .fold(f64::NEG_INFINITY, f64::max)
         };
         let mut inner = 0;
@@ -230,7 +241,7 @@ fn the_trees_loop_keeps_its_clusters_hulls() {
             let own = || {
                 tree.faces(n)
                     .iter()
-                    .flat_map(|&f| ev.input.mesh.face(f as usize))
+                    .flat_map(|&f| fitter.input.mesh.face(f as usize))
                     .copied()
             };
             for k in 0..64 {
@@ -254,10 +265,10 @@ fn the_trees_loop_keeps_its_clusters_hulls() {
 /// until the worker has priced some neighbours whose results were used.
 #[test]
 fn worker_sharing_merges_as_one_thread_does() {
-    with_demo(|ev, fresh| {
+    with_demo(|fitter, fresh| {
         let targets = [400, 150, 40, 1];
         let (one, s1) = in_pool(1, || {
-            run_counted::<RadixHeap>(ev, fresh(), &targets, &|_| true)
+            run_counted::<RadixHeap>(fitter, fresh(), &targets, &|_| true)
         });
         assert_eq!(
             s1,
@@ -267,7 +278,7 @@ fn worker_sharing_merges_as_one_thread_does() {
         let mut used = 0;
         for _ in 0..10 {
             let (two, s2) = in_pool(2, || {
-                run_counted::<RadixHeap>(ev, fresh(), &targets, &|_| true)
+                run_counted::<RadixHeap>(fitter, fresh(), &targets, &|_| true)
             });
             assert_same(&one, &two);
             assert!(s2.shared > 0, "{s2:?}");

@@ -654,19 +654,24 @@ impl<'a> Cutter<'a> {
         let worst = cut.iter().map(|e| e.error).fold(0.0, f64::max);
         cut.sort_unstable_by_key(|e| self.start(ex, e.node));
         let mesh = self.ev.input.mesh;
-        let members: Vec<Vec<u32>> = cut
-            .iter()
-            .map(|e| self.faces_of(ex, e.node).collect())
+        // Both held at their length (a level's cuts and their post-processed copies
+        // are alive together): a collect of the corners keeps three times the
+        // distinct vertices' room, and one of chained ranges up to twice the faces'.
+        let members: Vec<Vec<u32>> = (cut.par_iter())
+            .map(|e| {
+                let faces = self.faces_of(ex, e.node);
+                let mut m = Vec::with_capacity(faces.clone().count());
+                m.extend(faces);
+                m
+            })
             .collect();
-        let verts = members
-            .par_iter()
-            .map(|faces| {
-                let mut v: Vec<u32> = (faces.iter())
-                    .flat_map(|&f| mesh.face(f as usize).iter().copied())
-                    .collect();
+        let verts = (members.par_iter())
+            .map_init(Vec::new, |v: &mut Vec<u32>, faces| {
+                v.clear();
+                v.extend(faces.iter().flat_map(|&f| mesh.face(f as usize)));
                 v.sort_unstable();
                 v.dedup();
-                v
+                v.to_vec()
             })
             .collect();
         let snapshot = Snapshot {

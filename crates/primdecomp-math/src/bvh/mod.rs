@@ -19,20 +19,83 @@ use std::sync::atomic::{AtomicBool, Ordering::Relaxed};
 /// Items per leaf, at most, of [`Bvh::build`]'s hierarchies.
 pub const LEAF: usize = 4;
 
-#[derive(Clone, Copy, Debug)]
-struct Node {
-    lo: V3,
-    hi: V3,
+#[derive(Clone, Copy, Debug, Default)]
+struct Node<B> {
+    b: B,
     /// Leaf: first item in `items`; inner: index of the left child (right = left + 1).
     first: u32,
     /// Leaf: item count; inner: 0.
     count: u32,
 }
 
-/// The hierarchy; item ids are indices into the caller's item list.
+/// How a hierarchy stores its nodes' boxes: [`Exact`] or [`Compact`].
+pub trait Bounds: Copy + Default + std::fmt::Debug + Send + Sync {
+    /// Whether a stored box is its items' box itself (else it only holds it).
+    const EXACT: bool;
+    /// The stored form of the box `lo..hi`.
+    fn of(lo: V3, hi: V3) -> Self;
+    /// The stored box (holding the one it was made of).
+    fn get(&self) -> (V3, V3);
+}
+
+/// A node's box as its items' (f64): 56 bytes a node.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Exact {
+    lo: V3,
+    hi: V3,
+}
+
+impl Bounds for Exact {
+    const EXACT: bool = true;
+    #[inline]
+    fn of(lo: V3, hi: V3) -> Self {
+        Exact { lo, hi }
+    }
+    #[inline]
+    fn get(&self) -> (V3, V3) {
+        (self.lo, self.hi)
+    }
+}
+
+/// A node's box rounded outwards to f32: 32 bytes a node, a box that holds its
+/// items'. A query pruned by it visits every node the exact box would and perhaps
+/// more, so nearest items and first hits are the same; [`Bvh::slots_meeting`] tests
+/// a leaf again on its items' own boxes.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Compact {
+    lo: [f32; 3],
+    hi: [f32; 3],
+}
+
+impl Bounds for Compact {
+    const EXACT: bool = false;
+    #[inline]
+    fn of(lo: V3, hi: V3) -> Self {
+        Compact {
+            lo: lo.map(f32_below),
+            hi: hi.map(|x| -f32_below(-x)),
+        }
+    }
+    #[inline]
+    fn get(&self) -> (V3, V3) {
+        (self.lo.map(f64::from), self.hi.map(f64::from))
+    }
+}
+
+/// The largest f32 at most `x` (−inf below f32's range, NaN as it is).
+fn f32_below(x: f64) -> f32 {
+    let f = x as f32;
+    match f64::from(f) > x {
+        true => f.next_down(),
+        false => f,
+    }
+}
+
+/// The hierarchy; item ids are indices into the caller's item list. Its nodes'
+/// boxes are [`Exact`] unless built by [`Bvh::build_compact`].
 #[derive(Clone, Debug, Default)]
-pub struct Bvh {
-    nodes: Vec<Node>,
+pub struct Bvh<B = Exact> {
+    nodes: Vec<Node<B>>,
     items: Vec<u32>,
 }
 
@@ -88,7 +151,23 @@ impl Bvh {
     ) -> Option<Bvh> {
         Bvh::build_with(count, leaf, bbox, |c| c.map(|x| x as f32), go_on)
     }
+}
 
+impl Bvh<Compact> {
+    /// [`Bvh::build_by_checked`] (the same tree, items in the same order) with the
+    /// nodes' boxes stored [`Compact`]: 32 bytes a node instead of 56, for a large
+    /// hierarchy kept through a run.
+    pub fn build_compact(
+        count: usize,
+        leaf: usize,
+        bbox: &(dyn Fn(u32) -> (V3, V3) + Sync),
+        go_on: &(dyn Fn(f64) -> bool + Sync),
+    ) -> Option<Bvh<Compact>> {
+        Bvh::build_with(count, leaf, bbox, |c| c, go_on)
+    }
+}
+
+impl<B: Bounds> Bvh<B> {
     /// The build, each item's centre kept as `keep` makes it; `None` when `go_on`
     /// said stop.
     fn build_with<C: Centre>(
@@ -97,18 +176,13 @@ impl Bvh {
         bbox: &(dyn Fn(u32) -> (V3, V3) + Sync),
         keep: impl Fn(V3) -> C + Sync,
         go_on: &(dyn Fn(f64) -> bool + Sync),
-    ) -> Option<Bvh> {
+    ) -> Option<Bvh<B>> {
         if count == 0 {
             return Some(Bvh::default());
         }
         let leaf = leaf.max(1);
         let sizes = Sizes::new(count, leaf);
-        let empty = Node {
-            lo: [0.0; 3],
-            hi: [0.0; 3],
-            first: 0,
-            count: 0,
-        };
+        let empty = Node::<B>::default();
         // Written a block at a time, asking between (two nodes for every few items:
         // at 56M items, a gigabyte and more).
         let total = sizes.nodes(count);
@@ -243,8 +317,8 @@ impl Bvh {
     }
 
     fn node_dist2(&self, n: u32, p: V3) -> f64 {
-        let node = &self.nodes[n as usize];
-        box_dist2(p, node.lo, node.hi)
+        let (lo, hi) = self.nodes[n as usize].b.get();
+        box_dist2(p, lo, hi)
     }
 
     /// Whether `test(item)` holds for some item whose box, grown by `grow`, holds `p`.
@@ -257,7 +331,8 @@ impl Bvh {
         stack.push(0);
         while let Some(n) = stack.pop() {
             let node = self.nodes[n as usize];
-            if box_dist2(p, node.lo, node.hi) > g2 {
+            let (lo, hi) = node.b.get();
+            if box_dist2(p, lo, hi) > g2 {
                 continue;
             }
             if node.count == 0 {
@@ -275,11 +350,14 @@ impl Bvh {
     /// The slots ([`Bvh::order`]) of the items of every leaf whose box meets the box
     /// `lo..hi` (so every item whose own box meets it, and perhaps some more), into
     /// `out` in slot order; or `false` (and `out` partly filled) once there are more
-    /// than `most`. `stack` is scratch.
+    /// than `most`. `slot_box` gives the box of the item in a slot, as the build was
+    /// given it: a [`Compact`] leaf is tested again on its items' boxes, so the
+    /// slots are those of an [`Exact`] hierarchy. `stack` is scratch.
     pub fn slots_meeting(
         &self,
         (lo, hi): (V3, V3),
         most: usize,
+        slot_box: impl Fn(u32) -> (V3, V3),
         stack: &mut Vec<u32>,
         out: &mut Vec<u32>,
     ) -> bool {
@@ -288,10 +366,13 @@ impl Bvh {
         if !self.nodes.is_empty() {
             stack.push(0);
         }
-        let meets = |a: &Node| (0..3).all(|k| a.lo[k] <= hi[k] && lo[k] <= a.hi[k]);
+        let meets = |(a, b): (V3, V3)| (0..3).all(|k| a[k] <= hi[k] && lo[k] <= b[k]);
         while let Some(n) = stack.pop() {
             let node = self.nodes[n as usize];
-            if !meets(&node) {
+            if !meets(node.b.get()) {
+                continue;
+            }
+            if !B::EXACT && node.count > 0 && !meets(leaf_box(node.first, node.count, &slot_box)) {
                 continue;
             }
             if node.count == 0 {
@@ -343,7 +424,8 @@ impl Bvh {
         stack.push(0);
         while let Some(n) = stack.pop() {
             let node = self.nodes[n as usize];
-            if !ray_meets_box(o, inv, best.0, node.lo, node.hi) {
+            let (lo, hi) = node.b.get();
+            if !ray_meets_box(o, inv, best.0, lo, hi) {
                 continue;
             }
             if node.count == 0 {
@@ -364,7 +446,7 @@ impl Bvh {
     }
 }
 
-impl Bvh {
+impl<B: Bounds> Bvh<B> {
     /// Whether `hit(item)` holds for some item whose box the ray `o + t·d` meets for
     /// some `t` in `[0, tmax]`; stops at the first. `stack` is scratch.
     pub fn ray_any(
@@ -383,7 +465,8 @@ impl Bvh {
         stack.push(0);
         while let Some(n) = stack.pop() {
             let node = self.nodes[n as usize];
-            if !ray_meets_box(o, inv, tmax, node.lo, node.hi) {
+            let (lo, hi) = node.b.get();
+            if !ray_meets_box(o, inv, tmax, lo, hi) {
                 continue;
             }
             if node.count == 0 {
@@ -439,8 +522,10 @@ struct Build<'a> {
     stopped: AtomicBool,
 }
 
-/// An item being placed: its box's centroid and its id.
+/// An item being placed: its box's centroid and its id, packed (28 bytes with an
+/// f64 centroid, not 32: the build's largest table).
 #[derive(Clone, Copy)]
+#[repr(C, packed(4))]
 struct Item<C> {
     c: C,
     id: u32,
@@ -471,23 +556,18 @@ impl Build<'_> {
     /// node's children side by side, then the left child's descendants, then the
     /// right's. Split at the median of the item centroids on their longest axis; a
     /// node's box is its items' (a leaf) or its children's.
-    fn subtree<C: Centre>(
+    fn subtree<C: Centre, B: Bounds>(
         &self,
-        node: &mut Node,
-        below: &mut [Node],
+        node: &mut Node<B>,
+        below: &mut [Node<B>],
         at: usize,
         span: &mut [Item<C>],
         first: usize,
     ) {
         let count = span.len();
         if count <= self.sizes.leaf {
-            (node.lo, node.hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-            for it in span.iter() {
-                let (blo, bhi) = (self.bbox)(it.id);
-                for k in 0..3 {
-                    (node.lo[k], node.hi[k]) = (node.lo[k].min(blo[k]), node.hi[k].max(bhi[k]));
-                }
-            }
+            let (lo, hi) = union(span.iter().map(|it| (self.bbox)(it.id)));
+            node.b = B::of(lo, hi);
             (node.first, node.count) = (first as u32, count as u32);
             return;
         }
@@ -498,15 +578,18 @@ impl Build<'_> {
         let (mut clo, mut chi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
         for it in span.iter() {
             for k in 0..3 {
-                (clo[k], chi[k]) = (clo[k].min(it.c.at(k)), chi[k].max(it.c.at(k)));
+                let c = { it.c }.at(k);
+                (clo[k], chi[k]) = (clo[k].min(c), chi[k].max(c));
             }
         }
         let axis = (0..3)
             .max_by(|&a, &b| (chi[a] - clo[a]).total_cmp(&(chi[b] - clo[b])))
             .unwrap_or(0);
         let mid = count / 2;
-        let by_axis =
-            |a: &Item<C>, b: &Item<C>| a.c.at(axis).total_cmp(&b.c.at(axis)).then(a.id.cmp(&b.id));
+        let by_axis = |a: &Item<C>, b: &Item<C>| {
+            let (ca, cb) = ({ a.c }.at(axis), { b.c }.at(axis));
+            ca.total_cmp(&cb).then({ a.id }.cmp(&{ b.id }))
+        };
         if !self.select(span, mid, by_axis) {
             self.stopped.store(true, Relaxed);
             return;
@@ -525,11 +608,25 @@ impl Build<'_> {
             true => rayon::join(build_l, build_r),
             false => (build_l(), build_r()),
         };
-        let (l, r) = (&left[0], &right[0]);
+        let (lo, hi) = union([left[0].b.get(), right[0].b.get()].into_iter());
+        node.b = B::of(lo, hi);
+    }
+}
+
+/// The box holding `boxes` (empty: lo +inf, hi −inf).
+fn union(boxes: impl Iterator<Item = (V3, V3)>) -> (V3, V3) {
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for (blo, bhi) in boxes {
         for k in 0..3 {
-            (node.lo[k], node.hi[k]) = (l.lo[k].min(r.lo[k]), l.hi[k].max(r.hi[k]));
+            (lo[k], hi[k]) = (lo[k].min(blo[k]), hi[k].max(bhi[k]));
         }
     }
+    (lo, hi)
+}
+
+/// The box of a leaf's items, `count` slots from `first`, as the build made it.
+fn leaf_box(first: u32, count: u32, slot_box: &impl Fn(u32) -> (V3, V3)) -> (V3, V3) {
+    union((first..first + count).map(slot_box))
 }
 
 /// Comparisons of a node's median selection between two asks of `go_on` (tens of

@@ -111,6 +111,7 @@ fn the_slots_meeting_a_box_hold_every_item_meeting_it() {
     let tris = small_triangles(&mut rng, 200);
     let boxes: Vec<(V3, V3)> = tris.iter().map(tri_box).collect();
     let bvh = Bvh::build(&boxes);
+    let slot_box = |k: u32| boxes[bvh.order()[k as usize] as usize];
     let (mut stack, mut out) = (Vec::new(), Vec::new());
     for q in 0..300 {
         let c: V3 = std::array::from_fn(|_| rng.gen_range(-6.0..6.0));
@@ -118,15 +119,15 @@ fn the_slots_meeting_a_box_hold_every_item_meeting_it() {
         let (lo, hi) = (c.map(|x| x - r), c.map(|x| x + r));
         let meets = |(a, b): &(V3, V3)| (0..3).all(|k| a[k] <= hi[k] && lo[k] <= b[k]);
         let want: Vec<u32> = (0..200u32).filter(|&i| meets(&boxes[i as usize])).collect();
-        let all = bvh.slots_meeting((lo, hi), usize::MAX, &mut stack, &mut out);
+        let all = bvh.slots_meeting((lo, hi), usize::MAX, slot_box, &mut stack, &mut out);
         assert!(all);
         assert!(out.windows(2).all(|w| w[0] < w[1]), "{out:?}");
         let ids: Vec<u32> = out.iter().map(|&k| bvh.order()[k as usize]).collect();
         assert!(want.iter().all(|i| ids.contains(i)), "{want:?} {ids:?}");
-        let fits = bvh.slots_meeting((lo, hi), want.len(), &mut stack, &mut out);
+        let fits = bvh.slots_meeting((lo, hi), want.len(), slot_box, &mut stack, &mut out);
         assert_eq!(fits, ids.len() <= want.len());
         if !want.is_empty() {
-            assert!(!bvh.slots_meeting((lo, hi), want.len() - 1, &mut stack, &mut out));
+            assert!(!bvh.slots_meeting((lo, hi), want.len() - 1, slot_box, &mut stack, &mut out));
         }
     }
 }
@@ -181,7 +182,10 @@ fn a_parallel_build_is_whole_and_thread_independent() {
     let (one, bvh) = (on(1), on(2));
     assert_eq!(format!("{one:?}"), format!("{bvh:?}"));
     let mut seen = vec![0; n];
-    let holds = |(lo, hi): (V3, V3), n: &Node| (0..3).all(|k| n.lo[k] <= lo[k] && hi[k] <= n.hi[k]);
+    let holds = |(lo, hi): (V3, V3), n: &Node<Exact>| {
+        let (nlo, nhi) = n.b.get();
+        (0..3).all(|k| nlo[k] <= lo[k] && hi[k] <= nhi[k])
+    };
     for node in &bvh.nodes {
         let span = node.first as usize..(node.first + node.count) as usize;
         for &i in &bvh.items[span] {
@@ -190,8 +194,7 @@ fn a_parallel_build_is_whole_and_thread_independent() {
         }
         if node.count == 0 {
             for c in [node.first, node.first + 1] {
-                let c = &bvh.nodes[c as usize];
-                assert!(holds((c.lo, c.hi), node));
+                assert!(holds(bvh.nodes[c as usize].b.get(), node));
             }
         }
     }
@@ -306,4 +309,77 @@ fn a_large_selection_asks_as_it_goes_and_builds_the_same() {
     let once = |_: f64| after.fetch_add(1, Relaxed) <= blocks;
     assert!(Bvh::build_by_checked(n, LEAF, &bbox, &once).is_none());
     assert_eq!(after.load(Relaxed), blocks + 2);
+}
+
+/// A hierarchy with [`Compact`] boxes is the exact one's tree (items in the same
+/// slots) with boxes that hold the exact ones, and answers every query alike: the
+/// nearest item and its distance from any slot, with and without an early exit's
+/// bound, the slots meeting a box and the first ray hit. Triangles far from the
+/// origin and a hair apart, so that f32 boxes round off many of their gaps.
+#[test]
+fn compact_boxes_answer_as_exact_ones() {
+    let mut rng = ChaCha8Rng::seed_from_u64(13);
+    let far = [1000.0, -2000.0, 500.0];
+    let tris: Vec<[V3; 3]> = (0..3000)
+        .map(|_| {
+            let c: V3 = std::array::from_fn(|k| far[k] + rng.gen_range(-0.01..0.01));
+            std::array::from_fn(|_| add(c, std::array::from_fn(|_| rng.gen_range(-1e-4..1e-4))))
+        })
+        .collect();
+    let bbox = |i: u32| tri_box(&tris[i as usize]);
+    let go_on = |_: f64| true;
+    let exact = Bvh::build_by_checked(tris.len(), LEAF, &bbox, &go_on).expect("built");
+    let compact = Bvh::build_compact(tris.len(), LEAF, &bbox, &go_on).expect("built");
+    assert_eq!(exact.order(), compact.order());
+    assert_eq!(exact.nodes.len(), compact.nodes.len());
+    let mut looser = 0;
+    for (e, c) in exact.nodes.iter().zip(&compact.nodes) {
+        assert_eq!((e.first, e.count), (c.first, c.count));
+        let ((elo, ehi), (clo, chi)) = (e.b.get(), c.b.get());
+        assert!((0..3).all(|k| clo[k] <= elo[k] && ehi[k] <= chi[k]));
+        looser += usize::from(clo != elo || chi != ehi);
+    }
+    assert!(looser > exact.nodes.len() / 2, "{looser} boxes rounded");
+    let (mut met, mut hits) = (0, 0);
+    let slot_tri = |k: u32| tris[exact.order()[k as usize] as usize];
+    let slot_box = |k: u32| tri_box(&slot_tri(k));
+    let (mut stack, mut pairs) = (Vec::new(), Vec::new());
+    let (mut out_e, mut out_c) = (Vec::new(), Vec::new());
+    for q in 0..400 {
+        let p: V3 = std::array::from_fn(|k| far[k] + rng.gen_range(-0.012..0.012));
+        let dist = |k: u32| point_tri_dist2(p, &slot_tri(k));
+        for (enough, start) in [
+            (f64::NEG_INFINITY, u32::MAX),
+            (f64::NEG_INFINITY, q),
+            (1e-6, 7),
+        ] {
+            let e = exact.nearest_slot(p, enough, start, &mut pairs, dist);
+            let c = compact.nearest_slot(p, enough, start, &mut pairs, dist);
+            match enough > 0.0 {
+                true => assert_eq!(e.0.max(enough), c.0.max(enough), "point {q}"),
+                false => assert_eq!(e, c, "point {q}"),
+            }
+        }
+        let r = [1e-5, 1e-4, 1e-3][q as usize % 3];
+        let query = (p.map(|x| x - r), p.map(|x| x + r));
+        let most = [usize::MAX, 40][q as usize % 2];
+        let a = exact.slots_meeting(query, most, slot_box, &mut stack, &mut out_e);
+        let b = compact.slots_meeting(query, most, slot_box, &mut stack, &mut out_c);
+        assert_eq!((a, &out_e), (b, &out_c), "box {q}");
+        met += usize::from(a && !out_e.is_empty());
+        // Aimed at a triangle's centre from a little way off.
+        let t = slot_tri(q * 7 % tris.len() as u32);
+        let centre = scale(add(add(t[0], t[1]), t[2]), 1.0 / 3.0);
+        let d: V3 = std::array::from_fn(|_| rng.gen_range(-1.0..1.0));
+        let o = sub(centre, scale(d, 0.02));
+        let hit = |k: u32| ray_tri(o, d, &slot_tri(k), 0.0);
+        let e = exact.ray_slot_first(o, d, 1.0, &mut stack, hit);
+        assert_eq!(
+            e,
+            compact.ray_slot_first(o, d, 1.0, &mut stack, hit),
+            "ray {q}"
+        );
+        hits += usize::from(e.1 != u32::MAX);
+    }
+    assert!(met > 50 && hits > 20, "{met} boxes met, {hits} rays hit");
 }

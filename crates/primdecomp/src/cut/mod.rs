@@ -664,17 +664,27 @@ impl<'a> Cutter<'a> {
         let mesh = self.fitter.input.mesh;
         // Asking before each node and within a large one's corners: once told to
         // stop, nothing is gathered (no caller reads a stopped cutter's snapshot).
-        let members: Vec<Vec<u32>> = cut
-            .iter()
+        // Both lists held at their length (a level's cuts and their post-processed
+        // copies are alive together): a collect of chained ranges keeps up to twice
+        // the faces' room, and the corners' up to three times the distinct vertices'.
+        let members: Vec<Vec<u32>> = (cut.par_iter())
             .map(|e| match self.goes_on() {
-                true => self.faces_of(ex, e.node).collect(),
+                true => {
+                    let faces = self.faces_of(ex, e.node);
+                    let mut m = Vec::with_capacity(faces.clone().count());
+                    m.extend(faces);
+                    m
+                }
                 false => Vec::new(),
             })
             .collect();
-        let verts = members
-            .par_iter()
+        let verts = (members.par_iter())
             .map(|faces| corners::distinct_corners(mesh, faces, || self.goes_on()))
-            .map(Option::unwrap_or_default)
+            .map(|v| {
+                let mut v = v.unwrap_or_default();
+                v.shrink_to_fit();
+                v
+            })
             .collect();
         let snapshot = Snapshot {
             target: r.count,

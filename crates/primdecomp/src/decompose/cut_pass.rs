@@ -53,6 +53,15 @@ pub(crate) fn run(
     if merged.stopped {
         return Err(Error::Cancelled);
     }
+    // The merge tree, before the triangles are built: the loop's snapshots and the
+    // faces' operators are dead once it is.
+    let tree = clock.step(Stage::Postprocess, "tree", || {
+        tree::merge_tree(&fitter, &merged, log, &face_q)
+    })?;
+    drop((merged, face_q));
+    // What the merge stage freed goes back to the system before the largest
+    // structure of the pass is built.
+    crate::input::memory::release_freed();
     // The input's triangles, once, for the cut's distances and thickened plates, and
     // its interior for plates thickened inward (--min-thickness).
     let tris = stages::triangles(&mut clock, mesh, true)?.ok_or(Error::Cancelled)?;
@@ -72,7 +81,6 @@ pub(crate) fn run(
     let requests = limits::requests(params, mesh);
     let cuts = clock
         .stage(Stage::Postprocess, "cut", |go_on, _| {
-            let tree = tree::merge_tree(&fitter, &merged, log, &face_q);
             recut::snapshots(&fitter, &tree, &requests, &tris, &postprocess, go_on)
         })?
         .ok_or(Error::Cancelled)?;

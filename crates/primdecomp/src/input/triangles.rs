@@ -4,7 +4,7 @@
 //! inward (`postprocess::thicken`, first triangle along a ray).
 
 use crate::input::mesh::Mesh;
-use crate::math::bvh::{point_tri_dist2, ray_tri, tri_box, Bvh};
+use crate::math::bvh::{point_tri_dist2, ray_tri, tri_box, Bvh, Compact};
 use crate::math::V3;
 
 /// The input's surface as triangles (fan-triangulated polygons, re-centred frame)
@@ -13,12 +13,13 @@ use crate::math::V3;
 /// place in that order. Each triangle is its corners' vertex ids in the mesh, whose
 /// positions it reads: 12 bytes a triangle, where a table of the corners in the
 /// hierarchy's order cost 12 more (an input with half as many vertices as faces) and
-/// the corners copied 72.
+/// the corners copied 72. The hierarchy's boxes are [`Compact`] (f32, rounded
+/// outwards): about 19 bytes a triangle instead of 34, the same answers.
 #[derive(Clone, Debug)]
 pub(crate) struct Triangles<'m> {
     tris: Vec<[u32; 3]>,
     mesh: &'m Mesh,
-    bvh: Bvh,
+    bvh: Bvh<Compact>,
     /// The mesh's bounding-box diagonal.
     pub diagonal: f64,
 }
@@ -61,7 +62,7 @@ impl<'m> Triangles<'m> {
         // Boxes from the corners as the build asks (no table of 48 bytes a
         // triangle), the hierarchy `Bvh::build` makes.
         let bbox = |i: u32| tri_box(&fan(i).map(|v| mesh.pos(v)));
-        let bvh = Bvh::build_by_checked(count, crate::math::bvh::LEAF, &bbox, go_on)?;
+        let bvh = Bvh::build_compact(count, crate::math::bvh::LEAF, &bbox, go_on)?;
         // In blocks, asking between them (a pass over every triangle).
         let mut tris = Vec::with_capacity(count);
         for (b, block) in bvh.order().chunks(1 << 20).enumerate() {
@@ -145,7 +146,8 @@ impl<'m> Triangles<'m> {
         stack: &mut Vec<u32>,
         out: &mut Vec<u32>,
     ) -> bool {
-        self.bvh.slots_meeting(lo_hi, most, stack, out)
+        let slot_box = |k: u32| tri_box(&self.tri(k));
+        self.bvh.slots_meeting(lo_hi, most, slot_box, stack, out)
     }
 
     /// Triangle `i`'s corners.

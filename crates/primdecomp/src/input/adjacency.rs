@@ -113,7 +113,7 @@ fn sorted_neighbour_lists(
     }
     drop(next);
     let mut adj: Vec<u32> = slots.into_iter().map(AtomicU32::into_inner).collect();
-    sort_runs(&mut adj, &offsets, go_on)?;
+    sort_runs(&mut adj, &offsets, 0.0, go_on)?;
     Some((offsets, adj))
 }
 
@@ -123,10 +123,11 @@ fn zeroed<T: Default + Send>(n: usize) -> Vec<T> {
 }
 
 /// Sorts each run `items[start[i]..start[i + 1]]`, blocks of runs in parallel (each
-/// asking `go_on` when done); `None` when it said stop.
+/// asking `go_on`, reporting the fraction `done`, when done); `None` when it said stop.
 fn sort_runs<T: Ord + Send>(
     items: &mut [T],
     start: &[u32],
+    done: f64,
     go_on: crate::progress::Checkpoint,
 ) -> Option<()> {
     let runs = start.len().saturating_sub(1);
@@ -145,7 +146,7 @@ fn sort_runs<T: Ord + Send>(
         for r in r0..r1 {
             block[start[r] as usize - base..start[r + 1] as usize - base].sort_unstable();
         }
-        go_on(0.0)
+        go_on(done)
     };
     blocks.into_par_iter().all(sorted).then_some(())
 }
@@ -293,7 +294,7 @@ fn sorted_pairs(
     drop(lists);
     go_on(0.9).then_some(())?;
     let mut keys: Vec<u64> = slots.into_iter().map(AtomicU64::into_inner).collect();
-    sort_runs(&mut keys, &start, go_on)?;
+    sort_runs(&mut keys, &start, 0.9, go_on)?;
     let mut pairs: Vec<(u32, u32)> = keys
         .into_iter()
         .map(|k| ((k >> 32) as u32, k as u32))

@@ -21,6 +21,19 @@ pub fn neighbour_lists_checked(
     pairs: &[(u32, u32)],
     go_on: crate::progress::Checkpoint,
 ) -> Option<(Vec<u32>, Vec<u32>)> {
+    if pairs.len() >= PARALLEL_FROM && sorted_apart(pairs) {
+        return sorted_neighbour_lists(n, pairs, go_on);
+    }
+    lists_in_order(n, pairs, go_on)
+}
+
+/// [`neighbour_lists_checked`] of any pairs, on this thread: each face's neighbours in
+/// the pairs' order.
+fn lists_in_order(
+    n: usize,
+    pairs: &[(u32, u32)],
+    go_on: crate::progress::Checkpoint,
+) -> Option<(Vec<u32>, Vec<u32>)> {
     let mut offsets = vec![0u32; n + 1];
     for block in pairs.chunks(FACE_BLOCK) {
         for &(a, b) in block {
@@ -44,6 +57,98 @@ pub fn neighbour_lists_checked(
         go_on(0.0).then_some(())?;
     }
     Some((offsets, adj))
+}
+
+/// Pairs from which [`neighbour_lists_checked`] runs in parallel (when sorted).
+const PARALLEL_FROM: usize = 1 << 16;
+
+/// Whether `pairs` are sorted, each once, each `(a, b)` with `a < b` (the input's
+/// face pairs, [`face_pairs`]). Then face `f`'s list in the pairs' order is its
+/// neighbours ascending: its pairs `(a, f)` come before its pairs `(f, b)`, and each
+/// run is sorted.
+fn sorted_apart(pairs: &[(u32, u32)]) -> bool {
+    pairs.par_iter().all(|&(a, b)| a < b) && pairs.par_windows(2).all(|w| w[0] < w[1])
+}
+
+/// [`neighbour_lists_checked`] of pairs [`sorted_apart`], in parallel: counted and
+/// placed a block of [`FACE_BLOCK`] pairs at a time (asking `go_on` after each), then
+/// each face's list sorted, which is the order the serial pass gives such pairs. The
+/// same lists for any thread count.
+fn sorted_neighbour_lists(
+    n: usize,
+    pairs: &[(u32, u32)],
+    go_on: crate::progress::Checkpoint,
+) -> Option<(Vec<u32>, Vec<u32>)> {
+    use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
+    let blocks = |visit: &(dyn Fn(u32, u32) + Sync)| {
+        pairs.chunks(FACE_BLOCK).all(|block| {
+            let each = |&(a, b): &(u32, u32)| visit(a, b);
+            block.par_iter().with_min_len(4096).for_each(each);
+            go_on(0.0)
+        })
+    };
+    let count: Vec<AtomicU32> = zeroed(n + 1);
+    let counted = blocks(&|a, b| {
+        count[a as usize + 1].fetch_add(1, Relaxed);
+        count[b as usize + 1].fetch_add(1, Relaxed);
+    });
+    if !counted {
+        return None;
+    }
+    let mut offsets: Vec<u32> = count.into_iter().map(AtomicU32::into_inner).collect();
+    for i in 0..n {
+        offsets[i + 1] += offsets[i];
+    }
+    let next: Vec<AtomicU32> = offsets[..n].iter().map(|&o| AtomicU32::new(o)).collect();
+    let slots: Vec<AtomicU32> = zeroed(2 * pairs.len());
+    let place = |f: u32, g: u32| {
+        let at = next[f as usize].fetch_add(1, Relaxed);
+        slots[at as usize].store(g, Relaxed);
+    };
+    if !blocks(&|a, b| {
+        place(a, b);
+        place(b, a);
+    }) {
+        return None;
+    }
+    drop(next);
+    let mut adj: Vec<u32> = slots.into_iter().map(AtomicU32::into_inner).collect();
+    sort_runs(&mut adj, &offsets, 0.0, go_on)?;
+    Some((offsets, adj))
+}
+
+/// `n` counters or slots at zero, made in parallel (a pass over memory at 14M faces).
+fn zeroed<T: Default + Send>(n: usize) -> Vec<T> {
+    (0..n).into_par_iter().map(|_| T::default()).collect()
+}
+
+/// Sorts each run `items[start[i]..start[i + 1]]`, blocks of runs in parallel (each
+/// asking `go_on`, reporting the fraction `done`, when done); `None` when it said stop.
+fn sort_runs<T: Ord + Send>(
+    items: &mut [T],
+    start: &[u32],
+    done: f64,
+    go_on: crate::progress::Checkpoint,
+) -> Option<()> {
+    let runs = start.len().saturating_sub(1);
+    let per = (FACE_BLOCK / 16).max(1);
+    // Blocks of runs own disjoint stretches of the items.
+    let mut blocks = Vec::new();
+    let mut rest = items;
+    for r0 in (0..runs).step_by(per) {
+        let r1 = (r0 + per).min(runs);
+        let (head, tail) = rest.split_at_mut((start[r1] - start[r0]) as usize);
+        blocks.push((r0, r1, head));
+        rest = tail;
+    }
+    let sorted = |(r0, r1, block): (usize, usize, &mut [T])| {
+        let base = start[r0] as usize;
+        for r in r0..r1 {
+            block[start[r] as usize - base..start[r + 1] as usize - base].sort_unstable();
+        }
+        go_on(done)
+    };
+    blocks.into_par_iter().all(sorted).then_some(())
 }
 
 /// Sorted, unique pairs `(a, b)` with `a < b` of faces sharing an edge. `offsets` and
@@ -159,38 +264,41 @@ pub fn face_pairs_checked(
 }
 
 /// The pairs of `lists` sorted and each once, as one sort of all of them gives: a
-/// counting sort on the first face, then each face's few pairs sorted on their own,
-/// asking `go_on` after each list and each [`FACE_BLOCK`] faces (one sort of every
-/// pair is seconds without a check at 14M faces); `None` when it said stop.
+/// counting sort on the first face (counted and placed in parallel, asking `go_on`
+/// after each pass), then each face's few pairs sorted on their own in parallel
+/// blocks, each asking `go_on` (one sort of every pair is seconds without a check at
+/// 14M faces); `None` when it said stop. The same pairs for any thread count.
 fn sorted_pairs(
     lists: Vec<Vec<(u32, u32)>>,
     faces: usize,
     go_on: crate::progress::Checkpoint,
 ) -> Option<Vec<(u32, u32)>> {
-    let mut start = vec![0u32; faces + 1];
-    for l in &lists {
-        l.iter().for_each(|&(a, _)| start[a as usize + 1] += 1);
-        go_on(0.9).then_some(())?;
-    }
+    use std::sync::atomic::{AtomicU32, AtomicU64, Ordering::Relaxed};
+    let count: Vec<AtomicU32> = zeroed(faces + 1);
+    lists.par_iter().flatten().for_each(|&(a, _)| {
+        count[a as usize + 1].fetch_add(1, Relaxed);
+    });
+    go_on(0.9).then_some(())?;
+    let mut start: Vec<u32> = count.into_iter().map(AtomicU32::into_inner).collect();
     for f in 0..faces {
         start[f + 1] += start[f];
     }
-    let mut next = start.clone();
-    let mut pairs = vec![(0u32, 0u32); start[faces] as usize];
-    for l in lists {
-        for (a, b) in l {
-            pairs[next[a as usize] as usize] = (a, b);
-            next[a as usize] += 1;
-        }
-        go_on(0.9).then_some(())?;
-    }
+    let next: Vec<AtomicU32> = start[..faces].iter().map(|&s| AtomicU32::new(s)).collect();
+    // Each pair as `a << 32 | b`: ordered as the pairs are.
+    let slots: Vec<AtomicU64> = zeroed(start[faces] as usize);
+    lists.par_iter().flatten().for_each(|&(a, b)| {
+        let at = next[a as usize].fetch_add(1, Relaxed);
+        slots[at as usize].store((u64::from(a) << 32) | u64::from(b), Relaxed);
+    });
     drop(next);
-    for f0 in (0..faces).step_by(FACE_BLOCK) {
-        for f in f0..(f0 + FACE_BLOCK).min(faces) {
-            pairs[start[f] as usize..start[f + 1] as usize].sort_unstable();
-        }
-        go_on(0.9).then_some(())?;
-    }
+    drop(lists);
+    go_on(0.9).then_some(())?;
+    let mut keys: Vec<u64> = slots.into_iter().map(AtomicU64::into_inner).collect();
+    sort_runs(&mut keys, &start, 0.9, go_on)?;
+    let mut pairs: Vec<(u32, u32)> = keys
+        .into_iter()
+        .map(|k| ((k >> 32) as u32, k as u32))
+        .collect();
     pairs.dedup();
     pairs.shrink_to_fit();
     Some(pairs)
@@ -242,6 +350,70 @@ mod tests {
         let indices: Vec<u32> = (0..6).flat_map(|i| [0, 1, 2 + i]).collect();
         let p = face_pairs(&offsets, &indices);
         assert_eq!(p, vec![(0, 1), (1, 2), (2, 3), (3, 4), (4, 5)]);
+    }
+
+    /// Pseudo-random sorted, distinct pairs `(a, b)`, `a < b`, of `n` faces.
+    fn random_pairs(n: u32, count: usize) -> Vec<(u32, u32)> {
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x % u64::from(n)) as u32
+        };
+        let mut pairs: Vec<(u32, u32)> = (0..count)
+            .map(|_| (next(), next()))
+            .filter(|(a, b)| a != b)
+            .map(|(a, b)| (a.min(b), a.max(b)))
+            .collect();
+        pairs.sort_unstable();
+        pairs.dedup();
+        pairs
+    }
+
+    /// Sorted pairs take the parallel path, which gives the serial pass's lists on any
+    /// thread count; unsorted ones keep the pairs' order.
+    #[test]
+    fn parallel_lists_are_the_serial_ones() {
+        let n = 50_000;
+        let pairs = random_pairs(n, 3 * PARALLEL_FROM);
+        assert!(pairs.len() >= PARALLEL_FROM && sorted_apart(&pairs));
+        let serial = lists_in_order(n as usize, &pairs, &|_| true).unwrap();
+        for threads in [1, 2, 3] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let parallel = pool.install(|| neighbour_lists(n as usize, &pairs));
+            assert_eq!(parallel, serial, "{threads} threads");
+        }
+        let mut unsorted = pairs.clone();
+        unsorted.swap(0, pairs.len() - 1);
+        assert!(!sorted_apart(&unsorted));
+        let (offsets, adj) = neighbour_lists(n as usize, &unsorted);
+        assert_eq!(
+            (offsets, adj),
+            lists_in_order(n as usize, &unsorted, &|_| true).unwrap()
+        );
+        // A stop is answered.
+        assert!(neighbour_lists_checked(n as usize, &pairs, &|_| false).is_none());
+    }
+
+    /// The pairs of several lists come out as one sort and dedup of all of them.
+    #[test]
+    fn sorted_pairs_are_one_sort_of_all() {
+        let n = 20_000;
+        let all = random_pairs(n, 60_000);
+        let mut lists: Vec<Vec<(u32, u32)>> = vec![Vec::new(); 7];
+        for (i, &p) in all.iter().rev().enumerate() {
+            lists[i % 7].push(p);
+            if i % 5 == 0 {
+                lists[(i + 3) % 7].push(p);
+            }
+        }
+        let got = sorted_pairs(lists.clone(), n as usize, &|_| true).unwrap();
+        assert_eq!(got, all);
+        assert!(sorted_pairs(lists, n as usize, &|_| false).is_none());
     }
 
     #[test]

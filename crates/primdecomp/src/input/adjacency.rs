@@ -3,6 +3,7 @@
 //! in parallel, so the result is the same for any thread count.
 
 use rayon::prelude::*;
+use std::sync::atomic::{AtomicU32, AtomicU64, Ordering::Relaxed};
 
 /// Faces around one edge beyond which we chain them instead of pairing all of them,
 /// so a non-manifold "fan" edge cannot create a quadratic number of pairs.
@@ -79,7 +80,6 @@ fn sorted_neighbour_lists(
     pairs: &[(u32, u32)],
     go_on: crate::progress::Checkpoint,
 ) -> Option<(Vec<u32>, Vec<u32>)> {
-    use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
     let blocks = |visit: &(dyn Fn(u32, u32) + Sync)| {
         pairs.chunks(FACE_BLOCK).all(|block| {
             let each = |&(a, b): &(u32, u32)| visit(a, b);
@@ -95,11 +95,7 @@ fn sorted_neighbour_lists(
     if !counted {
         return None;
     }
-    let mut offsets: Vec<u32> = count.into_iter().map(AtomicU32::into_inner).collect();
-    for i in 0..n {
-        offsets[i + 1] += offsets[i];
-    }
-    let next: Vec<AtomicU32> = offsets[..n].iter().map(|&o| AtomicU32::new(o)).collect();
+    let (offsets, next) = starts_of(count);
     let slots: Vec<AtomicU32> = zeroed(2 * pairs.len());
     let place = |f: u32, g: u32| {
         let at = next[f as usize].fetch_add(1, Relaxed);
@@ -115,6 +111,22 @@ fn sorted_neighbour_lists(
     let mut adj: Vec<u32> = slots.into_iter().map(AtomicU32::into_inner).collect();
     sort_runs(&mut adj, &offsets, 0.0, go_on)?;
     Some((offsets, adj))
+}
+
+/// From `count[i + 1]` items in bucket `i` (`count[0]` zero): each bucket's start
+/// (a prefix sum, one more entry than buckets) and a cursor per bucket at its start,
+/// for placing items in parallel.
+fn starts_of(count: Vec<AtomicU32>) -> (Vec<u32>, Vec<AtomicU32>) {
+    let mut start: Vec<u32> = count.into_iter().map(AtomicU32::into_inner).collect();
+    for i in 1..start.len() {
+        start[i] += start[i - 1];
+    }
+    let buckets = start.len().saturating_sub(1);
+    let next = start[..buckets]
+        .iter()
+        .map(|&s| AtomicU32::new(s))
+        .collect();
+    (start, next)
 }
 
 /// `n` counters or slots at zero, made in parallel (a pass over memory at 14M faces).
@@ -177,7 +189,6 @@ pub fn face_pairs_checked(
     indices: &[u32],
     go_on: crate::progress::Checkpoint,
 ) -> Option<Vec<(u32, u32)>> {
-    use std::sync::atomic::{AtomicU32, AtomicU64, Ordering::Relaxed};
     let faces = offsets.len().saturating_sub(1);
     debug_assert!(
         offsets.first().is_none_or(|&o| o == 0),
@@ -202,7 +213,7 @@ pub fn face_pairs_checked(
             go_on(done + 0.25 * f1 as f64 / faces as f64)
         })
     };
-    let count: Vec<AtomicU32> = (0..verts + 1).map(|_| AtomicU32::new(0)).collect();
+    let count: Vec<AtomicU32> = zeroed(verts + 1);
     let counted = sides(
         &|lo, _, _| {
             count[lo as usize + 1].fetch_add(1, Relaxed);
@@ -212,12 +223,8 @@ pub fn face_pairs_checked(
     if !counted {
         return None;
     }
-    let mut start: Vec<u32> = count.into_iter().map(AtomicU32::into_inner).collect();
-    for v in 0..verts {
-        start[v + 1] += start[v];
-    }
     // The records in their vertex's bucket, in any order (sorted below).
-    let next: Vec<AtomicU32> = start[..verts].iter().map(|&s| AtomicU32::new(s)).collect();
+    let (start, next) = starts_of(count);
     let records: Vec<AtomicU64> = (0..start[verts]).map(|_| AtomicU64::new(0)).collect();
     let placed = sides(
         &|lo, hi, f| {
@@ -273,7 +280,6 @@ fn sorted_pairs(
     faces: usize,
     go_on: crate::progress::Checkpoint,
 ) -> Option<Vec<(u32, u32)>> {
-    use std::sync::atomic::{AtomicU32, AtomicU64, Ordering::Relaxed};
     let count: Vec<AtomicU32> = zeroed(faces + 1);
     lists.par_iter().flatten().for_each(|&(a, _)| {
         count[a as usize + 1].fetch_add(1, Relaxed);

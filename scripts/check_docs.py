@@ -2,7 +2,9 @@
 """Checks the documents: every relative link resolves, every decision record opens
 with its five-line header, docs/decisions/README.md's table matches the headers, and
 ARCHITECTURE.md's table of the core's public API names exactly what
-crates/primdecomp/src/lib.rs makes public (and the file stays a five-minute read).
+crates/primdecomp/src/lib.rs makes public (and the file stays a five-minute read),
+and every file and core module a record's `Code:` line names (before any "was")
+still exists.
 
     python3 scripts/check_docs.py           # check; exit 1 with one line per problem
     python3 scripts/check_docs.py --write   # rewrite the README's table from the headers
@@ -106,6 +108,86 @@ def records():
     return top, sorted((DECISIONS / "cut-steps").glob("*.md"))
 
 
+CORE = ROOT / "crates" / "primdecomp" / "src"
+CODE_TOKEN = re.compile(r"`([^`\s]+)`")
+MODULE_PATH = re.compile(r"^[a-z_][a-z0-9_]*(::[A-Za-z_][A-Za-z0-9_]*)+$")
+
+
+def source_files(cache=[]):
+    """Every file of the repository but build outputs, as paths relative to ROOT."""
+    if not cache:
+        for p in ROOT.rglob("*"):
+            if p.is_file() and not skipped(p):
+                cache.append(p.relative_to(ROOT).as_posix())
+    return cache
+
+
+def file_exists(name):
+    """A path as records write it: from the root, or the tail of a path (`cut/tree.rs`)."""
+    name = name.rstrip("/")
+    if (ROOT / name).exists():
+        return True
+    return any(f == name or f.endswith("/" + name) or ("/" + name + "/") in f
+               for f in source_files())
+
+
+def spelled_files(token):
+    """The files a token names: `dir/*` is the folder, `src/{a,b}.rs` two files, and
+    `file.rs::name` the file, which must also name the item."""
+    token, _, item = token.partition("::")
+    token = token.removesuffix("/*")
+    m = re.match(r"^(.*)\{([^}]*)\}(.*)$", token)
+    names = [m[1] + part + m[3] for part in m[2].split(",")] if m else [token]
+    # A file that exists but no longer names the item is reported as `file::item`.
+    return [n if not item or file_names(n, item) else f"{n}::{item}" for n in names]
+
+
+def file_names(name, item):
+    """Whether some file `name` (as file_exists reads it) mentions `item`."""
+    for f in source_files():
+        if f == name or f.endswith("/" + name):
+            if re.search(r"\b" + re.escape(item) + r"\b", (ROOT / f).read_text(encoding="utf-8")):
+                return True
+    return False
+
+
+def module_exists(path):
+    """A core module path (`input::orient::face_signs`): its modules are files under
+    crates/primdecomp/src, and what follows the last one is named in it."""
+    segs = path.split("::")
+    if not ((CORE / segs[0]).is_dir() or (CORE / (segs[0] + ".rs")).exists()):
+        return True  # another crate's path, or a type's member: not checked here
+    here, k = CORE, 0
+    while k < len(segs) and ((here / segs[k]).is_dir() or (here / (segs[k] + ".rs")).exists()):
+        here, k = here / segs[k], k + 1
+    files = [here.with_suffix(".rs")] if here.with_suffix(".rs").exists() else []
+    if here.is_dir():
+        files += sorted(here.rglob("*.rs"))
+    text = "\n".join(p.read_text(encoding="utf-8") for p in files)
+    return all(re.search(r"\b" + re.escape(s) + r"\b", text) for s in segs[k:])
+
+
+def code_problems(path):
+    """The files and core modules a record's `Code:` line names that no longer exist."""
+    found = header(path)
+    if found is None:
+        return []
+    code = re.split(r"\bwas\b", found[1][3])[0]
+    problems = []
+    for token in CODE_TOKEN.findall(code):
+        if token.startswith("-") or "://" in token:
+            continue
+        if "/" in token or re.search(r"\.(rs|py|sh|toml|md|js)(::\w+)?$", token):
+            ok = all(file_exists(name) for name in spelled_files(token))
+        elif MODULE_PATH.match(token):
+            ok = module_exists(token)
+        else:
+            continue
+        if not ok:
+            problems.append(f"{path.relative_to(ROOT)}: Code: names `{token}`, which does not exist")
+    return problems
+
+
 def table(top):
     cell = lambda s: s.replace("|", "\\|")
     rows = []
@@ -184,6 +266,7 @@ def main():
     for p in top + steps:
         if header(p) is None:
             problems.append(f"{p.relative_to(ROOT)}: no five-line header ({', '.join(FIELDS)})")
+        problems += code_problems(p)
     readme = DECISIONS / "README.md"
     text = readme.read_text(encoding="utf-8")
     start = text.find(TABLE_HEAD)

@@ -3,8 +3,8 @@
 with its five-line header, docs/decisions/README.md's table matches the headers, and
 ARCHITECTURE.md's table of the core's public API names exactly what
 crates/primdecomp/src/lib.rs makes public (and the file stays a five-minute read),
-and every file and core module a record's `Code:` line names (before any "was")
-still exists.
+every file and core module a record's `Code:` line names (before any "was")
+still exists, and docs/modules.md names every file of the core and no file it lacks.
 
     python3 scripts/check_docs.py           # check; exit 1 with one line per problem
     python3 scripts/check_docs.py --write   # rewrite the README's table from the headers
@@ -188,6 +188,34 @@ def code_problems(path):
     return problems
 
 
+MODULES = ROOT / "docs" / "modules.md"
+
+
+def modules_problems():
+    """docs/modules.md against crates/primdecomp/src: every file named (itself, in a
+    `dir/{a,b}.rs` form, or by its module's folder; `mod.rs`, `tests.rs` and `lib.rs` go with
+    their folder), and every core path it names existing."""
+    names = set()
+    for token in CODE_TOKEN.findall(MODULES.read_text(encoding="utf-8")):
+        m = re.match(r"^(.*)\{([^}]*)\}(.*)$", token)
+        names.update([m[1] + part + m[3] for part in m[2].split(",")] if m else [token])
+    have = {p.relative_to(CORE).as_posix() for p in CORE.rglob("*.rs")}
+    problems = []
+    for f in sorted(have):
+        parts = f.split("/")
+        # A module's own folder (`primitive/fit/`) stands for its files; a stage's
+        # folder (`cut/`) does not.
+        folders = ("/".join(parts[:k]) + "/" for k in range(2, len(parts)))
+        if not (f in names or f == "lib.rs" or f.endswith(("/tests.rs", "/mod.rs"))
+                or any(d in names for d in folders)):
+            problems.append(f"docs/modules.md: does not name crates/primdecomp/src/{f}")
+    tops = {p.name for p in CORE.iterdir()}
+    for n in sorted(names):
+        if n.split("/")[0] in tops and n.endswith((".rs", "/")) and not (CORE / n).exists():
+            problems.append(f"docs/modules.md: names {n}, which crates/primdecomp/src lacks")
+    return problems
+
+
 def table(top):
     cell = lambda s: s.replace("|", "\\|")
     rows = []
@@ -259,7 +287,7 @@ def api_table_problems():
 
 
 def main():
-    problems = api_table_problems()
+    problems = api_table_problems() + modules_problems()
     for doc in documents():
         problems += link_problems(doc)
     top, steps = records()

@@ -68,13 +68,18 @@ pub(crate) fn run(
     let reads = stages::interior(&mut clock, mesh, params, Some(&tris))?;
     // Post-processing (§3.4) is the step each cut is measured after: plates joined
     // within the cut's bound, duplicates absorbed, nested primitives removed.
+    // Each round's freed scratch goes back to the system before and after it: what
+    // glibc keeps of the cut's rounds otherwise adds to the pass's peak.
     let postprocess = |cuts: &[LevelCut]| -> Vec<Level> {
-        (cuts.iter())
+        crate::input::memory::release_freed();
+        let levels = (cuts.iter())
             .map(|c| Level {
                 shortfall: c.shortfall,
                 ..postprocess::level(&fitter, c.snapshot.clone(), Some(c.bound), params, &reads)
             })
-            .collect()
+            .collect();
+        crate::input::memory::release_freed();
+        levels
     };
     // The cut of the merge tree at each target where the error is (0032), its counts
     // and bytes spent on what post-processing keeps (0044).

@@ -8,16 +8,18 @@ use crate::math::bvh::{point_tri_dist2, ray_tri, tri_box, Bvh, Compact};
 use crate::math::V3;
 
 /// The input's surface as triangles (fan-triangulated polygons, re-centred frame)
-/// with a hierarchy over them. The triangles are stored in the hierarchy's order
-/// (`Bvh::order`), so that a leaf's lie side by side; a triangle's index here is its
-/// place in that order. Each triangle is its corners' vertex ids in the mesh, whose
-/// positions it reads: 12 bytes a triangle, where a table of the corners in the
-/// hierarchy's order cost 12 more (an input with half as many vertices as faces) and
-/// the corners copied 72. The hierarchy's boxes are [`Compact`] (f32, rounded
-/// outwards): about 19 bytes a triangle instead of 34, the same answers.
+/// with a hierarchy over them. A triangle's index here is its place in the
+/// hierarchy's order (`Bvh::order`), so that a leaf's are neighbours. Each triangle
+/// is its corners' vertex ids in the mesh, whose positions it reads: an all-triangle
+/// mesh's faces are read through the order (no copy: 12 bytes a triangle fewer, for
+/// a scattered read of the face's three ids), a polygon mesh's fans are stored in
+/// the order (12 bytes a triangle). The hierarchy's boxes are [`Compact`] (f32,
+/// rounded outwards): about 19 bytes a triangle instead of 34, the same answers.
 #[derive(Clone, Debug)]
 pub(crate) struct Triangles<'m> {
-    tris: Vec<[u32; 3]>,
+    /// The fans in the hierarchy's order; empty when every face is a triangle (read
+    /// from the mesh through `Bvh::order`).
+    fans: Vec<[u32; 3]>,
     mesh: &'m Mesh,
     bvh: Bvh<Compact>,
     /// The mesh's bounding-box diagonal.
@@ -38,7 +40,7 @@ impl<'m> Triangles<'m> {
         go_on: crate::progress::Checkpoint,
     ) -> Option<Triangles<'m>> {
         // Each face's fan as vertex indices (the faces themselves when all are
-        // triangles), then the corners, in the hierarchy's order.
+        // triangles), then, for polygons, the fans in the hierarchy's order.
         let all_triangles = mesh.face_indices.len() == 3 * mesh.face_count();
         let mut fans: Vec<[u32; 3]> = Vec::new();
         if !all_triangles {
@@ -64,16 +66,19 @@ impl<'m> Triangles<'m> {
         let bbox = |i: u32| tri_box(&fan(i).map(|v| mesh.pos(v)));
         let bvh = Bvh::build_compact(count, crate::math::bvh::LEAF, &bbox, go_on)?;
         // In blocks, asking between them (a pass over every triangle).
-        let mut tris = Vec::with_capacity(count);
-        for (b, block) in bvh.order().chunks(1 << 20).enumerate() {
-            if b > 0 && !go_on(0.0) {
-                return None;
+        let mut ordered = Vec::new();
+        if !all_triangles {
+            ordered.reserve_exact(count);
+            for (b, block) in bvh.order().chunks(1 << 20).enumerate() {
+                if b > 0 && !go_on(0.0) {
+                    return None;
+                }
+                ordered.extend(block.iter().map(|&i| fans[i as usize]));
             }
-            tris.extend(block.iter().map(|&i| fan(i)));
         }
         Some(Triangles {
             bvh,
-            tris,
+            fans: ordered,
             mesh,
             diagonal: mesh.diagonal(),
         })
@@ -82,7 +87,20 @@ impl<'m> Triangles<'m> {
     /// Triangle `k`'s corners (`k` in the hierarchy's order).
     #[inline]
     fn tri(&self, k: u32) -> [V3; 3] {
-        self.tris[k as usize].map(|v| self.mesh.pos(v))
+        let ids = match self.fans.is_empty() {
+            true => {
+                let f = 3 * self.bvh.order()[k as usize] as usize;
+                let v = &self.mesh.face_indices[f..f + 3];
+                [v[0], v[1], v[2]]
+            }
+            false => self.fans[k as usize],
+        };
+        ids.map(|v| self.mesh.pos(v))
+    }
+
+    /// How many triangles.
+    fn len(&self) -> usize {
+        self.bvh.order().len()
     }
 
     /// Distance from `p` to the nearest triangle (infinite for an empty surface);
@@ -131,7 +149,7 @@ impl<'m> Triangles<'m> {
 
     /// Distance from `p` to triangle `i` (infinite for `u32::MAX`).
     pub(crate) fn distance_to(&self, p: V3, i: u32) -> f64 {
-        match (i as usize) < self.tris.len() {
+        match (i as usize) < self.len() {
             true => point_tri_dist2(p, &self.tri(i)).sqrt(),
             false => f64::INFINITY,
         }
@@ -188,7 +206,7 @@ mod tests {
                 (t * 0.11).cos() * 2.0,
                 (t * 0.05).sin(),
             ];
-            let brute = (0..s.tris.len() as u32)
+            let brute = (0..s.len() as u32)
                 .map(|k| point_tri_dist2(p, &s.tri(k)))
                 .fold(f64::INFINITY, f64::min)
                 .sqrt();
@@ -197,6 +215,48 @@ mod tests {
             for bound in [0.0, 0.5 * brute, brute, 2.0 * brute] {
                 let d = s.distance_beyond(p, bound, &mut stack);
                 assert_eq!(bound.max(d), bound.max(brute), "point {p:?}, bound {bound}");
+            }
+        }
+    }
+
+    /// Slot `k` is the fan triangle the hierarchy put there, whether read from the
+    /// mesh through the order (every face a triangle: nothing copied) or stored
+    /// (polygons).
+    #[test]
+    fn slots_are_the_fans_in_the_hierarchys_order() {
+        let grid = |n: u32| {
+            let pos: Vec<[f64; 3]> = (0..=n)
+                .flat_map(|j| (0..=n).map(move |i| [i as f64, j as f64, ((i * j) % 3) as f64]))
+                .collect();
+            let at = |i: u32, j: u32| j * (n + 1) + i;
+            let quads: Vec<Vec<u32>> = (0..n)
+                .flat_map(|j| (0..n).map(move |i| (i, j)))
+                .map(|(i, j)| vec![at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)])
+                .collect();
+            (pos, quads)
+        };
+        let (pos, quads) = grid(12);
+        let tris: Vec<[u32; 3]> = (quads.iter())
+            .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
+            .collect();
+        for mesh in [
+            Mesh::from_polygons(&pos, &quads).unwrap(),
+            Mesh::from_triangles(&pos, &tris).unwrap(),
+            crate::input::demo::demo_scene(),
+        ] {
+            let fans: Vec<[u32; 3]> = (0..mesh.face_count())
+                .flat_map(|f| {
+                    let v = mesh.face(f).to_vec();
+                    (2..v.len()).map(move |k| [v[0], v[k - 1], v[k]])
+                })
+                .collect();
+            let s = Triangles::new(&mesh);
+            let triangles_only = mesh.face_indices.len() == 3 * mesh.face_count();
+            assert_eq!(s.fans.is_empty(), triangles_only);
+            assert_eq!(s.len(), fans.len());
+            for (k, &i) in s.bvh.order().iter().enumerate() {
+                let want = fans[i as usize].map(|v| mesh.pos(v));
+                assert_eq!(s.corners(k as u32), want, "slot {k}");
             }
         }
     }

@@ -22,7 +22,7 @@ mod exports;
 
 use arbitrary::{Arbitrary, Unstructured};
 use libfuzzer_sys::fuzz_target;
-use primdecomp::{Frame, Body, Up};
+use primdecomp::{Body, Frame, Up};
 use primdecomp_export::{render, ExportOptions, Format, Physics};
 use primdecomp_math::quat_from_axes;
 use primdecomp::{Capsule, Cylinder, Error, Frustum, Obb, Primitive, Prism, Sphere};

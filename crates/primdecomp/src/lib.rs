@@ -92,7 +92,7 @@ pub use input::mesh::Mesh;
 pub use input::up::Up;
 pub use output::result::{Decomposition, InputInfo, Level, Shortfall, Stats};
 pub use output::{Body, Frame, ResultFile, Tess};
-pub use params::{Dedup, Fit, Goal, Params, Partitions, Plates, Reprice, Speed, Target, Tolerance};
+pub use params::{Dedup, Fit, Goal, Params, Partitions, Plates, Reprice, Target, Tolerance};
 pub use primitive::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
 pub use progress::{Progress, Stage};
 

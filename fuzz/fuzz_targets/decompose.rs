@@ -57,7 +57,7 @@ fn params(u: &mut Unstructured) -> Result<Params> {
     };
     // Read last, so that corpus entries grown before these settings decode as before.
     // The meshes are small: low degrees are what make deferred re-pricing happen.
-    p.speed.reprice = match u.int_in_range(0..=5)? {
+    p.reprice = match u.int_in_range(0..=5)? {
         0 => Reprice::Exact,
         d => Reprice::Deferred {
             min_degree: [64, 0, 1, 2, 4][d as usize - 1],
@@ -78,7 +78,7 @@ fn params(u: &mut Unstructured) -> Result<Params> {
     // After that (an exhausted input reads 0: auto, which never splits these small
     // meshes, as grown): a fixed count splits them when 16 × N < faces, so phase 1's
     // lazy parts run on hostile input too.
-    p.speed.partitions = match u.int_in_range(0..=3)? {
+    p.partitions = match u.int_in_range(0..=3)? {
         0 => Partitions::Auto,
         k => Partitions::Fixed([2, 3, 8][k as usize - 1]),
     };

@@ -22,7 +22,7 @@ mod exports;
 
 use arbitrary::{Arbitrary, Unstructured};
 use libfuzzer_sys::fuzz_target;
-use primdecomp::{Frame, ResultObject, Up};
+use primdecomp::{Body, Frame, Up};
 use primdecomp_export::{render, ExportOptions, Format, Physics};
 use primdecomp_math::quat_from_axes;
 use primdecomp::{Capsule, Cylinder, Error, Frustum, Obb, Primitive, Prism, Sphere};
@@ -172,13 +172,13 @@ fn magnitude(p: &Primitive) -> f64 {
 }
 
 fn check(input: &Input) {
-    let objects: Vec<ResultObject> = input
+    let objects: Vec<Body> = input
         .objects
         .iter()
         .take(4)
         .map(|o| {
             let q = [o.q[0].get(), o.q[1].get(), o.q[2].get(), o.q[3].get()];
-            ResultObject {
+            Body {
                 name: o.name.get(),
                 frame: Frame {
                     translation: o.t.each_ref().map(F::get),

@@ -5,7 +5,7 @@
 use crate::args::{handle, optional_text, put, text, writable};
 use crate::result::PrimdecompResult;
 use crate::status::{guard, Failure, PrimdecompStatus};
-use primdecomp::{Frame, ResultObject, Tess, Up};
+use primdecomp::{Body, Frame, Tess, Up};
 use primdecomp_export::{render, write_export, ExportOptions, Format, Physics};
 use serde::Deserialize;
 use std::ffi::c_char;
@@ -99,8 +99,8 @@ fn export_options(o: &Options, model: &str) -> Result<ExportOptions, Failure> {
 }
 
 /// The level as one world-frame object, as `primdecomp decompose --export` writes it.
-fn objects(r: &PrimdecompResult, level: usize) -> Result<Vec<ResultObject>, Failure> {
-    Ok(vec![ResultObject {
+fn objects(r: &PrimdecompResult, level: usize) -> Result<Vec<Body>, Failure> {
+    Ok(vec![Body {
         name: String::new(),
         frame: Frame::IDENTITY,
         primitives: r.level(level)?.primitives.clone(),

@@ -16,8 +16,8 @@
 
 use super::names::Names;
 use super::range;
+use primdecomp::Body;
 use primdecomp::Frame;
-use primdecomp::ResultObject;
 use primdecomp::Tess;
 use primdecomp::Up;
 use primdecomp::{Kind, Primitive};
@@ -279,7 +279,7 @@ pub const MAX_VERTICES: usize = 1 << 24;
 /// Vertices the export's tessellated shapes will have: the kinds written as hulls
 /// (every kind with a preview), counted once per kind at `detail`.
 fn tessellated_vertices(
-    objects: &[ResultObject],
+    objects: &[Body],
     native: [bool; 6],
     preview: bool,
     detail: usize,
@@ -303,7 +303,7 @@ fn tessellated_vertices(
 /// its syntax. Refuses (one sentence naming the object and primitive) a shape whose
 /// numbers the format's readers could not load ([`super::range`]).
 pub fn prepare(
-    objects: &[ResultObject],
+    objects: &[Body],
     format: Format,
     opts: &ExportOptions,
     keep_scale: bool,

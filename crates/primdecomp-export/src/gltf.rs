@@ -25,9 +25,9 @@ use super::engine::{prepare, quat_between, ExportOptions, Format, Physics, Prepa
 use gltf_json as json;
 use json::validation::{Checked::Valid, USize64};
 use json::Index;
+use primdecomp::Body;
 use primdecomp::Frame;
 use primdecomp::Kind;
-use primdecomp::ResultObject;
 use primdecomp::Tess;
 use primdecomp_math::V3;
 use serde_json::{json as j, Value};
@@ -220,11 +220,7 @@ fn implicit(shape: &Shape) -> Option<(Frame, Value)> {
 
 /// The glTF document (`.gltf` text with the buffer as a data URI, or `.glb` bytes), or
 /// why it cannot be written ([`prepare`]).
-pub fn to_gltf(
-    objects: &[ResultObject],
-    opts: &ExportOptions,
-    binary: bool,
-) -> Result<Vec<u8>, String> {
+pub fn to_gltf(objects: &[Body], opts: &ExportOptions, binary: bool) -> Result<Vec<u8>, String> {
     let prepared = prepare(objects, Format::Gltf, opts, true)?;
     let mut root = json::Root {
         asset: json::Asset {
@@ -520,7 +516,7 @@ mod tests {
             hz_bottom: 0.7,
             shift: 0.3,
         });
-        let objects = [ResultObject {
+        let objects = [Body {
             name: String::new(),
             frame: Frame::IDENTITY,
             primitives: vec![prism],

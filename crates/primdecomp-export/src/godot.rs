@@ -11,7 +11,7 @@
 
 use super::engine::{num, prepare, quat_between, ExportOptions, Format, Shape};
 use super::names::{ident, quote, Names};
-use primdecomp::ResultObject;
+use primdecomp::Body;
 use primdecomp_files::visible;
 use primdecomp_math::axes_from_quat;
 use primdecomp_math::V3;
@@ -36,7 +36,7 @@ fn vec3(v: V3) -> String {
 }
 
 /// The `.tscn` text, or why it cannot be written ([`prepare`]).
-pub fn to_tscn(objects: &[ResultObject], opts: &ExportOptions) -> Result<String, String> {
+pub fn to_tscn(objects: &[Body], opts: &ExportOptions) -> Result<String, String> {
     let prepared = prepare(objects, Format::Tscn, opts, false)?;
     let y = [0.0, 1.0, 0.0];
     let id = [0.0, 0.0, 0.0, 1.0];

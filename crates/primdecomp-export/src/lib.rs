@@ -4,7 +4,7 @@
 //! (`.usda`) and Godot 4 scenes (`.tscn`). Conventions (up axis, scale, which kinds are
 //! native shapes and which become convex hulls): docs/decisions/exports-engine-conventions.md.
 //!
-//! The input is a list of [`primdecomp::ResultObject`]s: one for a whole-mesh result,
+//! The input is a list of [`primdecomp::Body`]s: one for a whole-mesh result,
 //! one per object of a `--per-object` result ([`primdecomp::ResultFile::read`] reads either
 //! from the JSON contract). [`render`] gives the bytes, [`write_export`] writes them
 //! (through temporary files and renames, [`primdecomp_files::write_atomic`]). Every shape is
@@ -14,11 +14,11 @@
 //! [`primdecomp::Error`] naming the shape, never written.
 //!
 //! ```
-//! use primdecomp::{Frame, Goal, Params, ResultObject, decompose, demo_scene};
+//! use primdecomp::{Frame, Goal, Params, Body, decompose, demo_scene};
 //! use primdecomp_export::{render, ExportOptions, Format};
 //!
 //! let result = decompose(&demo_scene(), &Params { goal: Goal::counts([40]), ..Params::default() })?;
-//! let objects = [ResultObject {
+//! let objects = [Body {
 //!     name: "demo".into(),
 //!     frame: Frame::IDENTITY,
 //!     primitives: result.levels[0].primitives.clone(),

@@ -9,7 +9,7 @@
 
 use super::engine::{prepare, quat_between, ExportOptions, Format, Shape};
 use super::xml::{nums, Xml};
-use primdecomp::ResultObject;
+use primdecomp::Body;
 use primdecomp_files::visible;
 use primdecomp_math::V3;
 
@@ -49,7 +49,7 @@ fn segment(x: &mut Xml, name: &str, ty: &str, p0: V3, p1: V3, r: f64) {
 }
 
 /// The MJCF document, or why it cannot be written ([`prepare`]).
-pub fn to_mjcf(objects: &[ResultObject], opts: &ExportOptions) -> Result<String, String> {
+pub fn to_mjcf(objects: &[Body], opts: &ExportOptions) -> Result<String, String> {
     let prepared = prepare(objects, Format::Mjcf, opts, false)?;
     let mut x = Xml::new();
     x.open("mujoco", &[("model", &visible(&opts.model))]);

@@ -11,7 +11,7 @@
 use super::engine::{prepare, quat_between, ExportOptions, Files, Format, Shape};
 use super::names::{file_name, ident, MAX_FILE_NAME};
 use super::xml::{nums, Xml};
-use primdecomp::ResultObject;
+use primdecomp::Body;
 use primdecomp::Tess;
 use primdecomp_files::visible;
 use primdecomp_math::axes_from_quat;
@@ -61,11 +61,7 @@ pub fn mesh_dir(stem: &str) -> String {
 
 /// The URDF and its mesh files (`{stem}_meshes/…obj`, relative to the URDF), or why it
 /// cannot be written ([`prepare`]).
-pub fn to_urdf(
-    objects: &[ResultObject],
-    opts: &ExportOptions,
-    stem: &str,
-) -> Result<Files, String> {
+pub fn to_urdf(objects: &[Body], opts: &ExportOptions, stem: &str) -> Result<Files, String> {
     let prepared = prepare(objects, Format::Urdf, opts, false)?;
     let mut files = Files::default();
     let mut x = Xml::new();

@@ -11,7 +11,7 @@
 
 use super::engine::{prepare, quat_between, ExportOptions, Format, Shape};
 use super::names::{ident, quote, Names};
-use primdecomp::ResultObject;
+use primdecomp::Body;
 use primdecomp_files::visible;
 use primdecomp_math::V3;
 use std::fmt::Write;
@@ -39,7 +39,7 @@ fn xform(out: &mut String, ind: &str, t: V3, q: [f64; 4], scale: Option<V3>) {
 }
 
 /// The `.usda` text, or why it cannot be written ([`prepare`]).
-pub fn to_usda(objects: &[ResultObject], opts: &ExportOptions) -> Result<String, String> {
+pub fn to_usda(objects: &[Body], opts: &ExportOptions) -> Result<String, String> {
     let prepared = prepare(objects, Format::Usda, opts, false)?;
     let root = ident(&visible(&opts.model), true);
     let mut out = String::new();

@@ -8,8 +8,8 @@
 //! fails, so a failed export leaves nothing behind.
 
 use super::engine::{check_options, ExportOptions, Files, Format};
+use primdecomp::Body;
 use primdecomp::Error;
-use primdecomp::ResultObject;
 use std::path::{Component, Path, PathBuf};
 
 /// Results with the library's one error type.
@@ -22,11 +22,11 @@ type Result<T> = std::result::Result<T, Error>;
 /// not a folder.
 ///
 /// ```
-/// use primdecomp::{Frame, Primitive, ResultObject, Sphere};
+/// use primdecomp::{Frame, Primitive, Body, Sphere};
 /// use primdecomp_export::{write_export, ExportOptions, Format};
 ///
 /// let ball = Primitive::Sphere(Sphere { center: [0.0, 1.0, 0.0], radius: 0.5 });
-/// let objects = [ResultObject { name: "ball".into(), frame: Frame::IDENTITY, primitives: vec![ball] }];
+/// let objects = [Body { name: "ball".into(), frame: Frame::IDENTITY, primitives: vec![ball] }];
 /// let path = std::env::temp_dir().join(format!("primdecomp-doc-{}.tscn", std::process::id()));
 /// let written = write_export(&path, &objects, Format::Tscn, &ExportOptions::default())?;
 /// assert_eq!(written, [path.clone()]);
@@ -36,7 +36,7 @@ type Result<T> = std::result::Result<T, Error>;
 /// ```
 pub fn write_export(
     path: &Path,
-    objects: &[ResultObject],
+    objects: &[Body],
     format: Format,
     opts: &ExportOptions,
 ) -> Result<Vec<PathBuf>> {
@@ -135,19 +135,19 @@ fn folders(dir: &Path, rel: &Path, made: &mut Vec<PathBuf>) -> Result<()> {
 /// mesh MuJoCo refuses as too small).
 ///
 /// ```
-/// use primdecomp::{Frame, Obb, Primitive, ResultObject};
+/// use primdecomp::{Frame, Obb, Primitive, Body};
 /// use primdecomp_export::{render, ExportOptions, Format};
 ///
 /// let axes = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 /// let crate_box = Primitive::Box(Obb { center: [0.0; 3], axes, half: [1.0, 0.5, 0.25] });
-/// let objects = [ResultObject { name: "crate".into(), frame: Frame::IDENTITY, primitives: vec![crate_box] }];
+/// let objects = [Body { name: "crate".into(), frame: Frame::IDENTITY, primitives: vec![crate_box] }];
 /// let files = render(&objects, Format::Glb, &ExportOptions::default(), "crate.glb".as_ref())?;
 /// assert_eq!(&files.main[..4], b"glTF");
 /// assert!(files.beside.is_empty());
 /// # Ok::<(), primdecomp::Error>(())
 /// ```
 pub fn render(
-    objects: &[ResultObject],
+    objects: &[Body],
     format: Format,
     opts: &ExportOptions,
     path: &Path,

@@ -2,14 +2,14 @@
 //! wrongly, each reduced to a test that failed before its fix. The comment on each
 //! says what must happen and why.
 
-use primdecomp::{Frame, ResultObject};
+use primdecomp::{Body, Frame};
 use primdecomp_export::{render, ExportOptions, Format};
 use primdecomp_testkit::exports;
 
 /// A one-primitive result in every export format, read back by the tests' readers
 /// (`crates/testkit/src/exports.rs`); `Err` carries the reader's complaint.
 fn export_reads_back(p: primdecomp::Primitive) -> Result<(), String> {
-    let objects = [ResultObject {
+    let objects = [Body {
         name: String::new(),
         frame: Frame::IDENTITY,
         primitives: vec![p],
@@ -57,7 +57,7 @@ fn an_empty_object_far_away_is_refused() {
         radius: 1.0,
     });
     let objects = [
-        ResultObject {
+        Body {
             name: "far".into(),
             frame: Frame {
                 translation: [443.0, -4.9e140, 2.2e156],
@@ -65,7 +65,7 @@ fn an_empty_object_far_away_is_refused() {
             },
             primitives: Vec::new(),
         },
-        ResultObject {
+        Body {
             name: "near".into(),
             frame: Frame::IDENTITY,
             primitives: vec![sphere],

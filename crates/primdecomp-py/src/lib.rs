@@ -8,7 +8,7 @@
 use numpy::{
     PyArray1, PyArray2, PyArrayMethods, PyReadonlyArray1, PyReadonlyArray2, PyUntypedArrayMethods,
 };
-use primdecomp::{Decomposition, Error, Mesh, Params, Primitive, Progress, Stage};
+use primdecomp::{Decomposition, Error, Mesh, Params, Primitive, Progress, Stage, Target};
 use primdecomp_export::{write_export, ExportOptions, Format};
 use pyo3::exceptions::{PyKeyboardInterrupt, PyOSError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -228,8 +228,8 @@ fn decompose(
     settings_json: &str,
     progress: Option<PyObject>,
 ) -> PyResult<NativeResult> {
-    let params = Params::from_json(settings_json).map_err(to_py_err)?;
-    params.validate().map_err(to_py_err)?;
+    // The other settings are checked before the mesh is built, as without percentages.
+    Params::from_json(&counted(settings_json, None)?).map_err(to_py_err)?;
     let v = vertices.as_slice()?;
     let (o, k, i) = match (&faces, &offsets, &indices) {
         (Some(f), _, _) => (None, f.shape()[1], f.as_slice()?),
@@ -240,6 +240,9 @@ fn decompose(
         .allow_threads(|| catch_unwind(|| build_mesh(v, o, k, i)))
         .map_err(|p| PyRuntimeError::new_err(panic_message(p)))?
         .map_err(to_py_err)?;
+    let params =
+        Params::from_json(&counted(settings_json, Some(mesh.face_count()))?).map_err(to_py_err)?;
+    params.validate().map_err(to_py_err)?;
     let dec = run_watched(py, &mesh, &params, progress.as_ref())?;
     Ok(NativeResult { dec, params })
 }
@@ -254,16 +257,53 @@ fn decompose_path(
     settings_json: &str,
     progress: Option<PyObject>,
 ) -> PyResult<NativeResult> {
-    let params = Params::from_json(settings_json).map_err(to_py_err)?;
-    params.validate().map_err(to_py_err)?;
+    Params::from_json(&counted(settings_json, None)?).map_err(to_py_err)?;
     let mesh = py
         .allow_threads(|| catch_unwind(|| primdecomp::Mesh::load(Path::new(path))))
         .map_err(|p| PyRuntimeError::new_err(panic_message(p)))?
         .map_err(to_py_err)?;
+    let params =
+        Params::from_json(&counted(settings_json, Some(mesh.face_count()))?).map_err(to_py_err)?;
+    params.validate().map_err(to_py_err)?;
     let mut dec = run_watched(py, &mesh, &params, progress.as_ref())?;
     // As the CLI records them, so that to_json() is the CLI's file byte for byte.
     dec.input.record_file(Path::new(path));
     Ok(NativeResult { dec, params })
+}
+
+/// The settings with each target given as a percentage of the faces (`"1%"`, as
+/// [`spelled`] leaves it) made the count it stands for on a mesh of `faces` faces
+/// ([`Target::count`], as the CLI's `-n 1%`); with `faces` unknown, a placeholder
+/// count, so that the other settings can be checked first. Settings without one are
+/// given back as they are.
+fn counted(settings_json: &str, faces: Option<usize>) -> PyResult<String> {
+    let mut value: serde_json::Value = match serde_json::from_str(settings_json) {
+        Ok(v) => v,
+        Err(_) => return Ok(settings_json.to_string()),
+    };
+    let Some(targets) = value.get_mut("targets").and_then(|t| t.as_array_mut()) else {
+        return Ok(settings_json.to_string());
+    };
+    if !targets.iter().any(|t| t.is_string()) {
+        return Ok(settings_json.to_string());
+    }
+    for t in targets.iter_mut() {
+        if let Some(text) = t.as_str() {
+            let target: Target = text
+                .parse()
+                .map_err(|e: Error| PyValueError::new_err(format!("targets: {}", bare(e))))?;
+            *t = faces.map_or(1, |f| target.count(f)).into();
+        }
+    }
+    Ok(value.to_string())
+}
+
+/// An invalid setting's message without the error's "invalid setting: " prefix.
+fn bare(e: Error) -> String {
+    match e {
+        Error::InvalidParams(m) => m,
+        e => e.to_string(),
+    }
 }
 
 /// A finished decomposition and the settings that made it.
@@ -459,6 +499,12 @@ fn spelled(key: &str, text: &str) -> PyResult<String> {
         Ok(serde_json::to_string(&value).expect("settings serialize"))
     }
     let value = match key {
+        // A count as a number; a percentage as its spelling, made a count by
+        // `counted` once the mesh's faces are known.
+        "targets" => text.parse::<Target>().map(|t| match t {
+            Target::Count(n) => n.to_string(),
+            Target::Percent(_) => serde_json::Value::from(t.to_string()).to_string(),
+        }),
         "tolerance" => json::<primdecomp::Tolerance>(text),
         "dedup" => json::<primdecomp::Dedup>(text),
         "reprice" => json::<primdecomp::Reprice>(text),

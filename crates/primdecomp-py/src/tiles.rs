@@ -21,6 +21,16 @@ fn tiles_plan<'py>(
     tiles: usize,
     progress: Option<PyObject>,
 ) -> PyResult<Bound<'py, PyBytes>> {
+    let percent = serde_json::from_str::<serde_json::Value>(settings_json)
+        .ok()
+        .and_then(|v| Some(v.get("targets")?.as_array()?.iter().any(|t| t.is_string())))
+        .unwrap_or(false);
+    if percent {
+        return Err(pyo3::exceptions::PyValueError::new_err(
+            "targets: a percentage of the faces needs the whole mesh in memory, and a tiled \
+             run decomposes it in tiles: give a count",
+        ));
+    }
     let params = Params::from_json(settings_json).map_err(to_py_err)?;
     if tiles == 0 || tiles > Tiled::MAX_TILES {
         return Err(pyo3::exceptions::PyValueError::new_err(format!(

@@ -50,6 +50,16 @@ def test_arrays_and_file_equal_cli(cli, tmp_path, name):
     assert primdecomp.decompose_file(str(path), targets=[16]).to_json().encode() == want
 
 
+@pytest.mark.parametrize("name", MESHES)
+def test_percent_targets_equal_cli(cli, tmp_path, name):
+    """`targets="2%"` is `-n 2%`: the same parser, the count resolved on the same faces."""
+    path = mesh(name)
+    want = cli_json(cli, path, tmp_path / "c.json", n="2%")
+    assert primdecomp.decompose_file(str(path), targets="2%").to_json().encode() == want
+    v, f = primdecomp.load(path)
+    assert prims(primdecomp.decompose(v, f, targets=["2%"]).to_json()) == prims(want)
+
+
 def inside_some_hull(points, hulls, tol):
     """Independent of the engine: a point is inside a convex mesh when it is behind
     every face plane (trimesh's face normals) within `tol`."""

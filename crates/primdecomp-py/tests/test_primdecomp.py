@@ -97,6 +97,11 @@ def test_bad_settings():
         primdecomp.decompose(v, q, bogus=1)
     with pytest.raises(ValueError, match="targets: expected a positive count, got 0"):
         primdecomp.decompose(v, q, targets=[0])
+    with pytest.raises(ValueError, match=r"^targets: expected a positive count or a percentage like 1%, got '150%'$"):
+        primdecomp.decompose(v, q, targets=["150%"])
+    # A count spelled as text is the count; a percentage of the 6 faces, rounded.
+    assert primdecomp.decompose(v, q, targets="4").to_json() == primdecomp.decompose(v, q, targets=4).to_json()
+    assert primdecomp.decompose(v, q, targets="50%").levels[0].target == 3
     with pytest.raises(ValueError, match="fill needs targets"):
         primdecomp.decompose(v, q, fill=True)
     with pytest.raises(ValueError, match=r"^tolerance: expected a positive distance .* got 'abc'$"):

@@ -57,7 +57,11 @@ pub fn self_test_panic() {
 /// OBJ text: `datasets/demo_scene.obj` of the repository.
 #[wasm_bindgen(js_name = demoSceneObj)]
 pub fn demo_scene_obj() -> String {
-    primdecomp::demo_scene_obj()
+    include_str!(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../datasets/demo_scene.obj"
+    ))
+    .into()
 }
 
 /// The library's version, `"MAJOR.MINOR.PATCH"`.

@@ -3,7 +3,7 @@
 //! engine exports in memory, and the tessellation the live page draws.
 
 use crate::js_error;
-use primdecomp::{Decomposition, Frame, Level, Params, ResultObject, Up};
+use primdecomp::{Body, Decomposition, Frame, Level, Params, Up};
 use primdecomp_export::{render, ExportOptions, Format, Physics};
 use wasm_bindgen::prelude::*;
 
@@ -121,7 +121,7 @@ impl WasmResult {
             input_mesh: None,
         };
         opts.validate().map_err(js_error)?;
-        let objects = [ResultObject {
+        let objects = [Body {
             name: String::new(),
             frame: Frame::IDENTITY,
             primitives: lv.primitives.clone(),

@@ -86,13 +86,13 @@ pub use decompose::tiles::Tiled;
 pub use decompose::{decompose, decompose_with};
 pub use error::Error;
 #[cfg(feature = "demo-scene")]
-pub use input::demo::{demo_scene, demo_scene_obj};
+pub use input::demo::demo_scene;
 pub use input::io::{LoadOptions, MeshFormat};
 pub use input::mesh::Mesh;
 pub use input::up::Up;
 pub use output::result::{Decomposition, InputInfo, Level, Shortfall, Stats};
-pub use output::{Frame, ResultFile, ResultObject, Tess};
-pub use params::{Dedup, Fit, Goal, Params, Partitions, Plates, Reprice, Speed, Target, Tolerance};
+pub use output::{Body, Frame, ResultFile, Tess};
+pub use params::{Dedup, Fit, Goal, Params, Partitions, Plates, Reprice, Target, Tolerance};
 pub use primitive::{Capsule, Cylinder, Frustum, Kind, Obb, Primitive, Prism, Sphere};
 pub use progress::{Progress, Stage};
 

@@ -1,10 +1,11 @@
 //! Settings of a decomposition: what the user asks for ([`Goal`]: counts, a tolerance
-//! or a byte budget), then three groups named for what they do: [`Fit`] (which
+//! or a byte budget), then two groups named for what they do: [`Fit`] (which
 //! primitives and how a merge is priced: §3.3 weights, §3.4 deduplication and tangent
-//! term), [`Plates`] (how flat parts, holes and nested primitives come out: §3.4's
+//! term) and [`Plates`] (how flat parts, holes and nested primitives come out: §3.4's
 //! clean-up and our fixes to it, each on by default and each recorded under
-//! `docs/decisions/`) and [`Speed`]. A run's settings are written into its JSON
-//! (`settings`, the flat shape of `params/json.rs`) and read back by
+//! `docs/decisions/`), and how the merge loop runs ([`Reprice`], [`Partitions`]). A
+//! run's settings are written into its JSON (`settings`, the flat shape of
+//! `params/json.rs`) and read back by
 //! [`Params::from_json`], so a result can be reproduced from its own file.
 
 mod goal;
@@ -103,12 +104,13 @@ pub enum Dedup {
 /// When a merged cluster's candidate merges with its neighbours are re-priced (§3.3, Alg. 1).
 ///
 /// ```
-/// use primdecomp::{Params, Reprice, Speed};
+/// use primdecomp::{Params, Reprice};
 ///
 /// // The paper's exact order of merges (needed by `Fit::max_excess_volume`).
-/// let p = Params { speed: Speed { reprice: Reprice::Exact, ..Speed::default() }, ..Params::default() };
+/// let p = Params { reprice: Reprice::Exact, ..Params::default() };
 /// assert!(p.validate().is_ok());
-/// assert_eq!(Reprice::Deferred { min_degree: 64 }.to_string(), "64");
+/// assert_eq!(Reprice::default(), Reprice::Deferred { min_degree: 64 });
+/// assert_eq!(Reprice::default().to_string(), "64");
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
@@ -125,16 +127,24 @@ pub enum Reprice {
     },
 }
 
+/// Re-pricing is deferred from 64 neighbours: the same quality within measurement
+/// noise, large flat regions in F log F (docs/decisions/0015).
+impl Default for Reprice {
+    fn default() -> Self {
+        Reprice::Deferred { min_degree: 64 }
+    }
+}
+
 /// How many spatial parts the faces are split into and merged in parallel before the
 /// global merge loop (docs/decisions/0017 and 0019).
 ///
 /// ```
-/// use primdecomp::{Params, Partitions, Speed};
+/// use primdecomp::{Params, Partitions};
 ///
 /// // One global greedy loop, as the paper's Alg. 1, whatever the input's size.
-/// let p = Params { speed: Speed { partitions: Partitions::Fixed(1), ..Speed::default() }, ..Params::default() };
+/// let p = Params { partitions: Partitions::Fixed(1), ..Params::default() };
 /// assert!(p.validate().is_ok());
-/// assert_eq!(Speed::default().partitions, Partitions::Auto);
+/// assert_eq!(Params::default().partitions, Partitions::Auto);
 /// ```
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Partitions {
@@ -210,7 +220,8 @@ impl<'de> Deserialize<'de> for Partitions {
 
 /// All settings of a run: what is asked for ([`Goal`]), then what the primitives may
 /// be ([`Fit`]), how flat parts, holes and nested primitives come out ([`Plates`]),
-/// and how fast the merge runs ([`Speed`]). `Params::default()` is the recommended
+/// and how the merge loop runs ([`Reprice`], [`Partitions`]: the same quality within
+/// measurement noise). `Params::default()` is the recommended
 /// configuration: the fewest primitives within [`Tolerance::DEFAULT`] of the input, at
 /// most [`Goal::MAX_PRIMITIVES`]. Change only what you need, as in
 /// `Params { goal: Goal::counts([200, 50]), ..Params::default() }` (two levels of at
@@ -246,8 +257,12 @@ pub struct Params {
     /// clean-up (§3.4) and our fixes to it, each on by default and each recorded under
     /// `docs/decisions/`.
     pub plates: Plates,
-    /// How fast the merge runs (the same quality within measurement noise).
-    pub speed: Speed,
+    /// When merged clusters' candidate merges are re-priced (how fast the merge runs,
+    /// the same quality within measurement noise).
+    pub reprice: Reprice,
+    /// Spatial parts merged in parallel before the global loop (how fast the merge
+    /// runs on large inputs, the same quality within measurement noise).
+    pub partitions: Partitions,
 }
 
 /// Which primitives may be fitted and how a merge is priced (§3.3, §3.4).
@@ -359,31 +374,6 @@ impl Default for Plates {
     }
 }
 
-/// How fast the merge runs: the same quality within measurement noise.
-///
-/// ```
-/// use primdecomp::{Params, Partitions, Speed};
-///
-/// let one_loop = Params { speed: Speed { partitions: Partitions::Fixed(1), ..Speed::default() }, ..Params::default() };
-/// assert!(one_loop.validate().is_ok());
-/// ```
-#[derive(Clone, Debug, PartialEq)]
-pub struct Speed {
-    /// When merged clusters' candidate merges are re-priced.
-    pub reprice: Reprice,
-    /// Spatial parts merged in parallel before the global loop.
-    pub partitions: Partitions,
-}
-
-impl Default for Speed {
-    fn default() -> Self {
-        Speed {
-            reprice: Reprice::Deferred { min_degree: 64 },
-            partitions: Partitions::Auto,
-        }
-    }
-}
-
 /// Whether a level of `primitives` falls short of its count `target` by more than a
 /// few (2, or 1/32 of the count if more), on an input of `faces` faces: the greedy
 /// level's post-processing removed what the count asked for.
@@ -475,7 +465,7 @@ impl Params {
             if !(m.is_finite() && m >= 0.0) {
                 return bad(format!("max_excess_volume must be ≥ 0, got {m}"));
             }
-            if self.speed.reprice != Reprice::Exact {
+            if self.reprice != Reprice::Exact {
                 return bad(
                     "max_excess_volume needs reprice: exact (a merge over the cap has no queue \
                      entry whose re-pricing could be deferred)"
@@ -483,7 +473,7 @@ impl Params {
                 );
             }
         }
-        if let Partitions::Fixed(k) = self.speed.partitions {
+        if let Partitions::Fixed(k) = self.partitions {
             if !(1..=MAX_PARTITIONS).contains(&k) {
                 return bad(format!(
                     "partitions must be auto or from 1 to {MAX_PARTITIONS}, got {k}"
@@ -547,19 +537,14 @@ mod tests {
                     remove_thin_boxes: Some(0.01),
                     ..Default::default()
                 },
-                speed: Speed {
-                    partitions,
-                    reprice: Reprice::Exact,
-                },
+                partitions,
+                reprice: Reprice::Exact,
             };
             let json = serde_json::to_string(&p).unwrap();
             assert_eq!(Params::from_json(&json).unwrap(), p, "{json}");
         }
         let zero = Params {
-            speed: Speed {
-                partitions: Partitions::Fixed(0),
-                ..Default::default()
-            },
+            partitions: Partitions::Fixed(0),
             ..Default::default()
         };
         assert!(zero.validate().is_err());

@@ -10,7 +10,7 @@
 //! change round-off, see the module's doc). Needs `../shared/datasets/corpus`; says so
 //! loudly and returns when it is absent.
 
-use primdecomp::{decompose, Fit, Goal, Params, Reprice, Speed};
+use primdecomp::{decompose, Fit, Goal, Params, Reprice};
 
 /// Meshes of 4,096 faces or more whose largest component holds at most 60% of the
 /// faces (so the components phase applies): 26, 59 and 3 components.
@@ -23,10 +23,7 @@ fn params(targets: &[usize], cap: Option<f64>) -> Params {
             max_excess_volume: cap,
             ..Default::default()
         },
-        speed: Speed {
-            reprice: Reprice::Exact,
-            ..Default::default()
-        },
+        reprice: Reprice::Exact,
         ..Default::default()
     }
 }

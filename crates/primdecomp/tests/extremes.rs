@@ -6,7 +6,7 @@
 //! seeded random rotations the demo scene keeps its primitive count and its tightness
 //! (a one-way surface distance computed here, see [`tightness`]) within 10%.
 
-use primdecomp::{decompose, Error, Goal, Mesh, Params, Primitive, Reprice, Speed};
+use primdecomp::{decompose, Error, Goal, Mesh, Params, Primitive, Reprice};
 use primdecomp_testkit::check::assert_valid;
 use primdecomp_testkit::shapes::{self, cuboid};
 use rand::{Rng, SeedableRng};
@@ -47,10 +47,7 @@ fn flat_grid(n: u32, reprice: Reprice) -> (f64, f64, usize) {
     let (v, f) = shapes::flat_grid(n);
     let mesh = Mesh::from_polygons(&v, &f).unwrap();
     let p = Params {
-        speed: Speed {
-            reprice,
-            ..params(&[100, 1]).speed
-        },
+        reprice,
         ..params(&[100, 1])
     };
     let t = std::time::Instant::now();
@@ -70,7 +67,7 @@ fn flat_grid(n: u32, reprice: Reprice) -> (f64, f64, usize) {
 
 #[test]
 fn flat_grid_of_10_000_quads() {
-    flat_grid(100, Params::default().speed.reprice);
+    flat_grid(100, Params::default().reprice);
 }
 
 /// Exact re-pricing re-prices the ~2L quads along a growing strip's sides at every
@@ -81,8 +78,8 @@ fn flat_grid_of_10_000_quads() {
 #[test]
 fn flat_grid_defers_its_long_strips() {
     let (_, exact, _) = flat_grid(100, Reprice::Exact);
-    let (_, at_100, _) = flat_grid(100, Params::default().speed.reprice);
-    let (_, at_200, _) = flat_grid(200, Params::default().speed.reprice);
+    let (_, at_100, _) = flat_grid(100, Params::default().reprice);
+    let (_, at_200, _) = flat_grid(200, Params::default().reprice);
     assert!(exact > 40.0, "exact: {exact:.2} per merge");
     assert!(
         at_100 < exact / 2.0,
@@ -105,7 +102,7 @@ fn flat_grid_defers_its_long_strips() {
 /// decompose 3.4 s, 2.00 pairs re-priced per merge (same command, machine shared).
 #[test]
 fn flat_grid_of_a_million_quads() {
-    let (_, _, parts) = flat_grid(1000, Params::default().speed.reprice);
+    let (_, _, parts) = flat_grid(1000, Params::default().reprice);
     assert_eq!(parts, primdecomp::internals::AUTO_PARTS);
 }
 
@@ -119,7 +116,7 @@ fn grid_growth() {
         flat_grid(n, Reprice::Exact);
     }
     for n in [100, 200, 400, 1000] {
-        flat_grid(n, Params::default().speed.reprice);
+        flat_grid(n, Params::default().reprice);
     }
 }
 

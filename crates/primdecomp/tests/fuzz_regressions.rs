@@ -1,7 +1,7 @@
 //! Inputs the fuzzers (`fuzz/`) found to break an invariant, each reduced to a test
 //! that failed before its fix. The comment on each says what must happen and why.
 
-use primdecomp::{decompose, Dedup, Error, Fit, Goal, Kind, Mesh, Params, Plates, Speed};
+use primdecomp::{decompose, Dedup, Error, Fit, Goal, Kind, Mesh, Params, Plates};
 use primdecomp_testkit::check::assert_valid;
 
 /// `fuzz/fuzz_targets/decompose.rs`, first run: one triangle at a 1e-30 scale welded
@@ -302,11 +302,8 @@ fn a_face_on_the_origin_gets_a_normal_sized_primitive() {
             min_extent: 0.5,
             ..Default::default()
         },
-        speed: Speed {
-            // A cap re-prices every merge at once (the run it came from did so implicitly).
-            reprice: primdecomp::Reprice::Exact,
-            ..Default::default()
-        },
+        // A cap re-prices every merge at once (the run it came from did so implicitly).
+        reprice: primdecomp::Reprice::Exact,
         ..Default::default()
     };
     assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
@@ -429,10 +426,8 @@ fn point_face_at_1e25_stays_enclosed() {
             remove_thin_boxes: Some(0.1),
             ..Default::default()
         },
-        speed: Speed {
-            reprice: primdecomp::Reprice::Deferred { min_degree: 0 },
-            ..Default::default()
-        },
+        reprice: primdecomp::Reprice::Deferred { min_degree: 0 },
+        partitions: Default::default(),
     };
     assert_valid(&mesh, &decompose(&mesh, &params).unwrap(), &params);
 }

@@ -161,7 +161,7 @@ fn excess_volume_cap_stops_costly_merges() {
     ]);
     let mut params = with_target(1);
     params.fit.max_excess_volume = Some(0.5);
-    params.speed.reprice = primdecomp::Reprice::Exact;
+    params.reprice = primdecomp::Reprice::Exact;
     let p = run(&two, &params);
     assert_eq!(
         p.len(),

@@ -1,9 +1,9 @@
-//! `Speed::partitions` (merge/partition.rs): with K > 1 parts the output must still
+//! `Params::partitions` (merge/partition.rs): with K > 1 parts the output must still
 //! enclose every input face (checked by the independent oracle, `primdecomp_testkit::contain`),
 //! hold at most N primitives, and be the same bytes on any thread count; K = 1 must be
 //! the default run, and its JSON must not mention the setting (default output unchanged).
 
-use primdecomp::{decompose, Goal, Mesh, Params, Partitions, Speed};
+use primdecomp::{decompose, Goal, Mesh, Params, Partitions};
 use primdecomp_testkit::check::{
     assert_counts, assert_same_on_threads, assert_valid, check_corpus_meshes,
 };
@@ -31,10 +31,7 @@ fn scene() -> Mesh {
 fn params(targets: &[usize], k: usize) -> Params {
     Params {
         goal: Goal::counts(targets.to_vec()),
-        speed: Speed {
-            partitions: Partitions::Fixed(k),
-            ..Default::default()
-        },
+        partitions: Partitions::Fixed(k),
         ..Default::default()
     }
 }
@@ -153,10 +150,7 @@ fn parts_defer_unless_repricing_is_exact() {
     let lazy = decompose(&m, &params(&[12], 4)).unwrap();
     assert!(lazy.stats.fits_when_popped > 0, "{:?}", lazy.stats);
     let p = Params {
-        speed: Speed {
-            reprice: primdecomp::Reprice::Exact,
-            ..params(&[12], 4).speed
-        },
+        reprice: primdecomp::Reprice::Exact,
         ..params(&[12], 4)
     };
     let exact = decompose(&m, &p).unwrap();

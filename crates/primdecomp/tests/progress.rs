@@ -4,7 +4,7 @@
 //! and returns `Error::Cancelled`. Counts, not clocks: how soon a run stops is
 //! measured by the reports that follow the cancel, never by time.
 
-use primdecomp::{decompose_with, Error, Goal, Mesh, Params, Partitions, Progress, Speed, Stage};
+use primdecomp::{decompose_with, Error, Goal, Mesh, Params, Partitions, Progress, Stage};
 use std::sync::atomic::{AtomicBool, Ordering::Relaxed};
 use std::sync::Mutex;
 
@@ -60,10 +60,7 @@ fn recorder<F: Fn(Stage, f64) -> bool + Sync>(cancel_at: F) -> Recorder<F> {
 fn params(partitions: Partitions) -> Params {
     Params {
         goal: Goal::counts([40]),
-        speed: Speed {
-            partitions,
-            ..Default::default()
-        },
+        partitions,
         ..Params::default()
     }
 }

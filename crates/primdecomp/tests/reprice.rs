@@ -1,9 +1,9 @@
-//! Deferred re-pricing (`Speed::reprice`, `merge/lazy.rs`): the merge order changes,
+//! Deferred re-pricing (`Params::reprice`, `merge/lazy.rs`): the merge order changes,
 //! the guarantees do not. Every face stays enclosed, the output does not depend on the
 //! thread count, a threshold no cluster reaches is the exact order, and an excess-volume
 //! cap keeps the exact order (a pair over the cap has no queue entry to defer).
 
-use primdecomp::{decompose, demo_scene, Decomposition, Fit, Goal, Mesh, Params, Reprice, Speed};
+use primdecomp::{decompose, demo_scene, Decomposition, Fit, Goal, Mesh, Params, Reprice};
 use primdecomp_testkit::check::assert_valid;
 use primdecomp_testkit::shapes::{self, join, mesh, Polys};
 
@@ -12,10 +12,7 @@ const ALL: Reprice = Reprice::Deferred { min_degree: 0 };
 fn params(targets: &[usize], reprice: Reprice) -> Params {
     Params {
         goal: Goal::counts(targets.to_vec()),
-        speed: Speed {
-            reprice,
-            ..Default::default()
-        },
+        reprice,
         ..Default::default()
     }
 }

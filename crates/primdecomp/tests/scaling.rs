@@ -8,7 +8,7 @@
 //! The benchmark that measures the whole ladder, to 56M faces, is
 //! `cargo bench -p primdecomp-cli --bench ladder`.
 
-use primdecomp::{decompose_with, Goal, Mesh, Params, Partitions, Progress, Speed, Stage};
+use primdecomp::{decompose_with, Goal, Mesh, Params, Partitions, Progress, Stage};
 use std::sync::Mutex;
 
 /// A stage's CPU time per face on the larger input over the smaller's above this
@@ -112,20 +112,14 @@ fn settings(faces: usize) -> Vec<(&'static str, Params)> {
             "-n 200",
             Params {
                 goal: Goal::counts([200]),
-                speed: Speed {
-                    partitions: parts,
-                    ..Default::default()
-                },
+                partitions: parts,
                 ..Params::default()
             },
         ),
         (
             "default",
             Params {
-                speed: Speed {
-                    partitions: parts,
-                    ..Default::default()
-                },
+                partitions: parts,
                 ..Params::default()
             },
         ),

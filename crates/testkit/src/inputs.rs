@@ -22,7 +22,7 @@ use std::path::Path;
 pub fn write_all(dir: &Path) -> std::io::Result<Vec<&'static str>> {
     std::fs::create_dir_all(dir)?;
     let files: [(&str, Vec<u8>); 8] = [
-        ("demo_scene.obj", primdecomp::demo_scene_obj().into_bytes()),
+        ("demo_scene.obj", crate::DEMO_SCENE_OBJ.as_bytes().to_vec()),
         ("kinds.obj", obj_text(&kinds()).into_bytes()),
         ("wedges.off", off_text(&wedges()).into_bytes()),
         ("robot.stl", stl_binary(&robot())),

@@ -11,6 +11,14 @@ pub mod inputs;
 pub mod ladder;
 pub mod shapes;
 
+/// The built-in demo scene as OBJ text, as the repository holds it
+/// (`datasets/demo_scene.obj`, checked against `primdecomp::demo_scene` by the
+/// library's tests).
+pub const DEMO_SCENE_OBJ: &str = include_str!(concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../../datasets/demo_scene.obj"
+));
+
 /// Fan triangles of polygons (`faces` index `v`).
 pub fn fan_triangles(v: &[[f64; 3]], faces: &[Vec<u32>]) -> Vec<[[f64; 3]; 3]> {
     faces

@@ -325,7 +325,7 @@ pub fn obj_text((v, f): &Polys) -> String {
 /// the shortest form that parses back to the same f64, so these are its exact values.
 pub fn demo_polys() -> Polys {
     let (mut v, mut f) = (Vec::new(), Vec::new());
-    for line in primdecomp::demo_scene_obj().lines() {
+    for line in crate::DEMO_SCENE_OBJ.lines() {
         let mut t = line.split_whitespace();
         match t.next() {
             Some("v") => {

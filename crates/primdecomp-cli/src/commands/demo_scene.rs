@@ -5,6 +5,13 @@ use clap::Args;
 use primdecomp_files::write_atomic;
 use std::path::PathBuf;
 
+/// The scene as the repository holds it (`datasets/demo_scene.obj`, which the
+/// library's tests check against the scene it builds, `primdecomp::demo_scene`).
+const DEMO_SCENE_OBJ: &str = include_str!(concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/../../datasets/demo_scene.obj"
+));
+
 /// `primdecomp demo-scene`.
 #[derive(Args, Debug)]
 pub struct DemoSceneArgs {
@@ -16,7 +23,7 @@ pub struct DemoSceneArgs {
 /// Writes the scene to `--out` atomically.
 pub fn run(a: DemoSceneArgs) -> anyhow::Result<()> {
     let out = a.out;
-    write_atomic(&out, primdecomp::demo_scene_obj().as_bytes())
+    write_atomic(&out, DEMO_SCENE_OBJ.as_bytes())
         .map_err(anyhow::Error::from)
         .map(|_| println!("wrote {}", out.display()))
 }

@@ -2,7 +2,7 @@
 
 use anyhow::bail;
 use clap::Args;
-use primdecomp::{Frame, Level, Objects, ResultFile, ResultObject, Up};
+use primdecomp::{Body, Frame, Level, ResultFile, Up};
 use primdecomp_export::{write_export, ExportOptions, Format, Physics};
 use std::path::{Path, PathBuf};
 
@@ -198,21 +198,9 @@ pub fn run(a: ExportCmd) -> anyhow::Result<()> {
     Ok(())
 }
 
-/// The objects of level `i` of a per-object result, in their frames.
-pub fn level_objects(objs: &Objects, i: usize) -> Vec<ResultObject> {
-    objs.objects
-        .iter()
-        .map(|o| ResultObject {
-            name: o.name.clone(),
-            frame: o.frame,
-            primitives: o.decomposition.levels[i].primitives.clone(),
-        })
-        .collect()
-}
-
 /// One unnamed world-frame object of a level.
-pub fn whole(level: &Level) -> Vec<ResultObject> {
-    vec![ResultObject {
+pub fn whole(level: &Level) -> Vec<Body> {
+    vec![Body {
         name: String::new(),
         frame: Frame::IDENTITY,
         primitives: level.primitives.clone(),
@@ -282,7 +270,7 @@ pub struct Source<'a> {
 pub fn write_level_exports(
     exports: &[PathBuf],
     args: &ExportArgs,
-    objects: &[ResultObject],
+    objects: &[Body],
     (label, levels): (&str, usize),
     source: &Source,
 ) -> anyhow::Result<Vec<PathBuf>> {

@@ -206,7 +206,8 @@ def decompose(vertices, faces, progress=None, **settings):
     within the default tolerance (as `primdecomp decompose`). `tolerance="1%"` (or a
     distance in input units) gives the fewest primitives all within it,
     `max_bytes=4096` the closest fit in that many bytes (one value, or a list for one
-    level each, with `targets` as the count cap); `targets=64` asks for a count.
+    level each, with `targets` as the count cap); `targets=64` asks for a count,
+    `targets="1%"` for one per hundred faces (as `-n 1%`).
     `progress(stage, fraction)` is called from the calling thread, or
     `progress(stage, fraction, seconds_left)` when it takes three arguments
     (`seconds_left`: the whole run's estimated time left, None until known)."""
@@ -246,9 +247,12 @@ def _listed(v):
 
 
 def _target(t):
-    """A count, as -n takes it (percentages need the face count: give a count)."""
+    """A count, or a percentage of the faces ("1%"), as -n takes it: a string is read by
+    the library's own parser; a percentage becomes its count once the faces are known."""
     if isinstance(t, int) and not isinstance(t, bool) and t > 0:
         return t
+    if isinstance(t, str):
+        return _spelled("targets", t)
     raise ValueError(f"targets: expected a positive count, got {t!r}")
 
 

@@ -13,6 +13,7 @@
 use crate::decompose::decompose;
 use crate::error::Result;
 use crate::input::mesh::Mesh;
+use crate::output::body::Body;
 use crate::output::frame::{conservative, Frame};
 use crate::output::result::{Decomposition, InputInfo};
 use crate::params::{Params, Target};
@@ -21,7 +22,9 @@ use crate::primitive::Primitive;
 /// The sharing rule of a total target, as stated in the JSON and `--help`.
 pub const SHARE_RULE: &str = "a total count N is shared by the objects: one each, the other N - k (k objects) in proportion to surface area, largest remainder (ties to the earlier object); with N < k each object still gets one. A percentage applies to each object's faces.";
 
-/// One object's result ([`Objects::objects`]).
+/// One object's whole result ([`Objects::objects`]): its name, frame, size and
+/// decomposition, every level. One level of it, as the exporters take it, is a
+/// [`Body`] ([`Objects::bodies`]).
 ///
 /// ```
 /// use primdecomp::{Mesh, MeshFormat, Objects, Params, Target};
@@ -97,6 +100,31 @@ impl Objects {
                     .primitives
                     .iter()
                     .map(|p| conservative(p, &o.frame, 0.0))
+            })
+            .collect()
+    }
+
+    /// Level `level` as the exporters take it: each object's name, frame and primitives
+    /// in that frame, object after object (what [`crate::ResultFile::read`] gives back
+    /// from [`Objects::to_json`]).
+    ///
+    /// ```
+    /// use primdecomp::{Mesh, MeshFormat, Objects, Params, Target};
+    ///
+    /// let obj = b"o a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+    /// let mesh = Mesh::parse(obj, MeshFormat::Obj, "one.obj".as_ref())?;
+    /// let objects = Objects::decompose(&mesh, &Params::default(), &[Target::Count(1)])?;
+    /// let bodies = objects.bodies(0);
+    /// assert_eq!((bodies[0].name.as_str(), bodies[0].primitives.len()), ("a", 1));
+    /// # Ok::<(), primdecomp::Error>(())
+    /// ```
+    pub fn bodies(&self, level: usize) -> Vec<Body> {
+        self.objects
+            .iter()
+            .map(|o| Body {
+                name: o.name.clone(),
+                frame: o.frame,
+                primitives: o.decomposition.levels[level].primitives.clone(),
             })
             .collect()
     }

@@ -5,13 +5,14 @@
 //! touching objects share one vertex. Polygons are kept as quads and n-gons
 //! (cylinder caps), which the engine treats specially.
 //!
-//! `datasets/demo_scene.obj` is [`demo_scene_obj`]'s output, checked by a test.
+//! `datasets/demo_scene.obj` is the same scene as OBJ text, generated here and checked
+//! by a test (the command line's `demo-scene` and the WebAssembly package embed that
+//! file).
 
 use crate::input::mesh::{Mesh, MeshBuilder};
 use crate::math::{add, madd, scale, V3};
 use std::collections::HashMap;
 use std::f64::consts::{FRAC_PI_2, TAU};
-use std::fmt::Write;
 
 /// Coordinates are rounded to 1 µm: short OBJ text, and no dependence on the
 /// platform's last-ulp `sin`/`cos`.
@@ -33,7 +34,9 @@ pub(crate) const BOX_FACES: [[usize; 4]; 6] = [
 
 struct Object {
     name: String,
-    /// Index of the first vertex this object added to the scene.
+    /// Index of the first vertex this object added to the scene (where its `v` lines
+    /// start in the OBJ text).
+    #[cfg_attr(not(test), allow(dead_code))]
     first_vertex: usize,
     faces: Vec<Vec<u32>>,
 }
@@ -261,8 +264,7 @@ fn build() -> Scene {
 /// The built-in demo scene, made in code: a staircase, a table, three pipes (one bent
 /// by an elbow), a gable-roof house, a torus and a washer, laid out along +x in
 /// meters with +y up; 1,829 polygons (quads and n-gon caps kept whole), each object
-/// named ([`Mesh::objects`]). The same mesh as `datasets/demo_scene.obj`
-/// ([`demo_scene_obj`]).
+/// named ([`Mesh::objects`]). The same mesh as `datasets/demo_scene.obj`.
 ///
 /// ```
 /// let scene = primdecomp::demo_scene();
@@ -284,17 +286,10 @@ pub fn demo_scene() -> Mesh {
 
 /// The demo scene ([`demo_scene`]) as OBJ text: each object's new vertices follow its
 /// `o` line, then its faces (1-based, global indices). This is
-/// `datasets/demo_scene.obj`.
-///
-/// ```
-/// use primdecomp::{demo_scene, demo_scene_obj, Mesh, MeshFormat};
-///
-/// let text = demo_scene_obj();
-/// let mesh = Mesh::parse(text.as_bytes(), MeshFormat::Obj, "demo_scene.obj".as_ref())?;
-/// assert_eq!(mesh.face_count(), demo_scene().face_count());
-/// # Ok::<(), primdecomp::Error>(())
-/// ```
-pub fn demo_scene_obj() -> String {
+/// `datasets/demo_scene.obj` (the tests check it and regenerate it).
+#[cfg(test)]
+fn demo_scene_obj() -> String {
+    use std::fmt::Write;
     let s = build();
     let faces: usize = s.objects.iter().map(|o| o.faces.len()).sum();
     let mut out = String::new();

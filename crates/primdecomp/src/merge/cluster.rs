@@ -34,7 +34,7 @@ struct Node {
     /// The merge clock when the cluster last changed (0: never merged).
     changed: u32,
     /// The merge clock when all the cluster's pairs were last priced (≤ `changed`;
-    /// equal unless its last merge was deferred, `Speed::reprice`).
+    /// equal unless its last merge was deferred, `Params::reprice`).
     repriced: u32,
     /// Index into `slab`, or [`NO_LISTS`].
     slot: u32,
@@ -213,7 +213,7 @@ impl Clusters {
     }
 
     /// Restarts the merge clock: every cluster counts as never changed (phase 2 of
-    /// `Speed::partitions` prices everything afresh).
+    /// `Params::partitions` prices everything afresh).
     pub fn reset_clock(&mut self) {
         self.clock = 0;
         for n in &mut self.node {

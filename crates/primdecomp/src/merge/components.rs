@@ -236,7 +236,7 @@ mod tests {
     use super::*;
     use crate::merge::driver::tests::{reprice_modes, with_input};
     use crate::merge::{run, Clusters};
-    use crate::params::{Params, Speed};
+    use crate::params::Params;
 
     /// The demo scene (several separate objects) merged to `targets` (decreasing) by
     /// the global loop alone and as a run does when components apply (phase 1, the
@@ -316,10 +316,7 @@ mod tests {
         let reprice = crate::params::Reprice::Deferred { min_degree: 0 };
         same_as_global(
             Params {
-                speed: Speed {
-                    reprice,
-                    ..Default::default()
-                },
+                reprice,
                 ..Params::default()
             },
             &all,
@@ -331,10 +328,7 @@ mod tests {
         let targets = demo_targets();
         for reprice in reprice_modes() {
             let p = Params {
-                speed: Speed {
-                    reprice,
-                    ..Default::default()
-                },
+                reprice,
                 ..Params::default()
             };
             same_as_global(p, &targets);
@@ -391,9 +385,8 @@ mod tests {
             targets.push(sizes.len());
             targets.sort_unstable_by(|a, b| b.cmp(a));
             targets.dedup();
-            for reprice in [crate::params::Reprice::Deferred { min_degree: 0 }, Params::default().speed.reprice] {
-                let speed = Speed { reprice, ..Default::default() };
-                same_as_global_on(&mesh, Params { speed, ..Params::default() }, &targets);
+            for reprice in [crate::params::Reprice::Deferred { min_degree: 0 }, Params::default().reprice] {
+                same_as_global_on(&mesh, Params { reprice, ..Params::default() }, &targets);
             }
         }
     }

@@ -116,7 +116,7 @@ pub struct Pricing {
     /// Distance below which a point counts as on a hull face (point reduction only).
     pub(crate) hull_eps: f64,
     /// Merges whose clusters' neighbour lists hold at least this many entries are
-    /// re-priced lazily (`Speed::reprice`); `u32::MAX` = always at once (exact).
+    /// re-priced lazily (`Params::reprice`); `u32::MAX` = always at once (exact).
     pub(crate) defer_degree: u32,
     /// `Plates::join_coplanar`: free merges into plates run before a target's snapshot
     /// (`merge::driver::free`, docs/decisions/0025).

@@ -1,6 +1,6 @@
 //! The merge loop of Alg. 1: seed the queue with every adjacent pair, pop the cheapest
 //! valid merge, apply it, re-price the merged cluster's neighbours (or, for a deferred
-//! merge under `Speed::reprice`, leave its pairs' old entries as keys and re-price
+//! merge under `Params::reprice`, leave its pairs' old entries as keys and re-price
 //! each when popped: lazy greedy, `lazy.rs`); record a snapshot at
 //! every requested target on the way down (one bottom-up pass serves all targets). When
 //! adjacency runs out above the target, bridge components (§3.4 "Pairwise Component
@@ -174,7 +174,7 @@ pub struct FitCounts {
 }
 
 impl std::ops::AddAssign for FitCounts {
-    /// Counts of two runs together (the phases of `Speed::partitions`).
+    /// Counts of two runs together (the phases of `Params::partitions`).
     fn add_assign(&mut self, o: FitCounts) {
         self.seed += o.seed;
         self.eager += o.eager;
@@ -281,7 +281,7 @@ fn run_counted<Q: Queue>(
 }
 
 /// What the merge loop runs on: the whole input, or one spatial part of it in phase 1
-/// of `Speed::partitions` (`partition.rs`), which fits no snapshots (only the
+/// of `Params::partitions` (`partition.rs`), which fits no snapshots (only the
 /// clusters are kept) and never bridges (linking components is a global decision).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum Scope {
@@ -301,7 +301,7 @@ impl Scope {
     }
 }
 
-/// Phase 1 of `Speed::partitions`: merges `cl` (one part's clusters) down to
+/// Phase 1 of `Params::partitions`: merges `cl` (one part's clusters) down to
 /// `target` on this thread alone (no worker: the parts run in parallel), or until
 /// adjacency runs out, reporting progress as [`run`] does; returns the clusters and
 /// the merge counts (and, when `traced`, every merge: [`Traced`]).
@@ -596,7 +596,7 @@ fn seed_queue<Q: Queue>(
     let mut block = Vec::with_capacity(PRICE_BLOCK);
     for a in 0..n {
         // Roots' neighbour lists: the input's adjacency, or (phase 2 of
-        // `Speed::partitions`) the resolved adjacency between groups of faces, or
+        // `Params::partitions`) the resolved adjacency between groups of faces, or
         // (after `merge::components`) whole components' lists as their loops left them,
         // whose merged-away ids name the component itself.
         let nbrs = if cl.is_root(a) { cl.neighbors(a) } else { &[] };

@@ -1,4 +1,4 @@
-//! Deferred ("lazy greedy") re-pricing, `Speed::reprice`: after a deferred merge the
+//! Deferred ("lazy greedy") re-pricing, `Params::reprice`: after a deferred merge the
 //! merged cluster's pairs are not re-priced; their old queue entries (priced for the
 //! clusters before the merge) stay in the queue as keys, and each is re-priced for the
 //! clusters as they are when it is popped, then pushed back with its fresh cost

@@ -1,4 +1,4 @@
-//! Coarse-grained parallel first phase of the merge loop (`Speed::partitions`, a
+//! Coarse-grained parallel first phase of the merge loop (`Params::partitions`, a
 //! speed/accuracy setting; docs/decisions/0017-partitioned-first-phase.md and
 //! docs/decisions/0019-large-inputs-merged-in-parts.md). Alg. 1 (§3.3) is a
 //! sequential greedy; here it runs in two phases:

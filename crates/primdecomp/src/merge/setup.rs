@@ -45,7 +45,7 @@ pub fn pricing(params: &Params, bounds: (V3, V3)) -> Pricing {
             .fit
             .max_excess_volume
             .map_or(f64::INFINITY, |m| m * aabb_volume),
-        defer_degree: match params.speed.reprice {
+        defer_degree: match params.reprice {
             Reprice::Deferred { min_degree } => min_degree,
             Reprice::Exact => u32::MAX,
         },

@@ -185,7 +185,7 @@ impl FirstPhase {
         let faces = mesh.face_count();
         // Parts only where the faces outnumber what phase 1 would leave.
         let parts = if faces > partition::phase1_size(first) {
-            params.speed.partitions.parts(faces)
+            params.partitions.parts(faces)
         } else {
             1
         };

@@ -171,7 +171,7 @@ impl Drop for Pricer<'_> {
 }
 
 impl<'p> Pricer<'p> {
-    /// A pricer without a worker (phase 1 of `Speed::partitions`: one per part, the
+    /// A pricer without a worker (phase 1 of `Params::partitions`: one per part, the
     /// parts themselves run in parallel).
     pub(super) fn serial(fitter: &'p Fitter<'p>) -> Self {
         Pricer::new(fitter, None)

@@ -7,6 +7,7 @@
 //! by the `primdecomp-files` crate. The engine exports (glTF, MJCF, URDF, USD, Godot) are the `primdecomp-export` crate,
 //! built on these.
 
+pub(crate) mod body;
 pub(crate) mod contract;
 pub(crate) mod frame;
 mod json;
@@ -14,7 +15,8 @@ mod obj;
 mod read;
 pub(crate) mod result;
 
+pub use body::Body;
 pub use frame::Frame;
 pub(crate) use obj::tessellate;
 pub use obj::Tess;
-pub use read::{ResultFile, ResultObject};
+pub use read::ResultFile;

@@ -3,6 +3,7 @@
 //! number checked finite and within the limits of input meshes, so nothing read
 //! overflows the arithmetic of the tools that use it.
 
+use super::body::Body;
 use super::contract::check_header;
 use super::frame::Frame;
 use super::json::{ObjectJson, PrimJson};
@@ -159,28 +160,6 @@ fn sizes(p: &Primitive) -> Vec<f64> {
     }
 }
 
-/// An object of a result as the exporters read it: name, frame and primitives in
-/// that frame. A result without `objects` is one unnamed object in the world frame.
-///
-/// ```
-/// use primdecomp::{Frame, ResultFile};
-///
-/// let doc = r#"{"format": "primdecomp", "version": 1,
-///   "primitives": [{"kind": "sphere", "center": [1, 2, 3], "radius": 0.5}]}"#;
-/// let object = &ResultFile::read(doc, "r.json".as_ref())?.objects[0];
-/// assert_eq!((object.name.as_str(), object.frame), ("", Frame::IDENTITY));
-/// # Ok::<(), primdecomp::Error>(())
-/// ```
-#[derive(Clone, Debug, PartialEq)]
-pub struct ResultObject {
-    /// The object's name (empty for a result without `objects`).
-    pub name: String,
-    /// Its frame: world = `frame.point(local)`.
-    pub frame: Frame,
-    /// Its primitives in local coordinates.
-    pub primitives: Vec<Primitive>,
-}
-
 /// A primdecomp JSON result read back ([`ResultFile::read`]): its primitives in world
 /// coordinates and its objects, each with its frame and its primitives in that frame.
 ///
@@ -199,7 +178,7 @@ pub struct ResultFile {
     pub primitives: Vec<Primitive>,
     /// One per object of a per-object result; for a result without `objects`, one
     /// unnamed object in the world frame holding `primitives`.
-    pub objects: Vec<ResultObject>,
+    pub objects: Vec<Body>,
 }
 
 impl ResultFile {
@@ -239,7 +218,7 @@ impl ResultFile {
 
 /// A document's objects ([`ResultFile::objects`]).
 #[cfg(test)]
-pub(crate) fn read_objects(json: &str) -> Result<Vec<ResultObject>, String> {
+pub(crate) fn read_objects(json: &str) -> Result<Vec<Body>, String> {
     read_document(json).map(|(_, objects)| objects)
 }
 
@@ -250,7 +229,7 @@ pub(crate) fn read_primitives(json: &str) -> Result<Vec<Primitive>, String> {
 }
 
 /// The world primitives and the objects of a document, or what is wrong with it.
-fn read_document(json: &str) -> Result<(Vec<Primitive>, Vec<ResultObject>), String> {
+fn read_document(json: &str) -> Result<(Vec<Primitive>, Vec<Body>), String> {
     let doc: DocumentIn =
         serde_json::from_str(json).map_err(|e| format!("invalid primdecomp JSON: {e}"))?;
     check_header(doc.format.as_ref(), doc.version.as_ref())?;
@@ -267,7 +246,7 @@ fn read_document(json: &str) -> Result<(Vec<Primitive>, Vec<ResultObject>), Stri
     };
     let world = prims(doc.primitives, "", 1.0, 0.0)?;
     let objects = match doc.objects {
-        None => vec![ResultObject {
+        None => vec![Body {
             name: String::new(),
             frame: Frame::IDENTITY,
             primitives: world.clone(),
@@ -293,7 +272,7 @@ fn read_document(json: &str) -> Result<(Vec<Primitive>, Vec<ResultObject>), Stri
                     ));
                 }
                 let offset = o.translation.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-                Ok(ResultObject {
+                Ok(Body {
                     frame: Frame {
                         translation: o.translation,
                         rotation: o.rotation.map(|x| x / n),
@@ -303,7 +282,7 @@ fn read_document(json: &str) -> Result<(Vec<Primitive>, Vec<ResultObject>), Stri
                     name: o.name,
                 })
             })
-            .collect::<Result<Vec<ResultObject>, String>>()?,
+            .collect::<Result<Vec<Body>, String>>()?,
     };
     Ok((world, objects))
 }

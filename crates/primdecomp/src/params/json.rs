@@ -5,7 +5,7 @@
 //! `greedy`, `fill`) become one [`Goal`], and a combination no goal can be
 //! (a greedy or filled tolerance, fill without counts) is refused with its reason.
 
-use super::{Dedup, Fit, Goal, Params, Partitions, Plates, Reprice, Speed, Tolerance};
+use super::{Dedup, Fit, Goal, Params, Partitions, Plates, Reprice, Tolerance};
 use serde::{Deserialize, Serialize};
 
 /// Every setting under its JSON key, in the order results write them.
@@ -107,8 +107,8 @@ impl From<Params> for Settings {
             cut: p.goal.uses_cut(),
             tolerance,
             max_bytes,
-            reprice: p.speed.reprice,
-            partitions: p.speed.partitions,
+            reprice: p.reprice,
+            partitions: p.partitions,
         }
     }
 }
@@ -137,10 +137,8 @@ impl TryFrom<Settings> for Params {
                 remove_nested: s.remove_nested,
                 remove_thin_boxes: s.remove_thin_boxes,
             },
-            speed: Speed {
-                reprice: s.reprice,
-                partitions: s.partitions,
-            },
+            reprice: s.reprice,
+            partitions: s.partitions,
         })
     }
 }

@@ -7,7 +7,7 @@ use super::settings::{load_options, resolve_targets};
 use super::summary::print_summary;
 use super::timings::{print_timings, StageMemory};
 use crate::args::DecomposeArgs;
-use crate::commands::export::{level_objects, whole, write_level_exports, Source};
+use crate::commands::export::{whole, write_level_exports, Source};
 use crate::exit::println;
 use crate::exit::BadArgs;
 use crate::outputs::Guard;
@@ -210,7 +210,7 @@ fn run_objects(
         written.extend(write_level_exports(
             &a.export,
             &a.export_opts,
-            &level_objects(&objs, i),
+            &objs.bodies(i),
             (&format!("n{target}"), n),
             &Source {
                 path: input,

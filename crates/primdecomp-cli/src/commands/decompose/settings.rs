@@ -23,7 +23,7 @@ pub(super) fn params_from(a: &DecomposeArgs) -> anyhow::Result<(Params, Vec<Targ
     set_parsed(&mut p, a)?;
     let (goal, targets) = goal_from(a, &p.goal)?;
     p.goal = goal;
-    if a.max_excess_volume.is_some() && p.speed.reprice != Reprice::Exact {
+    if a.max_excess_volume.is_some() && p.reprice != Reprice::Exact {
         return Err(BadArgs(
             "--max-excess-volume needs --reprice exact: a merge over the cap has no queue \
              entry whose re-pricing could be deferred"
@@ -150,7 +150,7 @@ fn set_plain(p: &mut Params, a: &DecomposeArgs) {
 /// a message naming the flag.
 fn set_parsed(p: &mut Params, a: &DecomposeArgs) -> anyhow::Result<()> {
     if let Some(k) = &a.partitions {
-        p.speed.partitions = spelled("--partitions", k)?;
+        p.partitions = spelled("--partitions", k)?;
     }
     for w in &a.weights {
         p.fit.set_weights(w).map_err(|e| flagged("--weights", e))?;
@@ -165,7 +165,7 @@ fn set_parsed(p: &mut Params, a: &DecomposeArgs) -> anyhow::Result<()> {
         p.fit.dedup = spelled("--dedup", d)?;
     }
     if let Some(r) = &a.reprice {
-        p.speed.reprice = spelled("--reprice", r)?;
+        p.reprice = spelled("--reprice", r)?;
     }
     Ok(())
 }

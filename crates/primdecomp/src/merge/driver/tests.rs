@@ -2,7 +2,7 @@ use super::*;
 use crate::input::{adjacency, dedup};
 use crate::math::{dot, V3};
 use crate::merge::setup::fitter;
-use crate::params::{Params, Plates, Reprice, Speed};
+use crate::params::{Params, Plates, Reprice};
 use crate::seed::quadric;
 
 /// Runs `f` on the demo scene's fitter and a maker of its single-face clusters.
@@ -45,7 +45,7 @@ pub(in crate::merge) fn reprice_modes() -> [Reprice; 3] {
     [
         Reprice::Exact,
         Reprice::Deferred { min_degree: 0 },
-        Params::default().speed.reprice,
+        Params::default().reprice,
     ]
 }
 
@@ -58,10 +58,7 @@ pub(in crate::merge) fn reprice_modes() -> [Reprice; 3] {
 fn look_ahead_keeps_the_serial_order() {
     for reprice in reprice_modes() {
         let p = Params {
-            speed: Speed {
-                reprice,
-                ..Default::default()
-            },
+            reprice,
             ..Params::default()
         };
         with_demo_using(p, |fitter, fresh| {
@@ -94,10 +91,7 @@ fn look_ahead_keeps_the_serial_order() {
 fn free_merges_carry_the_greedy_order_on() {
     for reprice in reprice_modes() {
         let free = Params {
-            speed: Speed {
-                reprice,
-                ..Default::default()
-            },
+            reprice,
             ..Params::default()
         };
         let exact = Params {
@@ -160,10 +154,7 @@ fn assert_same(a: &MergeOutput, b: &MergeOutput) {
 fn radix_heap_and_binary_heap_merge_identically() {
     for reprice in [Reprice::Exact, Reprice::Deferred { min_degree: 0 }] {
         let p = Params {
-            speed: Speed {
-                reprice,
-                ..Default::default()
-            },
+            reprice,
             ..Params::default()
         };
         with_demo_using(p, |fitter, fresh| {

@@ -308,30 +308,8 @@ pub fn prepare(
     opts: &ExportOptions,
     keep_scale: bool,
 ) -> Result<Vec<Prepared>, String> {
-    let total: usize = objects.iter().map(|o| o.primitives.len()).sum();
-    if total == 0 {
-        // glTF has no valid scene without nodes, and a collider file without a
-        // collider is a mistake upstream.
-        return Err("the result holds no primitive: there is nothing to export".into());
-    }
-    if total > MAX_PRIMITIVES {
-        return Err(format!(
-            "the result holds {total} primitives, and an export takes at most \
-             {MAX_PRIMITIVES}; export a coarser level (a smaller -n)"
-        ));
-    }
     let native = format.native(opts);
-    // Previews are glTF's alone.
-    let preview = opts.preview && matches!(format, Format::Gltf | Format::Glb);
-    let vertices = tessellated_vertices(objects, native, preview, opts.detail);
-    if vertices > MAX_VERTICES {
-        return Err(format!(
-            "its hulls{} would hold {vertices} vertices at {} segments around circles, more \
-             than the {MAX_VERTICES} an export writes; lower --export-detail",
-            if preview { " and previews" } else { "" },
-            opts.detail
-        ));
-    }
+    check_size(objects, format, opts, native)?;
     let to_format = format_frame(format, opts);
     let reserved: &[&str] = match format {
         Format::Mjcf => &["world"],
@@ -340,27 +318,7 @@ pub fn prepare(
     let mut names = Names::with_reserved(reserved);
     let mut out = Vec::with_capacity(objects.len());
     for (i, o) in objects.iter().enumerate() {
-        let full = o.frame.then(&to_format);
-        let (frame, inner) = if keep_scale {
-            // The object's own scale stays on its node; `--scale` goes into the shapes,
-            // so a result beyond 32-bit range can be scaled into it.
-            let node = Frame {
-                scale: o.frame.scale,
-                ..full
-            };
-            let inner = Frame {
-                scale: opts.scale,
-                ..Frame::IDENTITY
-            };
-            (node, inner)
-        } else {
-            let rigid = Frame { scale: 1.0, ..full };
-            let inner = Frame {
-                scale: full.scale,
-                ..Frame::IDENTITY
-            };
-            (rigid, inner)
-        };
+        let (frame, inner) = frames(o, &to_format, opts, keep_scale);
         // The consumer adds the frame's translation: its rounding counts too,
         // relative to the local units.
         let offset = norm(frame.translation) / frame.scale;
@@ -384,14 +342,10 @@ pub fn prepare(
             }
             shapes.push((p.kind(), s));
         }
-        let base = if o.name.is_empty() {
-            if objects.len() == 1 {
-                visible(&opts.model)
-            } else {
-                format!("object{i}")
-            }
-        } else {
-            visible(&o.name)
+        let base = match (o.name.is_empty(), objects.len()) {
+            (true, 1) => visible(&opts.model),
+            (true, _) => format!("object{i}"),
+            (false, _) => visible(&o.name),
         };
         out.push(Prepared {
             name: names.unique(base),
@@ -403,6 +357,66 @@ pub fn prepare(
         range::check_points(points, &to_format)?;
     }
     Ok(out)
+}
+
+/// Refuses a result of no primitive, or of more primitives or tessellated vertices
+/// than an export writes.
+fn check_size(
+    objects: &[Body],
+    format: Format,
+    opts: &ExportOptions,
+    native: [bool; 6],
+) -> Result<(), String> {
+    let total: usize = objects.iter().map(|o| o.primitives.len()).sum();
+    if total == 0 {
+        // glTF has no valid scene without nodes, and a collider file without a
+        // collider is a mistake upstream.
+        return Err("the result holds no primitive: there is nothing to export".into());
+    }
+    if total > MAX_PRIMITIVES {
+        return Err(format!(
+            "the result holds {total} primitives, and an export takes at most \
+             {MAX_PRIMITIVES}; export a coarser level (a smaller -n)"
+        ));
+    }
+    // Previews are glTF's alone.
+    let preview = opts.preview && matches!(format, Format::Gltf | Format::Glb);
+    let vertices = tessellated_vertices(objects, native, preview, opts.detail);
+    if vertices > MAX_VERTICES {
+        return Err(format!(
+            "its hulls{} would hold {vertices} vertices at {} segments around circles, more \
+             than the {MAX_VERTICES} an export writes; lower --export-detail",
+            if preview { " and previews" } else { "" },
+            opts.detail
+        ));
+    }
+    Ok(())
+}
+
+/// Object `o`'s frame in the format's (`to_format`) and the frame its shapes are
+/// taken through: with `keep_scale` the object's own scale stays on its frame and
+/// `--scale` goes into the shapes (so a result beyond 32-bit range can be scaled into
+/// it), otherwise the frame is rigid and every scale goes into the shapes.
+fn frames(o: &Body, to_format: &Frame, opts: &ExportOptions, keep_scale: bool) -> (Frame, Frame) {
+    let full = o.frame.then(to_format);
+    if keep_scale {
+        let node = Frame {
+            scale: o.frame.scale,
+            ..full
+        };
+        let inner = Frame {
+            scale: opts.scale,
+            ..Frame::IDENTITY
+        };
+        (node, inner)
+    } else {
+        let rigid = Frame { scale: 1.0, ..full };
+        let inner = Frame {
+            scale: full.scale,
+            ..Frame::IDENTITY
+        };
+        (rigid, inner)
+    }
 }
 
 /// The writer's shape of an (already grown) primitive: native where `native` says

@@ -243,23 +243,7 @@ pub fn to_gltf(objects: &[Body], opts: &ExportOptions, binary: bool) -> Result<V
         nodes,
     });
     root.scene = Some(Index::new(0));
-    let (shape_ext, body_ext) = match opts.physics {
-        Physics::Khr => ("KHR_implicit_shapes", "KHR_physics_rigid_bodies"),
-        Physics::Omi => ("OMI_physics_shape", "OMI_physics_body"),
-    };
-    // A shape extension no collider uses is not listed (KHR: every collider a
-    // prism's or frustum's hull, which are meshes, not shapes).
-    root.extensions_used = if shapes.is_empty() {
-        vec![body_ext.into()]
-    } else {
-        vec![shape_ext.into(), body_ext.into()]
-    };
-    if !shapes.is_empty() {
-        let mut ext = json::extensions::root::Root::default();
-        ext.others
-            .insert(shape_ext.into(), j!({ "shapes": shapes }));
-        root.extensions = Some(ext);
-    }
+    extensions(&mut root, shapes, opts.physics);
     while data.len() % 4 != 0 {
         data.push(0);
     }
@@ -285,6 +269,27 @@ pub fn to_gltf(objects: &[Body], opts: &ExportOptions, binary: bool) -> Result<V
     }
 }
 
+/// Lists the physics extensions used, and the shapes colliders refer to.
+fn extensions(root: &mut json::Root, shapes: Vec<Value>, physics: Physics) {
+    let (shape_ext, body_ext) = match physics {
+        Physics::Khr => ("KHR_implicit_shapes", "KHR_physics_rigid_bodies"),
+        Physics::Omi => ("OMI_physics_shape", "OMI_physics_body"),
+    };
+    // A shape extension no collider uses is not listed (KHR: every collider a
+    // prism's or frustum's hull, which are meshes, not shapes).
+    root.extensions_used = if shapes.is_empty() {
+        vec![body_ext.into()]
+    } else {
+        vec![shape_ext.into(), body_ext.into()]
+    };
+    if !shapes.is_empty() {
+        let mut ext = json::extensions::root::Root::default();
+        ext.others
+            .insert(shape_ext.into(), j!({ "shapes": shapes }));
+        root.extensions = Some(ext);
+    }
+}
+
 /// Adds the node tree; returns the scene's nodes.
 fn build(
     root: &mut json::Root,
@@ -297,7 +302,26 @@ fn build(
         root,
         data: std::mem::take(data),
     };
-    let materials: Vec<Option<Index<json::Material>>> = Kind::ALL
+    let materials = materials(&mut buf, opts);
+    let mut object_nodes = Vec::new();
+    for o in prepared {
+        object_nodes.push(object(&mut buf, shapes, o, &materials, opts));
+    }
+    if let Some((positions, polygons)) = &opts.input_mesh {
+        // The input mesh in result coordinates, under the result → glTF conversion.
+        let mesh = buf.mesh("input", positions, polygons, None);
+        let mut n = node("input");
+        n.mesh = Some(mesh);
+        place(&mut n, &super::engine::format_frame(Format::Gltf, opts));
+        object_nodes.push(buf.root.push(n));
+    }
+    *data = std::mem::take(&mut buf.data);
+    object_nodes
+}
+
+/// The previews' material of each kind (none without previews).
+fn materials(buf: &mut Buf, opts: &ExportOptions) -> Vec<Option<Index<json::Material>>> {
+    Kind::ALL
         .iter()
         .map(|k| {
             opts.preview.then(|| {
@@ -313,91 +337,98 @@ fn build(
                 buf.root.push(m)
             })
         })
-        .collect();
-    let mut object_nodes = Vec::new();
-    for o in prepared {
-        let mut children = Vec::new();
-        for (i, (kind, shape)) in o.shapes.iter().enumerate() {
-            let label = format!("{}_{}_{i}", o.name, kind.name());
-            let mut n = node(&label);
-            match (implicit(shape), shape) {
-                (Some((at, v)), _) => {
-                    place(&mut n, &at);
-                    let s = shapes.len();
-                    shapes.push(v);
-                    let (name, ext) = match opts.physics {
-                        Physics::Khr => (
-                            "KHR_physics_rigid_bodies",
-                            j!({"collider": {"geometry": {"shape": s}}}),
-                        ),
-                        Physics::Omi => ("OMI_physics_body", j!({"collider": {"shape": s}})),
-                    };
-                    with_extension(&mut n, name, ext);
-                }
-                (None, Shape::Hull(t)) => {
-                    let mesh = buf.mesh(&label, &t.vertices, &t.faces, None);
-                    match opts.physics {
-                        Physics::Khr => {
-                            let mut holder = node(&format!("{label}_hull"));
-                            holder.mesh = Some(mesh);
-                            // Outside the scene: referenced by the collider only.
-                            let h = buf.root.push(holder);
-                            let geometry = j!({"node": h.value(), "convexHull": true});
-                            with_extension(
-                                &mut n,
-                                "KHR_physics_rigid_bodies",
-                                j!({"collider": {"geometry": geometry}}),
-                            );
-                        }
-                        Physics::Omi => {
-                            let s = shapes.len();
-                            shapes.push(j!({"type": "convex", "convex": {"mesh": mesh.value()}}));
-                            with_extension(
-                                &mut n,
-                                "OMI_physics_body",
-                                j!({"collider": {"shape": s}}),
-                            );
-                        }
-                    }
-                }
-                (None, _) => {}
-            }
-            children.push(buf.root.push(n));
-            if opts.preview {
-                let t = preview_tess(shape, opts.detail);
-                let mesh = buf.mesh(
-                    &format!("{label}_preview"),
-                    &t.vertices,
-                    &t.faces,
-                    materials[*kind as usize],
-                );
-                let mut pn = node(&format!("{label}_preview"));
-                pn.mesh = Some(mesh);
-                children.push(buf.root.push(pn));
-            }
-        }
-        let mut on = node(&o.name);
-        place(&mut on, &o.frame);
-        if opts.physics == Physics::Omi {
-            with_extension(
-                &mut on,
-                "OMI_physics_body",
-                j!({"motion": {"type": "static"}}),
+        .collect()
+}
+
+/// Object `o`'s node, placed by its frame, with a collider node per shape (and its
+/// preview's node).
+fn object(
+    buf: &mut Buf,
+    shapes: &mut Vec<Value>,
+    o: &Prepared,
+    materials: &[Option<Index<json::Material>>],
+    opts: &ExportOptions,
+) -> Index<json::Node> {
+    let mut children = Vec::new();
+    for (i, (kind, shape)) in o.shapes.iter().enumerate() {
+        let label = format!("{}_{}_{i}", o.name, kind.name());
+        let n = collider(buf, shapes, &label, shape, opts.physics);
+        children.push(buf.root.push(n));
+        if opts.preview {
+            let t = preview_tess(shape, opts.detail);
+            let mesh = buf.mesh(
+                &format!("{label}_preview"),
+                &t.vertices,
+                &t.faces,
+                materials[*kind as usize],
             );
+            let mut pn = node(&format!("{label}_preview"));
+            pn.mesh = Some(mesh);
+            children.push(buf.root.push(pn));
         }
-        on.children = (!children.is_empty()).then_some(children);
-        object_nodes.push(buf.root.push(on));
     }
-    if let Some((positions, polygons)) = &opts.input_mesh {
-        // The input mesh in result coordinates, under the result → glTF conversion.
-        let mesh = buf.mesh("input", positions, polygons, None);
-        let mut n = node("input");
-        n.mesh = Some(mesh);
-        place(&mut n, &super::engine::format_frame(Format::Gltf, opts));
-        object_nodes.push(buf.root.push(n));
+    let mut on = node(&o.name);
+    place(&mut on, &o.frame);
+    if opts.physics == Physics::Omi {
+        with_extension(
+            &mut on,
+            "OMI_physics_body",
+            j!({"motion": {"type": "static"}}),
+        );
     }
-    *data = std::mem::take(&mut buf.data);
-    object_nodes
+    on.children = (!children.is_empty()).then_some(children);
+    buf.root.push(on)
+}
+
+/// The collider node `label` of `shape`: an implicit shape, or a convex hull of a
+/// mesh (KHR: on a node outside the scene; OMI: a convex shape).
+fn collider(
+    buf: &mut Buf,
+    shapes: &mut Vec<Value>,
+    label: &str,
+    shape: &Shape,
+    physics: Physics,
+) -> json::Node {
+    let mut n = node(label);
+    match (implicit(shape), shape) {
+        (Some((at, v)), _) => {
+            place(&mut n, &at);
+            let s = shapes.len();
+            shapes.push(v);
+            let (name, ext) = match physics {
+                Physics::Khr => (
+                    "KHR_physics_rigid_bodies",
+                    j!({"collider": {"geometry": {"shape": s}}}),
+                ),
+                Physics::Omi => ("OMI_physics_body", j!({"collider": {"shape": s}})),
+            };
+            with_extension(&mut n, name, ext);
+        }
+        (None, Shape::Hull(t)) => {
+            let mesh = buf.mesh(label, &t.vertices, &t.faces, None);
+            match physics {
+                Physics::Khr => {
+                    let mut holder = node(&format!("{label}_hull"));
+                    holder.mesh = Some(mesh);
+                    // Outside the scene: referenced by the collider only.
+                    let h = buf.root.push(holder);
+                    let geometry = j!({"node": h.value(), "convexHull": true});
+                    with_extension(
+                        &mut n,
+                        "KHR_physics_rigid_bodies",
+                        j!({"collider": {"geometry": geometry}}),
+                    );
+                }
+                Physics::Omi => {
+                    let s = shapes.len();
+                    shapes.push(j!({"type": "convex", "convex": {"mesh": mesh.value()}}));
+                    with_extension(&mut n, "OMI_physics_body", j!({"collider": {"shape": s}}));
+                }
+            }
+        }
+        (None, _) => {}
+    }
+    n
 }
 
 /// The conservative tessellation of a shape in its object's frame.

@@ -38,8 +38,6 @@ fn vec3(v: V3) -> String {
 /// The `.tscn` text, or why it cannot be written ([`prepare`]).
 pub fn to_tscn(objects: &[Body], opts: &ExportOptions) -> Result<String, String> {
     let prepared = prepare(objects, Format::Tscn, opts, false)?;
-    let y = [0.0, 1.0, 0.0];
-    let id = [0.0, 0.0, 0.0, 1.0];
     // Sub-resources first (one per shape), then the nodes.
     let mut res = String::new();
     let mut nodes = String::new();
@@ -62,55 +60,7 @@ pub fn to_tscn(objects: &[Body], opts: &ExportOptions) -> Result<String, String>
         );
         let _ = writeln!(nodes, "metadata/primdecomp_name = {}", quote(&o.name));
         for (i, (kind, s)) in o.shapes.iter().enumerate() {
-            let (ty, body, q, c) = match s {
-                Shape::Box {
-                    center,
-                    rotation,
-                    half,
-                } => (
-                    "BoxShape3D",
-                    format!("size = {}", vec3(half.map(|h| 2.0 * h))),
-                    *rotation,
-                    *center,
-                ),
-                Shape::Sphere { center, radius } => (
-                    "SphereShape3D",
-                    format!("radius = {}", num(*radius)),
-                    id,
-                    *center,
-                ),
-                Shape::Capsule { p0, p1, radius } => {
-                    let (c, a, h) = Shape::axis(*p0, *p1);
-                    (
-                        "CapsuleShape3D",
-                        format!(
-                            "radius = {}\nheight = {}",
-                            num(*radius),
-                            num(2.0 * h + 2.0 * radius)
-                        ),
-                        quat_between(y, a),
-                        c,
-                    )
-                }
-                Shape::Round { p0, p1, r0, r1 } => {
-                    let (c, a, h) = Shape::axis(*p0, *p1);
-                    (
-                        "CylinderShape3D",
-                        format!("height = {}\nradius = {}", num(2.0 * h), num(r0.max(*r1))),
-                        quat_between(y, a),
-                        c,
-                    )
-                }
-                Shape::Hull(t) => {
-                    let pts: Vec<String> = t.vertices.iter().flatten().map(|&x| num(x)).collect();
-                    (
-                        "ConvexPolygonShape3D",
-                        format!("points = PackedVector3Array({})", pts.join(", ")),
-                        id,
-                        [0.0; 3],
-                    )
-                }
-            };
+            let (ty, body, q, c) = resource(s);
             count += 1;
             let rid = format!("{ty}_{count}");
             let _ = writeln!(res, "[sub_resource type=\"{ty}\" id=\"{rid}\"]");
@@ -131,6 +81,62 @@ pub fn to_tscn(objects: &[Body], opts: &ExportOptions) -> Result<String, String>
     out.push_str(&res);
     out.push_str(&nodes);
     Ok(out)
+}
+
+/// Shape `s`'s sub-resource: its type, its properties, and the rotation and origin of
+/// the collision shape node using it (capsules and cylinders along local +Y).
+fn resource(s: &Shape) -> (&'static str, String, [f64; 4], V3) {
+    let y = [0.0, 1.0, 0.0];
+    let id = [0.0, 0.0, 0.0, 1.0];
+    match s {
+        Shape::Box {
+            center,
+            rotation,
+            half,
+        } => (
+            "BoxShape3D",
+            format!("size = {}", vec3(half.map(|h| 2.0 * h))),
+            *rotation,
+            *center,
+        ),
+        Shape::Sphere { center, radius } => (
+            "SphereShape3D",
+            format!("radius = {}", num(*radius)),
+            id,
+            *center,
+        ),
+        Shape::Capsule { p0, p1, radius } => {
+            let (c, a, h) = Shape::axis(*p0, *p1);
+            (
+                "CapsuleShape3D",
+                format!(
+                    "radius = {}\nheight = {}",
+                    num(*radius),
+                    num(2.0 * h + 2.0 * radius)
+                ),
+                quat_between(y, a),
+                c,
+            )
+        }
+        Shape::Round { p0, p1, r0, r1 } => {
+            let (c, a, h) = Shape::axis(*p0, *p1);
+            (
+                "CylinderShape3D",
+                format!("height = {}\nradius = {}", num(2.0 * h), num(r0.max(*r1))),
+                quat_between(y, a),
+                c,
+            )
+        }
+        Shape::Hull(t) => {
+            let pts: Vec<String> = t.vertices.iter().flatten().map(|&x| num(x)).collect();
+            (
+                "ConvexPolygonShape3D",
+                format!("points = PackedVector3Array({})", pts.join(", ")),
+                id,
+                [0.0; 3],
+            )
+        }
+    }
 }
 
 #[cfg(test)]

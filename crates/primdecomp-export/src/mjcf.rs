@@ -7,9 +7,9 @@
 //! vertex="…">` asset, the conservative tessellation's vertices, of which MuJoCo
 //! takes the convex hull. MJCF is +Z up (gravity −z): `--up y` results are turned.
 
-use super::engine::{prepare, quat_between, ExportOptions, Format, Shape};
+use super::engine::{prepare, quat_between, ExportOptions, Format, Prepared, Shape};
 use super::xml::{nums, Xml};
-use primdecomp::Body;
+use primdecomp::{Body, Kind};
 use primdecomp_files::visible;
 use primdecomp_math::V3;
 
@@ -57,81 +57,96 @@ pub fn to_mjcf(objects: &[Body], opts: &ExportOptions) -> Result<String, String>
         "primdecomp colliders: one static body per object (docs/decisions/exports-engine-conventions.md)",
     );
     x.empty("compiler", &[("angle", "radian")]);
-    let mut meshes = Vec::new();
-    for (oi, o) in prepared.iter().enumerate() {
-        for (i, (kind, s)) in o.shapes.iter().enumerate() {
-            if let Shape::Hull(t) = s {
-                let name = format!("mesh{oi}_{}_{i}", kind.name());
-                let v: Vec<f64> = t.vertices.iter().flatten().copied().collect();
-                meshes.push((name, nums(&v)));
-            }
-        }
-    }
-    if !meshes.is_empty() {
-        x.open("asset", &[]);
-        for (name, v) in &meshes {
-            // Shell inertia: thin hulls have next to no volume, and static bodies
-            // need no mass anyway.
-            x.empty(
-                "mesh",
-                &[("name", name), ("vertex", v), ("inertia", "shell")],
-            );
-        }
-        x.close("asset");
-    }
+    assets(&mut x, &prepared);
     x.open("worldbody", &[]);
     for (oi, o) in prepared.iter().enumerate() {
-        let [qx, qy, qz, qw] = o.frame.rotation;
-        let pos = nums(&o.frame.translation);
-        let quat = nums(&[qw, qx, qy, qz]);
-        x.open("body", &[("name", &o.name), ("pos", &pos), ("quat", &quat)]);
-        for (i, (kind, s)) in o.shapes.iter().enumerate() {
-            let name = format!("{}/{}_{i}", o.name, kind.name());
-            match s {
-                Shape::Box {
-                    center,
-                    rotation,
-                    half,
-                } => {
-                    let [qx, qy, qz, qw] = *rotation;
-                    x.empty(
-                        "geom",
-                        &[
-                            ("name", &name),
-                            ("type", "box"),
-                            ("pos", &nums(center)),
-                            ("quat", &nums(&[qw, qx, qy, qz])),
-                            ("size", &nums(half)),
-                        ],
-                    );
-                }
-                Shape::Sphere { center, radius } => x.empty(
-                    "geom",
-                    &[
-                        ("name", &name),
-                        ("type", "sphere"),
-                        ("pos", &nums(center)),
-                        ("size", &nums(&[*radius])),
-                    ],
-                ),
-                Shape::Capsule { p0, p1, radius } => {
-                    segment(&mut x, &name, "capsule", *p0, *p1, *radius);
-                }
-                Shape::Round { p0, p1, r0, r1 } => {
-                    segment(&mut x, &name, "cylinder", *p0, *p1, r0.max(*r1));
-                }
-                Shape::Hull(_) => {
-                    let mesh = format!("mesh{oi}_{}_{i}", kind.name());
-                    x.empty(
-                        "geom",
-                        &[("name", &name), ("type", "mesh"), ("mesh", &mesh)],
-                    );
-                }
-            }
-        }
-        x.close("body");
+        body(&mut x, oi, o);
     }
     x.close("worldbody");
     x.close("mujoco");
     Ok(x.finish())
+}
+
+/// The name of the `<mesh>` asset of object `oi`'s shape `i`.
+fn mesh_name(oi: usize, kind: Kind, i: usize) -> String {
+    format!("mesh{oi}_{}_{i}", kind.name())
+}
+
+/// The `<asset>` of every hull's `<mesh>`, if any.
+fn assets(x: &mut Xml, prepared: &[Prepared]) {
+    let mut meshes = Vec::new();
+    for (oi, o) in prepared.iter().enumerate() {
+        for (i, (kind, s)) in o.shapes.iter().enumerate() {
+            if let Shape::Hull(t) = s {
+                let v: Vec<f64> = t.vertices.iter().flatten().copied().collect();
+                meshes.push((mesh_name(oi, *kind, i), nums(&v)));
+            }
+        }
+    }
+    if meshes.is_empty() {
+        return;
+    }
+    x.open("asset", &[]);
+    for (name, v) in &meshes {
+        // Shell inertia: thin hulls have next to no volume, and static bodies
+        // need no mass anyway.
+        x.empty(
+            "mesh",
+            &[("name", name), ("vertex", v), ("inertia", "shell")],
+        );
+    }
+    x.close("asset");
+}
+
+/// Object `oi`'s static `<body>` and its geoms.
+fn body(x: &mut Xml, oi: usize, o: &Prepared) {
+    let [qx, qy, qz, qw] = o.frame.rotation;
+    let pos = nums(&o.frame.translation);
+    let quat = nums(&[qw, qx, qy, qz]);
+    x.open("body", &[("name", &o.name), ("pos", &pos), ("quat", &quat)]);
+    for (i, (kind, s)) in o.shapes.iter().enumerate() {
+        let name = format!("{}/{}_{i}", o.name, kind.name());
+        match s {
+            Shape::Box {
+                center,
+                rotation,
+                half,
+            } => {
+                let [qx, qy, qz, qw] = *rotation;
+                x.empty(
+                    "geom",
+                    &[
+                        ("name", &name),
+                        ("type", "box"),
+                        ("pos", &nums(center)),
+                        ("quat", &nums(&[qw, qx, qy, qz])),
+                        ("size", &nums(half)),
+                    ],
+                );
+            }
+            Shape::Sphere { center, radius } => x.empty(
+                "geom",
+                &[
+                    ("name", &name),
+                    ("type", "sphere"),
+                    ("pos", &nums(center)),
+                    ("size", &nums(&[*radius])),
+                ],
+            ),
+            Shape::Capsule { p0, p1, radius } => {
+                segment(x, &name, "capsule", *p0, *p1, *radius);
+            }
+            Shape::Round { p0, p1, r0, r1 } => {
+                segment(x, &name, "cylinder", *p0, *p1, r0.max(*r1));
+            }
+            Shape::Hull(_) => {
+                let mesh = mesh_name(oi, *kind, i);
+                x.empty(
+                    "geom",
+                    &[("name", &name), ("type", "mesh"), ("mesh", &mesh)],
+                );
+            }
+        }
+    }
+    x.close("body");
 }

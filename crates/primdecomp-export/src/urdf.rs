@@ -8,7 +8,7 @@
 //! tessellation) written beside the URDF, referred to by relative paths. URDF is
 //! +Z up: `--up y` results are turned.
 
-use super::engine::{prepare, quat_between, ExportOptions, Files, Format, Shape};
+use super::engine::{prepare, quat_between, ExportOptions, Files, Format, Prepared, Shape};
 use super::names::{file_name, ident, MAX_FILE_NAME};
 use super::xml::{nums, Xml};
 use primdecomp::Body;
@@ -70,113 +70,131 @@ pub fn to_urdf(objects: &[Body], opts: &ExportOptions, stem: &str) -> Result<Fil
     x.comment(
         "primdecomp colliders: one link per object (docs/decisions/exports-engine-conventions.md)",
     );
-    let links: std::collections::HashSet<&str> = prepared.iter().map(|o| o.name.as_str()).collect();
-    let mut base = format!("{robot}_root");
-    while links.contains(base.as_str()) {
-        base.push('_');
-    }
+    let base = root_link(&robot, &prepared);
     x.empty("link", &[("name", &base)]);
     let dir = mesh_dir(stem);
-    let z = [0.0, 0.0, 1.0];
-    let id = [0.0, 0.0, 0.0, 1.0];
     for (oi, o) in prepared.iter().enumerate() {
         x.open("link", &[("name", &o.name)]);
         for (i, (kind, s)) in o.shapes.iter().enumerate() {
             // Unique across the robot: consumers key collision geometry by name.
             let name = format!("{}_{}_{i}", o.name, kind.name());
-            let collision = |x: &mut Xml, name: &str, xyz, q, tag: &str, attrs: &[(&str, &str)]| {
-                x.open("collision", &[("name", name)]);
-                origin(x, xyz, q);
-                x.open("geometry", &[]);
-                x.empty(tag, attrs);
-                x.close("geometry");
-                x.close("collision");
+            // At most 64 bytes of the name: the index keeps files apart.
+            let file = || {
+                let stem = file_name(&ident(&o.name, false), 64);
+                format!("{dir}/{oi}_{stem}_{}_{i}.obj", kind.name())
             };
-            match s {
-                Shape::Box {
-                    center,
-                    rotation,
-                    half,
-                } => {
-                    let size = nums(&half.map(|h| 2.0 * h));
-                    collision(&mut x, &name, *center, *rotation, "box", &[("size", &size)]);
-                }
-                Shape::Sphere { center, radius } => {
-                    collision(
-                        &mut x,
-                        &name,
-                        *center,
-                        id,
-                        "sphere",
-                        &[("radius", &nums(&[*radius]))],
-                    );
-                }
-                Shape::Capsule { p0, p1, radius } => {
-                    let (c, a, h) = Shape::axis(*p0, *p1);
-                    let q = quat_between(z, a);
-                    let r = nums(&[*radius]);
-                    if opts.urdf_capsule {
-                        let len = nums(&[2.0 * h]);
-                        collision(
-                            &mut x,
-                            &name,
-                            c,
-                            q,
-                            "capsule",
-                            &[("radius", &r), ("length", &len)],
-                        );
-                    } else {
-                        let len = nums(&[2.0 * h]);
-                        collision(
-                            &mut x,
-                            &name,
-                            c,
-                            q,
-                            "cylinder",
-                            &[("radius", &r), ("length", &len)],
-                        );
-                        for (e, p) in [("cap0", p0), ("cap1", p1)] {
-                            let n = format!("{name}_{e}");
-                            collision(&mut x, &n, *p, id, "sphere", &[("radius", &r)]);
-                        }
-                    }
-                }
-                Shape::Round { p0, p1, r0, r1 } => {
-                    let (c, a, h) = Shape::axis(*p0, *p1);
-                    let q = quat_between(z, a);
-                    let attrs = [
-                        ("radius", nums(&[r0.max(*r1)])),
-                        ("length", nums(&[2.0 * h])),
-                    ];
-                    let attrs: Vec<(&str, &str)> =
-                        attrs.iter().map(|(k, v)| (*k, v.as_str())).collect();
-                    collision(&mut x, &name, c, q, "cylinder", &attrs);
-                }
-                Shape::Hull(t) => {
-                    // At most 64 bytes of the name: the index keeps files apart.
-                    let file = format!(
-                        "{dir}/{oi}_{}_{}_{i}.obj",
-                        file_name(&ident(&o.name, false), 64),
-                        kind.name()
-                    );
-                    files.beside.push((file.clone(), obj(t).into_bytes()));
-                    collision(&mut x, &name, [0.0; 3], id, "mesh", &[("filename", &file)]);
-                }
-            }
+            collisions(&mut x, &mut files, &name, s, file, opts.urdf_capsule);
         }
         x.close("link");
-        x.open(
-            "joint",
-            &[("name", &format!("{}_joint", o.name)), ("type", "fixed")],
-        );
-        x.empty("parent", &[("link", &base)]);
-        x.empty("child", &[("link", &o.name)]);
-        origin(&mut x, o.frame.translation, o.frame.rotation);
-        x.close("joint");
+        joint(&mut x, &base, o);
     }
     x.close("robot");
     files.main = x.finish().into_bytes();
     Ok(files)
+}
+
+/// The identity rotation (scalar last).
+const ID: [f64; 4] = [0.0, 0.0, 0.0, 1.0];
+
+/// The root link's name: `{robot}_root`, lengthened until no object's link has it.
+fn root_link(robot: &str, prepared: &[Prepared]) -> String {
+    let links: std::collections::HashSet<&str> = prepared.iter().map(|o| o.name.as_str()).collect();
+    let mut base = format!("{robot}_root");
+    while links.contains(base.as_str()) {
+        base.push('_');
+    }
+    base
+}
+
+/// The fixed joint placing object `o`'s link on the root link `base`.
+fn joint(x: &mut Xml, base: &str, o: &Prepared) {
+    x.open(
+        "joint",
+        &[("name", &format!("{}_joint", o.name)), ("type", "fixed")],
+    );
+    x.empty("parent", &[("link", base)]);
+    x.empty("child", &[("link", &o.name)]);
+    origin(x, o.frame.translation, o.frame.rotation);
+    x.close("joint");
+}
+
+/// One `<collision>` named `name` at `xyz` turned by `q`, of geometry `tag` with `attrs`.
+fn collision(
+    x: &mut Xml,
+    name: &str,
+    xyz: [f64; 3],
+    q: [f64; 4],
+    tag: &str,
+    attrs: &[(&str, &str)],
+) {
+    x.open("collision", &[("name", name)]);
+    origin(x, xyz, q);
+    x.open("geometry", &[]);
+    x.empty(tag, attrs);
+    x.close("geometry");
+    x.close("collision");
+}
+
+/// The collisions of a shape: a box, a sphere, a capsule (one `<capsule>` with
+/// `urdf_capsule`, else a cylinder and two spheres), a cylinder, or a hull's mesh
+/// written to the mesh file `file` names.
+fn collisions(
+    x: &mut Xml,
+    files: &mut Files,
+    name: &str,
+    s: &Shape,
+    file: impl FnOnce() -> String,
+    urdf_capsule: bool,
+) {
+    let z = [0.0, 0.0, 1.0];
+    match s {
+        Shape::Box {
+            center,
+            rotation,
+            half,
+        } => {
+            let size = nums(&half.map(|h| 2.0 * h));
+            collision(x, name, *center, *rotation, "box", &[("size", &size)]);
+        }
+        Shape::Sphere { center, radius } => {
+            collision(
+                x,
+                name,
+                *center,
+                ID,
+                "sphere",
+                &[("radius", &nums(&[*radius]))],
+            );
+        }
+        Shape::Capsule { p0, p1, radius } => {
+            let (c, a, h) = Shape::axis(*p0, *p1);
+            let q = quat_between(z, a);
+            let r = nums(&[*radius]);
+            let len = nums(&[2.0 * h]);
+            let attrs = [("radius", r.as_str()), ("length", len.as_str())];
+            if urdf_capsule {
+                collision(x, name, c, q, "capsule", &attrs);
+            } else {
+                collision(x, name, c, q, "cylinder", &attrs);
+                for (e, p) in [("cap0", p0), ("cap1", p1)] {
+                    let n = format!("{name}_{e}");
+                    collision(x, &n, *p, ID, "sphere", &[("radius", &r)]);
+                }
+            }
+        }
+        Shape::Round { p0, p1, r0, r1 } => {
+            let (c, a, h) = Shape::axis(*p0, *p1);
+            let q = quat_between(z, a);
+            let (r, len) = (nums(&[r0.max(*r1)]), nums(&[2.0 * h]));
+            let attrs = [("radius", r.as_str()), ("length", len.as_str())];
+            collision(x, name, c, q, "cylinder", &attrs);
+        }
+        Shape::Hull(t) => {
+            let file = file();
+            files.beside.push((file.clone(), obj(t).into_bytes()));
+            collision(x, name, [0.0; 3], ID, "mesh", &[("filename", &file)]);
+        }
+    }
 }
 
 #[cfg(test)]

@@ -57,8 +57,6 @@ pub fn to_usda(objects: &[Body], opts: &ExportOptions) -> Result<String, String>
     let _ = writeln!(out, "def Xform {}", quote(&root));
     let _ = writeln!(out, "{{");
     let mut used = Names::default();
-    let z = [0.0, 0.0, 1.0];
-    let id = [0.0, 0.0, 0.0, 1.0];
     for o in &prepared {
         let name = used.unique(ident(&o.name, true));
         let _ = writeln!(out, "    def Xform {}", quote(&name));
@@ -76,75 +74,81 @@ pub fn to_usda(objects: &[Body], opts: &ExportOptions) -> Result<String, String>
             None,
         );
         for (i, (kind, s)) in o.shapes.iter().enumerate() {
-            let prim = format!("{}_{i}", kind.name());
-            let (ty, api) = match s {
-                Shape::Box { .. } => ("Cube", "\"PhysicsCollisionAPI\""),
-                Shape::Sphere { .. } => ("Sphere", "\"PhysicsCollisionAPI\""),
-                Shape::Capsule { .. } => ("Capsule", "\"PhysicsCollisionAPI\""),
-                Shape::Round { .. } => ("Cylinder", "\"PhysicsCollisionAPI\""),
-                Shape::Hull(_) => (
-                    "Mesh",
-                    "\"PhysicsCollisionAPI\", \"PhysicsMeshCollisionAPI\"",
-                ),
-            };
-            let _ = writeln!(out);
-            let _ = writeln!(out, "        def {ty} {} (", quote(&prim));
-            let _ = writeln!(out, "            prepend apiSchemas = [{api}]");
-            let _ = writeln!(out, "        )");
-            let _ = writeln!(out, "        {{");
-            let ind = "            ";
-            match s {
-                Shape::Box {
-                    center,
-                    rotation,
-                    half,
-                } => {
-                    let _ = writeln!(out, "{ind}double size = 2");
-                    xform(&mut out, ind, *center, *rotation, Some(*half));
-                }
-                Shape::Sphere { center, radius } => {
-                    let _ = writeln!(out, "{ind}double radius = {}", super::engine::num(*radius));
-                    xform(&mut out, ind, *center, id, None);
-                }
-                Shape::Capsule { p0, p1, radius } => {
-                    let (c, a, h) = Shape::axis(*p0, *p1);
-                    let _ = writeln!(out, "{ind}uniform token axis = \"Z\"");
-                    let _ = writeln!(out, "{ind}double height = {}", super::engine::num(2.0 * h));
-                    let _ = writeln!(out, "{ind}double radius = {}", super::engine::num(*radius));
-                    xform(&mut out, ind, c, quat_between(z, a), None);
-                }
-                Shape::Round { p0, p1, r0, r1 } => {
-                    let (c, a, h) = Shape::axis(*p0, *p1);
-                    let _ = writeln!(out, "{ind}uniform token axis = \"Z\"");
-                    let _ = writeln!(out, "{ind}double height = {}", super::engine::num(2.0 * h));
-                    let _ = writeln!(
-                        out,
-                        "{ind}double radius = {}",
-                        super::engine::num(r0.max(*r1))
-                    );
-                    xform(&mut out, ind, c, quat_between(z, a), None);
-                }
-                Shape::Hull(t) => {
-                    let pts: Vec<String> = t.vertices.iter().map(|v| tuple(v)).collect();
-                    let counts: Vec<String> = t.faces.iter().map(|f| f.len().to_string()).collect();
-                    let idx: Vec<String> =
-                        t.faces.iter().flatten().map(|i| i.to_string()).collect();
-                    let _ = writeln!(
-                        out,
-                        "{ind}uniform token physics:approximation = \"convexHull\""
-                    );
-                    let _ = writeln!(out, "{ind}uniform token subdivisionScheme = \"none\"");
-                    let _ = writeln!(out, "{ind}point3f[] points = [{}]", pts.join(", "));
-                    let _ = writeln!(out, "{ind}int[] faceVertexCounts = [{}]", counts.join(", "));
-                    let _ = writeln!(out, "{ind}int[] faceVertexIndices = [{}]", idx.join(", "));
-                }
-            }
-            let _ = writeln!(out, "        }}");
+            collider(&mut out, &format!("{}_{i}", kind.name()), s);
         }
         let _ = writeln!(out, "    }}");
     }
     let _ = writeln!(out, "}}");
     Ok(out)
+}
+
+/// The collider prim `prim` of shape `s`, with its physics API schemas.
+fn collider(out: &mut String, prim: &str, s: &Shape) {
+    let (ty, api) = match s {
+        Shape::Box { .. } => ("Cube", "\"PhysicsCollisionAPI\""),
+        Shape::Sphere { .. } => ("Sphere", "\"PhysicsCollisionAPI\""),
+        Shape::Capsule { .. } => ("Capsule", "\"PhysicsCollisionAPI\""),
+        Shape::Round { .. } => ("Cylinder", "\"PhysicsCollisionAPI\""),
+        Shape::Hull(_) => (
+            "Mesh",
+            "\"PhysicsCollisionAPI\", \"PhysicsMeshCollisionAPI\"",
+        ),
+    };
+    let _ = writeln!(out);
+    let _ = writeln!(out, "        def {ty} {} (", quote(prim));
+    let _ = writeln!(out, "            prepend apiSchemas = [{api}]");
+    let _ = writeln!(out, "        )");
+    let _ = writeln!(out, "        {{");
+    shape_attributes(out, "            ", s);
+    let _ = writeln!(out, "        }}");
+}
+
+/// Shape `s`'s attributes and transform at indentation `ind`.
+fn shape_attributes(out: &mut String, ind: &str, s: &Shape) {
+    let z = [0.0, 0.0, 1.0];
+    let id = [0.0, 0.0, 0.0, 1.0];
+    match s {
+        Shape::Box {
+            center,
+            rotation,
+            half,
+        } => {
+            let _ = writeln!(out, "{ind}double size = 2");
+            xform(out, ind, *center, *rotation, Some(*half));
+        }
+        Shape::Sphere { center, radius } => {
+            let _ = writeln!(out, "{ind}double radius = {}", super::engine::num(*radius));
+            xform(out, ind, *center, id, None);
+        }
+        Shape::Capsule { p0, p1, radius } => {
+            let (c, a, h) = Shape::axis(*p0, *p1);
+            let _ = writeln!(out, "{ind}uniform token axis = \"Z\"");
+            let _ = writeln!(out, "{ind}double height = {}", super::engine::num(2.0 * h));
+            let _ = writeln!(out, "{ind}double radius = {}", super::engine::num(*radius));
+            xform(out, ind, c, quat_between(z, a), None);
+        }
+        Shape::Round { p0, p1, r0, r1 } => {
+            let (c, a, h) = Shape::axis(*p0, *p1);
+            let _ = writeln!(out, "{ind}uniform token axis = \"Z\"");
+            let _ = writeln!(out, "{ind}double height = {}", super::engine::num(2.0 * h));
+            let r = super::engine::num(r0.max(*r1));
+            let _ = writeln!(out, "{ind}double radius = {r}");
+            xform(out, ind, c, quat_between(z, a), None);
+        }
+        Shape::Hull(t) => {
+            let pts: Vec<String> = t.vertices.iter().map(|v| tuple(v)).collect();
+            let counts: Vec<String> = t.faces.iter().map(|f| f.len().to_string()).collect();
+            let idx: Vec<String> = t.faces.iter().flatten().map(|i| i.to_string()).collect();
+            let _ = writeln!(
+                out,
+                "{ind}uniform token physics:approximation = \"convexHull\""
+            );
+            let _ = writeln!(out, "{ind}uniform token subdivisionScheme = \"none\"");
+            let _ = writeln!(out, "{ind}point3f[] points = [{}]", pts.join(", "));
+            let _ = writeln!(out, "{ind}int[] faceVertexCounts = [{}]", counts.join(", "));
+            let _ = writeln!(out, "{ind}int[] faceVertexIndices = [{}]", idx.join(", "));
+        }
+    }
 }
 
 #[cfg(test)]

@@ -7,31 +7,24 @@
 //! Merging") by linking each cluster to its nearest clusters (`bridge.rs`), O(C log C)
 //! instead of the paper's O(C²) all pairs.
 
-use super::bridge::{nearest_pairs, BRIDGE_K};
 use super::cluster::Clusters;
 use super::cost::{Fitter, Workspace};
 use super::heap::{Candidate, Queue, RadixHeap};
-use super::lazy::{valid, Lazy, Pop};
+use super::lazy::{Lazy, Pop};
 use super::worker::{with_pricer, Pricer, PricerCounts};
-use crate::math::hull::{hull_vertices, HullWorkspace};
 use crate::primitive::Primitive;
 use crate::progress::Checkpoint;
+use pairs::{bridge, price, purge, seed_queue};
+use points::MergedPoints;
 use rayon::prelude::*;
 
-/// Pairs priced per parallel task.
-const CHUNK: usize = 1024;
+mod pairs;
+mod points;
+
 /// The loop reports progress and checks whether to stop every this many steps: a
 /// few milliseconds of a part's loop, and well under a second of the global loop's
 /// after parts of a 56M-face input (about 2 ms a merge there: large clusters).
 const CHECK_EVERY: usize = 256;
-/// Point lists up to this size are not worth reducing to their hull: fitting a few
-/// extra points costs less than the hull. The hull's vertices are a subset of the
-/// points, so the fits agree up to the hull's tolerance (docs/decisions/perf-point-reduction.md).
-const HULL_MIN: usize = 32;
-/// Stale entries [`look_ahead`] pops past to find a fresh one.
-const LOOK_PAST: usize = 8;
-/// Pairs priced per block when seeding the queue.
-const PRICE_BLOCK: usize = 1 << 16;
 /// The queue is purged of stale entries when it grows by a quarter, but never below
 /// this size (a purge is one sequential pass; the stale entries would cost memory).
 const PURGE_MIN: usize = 1 << 16;
@@ -58,7 +51,8 @@ pub struct MergeOutput {
     pub merges: usize,
     pub bridge_edges: usize,
     pub fits: FitCounts,
-    /// Merges whose points [`look_ahead`] had reduced (while a batch was priced).
+    /// Merges whose points the look-ahead had reduced while a batch was priced
+    /// (`MergedPoints::look_ahead`).
     pub ahead: usize,
     /// Every merge in order, with its place in the global order (`Scope::Traced` only).
     pub trace: Vec<Traced>,
@@ -182,54 +176,6 @@ impl std::ops::AddAssign for FitCounts {
     }
 }
 
-/// Visited-marks for deduplicating vertex unions without clearing a whole array.
-struct Stamps {
-    mark: Vec<u32>,
-    epoch: u32,
-}
-
-impl Stamps {
-    fn next(&mut self) {
-        if self.epoch == u32::MAX {
-            self.mark.iter_mut().for_each(|m| *m = 0);
-            self.epoch = 0;
-        }
-        self.epoch += 1;
-    }
-    /// True the first time `v` is seen in this epoch.
-    fn first(&mut self, v: u32) -> bool {
-        let m = &mut self.mark[v as usize];
-        let fresh = *m != self.epoch;
-        *m = self.epoch;
-        fresh
-    }
-}
-
-/// Prices pairs in parallel chunks, in place; the output order equals the input order.
-fn price(fitter: &Fitter, cl: &Clusters, pairs: &[(u32, u32)]) -> Vec<Candidate> {
-    let none = Candidate {
-        cost: f64::NAN,
-        volume: 0.0,
-        a: 0,
-        b: 0,
-        t: 0,
-        flat: false,
-    };
-    let mut out = vec![none; pairs.len()];
-    out.par_chunks_mut(CHUNK)
-        .zip(pairs.par_chunks(CHUNK))
-        .for_each_init(Workspace::default, |ws, (slots, chunk)| {
-            for (slot, &(a, b)) in slots.iter_mut().zip(chunk) {
-                if let Some((c, _)) = fitter.candidate(cl, a, b, ws) {
-                    *slot = c;
-                }
-            }
-        });
-    // Merges over the excess-volume cap were left as NaN placeholders.
-    out.retain(|c| !c.cost.is_nan());
-    out
-}
-
 /// Runs the merge loop down to the smallest target; `targets` sorted decreasing.
 pub fn run(fitter: &Fitter, cl: Clusters, targets: &[usize], go_on: Checkpoint) -> MergeOutput {
     run_with::<RadixHeap>(fitter, cl, targets, go_on)
@@ -324,165 +270,273 @@ pub(super) fn merge_part(
 /// whole input's loop logs its merges in `log`.
 fn merge_loop<Q: Queue>(
     fitter: &Fitter,
-    mut cl: Clusters,
+    cl: Clusters,
     targets: &[usize],
     go_on: Checkpoint,
     pricer: &mut Pricer,
     scope: Scope,
     log: &mut MergeLog,
 ) -> (MergeOutput, Clusters) {
-    let mut out = MergeOutput::default();
-    let mut heap = Q::default();
-    match seed_queue(fitter, &cl, &mut heap, go_on) {
-        Some(priced) => out.fits.seed += priced,
-        None => {
-            out.stopped = true;
-            return (out, cl);
-        }
+    let mut lp = Loop::<Q>::new(fitter, cl, targets, go_on, scope, log);
+    // Every adjacent pair priced into the queue (Alg. 1, line 3).
+    if !lp.seed() {
+        return lp.stopped();
     }
-    let mut purge_at = (heap.len() + heap.len() / 4).max(PURGE_MIN);
-    let mut stamps = Stamps {
-        mark: vec![0; fitter.input.mesh.vertex_count()],
-        epoch: 0,
-    };
-    let mut reducer = Reducer::default();
-    let mut lazy = Lazy::default();
-    // Entries re-priced when popped are priced one at a time, here.
-    let mut ws = Workspace::default();
-    // The points of a merge reduced ahead of its turn ([`look_ahead`]); batch buffer.
-    let mut ahead: Option<Ahead> = None;
-    let mut batch = Vec::new();
-    // The latest entry acted on, in pop order (`Scope::Traced`).
-    let mut top = Top::default();
-    let start = cl.live;
-    let last = *targets.last().expect("at least one target");
-    let mut next = 0;
-    // The greedy order's next merge, popped at a target but not free: applied after
-    // that target's snapshot.
-    let mut held: Option<Candidate> = None;
-    // Steps of the loop (a merge, or an entry re-priced or dropped when popped).
-    let mut steps = 0usize;
     loop {
-        steps += 1;
-        if steps % CHECK_EVERY == 0 && !go_on(fraction(start, cl.live, last)) {
-            out.stopped = true;
-            return (out, cl);
+        // Progress, and whether to stop, every few steps.
+        if !lp.tick() {
+            return lp.stopped();
         }
-        let reached = next < targets.len() && cl.live <= targets[next];
+        let reached = lp.reached();
         // A target's snapshot waits for free merges into plates
         // (docs/decisions/0025-free-merges-into-plates.md); the
         // queue running dry there does not bridge components first.
-        if reached && (held.is_some() || heap.is_empty()) {
-            if next == 0 {
-                log.at_first = log.merges.len();
+        if reached && (lp.held.is_some() || lp.heap.is_empty()) {
+            if !lp.snapshots(false) {
+                return lp.stopped();
             }
-            let go_on_here = || go_on(fraction(start, cl.live, last));
-            while next < targets.len() && cl.live <= targets[next] {
-                let Some(snap) = snapshot(fitter, &cl, targets[next], scope, &go_on_here) else {
-                    out.stopped = true;
-                    return (out, cl);
-                };
-                if next == 0 {
-                    keep_leaf_hulls(fitter, &cl, scope, &mut log.hulls);
-                }
-                out.snapshots.push(snap);
-                next += 1;
-            }
-            if next == targets.len() {
+            if lp.next == targets.len() {
                 break;
             }
         }
-        let c = match held.take() {
-            Some(c) => c,
-            None => match next_step(
-                fitter, &mut cl, &mut heap, &mut lazy, &mut ws, &mut out, scope,
-            ) {
-                Step::Merge(c) => c,
-                Step::Repriced(c) => {
-                    top.popped(&c);
-                    continue;
-                }
-                Step::Again => continue,
-                Step::Stop => break,
-            },
+        // The cheapest fresh merge: the one held at a target, else the queue's next
+        // (stale entries re-priced or dropped, components bridged when it runs dry).
+        let c = match lp.next_step() {
+            Step::Merge(c) => c,
+            Step::Again => continue,
+            Step::Stop => break,
         };
+        // At a target only free merges run before its snapshot.
         if reached && !(fitter.pricing.free_merges && free(&c)) {
-            held = Some(c);
+            lp.held = Some(c);
             continue;
         }
-        if scope == Scope::Traced {
-            top.popped(&c);
-            let k = top.0.unwrap_or(c);
-            out.trace.push(Traced {
-                cost: k.cost,
-                key_a: k.a,
-                key_b: k.b,
-                a: c.a,
-                b: c.b,
-                free: free(&c),
-            });
+        // A traced part records the merge with its place in the global order.
+        lp.trace(&c);
+        // Lazy deletion's stale entries dropped once the queue has grown a quarter.
+        lp.purge_if_grown();
+        // Alg. 1: the pair becomes one cluster.
+        let root = lp.merge(&c);
+        // Its pairs re-priced now, unless left to when they pop (`lazy.rs`).
+        lp.reprice(root, pricer);
+    }
+    // The targets merging stopped above (adjacency ran out): what is left.
+    match lp.snapshots(true) {
+        true => (lp.out, lp.cl),
+        false => lp.stopped(),
+    }
+}
+
+/// The merge loop's state ([`merge_loop`]): the clusters, the queue, the buffers each
+/// merge reuses, what it hands on, and how far down the targets it got.
+struct Loop<'a, Q> {
+    fitter: &'a Fitter<'a>,
+    cl: Clusters,
+    heap: Q,
+    lazy: Lazy,
+    /// Entries re-priced when popped are priced one at a time, here.
+    ws: Workspace,
+    points: MergedPoints,
+    /// The re-pricing batch, pushed into the queue in neighbour order.
+    batch: Vec<Candidate>,
+    /// The latest entry acted on, in pop order (`Scope::Traced`).
+    top: Top,
+    /// The queue's length over which stale entries are purged.
+    purge_at: usize,
+    scope: Scope,
+    out: MergeOutput,
+    log: &'a mut MergeLog,
+    targets: &'a [usize],
+    /// The next target to reach (its index in `targets`).
+    next: usize,
+    /// The greedy order's next merge, popped at a target but not free: applied after
+    /// that target's snapshot.
+    held: Option<Candidate>,
+    /// Steps of the loop (a merge, or an entry re-priced or dropped when popped).
+    steps: usize,
+    /// Live clusters at the start, and the last target (progress).
+    start: usize,
+    last: usize,
+    go_on: Checkpoint<'a>,
+}
+
+impl<'a, Q: Queue> Loop<'a, Q> {
+    fn new(
+        fitter: &'a Fitter<'a>,
+        cl: Clusters,
+        targets: &'a [usize],
+        go_on: Checkpoint<'a>,
+        scope: Scope,
+        log: &'a mut MergeLog,
+    ) -> Self {
+        Loop {
+            points: MergedPoints::new(fitter.input.mesh.vertex_count()),
+            start: cl.live,
+            last: *targets.last().expect("at least one target"),
+            fitter,
+            cl,
+            heap: Q::default(),
+            lazy: Lazy::default(),
+            ws: Workspace::default(),
+            batch: Vec::new(),
+            top: Top::default(),
+            purge_at: 0,
+            scope,
+            out: MergeOutput::default(),
+            log,
+            targets,
+            next: 0,
+            held: None,
+            steps: 0,
+            go_on,
         }
-        if heap.len() > purge_at {
-            purge(fitter, &cl, &mut lazy, &mut heap);
-            purge_at = (heap.len() + heap.len() / 4).max(PURGE_MIN);
-        }
-        // Fresh, so neither cluster changed since it was priced: a look-ahead's points hold.
-        let verts = match ahead.take_if(|k| k.c == c) {
-            Some(k) => {
-                out.ahead += 1;
-                k.verts
-            }
-            None => merged_points(fitter, &cl, c.a, c.b, &mut stamps, &mut reducer),
+    }
+
+    /// Prices every adjacent pair into the queue; `false` when told to stop.
+    fn seed(&mut self) -> bool {
+        let Some(priced) = seed_queue(self.fitter, &self.cl, &mut self.heap, self.go_on) else {
+            return false;
         };
-        let root = cl.merge(c.a, c.b, verts, c.volume);
-        out.merges += 1;
-        if scope.whole() {
-            log.merges.push((cl.head(c.a), cl.head(c.b)));
-            keep_hull(
-                fitter,
-                &cl,
-                root,
-                scope,
-                log.merges.len() - 1,
-                &mut log.hulls,
-            );
+        self.out.fits.seed += priced;
+        self.purge_at = (self.heap.len() + self.heap.len() / 4).max(PURGE_MIN);
+        true
+    }
+
+    /// Counts a step; every [`CHECK_EVERY`] steps, reports progress and asks whether
+    /// to go on.
+    fn tick(&mut self) -> bool {
+        self.steps += 1;
+        self.steps % CHECK_EVERY != 0 || (self.go_on)(fraction(self.start, self.cl.live, self.last))
+    }
+
+    /// The live clusters are down to the next target.
+    fn reached(&self) -> bool {
+        self.next < self.targets.len() && self.cl.live <= self.targets[self.next]
+    }
+
+    /// The output so far, of a loop told to stop.
+    fn stopped(mut self) -> (MergeOutput, Clusters) {
+        self.out.stopped = true;
+        (self.out, self.cl)
+    }
+
+    /// Snapshots of the targets reached (`all`: of every target left); `false` when
+    /// told to stop while fitting them.
+    fn snapshots(&mut self, all: bool) -> bool {
+        if self.next == 0 {
+            self.log.at_first = self.log.merges.len();
         }
-        if !defer(fitter, &mut cl, root) {
-            let nbrs = cl.resolved_neighbors(root);
-            // While the worker prices the batch, reduce the points of the likely next
-            // merge (the serial part of the next step).
-            let meanwhile = || {
-                look_ahead(
-                    fitter,
-                    &cl,
-                    &mut heap,
-                    &mut ahead,
-                    &mut stamps,
-                    &mut reducer,
-                )
+        let (go_on, done) = (self.go_on, fraction(self.start, self.cl.live, self.last));
+        let go_on_here = || go_on(done);
+        while self.next < self.targets.len() && (all || self.reached()) {
+            let target = self.targets[self.next];
+            let fitter = self.fitter;
+            let Some(snap) = snapshot(fitter, &self.cl, target, self.scope, &go_on_here) else {
+                return false;
             };
-            pricer.price(&cl, root, &nbrs, meanwhile, |c| batch.push(c));
-            out.fits.eager += nbrs.len();
-            cl.mark_repriced(root);
-            batch.drain(..).for_each(|c| heap.push(c));
+            if self.next == 0 {
+                keep_leaf_hulls(fitter, &self.cl, self.scope, &mut self.log.hulls);
+            }
+            self.out.snapshots.push(snap);
+            self.next += 1;
         }
+        true
     }
-    if next == 0 {
-        log.at_first = log.merges.len();
-    }
-    let go_on_here = || go_on(fraction(start, cl.live, last));
-    while next < targets.len() {
-        let Some(snap) = snapshot(fitter, &cl, targets[next], scope, &go_on_here) else {
-            out.stopped = true;
-            return (out, cl);
+
+    /// The merge held at a target, else pops the queue's next entry and classifies it
+    /// (lazy deletion, `lazy.rs`); when the queue runs dry, bridges components (§3.4) —
+    /// except in a part, which just stops.
+    fn next_step(&mut self) -> Step {
+        if let Some(c) = self.held.take() {
+            return Step::Merge(c);
+        }
+        let (fitter, cl) = (self.fitter, &mut self.cl);
+        let Some(c) = self.heap.pop() else {
+            if !self.scope.whole() {
+                return Step::Stop;
+            }
+            let bridged = bridge(fitter, cl);
+            self.out.bridge_edges += bridged.len();
+            self.out.fits.seed += bridged.len();
+            let fresh = price(fitter, cl, &bridged);
+            if fresh.is_empty() {
+                return Step::Stop;
+            }
+            fresh.into_iter().for_each(|c| self.heap.push(c));
+            return Step::Again;
         };
-        if next == 0 {
-            keep_leaf_hulls(fitter, &cl, scope, &mut log.hulls);
+        match self.lazy.classify(cl, &c) {
+            Pop::Fresh => Step::Merge(c),
+            Pop::Drop => Step::Again,
+            Pop::Reprice(a, b) => {
+                self.out.fits.lazy += 1;
+                if let Some((fresh, _)) = fitter.candidate(cl, a, b, &mut self.ws) {
+                    self.heap.push(fresh);
+                }
+                self.top.popped(&c);
+                Step::Again
+            }
         }
-        out.snapshots.push(snap);
-        next += 1;
     }
-    (out, cl)
+
+    /// Records merge `c` with its key in the global order, in a traced part ([`Traced`]).
+    fn trace(&mut self, c: &Candidate) {
+        if self.scope != Scope::Traced {
+            return;
+        }
+        self.top.popped(c);
+        let k = self.top.0.unwrap_or(*c);
+        self.out.trace.push(Traced {
+            cost: k.cost,
+            key_a: k.a,
+            key_b: k.b,
+            a: c.a,
+            b: c.b,
+            free: free(c),
+        });
+    }
+
+    /// Drops the queue's stale entries once it has grown by a quarter ([`purge`]).
+    fn purge_if_grown(&mut self) {
+        if self.heap.len() > self.purge_at {
+            purge(self.fitter, &self.cl, &mut self.lazy, &mut self.heap);
+            self.purge_at = (self.heap.len() + self.heap.len() / 4).max(PURGE_MIN);
+        }
+    }
+
+    /// Merges fresh entry `c`'s clusters on their merged points (reduced ahead of
+    /// its turn if the look-ahead held it), logging the merge in the whole input's loop;
+    /// returns the merged cluster.
+    fn merge(&mut self, c: &Candidate) -> u32 {
+        let (verts, ahead) = self.points.of(self.fitter, &self.cl, c);
+        self.out.ahead += ahead as usize;
+        let root = self.cl.merge(c.a, c.b, verts, c.volume);
+        self.out.merges += 1;
+        if self.scope.whole() {
+            let log = &mut *self.log;
+            log.merges.push((self.cl.head(c.a), self.cl.head(c.b)));
+            let at = log.merges.len() - 1;
+            keep_hull(self.fitter, &self.cl, root, self.scope, at, &mut log.hulls);
+        }
+        root
+    }
+
+    /// Re-prices `root`'s pairs with `pricer` unless they are deferred ([`defer`]);
+    /// meanwhile, reduces the points of the likely next merge (the serial part of the
+    /// next step).
+    fn reprice(&mut self, root: u32, pricer: &mut Pricer) {
+        if defer(self.fitter, &mut self.cl, root) {
+            return;
+        }
+        let nbrs = self.cl.resolved_neighbors(root);
+        let (fitter, cl, heap) = (self.fitter, &self.cl, &mut self.heap);
+        let (points, batch) = (&mut self.points, &mut self.batch);
+        let meanwhile = || points.look_ahead(fitter, cl, heap);
+        pricer.price(cl, root, &nbrs, meanwhile, |c| batch.push(c));
+        self.out.fits.eager += nbrs.len();
+        self.cl.mark_repriced(root);
+        self.batch.drain(..).for_each(|c| self.heap.push(c));
+    }
 }
 
 /// The points of the live clusters, the first snapshot's (the merge tree's leaves),
@@ -528,104 +582,19 @@ pub fn free(c: &Candidate) -> bool {
     c.flat && c.cost <= 0.0
 }
 
-/// What the merge loop does next ([`next_step`]).
+/// What the merge loop does next ([`Loop::next_step`]).
 enum Step {
     /// Apply this fresh merge.
     Merge(Candidate),
-    /// This stale entry was re-priced: pop again.
-    Repriced(Candidate),
-    /// A stale entry was dropped, or components were bridged: pop again.
+    /// A stale entry was re-priced or dropped, or components were bridged: pop again.
     Again,
     /// Nothing left to merge (a part's adjacency, or the whole input's after bridging).
     Stop,
 }
 
-/// Pops the queue's next entry and classifies it (lazy deletion, `lazy.rs`); when the
-/// queue runs dry, bridges components (§3.4) — except in a part, which just stops.
-fn next_step<Q: Queue>(
-    fitter: &Fitter,
-    cl: &mut Clusters,
-    heap: &mut Q,
-    lazy: &mut Lazy,
-    ws: &mut Workspace,
-    out: &mut MergeOutput,
-    scope: Scope,
-) -> Step {
-    let Some(c) = heap.pop() else {
-        if !scope.whole() {
-            return Step::Stop;
-        }
-        let bridged = bridge(fitter, cl);
-        out.bridge_edges += bridged.len();
-        out.fits.seed += bridged.len();
-        let fresh = price(fitter, cl, &bridged);
-        if fresh.is_empty() {
-            return Step::Stop;
-        }
-        fresh.into_iter().for_each(|c| heap.push(c));
-        return Step::Again;
-    };
-    match lazy.classify(cl, &c) {
-        Pop::Fresh => Step::Merge(c),
-        Pop::Drop => Step::Again,
-        Pop::Reprice(a, b) => {
-            out.fits.lazy += 1;
-            if let Some((fresh, _)) = fitter.candidate(cl, a, b, ws) {
-                heap.push(fresh);
-            }
-            Step::Repriced(c)
-        }
-    }
-}
-
-/// Prices the input's adjacent pairs into `heap` in blocks, so that only one block of
-/// pairs and candidates exists outside the queue; returns how many were priced.
 /// The loop's progress: merges done of those from `start` clusters down to `last`.
 fn fraction(start: usize, live: usize, last: usize) -> f64 {
     (start - live) as f64 / (start - last.min(start)).max(1) as f64
-}
-
-/// `None` when `go_on` (asked between blocks, reporting no progress yet) says stop.
-fn seed_queue<Q: Queue>(
-    fitter: &Fitter,
-    cl: &Clusters,
-    heap: &mut Q,
-    go_on: Checkpoint,
-) -> Option<usize> {
-    let (n, mut priced) = (cl.len() as u32, 0);
-    let mut block = Vec::with_capacity(PRICE_BLOCK);
-    for a in 0..n {
-        // Roots' neighbour lists: the input's adjacency, or (phase 2 of
-        // `Params::partitions`) the resolved adjacency between groups of faces, or
-        // (after `merge::components`) whole components' lists as their loops left them,
-        // whose merged-away ids name the component itself.
-        let nbrs = if cl.is_root(a) { cl.neighbors(a) } else { &[] };
-        let pair = |&b: &u32| b > a && cl.is_root(b);
-        block.extend(nbrs.iter().copied().filter(|b| pair(b)).map(|b| (a, b)));
-        if block.len() >= PRICE_BLOCK || a + 1 == n {
-            priced += block.len();
-            price(fitter, cl, &block)
-                .into_iter()
-                .for_each(|c| heap.push(c));
-            block.clear();
-            if !go_on(0.0) {
-                return None;
-            }
-        }
-    }
-    Some(priced)
-}
-
-/// Drops stale entries: lazy deletion's would otherwise outnumber the live pairs many
-/// times over (memory); dropping them keeps the order unchanged. Deferred pairs'
-/// entries are kept: they are the pairs' only keys.
-fn purge<Q: Queue>(fitter: &Fitter, cl: &Clusters, lazy: &mut Lazy, heap: &mut Q) {
-    if fitter.pricing.defer_degree == u32::MAX {
-        heap.retain(|c| valid(cl, c));
-    } else {
-        heap.retain(|c| lazy.keep(cl, c));
-        lazy.prune(cl);
-    }
 }
 
 /// Whether the merge that made `root` leaves its pairs to [`Lazy`] instead of
@@ -638,123 +607,6 @@ fn defer(fitter: &Fitter, cl: &mut Clusters, root: u32) -> bool {
     }
     cl.compact_neighbors(root);
     cl.neighbor_len(root) >= limit
-}
-
-/// Buffers for reducing a merged cluster's points to its hull vertices.
-#[derive(Default)]
-struct Reducer {
-    x: Vec<f64>,
-    y: Vec<f64>,
-    z: Vec<f64>,
-    keep: Vec<u32>,
-    hull: HullWorkspace,
-}
-
-/// The points to price a merged cluster by: the distinct vertices of both clusters'
-/// point lists, reduced to the vertices of their convex hull. Every fit maximises a
-/// convex function (or minimises a concave one) over the points, so the hull vertices
-/// give the same primitive as all points (docs/decisions/0010).
-fn merged_points(
-    fitter: &Fitter,
-    cl: &Clusters,
-    a: u32,
-    b: u32,
-    st: &mut Stamps,
-    r: &mut Reducer,
-) -> Vec<u32> {
-    st.next();
-    let (va, vb) = (fitter.verts(cl, a), fitter.verts(cl, b));
-    let mut out = Vec::with_capacity(va.len() + vb.len());
-    out.extend(va.iter().chain(vb).copied().filter(|&v| st.first(v)));
-    if out.len() <= HULL_MIN {
-        return out;
-    }
-    r.x.clear();
-    r.y.clear();
-    r.z.clear();
-    for &v in &out {
-        let p = fitter.input.mesh.pos(v);
-        r.x.push(p[0]);
-        r.y.push(p[1]);
-        r.z.push(p[2]);
-    }
-    hull_vertices(
-        &r.x,
-        &r.y,
-        &r.z,
-        fitter.pricing.hull_eps,
-        &mut r.hull,
-        &mut r.keep,
-    );
-    r.keep.iter().map(|&i| out[i as usize]).collect()
-}
-
-/// A fresh queue entry and its merged point list, reduced before its turn.
-struct Ahead {
-    c: Candidate,
-    verts: Vec<u32>,
-}
-
-/// Reduces the merged points of the queue's first fresh entry into `ahead` (kept if
-/// it already holds that entry) while a re-pricing batch is out: the serial part of
-/// the next merge, done while the worker prices. Entries are only looked at: every one
-/// popped here goes back, so the queue, and with it the merge order, stays exactly as
-/// without the look-ahead. The entry is often the next merge
-/// (docs/decisions/perf-repricing-worker-and-look-ahead.md);
-/// otherwise its points wait until it is popped still fresh (neither cluster changed
-/// since it was priced, so the same points) or another entry takes its place.
-fn look_ahead<Q: Queue>(
-    fitter: &Fitter,
-    cl: &Clusters,
-    heap: &mut Q,
-    ahead: &mut Option<Ahead>,
-    st: &mut Stamps,
-    r: &mut Reducer,
-) {
-    // Stale entries on top (often the merged cluster's old pairs) are passed over.
-    let mut seen = [None; LOOK_PAST];
-    let mut found = None;
-    for slot in &mut seen {
-        let Some(c) = heap.pop() else { break };
-        *slot = Some(c);
-        if valid(cl, &c) {
-            found = Some(c);
-            break;
-        }
-    }
-    seen.into_iter().flatten().for_each(|c| heap.push(c));
-    let Some(c) = found else { return };
-    if ahead.as_ref().is_some_and(|k| k.c == c) {
-        return;
-    }
-    let verts = merged_points(fitter, cl, c.a, c.b, st, r);
-    *ahead = Some(Ahead { c, verts });
-}
-
-/// Links every live cluster to its nearest clusters by centroid (`bridge.rs`).
-fn bridge(fitter: &Fitter, cl: &mut Clusters) -> Vec<(u32, u32)> {
-    let roots = cl.roots();
-    let centroids: Vec<[f64; 3]> = roots.iter().map(|&r| centroid(fitter, cl, r)).collect();
-    let pairs: Vec<(u32, u32)> = nearest_pairs(&centroids, BRIDGE_K)
-        .into_iter()
-        .map(|(i, j)| (roots[i as usize], roots[j as usize]))
-        .collect();
-    // Roots increase with their index, so the pairs stay sorted and distinct.
-    debug_assert!(pairs.windows(2).all(|w| w[0] < w[1]));
-    for &(a, b) in &pairs {
-        cl.link(a, b);
-    }
-    pairs
-}
-
-fn centroid(fitter: &Fitter, cl: &Clusters, c: u32) -> [f64; 3] {
-    let vs = fitter.verts(cl, c);
-    let mut s = [0.0; 3];
-    for &v in vs {
-        let p = fitter.input.mesh.pos(v);
-        (0..3).for_each(|k| s[k] += p[k]);
-    }
-    s.map(|x| x / vs.len().max(1) as f64)
 }
 
 /// Fits every live cluster (in root order) on all of its faces' vertices, for output

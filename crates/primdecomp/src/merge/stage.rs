@@ -5,7 +5,7 @@
 use super::components;
 use super::partition;
 use super::rim::FaceAdjacency;
-use super::{Clusters, Fitter, MergeLog, MergeOutput};
+use super::{Clusters, Fitter, MergeLog, MergeOutput, Snapshot};
 use crate::input::mesh::Mesh;
 use crate::input::orient;
 use crate::math::Sym3;
@@ -232,6 +232,83 @@ pub(crate) fn merge<K: Keep>(
     go_on: Checkpoint,
     laps: &mut PhaseTimes,
 ) -> (MergeOutput, K::Log) {
+    let last = *targets.last().expect("validated: one target or more");
+    let total = fitter.input.mesh.face_count().saturating_sub(last).max(1) as f64;
+    let merged_so_far = |m: usize| go_on(m as f64 / total);
+    let from_faces = !matches!(first, FirstPhase::Parts { .. });
+    // Where the global loop starts: one cluster per face, or after spatial parts or
+    // whole components were merged first.
+    let started = match first {
+        FirstPhase::Faces => Some(one_per_face(input)),
+        FirstPhase::Parts { parts, target } => {
+            after_parts(fitter, input, parts, target, stats, laps, &merged_so_far)
+        }
+        FirstPhase::Components(comps) => {
+            // The merge tree needs every merge traced, whatever the targets (`Keep`).
+            let every = keep.traces_every_merge();
+            after_components(
+                fitter,
+                input,
+                comps,
+                targets,
+                every,
+                stats,
+                laps,
+                &merged_so_far,
+            )
+        }
+    };
+    let Some((clusters, early, replayed)) = started else {
+        return (MergeOutput::stopped(), K::Log::default());
+    };
+    let Some(clusters) = clusters else {
+        // Every target reached: the output holds the replayed merges only.
+        let out = MergeOutput {
+            snapshots: early,
+            ..MergeOutput::default()
+        };
+        return (out, K::join(replayed, K::Log::default(), true));
+    };
+    // The global loop through the targets left, its progress counted on from the first
+    // phase's merges.
+    let done = stats.merges as f64;
+    let rest = clusters.live.saturating_sub(last) as f64;
+    let phase2 = |f: f64| go_on((done + f * rest) / total);
+    let (mut out, log) = keep.run(fitter, clusters, &targets[early.len()..], &phase2);
+    let log = K::join(replayed, log, from_faces);
+    out.snapshots.splice(0..0, early);
+    add_loop(stats, &out);
+    (out, log)
+}
+
+/// Where the first phase leaves the merge stage: the clusters the global loop goes on
+/// from (`None`: every target was reached), the snapshots of the targets it reached,
+/// and every merge the replayed components did after them, in the global order.
+type Started = (Option<Clusters>, Vec<Snapshot>, Vec<(u32, u32)>);
+
+/// Alg. 1 as is: one cluster per face.
+fn one_per_face(input: MergeInput) -> Started {
+    let MergeInput {
+        q, volumes, lists, ..
+    } = input;
+    (
+        Some(Clusters::with_lists(q, volumes, lists)),
+        Vec::new(),
+        Vec::new(),
+    )
+}
+
+/// Spatial parts merged in parallel down to their share of `target` first, then one
+/// cluster per group; `None` when told to stop.
+fn after_parts(
+    fitter: &Fitter,
+    input: MergeInput,
+    parts: usize,
+    target: usize,
+    stats: &mut Stats,
+    laps: &mut PhaseTimes,
+    merged_so_far: &(dyn Fn(usize) -> bool + Sync),
+) -> Option<Started> {
     let MergeInput {
         q,
         volumes,
@@ -239,92 +316,82 @@ pub(crate) fn merge<K: Keep>(
         lists,
         tangent_eps,
     } = input;
-    let last = *targets.last().expect("validated: one target or more");
-    let total = fitter.input.mesh.face_count().saturating_sub(last).max(1) as f64;
-    let merged_so_far = |m: usize| go_on(m as f64 / total);
-    // Every merge the replayed components did, in the global order.
-    let mut components_log = Vec::new();
-    let from_faces = !matches!(first, FirstPhase::Parts { .. });
-    let (clusters, early) = match first {
-        FirstPhase::Faces => (Some(Clusters::with_lists(q, volumes, lists)), Vec::new()),
-        FirstPhase::Parts { parts, target } => {
-            let p1 = laps.time("partitions", || {
-                let faces = partition::FaceData::PerPart {
-                    tangent_eps,
-                    lists: &lists,
-                };
-                partition::merge_parts(fitter, faces, target, parts, &merged_so_far)
-            });
-            stats.merges = p1.merges;
-            add_fits(stats, p1.fits);
-            if p1.stopped {
-                return (MergeOutput::stopped(), K::Log::default());
-            }
-            // Phase 2 starts from one cluster per group (linear in the faces). The
-            // faces' pairs, operators and volumes are done with: the groups hold theirs.
-            drop((pairs, q, volumes));
-            let so_far = stats.merges;
-            let faces = fitter.input.mesh.face_count();
-            let clusters = laps.time("regroup", || {
-                partition::group_clusters(p1, faces, &lists, &|_| merged_so_far(so_far))
-            });
-            let Some(clusters) = clusters else {
-                return (MergeOutput::stopped(), K::Log::default());
-            };
-            (Some(clusters), Vec::new())
-        }
-        FirstPhase::Components(comps) => {
-            let count = comps.len();
-            // The merge tree needs every merge traced, whatever the targets (`Keep`).
-            let trace_from = if keep.traces_every_merge() {
-                usize::MAX
-            } else {
-                targets[0]
-            };
-            let p1 = laps.time("components", || {
-                let (q, v, p) = (&q, &volumes, &pairs);
-                components::merge_components(fitter, q, v, p, comps, trace_from, &merged_so_far)
-            });
-            stats.merges = p1.merges;
-            add_fits(stats, p1.fits);
-            if p1.stopped {
-                return (MergeOutput::stopped(), K::Log::default());
-            }
-            let (early, replayed, after) =
-                components::snapshots(fitter, &p1, &q, &volumes, &pairs, targets, count);
-            components_log = after;
-            if early.len() == targets.len() {
-                // Every target reached: the output holds the replayed merges only.
-                (stats.merges, stats.merges_past) = (replayed, p1.merges - replayed);
-                (None, early)
-            } else {
-                // The global loop goes on to the targets below the component count.
-                let so_far = stats.merges;
-                match partition::clusters(p1, q, volumes, lists, &|_| merged_so_far(so_far)) {
-                    Some(cl) => (Some(cl), early),
-                    None => return (MergeOutput::stopped(), K::Log::default()),
-                }
-            }
-        }
-    };
-    let Some(clusters) = clusters else {
-        let out = MergeOutput {
-            snapshots: early,
-            ..MergeOutput::default()
+    let p1 = laps.time("partitions", || {
+        let faces = partition::FaceData::PerPart {
+            tangent_eps,
+            lists: &lists,
         };
-        return (out, K::join(components_log, K::Log::default(), true));
+        partition::merge_parts(fitter, faces, target, parts, merged_so_far)
+    });
+    stats.merges = p1.merges;
+    add_fits(stats, p1.fits);
+    if p1.stopped {
+        return None;
+    }
+    // Phase 2 starts from one cluster per group (linear in the faces). The
+    // faces' pairs, operators and volumes are done with: the groups hold theirs.
+    drop((pairs, q, volumes));
+    let so_far = stats.merges;
+    let faces = fitter.input.mesh.face_count();
+    let clusters = laps.time("regroup", || {
+        partition::group_clusters(p1, faces, &lists, &|_| merged_so_far(so_far))
+    })?;
+    Some((Some(clusters), Vec::new(), Vec::new()))
+}
+
+/// Each connected component merged whole first (every merge traced when
+/// `trace_every`, else from the first target on), replayed in the global order through
+/// the targets it reaches; `None` when told to stop.
+#[allow(clippy::too_many_arguments)]
+fn after_components(
+    fitter: &Fitter,
+    input: MergeInput,
+    comps: Vec<Vec<u32>>,
+    targets: &[usize],
+    trace_every: bool,
+    stats: &mut Stats,
+    laps: &mut PhaseTimes,
+    merged_so_far: &(dyn Fn(usize) -> bool + Sync),
+) -> Option<Started> {
+    let MergeInput {
+        q,
+        volumes,
+        pairs,
+        lists,
+        ..
+    } = input;
+    let count = comps.len();
+    let trace_from = if trace_every { usize::MAX } else { targets[0] };
+    let p1 = laps.time("components", || {
+        let (q, v, p) = (&q, &volumes, &pairs);
+        components::merge_components(fitter, q, v, p, comps, trace_from, merged_so_far)
+    });
+    stats.merges = p1.merges;
+    add_fits(stats, p1.fits);
+    if p1.stopped {
+        return None;
+    }
+    let (early, replayed, components_log) =
+        components::snapshots(fitter, &p1, &q, &volumes, &pairs, targets, count);
+    let clusters = if early.len() == targets.len() {
+        // Every target reached: the output holds the replayed merges only.
+        (stats.merges, stats.merges_past) = (replayed, p1.merges - replayed);
+        None
+    } else {
+        // The global loop goes on to the targets below the component count.
+        let so_far = stats.merges;
+        let go_on = |_: f64| merged_so_far(so_far);
+        Some(partition::clusters(p1, q, volumes, lists, &go_on)?)
     };
-    let done = stats.merges as f64;
-    let rest = clusters.live.saturating_sub(last) as f64;
-    let phase2 = |f: f64| go_on((done + f * rest) / total);
-    let (mut out, log) = keep.run(fitter, clusters, &targets[early.len()..], &phase2);
-    let log = K::join(components_log, log, from_faces);
-    out.snapshots.splice(0..0, early);
+    Some((clusters, early, components_log))
+}
+
+/// Adds the global loop's counts to the stage's.
+fn add_loop(stats: &mut Stats, out: &MergeOutput) {
     stats.bridge_edges = out.bridge_edges;
     stats.merges += out.merges;
     stats.merges_ahead += out.ahead;
     add_fits(stats, out.fits);
-    (out, log)
 }
 
 pub(crate) fn add_fits(stats: &mut Stats, fits: crate::merge::FitCounts) {

@@ -3,7 +3,8 @@
 //! public API: the 3-vector helpers ([`V3`], [`add`], [`dot`], …), the conversions
 //! between rotation axes and the unit quaternions the JSON stores, symmetric 3×3
 //! matrices, the branchless 3×3 symmetric eigen-solver (McAdams et al. 2011,
-//! §3.1–3.2), the 3D convex hull, convex polygon clipping and a BVH over triangles.
+//! §3.1–3.2), the 3D convex hull, convex polygon clipping, a BVH over triangles and
+//! the distinct ids of a long list in checked steps.
 //!
 //! ```
 //! use primdecomp_math::{cross, dot, norm, sub};
@@ -21,6 +22,7 @@
 pub mod bvh;
 pub mod eigen3;
 pub mod hull;
+pub mod marks;
 mod number;
 pub mod polygon;
 pub mod quat;

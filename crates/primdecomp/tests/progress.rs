@@ -156,3 +156,35 @@ fn a_cut_stops_at_its_next_split() {
         .filter(|s| s.0 == Stage::Postprocess && s.1 == 1.0);
     assert_eq!(ends.count(), 0, "{seen:?}");
 }
+
+/// Post-processing asks as it goes, before each primitive's hosts are found (a
+/// level's primitives hold every face: one step over them all was seconds long at
+/// tens of millions of faces): after the cut has ended (at 1), the stage reports 1
+/// at each ask, more often than the level has primitives; cancelled at its first
+/// ask, the run returns `Cancelled` after a few more reports.
+#[test]
+fn post_processing_asks_before_each_primitive() {
+    let mesh = sphere(60, 100);
+    let params = Params::default();
+    let r = recorder(|_, _| false);
+    let dec = decompose_with(&mesh, &params, &r).expect("runs");
+    let prims: usize = dec.levels.iter().map(|l| l.primitives.len()).sum();
+    let seen = r.seen.into_inner().unwrap();
+    let ends = |s: &&(Stage, f64, bool)| s.0 == Stage::Postprocess && s.1 == 1.0;
+    // The cut's end, post-processing's and the distances' are three of them.
+    let ones = seen.iter().filter(ends).count();
+    assert!(
+        ones >= 3 + prims,
+        "{ones} reports at 1 for {prims} primitives"
+    );
+    let at = std::sync::atomic::AtomicUsize::new(0);
+    let r = recorder(|s, f| s == Stage::Postprocess && f == 1.0 && at.fetch_add(1, Relaxed) == 1);
+    let run = decompose_with(&mesh, &params, &r);
+    assert!(
+        matches!(run, Err(Error::Cancelled)),
+        "post-processing ran to its end"
+    );
+    let seen = r.seen.into_inner().unwrap();
+    let after = seen.iter().filter(|s| s.2).count();
+    assert!(after <= 5, "{after} reports after the cancel: {seen:?}");
+}

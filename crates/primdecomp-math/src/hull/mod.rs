@@ -89,6 +89,10 @@ pub struct HullWorkspace {
     chain: Vec<u32>,
     epoch: u32,
     tol: f64,
+    /// Points tested in Quickhull's loop since the last ask ([`hull_vertices_checked`]).
+    work: u64,
+    /// The last reduction was told to stop.
+    stopped: bool,
 }
 
 impl std::fmt::Debug for HullWorkspace {
@@ -111,16 +115,50 @@ pub fn hull_vertices(
     ws: &mut HullWorkspace,
     out: &mut Vec<u32>,
 ) {
+    hull_vertices_checked(x, y, z, eps, ws, out, &|| true);
+}
+
+/// Points of a cloud, at least, whose reduction asks `go_on` between its passes and
+/// every [`WORK_PER_CHECK`] points tested in its main loop (a cloud of millions
+/// of points is otherwise one step of a second or more).
+const CHECKED_FROM: usize = 1 << 16;
+
+/// Points tested against faces between two asks of `go_on` (milliseconds).
+const WORK_PER_CHECK: u64 = 1 << 18;
+
+/// [`hull_vertices`], asking `go_on` between the passes over a cloud of
+/// [`CHECKED_FROM`] points or more and every [`WORK_PER_CHECK`] points tested in
+/// Quickhull's loop (a smaller cloud is never asked): the same indices, or `false`
+/// as soon as it said stop (then `out` holds nothing to use).
+pub fn hull_vertices_checked(
+    x: &[f64],
+    y: &[f64],
+    z: &[f64],
+    eps: f64,
+    ws: &mut HullWorkspace,
+    out: &mut Vec<u32>,
+    go_on: &dyn Fn() -> bool,
+) -> bool {
     out.clear();
     let n = x.len().min(y.len()).min(z.len());
+    ws.stopped = false;
+    ws.work = 0;
+    if n >= CHECKED_FROM && !go_on() {
+        return false;
+    }
     if n <= 4 || n >= (u32::MAX / 2) as usize || !ws.load(x, y, z, n, eps) {
         out.extend(0..n as u32);
-        return;
+        return true;
     }
-    if ws.reduce(out).is_none() {
+    let ask = || n < CHECKED_FROM || go_on();
+    if ws.reduce(out, &ask).is_none() {
         out.clear();
+        if ws.stopped {
+            return false;
+        }
         out.extend(0..n as u32);
     }
+    true
 }
 
 /// Unit normal and offset of triangle `p q r` (counter-clockwise seen from the
@@ -189,7 +227,9 @@ impl HullWorkspace {
     }
 
     /// Degeneracy cascade (point / segment / polygon) and then Quickhull.
-    fn reduce(&mut self, out: &mut Vec<u32>) -> Option<()> {
+    /// `None` on numerical trouble, or with `stopped` set when `go_on` said stop.
+    fn reduce(&mut self, out: &mut Vec<u32>, go_on: &dyn Fn() -> bool) -> Option<()> {
+        self.asked(go_on)?;
         let pts = &self.pts;
         let mut i0 = 0;
         for i in 1..pts.len() {
@@ -199,12 +239,14 @@ impl HullWorkspace {
             }
         }
         let p0 = pts[i0];
+        self.asked(go_on)?;
         let (i1, d1) = self.argmax(|p| norm2(sub(p, p0)));
         if d1.sqrt() <= self.tol {
             out.push(i0 as u32);
             return Some(());
         }
         let u = scale(sub(self.pts[i1 as usize], p0), 1.0 / d1.sqrt());
+        self.asked(go_on)?;
         let (i2, d2) = self.argmax(|p| norm2(cross(sub(p, p0), u)));
         if d2.sqrt() <= self.tol {
             let (lo, _) = self.argmax(|p| -dot(p, u));
@@ -214,6 +256,7 @@ impl HullWorkspace {
             return Some(());
         }
         let (nrm, off) = plane(p0, self.pts[i1 as usize], self.pts[i2 as usize], 0.0)?;
+        self.asked(go_on)?;
         let (i3, d3) = self.argmax(|p| (dot(nrm, p) - off).abs());
         if d3 <= 0.75 * self.tol {
             self.hull_2d(u, nrm, out);
@@ -224,8 +267,10 @@ impl HullWorkspace {
             scale(cross(nrm, u), 1.0 / d2.sqrt()),
             scale(nrm, 1.0 / d3),
         ];
+        self.asked(go_on)?;
         self.normalize(p0, frame, d1.sqrt());
-        self.hull_3d([i0 as u32, i1, i2, i3])?;
+        self.asked(go_on)?;
+        self.hull_3d([i0 as u32, i1, i2, i3], go_on)?;
         self.collect(out);
         Some(())
     }
@@ -372,8 +417,9 @@ impl HullWorkspace {
     }
 
     /// Quickhull main loop.
-    fn hull_3d(&mut self, s: [u32; 4]) -> Option<()> {
+    fn hull_3d(&mut self, s: [u32; 4], go_on: &dyn Fn() -> bool) -> Option<()> {
         self.init_simplex(s)?;
+        self.asked(go_on)?;
         let n = self.pts.len();
         let max_faces = 32 * n + 64;
         let mut iters = 0;
@@ -393,8 +439,18 @@ impl HullWorkspace {
             }
             self.build_cone(face.far)?;
             self.reassign(face.far);
+            if self.work >= WORK_PER_CHECK {
+                self.work = 0;
+                self.asked(go_on)?;
+            }
         }
         Some(())
+    }
+
+    /// `None`, `stopped` set, when `go_on` says stop.
+    fn asked(&mut self, go_on: &dyn Fn() -> bool) -> Option<()> {
+        self.stopped = !go_on();
+        (!self.stopped).then_some(())
     }
 
     /// DFS over the faces visible from `eye`, starting at `f0`; fills
@@ -497,6 +553,7 @@ impl HullWorkspace {
             self.faces[f].head = NONE;
             while p != NONE {
                 let nx = self.next[p as usize];
+                self.work += 1;
                 if p != eye {
                     for j in 0..self.new_faces.len() {
                         let nf = self.new_faces[j];

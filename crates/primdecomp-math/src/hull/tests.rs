@@ -354,3 +354,43 @@ proptest! {
         check_support(&p, &out, 10.0 * eps, 64);
     }
 }
+
+/// A cloud of a hundred thousand points asks between its passes and in Quickhull's
+/// loop, and gives the indices the unchecked reduction gives; told to stop at any
+/// of its asks, it stops there and says so.
+#[test]
+fn a_large_reduction_asks_as_it_goes_and_stops_when_told() {
+    let mut rng = ChaCha8Rng::seed_from_u64(7);
+    let p: Vec<V3> = (0..100_000).map(|_| ball(&mut rng)).collect();
+    let (x, y, z) = soa(&p);
+    let want = run(&p, 1e-12);
+    let (mut ws, mut out) = (HullWorkspace::default(), Vec::new());
+    let asked = std::cell::Cell::new(0usize);
+    let count = || {
+        asked.set(asked.get() + 1);
+        true
+    };
+    assert!(hull_vertices_checked(
+        &x, &y, &z, 1e-12, &mut ws, &mut out, &count
+    ));
+    assert_eq!(out, want);
+    let asks = asked.get();
+    assert!(asks >= 8, "{asks} asks");
+    for stop_at in [1, 2, asks / 2, asks] {
+        asked.set(0);
+        let until = || {
+            asked.set(asked.get() + 1);
+            asked.get() < stop_at
+        };
+        assert!(!hull_vertices_checked(
+            &x, &y, &z, 1e-12, &mut ws, &mut out, &until
+        ));
+        assert_eq!(asked.get(), stop_at, "asked on after a stop");
+    }
+    // A small cloud is never asked.
+    let (fx, fy, fz) = soa(&p[..1000]);
+    let never = || -> bool { panic!("asked") };
+    assert!(hull_vertices_checked(
+        &fx, &fy, &fz, 1e-12, &mut ws, &mut out, &never
+    ));
+}

@@ -270,9 +270,10 @@ impl Cutter<'_> {
             true if !self.goes_on() => super::STAND_IN,
             true => {
                 let q = self.q_of(ex, n);
-                (self.fitter)
-                    .fit_output(self.faces_of(ex, n), &q, &mut s.ws)
-                    .prim
+                let ask = || self.goes_on();
+                let fit =
+                    (self.fitter).fit_output_checked(self.faces_of(ex, n), &q, &mut s.ws, &ask);
+                fit.map_or(super::STAND_IN, |f| f.prim)
             }
             false => self.fit(n, s),
         };

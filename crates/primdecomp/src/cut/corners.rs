@@ -4,18 +4,19 @@
 //! cancel waiting (docs/results/throughput.md, "Cancellation").
 
 use crate::input::mesh::Mesh;
+use crate::math::marks::distinct_increasing;
 
 /// Faces of a node, at least, whose corners are marked in a bitset instead of
 /// sorted (a sort of fewer corners is milliseconds long).
 const MARKED_FROM: usize = 1 << 18;
 
-/// Faces marked, or bitset words read, between two asks of `go_on`.
+/// Faces marked between two asks of `go_on`.
 const BLOCK: usize = 1 << 16;
 
 /// The distinct vertices of `faces`' corners, increasing: sorted for a node of
 /// fewer than [`MARKED_FROM`] faces, else marked in a bitset over the mesh's
 /// vertices and read back in order (the same list), asking `go_on` first and
-/// every [`BLOCK`] faces or words; `None` when it said stop.
+/// every [`BLOCK`] faces ([`distinct_increasing`]); `None` when it said stop.
 pub(super) fn distinct_corners(
     mesh: &Mesh,
     faces: &[u32],
@@ -35,30 +36,8 @@ pub(super) fn distinct_corners(
         v.dedup();
         return Some(v);
     }
-    let mut marks = vec![0u64; mesh.vertex_count().div_ceil(64)];
-    for block in faces.chunks(BLOCK) {
-        if !go_on() {
-            return None;
-        }
-        for v in corners(block) {
-            marks[v as usize / 64] |= 1 << (v % 64);
-        }
-    }
-    let mut out = Vec::new();
-    for (b, words) in marks.chunks(BLOCK).enumerate() {
-        if !go_on() {
-            return None;
-        }
-        for (w, &word) in words.iter().enumerate() {
-            let base = ((b * BLOCK + w) * 64) as u32;
-            let mut bits = word;
-            while bits != 0 {
-                out.push(base + bits.trailing_zeros());
-                bits &= bits - 1;
-            }
-        }
-    }
-    Some(out)
+    let blocks = faces.chunks(BLOCK).map(corners);
+    distinct_increasing(mesh.vertex_count(), blocks, go_on)
 }
 
 #[cfg(test)]

@@ -315,9 +315,9 @@ impl<'a> Cutter<'a> {
             return e.prim;
         }
         let q = self.q_of(ex, e.node);
-        self.fitter
-            .fit_output(self.faces_of(ex, e.node), &q, ws)
-            .prim
+        let ask = || self.goes_on();
+        let fit = (self.fitter).fit_output_checked(self.faces_of(ex, e.node), &q, ws, &ask);
+        fit.map_or(STAND_IN, |f| f.prim)
     }
 
     /// `e` with its error measured up to `above`, unless it is already exact.

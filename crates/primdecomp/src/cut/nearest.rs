@@ -4,7 +4,7 @@
 //! blind to how far a corner stands off a triangle; a deviation for the cut only:
 //! docs/decisions/0041).
 
-use super::error::{error_until, StopAt};
+use super::error::{error_until_checked, StopAt};
 use super::{Cutter, Entry, Explored, Scratch};
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -46,7 +46,11 @@ impl Cutter<'_> {
         }
         let q = self.q_of(ex, e.node);
         let faces = self.faces_of(ex, e.node);
-        (self.fitter).output_candidates(faces, &q, &mut s.ws, &mut s.candidates);
+        let ask = || self.goes_on();
+        if !(self.fitter).output_candidates(faces, &q, &mut s.ws, &mut s.candidates, &ask) {
+            // Told to stop: nothing the cutter makes since is kept.
+            return e.clone();
+        }
         let mut best = Entry {
             closest: true,
             ..self.remeasured(e, f64::INFINITY)
@@ -60,7 +64,7 @@ impl Cutter<'_> {
                 above: best.error,
                 coarse: true,
             };
-            let error = error_until(p, self.surface, ask);
+            let error = error_until_checked(p, self.surface, ask, &|| self.goes_on());
             if error < best.error {
                 best = Entry {
                     error,

@@ -12,7 +12,7 @@ use crate::output::result::{Decomposition, Level};
 use crate::params::Params;
 use crate::postprocess;
 use crate::progress::clock::Clock;
-use crate::progress::Stage;
+use crate::progress::{Ask, Latch, Stage};
 
 /// The levels of `params.goal`, each a cut of the merge tree, post-processed.
 pub(crate) fn run(
@@ -68,14 +68,22 @@ pub(crate) fn run(
     let reads = stages::interior(&mut clock, mesh, params, Some(&tris))?;
     // Post-processing (§3.4) is the step each cut is measured after: plates joined
     // within the cut's bound, duplicates absorbed, nested primitives removed.
-    // Each round's freed scratch goes back to the system before and after it: what
-    // glibc keeps of the cut's rounds otherwise adds to the pass's peak.
-    let postprocess = |cuts: &[LevelCut]| -> Vec<Level> {
+    // Asks `go_on` within each level (a level not to keep once it said stop). Each
+    // round's freed scratch goes back to the system before and after it: what glibc
+    // keeps of the cut's rounds otherwise adds to the pass's peak.
+    let postprocess = |cuts: &[LevelCut], go_on: Ask| -> Vec<Level> {
         crate::input::memory::release_freed();
         let levels = (cuts.iter())
             .map(|c| Level {
                 shortfall: c.shortfall,
-                ..postprocess::level(&fitter, c.snapshot.clone(), Some(c.bound), params, &reads)
+                ..postprocess::level(
+                    &fitter,
+                    c.snapshot.clone(),
+                    Some(c.bound),
+                    params,
+                    &reads,
+                    go_on,
+                )
             })
             .collect();
         crate::input::memory::release_freed();
@@ -86,11 +94,17 @@ pub(crate) fn run(
     let requests = limits::requests(params, mesh);
     let cuts = clock
         .stage(Stage::Postprocess, "cut", |go_on, _| {
+            let latch = Latch::new(go_on, 0.0);
+            let postprocess = |cuts: &[LevelCut]| postprocess(cuts, &|| latch.goes_on());
             recut::snapshots(&fitter, &tree, &requests, &tris, &postprocess, go_on)
         })?
         .ok_or(Error::Cancelled)?;
     // The kept cuts post-processed, back to world coordinates.
-    let mut levels = clock.stage(Stage::Postprocess, "postprocess", |_, _| postprocess(&cuts))?;
+    // (The cut was post-processing's stage, reported done: its fraction stays 1.)
+    let mut levels = clock.stage(Stage::Postprocess, "postprocess", |go_on, _| {
+        let latch = Latch::new(go_on, 1.0);
+        postprocess(&cuts, &|| latch.goes_on())
+    })?;
     // What each level asked and how far its primitives stand from the input.
     clock.stage(Stage::Postprocess, "distance", |_, _| {
         limits::record_limits(&mut levels, &requests, &cuts, mesh, &tris)

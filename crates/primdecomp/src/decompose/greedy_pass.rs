@@ -10,7 +10,7 @@ use crate::output::result::Decomposition;
 use crate::params::Params;
 use crate::postprocess;
 use crate::progress::clock::Clock;
-use crate::progress::Stage;
+use crate::progress::{Latch, Stage};
 
 /// The levels of `params.goal`'s counts, each the clusters alive when the merge loop
 /// reached it, post-processed.
@@ -41,8 +41,11 @@ pub(crate) fn run(
     let reads = stages::interior(&mut clock, mesh, params, tris.as_ref())?;
     // Plates joined, duplicates absorbed, nested primitives removed, back to world
     // coordinates (§3.4).
-    let levels = clock.stage(Stage::Postprocess, "postprocess", |_, _| {
-        postprocess::levels(&fitter, merged.snapshots, params, &reads)
+    let levels = clock.stage(Stage::Postprocess, "postprocess", |go_on, _| {
+        let latch = Latch::new(go_on, 0.0);
+        postprocess::levels(&fitter, merged.snapshots, params, &reads, &|| {
+            latch.goes_on()
+        })
     })?;
     Ok(stages::decomposition(mesh, &graph, levels, clock, stats))
 }

@@ -8,7 +8,8 @@ use super::rim::{clamp_to_points, rim_penalty, FaceAdjacency, Rim, Surroundings}
 use crate::input::mesh::outward_normal;
 use crate::input::mesh::Mesh;
 use crate::input::solid::Solid;
-use crate::math::hull::{hull_vertices, HullWorkspace};
+use crate::math::hull::{hull_vertices_checked, HullWorkspace};
+use crate::math::marks::distinct_increasing;
 use crate::math::Sym3;
 use crate::math::{dot, V3};
 use crate::primitive::fit::{
@@ -16,10 +17,19 @@ use crate::primitive::fit::{
 };
 use crate::primitive::fit::{fit_skewed_prism, thorough_frames};
 use crate::primitive::{fit_best, frame, Cloud, FitScratch, Kind, Primitive};
+use crate::progress::Ask;
 
 /// Faces whose outward normal is within about 0.8° of a plate's axis face along it
 /// ([`Fitter::flush`]): a flat cluster's faces lie at round-off from it.
 const PARALLEL: f64 = 0.9999;
+
+/// Faces gathered, searched for rims or laid flush between two asks of a checked
+/// output fit (milliseconds of work).
+const FACES_PER_ASK: usize = 1 << 16;
+
+/// Faces of an output fit, at least, whose sorted list is marked in checked blocks
+/// instead of sorted in one step.
+const MARKED_FROM: usize = 1 << 18;
 
 /// Per-thread reusable buffers: the gathered points and the fit's scratch.
 #[derive(Debug, Default)]
@@ -221,24 +231,81 @@ impl<'a> Fitter<'a> {
         q: &Sym3,
         ws: &mut Workspace,
     ) -> Fit {
-        self.gather(faces.clone(), ws);
-        ws.rims.clear();
-        if self.prices_rims() {
-            ws.members.clear();
-            ws.members.extend(faces.clone());
-            ws.members.sort_unstable();
-            ws.members.dedup();
-            self.surroundings().rims(&ws.members, &mut ws.rims);
-        }
-        self.fit_gathered(faces, q, ws, false)
+        let fit = self.fit_output_checked(faces, q, ws, &|| true);
+        fit.expect("a fit never told to stop")
     }
 
-    /// Every point of `faces` (their own vertices, repeats kept) into `ws`'s points.
-    fn gather(&self, faces: impl Iterator<Item = u32>, ws: &mut Workspace) {
+    /// [`Self::fit_output`] asking `go_on` between blocks of [`FACES_PER_ASK`] faces
+    /// gathered, sorted, searched for rims or laid flush, between the steps of the
+    /// fit and inside its hull reduction (`hull_vertices_checked`): the same fit, or
+    /// `None` as soon as it said stop. A fit over the millions of faces of a group of
+    /// the merge tree's nodes is otherwise one step of seconds, which keeps a cancel
+    /// waiting (docs/results/throughput.md, "Cancellation").
+    pub fn fit_output_checked(
+        &self,
+        faces: impl Iterator<Item = u32> + Clone,
+        q: &Sym3,
+        ws: &mut Workspace,
+        go_on: Ask,
+    ) -> Option<Fit> {
+        self.gather(faces.clone(), ws, go_on)?;
+        ws.rims.clear();
+        if self.prices_rims() {
+            self.members_of(faces.clone(), ws, go_on)?;
+            let (members, around) = (&ws.members, self.surroundings());
+            if members.len() <= FACES_PER_ASK {
+                around.rims(members, &mut ws.rims);
+            } else {
+                // A large cluster's rims, the same in the same order, a block at a time.
+                let outside = |g| members.binary_search(&g).is_err();
+                for block in members.chunks(FACES_PER_ASK) {
+                    if !go_on() {
+                        return None;
+                    }
+                    around.rims_added(block, outside, &mut ws.rims);
+                }
+            }
+        }
+        self.fit_gathered(faces, q, ws, false, go_on)
+    }
+
+    /// `faces`, sorted and distinct, into `ws.members`: marked in checked blocks
+    /// ([`distinct_increasing`]) from [`MARKED_FROM`] faces, else sorted.
+    fn members_of(
+        &self,
+        faces: impl Iterator<Item = u32> + Clone,
+        ws: &mut Workspace,
+        go_on: Ask,
+    ) -> Option<()> {
+        ws.members.clear();
+        ws.members.extend(faces);
+        if ws.members.len() < MARKED_FROM {
+            ws.members.sort_unstable();
+            ws.members.dedup();
+            return Some(());
+        }
+        let blocks = ws.members.chunks(FACES_PER_ASK).map(|b| b.iter().copied());
+        let range = self.input.mesh.face_count();
+        ws.members = distinct_increasing(range, blocks, go_on)?;
+        Some(())
+    }
+
+    /// Every point of `faces` (their own vertices, repeats kept) into `ws`'s points,
+    /// asking `go_on` every [`FACES_PER_ASK`] faces; `None` when it said stop.
+    fn gather(
+        &self,
+        faces: impl Iterator<Item = u32>,
+        ws: &mut Workspace,
+        go_on: Ask,
+    ) -> Option<()> {
         ws.clear();
-        for f in faces {
+        for (i, f) in faces.enumerate() {
+            if i % FACES_PER_ASK == FACES_PER_ASK - 1 && !go_on() {
+                return None;
+            }
             self.push_points(self.input.mesh.face(f as usize), ws);
         }
+        Some(())
     }
 
     /// [`Self::fit_output`] on `hull`, the hull vertices of `faces` (their own vertex
@@ -263,22 +330,28 @@ impl<'a> Fitter<'a> {
             self.surroundings()
                 .rims_where(boundary, outside, &mut ws.rims);
         }
-        self.fit_gathered(faces, q, ws, true)
+        let fit = self.fit_gathered(faces, q, ws, true, &|| true);
+        fit.expect("a fit never told to stop")
     }
 
     /// Every enabled kind fitted on every point of `faces` in every frame of the
     /// thorough output search, plates laid flush as [`Self::fit_output`] lays them,
     /// into `out`: output fits for a caller that chooses among them by another
     /// measure than k·V (the merge tree's cut, by distance: docs/decisions/0041).
+    /// Asks `go_on` as [`Self::fit_output_checked`] does and before each fit: false,
+    /// `out` not to be used, once it said stop.
     pub fn output_candidates(
         &self,
         faces: impl Iterator<Item = u32> + Clone,
         q: &Sym3,
         ws: &mut Workspace,
         out: &mut Vec<Primitive>,
-    ) {
-        self.gather(faces.clone(), ws);
+        go_on: Ask,
+    ) -> bool {
         out.clear();
+        if self.gather(faces.clone(), ws, go_on).is_none() {
+            return false;
+        }
         let all = Cloud {
             x: &ws.x,
             y: &ws.y,
@@ -296,6 +369,9 @@ impl<'a> Fitter<'a> {
                 ..self.pricing.fit
             };
             for &axes in &ws.frames {
+                if !go_on() {
+                    return false;
+                }
                 out.push(fit_frame(&all, axes, &cfg, &mut ws.fit).prim);
                 if kind == Kind::Prism {
                     // The skewed section holds a scalene triangle the isosceles
@@ -307,9 +383,12 @@ impl<'a> Fitter<'a> {
         }
         if self.pricing.flush_plates {
             for p in out.iter_mut() {
-                self.flush(faces.clone(), ws, p);
+                if !self.flush(faces.clone(), ws, p, go_on) {
+                    return false;
+                }
             }
         }
+        true
     }
 
     /// Whether output fits price the rim reach (`Plates::rim_weight`).
@@ -327,14 +406,16 @@ impl<'a> Fitter<'a> {
     }
 
     /// The output fit of the points gathered in `ws` for `faces`, with their rims in
-    /// `ws.rims`; `on_hull`: the points are already their hull's vertices.
+    /// `ws.rims`; `on_hull`: the points are already their hull's vertices. `None`
+    /// when `go_on`, asked between its steps, said stop.
     fn fit_gathered(
         &self,
         faces: impl Iterator<Item = u32> + Clone,
         q: &Sym3,
         ws: &mut Workspace,
         on_hull: bool,
-    ) -> Fit {
+        go_on: Ask,
+    ) -> Option<Fit> {
         // Output only: every cluster also tries the frames turned about each of its
         // axes and the input's axes (docs/decisions/0014-output-fits-turn-about-the-normal.md,
         // docs/decisions/0021-thorough-output-frame-search.md); merges
@@ -344,14 +425,14 @@ impl<'a> Fitter<'a> {
             ..self.pricing.fit
         };
         let mut fit = if ws.rims.is_empty() {
-            self.fit_on_hull(q, &cfg, ws, on_hull)
+            self.fit_on_hull(q, &cfg, ws, on_hull, go_on)?
         } else {
-            self.fit_priced(q, &cfg, ws, on_hull)
+            self.fit_priced(q, &cfg, ws, on_hull, go_on)?
         };
-        if self.pricing.flush_plates {
-            self.flush(faces, ws, &mut fit.prim);
+        if self.pricing.flush_plates && !self.flush(faces, ws, &mut fit.prim, go_on) {
+            return None;
         }
-        fit
+        Some(fit)
     }
 
     /// docs/decisions/0026-output-plates-lie-flush.md: a plate at the output floor thickness whose
@@ -360,14 +441,24 @@ impl<'a> Fitter<'a> {
     /// outer side lies on the faces as the mesh's surface does (centred on them it stood
     /// `cfg.min_half` proud, and balls rested that high). Its cross-section is the
     /// same all along that axis, so the faces stay inside. `ws` holds the faces' points
-    /// as gathered for the fit.
-    fn flush(&self, faces: impl Iterator<Item = u32>, ws: &Workspace, prim: &mut Primitive) {
+    /// as gathered for the fit. Asks `go_on` every [`FACES_PER_ASK`] faces: false
+    /// when it said stop (`prim` unchanged).
+    fn flush(
+        &self,
+        faces: impl Iterator<Item = u32>,
+        ws: &Workspace,
+        prim: &mut Primitive,
+        go_on: Ask,
+    ) -> bool {
         let Some(axis) = prim.plate_axis(self.pricing.fit.min_half) else {
-            return;
+            return true;
         };
         // The faces' common outward side along the axis: +1 or −1, 0 when they disagree.
         let mut side = 0.0;
-        for f in faces {
+        for (i, f) in faces.enumerate() {
+            if i % FACES_PER_ASK == FACES_PER_ASK - 1 && !go_on() {
+                return false;
+            }
             let Some((n, _)) = outward_normal(self.input.mesh, self.input.face_sign, f) else {
                 continue;
             };
@@ -380,12 +471,12 @@ impl<'a> Fitter<'a> {
                 0.0
             };
             if s == 0.0 || (side != 0.0 && s != side) {
-                return;
+                return true;
             }
             side = s;
         }
         if side == 0.0 {
-            return;
+            return true;
         }
         let n = axis.map(|x| x * side);
         let top = (0..ws.x.len())
@@ -395,16 +486,24 @@ impl<'a> Fitter<'a> {
         if reach > 0.0 && reach.is_finite() {
             *prim = prim.translated(n.map(|x| -x * reach));
         }
+        true
     }
 
     /// The output fit with the rim reach priced: every frame of the thorough search
     /// fitted on the points' hull vertices, every enabled kind in it compared by
     /// k·V + w·rim (the reach differs between kinds of one frame), the least kept (earlier frames win ties within [`frame::MARGIN`]) and
     /// its frame refitted on every point.
-    fn fit_priced(&self, q: &Sym3, cfg: &FitConfig, ws: &mut Workspace, on_hull: bool) -> Fit {
+    fn fit_priced(
+        &self,
+        q: &Sym3,
+        cfg: &FitConfig,
+        ws: &mut Workspace,
+        on_hull: bool,
+        go_on: Ask,
+    ) -> Option<Fit> {
         // The search runs on the hull's vertices, or on every point when all are (or
         // `on_hull` says the points are their hull's vertices already).
-        let (x, y, z) = if !on_hull && self.gather_hull(ws) {
+        let (x, y, z) = if !on_hull && self.gather_hull(ws, go_on)? {
             (&ws.hx, &ws.hy, &ws.hz)
         } else {
             (&ws.x, &ws.y, &ws.z)
@@ -425,32 +524,34 @@ impl<'a> Fitter<'a> {
         }
         // No finite score anywhere (a reach overflowing at an extreme weight): k·V alone.
         let Some((_, axes)) = best else {
-            return self.fit_on_hull(q, cfg, ws, on_hull);
+            return self.fit_on_hull(q, cfg, ws, on_hull, go_on);
         };
         let all = Cloud {
             x: &ws.x,
             y: &ws.y,
             z: &ws.z,
         };
-        match fit_frame_priced(&all, axes, cfg, &mut ws.fit, &penalty, f64::INFINITY) {
-            Some((fit, _)) => fit,
-            None => fit_frame(&all, axes, cfg, &mut ws.fit),
+        if !go_on() {
+            return None;
         }
+        Some(
+            match fit_frame_priced(&all, axes, cfg, &mut ws.fit, &penalty, f64::INFINITY) {
+                Some((fit, _)) => fit,
+                None => fit_frame(&all, axes, cfg, &mut ws.fit),
+            },
+        )
     }
 
     /// Copies the gathered points' hull vertices to `ws.hx/hy/hz`; false (nothing
-    /// copied) when every point is one.
-    fn gather_hull(&self, ws: &mut Workspace) -> bool {
-        hull_vertices(
-            &ws.x,
-            &ws.y,
-            &ws.z,
-            self.pricing.hull_eps,
-            &mut ws.hull,
-            &mut ws.keep,
-        );
+    /// copied) when every point is one, `None` when `go_on` said stop.
+    fn gather_hull(&self, ws: &mut Workspace, go_on: Ask) -> Option<bool> {
+        let eps = self.pricing.hull_eps;
+        let (x, y, z) = (&ws.x, &ws.y, &ws.z);
+        if !hull_vertices_checked(x, y, z, eps, &mut ws.hull, &mut ws.keep, go_on) {
+            return None;
+        }
         if ws.keep.len() == ws.x.len() {
-            return false;
+            return Some(false);
         }
         for (dst, src) in [
             (&mut ws.hx, &ws.x),
@@ -460,7 +561,7 @@ impl<'a> Fitter<'a> {
             dst.clear();
             dst.extend(ws.keep.iter().map(|&i| src[i as usize]));
         }
-        true
+        Some(true)
     }
 
     /// [`fit_best`] of the gathered points, its frames tried on the points' hull
@@ -468,9 +569,16 @@ impl<'a> Fitter<'a> {
     /// the winning frame refitted on every point: the same fit for ~20 frames at the
     /// price of one on every point (docs/decisions/0021-thorough-output-frame-search.md);
     /// `on_hull`: the gathered points are their hull's vertices already.
-    fn fit_on_hull(&self, q: &Sym3, cfg: &FitConfig, ws: &mut Workspace, on_hull: bool) -> Fit {
-        if on_hull || !self.gather_hull(ws) {
-            return self.fit_points(q, cfg, ws);
+    fn fit_on_hull(
+        &self,
+        q: &Sym3,
+        cfg: &FitConfig,
+        ws: &mut Workspace,
+        on_hull: bool,
+        go_on: Ask,
+    ) -> Option<Fit> {
+        if on_hull || !self.gather_hull(ws, go_on)? {
+            return go_on().then(|| self.fit_points(q, cfg, ws));
         }
         let hull = Cloud {
             x: &ws.hx,
@@ -483,7 +591,7 @@ impl<'a> Fitter<'a> {
             y: &ws.y,
             z: &ws.z,
         };
-        fit_frame(&all, axes, cfg, &mut ws.fit)
+        go_on().then(|| fit_frame(&all, axes, cfg, &mut ws.fit))
     }
 
     /// Distinct vertices of every face of cluster `c` (the faces' own, not welded), sorted.
@@ -552,5 +660,67 @@ impl<'a> Fitter<'a> {
             flat,
         };
         Some((c, fit))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::input::adjacency::{face_pairs, neighbour_lists};
+    use crate::params::Params;
+
+    /// An output fit over more faces than [`MARKED_FROM`] with its rims priced asks
+    /// as it gathers, sorts, finds rims and reduces the hull, and gives the fit it
+    /// gives unasked; told to stop at any of its asks, it stops there.
+    #[test]
+    fn a_large_output_fit_asks_as_it_goes_and_stops_when_told() {
+        let n = 380u32;
+        let mut p = Vec::new();
+        for i in 0..=n {
+            for j in 0..=n {
+                let (x, y) = (f64::from(i), f64::from(j));
+                p.push([x, y, 0.01 * (x * 0.37).sin() * (y * 0.23).cos() * x]);
+            }
+        }
+        let at = |i: u32, j: u32| i * (n + 1) + j;
+        let mut tris = Vec::new();
+        for i in 0..n {
+            for j in 0..n {
+                tris.push(vec![at(i, j), at(i + 1, j), at(i, j + 1)]);
+                tris.push(vec![at(i + 1, j), at(i + 1, j + 1), at(i, j + 1)]);
+            }
+        }
+        let mesh = Mesh::from_polygons(&p, &tris).unwrap();
+        let welded = mesh.face_indices.clone();
+        let pairs = face_pairs(&mesh.face_offsets, &welded);
+        let (offsets, adj) = neighbour_lists(mesh.face_count(), &pairs);
+        let mut fitter =
+            crate::merge::setup::fitter(&mesh, &welded, &Params::default(), mesh.aabb());
+        fitter.input.face_adj = FaceAdjacency {
+            offsets: &offsets,
+            adj: &adj,
+        };
+        assert!(fitter.prices_rims());
+        // All but the last rows, from the back: rims inside the grid, not in order.
+        let faces: Vec<u32> = (0..mesh.face_count() as u32 - 2000).rev().collect();
+        assert!(faces.len() >= MARKED_FROM);
+        let q = Sym3::ZERO;
+        let mut ws = Workspace::default();
+        let want = fitter.fit_output(faces.iter().copied(), &q, &mut ws).prim;
+        let asked = std::sync::atomic::AtomicUsize::new(0);
+        let count = || {
+            asked.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            true
+        };
+        let got = fitter.fit_output_checked(faces.iter().copied(), &q, &mut ws, &count);
+        assert_eq!(got.map(|f| f.prim), Some(want));
+        let asks = asked.load(std::sync::atomic::Ordering::Relaxed);
+        assert!(asks >= 3 * faces.len() / FACES_PER_ASK, "{asks} asks");
+        for stop_at in [1, asks / 3, asks / 2, asks] {
+            asked.store(0, std::sync::atomic::Ordering::Relaxed);
+            let until = || asked.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1 < stop_at;
+            let got = fitter.fit_output_checked(faces.iter().copied(), &q, &mut ws, &until);
+            assert!(got.is_none(), "went on after the stop at ask {stop_at}");
+        }
     }
 }

@@ -155,6 +155,12 @@ impl Surroundings<'_> {
     /// others have no rims): the same rims in the same order.
     pub fn rims_where(&self, faces: &[u32], outside: impl Fn(u32) -> bool, out: &mut Vec<Rim>) {
         out.clear();
+        self.rims_added(faces, outside, out);
+    }
+
+    /// [`Self::rims_where`] appended to `out`: a cluster's faces taken in blocks, in
+    /// order, give its rims in order.
+    pub fn rims_added(&self, faces: &[u32], outside: impl Fn(u32) -> bool, out: &mut Vec<Rim>) {
         let cos_max = RIM_ANGLE_DEG.to_radians().cos();
         let cos_gentle = RIM_GENTLE_DEG.to_radians().cos();
         let at =

@@ -16,7 +16,8 @@ use crate::merge::cost::InputView;
 use crate::merge::{Fitter, Snapshot};
 use crate::output::result::Level;
 use crate::params::Params;
-use nested::{keep_mask, Cleanup};
+use crate::progress::Ask;
+use nested::{keep_mask_checked, Cleanup};
 
 /// What post-processing reads of the input besides the fitter, made once per run
 /// (a cut may post-process its levels several times, `cut::recut`): its triangles, built
@@ -38,15 +39,17 @@ impl<'a> Prepared<'a> {
 }
 
 /// One level per target of `params.goal` (in the order given) from the greedy merge
-/// loop's snapshots (one per distinct target), each post-processed once.
+/// loop's snapshots (one per distinct target), each post-processed once ([`level`]:
+/// once `go_on` said stop, levels not to be kept).
 pub(crate) fn levels(
     fitter: &Fitter,
     snaps: Vec<Snapshot>,
     params: &Params,
     input: &Prepared,
+    go_on: Ask,
 ) -> Vec<Level> {
     let done: Vec<Level> = (snaps.into_iter())
-        .map(|snap| level(fitter, snap, None, params, input))
+        .map(|snap| level(fitter, snap, None, params, input, go_on))
         .collect();
     (params.goal.targets().iter())
         .map(|&n| {
@@ -57,28 +60,32 @@ pub(crate) fn levels(
 }
 
 /// One snapshot post-processed into its level; `bound`: a cut's, the farthest its
-/// primitives may stand from the input, which joined plates keep to.
+/// primitives may stand from the input, which joined plates keep to. `go_on` is
+/// asked between the steps, before each pair of plates fitted together and each
+/// primitive tested for hosts: once it said stop, the steps left are skipped and
+/// the level returned is not one to keep.
 pub(crate) fn level(
     fitter: &Fitter,
     mut snap: Snapshot,
     bound: Option<f64>,
     params: &Params,
     input: &Prepared,
+    go_on: Ask,
 ) -> Level {
     let diag = fitter.input.mesh.diagonal();
     let (tris, thick) = (input.tris, &input.thick);
     let mut q = std::mem::take(&mut snap.q);
     // Solid pricing: near-duplicate primitives become one (docs/decisions/0023).
-    if fitter.input.solid.is_some() {
+    if fitter.input.solid.is_some() && go_on() {
         absorb::absorb(fitter, &mut snap, &mut q);
     }
     // Plates in one plane the merge left apart become one where that adds no
     // area (docs/decisions/0028).
-    if params.plates.join_coplanar {
-        plates::join(fitter, &mut snap, &mut q, tris, bound);
+    if params.plates.join_coplanar && go_on() {
+        plates::join(fitter, &mut snap, &mut q, tris, bound, go_on);
     }
     // Plates reach inward to the minimum thickness where the input is closed.
-    if let Some(input) = thick {
+    if let Some(input) = thick.as_ref().filter(|_| go_on()) {
         thicken::thicken(
             &fitter.input,
             input,
@@ -86,16 +93,20 @@ pub(crate) fn level(
             params.plates.min_thickness * diag,
         );
     }
-    finish(&fitter.input, &snap, params, diag)
+    finish(&fitter.input, &snap, params, diag, go_on)
 }
-/// Removes nested primitives from one snapshot and moves it to world coordinates.
-fn finish(view: &InputView, snap: &Snapshot, params: &Params, diag: f64) -> Level {
+
+/// Removes nested primitives from one snapshot and moves it to world coordinates
+/// (all kept once `go_on` said stop).
+fn finish(view: &InputView, snap: &Snapshot, params: &Params, diag: f64, go_on: Ask) -> Level {
     let cleanup = Cleanup {
         diagonal: diag,
         remove_nested: params.plates.remove_nested,
         thin_box_half: params.plates.remove_thin_boxes.map(|t| t * diag),
     };
-    let keep = keep_mask(view.mesh, &snap.prims, &snap.verts, &snap.members, cleanup);
+    let (prims, verts, members) = (&snap.prims, &snap.verts, &snap.members);
+    let keep = keep_mask_checked(view.mesh, prims, verts, members, cleanup, go_on)
+        .unwrap_or_else(|| vec![true; prims.len()]);
     let mut level = Level {
         target: snap.target,
         merged_to: snap.target,

@@ -9,6 +9,7 @@
 use crate::input::mesh::Mesh;
 use crate::math::V3;
 use crate::primitive::Primitive;
+use crate::progress::Ask;
 use rayon::prelude::*;
 
 /// Containment slack, relative to the input diagonal: far below any test tolerance.
@@ -26,7 +27,9 @@ pub struct Cleanup {
 }
 
 /// Which primitives to keep; `verts[i]` are the distinct vertices and `members[i]` the
-/// faces of primitive `i`.
+/// faces of primitive `i` (the project's tests and benchmarks; a run asks as it goes,
+/// [`keep_mask_checked`]).
+#[cfg(any(test, feature = "test-internals"))]
 pub fn keep_mask(
     mesh: &Mesh,
     prims: &[Primitive],
@@ -34,10 +37,26 @@ pub fn keep_mask(
     members: &[Vec<u32>],
     cleanup: Cleanup,
 ) -> Vec<bool> {
+    let mask = keep_mask_checked(mesh, prims, verts, members, cleanup, &|| true);
+    mask.expect("a mask never told to stop")
+}
+
+/// Which primitives to keep (as `keep_mask`), asking `go_on` before each
+/// primitive's hosts are found and each thin box is tested (a level's primitives hold every face of the input: one
+/// step over all of them is seconds long at tens of millions of faces); `None`
+/// once it said stop.
+pub(crate) fn keep_mask_checked(
+    mesh: &Mesh,
+    prims: &[Primitive],
+    verts: &[Vec<u32>],
+    members: &[Vec<u32>],
+    cleanup: Cleanup,
+    go_on: Ask,
+) -> Option<Vec<bool>> {
     let n = prims.len();
     let mut keep = vec![true; n];
     if n < 2 {
-        return keep;
+        return Some(keep);
     }
     let tol = TOL_REL * cleanup.diagonal.max(f64::MIN_POSITIVE);
     let boxes: Vec<(V3, V3)> = prims.iter().map(|p| inflate(p.aabb(), tol)).collect();
@@ -51,10 +70,11 @@ pub fn keep_mask(
     });
     if cleanup.remove_nested {
         // Hosts are independent of what gets removed, so find them all in parallel.
-        let hosts: Vec<Vec<usize>> = (0..n)
+        let hosts: Option<Vec<Vec<usize>>> = (0..n)
             .into_par_iter()
-            .map(|i| hosts_of(mesh, prims, &boxes, &verts[i], i, tol))
+            .map(|i| go_on().then(|| hosts_of(mesh, prims, &boxes, &verts[i], i, tol)))
             .collect();
+        let hosts = hosts?;
         for &i in &order {
             if pinned[i] {
                 continue;
@@ -67,6 +87,9 @@ pub fn keep_mask(
     }
     if let Some(t) = cleanup.thin_box_half {
         for &i in &order {
+            if !go_on() {
+                return None;
+            }
             if keep[i] && !pinned[i] && is_thin_box(&prims[i], t) {
                 remove_if_covered(
                     mesh,
@@ -81,7 +104,7 @@ pub fn keep_mask(
             }
         }
     }
-    keep
+    Some(keep)
 }
 
 fn is_thin_box(p: &Primitive, t: f64) -> bool {

@@ -25,6 +25,7 @@ use crate::math::{add, cross, dot, madd, normalize, scale, Sym3, V3};
 use crate::merge::{Fitter, Snapshot, Workspace};
 use crate::primitive::frame::convex_hull_2d;
 use crate::primitive::Primitive;
+use crate::progress::Ask;
 
 /// Plates whose thin axes differ by more than this (cosine) are not in one plane.
 const PARALLEL_COS: f64 = 1.0 - 1e-9;
@@ -64,13 +65,14 @@ pub fn join(
     q: &mut Vec<Sym3>,
     surface: Option<&Triangles>,
     bound: Option<f64>,
+    go_on: Ask,
 ) {
     let keeps = |p: &Primitive| match (bound, surface) {
         (Some(bound), Some(s)) => is_within(p, s, bound),
         _ => true,
     };
     in_rounds(snap, q, |snap, q, alive, dirty| {
-        coplanar_pairs(fitter, snap, q, alive, dirty, &keeps)
+        coplanar_pairs(fitter, snap, q, (alive, dirty), &keeps, go_on)
     });
 }
 
@@ -154,9 +156,9 @@ fn coplanar_pairs(
     fitter: &Fitter,
     snap: &Snapshot,
     q: &[Sym3],
-    alive: &[bool],
-    dirty: &[bool],
+    (alive, dirty): (&[bool], &[bool]),
     keeps: &(dyn Fn(&Primitive) -> bool + Sync),
+    go_on: Ask,
 ) -> Vec<Candidate> {
     let floor = fitter.pricing.fit.min_half;
     let plates: Vec<(usize, Plate)> = (0..snap.prims.len())
@@ -186,6 +188,9 @@ fn coplanar_pairs(
     pairs
         .par_iter()
         .map_init(scratch, |(ws, pts, hull), &(i, j)| {
+            if !go_on() {
+                return None;
+            }
             let (a, b) = (&snap.prims[i], &snap.prims[j]);
             let (both, frame) = covered_together(a, b, floor)?;
             let most = both / (1.0 - SPILL);
@@ -198,7 +203,7 @@ fn coplanar_pairs(
                 return None;
             }
             let faces = snap.members[i].iter().chain(&snap.members[j]).copied();
-            let fit = fitter.fit_output(faces, &q[i].add(&q[j]), ws);
+            let fit = fitter.fit_output_checked(faces, &q[i].add(&q[j]), ws, go_on)?;
             let gain = kv(&fit.prim) - (kv(a) + kv(b));
             let joined = gain <= 0.0
                 && fit.prim.plate_axis(floor).is_some()

@@ -175,3 +175,36 @@ impl Progress for Silent {}
 /// The callback kernels take: report a fraction of the current stage, and learn
 /// whether to go on (false = stop now).
 pub(crate) type Checkpoint<'a> = &'a (dyn Fn(f64) -> bool + Sync);
+
+/// What a step of bounded work asks before the next: whether to go on (false =
+/// stop now; what the step returns since is not kept).
+pub(crate) type Ask<'a> = &'a (dyn Fn() -> bool + Sync);
+
+/// A [`Checkpoint`] asked from many places, reporting nothing new: once it said
+/// stop it is not asked again, so threads still finishing their step do not each
+/// report (a cancelled run returns after a few reports).
+pub(crate) struct Latch<'a> {
+    go_on: Checkpoint<'a>,
+    fraction: f64,
+    stopped: std::sync::atomic::AtomicBool,
+}
+
+impl<'a> Latch<'a> {
+    /// `go_on`, reporting `fraction` of the stage at each ask.
+    pub(crate) fn new(go_on: Checkpoint<'a>, fraction: f64) -> Self {
+        Latch {
+            go_on,
+            fraction,
+            stopped: std::sync::atomic::AtomicBool::new(false),
+        }
+    }
+
+    /// Whether to go on: false once `go_on` said stop.
+    pub(crate) fn goes_on(&self) -> bool {
+        use std::sync::atomic::Ordering::Relaxed;
+        if !self.stopped.load(Relaxed) && !(self.go_on)(self.fraction) {
+            self.stopped.store(true, Relaxed);
+        }
+        !self.stopped.load(Relaxed)
+    }
+}

@@ -22,6 +22,7 @@ mod error_memo;
 mod hulls;
 pub(crate) mod limits;
 mod nearest;
+mod next_splits;
 mod past_worst;
 pub(crate) mod recut;
 mod short_count;
@@ -64,7 +65,8 @@ const AHEAD_STEP: f64 = 0.85;
 /// whose parts are carried add no node ([`carried_parts`]).
 const SPLITS_PER_COUNT: usize = 8;
 
-/// The tests compare the cuts with [`Cutter::ahead`] fitting nothing.
+/// The tests compare the cuts with [`Cutter::ahead`] and `Cutter::fit_next` fitting
+/// nothing.
 #[cfg(test)]
 static AHEAD_OFF: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
 
@@ -554,7 +556,7 @@ impl<'a> Cutter<'a> {
         };
         // Fitting ahead follows the worst-first order; a loose order's nodes are
         // mostly known.
-        let ready = match order {
+        let mut ready = match order {
             Order::Worst => self.ahead(&roots, largest, enough, above, known),
             Order::Loose(_) => HashMap::new(),
         };
@@ -577,6 +579,9 @@ impl<'a> Cutter<'a> {
                     Order::Loose(_) => continue,
                 }
             }
+            // The children of this split and of the next ones, fitted together.
+            let next = (&e, &mut heap);
+            self.fit_next(next, (&ex, &mut ready), (enough, above, known));
             let split = (&mut sa, &mut sb);
             let Some(parts) = self.divide(&mut ex, &e, &ready, split, (above, known)) else {
                 // A leaf cannot be split: its least-error fit (below) is what its part

@@ -240,10 +240,11 @@ fn one_target_is_the_root() {
     assert_eq!(a.levels[0].primitives, b.levels[0].primitives);
 }
 
-/// Fitting ahead of the worst-first splits ([`Cutter::ahead`]) changes no cut: the
-/// same levels with it and without it, on one thread and on two, where every node
-/// over the tolerance is split (2% at 400 nodes) and where the count runs out first
-/// (0.2% at 40: the rounds stop short, and the splits go on from what they fitted).
+/// Fitting ahead of the worst-first splits ([`Cutter::ahead`], and the next splits'
+/// children, `Cutter::fit_next`) changes no cut: the same levels with it and without
+/// it, on one thread, two and three, where every node over the tolerance is split
+/// (2% at 400 nodes) and where the count runs out first (0.2% at 40: the rounds stop
+/// short, and the splits go on from what they fitted).
 #[test]
 fn fitting_ahead_changes_no_cut() {
     for (targets, tolerance) in [(400, 0.02), (40, 0.002)] {
@@ -279,7 +280,7 @@ fn same_cuts_fitting_ahead(count: usize, tolerance: f64) {
     let serial = run(1, true);
     let capped = (count < 400).then_some(crate::output::result::Shortfall::Count);
     assert_eq!(serial[2].shortfall, capped, "{count}");
-    for (threads, off) in [(1, false), (2, false), (2, true)] {
+    for (threads, off) in [(1, false), (2, false), (2, true), (3, false)] {
         let levels = run(threads, off);
         for (a, b) in serial.iter().zip(&levels) {
             assert_eq!(a.primitives, b.primitives, "{threads} threads, off {off}");

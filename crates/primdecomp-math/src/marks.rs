@@ -16,8 +16,8 @@
 const WORDS_PER_CHECK: usize = 1 << 16;
 
 /// The distinct ids of `blocks` (each below `range`), increasing, marked in a bitset
-/// over `0..range`: `go_on` asked before each block and every [`WORDS_PER_CHECK`]
-/// words read back; `None` as soon as it said stop. The same list as a sort and
+/// over `0..range`: `go_on` asked before each block and every 2^16 words
+/// read back (`WORDS_PER_CHECK`); `None` as soon as it said stop. The same list as a sort and
 /// dedup of all the ids.
 pub fn distinct_increasing<B: IntoIterator<Item = u32>>(
     range: usize,

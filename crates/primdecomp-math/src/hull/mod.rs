@@ -126,9 +126,9 @@ const CHECKED_FROM: usize = 1 << 16;
 /// Points tested against faces between two asks of `go_on` (milliseconds).
 const WORK_PER_CHECK: u64 = 1 << 18;
 
-/// [`hull_vertices`], asking `go_on` between the passes over a cloud of
-/// [`CHECKED_FROM`] points or more and every [`WORK_PER_CHECK`] points tested in
-/// Quickhull's loop (a smaller cloud is never asked): the same indices, or `false`
+/// [`hull_vertices`], asking `go_on` between the passes over a cloud of 2^16
+/// points or more (`CHECKED_FROM`) and every 2^18 points tested in Quickhull's loop
+/// (`WORK_PER_CHECK`); a smaller cloud is never asked. The same indices, or `false`
 /// as soon as it said stop (then `out` holds nothing to use).
 pub fn hull_vertices_checked(
     x: &[f64],

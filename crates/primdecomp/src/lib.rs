@@ -103,7 +103,7 @@ pub use progress::{Progress, Stage};
 #[doc(hidden)]
 #[allow(missing_docs)]
 pub mod internals {
-    pub use crate::input::dedup::weld;
+    pub use crate::input::dedup::{weld, Weld};
     pub use crate::input::mesh::outward_normal;
     use crate::input::mesh::Mesh;
     pub use crate::input::orient::face_signs_of_lists;
@@ -118,9 +118,11 @@ pub mod internals {
     pub use crate::params::{AUTO_MIN_FACES, AUTO_PARTS};
     pub use crate::postprocess::nested::{keep_mask, Cleanup};
 
-    /// Faces sharing an edge, by the welded indices `welded`.
-    pub fn face_pairs(mesh: &Mesh, welded: &[u32]) -> Vec<(u32, u32)> {
-        crate::input::adjacency::face_pairs(&mesh.face_offsets, welded)
+    /// Faces sharing an edge, by the faces' corners welded by `weld`.
+    pub fn face_pairs(mesh: &Mesh, weld: &Weld) -> Vec<(u32, u32)> {
+        let (offsets, indices) = (&mesh.face_offsets, &mesh.face_indices);
+        crate::input::adjacency::face_pairs_checked(offsets, indices, weld, &|_| true)
+            .unwrap_or_default()
     }
     pub use crate::input::adjacency::neighbour_lists;
 

@@ -189,7 +189,7 @@ fn truck_hood_is_a_rim_of_the_fender_beside_it() {
     assert!(up(4457)[2] > 0.8, "the fender faces in: {:?}", up(4457));
     let around = Surroundings {
         mesh: &m,
-        welded: &welded,
+        weld: &welded,
         adj: FaceAdjacency {
             offsets: &offsets,
             adj: &adj,

@@ -6,10 +6,11 @@
 //! reports it to the caller's `Progress` and stops the run when it is cancelled.
 
 use crate::error::{Error, Result};
+use crate::input::adjacency;
+use crate::input::dedup::{self, Weld};
 use crate::input::mesh::Mesh;
 use crate::input::solid::{self, Solid};
 use crate::input::triangles::Triangles;
-use crate::input::{adjacency, dedup};
 use crate::math::{Sym3, V3};
 use crate::merge::cost::InputView;
 use crate::merge::setup::{pricing, seed_volumes};
@@ -21,23 +22,23 @@ use crate::postprocess;
 use crate::progress::clock::Clock;
 use crate::progress::Stage;
 use crate::seed::quadric;
-use std::borrow::Cow;
 
 /// The merge graph: each face's vertices welded, and the faces sharing an edge.
-pub(crate) struct Graph<'m> {
+pub(crate) struct Graph {
     /// The bounds of the vertices the faces use (re-centred, [`Mesh::aabb`]).
     pub(crate) bounds: (V3, V3),
-    pub(crate) welded: Cow<'m, [u32]>,
+    /// Each vertex's weld target (§3.4), read per corner.
+    pub(crate) weld: Weld,
     /// Distinct vertices after welding.
     pub(crate) distinct: usize,
     pub(crate) pairs: Vec<(u32, u32)>,
 }
 
-impl<'m> Graph<'m> {
-    pub(crate) fn build(clock: &mut Clock, mesh: &'m Mesh, params: &Params) -> Result<Self> {
+impl Graph {
+    pub(crate) fn build(clock: &mut Clock, mesh: &Mesh, params: &Params) -> Result<Self> {
         let bounds = mesh.aabb();
         // Weld overlapping vertices so seams between parts become adjacency (§3.4).
-        let (welded, distinct) = clock
+        let (weld, distinct) = clock
             .stage(Stage::Dedup, "dedup", |go_on, _| {
                 dedup::weld_checked(mesh, params.fit.dedup, go_on)
             })?
@@ -45,12 +46,13 @@ impl<'m> Graph<'m> {
         // Faces sharing an edge form the merge graph (§3.3).
         let pairs = clock
             .stage(Stage::Adjacency, "adjacency", |go_on, _| {
-                adjacency::face_pairs_checked(&mesh.face_offsets, &welded, go_on)
+                let (offsets, indices) = (&mesh.face_offsets, &mesh.face_indices);
+                adjacency::face_pairs_checked(offsets, indices, &weld, go_on)
             })?
             .ok_or(Error::Cancelled)?;
         Ok(Graph {
             bounds,
-            welded,
+            weld,
             distinct,
             pairs,
         })
@@ -59,10 +61,9 @@ impl<'m> Graph<'m> {
     /// Whether the faces form several separate parts (faces welded to a point join none);
     /// `None` when `go_on` said stop.
     pub(crate) fn several_parts(&self, mesh: &Mesh, go_on: &dyn Fn() -> bool) -> Option<bool> {
-        let welded = &self.welded;
         let point = |f: usize| {
-            let corners = &welded[mesh.face_offsets[f] as usize..mesh.face_offsets[f + 1] as usize];
-            corners.iter().all(|&v| v == corners[0])
+            let corners = self.weld.face(mesh, f);
+            corners.iter().all(|v| v == corners.get(0))
         };
         components::several(mesh.face_count(), &self.pairs, point, go_on)
     }
@@ -120,7 +121,7 @@ impl Seeds {
                 if per_part {
                     pairs = None;
                 }
-                Surface::build(mesh, &graph.welded, lists, params, go_on)
+                Surface::build(mesh, &graph.weld, lists, params, go_on)
             })?
             .ok_or(Error::Cancelled)?;
         // The input's interior, where merges are priced by the air they add (--solid).
@@ -172,7 +173,7 @@ pub(crate) fn fitter_of<'a>(
 ) -> Fitter<'a> {
     let input = InputView {
         mesh,
-        welded: &graph.welded,
+        weld: &graph.weld,
         face_sign: &around.surface.signs,
         face_adj: around.surface.adjacency(),
         solid: around.solid.as_ref(),

@@ -165,9 +165,10 @@ fn sort_runs<T: Ord + Send>(
 
 /// Sorted, unique pairs `(a, b)` with `a < b` of faces sharing an edge. `offsets` and
 /// `indices` are the CSR polygons (indices already welded).
-#[cfg(any(test, feature = "test-internals"))]
+#[cfg(test)]
 pub fn face_pairs(offsets: &[u32], indices: &[u32]) -> Vec<(u32, u32)> {
-    face_pairs_checked(offsets, indices, &|_| true).unwrap_or_default()
+    let unwelded = super::dedup::Weld::none();
+    face_pairs_checked(offsets, indices, &unwelded, &|_| true).unwrap_or_default()
 }
 
 /// Vertices per block of the edge lists (a parallel task, and a check of `go_on`).
@@ -176,8 +177,8 @@ const BLOCK: usize = 1 << 14;
 /// each: a few milliseconds apart).
 const FACE_BLOCK: usize = 1 << 20;
 
-/// [`face_pairs`] that reports the fraction done to `go_on` between blocks of
-/// vertices and stops (`None`) when it says so.
+/// [`face_pairs`] of `indices` read through `weld`, that reports the fraction done
+/// to `go_on` between blocks of vertices and stops (`None`) when it says so.
 ///
 /// The sides are bucketed by their lower vertex (a counting sort: one 8-byte record
 /// per side, the other vertex and the face, and a start per vertex), and each
@@ -187,6 +188,7 @@ const FACE_BLOCK: usize = 1 << 20;
 pub fn face_pairs_checked(
     offsets: &[u32],
     indices: &[u32],
+    weld: &super::dedup::Weld,
     go_on: crate::progress::Checkpoint,
 ) -> Option<Vec<(u32, u32)>> {
     let faces = offsets.len().saturating_sub(1);
@@ -194,7 +196,7 @@ pub fn face_pairs_checked(
         offsets.first().is_none_or(|&o| o == 0),
         "CSR offsets start at 0"
     );
-    let verts = indices.par_iter().max().map_or(0, |&m| m as usize + 1);
+    let verts = (indices.par_iter().map(|&v| weld.of(v)).max()).map_or(0, |m| m as usize + 1);
     // Each face's sides (a, b), a ≠ b, by chunks of faces, a block of faces at a
     // time with a check of `go_on` (from `done` to `done + 0.25`) after each; false
     // when it said stop.
@@ -202,9 +204,9 @@ pub fn face_pairs_checked(
         (0..faces).step_by(FACE_BLOCK).all(|f0| {
             let f1 = (f0 + FACE_BLOCK).min(faces);
             (f0..f1).into_par_iter().with_min_len(4096).for_each(|f| {
-                let idx = &indices[offsets[f] as usize..offsets[f + 1] as usize];
+                let idx = weld.corners(&indices[offsets[f] as usize..offsets[f + 1] as usize]);
                 for i in 0..idx.len() {
-                    let (a, b) = (idx[i], idx[(i + 1) % idx.len()]);
+                    let (a, b) = (idx.get(i), idx.get((i + 1) % idx.len()));
                     if a != b {
                         visit(a.min(b), a.max(b), f as u32);
                     }

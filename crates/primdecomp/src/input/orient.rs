@@ -9,6 +9,7 @@
 //! one by what rays from its faces see (`visibility`, docs/decisions/0027), and by its signed
 //! volume only when they cannot tell.
 
+use super::dedup::{Corners, Weld};
 use super::mesh::Mesh;
 use super::visibility::{self, RayTree};
 use crate::math::{cross, dot, sub, V3};
@@ -18,13 +19,13 @@ use std::collections::VecDeque;
 /// face, of 5 each way, area-weighted) to decide; else its signed volume does.
 const MIN_VOTE: f64 = 0.5;
 
-/// Per face, +1 to keep its winding or −1 to reverse it. `welded` are the faces'
-/// welded vertex indices (the mesh's CSR offsets) and `pairs` the faces sharing an
+/// Per face, +1 to keep its winding or −1 to reverse it. `weld` gives the faces'
+/// welded vertex indices ([`Weld::face`]) and `pairs` the faces sharing an
 /// edge ([`super::adjacency::face_pairs`]). Deterministic: breadth-first in face order.
 #[cfg(test)]
-pub(crate) fn face_signs(mesh: &Mesh, welded: &[u32], pairs: &[(u32, u32)]) -> Vec<i8> {
+pub(crate) fn face_signs(mesh: &Mesh, weld: &Weld, pairs: &[(u32, u32)]) -> Vec<i8> {
     let (deg, adj) = super::adjacency::neighbour_lists(mesh.face_count(), pairs);
-    face_signs_of_lists(mesh, welded, &deg, &adj)
+    face_signs_of_lists(mesh, weld, &deg, &adj)
 }
 
 /// [`face_signs`] from the adjacency as CSR neighbour lists
@@ -36,8 +37,8 @@ pub(crate) fn face_signs(mesh: &Mesh, welded: &[u32], pairs: &[(u32, u32)]) -> V
 /// out with its hood facing down and its fenders out. Each patch so found is turned
 /// on its own.
 #[cfg(any(test, feature = "test-internals"))]
-pub fn face_signs_of_lists(mesh: &Mesh, welded: &[u32], deg: &[u32], adj: &[u32]) -> Vec<i8> {
-    face_signs_checked(mesh, welded, deg, adj, &|_| true).unwrap_or_default()
+pub fn face_signs_of_lists(mesh: &Mesh, weld: &Weld, deg: &[u32], adj: &[u32]) -> Vec<i8> {
+    face_signs_checked(mesh, weld, deg, adj, &|_| true).unwrap_or_default()
 }
 
 /// Faces between checks of `go_on` in [`face_signs_checked`].
@@ -47,15 +48,14 @@ const CHECK_EVERY: usize = 1 << 16;
 /// [`CHECK_EVERY`] faces and stops (`None`) when it says no.
 pub fn face_signs_checked(
     mesh: &Mesh,
-    welded: &[u32],
+    weld: &Weld,
     deg: &[u32],
     adj: &[u32],
     go_on: crate::progress::Checkpoint,
 ) -> Option<Vec<i8>> {
     let n = mesh.face_count();
     let mut next_check = CHECK_EVERY;
-    let off = &mesh.face_offsets;
-    let face = |f: usize| &welded[off[f] as usize..off[f + 1] as usize];
+    let face = |f: usize| weld.face(mesh, f);
     let neighbours = |f: usize| &adj[deg[f] as usize..deg[f + 1] as usize];
     // Most of the walk's work is finding each pair's shared edge: done first, for
     // every face at once (the walk below only reads it).
@@ -131,7 +131,7 @@ pub fn face_signs_checked(
 /// `None` when it said stop. One byte a face, the same for any thread count.
 fn relations_checked<'a>(
     n: usize,
-    face: &(impl Fn(usize) -> &'a [u32] + Sync),
+    face: &(impl Fn(usize) -> Corners<'a> + Sync),
     neighbours: &(impl Fn(usize) -> &'a [u32] + Sync),
     go_on: crate::progress::Checkpoint,
 ) -> Option<Vec<u8>> {
@@ -194,15 +194,15 @@ impl Relations {
 /// they run it in opposite directions, −1 when in the same. `None` when they share no
 /// edge or a third face is on it.
 fn manifold_relation<'a>(
-    a: &[u32],
+    a: Corners,
     g: u32,
     around: &[u32],
-    face: &impl Fn(usize) -> &'a [u32],
+    face: &impl Fn(usize) -> Corners<'a>,
 ) -> Option<i8> {
     let (u, v, rel) = shared_edge(a, face(g as usize))?;
     let third = around.iter().any(|&h| {
         let c = face(h as usize);
-        h != g && c.contains(&u) && c.contains(&v)
+        h != g && c.contains(u) && c.contains(v)
     });
     (!third).then_some(rel)
 }
@@ -210,10 +210,10 @@ fn manifold_relation<'a>(
 /// The first edge (u, v) of polygon `a` that polygon `b` also has, with +1 when `b`
 /// runs it the other way (the two agree) and −1 when the same way; `None` when they
 /// share no edge (or only degenerate ones).
-fn shared_edge(a: &[u32], b: &[u32]) -> Option<(u32, u32, i8)> {
-    fn edges(p: &[u32]) -> impl Iterator<Item = (u32, u32)> + '_ {
+fn shared_edge(a: Corners, b: Corners) -> Option<(u32, u32, i8)> {
+    fn edges(p: Corners<'_>) -> impl Iterator<Item = (u32, u32)> + '_ {
         let k = p.len();
-        (0..k).map(move |i| (p[i], p[(i + 1) % k]))
+        (0..k).map(move |i| (p.get(i), p.get((i + 1) % k)))
     }
     edges(a).filter(|(u, v)| u != v).find_map(|(u, v)| {
         edges(b).find_map(|e| {
@@ -269,9 +269,8 @@ mod tests {
     }
 
     fn signs(m: &Mesh) -> Vec<i8> {
-        let welded: Vec<u32> = m.face_indices.clone();
-        let pairs = super::super::adjacency::face_pairs(&m.face_offsets, &welded);
-        face_signs(m, &welded, &pairs)
+        let pairs = super::super::adjacency::face_pairs(&m.face_offsets, &m.face_indices);
+        face_signs(m, &Weld::none(), &pairs)
     }
 
     /// The packed relations are what `manifold_relation` says for every neighbour of a
@@ -287,11 +286,10 @@ mod tests {
         let e = &f[0];
         f.push(vec![e[0], e[1], 8]);
         let m = Mesh::from_polygons(&v, &f).unwrap();
-        let welded = m.face_indices.clone();
-        let pairs = super::super::adjacency::face_pairs(&m.face_offsets, &welded);
+        let pairs = super::super::adjacency::face_pairs(&m.face_offsets, &m.face_indices);
         let (deg, adj) = super::super::adjacency::neighbour_lists(m.face_count(), &pairs);
-        let off = &m.face_offsets;
-        let face = |f: usize| &welded[off[f] as usize..off[f + 1] as usize];
+        let unwelded = Weld::none();
+        let face = |f: usize| unwelded.face(&m, f);
         let nbrs = |f: usize| &adj[deg[f] as usize..deg[f + 1] as usize];
         let packed = relations_checked(m.face_count(), &face, &nbrs, &|_| true).unwrap();
         let (mut unpacked, mut opposed) = (0, 0);

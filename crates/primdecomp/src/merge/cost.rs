@@ -5,6 +5,7 @@
 use super::cluster::Clusters;
 use super::heap::Candidate;
 use super::rim::{clamp_to_points, rim_penalty, FaceAdjacency, Rim, Surroundings};
+use crate::input::dedup::{Corners, Weld};
 use crate::input::mesh::outward_normal;
 use crate::input::mesh::Mesh;
 use crate::input::solid::Solid;
@@ -65,7 +66,7 @@ impl Workspace {
 #[derive(Clone, Copy, Debug)]
 pub struct Side<'s> {
     pub id: u32,
-    pub verts: &'s [u32],
+    pub verts: Corners<'s>,
     pub q: Sym3,
     pub volume: f64,
     /// The merge clock when the snapshot was taken (the candidate's time stamp).
@@ -79,8 +80,8 @@ pub struct Side<'s> {
 #[derive(Clone, Copy, Debug)]
 pub struct InputView<'a> {
     pub(crate) mesh: &'a Mesh,
-    /// Welded face indices (same CSR offsets as the mesh).
-    pub(crate) welded: &'a [u32],
+    /// Each vertex's weld target: a face's welded corners are its own read through it.
+    pub(crate) weld: &'a Weld,
     /// Per face, ±1: the winding that faces outward (`input::orient`); empty = the
     /// faces' own windings (set only when `Plates::rim_weight` > 0 or `flush_plates`).
     pub(crate) face_sign: &'a [i8],
@@ -94,11 +95,11 @@ pub struct InputView<'a> {
 }
 
 impl<'a> InputView<'a> {
-    /// The view of `mesh` with welded indices `welded` alone: no surface, no interior.
-    pub fn new(mesh: &'a Mesh, welded: &'a [u32]) -> Self {
+    /// The view of `mesh` welded by `weld` alone: no surface, no interior.
+    pub fn new(mesh: &'a Mesh, weld: &'a Weld) -> Self {
         InputView {
             mesh,
-            welded,
+            weld,
             face_sign: &[],
             face_adj: FaceAdjacency::default(),
             solid: None,
@@ -151,28 +152,27 @@ pub struct Fitter<'a> {
 impl<'a> Fitter<'a> {
     /// The points priced for cluster `c`: a single face's own indices until it merges,
     /// then the hull vertices of its faces (`merge::driver` keeps them reduced).
-    pub fn verts<'b>(&'b self, cl: &'b Clusters, c: u32) -> &'b [u32] {
+    pub fn verts<'b>(&'b self, cl: &'b Clusters, c: u32) -> Corners<'b> {
         let v = cl.verts(c);
         if v.is_empty() {
             self.face(cl.head(c))
         } else {
-            v
+            Corners::plain(v)
         }
     }
 
     /// Welded vertex indices of face `f`.
-    fn face(&self, f: u32) -> &'a [u32] {
-        let o = &self.input.mesh.face_offsets;
-        &self.input.welded[o[f as usize] as usize..o[f as usize + 1] as usize]
+    fn face(&self, f: u32) -> Corners<'a> {
+        self.input.weld.face(self.input.mesh, f as usize)
     }
 
     /// Appends the positions of vertices `vs`: one exact-size `extend` per coordinate
     /// (a capacity check per call, not per point).
-    fn push_points(&self, vs: &[u32], ws: &mut Workspace) {
+    fn push_points(&self, vs: impl ExactSizeIterator<Item = u32> + Clone, ws: &mut Workspace) {
         let m = self.input.mesh;
-        ws.x.extend(vs.iter().map(|&v| m.x[v as usize]));
-        ws.y.extend(vs.iter().map(|&v| m.y[v as usize]));
-        ws.z.extend(vs.iter().map(|&v| m.z[v as usize]));
+        ws.x.extend(vs.clone().map(|v| m.x[v as usize]));
+        ws.y.extend(vs.clone().map(|v| m.y[v as usize]));
+        ws.z.extend(vs.map(|v| m.z[v as usize]));
     }
 
     /// The gathered points' best fit under `cfg`.
@@ -200,7 +200,7 @@ impl<'a> Fitter<'a> {
     /// face that ends up alone in the output is refitted by [`Self::fit_cluster_exact`] with them.
     pub fn fit_face(&self, f: u32, q: &Sym3, ws: &mut Workspace) -> Fit {
         ws.clear();
-        self.push_points(self.face(f), ws);
+        self.push_points(self.face(f).iter(), ws);
         let cfg = FitConfig {
             frames: FrameSearch::Eigen,
             ..self.pricing.fit
@@ -303,7 +303,7 @@ impl<'a> Fitter<'a> {
             if i % FACES_PER_ASK == FACES_PER_ASK - 1 && !go_on() {
                 return None;
             }
-            self.push_points(self.input.mesh.face(f as usize), ws);
+            self.push_points(self.input.mesh.face(f as usize).iter().copied(), ws);
         }
         Some(())
     }
@@ -324,7 +324,7 @@ impl<'a> Fitter<'a> {
         ws: &mut Workspace,
     ) -> Fit {
         ws.clear();
-        self.push_points(hull, ws);
+        self.push_points(hull.iter().copied(), ws);
         ws.rims.clear();
         if self.prices_rims() {
             self.surroundings()
@@ -399,7 +399,7 @@ impl<'a> Fitter<'a> {
     fn surroundings(&self) -> Surroundings<'a> {
         Surroundings {
             mesh: self.input.mesh,
-            welded: self.input.welded,
+            weld: self.input.weld,
             adj: self.input.face_adj,
             signs: self.input.face_sign,
         }
@@ -634,8 +634,8 @@ impl<'a> Fitter<'a> {
         let (a, b) = if a.id <= b.id { (a, b) } else { (b, a) };
         // Points shared by both clusters are streamed twice; max/min fits don't care.
         ws.clear();
-        self.push_points(a.verts, ws);
-        self.push_points(b.verts, ws);
+        self.push_points(a.verts.iter(), ws);
+        self.push_points(b.verts.iter(), ws);
         let q = a.q.add(&b.q);
         let fit = self.fit_points(&q, &self.pricing.fit, ws);
         let air = self.air(&fit.prim);
@@ -691,11 +691,11 @@ mod tests {
             }
         }
         let mesh = Mesh::from_polygons(&p, &tris).unwrap();
-        let welded = mesh.face_indices.clone();
-        let pairs = face_pairs(&mesh.face_offsets, &welded);
+        let pairs = face_pairs(&mesh.face_offsets, &mesh.face_indices);
         let (offsets, adj) = neighbour_lists(mesh.face_count(), &pairs);
+        let unwelded = Weld::none();
         let mut fitter =
-            crate::merge::setup::fitter(&mesh, &welded, &Params::default(), mesh.aabb());
+            crate::merge::setup::fitter(&mesh, &unwelded, &Params::default(), mesh.aabb());
         fitter.input.face_adj = FaceAdjacency {
             offsets: &offsets,
             adj: &adj,

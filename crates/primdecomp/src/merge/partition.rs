@@ -23,6 +23,7 @@ use super::cluster::{Clusters, Group};
 use super::cost::{Fitter, InputView, Pricing};
 use super::driver::{merge_part, FitCounts, MergeOutput, Traced};
 use super::median::{self, BLOCK};
+use crate::input::dedup::Weld;
 use crate::input::mesh::Mesh;
 use crate::math::Sym3;
 use crate::progress::Checkpoint;
@@ -299,13 +300,13 @@ fn pairs_by_part(parts: &[Vec<u32>], pairs: &[(u32, u32)], faces: usize) -> Vec<
 
 /// The faces `part` (increasing) as a mesh of their own: local face ids in order,
 /// local vertex ids for the faces' own and welded vertices (same positions and
-/// offset); returns it with its welded indices and each local vertex's input id.
+/// offset); returns it with its weld and each local vertex's input id.
 ///
 /// Local ids are given in order of first use. A table by the part's own vertices,
 /// not one over the whole input's: a part per 65,536 faces each clearing a table of
 /// every input vertex grew as the square of the input (56M faces: 855 parts × 28M
 /// vertices).
-fn sub_mesh(mesh: &Mesh, welded: &[u32], part: &[u32]) -> (Mesh, Vec<u32>, Vec<u32>) {
+fn sub_mesh(mesh: &Mesh, weld: &Weld, part: &[u32]) -> (Mesh, Weld, Vec<u32>) {
     let corners: usize = part.iter().map(|&f| mesh.face(f as usize).len()).sum();
     let mut local: rustc_hash::FxHashMap<u32, u32> = Default::default();
     local.reserve(corners);
@@ -320,20 +321,22 @@ fn sub_mesh(mesh: &Mesh, welded: &[u32], part: &[u32]) -> (Mesh, Vec<u32>, Vec<u
         offset: mesh.offset,
         ..Mesh::default()
     };
-    let mut sub_welded = Vec::new();
     sub.face_offsets.push(0);
     for &f in part {
-        let o = &mesh.face_offsets;
-        for i in o[f as usize] as usize..o[f as usize + 1] as usize {
-            sub.face_indices.push(id(mesh.face_indices[i]));
-            sub_welded.push(id(welded[i]));
+        for &v in mesh.face(f as usize) {
+            sub.face_indices.push(id(v));
+            // The target's local id is given here, in the order a copy of the welded
+            // corners gave it.
+            id(weld.of(v));
         }
         sub.face_offsets.push(sub.face_indices.len() as u32);
     }
+    // A local vertex's target is local too (a target is its own).
+    let sub_weld = weld.restricted(&global, |v| local[&v]);
     sub.x = global.iter().map(|&v| mesh.x[v as usize]).collect();
     sub.y = global.iter().map(|&v| mesh.y[v as usize]).collect();
     sub.z = global.iter().map(|&v| mesh.z[v as usize]).collect();
-    (sub, sub_welded, global)
+    (sub, sub_weld, global)
 }
 
 /// The adjacent pairs of `part`'s faces (increasing) in its local ids, from the
@@ -398,14 +401,14 @@ fn merge_one(
         pairs = part_pairs(part, lists);
     }
     let (q, volume) = part_seeds(fitter, faces, part);
-    let (sub, sub_welded, global) = sub_mesh(fitter.input.mesh, fitter.input.welded, part);
+    let (sub, sub_weld, global) = sub_mesh(fitter.input.mesh, fitter.input.weld, part);
     // Same fit settings, cost grid and hull tolerance as the whole input's.
     let sub_ev = Fitter {
         // No surface (indexed by the whole input's faces; a part fits no output
         // primitives), the same interior.
         input: InputView {
             solid: fitter.input.solid,
-            ..InputView::new(&sub, &sub_welded)
+            ..InputView::new(&sub, &sub_weld)
         },
         pricing: Pricing {
             // Lazy greedy for every merge of a part unless re-pricing is exact: faster at

@@ -20,6 +20,7 @@
 //! across a neighbour that continues the cluster's surface (turns by less than
 //! [`RIM_ANGLE_DEG`]).
 
+use crate::input::dedup::{Corners, Weld};
 use crate::input::mesh::outward_normal_and_centre;
 use crate::input::mesh::Mesh;
 use crate::math::{dot, norm, sub, V3};
@@ -120,12 +121,12 @@ pub fn rim_penalty(prim: &Primitive, rims: &[Rim], weight: f64, cost: f64, limit
     weight * sum
 }
 
-/// The faces around one cluster and how to tell its rims: the input with its welded
-/// indices, its adjacency, and each face's outward sign (`input::orient`).
+/// The faces around one cluster and how to tell its rims: the input with its weld,
+/// its adjacency, and each face's outward sign (`input::orient`).
 #[derive(Clone, Copy, Debug)]
 pub struct Surroundings<'a> {
     pub mesh: &'a Mesh,
-    pub welded: &'a [u32],
+    pub weld: &'a Weld,
     pub adj: FaceAdjacency<'a>,
     pub signs: &'a [i8],
 }
@@ -194,8 +195,7 @@ impl Surroundings<'_> {
     /// The rim of face `g` (outward unit normal `ng`) across its edge with face `e`;
     /// `None` when the two share no edge.
     fn rim(&self, e: u32, g: u32, ng: V3) -> Option<Rim> {
-        let offs = &self.mesh.face_offsets;
-        let wface = |f: u32| &self.welded[offs[f as usize] as usize..offs[f as usize + 1] as usize];
+        let wface = |f: u32| self.weld.face(self.mesh, f as usize);
         let (a, b) = shared_edge(wface(e), wface(g))?;
         let offset = self
             .mesh
@@ -212,8 +212,8 @@ impl Surroundings<'_> {
 }
 
 /// Two welded vertices both faces use (the first two found in `f`'s order), if any.
-fn shared_edge(f: &[u32], g: &[u32]) -> Option<(u32, u32)> {
-    let mut it = f.iter().copied().filter(|v| g.contains(v));
+fn shared_edge(f: Corners, g: Corners) -> Option<(u32, u32)> {
+    let mut it = f.iter().filter(|&v| g.contains(v));
     let a = it.next()?;
     let b = it.find(|&v| v != a)?;
     Some((a, b))
@@ -228,12 +228,11 @@ mod tests {
 
     /// The rims of `members` in `m` (unwelded, windings as given: outward here).
     fn rims_of(m: &Mesh, members: &[u32]) -> Vec<Rim> {
-        let welded = m.face_indices.clone();
-        let pairs = face_pairs(&m.face_offsets, &welded);
+        let pairs = face_pairs(&m.face_offsets, &m.face_indices);
         let (offsets, adj) = neighbour_lists(m.face_count(), &pairs);
         let s = Surroundings {
             mesh: m,
-            welded: &welded,
+            weld: &Weld::none(),
             adj: FaceAdjacency {
                 offsets: &offsets,
                 adj: &adj,
@@ -392,10 +391,9 @@ mod tests {
         // The L's side tilted to 1° below the top's plane: the same surface.
         let m = bent_ell(1.0);
         assert!(rims_of(&m, &[1]).is_empty());
-        let welded = m.face_indices.clone();
         let s = Surroundings {
             mesh: &m,
-            welded: &welded,
+            weld: &Weld::none(),
             adj: FaceAdjacency::default(),
             signs: &[],
         };

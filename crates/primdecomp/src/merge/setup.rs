@@ -59,17 +59,17 @@ pub fn pricing(params: &Params, bounds: (V3, V3)) -> Pricing {
     }
 }
 
-/// A [`Fitter`] on `mesh` with welded indices `welded` alone (no surface, no
+/// A [`Fitter`] on `mesh` welded by `weld` alone (no surface, no
 /// interior), its settings made absolute by [`pricing`] (the tests' and benchmarks').
 #[cfg(any(test, feature = "test-internals"))]
 pub fn fitter<'a>(
     mesh: &'a crate::input::mesh::Mesh,
-    welded: &'a [u32],
+    weld: &'a crate::input::dedup::Weld,
     params: &Params,
     bounds: (V3, V3),
 ) -> Fitter<'a> {
     Fitter {
-        input: super::cost::InputView::new(mesh, welded),
+        input: super::cost::InputView::new(mesh, weld),
         pricing: pricing(params, bounds),
     }
 }

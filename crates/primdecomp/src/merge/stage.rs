@@ -6,6 +6,7 @@ use super::components;
 use super::partition;
 use super::rim::FaceAdjacency;
 use super::{Clusters, Fitter, MergeLog, MergeOutput, Snapshot};
+use crate::input::dedup::Weld;
 use crate::input::mesh::Mesh;
 use crate::input::orient;
 use crate::math::Sym3;
@@ -37,14 +38,14 @@ impl Surface {
     /// `go_on` said stop.
     pub(crate) fn build(
         mesh: &Mesh,
-        welded: &[u32],
+        weld: &Weld,
         (offsets, adj): (Vec<u32>, Vec<u32>),
         params: &Params,
         go_on: Checkpoint,
     ) -> Option<Surface> {
         let used = params.plates.rim_weight != 0.0 || params.plates.flush_plates;
         let signs = match used {
-            true => orient::face_signs_checked(mesh, welded, &offsets, &adj, go_on)?,
+            true => orient::face_signs_checked(mesh, weld, &offsets, &adj, go_on)?,
             false => Vec::new(),
         };
         Some(Surface {

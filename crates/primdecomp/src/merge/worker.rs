@@ -27,6 +27,7 @@
 use super::cluster::Clusters;
 use super::cost::{Fitter, Side, Workspace};
 use super::heap::Candidate;
+use crate::input::dedup::Corners;
 use crate::math::Sym3;
 use crate::progress::wallclock::Instant;
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering::*};
@@ -70,7 +71,7 @@ impl Job {
         let s = &self.slots[i];
         Side {
             id: s.id,
-            verts: &self.verts[s.start as usize..s.end as usize],
+            verts: Corners::plain(&self.verts[s.start as usize..s.end as usize]),
             q: s.q,
             volume: s.volume,
             t: s.t,
@@ -79,7 +80,7 @@ impl Job {
 
     fn push(&mut self, s: Side) {
         let start = self.verts.len() as u32;
-        self.verts.extend_from_slice(s.verts);
+        self.verts.extend(s.verts.iter());
         self.slots.push(Slot {
             id: s.id,
             start,

@@ -105,7 +105,7 @@ pub(super) fn bridge(fitter: &Fitter, cl: &mut Clusters) -> Vec<(u32, u32)> {
 fn centroid(fitter: &Fitter, cl: &Clusters, c: u32) -> [f64; 3] {
     let vs = fitter.verts(cl, c);
     let mut s = [0.0; 3];
-    for &v in vs {
+    for v in vs.iter() {
         let p = fitter.input.mesh.pos(v);
         (0..3).for_each(|k| s[k] += p[k]);
     }

@@ -134,7 +134,7 @@ fn merged_points(
     st.next();
     let (va, vb) = (fitter.verts(cl, a), fitter.verts(cl, b));
     let mut out = Vec::with_capacity(va.len() + vb.len());
-    out.extend(va.iter().chain(vb).copied().filter(|&v| st.first(v)));
+    out.extend(va.iter().chain(vb.iter()).filter(|&v| st.first(v)));
     if out.len() <= HULL_MIN {
         return out;
     }

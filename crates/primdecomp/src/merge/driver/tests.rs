@@ -32,7 +32,7 @@ pub(in crate::merge) fn with_input<R>(
     f: impl FnOnce(&Fitter, &[crate::math::Sym3], &[f64], &[(u32, u32)]) -> R,
 ) -> R {
     let (welded, _) = dedup::weld(mesh, p.fit.dedup);
-    let pairs = adjacency::face_pairs(&mesh.face_offsets, &welded);
+    let pairs = adjacency::face_pairs(&mesh.face_offsets, &welded.indices(mesh));
     let mut q = Vec::new();
     quadric::face_quadrics(mesh, p.fit.tangent_eps, &mut q);
     let fitter = fitter(mesh, &welded, p, mesh.aabb());

@@ -3,7 +3,7 @@
 //! offset clouds, and with a reused workspace.
 
 use super::*;
-use crate::add;
+use crate::vec3::add;
 use proptest::prelude::*;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;

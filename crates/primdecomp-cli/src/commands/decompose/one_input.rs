@@ -78,8 +78,8 @@ pub(super) fn run_one(
         written.push(decompose_png(&dest.json, &label, &dec, input, &mesh, png)?);
     }
     let _out = PRINT.lock();
-    let times = (write_s, memory.as_deref());
-    report(a, (&dec, &mesh), &written, why.as_deref(), times);
+    let (why, memory) = (why.as_deref(), memory.as_deref());
+    report(a, (&dec, &mesh), &written, why, write_s, memory);
     Ok((dec, written))
 }
 
@@ -139,7 +139,8 @@ fn report(
     (dec, mesh): (&Decomposition, &primdecomp::Mesh),
     written: &[PathBuf],
     why_tiled: Option<&str>,
-    (write_s, memory): (f64, Option<&[(String, f64, f64)]>),
+    write_s: f64,
+    memory: Option<&[(String, f64, f64)]>,
 ) {
     if !a.quiet {
         if let Some(why) = why_tiled {

@@ -154,16 +154,7 @@ pub struct PrimdecompPrimitive {
 impl PrimdecompPrimitive {
     fn new(p: &Primitive, faces: u32) -> PrimdecompPrimitive {
         let (kind, shape) = match *p {
-            Primitive::Box(b) => (
-                PrimdecompKind::Box,
-                PrimdecompShape {
-                    box_: PrimdecompBox {
-                        center: b.center,
-                        rotation: quat_from_axes(&b.axes),
-                        half_extents: b.half,
-                    },
-                },
-            ),
+            Primitive::Box(b) => (PrimdecompKind::Box, box_shape(&b)),
             Primitive::Sphere(s) => (
                 PrimdecompKind::Sphere,
                 PrimdecompShape {
@@ -193,33 +184,48 @@ impl PrimdecompPrimitive {
                     },
                 },
             ),
-            Primitive::Frustum(f) => (
-                PrimdecompKind::Frustum,
-                PrimdecompShape {
-                    frustum: PrimdecompFrustum {
-                        p0: f.p0,
-                        p1: f.p1,
-                        radius0: f.r0,
-                        radius1: f.r1,
-                    },
-                },
-            ),
-            Primitive::Prism(q) => (
-                PrimdecompKind::Prism,
-                PrimdecompShape {
-                    prism: PrimdecompPrism {
-                        center: q.center,
-                        rotation: quat_from_axes(&q.axes),
-                        half_x: q.hx,
-                        half_y: q.hy,
-                        half_z_top: q.hz_top,
-                        half_z_bottom: q.hz_bottom,
-                        shift_z: q.shift,
-                    },
-                },
-            ),
+            Primitive::Frustum(f) => (PrimdecompKind::Frustum, frustum_shape(&f)),
+            Primitive::Prism(q) => (PrimdecompKind::Prism, prism_shape(&q)),
         };
         PrimdecompPrimitive { kind, faces, shape }
+    }
+}
+
+/// A box's C shape: its axes as a rotation.
+fn box_shape(b: &primdecomp::Obb) -> PrimdecompShape {
+    PrimdecompShape {
+        box_: PrimdecompBox {
+            center: b.center,
+            rotation: quat_from_axes(&b.axes),
+            half_extents: b.half,
+        },
+    }
+}
+
+/// A frustum's C shape.
+fn frustum_shape(f: &primdecomp::Frustum) -> PrimdecompShape {
+    PrimdecompShape {
+        frustum: PrimdecompFrustum {
+            p0: f.p0,
+            p1: f.p1,
+            radius0: f.r0,
+            radius1: f.r1,
+        },
+    }
+}
+
+/// A prism's C shape: its axes as a rotation.
+fn prism_shape(q: &primdecomp::Prism) -> PrimdecompShape {
+    PrimdecompShape {
+        prism: PrimdecompPrism {
+            center: q.center,
+            rotation: quat_from_axes(&q.axes),
+            half_x: q.hx,
+            half_y: q.hy,
+            half_z_top: q.hz_top,
+            half_z_bottom: q.hz_bottom,
+            shift_z: q.shift,
+        },
     }
 }
 

@@ -438,27 +438,7 @@ impl Params {
             }
         };
         self.goal.validate()?;
-        if !self.fit.kinds.iter().any(|&k| k) {
-            return bad("at least one primitive kind must be enabled".into());
-        }
-        for k in Kind::ALL {
-            let w = self.fit.weights[k as usize];
-            if !(w.is_finite() && w > 0.0) {
-                return bad(format!(
-                    "weight of {} must be a positive number, got {w}",
-                    k.name()
-                ));
-            }
-        }
-        for (name, x) in [
-            ("tangent_eps", self.fit.tangent_eps),
-            ("rim_weight", self.plates.rim_weight),
-        ] {
-            if !(x.is_finite() && x >= 0.0) {
-                return bad(format!("{name} must be ≥ 0, got {x}"));
-            }
-        }
-        fraction("min_extent", self.fit.min_extent, false)?;
+        self.validate_fit()?;
         fraction("open_holes", self.plates.open_holes, true)?;
         fraction("min_thickness", self.plates.min_thickness, true)?;
         if let Some(m) = self.fit.max_excess_volume {
@@ -489,6 +469,37 @@ impl Params {
             if !(t.is_finite() && t >= 0.0) {
                 return bad(format!("remove_thin_boxes must be ≥ 0, got {t}"));
             }
+        }
+        Ok(())
+    }
+
+    /// Checks the fit's kinds and weights, the two non-negative weights and the
+    /// smallest extent (in the order [`Params::validate`] reports them).
+    fn validate_fit(&self) -> Result<()> {
+        let bad = |m: String| Err(Error::InvalidParams(m));
+        if !self.fit.kinds.iter().any(|&k| k) {
+            return bad("at least one primitive kind must be enabled".into());
+        }
+        for k in Kind::ALL {
+            let w = self.fit.weights[k as usize];
+            if !(w.is_finite() && w > 0.0) {
+                return bad(format!(
+                    "weight of {} must be a positive number, got {w}",
+                    k.name()
+                ));
+            }
+        }
+        for (name, x) in [
+            ("tangent_eps", self.fit.tangent_eps),
+            ("rim_weight", self.plates.rim_weight),
+        ] {
+            if !(x.is_finite() && x >= 0.0) {
+                return bad(format!("{name} must be ≥ 0, got {x}"));
+            }
+        }
+        let m = self.fit.min_extent;
+        if !(m.is_finite() && m < 1.0 && m > 0.0) {
+            return bad(format!("min_extent must be in (0, 1), got {m}"));
         }
         Ok(())
     }

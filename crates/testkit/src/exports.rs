@@ -228,9 +228,27 @@ pub fn urdf(text: &str) -> Result<Checked, String> {
         .map(|j| j.get("name"))
         .collect::<Result<_, _>>()?;
     unique("joint", joints.iter().copied())?;
+    let children = joint_children(&e, &links)?;
+    unique("joint child", children.iter().copied())?;
+    let files = urdf_values(&e)?;
+    // The root link is the one no joint has as its child.
+    let names = links
+        .iter()
+        .filter(|l| children.contains(l))
+        .map(|l| l.to_string())
+        .collect();
+    Ok(Checked {
+        names,
+        files,
+        ..Checked::default()
+    })
+}
+
+/// Each joint's child link, every joint's parent and child naming a link of `links`.
+fn joint_children<'a>(e: &'a [Elem], links: &[&str]) -> Result<Vec<&'a str>, String> {
     let mut children = Vec::new();
     for (i, j) in e.iter().enumerate().filter(|(_, x)| x.name == "joint") {
-        let link = |tag: &str| -> Result<&str, String> {
+        let link = |tag: &str| -> Result<&'a str, String> {
             let l = e
                 .iter()
                 .find(|x| x.name == tag && x.parent == Some(i))
@@ -245,9 +263,13 @@ pub fn urdf(text: &str) -> Result<Checked, String> {
         link("parent")?;
         children.push(link("child")?);
     }
-    unique("joint child", children.iter().copied())?;
+    Ok(children)
+}
+
+/// Checks the URDF's origins and shape sizes; returns the mesh files it names.
+fn urdf_values(e: &[Elem]) -> Result<Vec<String>, String> {
     let mut files = Vec::new();
-    for x in &e {
+    for x in e {
         match x.name.as_str() {
             "origin" => {
                 numbers(x.get("xyz")?, Some(3))?;
@@ -273,17 +295,7 @@ pub fn urdf(text: &str) -> Result<Checked, String> {
             _ => {}
         }
     }
-    // The root link is the one no joint has as its child.
-    let names = links
-        .iter()
-        .filter(|l| children.contains(l))
-        .map(|l| l.to_string())
-        .collect();
-    Ok(Checked {
-        names,
-        files,
-        ..Checked::default()
-    })
+    Ok(files)
 }
 
 /// Tokens of the USD text and `.tscn` grammars as the writers emit them.
@@ -311,33 +323,7 @@ fn tokens(text: &str, comments: bool) -> Result<Vec<Tok>, String> {
                     it.next();
                 }
             }
-            '"' => {
-                let mut s = String::new();
-                loop {
-                    let Some((_, c)) = it.next() else {
-                        return Err("a string does not end".into());
-                    };
-                    match c {
-                        '"' => break,
-                        '\\' => match it.next().map(|x| x.1) {
-                            Some('\\') => s.push('\\'),
-                            Some('"') => s.push('"'),
-                            Some('n') => s.push('\n'),
-                            Some('t') => s.push('\t'),
-                            Some('r') => s.push('\r'),
-                            e => return Err(format!("bad escape \\{e:?} in a string")),
-                        },
-                        c if c.is_control() => {
-                            return Err(format!(
-                                "raw control character U+{:04X} in a string",
-                                c as u32
-                            ))
-                        }
-                        c => s.push(c),
-                    }
-                }
-                out.push(Tok::Str(s));
-            }
+            '"' => out.push(Tok::Str(quoted(&mut it)?)),
             '(' | '[' | '{' => {
                 depth.push(c);
                 out.push(Tok::Punct(c));
@@ -354,27 +340,7 @@ fn tokens(text: &str, comments: bool) -> Result<Vec<Tok>, String> {
                 out.push(Tok::Punct(c));
             }
             '=' | ',' | '<' | '>' => out.push(Tok::Punct(c)),
-            c if c.is_ascii_alphanumeric() || "_-.+:/".contains(c) => {
-                let mut w = String::from(c);
-                while let Some(&(_, d)) = it.peek() {
-                    if d.is_ascii_alphanumeric() || "_-.+:/".contains(d) {
-                        w.push(d);
-                        it.next();
-                    } else {
-                        break;
-                    }
-                }
-                if matches!(w.to_ascii_lowercase().as_str(), "inf" | "nan" | "infinity") {
-                    return Err(format!("the non-finite number {w}"));
-                }
-                let numeric =
-                    w.starts_with(|c: char| c.is_ascii_digit() || c == '-' || c == '+' || c == '.');
-                out.push(if numeric {
-                    Tok::Num(number(&w)?)
-                } else {
-                    Tok::Word(w)
-                });
-            }
+            c if word_char(c) => out.push(word(c, &mut it)?),
             c if c.is_control() => return Err(format!("raw control character U+{:04X}", c as u32)),
             c => return Err(format!("unexpected character {c:?} at byte {i}")),
         }
@@ -383,6 +349,64 @@ fn tokens(text: &str, comments: bool) -> Result<Vec<Tok>, String> {
         return Err("unclosed bracket".into());
     }
     Ok(out)
+}
+
+/// The characters tokenized as `tokens` goes.
+type Chars<'a> = std::iter::Peekable<std::str::CharIndices<'a>>;
+
+/// A string's contents after its opening quote, through its closing one.
+fn quoted(it: &mut Chars) -> Result<String, String> {
+    let mut s = String::new();
+    loop {
+        let Some((_, c)) = it.next() else {
+            return Err("a string does not end".into());
+        };
+        match c {
+            '"' => return Ok(s),
+            '\\' => match it.next().map(|x| x.1) {
+                Some('\\') => s.push('\\'),
+                Some('"') => s.push('"'),
+                Some('n') => s.push('\n'),
+                Some('t') => s.push('\t'),
+                Some('r') => s.push('\r'),
+                e => return Err(format!("bad escape \\{e:?} in a string")),
+            },
+            c if c.is_control() => {
+                return Err(format!(
+                    "raw control character U+{:04X} in a string",
+                    c as u32
+                ))
+            }
+            c => s.push(c),
+        }
+    }
+}
+
+/// A character of a word or a number.
+fn word_char(c: char) -> bool {
+    c.is_ascii_alphanumeric() || "_-.+:/".contains(c)
+}
+
+/// The word or number starting with `c`: a number when it starts as one (finite,
+/// within f32).
+fn word(c: char, it: &mut Chars) -> Result<Tok, String> {
+    let mut w = String::from(c);
+    while let Some(&(_, d)) = it.peek() {
+        if !word_char(d) {
+            break;
+        }
+        w.push(d);
+        it.next();
+    }
+    if matches!(w.to_ascii_lowercase().as_str(), "inf" | "nan" | "infinity") {
+        return Err(format!("the non-finite number {w}"));
+    }
+    let numeric = w.starts_with(|c: char| c.is_ascii_digit() || c == '-' || c == '+' || c == '.');
+    Ok(if numeric {
+        Tok::Num(number(&w)?)
+    } else {
+        Tok::Word(w)
+    })
 }
 
 /// A USD identifier (a prim name).
@@ -459,88 +483,117 @@ fn godot_node(s: &str) -> bool {
 /// sections, `key = value` lines whose values tokenize, nodes named as Godot allows
 /// and unique among siblings, every `SubResource("id")` defined.
 pub fn tscn(text: &str) -> Result<Checked, String> {
-    let mut names = Vec::new();
-    let mut idents = Vec::new();
-    let mut ids = HashSet::new();
-    let mut refs = Vec::new();
-    let mut siblings: HashMap<String, HashSet<String>> = HashMap::new();
-    let mut steps = None;
-    let mut resources = 0;
+    let mut scene = Tscn::default();
     for (n, line) in text.lines().enumerate() {
         let line = line.trim();
         if line.is_empty() {
             continue;
         }
         let t = tokens(line, false).map_err(|e| format!("line {}: {e}", n + 1))?;
-        let attr = |k: &str| -> Option<&Tok> {
-            t.windows(3)
-                .find(|w| w[0] == Tok::Word(k.into()) && w[1] == Tok::Punct('='))
-                .map(|w| &w[2])
-        };
-        let str_attr = |k: &str| match attr(k) {
-            Some(Tok::Str(s)) => Some(s.clone()),
-            _ => None,
-        };
         match t.get(1) {
-            Some(Tok::Word(w)) if t[0] == Tok::Punct('[') => match w.as_str() {
-                "gd_scene" => match attr("load_steps") {
-                    Some(Tok::Num(x)) => steps = Some(*x as usize),
-                    _ => return Err("gd_scene without load_steps".into()),
-                },
-                "sub_resource" => {
-                    resources += 1;
-                    let id = str_attr("id").ok_or("sub_resource without an id")?;
-                    if !ids.insert(id.clone()) {
-                        return Err(format!("sub_resource id {id:?} is repeated"));
-                    }
-                }
-                "node" => {
-                    let name = str_attr("name").ok_or("node without a name")?;
-                    if !godot_node(&name) {
-                        return Err(format!("node name {name:?} is not allowed in Godot"));
-                    }
-                    let parent = str_attr("parent").unwrap_or_else(|| "(root)".into());
-                    if parent == "." {
-                        idents.push(name.clone());
-                    }
-                    if !siblings.entry(parent).or_default().insert(name.clone()) {
-                        return Err(format!("node name {name:?} is repeated"));
-                    }
-                }
-                w => return Err(format!("unknown section [{w}")),
-            },
-            _ => {
-                if let Some(Tok::Word(k)) = t.first() {
-                    if k == "metadata/primdecomp_name" {
-                        match t.get(2) {
-                            Some(Tok::Str(s)) => names.push(s.clone()),
-                            _ => return Err("primdecomp_name without a string".into()),
-                        }
-                    }
-                }
-                for w in t.windows(4) {
-                    if w[0] == Tok::Word("SubResource".into()) {
-                        if let Tok::Str(id) = &w[2] {
-                            refs.push(id.clone());
-                        }
-                    }
-                }
-            }
+            Some(Tok::Word(w)) if t[0] == Tok::Punct('[') => scene.section(w, &t)?,
+            _ => scene.value_line(&t)?,
         }
     }
+    let (steps, resources) = (scene.steps, scene.ids.len());
     if steps != Some(resources + 1) {
         return Err(format!(
             "load_steps {steps:?} for {resources} sub-resources"
         ));
     }
-    if let Some(r) = refs.iter().find(|r| !ids.contains(*r)) {
+    if let Some(r) = scene.refs.iter().find(|r| !scene.ids.contains(*r)) {
         return Err(format!("SubResource({r:?}) is not defined"));
     }
     Ok(Checked {
-        names,
-        idents,
+        names: scene.names,
+        idents: scene.idents,
         ..Checked::default()
     })
+}
+
+/// What [`tscn`] gathers line by line.
+#[derive(Default)]
+struct Tscn {
+    names: Vec<String>,
+    idents: Vec<String>,
+    ids: HashSet<String>,
+    refs: Vec<String>,
+    siblings: HashMap<String, HashSet<String>>,
+    steps: Option<usize>,
+}
+
+/// The value of `k = value` in a line's tokens.
+fn attr<'a>(t: &'a [Tok], k: &str) -> Option<&'a Tok> {
+    t.windows(3)
+        .find(|w| w[0] == Tok::Word(k.into()) && w[1] == Tok::Punct('='))
+        .map(|w| &w[2])
+}
+
+/// The string value of `k = "value"` in a line's tokens.
+fn str_attr(t: &[Tok], k: &str) -> Option<String> {
+    match attr(t, k) {
+        Some(Tok::Str(s)) => Some(s.clone()),
+        _ => None,
+    }
+}
+
+impl Tscn {
+    /// A `[section …]` line: the header's step count, a sub-resource's id, a node's
+    /// name.
+    fn section(&mut self, w: &str, t: &[Tok]) -> Result<(), String> {
+        match w {
+            "gd_scene" => match attr(t, "load_steps") {
+                Some(Tok::Num(x)) => self.steps = Some(*x as usize),
+                _ => return Err("gd_scene without load_steps".into()),
+            },
+            "sub_resource" => {
+                let id = str_attr(t, "id").ok_or("sub_resource without an id")?;
+                if !self.ids.insert(id.clone()) {
+                    return Err(format!("sub_resource id {id:?} is repeated"));
+                }
+            }
+            "node" => {
+                let name = str_attr(t, "name").ok_or("node without a name")?;
+                if !godot_node(&name) {
+                    return Err(format!("node name {name:?} is not allowed in Godot"));
+                }
+                let parent = str_attr(t, "parent").unwrap_or_else(|| "(root)".into());
+                if parent == "." {
+                    self.idents.push(name.clone());
+                }
+                if !self
+                    .siblings
+                    .entry(parent)
+                    .or_default()
+                    .insert(name.clone())
+                {
+                    return Err(format!("node name {name:?} is repeated"));
+                }
+            }
+            w => return Err(format!("unknown section [{w}")),
+        }
+        Ok(())
+    }
+
+    /// A `key = value` line: an object's name, the sub-resources it refers to.
+    fn value_line(&mut self, t: &[Tok]) -> Result<(), String> {
+        if let Some(Tok::Word(k)) = t.first() {
+            if k == "metadata/primdecomp_name" {
+                match t.get(2) {
+                    Some(Tok::Str(s)) => self.names.push(s.clone()),
+                    _ => return Err("primdecomp_name without a string".into()),
+                }
+            }
+        }
+        for w in t.windows(4) {
+            if w[0] == Tok::Word("SubResource".into()) {
+                if let Tok::Str(id) = &w[2] {
+                    self.refs.push(id.clone());
+                }
+            }
+        }
+        Ok(())
+    }
 }
 
 /// Every number in `v` (no `null` where a number belongs: serde writes non-finite

@@ -271,28 +271,14 @@ fn nodes_glb() -> Vec<u8> {
     let mut buf: Vec<u8> = Vec::new();
     let (mut views, mut accessors, mut gl_meshes, mut gl_nodes) =
         (Vec::new(), Vec::new(), Vec::new(), Vec::new());
-    for (k, (name, (v, f))) in meshes.iter().enumerate() {
-        let tris: Vec<u32> = f
-            .iter()
-            .flat_map(|p| (1..p.len() - 1).flat_map(move |i| [p[0], p[i], p[i + 1]]))
-            .collect();
+    for (k, (name, mesh)) in meshes.iter().enumerate() {
+        let v = &mesh.0;
         let (pos_at, idx_at) = (buf.len(), buf.len() + 12 * v.len());
-        let (mut lo, mut hi) = ([f32::MAX; 3], [f32::MIN; 3]);
-        for p in v {
-            for (d, &x) in p.iter().enumerate() {
-                let x = x as f32;
-                buf.extend(x.to_le_bytes());
-                lo[d] = lo[d].min(x);
-                hi[d] = hi[d].max(x);
-            }
-        }
-        for i in &tris {
-            buf.extend(i.to_le_bytes());
-        }
+        let (tris, [lo, hi]) = append_mesh(&mut buf, mesh);
         views.push(serde_json::json!({"buffer": 0, "byteOffset": pos_at, "byteLength": 12 * v.len(), "target": 34962}));
-        views.push(serde_json::json!({"buffer": 0, "byteOffset": idx_at, "byteLength": 4 * tris.len(), "target": 34963}));
+        views.push(serde_json::json!({"buffer": 0, "byteOffset": idx_at, "byteLength": 4 * tris, "target": 34963}));
         accessors.push(serde_json::json!({"bufferView": 2 * k, "componentType": 5126, "count": v.len(), "type": "VEC3", "min": lo, "max": hi}));
-        accessors.push(serde_json::json!({"bufferView": 2 * k + 1, "componentType": 5125, "count": tris.len(), "type": "SCALAR"}));
+        accessors.push(serde_json::json!({"bufferView": 2 * k + 1, "componentType": 5125, "count": tris, "type": "SCALAR"}));
         gl_meshes.push(serde_json::json!({"name": name, "primitives": [{"attributes": {"POSITION": 2 * k}, "indices": 2 * k + 1}]}));
         let (t, r, s) = nodes[k];
         gl_nodes.push(serde_json::json!({"name": name, "mesh": k, "translation": t, "rotation": r, "scale": [s, s, s]}));
@@ -313,6 +299,28 @@ fn nodes_glb() -> Vec<u8> {
         "buffers": [{"byteLength": buf.len()}],
     });
     glb(&serde_json::to_string(&doc).expect("plain data"), buf)
+}
+
+/// Appends a mesh's positions (f32) and then its polygons fanned into triangles (u32
+/// indices) to `buf`; returns the number of indices and the positions' bounds.
+fn append_mesh(buf: &mut Vec<u8>, (v, f): &Polys) -> (usize, [[f32; 3]; 2]) {
+    let tris: Vec<u32> = f
+        .iter()
+        .flat_map(|p| (1..p.len() - 1).flat_map(move |i| [p[0], p[i], p[i + 1]]))
+        .collect();
+    let (mut lo, mut hi) = ([f32::MAX; 3], [f32::MIN; 3]);
+    for p in v {
+        for (d, &x) in p.iter().enumerate() {
+            let x = x as f32;
+            buf.extend(x.to_le_bytes());
+            lo[d] = lo[d].min(x);
+            hi[d] = hi[d].max(x);
+        }
+    }
+    for i in &tris {
+        buf.extend(i.to_le_bytes());
+    }
+    (tris.len(), [lo, hi])
 }
 
 /// A GLB file: the 12-byte header, the JSON chunk (padded with spaces) and the binary

@@ -96,12 +96,10 @@ pub fn cylinder(radius: f64, height: f64, n: usize) -> Polys {
     (v, f)
 }
 
-/// Icosphere: an icosahedron's faces cut 1-to-4 `subdivisions` times, every vertex
-/// pushed out onto the sphere (so its facets lie inside it, none aligned with a UV
-/// grid).
-pub fn icosphere(radius: f64, subdivisions: usize) -> Polys {
+/// The twelve corners of an icosahedron: the golden rectangles' corners.
+fn icosahedron() -> Vec<[f64; 3]> {
     let t = (1.0 + 5f64.sqrt()) / 2.0;
-    let mut v: Vec<[f64; 3]> = [
+    [
         [-1.0, t, 0.0],
         [1.0, t, 0.0],
         [-1.0, -t, 0.0],
@@ -115,29 +113,38 @@ pub fn icosphere(radius: f64, subdivisions: usize) -> Polys {
         [-t, 0.0, -1.0],
         [-t, 0.0, 1.0],
     ]
-    .to_vec();
-    let mut f: Vec<[u32; 3]> = vec![
-        [0, 11, 5],
-        [0, 5, 1],
-        [0, 1, 7],
-        [0, 7, 10],
-        [0, 10, 11],
-        [1, 5, 9],
-        [5, 11, 4],
-        [11, 10, 2],
-        [10, 7, 6],
-        [7, 1, 8],
-        [3, 9, 4],
-        [3, 4, 2],
-        [3, 2, 6],
-        [3, 6, 8],
-        [3, 8, 9],
-        [4, 9, 5],
-        [2, 4, 11],
-        [6, 2, 10],
-        [8, 6, 7],
-        [9, 8, 1],
-    ];
+    .to_vec()
+}
+
+/// The icosahedron's twenty faces, wound outward.
+const ICOSAHEDRON_FACES: [[u32; 3]; 20] = [
+    [0, 11, 5],
+    [0, 5, 1],
+    [0, 1, 7],
+    [0, 7, 10],
+    [0, 10, 11],
+    [1, 5, 9],
+    [5, 11, 4],
+    [11, 10, 2],
+    [10, 7, 6],
+    [7, 1, 8],
+    [3, 9, 4],
+    [3, 4, 2],
+    [3, 2, 6],
+    [3, 6, 8],
+    [3, 8, 9],
+    [4, 9, 5],
+    [2, 4, 11],
+    [6, 2, 10],
+    [8, 6, 7],
+    [9, 8, 1],
+];
+
+/// Icosphere: an icosahedron's faces cut 1-to-4 `subdivisions` times, every vertex
+/// pushed out onto the sphere (so its facets lie inside it, none aligned with a UV
+/// grid).
+pub fn icosphere(radius: f64, subdivisions: usize) -> Polys {
+    let (mut v, mut f) = (icosahedron(), ICOSAHEDRON_FACES.to_vec());
     for _ in 0..subdivisions {
         let mut mids = std::collections::HashMap::new();
         let mut mid = |a: u32, b: u32, v: &mut Vec<[f64; 3]>| {
@@ -254,57 +261,67 @@ pub fn plate_with_hole(size: f64, t: f64, n: usize, hole: usize) -> Polys {
     }
     for j in 0..n {
         for i in 0..n {
-            if !solid(i, j) {
-                continue;
-            }
-            f.push(vec![
-                id(i, j, 0),
-                id(i, j + 1, 0),
-                id(i + 1, j + 1, 0),
-                id(i + 1, j, 0),
-            ]);
-            f.push(vec![
-                id(i, j, 1),
-                id(i + 1, j, 1),
-                id(i + 1, j + 1, 1),
-                id(i, j + 1, 1),
-            ]);
-            // Side walls where the neighbour cell is empty.
-            if i == 0 || !solid(i - 1, j) {
-                f.push(vec![
-                    id(i, j, 0),
-                    id(i, j, 1),
-                    id(i, j + 1, 1),
-                    id(i, j + 1, 0),
-                ]);
-            }
-            if !solid(i + 1, j) {
-                f.push(vec![
-                    id(i + 1, j, 0),
-                    id(i + 1, j + 1, 0),
-                    id(i + 1, j + 1, 1),
-                    id(i + 1, j, 1),
-                ]);
-            }
-            if j == 0 || !solid(i, j - 1) {
-                f.push(vec![
-                    id(i, j, 0),
-                    id(i + 1, j, 0),
-                    id(i + 1, j, 1),
-                    id(i, j, 1),
-                ]);
-            }
-            if !solid(i, j + 1) {
-                f.push(vec![
-                    id(i, j + 1, 0),
-                    id(i, j + 1, 1),
-                    id(i + 1, j + 1, 1),
-                    id(i + 1, j + 1, 0),
-                ]);
+            if solid(i, j) {
+                cell(&mut f, (i, j), &id, &solid);
             }
         }
     }
     (v, f)
+}
+
+/// The faces of the plate's solid cell `(i, j)`: its bottom and top, and its side
+/// walls where the neighbour cell is empty. `id(i, j, k)`: the grid corner's vertex.
+fn cell(
+    f: &mut Vec<Vec<u32>>,
+    (i, j): (usize, usize),
+    id: &dyn Fn(usize, usize, usize) -> u32,
+    solid: &dyn Fn(usize, usize) -> bool,
+) {
+    f.push(vec![
+        id(i, j, 0),
+        id(i, j + 1, 0),
+        id(i + 1, j + 1, 0),
+        id(i + 1, j, 0),
+    ]);
+    f.push(vec![
+        id(i, j, 1),
+        id(i + 1, j, 1),
+        id(i + 1, j + 1, 1),
+        id(i, j + 1, 1),
+    ]);
+    // Side walls where the neighbour cell is empty.
+    if i == 0 || !solid(i - 1, j) {
+        f.push(vec![
+            id(i, j, 0),
+            id(i, j, 1),
+            id(i, j + 1, 1),
+            id(i, j + 1, 0),
+        ]);
+    }
+    if !solid(i + 1, j) {
+        f.push(vec![
+            id(i + 1, j, 0),
+            id(i + 1, j + 1, 0),
+            id(i + 1, j + 1, 1),
+            id(i + 1, j, 1),
+        ]);
+    }
+    if j == 0 || !solid(i, j - 1) {
+        f.push(vec![
+            id(i, j, 0),
+            id(i + 1, j, 0),
+            id(i + 1, j, 1),
+            id(i, j, 1),
+        ]);
+    }
+    if !solid(i, j + 1) {
+        f.push(vec![
+            id(i, j + 1, 0),
+            id(i, j + 1, 1),
+            id(i + 1, j + 1, 1),
+            id(i + 1, j + 1, 0),
+        ]);
+    }
 }
 
 /// `p` as OBJ text (1-based indices), for tests that run the CLI on generated meshes.

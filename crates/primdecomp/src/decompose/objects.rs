@@ -227,15 +227,7 @@ impl Objects {
             )));
         }
         let areas: Vec<f64> = parts.iter().map(|o| area(mesh, o.faces.clone())).collect();
-        // Levels in decompose's order: largest first (percentages by their value, counts
-        // by theirs; a mix keeps the given order among equals).
-        let mut targets = targets.to_vec();
-        let key = |t: &Target| match *t {
-            Target::Count(n) => n as f64,
-            Target::Percent(p) => p * mesh.face_count() as f64 / 100.0,
-        };
-        targets.sort_by(|a, b| key(b).total_cmp(&key(a)));
-        targets.dedup();
+        let targets = in_level_order(targets, mesh.face_count());
         // Per target, each object's share.
         let shares: Vec<Vec<usize>> = targets
             .iter()
@@ -280,6 +272,20 @@ impl Objects {
             objects,
         })
     }
+}
+
+/// `targets` in decompose's order of levels: largest first (percentages of `faces` by
+/// their value, counts by theirs; a mix keeps the given order among equals), each
+/// once.
+fn in_level_order(targets: &[Target], faces: usize) -> Vec<Target> {
+    let mut targets = targets.to_vec();
+    let key = |t: &Target| match *t {
+        Target::Count(n) => n as f64,
+        Target::Percent(p) => p * faces as f64 / 100.0,
+    };
+    targets.sort_by(|a, b| key(b).total_cmp(&key(a)));
+    targets.dedup();
+    targets
 }
 
 /// The faces `faces` of `mesh` with only their vertices, in `frame`'s coordinates.

@@ -5,7 +5,7 @@
 //! rotations as scalar-last unit quaternions. The reverse direction is
 //! [`super::read`].
 
-use crate::decompose::objects::{Objects, SHARE_RULE};
+use crate::decompose::objects::{ObjectResult, Objects, SHARE_RULE};
 use crate::math::quat::quat_from_axes;
 use crate::math::V3;
 use crate::output::result::{Decomposition, InputInfo, Level};
@@ -408,39 +408,39 @@ impl Objects {
     }
 }
 
+impl ObjectJson {
+    /// Object `o`'s level `level`: its name, frame, share and primitives in its frame.
+    fn new(o: &ObjectResult, level: usize) -> ObjectJson {
+        let lv = &o.decomposition.levels[level];
+        ObjectJson {
+            name: o.name.clone(),
+            translation: o.frame.translation,
+            rotation: o.frame.rotation,
+            scale: o.frame.scale,
+            faces: o.faces,
+            target: lv.target,
+            distance: lv.distance.map(|d| d * o.frame.scale),
+            primitives: (lv.primitives.iter().enumerate())
+                .map(|(i, p)| PrimJson::new(p, lv.faces.get(i).copied().unwrap_or(0)))
+                .collect(),
+        }
+    }
+}
+
 /// [`Objects::to_json`].
 pub(crate) fn to_json_objects(objs: &Objects, level: usize, params: &Params) -> String {
     let world = objs.world_primitives(level);
+    let objects: Vec<ObjectJson> = (objs.objects.iter())
+        .map(|o| ObjectJson::new(o, level))
+        .collect();
+    let levels = || objs.objects.iter().map(|o| &o.decomposition.levels[level]);
     let mut counts = [0usize; 6];
-    let mut bytes = 0;
-    let mut faces_of = Vec::new();
-    let objects: Vec<ObjectJson> = objs
-        .objects
-        .iter()
-        .map(|o| {
-            let lv = &o.decomposition.levels[level];
-            for p in &lv.primitives {
-                counts[p.kind() as usize] += 1;
-            }
-            bytes += lv.bytes();
-            faces_of
-                .extend((0..lv.primitives.len()).map(|i| lv.faces.get(i).copied().unwrap_or(0)));
-            ObjectJson {
-                name: o.name.clone(),
-                translation: o.frame.translation,
-                rotation: o.frame.rotation,
-                scale: o.frame.scale,
-                faces: o.faces,
-                target: lv.target,
-                distance: lv.distance.map(|d| d * o.frame.scale),
-                primitives: lv
-                    .primitives
-                    .iter()
-                    .enumerate()
-                    .map(|(i, p)| PrimJson::new(p, lv.faces.get(i).copied().unwrap_or(0)))
-                    .collect(),
-            }
-        })
+    for (c, n) in levels().flat_map(|lv| lv.counts().into_iter().enumerate()) {
+        counts[c] += n;
+    }
+    let bytes = levels().map(|lv| lv.bytes()).sum();
+    let faces_of: Vec<u32> = levels()
+        .flat_map(|lv| (0..lv.primitives.len()).map(|i| lv.faces.get(i).copied().unwrap_or(0)))
         .collect();
     let primitives: Vec<PrimJson> = world
         .iter()

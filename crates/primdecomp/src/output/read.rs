@@ -68,8 +68,18 @@ fn check_values(p: &Primitive, scale: f64, offset: f64) -> Result<(), String> {
 }
 
 impl PrimJson {
+    /// The primitive read, its sizes checked.
     fn into_primitive(self) -> Result<Primitive, String> {
-        let p = match self {
+        let p = self.into_shape()?;
+        if sizes(&p).iter().any(|&x| x < 0.0) {
+            return Err("a radius or half-extent is negative".into());
+        }
+        Ok(p)
+    }
+
+    /// The primitive as written (its rotation checked, negative zeros made positive).
+    fn into_shape(self) -> Result<Primitive, String> {
+        Ok(match self {
             PrimJson::Box {
                 center,
                 rotation,
@@ -124,11 +134,7 @@ impl PrimJson {
                 hz_bottom: plus_zero(half_z_bottom),
                 shift: shift_z,
             }),
-        };
-        if sizes(&p).iter().any(|&x| x < 0.0) {
-            return Err("a radius or half-extent is negative".into());
-        }
-        Ok(p)
+        })
     }
 }
 

@@ -305,36 +305,7 @@ impl Goal {
     /// Checks the counts, the number of levels and each tolerance and byte budget.
     pub(crate) fn validate(&self) -> Result<()> {
         let bad = |m: String| Err(Error::InvalidParams(m));
-        if let Goal::Within {
-            caps,
-            tolerance,
-            max_bytes,
-        } = self
-        {
-            if tolerance.is_empty() && max_bytes.is_empty() {
-                return bad(
-                    "a tolerance or byte goal needs a tolerance or a byte budget; without \
-                     either, ask for counts"
-                        .into(),
-                );
-            }
-            // A chain of tolerances or byte budgets under one cap: the cap applies to each.
-            let n = if caps.len() > 1 {
-                caps.len()
-            } else {
-                self.levels()
-            };
-            for (name, len) in [
-                ("tolerance", tolerance.len()),
-                ("max_bytes", max_bytes.len()),
-            ] {
-                if len > 1 && len != n {
-                    return bad(format!(
-                        "{name} has {len} values for {n} targets: give one value, or one per target"
-                    ));
-                }
-            }
-        }
+        self.validate_lengths()?;
         let targets = self.targets();
         if targets.is_empty() || targets.contains(&0) {
             return bad("targets must be one or more positive counts".into());
@@ -360,6 +331,44 @@ impl Goal {
             }
             if max_bytes.contains(&0) {
                 return bad("max_bytes must be positive".into());
+            }
+        }
+        Ok(())
+    }
+
+    /// A tolerance or byte goal holds a tolerance or a byte budget, each with no
+    /// value, one, or one per level.
+    fn validate_lengths(&self) -> Result<()> {
+        let Goal::Within {
+            caps,
+            tolerance,
+            max_bytes,
+        } = self
+        else {
+            return Ok(());
+        };
+        let bad = |m: String| Err(Error::InvalidParams(m));
+        if tolerance.is_empty() && max_bytes.is_empty() {
+            return bad(
+                "a tolerance or byte goal needs a tolerance or a byte budget; without \
+                 either, ask for counts"
+                    .into(),
+            );
+        }
+        // A chain of tolerances or byte budgets under one cap: the cap applies to each.
+        let n = if caps.len() > 1 {
+            caps.len()
+        } else {
+            self.levels()
+        };
+        for (name, len) in [
+            ("tolerance", tolerance.len()),
+            ("max_bytes", max_bytes.len()),
+        ] {
+            if len > 1 && len != n {
+                return bad(format!(
+                    "{name} has {len} values for {n} targets: give one value, or one per target"
+                ));
             }
         }
         Ok(())

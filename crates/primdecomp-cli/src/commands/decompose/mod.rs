@@ -100,29 +100,7 @@ fn decompose_batch(
     dir: &Path,
 ) -> anyhow::Result<()> {
     let n = a.inputs.len();
-    if !a.export.is_empty() {
-        bail!(BadArgs(
-            "--export writes one file per level of one input; with several inputs, \
-             decompose them to a directory and run `primdecomp export` on each result"
-                .into()
-        ));
-    }
-    check_batch_dir("-o", dir, n, "json", "STEM.primdecomp.json")?;
-    if let Some(o) = &a.obj {
-        check_batch_dir("--obj", o, n, "obj", "STEM.primdecomp.obj")?;
-    }
-    check_stems(&a.inputs, |i| dir.join(default_out(i)))?;
-    let dests = batch_dests(a, base, dir);
-    let known: Vec<Out> = dests.iter().flat_map(|d| d.up_front(targets)).collect();
-    guard.check(&known)?;
-    set_threads(a.threads)?;
-    for d in std::iter::once(dir)
-        .chain(a.obj.as_deref())
-        .chain(a.png.as_deref())
-    {
-        std::fs::create_dir_all(d)
-            .map_err(|e| anyhow!("cannot create output directory {}: {e}", d.display()))?;
-    }
+    let dests = prepare_batch(a, base, targets, guard, dir)?;
     let settings = batch_settings(a, base, targets)?;
     let manifest = Manifest::open(dir, a.resume)?;
     clear_stale(a, dir);
@@ -153,6 +131,42 @@ fn decompose_batch(
         Some(e) => Err(e.context(format!("{} of {n} inputs failed", todo.len() - rows.len()))),
         None => Ok(()),
     }
+}
+
+/// Refuses what a batch cannot write, checks every output known before the run and
+/// creates the output directories; returns each input's destinations.
+fn prepare_batch(
+    a: &DecomposeArgs,
+    base: &Params,
+    targets: &[Target],
+    guard: &Guard,
+    dir: &Path,
+) -> anyhow::Result<Vec<Dest>> {
+    let n = a.inputs.len();
+    if !a.export.is_empty() {
+        bail!(BadArgs(
+            "--export writes one file per level of one input; with several inputs, \
+             decompose them to a directory and run `primdecomp export` on each result"
+                .into()
+        ));
+    }
+    check_batch_dir("-o", dir, n, "json", "STEM.primdecomp.json")?;
+    if let Some(o) = &a.obj {
+        check_batch_dir("--obj", o, n, "obj", "STEM.primdecomp.obj")?;
+    }
+    check_stems(&a.inputs, |i| dir.join(default_out(i)))?;
+    let dests = batch_dests(a, base, dir);
+    let known: Vec<Out> = dests.iter().flat_map(|d| d.up_front(targets)).collect();
+    guard.check(&known)?;
+    set_threads(a.threads)?;
+    for d in std::iter::once(dir)
+        .chain(a.obj.as_deref())
+        .chain(a.png.as_deref())
+    {
+        std::fs::create_dir_all(d)
+            .map_err(|e| anyhow!("cannot create output directory {}: {e}", d.display()))?;
+    }
+    Ok(dests)
 }
 
 /// Each input's files in a batch: `STEM.primdecomp.json` in `dir`, the OBJ and PNG in

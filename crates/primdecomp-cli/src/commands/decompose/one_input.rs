@@ -39,24 +39,14 @@ pub(super) fn run_one(
     let memory = (a.timings && !beside_others).then(|| StageMemory::new("load"));
     let now = Instant::now();
     let options = load_options(a, base)?;
-    let mut why = super::tiled::reason(a, input, &options);
-    let loaded = match &why {
-        Some(_) => None,
-        None => match primdecomp::Mesh::load_with(input, &options) {
-            Err(e @ primdecomp::Error::TooLarge { needed, limit, .. }) if !a.per_object => {
-                why = Some(super::tiled::over(needed, limit));
-                Some(Err(e))
-            }
-            m => Some(Ok(m?)),
-        },
-    };
-    let (mesh, params, mut dec) = match (loaded, &why) {
-        (Some(Ok(mesh)), _) => {
+    // Read whole, unless the input is to be (or must be) decomposed in tiles.
+    let (loaded, why) = load_whole(a, input, &options)?;
+    let (mesh, params, mut dec) = match loaded {
+        Some(Ok(mesh)) => {
             let load_s = now.elapsed().as_secs_f64();
+            let counts = resolve_targets(targets, mesh.face_count());
             let params = Params {
-                goal: base
-                    .goal
-                    .with_targets(resolve_targets(targets, mesh.face_count())),
+                goal: base.goal.with_targets(counts),
                 ..base.clone()
             };
             if a.per_object {
@@ -65,48 +55,22 @@ pub(super) fn run_one(
                 dec.timings.insert(0, ("load".into(), load_s));
                 return Ok((dec, written));
             }
-            let shown = Shown::new(&params, mesh.face_count(), a, beside_others);
-            let mut dec = primdecomp::decompose_with(&mesh, &params, &|stage: Stage, f: f64| {
-                if let Some(m) = &memory {
-                    m.enter(stage.name());
-                }
-                shown.update(stage, f);
-            })?;
-            shown.finish();
+            let mut dec = decompose_shown(a, &mesh, &params, memory.as_ref(), beside_others)?;
             dec.timings.insert(0, ("load".into(), load_s));
             (mesh, params, dec)
         }
-        (refused, why) => {
-            let why = why.as_deref().unwrap_or_default();
-            // The input read whole would not fit: in tiles, or (where not even tiles
-            // fit) the refusal of the input read whole, which says why.
-            let tiled = super::tiled::decompose(
-                a,
-                input,
-                base,
-                targets,
-                dest,
-                &options,
-                (why, beside_others),
-            );
-            let (dec, params) = tiled.map_err(|t| match (t.downcast_ref(), refused) {
-                (Some(primdecomp::Error::TooLarge { .. }), Some(Err(e))) => e.into(),
-                _ => t,
-            })?;
+        refused => {
+            let why = (why.as_deref().unwrap_or_default(), beside_others);
+            let tiled = super::tiled::decompose(a, input, base, targets, dest, &options, why);
+            let (dec, params) = tiled.map_err(|t| refusal_first(t, refused))?;
             (primdecomp::Mesh::from_triangles(&[], &[])?, params, dec)
         }
     };
     record_input(&mut dec.input, a, input);
     let now = Instant::now();
     let mut written = write_outputs(&dec, &params, dest, guard, a.obj_detail, a.timings)?;
-    written.extend(write_exports(
-        a,
-        &dec,
-        dest,
-        input,
-        &mesh,
-        dec.input.up.unwrap_or_default(),
-    )?);
+    let up = dec.input.up.unwrap_or_default();
+    written.extend(write_exports(a, &dec, dest, input, &mesh, up)?);
     let write_s = now.elapsed().as_secs_f64();
     let memory = memory.map(StageMemory::finish);
     if let Some(png) = &dest.png {
@@ -114,24 +78,81 @@ pub(super) fn run_one(
         written.push(decompose_png(&dest.json, &label, &dec, input, &mesh, png)?);
     }
     let _out = PRINT.lock();
+    let (why, memory) = (why.as_deref(), memory.as_deref());
+    report(a, (&dec, &mesh), &written, why, write_s, memory);
+    Ok((dec, written))
+}
+
+/// Where not even tiles fit, the refusal of the input read whole, which says why;
+/// else the tiled run's error.
+fn refusal_first(tiled: anyhow::Error, refused: Option<Loaded>) -> anyhow::Error {
+    match (tiled.downcast_ref(), refused) {
+        (Some(primdecomp::Error::TooLarge { .. }), Some(Err(e))) => e.into(),
+        _ => tiled,
+    }
+}
+
+/// A mesh read whole, or why it was not.
+type Loaded = Result<primdecomp::Mesh, primdecomp::Error>;
+
+/// The input read whole (`None` when it is to be decomposed in tiles, `Some(Err)` when
+/// read whole it would not fit and tiles may), and why it is decomposed in tiles.
+fn load_whole(
+    a: &DecomposeArgs,
+    input: &Path,
+    options: &primdecomp::LoadOptions,
+) -> anyhow::Result<(Option<Loaded>, Option<String>)> {
+    if let Some(why) = super::tiled::reason(a, input, options) {
+        return Ok((None, Some(why)));
+    }
+    match primdecomp::Mesh::load_with(input, options) {
+        Err(e @ primdecomp::Error::TooLarge { needed, limit, .. }) if !a.per_object => {
+            Ok((Some(Err(e)), Some(super::tiled::over(needed, limit))))
+        }
+        m => Ok((Some(Ok(m?)), None)),
+    }
+}
+
+/// The whole mesh decomposed, with the progress bar and the stages' memory marks.
+fn decompose_shown(
+    a: &DecomposeArgs,
+    mesh: &primdecomp::Mesh,
+    params: &Params,
+    memory: Option<&StageMemory>,
+    beside_others: bool,
+) -> anyhow::Result<Decomposition> {
+    let shown = Shown::new(params, mesh.face_count(), a, beside_others);
+    let dec = primdecomp::decompose_with(mesh, params, &|stage: Stage, f: f64| {
+        if let Some(m) = memory {
+            m.enter(stage.name());
+        }
+        shown.update(stage, f);
+    })?;
+    shown.finish();
+    Ok(dec)
+}
+
+/// The summary (unless `--quiet`) and the stages' timings (`--verbose`, `--timings`)
+/// or the run's time.
+fn report(
+    a: &DecomposeArgs,
+    (dec, mesh): (&Decomposition, &primdecomp::Mesh),
+    written: &[PathBuf],
+    why_tiled: Option<&str>,
+    write_s: f64,
+    memory: Option<&[(String, f64, f64)]>,
+) {
     if !a.quiet {
-        if let Some(why) = &why {
+        if let Some(why) = why_tiled {
             println!("tiles     {}: {why}", dec.stats.tiles);
         }
-        print_summary(&dec, &mesh, &written, a.verbose, None);
+        print_summary(dec, mesh, written, a.verbose, None);
     }
     if a.verbose || a.timings {
-        print_timings(
-            &dec,
-            write_s,
-            a.inputs.len() > 1,
-            a.verbose,
-            memory.as_deref(),
-        );
+        print_timings(dec, write_s, a.inputs.len() > 1, a.verbose, memory);
     } else if !a.quiet {
         println!("time      {:.2} s", dec.seconds() + write_s);
     }
-    Ok((dec, written))
 }
 
 /// `--export`: each level's file in each format asked for; returns the paths written.
@@ -180,14 +201,9 @@ fn run_objects(
         )));
     }
     let now = Instant::now();
-    let mut objs = primdecomp::Objects::decompose(mesh, params, targets).map_err(|e| match e {
-        primdecomp::Error::InvalidParams(m) => BadArgs(format!("{}: {m}", input.display())).into(),
-        e => anyhow::Error::from(e),
-    })?;
+    let mut objs = decompose_objects(mesh, params, targets, input)?;
     record_input(&mut objs.input, a, input);
-    let n = objs.levels();
-    let mut written = Vec::new();
-    let mut dec = totals(&objs);
+    let (mut written, mut dec) = (Vec::new(), totals(&objs));
     dec.timings
         .push(("decompose".into(), now.elapsed().as_secs_f64()));
     let jsons = level_jsons(&objs, params)?;
@@ -195,28 +211,27 @@ fn run_objects(
     let outs = dest.outs(&jsons.iter().map(|j| j.0).collect::<Vec<_>>());
     guard.check(&outs)?;
     let per_level = if dest.obj.is_some() { 2 } else { 1 };
+    let source = Source {
+        path: input,
+        mesh,
+        up: objs.input.up.unwrap_or_default(),
+    };
     for (i, (target, json)) in jsons.into_iter().enumerate() {
         let level = world_level(&objs, i, target, params, mesh.diagonal());
-        let json_out = &outs[i * per_level];
-        write_atomic(&json_out.path, json.as_bytes())?;
-        guard.wrote(json_out);
-        written.push(json_out.path.clone());
-        if dest.obj.is_some() {
-            let obj_out = &outs[i * per_level + 1];
-            write_atomic(&obj_out.path, level.to_obj(a.obj_detail).as_bytes())?;
-            guard.wrote(obj_out);
-            written.push(obj_out.path.clone());
-        }
+        let files = &outs[i * per_level..(i + 1) * per_level];
+        written.extend(write_object_level(
+            files,
+            &json,
+            &level,
+            a.obj_detail,
+            guard,
+        )?);
         written.extend(write_level_exports(
             &a.export,
             &a.export_opts,
             &objs.bodies(i),
-            (&format!("n{target}"), n),
-            &Source {
-                path: input,
-                mesh,
-                up: objs.input.up.unwrap_or_default(),
-            },
+            (&format!("n{target}"), objs.levels()),
+            &source,
         )?);
         dec.levels.push(level);
     }
@@ -226,6 +241,42 @@ fn run_objects(
         print_summary(&dec, mesh, &written, a.verbose, Some(&objs));
     }
     Ok((dec, written))
+}
+
+/// Each object decomposed; settings an object cannot take are the user's to change
+/// (a usage error naming the input).
+fn decompose_objects(
+    mesh: &primdecomp::Mesh,
+    params: &Params,
+    targets: &[Target],
+    input: &Path,
+) -> anyhow::Result<primdecomp::Objects> {
+    primdecomp::Objects::decompose(mesh, params, targets).map_err(|e| match e {
+        primdecomp::Error::InvalidParams(m) => BadArgs(format!("{}: {m}", input.display())).into(),
+        e => anyhow::Error::from(e),
+    })
+}
+
+/// One level of a per-object run: its JSON to `files[0]` and, when asked for, its
+/// world primitives as OBJ to `files[1]`; returns the paths written.
+fn write_object_level(
+    files: &[crate::outputs::Out],
+    json: &str,
+    level: &primdecomp::Level,
+    detail: usize,
+    guard: &Guard,
+) -> anyhow::Result<Vec<PathBuf>> {
+    let mut written = Vec::new();
+    for (k, out) in files.iter().enumerate() {
+        let bytes = match k {
+            0 => json.to_owned(),
+            _ => level.to_obj(detail),
+        };
+        write_atomic(&out.path, bytes.as_bytes())?;
+        guard.wrote(out);
+        written.push(out.path.clone());
+    }
+    Ok(written)
 }
 
 /// A decomposition standing for all of `objs` in the summary: their input and the sums

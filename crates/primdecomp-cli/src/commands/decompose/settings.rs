@@ -50,21 +50,8 @@ fn goal_from(a: &DecomposeArgs, file: &Goal) -> anyhow::Result<(Goal, Vec<Target
         let targets = file.targets().into_iter().map(Target::Count).collect();
         return Ok((file.clone(), targets));
     }
-    let tolerance: Vec<Tolerance> = match &a.tolerance {
-        Some(t) => t
-            .iter()
-            .map(|t| spelled("--tolerance", t))
-            .collect::<anyhow::Result<_>>()?,
-        None => Vec::new(),
-    };
-    let max_bytes: Vec<usize> = match &a.max_bytes {
-        Some(b) => b
-            .iter()
-            .map(|b| parse_bytes(b))
-            .collect::<anyhow::Result<_>>()?,
-        None => Vec::new(),
-    };
-    let mut targets = match (&a.targets, file) {
+    let (tolerance, max_bytes) = limits_from(a)?;
+    let targets = match (&a.targets, file) {
         (Some(t), _) => Some(parse_targets(t)?),
         (
             None,
@@ -76,6 +63,46 @@ fn goal_from(a: &DecomposeArgs, file: &Goal) -> anyhow::Result<(Goal, Vec<Target
         _ => None,
     };
     let within = !tolerance.is_empty() || !max_bytes.is_empty();
+    refuse_couplings(a, within, targets.is_some())?;
+    // Placeholder counts, one per target: the counts are set per input.
+    let counts = vec![1; targets.as_ref().map_or(0, Vec::len)];
+    let goal = match &targets {
+        _ if within => Goal::Within {
+            caps: counts,
+            tolerance,
+            max_bytes,
+        },
+        // --cut alone: the file's tolerance or byte goal, or the default (a cut).
+        None => file.clone(),
+        Some(_) if a.fill => Goal::Fill { counts },
+        Some(_) if a.greedy => Goal::Greedy { counts },
+        Some(_) if a.cut => Goal::Cut { counts },
+        Some(_) => Goal::Counts { counts },
+    };
+    let levels = goal.levels().max(1);
+    let targets = match targets {
+        // A chain of tolerances or byte budgets under one cap: one level each.
+        Some(t) if t.len() == 1 => vec![t[0]; levels],
+        Some(t) => t,
+        None => goal.targets().into_iter().map(Target::Count).collect(),
+    };
+    Ok((goal, targets))
+}
+
+/// `--tolerance` and `--max-bytes` as given (empty when not).
+fn limits_from(a: &DecomposeArgs) -> anyhow::Result<(Vec<Tolerance>, Vec<usize>)> {
+    let tolerance = (a.tolerance.iter().flatten())
+        .map(|t| spelled("--tolerance", t))
+        .collect::<anyhow::Result<_>>()?;
+    let max_bytes = (a.max_bytes.iter().flatten())
+        .map(|b| parse_bytes(b))
+        .collect::<anyhow::Result<_>>()?;
+    Ok((tolerance, max_bytes))
+}
+
+/// The goal's flags that cannot go together: --fill with a cut, --greedy with a
+/// tolerance or byte budget, --fill or --greedy without counts.
+fn refuse_couplings(a: &DecomposeArgs, within: bool, counts: bool) -> anyhow::Result<()> {
     let bad = |m: &str| Err(BadArgs(m.into()).into());
     if a.fill && (within || a.cut) {
         return bad(
@@ -86,40 +113,13 @@ fn goal_from(a: &DecomposeArgs, file: &Goal) -> anyhow::Result<(Goal, Vec<Target
     if a.greedy && within {
         return bad("--greedy takes the greedy pass's levels: not with --tolerance or --max-bytes");
     }
-    let counts = |t: &Option<Vec<Target>>| vec![1; t.as_ref().map_or(0, Vec::len)];
-    let goal = match &targets {
-        None if a.fill => return bad("--fill needs -n: the counts whose levels it fills"),
-        None if a.greedy => return bad("--greedy needs -n: the counts whose levels it takes"),
-        _ if within => Goal::Within {
-            caps: counts(&targets),
-            tolerance,
-            max_bytes,
-        },
-        // --cut alone: the file's tolerance or byte goal, or the default (a cut).
-        None => file.clone(),
-        Some(_) if a.fill => Goal::Fill {
-            counts: counts(&targets),
-        },
-        Some(_) => match (a.greedy, a.cut) {
-            (true, _) => Goal::Greedy {
-                counts: counts(&targets),
-            },
-            (_, true) => Goal::Cut {
-                counts: counts(&targets),
-            },
-            _ => Goal::Counts {
-                counts: counts(&targets),
-            },
-        },
-    };
-    let levels = goal.levels().max(1);
-    targets = match targets {
-        // A chain of tolerances or byte budgets under one cap: one level each.
-        Some(t) if t.len() == 1 => Some(vec![t[0]; levels]),
-        Some(t) => Some(t),
-        None => Some(goal.targets().into_iter().map(Target::Count).collect()),
-    };
-    Ok((goal, targets.unwrap_or_default()))
+    if !counts && a.fill {
+        return bad("--fill needs -n: the counts whose levels it fills");
+    }
+    if !counts && a.greedy {
+        return bad("--greedy needs -n: the counts whose levels it takes");
+    }
+    Ok(())
 }
 
 /// The flags taken as they are: numbers and switches.

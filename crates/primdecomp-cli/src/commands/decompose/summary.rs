@@ -17,32 +17,8 @@ pub(super) fn print_summary(
     verbose: bool,
     objects: Option<&primdecomp::Objects>,
 ) {
-    let i = &dec.input;
-    let welded = match verbose {
-        true => format!(
-            " ({} after welding), {} pairs of faces sharing an edge",
-            dec.stats.welded_vertices, dec.stats.adjacency_edges
-        ),
-        false => String::new(),
-    };
-    println!(
-        "input     {}: {} faces, {} vertices{welded}",
-        i.path.as_deref().unwrap_or("-"),
-        i.faces,
-        i.vertices,
-    );
-    if let (Some(up), Some(from)) = (i.up, &i.up_from) {
-        let other = match up {
-            primdecomp::Up::Y => "z",
-            primdecomp::Up::Z => "y",
-        };
-        // An assumption says how to change it; a format's own axis does not need to.
-        let change = match from.starts_with("assumed") {
-            true => format!("; --up {other} if the mesh stands on {other}"),
-            false => String::new(),
-        };
-        println!("up        +{} ({from}{change})", up.axis().to_uppercase());
-    }
+    print_input(dec, verbose);
+    print_up(&dec.input);
     let (short_faces, other) = (mesh.skipped_faces(), mesh.skipped_other());
     if short_faces + other > 0 {
         println!(
@@ -72,6 +48,43 @@ pub(super) fn print_summary(
     for line in wrote_lines(written) {
         println!("{line}");
     }
+}
+
+/// The input line: its path and size; with `verbose` also the welding and adjacency
+/// counts.
+fn print_input(dec: &Decomposition, verbose: bool) {
+    let i = &dec.input;
+    let welded = match verbose {
+        true => format!(
+            " ({} after welding), {} pairs of faces sharing an edge",
+            dec.stats.welded_vertices, dec.stats.adjacency_edges
+        ),
+        false => String::new(),
+    };
+    println!(
+        "input     {}: {} faces, {} vertices{welded}",
+        i.path.as_deref().unwrap_or("-"),
+        i.faces,
+        i.vertices,
+    );
+}
+
+/// The up axis and where it came from, when known; an assumed axis says how to
+/// change it.
+fn print_up(i: &primdecomp::InputInfo) {
+    let (Some(up), Some(from)) = (i.up, &i.up_from) else {
+        return;
+    };
+    let other = match up {
+        primdecomp::Up::Y => "z",
+        primdecomp::Up::Z => "y",
+    };
+    // An assumption says how to change it; a format's own axis does not need to.
+    let change = match from.starts_with("assumed") {
+        true => format!("; --up {other} if the mesh stands on {other}"),
+        false => String::new(),
+    };
+    println!("up        +{} ({from}{change})", up.axis().to_uppercase());
 }
 
 /// What a level asked for, for the summary line: its tolerance (a percentage of the

@@ -122,7 +122,7 @@ impl Bvh {
     /// centre, then its leaf's box). For large inputs queried a few times, where a
     /// table of boxes and small leaves would cost more memory than the queries save.
     pub fn build_by(count: usize, leaf: usize, bbox: &(dyn Fn(u32) -> (V3, V3) + Sync)) -> Bvh {
-        Bvh::build_with(count, leaf, bbox, |c| c, &|_| true).unwrap_or_default()
+        Bvh::build_with::<Tied>(count, leaf, bbox, &|_| true).unwrap_or_default()
     }
 
     /// [`Bvh::build_by`] that asks `go_on` whether to go on before splitting each
@@ -135,13 +135,23 @@ impl Bvh {
         bbox: &(dyn Fn(u32) -> (V3, V3) + Sync),
         go_on: &(dyn Fn(f64) -> bool + Sync),
     ) -> Option<Bvh> {
-        Bvh::build_with(count, leaf, bbox, |c| c, go_on)
+        Bvh::build_with::<Tied>(count, leaf, bbox, go_on)
     }
 
-    /// [`Bvh::build_by`] with the items' centres rounded to f32 for the splits: a
-    /// table of 16 bytes an item instead of 32, a tree as good for queries whose
-    /// answers do not depend on its shape (whether any item meets a ray), not the
-    /// same tree.
+    /// The build over the exact (f64) centres kept in its table (28 bytes an item):
+    /// the reference [`Tied`]'s builds are tested against.
+    #[cfg(test)]
+    pub(crate) fn build_f64(
+        count: usize,
+        leaf: usize,
+        bbox: &(dyn Fn(u32) -> (V3, V3) + Sync),
+    ) -> Bvh {
+        Bvh::build_with::<V3>(count, leaf, bbox, &|_| true).unwrap_or_default()
+    }
+
+    /// [`Bvh::build_by`] with the items' centres rounded to f32 for the splits and
+    /// nothing decided on the exact ones: a tree as good for queries whose answers
+    /// do not depend on its shape (whether any item meets a ray), not the same tree.
     /// It asks `go_on` whether to go on as [`Bvh::build_by_checked`] does.
     pub fn build_coarse(
         count: usize,
@@ -149,7 +159,7 @@ impl Bvh {
         bbox: &(dyn Fn(u32) -> (V3, V3) + Sync),
         go_on: &(dyn Fn(f64) -> bool + Sync),
     ) -> Option<Bvh> {
-        Bvh::build_with(count, leaf, bbox, |c| c.map(|x| x as f32), go_on)
+        Bvh::build_with::<Coarse>(count, leaf, bbox, go_on)
     }
 }
 
@@ -163,18 +173,17 @@ impl Bvh<Compact> {
         bbox: &(dyn Fn(u32) -> (V3, V3) + Sync),
         go_on: &(dyn Fn(f64) -> bool + Sync),
     ) -> Option<Bvh<Compact>> {
-        Bvh::build_with(count, leaf, bbox, |c| c, go_on)
+        Bvh::build_with::<Tied>(count, leaf, bbox, go_on)
     }
 }
 
 impl<B: Bounds> Bvh<B> {
-    /// The build, each item's centre kept as `keep` makes it; `None` when `go_on`
-    /// said stop.
+    /// The build, each item's centre kept as `C` keeps it; `None` when `go_on` said
+    /// stop.
     fn build_with<C: Centre>(
         count: usize,
         leaf: usize,
         bbox: &(dyn Fn(u32) -> (V3, V3) + Sync),
-        keep: impl Fn(V3) -> C + Sync,
         go_on: &(dyn Fn(f64) -> bool + Sync),
     ) -> Option<Bvh<B>> {
         if count == 0 {
@@ -204,12 +213,9 @@ impl<B: Bounds> Bvh<B> {
                 return None;
             }
             let items = (i0 as u32..(i0 + (CHECK_AT << 4)).min(count) as u32).into_par_iter();
-            span.par_extend(items.map(|i| {
-                let (lo, hi) = bbox(i);
-                Item {
-                    c: keep(scale(add(lo, hi), 0.5)),
-                    id: i,
-                }
+            span.par_extend(items.map(|i| Item {
+                c: C::keep(centre(bbox(i))),
+                id: i,
             }));
         }
         let build = Build {
@@ -219,10 +225,15 @@ impl<B: Bounds> Bvh<B> {
             stopped: AtomicBool::new(false),
         };
         build.subtree(root, below, 1, &mut span, 0);
-        (!build.stopped.into_inner()).then(|| Bvh {
-            nodes,
-            items: span.iter().map(|it| it.id).collect(),
-        })
+        if build.stopped.into_inner() {
+            return None;
+        }
+        // The ids written over the table's own memory (an in-place collect: the
+        // item's alignment is the id's) and the rest returned, so the ids add
+        // nothing to the build's peak.
+        let mut items: Vec<u32> = span.into_iter().map(|it| it.id).collect();
+        items.shrink_to_fit();
+        Some(Bvh { nodes, items })
     }
 
     /// The smallest `dist2(item)` over all items, with that item (or `u32::MAX` when
@@ -522,8 +533,9 @@ struct Build<'a> {
     stopped: AtomicBool,
 }
 
-/// An item being placed: its box's centroid and its id, packed (28 bytes with an
-/// f64 centroid, not 32: the build's largest table).
+/// An item being placed: its box's centroid as the build keeps it and its id,
+/// packed (16 bytes with an f32 centroid, the build's largest table; 28 with an f64
+/// one).
 #[derive(Clone, Copy)]
 #[repr(C, packed(4))]
 struct Item<C> {
@@ -531,22 +543,71 @@ struct Item<C> {
     id: u32,
 }
 
-/// A centroid as a build keeps it: in f64, or rounded to f32 ([`Bvh::build_coarse`]).
+/// The centre of the box `(lo, hi)`, as every build computes it.
+#[inline]
+fn centre((lo, hi): (V3, V3)) -> V3 {
+    scale(add(lo, hi), 0.5)
+}
+
+/// A centroid as a build keeps it: in f64 (the reference, in tests), rounded to
+/// f32 with what the rounding ties decided on the exact centre ([`Tied`]), or
+/// rounded to f32 alone ([`Coarse`], [`Bvh::build_coarse`]).
 trait Centre: Copy + Send + Sync {
+    /// Whether an order or extreme the kept centres leave tied (or NaN) is decided
+    /// on the exact centres, computed again from the item's box.
+    const TIES_EXACT: bool;
+    fn keep(c: V3) -> Self;
     fn at(&self, k: usize) -> f64;
 }
 
+#[cfg(test)]
 impl Centre for V3 {
+    const TIES_EXACT: bool = false;
+    #[inline]
+    fn keep(c: V3) -> Self {
+        c
+    }
     #[inline]
     fn at(&self, k: usize) -> f64 {
         self[k]
     }
 }
 
-impl Centre for [f32; 3] {
+/// A centroid rounded to f32 for a build whose tree is that of the exact centres:
+/// rounding to nearest keeps order (`a < b` gives `round(a) <= round(b)`, signs
+/// kept), so two items whose rounded centres differ on an axis are in the exact
+/// centres' order, and an axis's least (greatest) exact centre is among the items
+/// whose rounded one is least (greatest). What the rounded ones tie is decided on
+/// the exact centres: every comparison, so every selection and extent, and so the
+/// tree and its order, is the exact build's, at 16 bytes an item instead of 28.
+#[derive(Clone, Copy)]
+struct Tied([f32; 3]);
+
+impl Centre for Tied {
+    const TIES_EXACT: bool = true;
+    #[inline]
+    fn keep(c: V3) -> Self {
+        Tied(c.map(|x| x as f32))
+    }
     #[inline]
     fn at(&self, k: usize) -> f64 {
-        f64::from(self[k])
+        f64::from(self.0[k])
+    }
+}
+
+/// A centroid rounded to f32, nothing decided on the exact one ([`Bvh::build_coarse`]).
+#[derive(Clone, Copy)]
+struct Coarse([f32; 3]);
+
+impl Centre for Coarse {
+    const TIES_EXACT: bool = false;
+    #[inline]
+    fn keep(c: V3) -> Self {
+        Coarse(c.map(|x| x as f32))
+    }
+    #[inline]
+    fn at(&self, k: usize) -> f64 {
+        f64::from(self.0[k])
     }
 }
 
@@ -575,20 +636,20 @@ impl Build<'_> {
             self.stopped.store(true, Relaxed);
             return;
         }
-        let (mut clo, mut chi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
-        for it in span.iter() {
-            for k in 0..3 {
-                let c = { it.c }.at(k);
-                (clo[k], chi[k]) = (clo[k].min(c), chi[k].max(c));
-            }
-        }
+        let (clo, chi) = self.centre_range(span);
         let axis = (0..3)
             .max_by(|&a, &b| (chi[a] - clo[a]).total_cmp(&(chi[b] - clo[b])))
             .unwrap_or(0);
         let mid = count / 2;
         let by_axis = |a: &Item<C>, b: &Item<C>| {
             let (ca, cb) = ({ a.c }.at(axis), { b.c }.at(axis));
-            ca.total_cmp(&cb).then({ a.id }.cmp(&{ b.id }))
+            let order = ca.total_cmp(&cb);
+            let tied = order == Ordering::Equal || ca.is_nan() || cb.is_nan();
+            let order = match C::TIES_EXACT && tied {
+                true => self.centre(a.id)[axis].total_cmp(&self.centre(b.id)[axis]),
+                false => order,
+            };
+            order.then({ a.id }.cmp(&{ b.id }))
         };
         if !self.select(span, mid, by_axis) {
             self.stopped.store(true, Relaxed);
@@ -610,6 +671,53 @@ impl Build<'_> {
         };
         let (lo, hi) = union([left[0].b.get(), right[0].b.get()].into_iter());
         node.b = B::of(lo, hi);
+    }
+}
+
+impl Build<'_> {
+    /// Item `id`'s exact centre.
+    #[inline]
+    fn centre(&self, id: u32) -> V3 {
+        centre((self.bbox)(id))
+    }
+
+    /// The least and greatest centre of `span`'s items on each axis, as the exact
+    /// centres give them (the same folds over the same values in the same order:
+    /// where the kept centres are rounded, over the items whose rounded centre is
+    /// the least or greatest, the others standing strictly beyond).
+    fn centre_range<C: Centre>(&self, span: &[Item<C>]) -> (V3, V3) {
+        let (mut clo, mut chi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for it in span.iter() {
+            for k in 0..3 {
+                let c = { it.c }.at(k);
+                (clo[k], chi[k]) = (clo[k].min(c), chi[k].max(c));
+            }
+        }
+        if !C::TIES_EXACT {
+            return (clo, chi);
+        }
+        let (rlo, rhi) = (clo, chi);
+        let (mut clo, mut chi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+        for it in span.iter() {
+            let c = { it.c };
+            let (low, high): ([bool; 3], [bool; 3]) = (
+                std::array::from_fn(|k| c.at(k) == rlo[k]),
+                std::array::from_fn(|k| c.at(k) == rhi[k]),
+            );
+            if !(low.contains(&true) || high.contains(&true)) {
+                continue;
+            }
+            let e = self.centre(it.id);
+            for k in 0..3 {
+                if low[k] {
+                    clo[k] = clo[k].min(e[k]);
+                }
+                if high[k] {
+                    chi[k] = chi[k].max(e[k]);
+                }
+            }
+        }
+        (clo, chi)
     }
 }
 

@@ -383,3 +383,102 @@ fn compact_boxes_answer_as_exact_ones() {
     }
     assert!(met > 50 && hits > 20, "{met} boxes met, {hits} rays hit");
 }
+
+/// Boxes whose centres the f32 rounding ties, or nearly: `kind` picks the family.
+/// 0: a few hundred distinct centres a hair apart (closer than f32's spacing), each
+/// shared by many items; 1: every centre the same point; 2: coordinates beyond f32's
+/// range (rounded to ±inf) and near it; 3: around zero, with signed zeros and values
+/// below f32's least (rounded to ±0); 4: far from the origin, jittered below f32's
+/// spacing there, on one axis only (the others spread), so extents tie too.
+fn adversarial(kind: u32, n: usize, seed: u64) -> Vec<(V3, V3)> {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    (0..n)
+        .map(|i| {
+            let c: V3 = match kind {
+                0 => {
+                    let base = [0.1, -0.3, 0.7];
+                    let j = f64::from(rng.gen_range(0..300u32));
+                    std::array::from_fn(|k| base[k] + j * 1e-12 * (k as f64 + 1.0))
+                }
+                1 => [0.25, 0.25, -0.5],
+                2 => std::array::from_fn(|_| {
+                    let s = if rng.gen_bool(0.5) { 1.0 } else { -1.0 };
+                    s * [1e39, 3.4e38, 3.5e38, 1e60, 1e300][rng.gen_range(0..5)]
+                        * (1.0 + f64::from(rng.gen_range(0..4u32)) * 1e-15)
+                }),
+                3 => std::array::from_fn(|_| {
+                    [0.0, -0.0, 1e-50, -1e-50, 1e-46, -1e-46, 1e-300, 1e-40][rng.gen_range(0..8)]
+                }),
+                _ => [
+                    1e7 + f64::from(rng.gen_range(0..50u32)) * 1e-9,
+                    f64::from(rng.gen_range(0..1000u32)) * 1e-3,
+                    1e7 + f64::from(rng.gen_range(0..50u32)) * 1e-9,
+                ],
+            };
+            // Boxes of varying size about the centre: lo + hi is 2c exactly for the
+            // even sizes, and off by rounding for the others.
+            let h = [0.0, 0.5, 1e-20, 0.125][i % 4];
+            (c.map(|x| x - h), c.map(|x| x + h))
+        })
+        .collect()
+}
+
+/// The build over f32 centres, ties decided on the exact ones, is the build over
+/// the exact (f64) centres bit for bit: every node's box, first and count, and the
+/// items' order, on inputs made for the rounding to tie (equal, near-equal, huge,
+/// tiny and signed-zero centres), on one thread and on several, with exact and
+/// compact boxes; while the rounded centres alone ([`Bvh::build_coarse`]) build
+/// another tree on the same inputs (so the ties are there and matter).
+#[test]
+fn f32_centres_with_exact_ties_build_the_f64_tree() {
+    let go_on = |_: f64| true;
+    let mut coarse_differs = 0;
+    for kind in 0..5 {
+        for (n, seed) in [(5, 1), (37, 2), (1000, 3), (9000, 4)] {
+            let boxes = adversarial(kind, n, seed + 10 * u64::from(kind));
+            let bbox = |i: u32| boxes[i as usize];
+            let exact = Bvh::build_f64(n, LEAF, &bbox);
+            let tied = Bvh::build_by(n, LEAF, &bbox);
+            assert_eq!(
+                format!("{exact:?}"),
+                format!("{tied:?}"),
+                "kind {kind}, {n}"
+            );
+            let one = rayon::ThreadPoolBuilder::new().num_threads(1).build();
+            let single = one.expect("pool").install(|| Bvh::build_by(n, LEAF, &bbox));
+            assert_eq!(
+                format!("{exact:?}"),
+                format!("{single:?}"),
+                "kind {kind}, {n}"
+            );
+            let compact = Bvh::build_compact(n, LEAF, &bbox, &go_on).expect("built");
+            assert_eq!(exact.order(), compact.order(), "kind {kind}, {n}");
+            for (e, c) in exact.nodes.iter().zip(&compact.nodes) {
+                assert_eq!((e.first, e.count), (c.first, c.count), "kind {kind}, {n}");
+            }
+            let coarse = Bvh::build_coarse(n, LEAF, &bbox, &go_on).expect("built");
+            coarse_differs += usize::from(coarse.order() != exact.order());
+        }
+    }
+    assert!(
+        coarse_differs >= 10,
+        "{coarse_differs} of 20 differ without exact ties"
+    );
+}
+
+/// The same on random triangles (the cut's own input) at a scale with a parallel
+/// build and a checked one, the rounded centres spread as a scan's are.
+#[test]
+fn f32_centres_with_exact_ties_build_the_f64_tree_on_triangles() {
+    let mut rng = ChaCha8Rng::seed_from_u64(21);
+    let tris: Vec<[V3; 3]> = (0..50_000)
+        .map(|_| {
+            let c: V3 = std::array::from_fn(|_| rng.gen_range(-0.1..0.1));
+            std::array::from_fn(|_| add(c, std::array::from_fn(|_| rng.gen_range(-1e-4..1e-4))))
+        })
+        .collect();
+    let bbox = |i: u32| tri_box(&tris[i as usize]);
+    let exact = Bvh::build_f64(tris.len(), LEAF, &bbox);
+    let tied = Bvh::build_by_checked(tris.len(), LEAF, &bbox, &|_| true).expect("built");
+    assert_eq!(format!("{exact:?}"), format!("{tied:?}"));
+}

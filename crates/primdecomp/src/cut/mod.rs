@@ -110,6 +110,24 @@ pub(crate) struct LevelCut {
     pub known: Vec<(Primitive, f64)>,
 }
 
+impl LevelCut {
+    /// The snapshot to post-process, its faces' lists (members and vertices, about
+    /// 6 bytes a face) moved out rather than copied: a cut once post-processed is
+    /// read only for its primitives, counts and bounds, so the lists of the kept
+    /// cut, the new one and their post-processed copies are not alive together.
+    pub(crate) fn take_for_postprocess(&mut self) -> Snapshot {
+        let s = &mut self.snapshot;
+        Snapshot {
+            target: s.target,
+            prims: s.prims.clone(),
+            faces: s.faces.clone(),
+            verts: std::mem::take(&mut s.verts),
+            members: std::mem::take(&mut s.members),
+            q: s.q.clone(),
+        }
+    }
+}
+
 /// A node of the cut with its fitted primitive and estimated error (`exact`: else
 /// only a lower bound, over the exploration's early-exit level; `closest`: the
 /// primitive is the candidate of least error, [`Cutter::closest`]).

@@ -23,12 +23,19 @@ const MAX_RECUTS: usize = 4;
 const LEAST_GAIN_ONE_IN: usize = 8;
 
 /// Post-processing (§3.4) of each level's cut into its level, handed in by the caller:
-/// the caps are spent on what it keeps.
-pub(crate) type Postprocess<'a> = dyn Fn(&[LevelCut]) -> Vec<Level> + 'a;
+/// the caps are spent on what it keeps. It takes each cut's faces' lists
+/// ([`LevelCut::take_for_postprocess`]); the cut keeps its primitives.
+pub(crate) type Postprocess<'a> = dyn Fn(&mut [LevelCut]) -> Vec<Level> + 'a;
+
+/// The kept cuts, one per request, and their post-processed levels where the search
+/// made them (`None` where every level was cut once: those cuts keep their faces'
+/// lists, to be post-processed by the caller).
+pub(crate) type Kept = (Vec<LevelCut>, Option<Vec<Level>>);
 
 /// One snapshot per request cut from `tree`, each kept from the last cut whose level
-/// is within the request, carrying the request's own count; `None` when `go_on` said
-/// stop (asked between the cutter's splits and between cuts).
+/// is within the request, carrying the request's own count, with its level
+/// ([`Kept`]); `None` when `go_on` said stop (asked between the cutter's splits and
+/// between cuts).
 pub(crate) fn snapshots(
     fitter: &Fitter,
     tree: &MergeTree,
@@ -36,17 +43,17 @@ pub(crate) fn snapshots(
     tris: &Triangles,
     postprocess: &Postprocess<'_>,
     go_on: crate::progress::Checkpoint,
-) -> Option<Vec<LevelCut>> {
+) -> Option<Kept> {
     let mut cutter = Cutter::new(fitter, tree, tris, requests, go_on);
-    let first = cutter.snapshots(requests);
+    let mut first = cutter.snapshots(requests);
     if cutter.stopped() {
         return None;
     }
     // Every level within its tolerance or stopped by its faces: cut once.
     if !first.iter().zip(requests).any(|(s, r)| capped(r, s)) {
-        return Some(first);
+        return Some((first, None));
     }
-    let levels = postprocess(&first);
+    let levels = postprocess(&mut first);
     let mut searches: Vec<LevelRecut> = (first.into_iter().zip(&levels).zip(requests))
         .map(|((snap, level), r)| LevelRecut::first(r, snap, level))
         .collect();
@@ -55,11 +62,11 @@ pub(crate) fn snapshots(
             break;
         }
         let asked: Vec<Request> = searches.iter().map(|s| s.asked).collect();
-        let snaps = cutter.snapshots(&asked);
+        let mut snaps = cutter.snapshots(&asked);
         if cutter.stopped() {
             return None;
         }
-        let levels = postprocess(&snaps);
+        let levels = postprocess(&mut snaps);
         for ((s, snap), (level, r)) in searches
             .iter_mut()
             .zip(snaps)
@@ -85,14 +92,25 @@ pub(crate) fn snapshots(
     if cutter.stopped() {
         return None;
     }
-    let kept = (searches.into_iter().zip(requests)).map(|(s, r)| LevelCut {
-        snapshot: Snapshot {
+    // Each kept cut's level as post-processing made it, for the request's own count
+    // (post-processing reads the count only to name the level).
+    let kept = (searches.into_iter().zip(requests)).map(|(s, r)| {
+        let cut = LevelCut {
+            snapshot: Snapshot {
+                target: r.count,
+                ..s.kept.snapshot
+            },
+            ..s.kept
+        };
+        let level = Level {
             target: r.count,
-            ..s.kept.snapshot
-        },
-        ..s.kept
+            merged_to: r.count,
+            ..s.level
+        };
+        (cut, level)
     });
-    Some(kept.collect())
+    let (cuts, levels) = kept.unzip();
+    Some((cuts, Some(levels)))
 }
 
 /// A level of a count alone that the raises left short of it (its worst node's
@@ -121,11 +139,11 @@ fn fill_short(
         .zip(requests)
         .map(|(s, r)| if short(s, r) { *r } else { s.before })
         .collect();
-    let snaps = cutter.snapshots_filled(&asked);
+    let mut snaps = cutter.snapshots_filled(&asked);
     if cutter.stopped() {
         return;
     }
-    let levels = postprocess(&snaps);
+    let levels = postprocess(&mut snaps);
     for ((s, r), (snap, level)) in searches
         .iter_mut()
         .zip(requests)
@@ -236,13 +254,13 @@ fn loosen(
     if (requests.iter()).any(|r| r.tolerance.is_some() || r.bytes.is_some()) {
         return;
     }
-    let snaps: Vec<LevelCut> = (searches.iter())
+    let mut snaps: Vec<LevelCut> = (searches.iter())
         .map(|s| cutter.snapshot_loose(&s.before))
         .collect();
     if cutter.stopped() {
         return;
     }
-    let levels = postprocess(&snaps);
+    let levels = postprocess(&mut snaps);
     let mean = |l: &Level| mean(fitter, tris, l);
     let old: Vec<f64> = searches.iter().map(|s| s.kept.bound).collect();
     let n = old.len();

@@ -71,14 +71,15 @@ pub(crate) fn run(
     // Asks `go_on` within each level (a level not to keep once it said stop). Each
     // round's freed scratch goes back to the system before and after it: what glibc
     // keeps of the cut's rounds otherwise adds to the pass's peak.
-    let postprocess = |cuts: &[LevelCut], go_on: Ask| -> Vec<Level> {
+    // Each cut's faces' lists are moved into post-processing, not copied.
+    let postprocess = |cuts: &mut [LevelCut], go_on: Ask| -> Vec<Level> {
         crate::input::memory::release_freed();
-        let levels = (cuts.iter())
+        let levels = (cuts.iter_mut())
             .map(|c| Level {
                 shortfall: c.shortfall,
                 ..postprocess::level(
                     &fitter,
-                    c.snapshot.clone(),
+                    c.take_for_postprocess(),
                     Some(c.bound),
                     params,
                     &reads,
@@ -92,18 +93,19 @@ pub(crate) fn run(
     // The cut of the merge tree at each target where the error is (0032), its counts
     // and bytes spent on what post-processing keeps (0044).
     let requests = limits::requests(params, mesh);
-    let cuts = clock
+    let (mut cuts, done) = clock
         .stage(Stage::Postprocess, "cut", |go_on, _| {
             let latch = Latch::new(go_on, 0.0);
-            let postprocess = |cuts: &[LevelCut]| postprocess(cuts, &|| latch.goes_on());
+            let postprocess = |cuts: &mut [LevelCut]| postprocess(cuts, &|| latch.goes_on());
             recut::snapshots(&fitter, &tree, &requests, &tris, &postprocess, go_on)
         })?
         .ok_or(Error::Cancelled)?;
-    // The kept cuts post-processed, back to world coordinates.
+    // The kept cuts post-processed, back to world coordinates: the levels the cut's
+    // search made of them, or, where each was cut once, made now.
     // (The cut was post-processing's stage, reported done: its fraction stays 1.)
     let mut levels = clock.stage(Stage::Postprocess, "postprocess", |go_on, _| {
         let latch = Latch::new(go_on, 1.0);
-        postprocess(&cuts, &|| latch.goes_on())
+        done.unwrap_or_else(|| postprocess(&mut cuts, &|| latch.goes_on()))
     })?;
     // What each level asked and how far its primitives stand from the input.
     clock.stage(Stage::Postprocess, "distance", |_, _| {

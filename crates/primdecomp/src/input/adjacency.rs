@@ -3,7 +3,7 @@
 //! in parallel, so the result is the same for any thread count.
 
 use rayon::prelude::*;
-use std::sync::atomic::{AtomicU32, AtomicU64, Ordering::Relaxed};
+use std::sync::atomic::{AtomicU16, AtomicU32, AtomicU64, Ordering::Relaxed};
 
 /// Faces around one edge beyond which we chain them instead of pairing all of them,
 /// so a non-manifold "fan" edge cannot create a quadratic number of pairs.
@@ -171,20 +171,34 @@ pub fn face_pairs(offsets: &[u32], indices: &[u32]) -> Vec<(u32, u32)> {
     face_pairs_checked(offsets, indices, &unwelded, &|_| true).unwrap_or_default()
 }
 
-/// Vertices per block of the edge lists (a parallel task, and a check of `go_on`).
-const BLOCK: usize = 1 << 14;
-/// Faces per block of the passes over the faces' sides (a check of `go_on` after
-/// each: a few milliseconds apart).
+/// Faces per block of the passes over the neighbour lists' pairs (a check of `go_on`
+/// after each: a few milliseconds apart).
 const FACE_BLOCK: usize = 1 << 20;
+/// Faces per chunk of the partition of the faces' sides: each chunk counts and
+/// places its own sides, so the records' order is the same for any thread count.
+const CHUNK: usize = 1 << 18;
+/// A side's bucket is its lower vertex's id without these low bits: 2^13 vertices,
+/// about 49k sides of 10 bytes, which sort within a core's L2 cache; and the
+/// placing pass writes to few enough buckets at once (3,400 at 56M faces) that
+/// their cursors stay cached too.
+const VERTEX_BITS: u32 = 13;
+/// A pair's bucket is its first face's id without these low bits (2^14 faces, about
+/// 25k pairs of 8 bytes).
+const FACE_BITS: u32 = 14;
 
 /// [`face_pairs`] of `indices` read through `weld`, that reports the fraction done
-/// to `go_on` between blocks of vertices and stops (`None`) when it says so.
+/// to `go_on` between chunks of faces and buckets of vertices, and stops (`None`)
+/// when it says so.
 ///
-/// The sides are bucketed by their lower vertex (a counting sort: one 8-byte record
-/// per side, the other vertex and the face, and a start per vertex), and each
-/// vertex's few records sorted on their own: the same order as one sort of (edge,
-/// face) records, in a third less memory and linear time, a block of vertices at a
-/// time.
+/// Two radix passes, each partitioning by a coarse key first and finishing each
+/// bucket on its own (in cache, buckets in parallel): the sides by their lower
+/// vertex (one 10-byte record per side: the other vertex and the face, and the low
+/// bits of the lower vertex), each vertex's few records then sorted on their own,
+/// which is the order of one sort of (edge, face) records; then the pairs by their
+/// first face. The partitions' counts are kept per chunk of input, so no write is
+/// shared between threads and the result is the same for any thread count. Scattered
+/// writes to one slot per vertex or per face would leave the caches from a few
+/// million faces on (docs/results/ladder.md, "Adjacency in cache-sized buckets").
 pub fn face_pairs_checked(
     offsets: &[u32],
     indices: &[u32],
@@ -197,112 +211,211 @@ pub fn face_pairs_checked(
         "CSR offsets start at 0"
     );
     let verts = (indices.par_iter().map(|&v| weld.of(v)).max()).map_or(0, |m| m as usize + 1);
-    // Each face's sides (a, b), a ≠ b, by chunks of faces, a block of faces at a
-    // time with a check of `go_on` (from `done` to `done + 0.25`) after each; false
-    // when it said stop.
-    let sides = |visit: &(dyn Fn(u32, u32, u32) + Sync), done: f64| {
-        (0..faces).step_by(FACE_BLOCK).all(|f0| {
-            let f1 = (f0 + FACE_BLOCK).min(faces);
-            (f0..f1).into_par_iter().with_min_len(4096).for_each(|f| {
-                let idx = weld.corners(&indices[offsets[f] as usize..offsets[f + 1] as usize]);
-                for i in 0..idx.len() {
-                    let (a, b) = (idx.get(i), idx.get((i + 1) % idx.len()));
-                    if a != b {
-                        visit(a.min(b), a.max(b), f as u32);
-                    }
-                }
-            });
-            go_on(done + 0.25 * f1 as f64 / faces as f64)
-        })
+    // Each face's sides (lo, hi), lo < hi, its corners read through the weld.
+    let sides = |f: usize, visit: &mut dyn FnMut(u32, u32)| {
+        let idx = weld.corners(&indices[offsets[f] as usize..offsets[f + 1] as usize]);
+        for i in 0..idx.len() {
+            let (a, b) = (idx.get(i), idx.get((i + 1) % idx.len()));
+            if a != b {
+                visit(a.min(b), a.max(b));
+            }
+        }
     };
-    let count: Vec<AtomicU32> = zeroed(verts + 1);
-    let counted = sides(
-        &|lo, _, _| {
-            count[lo as usize + 1].fetch_add(1, Relaxed);
-        },
-        0.0,
-    );
-    if !counted {
-        return None;
-    }
-    // The records in their vertex's bucket, in any order (sorted below).
-    let (start, next) = starts_of(count);
-    let records: Vec<AtomicU64> = (0..start[verts]).map(|_| AtomicU64::new(0)).collect();
-    let placed = sides(
-        &|lo, hi, f| {
-            let at = next[lo as usize].fetch_add(1, Relaxed);
-            records[at as usize].store((u64::from(hi) << 32) | u64::from(f), Relaxed);
-        },
-        0.25,
-    );
+    let chunks: Vec<std::ops::Range<usize>> = (0..faces)
+        .step_by(CHUNK)
+        .map(|f0| f0..(f0 + CHUNK).min(faces))
+        .collect();
+    let buckets = (verts >> VERTEX_BITS) + 1;
+    let bucket = |lo: u32| (lo >> VERTEX_BITS) as usize;
+    let counts = |done: f64| {
+        let each = |r: &std::ops::Range<usize>| {
+            let mut count = vec![0u32; buckets];
+            for f in r.clone() {
+                sides(f, &mut |lo, _| count[bucket(lo)] += 1);
+            }
+            go_on(done + 0.25 * r.end as f64 / faces as f64).then_some(count)
+        };
+        chunks.par_iter().map(each).collect::<Option<Vec<_>>>()
+    };
+    let (start, cursors) = chunk_starts(counts(0.0)?, buckets);
+    // The records in their vertex's bucket, each chunk's in its own stretch.
+    let keys: Vec<AtomicU64> = zeroed(start[buckets]);
+    let lows: Vec<AtomicU16> = zeroed(start[buckets]);
+    let placed = chunks.par_iter().zip(cursors).all(|(r, mut at)| {
+        for f in r.clone() {
+            sides(f, &mut |lo, hi| {
+                let i = &mut at[bucket(lo)];
+                keys[*i].store((u64::from(hi) << 32) | f as u64, Relaxed);
+                lows[*i].store((lo & ((1 << VERTEX_BITS) - 1)) as u16, Relaxed);
+                *i += 1;
+            });
+        }
+        go_on(0.25 + 0.25 * r.end as f64 / faces as f64)
+    });
     if !placed {
         return None;
     }
-    drop(next);
-    let mut records: Vec<u64> = records.into_iter().map(AtomicU64::into_inner).collect();
-    // Blocks of vertices own disjoint runs of records.
-    let mut blocks = Vec::new();
-    let mut rest = &mut records[..];
-    for v0 in (0..verts).step_by(BLOCK) {
-        let v1 = (v0 + BLOCK).min(verts);
-        let (head, tail) = rest.split_at_mut((start[v1] - start[v0]) as usize);
-        blocks.push((v0, v1, head));
-        rest = tail;
-    }
-    let total = blocks.len().max(1);
+    let keys: Vec<u64> = keys.into_iter().map(AtomicU64::into_inner).collect();
+    let lows: Vec<u16> = lows.into_iter().map(AtomicU16::into_inner).collect();
+    let lists = edge_pairs(&keys, &lows, &start, go_on)?;
+    drop((keys, lows));
+    sorted_pairs(lists, faces, go_on)
+}
+
+/// Each vertex bucket's pairs of faces around its edges, from its sides (`keys`:
+/// other vertex `<< 32 |` face, `lows`: the lower vertex's low bits) at
+/// `start[b]..start[b + 1]`: each vertex's records sorted, each edge's faces paired
+/// ([`push_edge_pairs`]); buckets in parallel, each asking `go_on`.
+fn edge_pairs(
+    keys: &[u64],
+    lows: &[u16],
+    start: &[usize],
+    go_on: crate::progress::Checkpoint,
+) -> Option<Vec<Vec<(u32, u32)>>> {
+    let buckets = start.len() - 1;
     let done = AtomicU32::new(0);
-    let lists: Vec<Option<Vec<(u32, u32)>>> = blocks
+    let lists: Vec<Option<Vec<(u32, u32)>>> = (0..buckets)
         .into_par_iter()
-        .map(|(v0, v1, recs)| {
+        .map_init(Finish::default, |scratch, b| {
+            let (keys, lows) = (&keys[start[b]..start[b + 1]], &lows[start[b]..start[b + 1]]);
             let mut pairs = Vec::new();
-            let base = start[v0] as usize;
-            for v in v0..v1 {
-                let run = &mut recs[start[v] as usize - base..start[v + 1] as usize - base];
+            for run in scratch.runs(keys, lows, 1 << VERTEX_BITS) {
                 run.sort_unstable();
                 for edge in run.chunk_by(|x, y| x >> 32 == y >> 32) {
                     push_edge_pairs(edge, &mut pairs);
                 }
             }
             let k = done.fetch_add(1, Relaxed) + 1;
-            go_on(0.5 + 0.4 * f64::from(k) / total as f64).then_some(pairs)
+            go_on(0.5 + 0.4 * f64::from(k) / buckets as f64).then_some(pairs)
         })
         .collect();
-    drop(records);
-    let lists: Vec<Vec<(u32, u32)>> = lists.into_iter().collect::<Option<_>>()?;
-    sorted_pairs(lists, faces, go_on)
+    lists.into_iter().collect()
+}
+
+/// From each chunk's count of items per bucket: each bucket's start (one more entry
+/// than buckets), and each chunk's cursor per bucket: the chunks' items in a bucket
+/// follow each other in the chunks' order.
+fn chunk_starts(counts: Vec<Vec<u32>>, buckets: usize) -> (Vec<usize>, Vec<Vec<usize>>) {
+    let mut start = vec![0usize; buckets + 1];
+    let mut cursors: Vec<Vec<usize>> = counts.iter().map(|_| Vec::with_capacity(buckets)).collect();
+    let mut at = 0usize;
+    for b in 0..buckets {
+        start[b] = at;
+        for (count, cursor) in counts.iter().zip(&mut cursors) {
+            cursor.push(at);
+            at += count[b] as usize;
+        }
+    }
+    start[buckets] = at;
+    (start, cursors)
+}
+
+/// A bucket's items grouped by their low bits (a counting sort in scratch kept
+/// between buckets).
+#[derive(Default)]
+struct Finish {
+    count: Vec<u32>,
+    items: Vec<u64>,
+}
+
+impl Finish {
+    /// `keys` in runs of equal `lows` (of `width` values), in increasing low bits,
+    /// each run in its items' order; empty runs left out.
+    fn runs<'s>(
+        &'s mut self,
+        keys: &[u64],
+        lows: &[u16],
+        width: usize,
+    ) -> impl Iterator<Item = &'s mut [u64]> {
+        self.count.clear();
+        self.count.resize(width + 1, 0);
+        for &l in lows {
+            self.count[usize::from(l) + 1] += 1;
+        }
+        for i in 0..width {
+            self.count[i + 1] += self.count[i];
+        }
+        self.items.clear();
+        self.items.resize(keys.len(), 0);
+        for (&k, &l) in keys.iter().zip(lows) {
+            let at = &mut self.count[usize::from(l)];
+            self.items[*at as usize] = k;
+            *at += 1;
+        }
+        // `count[i]` is now run i's end.
+        let ends = &self.count[..width];
+        let mut rest = &mut self.items[..];
+        let mut from = 0;
+        ends.iter().filter_map(move |&end| {
+            let (run, tail) = std::mem::take(&mut rest).split_at_mut((end - from) as usize);
+            (rest, from) = (tail, end);
+            (!run.is_empty()).then_some(run)
+        })
+    }
 }
 
 /// The pairs of `lists` sorted and each once, as one sort of all of them gives: a
-/// counting sort on the first face (counted and placed in parallel, asking `go_on`
-/// after each pass), then each face's few pairs sorted on their own in parallel
-/// blocks, each asking `go_on` (one sort of every pair is seconds without a check at
-/// 14M faces); `None` when it said stop. The same pairs for any thread count.
+/// partition by the first face's bucket (counted and placed per list, in parallel),
+/// then each bucket sorted on its own in cache (by the first face's low bits, then
+/// each face's few pairs), buckets in parallel, each asking `go_on` (one sort of
+/// every pair is seconds without a check at 14M faces); `None` when it said stop.
+/// The same pairs for any thread count.
 fn sorted_pairs(
     lists: Vec<Vec<(u32, u32)>>,
     faces: usize,
     go_on: crate::progress::Checkpoint,
 ) -> Option<Vec<(u32, u32)>> {
-    let count: Vec<AtomicU32> = zeroed(faces + 1);
-    lists.par_iter().flatten().for_each(|&(a, _)| {
-        count[a as usize + 1].fetch_add(1, Relaxed);
-    });
+    let buckets = (faces >> FACE_BITS) + 1;
+    let bucket = |a: u32| (a >> FACE_BITS) as usize;
+    let counts: Vec<Vec<u32>> = lists
+        .par_iter()
+        .map(|list| {
+            let mut count = vec![0u32; buckets];
+            list.iter().for_each(|&(a, _)| count[bucket(a)] += 1);
+            count
+        })
+        .collect();
     go_on(0.9).then_some(())?;
-    let mut start: Vec<u32> = count.into_iter().map(AtomicU32::into_inner).collect();
-    for f in 0..faces {
-        start[f + 1] += start[f];
-    }
-    let next: Vec<AtomicU32> = start[..faces].iter().map(|&s| AtomicU32::new(s)).collect();
+    let (start, cursors) = chunk_starts(counts, buckets);
     // Each pair as `a << 32 | b`: ordered as the pairs are.
-    let slots: Vec<AtomicU64> = zeroed(start[faces] as usize);
-    lists.par_iter().flatten().for_each(|&(a, b)| {
-        let at = next[a as usize].fetch_add(1, Relaxed);
-        slots[at as usize].store((u64::from(a) << 32) | u64::from(b), Relaxed);
+    let slots: Vec<AtomicU64> = zeroed(start[buckets]);
+    lists.par_iter().zip(cursors).for_each(|(list, mut at)| {
+        for &(a, b) in list {
+            let i = &mut at[bucket(a)];
+            slots[*i].store((u64::from(a) << 32) | u64::from(b), Relaxed);
+            *i += 1;
+        }
     });
-    drop(next);
     drop(lists);
     go_on(0.9).then_some(())?;
     let mut keys: Vec<u64> = slots.into_iter().map(AtomicU64::into_inner).collect();
-    sort_runs(&mut keys, &start, 0.9, go_on)?;
+    // Buckets own disjoint stretches of the keys.
+    let mut stretches = Vec::with_capacity(buckets);
+    let mut rest = &mut keys[..];
+    for b in 0..buckets {
+        let (head, tail) = rest.split_at_mut(start[b + 1] - start[b]);
+        stretches.push(head);
+        rest = tail;
+    }
+    let lows: u64 = (1 << FACE_BITS) - 1;
+    let sorted = stretches
+        .into_par_iter()
+        .map_init(
+            || (Finish::default(), Vec::new()),
+            |(scratch, low), keys| {
+                low.clear();
+                low.extend(keys.iter().map(|&k| ((k >> 32) & lows) as u16));
+                let mut at = 0;
+                for run in scratch.runs(keys, low, 1 << FACE_BITS) {
+                    run.sort_unstable();
+                    keys[at..at + run.len()].copy_from_slice(run);
+                    at += run.len();
+                }
+                go_on(0.9)
+            },
+        )
+        .all(|going| going);
+    sorted.then_some(())?;
     let mut pairs: Vec<(u32, u32)> = keys
         .into_iter()
         .map(|k| ((k >> 32) as u32, k as u32))
@@ -422,6 +535,65 @@ mod tests {
         let got = sorted_pairs(lists.clone(), n as usize, &|_| true).unwrap();
         assert_eq!(got, all);
         assert!(sorted_pairs(lists, n as usize, &|_| false).is_none());
+    }
+
+    /// Over several chunks of faces and buckets of vertices and faces, on several
+    /// thread counts: the pairs of one sort of every (edge, face) record.
+    #[test]
+    fn buckets_give_one_sort_of_all_records() {
+        // A 500 × 600 grid of quads as triangles, vertex ids scrambled so sides
+        // fall in every bucket, with a quad, a fan of six faces around one edge and a
+        // repeated face appended.
+        let (w, h) = (500u32, 600u32);
+        let id = |x: u32, y: u32| ((y * (w + 1) + x).wrapping_mul(2_654_435_761)) % 400_009;
+        let mut indices = Vec::new();
+        for y in 0..h {
+            for x in 0..w {
+                let (a, b) = (id(x, y), id(x + 1, y));
+                let (c, d) = (id(x + 1, y + 1), id(x, y + 1));
+                indices.extend([a, b, c, a, c, d]);
+            }
+        }
+        let mut offsets: Vec<u32> = (0..=indices.len() as u32 / 3).map(|i| 3 * i).collect();
+        let mut push = |face: &[u32]| {
+            indices.extend_from_slice(face);
+            offsets.push(indices.len() as u32);
+        };
+        push(&[id(0, 0), id(1, 0), id(1, 1), id(0, 1)]);
+        for k in 0..6 {
+            push(&[id(7, 7), id(8, 7), 400_010 + k]);
+        }
+        push(&[id(3, 3), id(4, 3), id(4, 4)]);
+        assert!(offsets.len() - 1 > 2 * CHUNK && 400_016 >> VERTEX_BITS > 8);
+        // One sort of every (lo, hi, face) record, each edge's faces paired.
+        let mut records = Vec::new();
+        for f in 0..offsets.len() - 1 {
+            let idx = &indices[offsets[f] as usize..offsets[f + 1] as usize];
+            for i in 0..idx.len() {
+                let (a, b) = (idx[i], idx[(i + 1) % idx.len()]);
+                if a != b {
+                    records.push((a.min(b), (u64::from(a.max(b)) << 32) | f as u64));
+                }
+            }
+        }
+        records.sort_unstable();
+        let mut expected = Vec::new();
+        for edge in records.chunk_by(|x, y| x.0 == y.0 && x.1 >> 32 == y.1 >> 32) {
+            let run: Vec<u64> = edge.iter().map(|r| r.1).collect();
+            push_edge_pairs(&run, &mut expected);
+        }
+        expected.sort_unstable();
+        expected.dedup();
+        for threads in [1, 2, 3] {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let got = pool.install(|| face_pairs(&offsets, &indices));
+            assert!(got == expected, "{threads} threads");
+        }
+        let unwelded = crate::input::dedup::Weld::none();
+        assert!(face_pairs_checked(&offsets, &indices, &unwelded, &|_| false).is_none());
     }
 
     #[test]

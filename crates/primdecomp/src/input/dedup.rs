@@ -191,23 +191,7 @@ const BUCKET: usize = 1 << 8;
 /// at a time), so the time per vertex holds as the input outgrows the caches; only a
 /// vertex with a twin in its bucket reads its coordinates again.
 fn exact_remap(mesh: &Mesh, go_on: Checkpoint) -> Option<Vec<u32>> {
-    use std::sync::atomic::{AtomicU32, AtomicU64, Ordering::Relaxed};
     let n = mesh.vertex_count();
-    let k = |i: u32| {
-        let i = i as usize;
-        (key(mesh.x[i]), key(mesh.y[i]), key(mesh.z[i]))
-    };
-    let hash = |i: u32| {
-        let (x, y, z) = k(i);
-        let mut h = x.wrapping_mul(0x9E37_79B9_7F4A_7C15)
-            ^ y.rotate_left(21).wrapping_mul(0xC2B2_AE3D_27D4_EB4F)
-            ^ z.rotate_left(42).wrapping_mul(0x1656_67B1_9E37_79F9);
-        h ^= h >> 33;
-        h = h.wrapping_mul(0xFF51_AFD7_ED55_8CCD);
-        h ^= h >> 33;
-        h = h.wrapping_mul(0xC4CE_B9FE_1A85_EC53);
-        h ^ (h >> 33)
-    };
     // Bucket bits, split between the two passes; the records keep the hash's low 32
     // bits, the partitions its top ones.
     let bits = (n / BUCKET)
@@ -216,14 +200,51 @@ fn exact_remap(mesh: &Mesh, go_on: Checkpoint) -> Option<Vec<u32>> {
         .trailing_zeros()
         .min(24);
     let (bits1, bits2) = (bits.div_ceil(2), bits / 2);
-    let parts = 1usize << bits1;
-    let part = |h: u64| (h >> 32 >> (32 - bits1)) as usize & (parts - 1);
-    let record = |h: u64, i: u32| (h << 32) | u64::from(i);
-    // First pass: each chunk's count per partition, then the records placed.
+    // First pass: the records in partitions, streaming over the input in chunks.
+    let (mut records, start) = partitioned(mesh, bits1, go_on)?;
+    if !go_on(0.4) {
+        return None;
+    }
+    // Second pass: each partition into buckets in cache, each bucket's twins welded.
+    weld_partitions(mesh, &mut records, &start, bits2, go_on)
+}
+
+/// Vertex `i`'s coordinates' bit patterns, −0 folded onto +0: equal exactly when
+/// the positions are.
+#[inline]
+fn coordinates(mesh: &Mesh, i: u32) -> (u64, u64, u64) {
+    let i = i as usize;
+    (key(mesh.x[i]), key(mesh.y[i]), key(mesh.z[i]))
+}
+
+/// A 64-bit hash of vertex `i`'s coordinates (equal coordinates, equal hash).
+#[inline]
+fn vertex_hash(mesh: &Mesh, i: u32) -> u64 {
+    let (x, y, z) = coordinates(mesh, i);
+    let mut h = x.wrapping_mul(0x9E37_79B9_7F4A_7C15)
+        ^ y.rotate_left(21).wrapping_mul(0xC2B2_AE3D_27D4_EB4F)
+        ^ z.rotate_left(42).wrapping_mul(0x1656_67B1_9E37_79F9);
+    h ^= h >> 33;
+    h = h.wrapping_mul(0xFF51_AFD7_ED55_8CCD);
+    h ^= h >> 33;
+    h = h.wrapping_mul(0xC4CE_B9FE_1A85_EC53);
+    h ^ (h >> 33)
+}
+
+/// Every vertex's record (hash's low 32 bits, index) placed in its partition by the
+/// hash's top `bits` bits, and each partition's start (one more entry than
+/// partitions): each chunk of [`CHUNK`] vertices counts, then places, its own, so
+/// the order is the same for any thread count; `None` when `go_on` said stop.
+fn partitioned(mesh: &Mesh, bits: u32, go_on: Checkpoint) -> Option<(Vec<u64>, Vec<u32>)> {
+    use std::sync::atomic::{AtomicU64, Ordering::Relaxed};
+    let n = mesh.vertex_count();
+    let parts = 1usize << bits;
+    let part = |h: u64| (h >> 32 >> (32 - bits)) as usize & (parts - 1);
     let chunks = n.div_ceil(CHUNK);
     let mut counts = vec![0u32; chunks * parts];
     let counted = blocks_of_chunks(&mut counts, parts, 0.0, go_on, |c, row| {
-        (c * CHUNK..((c + 1) * CHUNK).min(n)).for_each(|i| row[part(hash(i as u32))] += 1);
+        let chunk = c * CHUNK..((c + 1) * CHUNK).min(n);
+        chunk.for_each(|i| row[part(vertex_hash(mesh, i as u32))] += 1);
     });
     if !counted {
         return None;
@@ -243,25 +264,36 @@ fn exact_remap(mesh: &Mesh, go_on: Checkpoint) -> Option<Vec<u32>> {
     let records: Vec<AtomicU64> = (0..n).map(|_| AtomicU64::new(0)).collect();
     let placed = blocks_of_chunks(&mut counts, parts, 0.2, go_on, |c, next| {
         for i in c * CHUNK..((c + 1) * CHUNK).min(n) {
-            let h = hash(i as u32);
+            let h = vertex_hash(mesh, i as u32);
             let slot = &mut next[part(h)];
-            records[*slot as usize].store(record(h, i as u32), Relaxed);
+            records[*slot as usize].store((h << 32) | i as u64, Relaxed);
             *slot += 1;
         }
     });
-    if !placed {
-        return None;
-    }
-    drop(counts);
-    let mut records: Vec<u64> = records.into_iter().map(AtomicU64::into_inner).collect();
-    if !go_on(0.4) {
-        return None;
-    }
+    let records = records.into_iter().map(AtomicU64::into_inner).collect();
+    placed.then_some((records, start))
+}
+
+/// Each vertex → the lowest index with its coordinates, from the `records` in
+/// partitions (`start`): blocks of partitions in parallel, each partition counted
+/// into buckets by `bits` more bits of the hash ([`buckets`]), each bucket sorted,
+/// and each run of equal hashes split by exact coordinates, every group welding to
+/// its first (lowest) index; asks `go_on` after each block.
+fn weld_partitions(
+    mesh: &Mesh,
+    records: &mut [u64],
+    start: &[u32],
+    bits: u32,
+    go_on: Checkpoint,
+) -> Option<Vec<u32>> {
+    use std::sync::atomic::{AtomicU32, Ordering::Relaxed};
+    let n = mesh.vertex_count();
+    let parts = start.len() - 1;
     let remap: Vec<AtomicU32> = (0..n as u32).into_par_iter().map(AtomicU32::new).collect();
     // Blocks of partitions own disjoint runs of `records`.
     let per_block = (parts / 64).max(1);
     let mut blocks = Vec::new();
-    let mut rest = &mut records[..];
+    let mut rest = records;
     for p0 in (0..parts).step_by(per_block) {
         let p1 = (p0 + per_block).min(parts);
         let (head, tail) = rest.split_at_mut((start[p1] - start[p0]) as usize);
@@ -272,7 +304,7 @@ fn exact_remap(mesh: &Mesh, go_on: Checkpoint) -> Option<Vec<u32>> {
     let done = AtomicU32::new(0);
     let weld_twins = |run: &[u64], twins: &mut Vec<((u64, u64, u64), u32)>| {
         twins.clear();
-        twins.extend(run.iter().map(|&r| (k(r as u32), r as u32)));
+        twins.extend(run.iter().map(|&r| (coordinates(mesh, r as u32), r as u32)));
         twins.sort_unstable();
         for group in twins.chunk_by(|a, b| a.0 == b.0) {
             (group[1..].iter()).for_each(|&(_, i)| remap[i as usize].store(group[0].1, Relaxed));
@@ -283,7 +315,7 @@ fn exact_remap(mesh: &Mesh, go_on: Checkpoint) -> Option<Vec<u32>> {
         for p in p0..p1 {
             let from = (start[p] - start[p0]) as usize;
             let to = (start[p + 1] - start[p0]) as usize;
-            buckets(&block[from..to], bits2, &mut sorted, &mut ends);
+            buckets(&block[from..to], bits, &mut sorted, &mut ends);
             let mut begin = 0;
             for &end in &ends {
                 let bucket = &mut sorted[begin..end as usize];

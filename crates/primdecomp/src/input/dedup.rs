@@ -29,7 +29,7 @@ impl Weld {
     /// Vertex `v`'s weld target.
     #[inline]
     pub fn of(&self, v: u32) -> u32 {
-        self.target.get(v as usize).copied().unwrap_or(v)
+        target_of(&self.target, v)
     }
 
     /// The vertex ids `ids` read through the weld.
@@ -65,6 +65,12 @@ impl Weld {
     }
 }
 
+/// Vertex `v`'s target in `target` (each vertex's, or empty: every vertex its own).
+#[inline]
+fn target_of(target: &[u32], v: u32) -> u32 {
+    target.get(v as usize).copied().unwrap_or(v)
+}
+
 /// A list of vertex ids read through a weld (a face's corners), or as they are
 /// ([`Corners::plain`]: ids already welded). Copy, and as cheap to pass as a slice.
 #[derive(Clone, Copy, Debug)]
@@ -90,15 +96,14 @@ impl<'a> Corners<'a> {
     /// The `i`-th id, welded.
     #[inline]
     pub fn get(self, i: usize) -> u32 {
-        let v = self.ids[i];
-        self.weld.get(v as usize).copied().unwrap_or(v)
+        target_of(self.weld, self.ids[i])
     }
 
     /// The ids in order, welded.
     #[inline]
     pub fn iter(self) -> impl ExactSizeIterator<Item = u32> + Clone + 'a {
         let weld = self.weld;
-        (self.ids.iter()).map(move |&v| weld.get(v as usize).copied().unwrap_or(v))
+        (self.ids.iter()).map(move |&v| target_of(weld, v))
     }
 
     /// Whether welded id `v` is among them.

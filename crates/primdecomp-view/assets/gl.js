@@ -192,21 +192,19 @@ var viewGl = (function () {
         });
       return input.gpu;
     }
-    /* The buffers of one part alone, in its flat colour, by viewer.js's key of its
-     * collider ('level:0' is ours at any level) and the part's index; only the last
-     * one asked for is kept. */
-    var highlightCache = {};
+    /* The buffers of one part alone, in its flat colour; only the last part asked for
+     * is kept. */
+    var highlight = null;
     function highlightGpu(c, part) {
-      var k = (c.role === 'level' ? 'level:0' : 'peer:' + c.index) + '#' + part;
-      if (!highlightCache[k]) {
+      if (!highlight || highlight.collider !== c || highlight.part !== part) {
         var idx = c.indices.subarray(3 * c.starts[part], 3 * c.starts[part + 1]);
         var col = scene.partRgb[c.colours[part]];
-        highlightCache = {};
-        highlightCache[k] = buffers(c.positions, idx, function () {
+        var gpu = buffers(c.positions, idx, function () {
           return col;
         });
+        highlight = { collider: c, part: part, gpu: gpu };
       }
-      return highlightCache[k];
+      return highlight.gpu;
     }
 
     /* Paints `panes` (from viewer.js's layout: x and w in CSS pixels, each with its

@@ -5,7 +5,7 @@
  * and places the camera over it: the default view fitted as camera.rs fits it, orbit,
  * pan and zoom, the view and projection matrices, and the ray through a point of a pane
  * with the triangle it hits first. No DOM and no WebGL here: gl.js draws, viewer.js
- * runs the page. html.rs puts the three files in one function scope, in that order.
+ * runs the page. page.html holds the three in one function scope, in that order.
  */
 var viewScene = (function () {
   'use strict';

@@ -9,8 +9,9 @@
 // each level's JSON, that a screenshot is not blank and shows every present kind's
 // colour (by hue, as shading darkens it) in the drawing and its exact flat colour in
 // the legend swatch, that switching level and showing the compared hulls side by side
-// change what is drawn, that a level is labelled by what was asked, and that clicking
-// a primitive shows its kind, parameters and face count from the JSON.
+// change what is drawn, that a level is labelled by what was asked, that clicking
+// a primitive shows its kind, parameters and face count from the JSON, and that a part
+// picked after a level switch is highlighted in its own shape.
 //
 // Environment: PRIMDECOMP_BIN (default $CARGO_TARGET_DIR/release/primdecomp, else
 // target/release/primdecomp), PRIMDECOMP_TESTKIT (likewise), PRIMDECOMP_TEST_INPUTS (a
@@ -241,6 +242,64 @@ test('the level selector switches to the other level', async () => {
     }
   assert.ok(differ > 500, `the drawing changed: ${differ} pixels`);
   await page.selectOption('#level', '0');
+});
+
+/** Pixels that differ between two screenshots inside rectangle r. */
+function differing(a, b, r) {
+  let n = 0;
+  for (let y = r.y; y < r.y + r.h; y++)
+    for (let x = r.x; x < r.x + r.w; x++) {
+      const k = 3 * (y * a.width + x);
+      if (a.rgb[k] !== b.rgb[k] || a.rgb[k + 1] !== b.rgb[k + 1] || a.rgb[k + 2] !== b.rgb[k + 2]) n++;
+    }
+  return n;
+}
+
+test('a part picked after a level switch is highlighted in its own shape, not that of the same index in the level before', async () => {
+  const c = await canvasRect();
+  // The first point of a grid over the canvas that hits each part, by its index.
+  const grid = async () =>
+    new Map(
+      await page.evaluate((c) => {
+        const out = new Map();
+        for (let y = c.y + 20; y < c.y + c.h; y += 12)
+          for (let x = c.x + 20; x < c.x + c.w; x += 12) {
+            const h = window.primdecompView.hitAt(x, y);
+            if (h && !out.has(h.index)) out.set(h.index, { x, y });
+          }
+        return [...out];
+      }, c)
+    );
+  await page.evaluate(() => window.primdecompView.setMode('level:0'));
+  await page.evaluate(() => window.primdecompView.setLevel(1));
+  const atLevel1 = await grid();
+  await page.evaluate(() => window.primdecompView.setLevel(0));
+  const atLevel0 = await grid();
+  const index = [...atLevel1.keys()].find((i) => atLevel0.has(i));
+  assert.ok(index !== undefined, 'some part index is visible in both levels');
+  // Pick that index in level 0, then in level 1.
+  await page.mouse.click(atLevel0.get(index).x, atLevel0.get(index).y);
+  await frame();
+  assert.equal((await page.evaluate(() => window.primdecompView.selected)).index, index);
+  await page.evaluate(() => window.primdecompView.setLevel(1));
+  await page.mouse.click(atLevel1.get(index).x, atLevel1.get(index).y);
+  const after = await shot('level1_picked_after_level0.png');
+  // The same pick on a page that never picked in level 0.
+  const fresh = await page.context().newPage();
+  try {
+    await fresh.goto(page.url());
+    await fresh.waitForFunction(() => window.primdecompView && window.primdecompView.ready);
+    await fresh.evaluate(() => window.primdecompView.setMode('level:0'));
+    await fresh.evaluate(() => window.primdecompView.setLevel(1));
+    await fresh.mouse.click(atLevel1.get(index).x, atLevel1.get(index).y);
+    await fresh.evaluate(() => new Promise((res) => requestAnimationFrame(() => requestAnimationFrame(res))));
+    const alone = decodePng(await fresh.screenshot({ path: path.join(shots, 'level1_picked.png') }));
+    const n = differing(after, alone, c);
+    assert.ok(n < 0.001 * c.w * c.h, `${n} pixels of the view differ from the same pick on a fresh page`);
+  } finally {
+    await fresh.close();
+    await page.evaluate(() => window.primdecompView.setLevel(0));
+  }
 });
 
 test('side by side: the input, ours and the compared hulls, each in its pane, with distances', async () => {

@@ -1,6 +1,6 @@
 //! The default view shared by the page and the PNG: a three-quarter view from the
 //! front right, above, fitted so the scene fills most of the frame. The page's
-//! script repeats the fit (`fitCamera` in assets/viewer.js) for its panes' aspect.
+//! script repeats the fit (`fitCamera` in assets/scene.js) for its panes' aspect.
 
 /// Vertical field of view, degrees.
 pub const FOV_Y_DEG: f64 = 30.0;

@@ -1,5 +1,5 @@
-//! The viewer page: one HTML file holding its JavaScript (`assets/viewer.js`, WebGL
-//! with no library), its style and the scene's data (JSON with geometry as base64
+//! The viewer page: one HTML file holding its JavaScript (WebGL with no library: see
+//! [`SCRIPTS`]), its style and the scene's data (JSON with geometry as base64
 //! little-endian arrays), so it opens from disk with no network. The same scene gives
 //! the same bytes.
 
@@ -10,23 +10,41 @@ use crate::scene::{Collider, Detail, Scene};
 use serde_json::{json, Value};
 
 const TEMPLATE: &str = include_str!("../assets/page.html");
-const VIEWER_JS: &str = include_str!("../assets/viewer.js");
+
+/// The page's script, by its marker in page.html, in the order it runs:
+/// `assets/scene.js` decodes the data and places the camera, `assets/gl.js` draws,
+/// `assets/viewer.js` runs the page (panes, panel, picking, events) with the other two.
+/// page.html puts the three in one function scope, so they add no globals but the
+/// `window.primdecompView` that viewer.js exposes for tests.
+const SCRIPTS: [(&str, &str); 3] = [
+    (
+        "__PRIMDECOMP_SCENE_JS__",
+        include_str!("../assets/scene.js"),
+    ),
+    ("__PRIMDECOMP_GL_JS__", include_str!("../assets/gl.js")),
+    (
+        "__PRIMDECOMP_VIEWER_JS__",
+        include_str!("../assets/viewer.js"),
+    ),
+];
+
+/// Whether `js` can sit inside a `<script>` element as it is: it holds no `</script`
+/// (which ends the element, in any case) and no `<!--` (which, before a `<script`,
+/// switches the HTML parser into its escaped states).
+fn fits_a_script_element(js: &str) -> bool {
+    let lower = js.to_ascii_lowercase();
+    !lower.contains("</script") && !lower.contains("<!--")
+}
 
 /// The page for `scene`.
 pub fn page(scene: &Scene, title: &str) -> String {
     let data = script_json(&data(scene, title).to_string());
-    debug_assert!(!VIEWER_JS.contains("</script"));
-    fill(
-        TEMPLATE,
-        &[
-            (
-                "__PRIMDECOMP_TITLE__",
-                &escape_html(&primdecomp_files::visible(title)),
-            ),
-            ("__PRIMDECOMP_VIEWER_JS__", VIEWER_JS),
-            ("__PRIMDECOMP_DATA__", &data),
-        ],
-    )
+    debug_assert!(SCRIPTS.iter().all(|s| fits_a_script_element(s.1)));
+    let title = escape_html(&primdecomp_files::visible(title));
+    let mut values = vec![("__PRIMDECOMP_TITLE__", title.as_str())];
+    values.extend(SCRIPTS);
+    values.push(("__PRIMDECOMP_DATA__", &data));
+    fill(TEMPLATE, &values)
 }
 
 /// The template with each marker replaced, in one pass over the template (a value
@@ -262,6 +280,35 @@ mod tests {
         );
         let back: serde_json::Value = serde_json::from_str(&block).unwrap();
         assert_eq!(back, v);
+    }
+
+    /// Every part of the script can sit in the page's `<script>` element, and the page
+    /// holds each part once, in the order of [`SCRIPTS`], with no marker left.
+    #[test]
+    fn the_page_holds_each_script_once_in_order() {
+        for (marker, js) in SCRIPTS {
+            assert!(fits_a_script_element(js), "{marker}");
+            assert_eq!(TEMPLATE.matches(marker).count(), 1, "{marker}");
+        }
+        assert!(!fits_a_script_element("a </SCRIPT> b"));
+        assert!(!fits_a_script_element("a <!-- b"));
+        let scene = Scene {
+            input: None,
+            levels: Vec::new(),
+            peers: Vec::new(),
+            eval: Vec::new(),
+            up_axis: 1,
+        };
+        let page = page(&scene, "t");
+        let at: Vec<usize> = SCRIPTS
+            .iter()
+            .map(|(marker, js)| {
+                assert_eq!(page.matches(js).count(), 1, "{marker}");
+                page.find(js).unwrap()
+            })
+            .collect();
+        assert!(at.windows(2).all(|w| w[0] < w[1]), "{at:?}");
+        assert!(!page.contains("__PRIMDECOMP_"));
     }
 
     #[test]

@@ -733,7 +733,7 @@ mod tests {
         use crate::merge::driver::tests::in_pool;
         let mesh = grid_z(24, |i, j| ((i * 7 + j * 13) % 5) as f64 * 0.3);
         let p = crate::params::Params::default();
-        crate::merge::driver::tests::with_input(&mesh, &p, |fitter, q, vols, pairs| {
+        crate::merge::driver::tests::with_input(&mesh, &p, |fitter, q, _, pairs| {
             let (o, a) = crate::input::adjacency::neighbour_lists(q.len(), pairs);
             let lists: Lists = (o.into(), a.into());
             let own = FaceData::PerPart {

@@ -149,3 +149,120 @@ fn garbage_never_panics() {
         let _ = parse(&ASCII.as_bytes()[..n % ASCII.len()]);
     }
 }
+
+/// `f` on a rayon pool of `threads` threads.
+fn in_pool<R: Send>(threads: usize, f: impl FnOnce() -> R + Send) -> R {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("thread pool")
+        .install(f)
+}
+
+/// ASCII data read by lines in parallel, in blocks of a few bytes (so that blocks
+/// end on every line), gives what the serial reader gives wherever each element is
+/// alone on its line, and leaves to the serial reader (`None`) whatever is not: two
+/// elements on a line, one across lines, a blank line among them, a line too short
+/// or too long, a bad token, an index out of range, data that ends early. Through
+/// `parse_ply`, one thread and two give the same result or the same error.
+#[test]
+fn ascii_by_lines_reads_as_the_serial_reader() {
+    let strips = ASCII.replace("element edge 1", "element tristrips 1");
+    let regular = [
+        ASCII.to_string(),
+        ASCII.replace('\n', "\r\n"),
+        ASCII.trim_end().to_string(),
+        format!("{ASCII}trailing words after the data\n\n"),
+        ASCII.replace("3 0 1 2 0.5", "2 0 1 0.5"),
+        strips,
+    ];
+    let irregular = [
+        ASCII.replace("0 0 0 0 4\n3 0 1 2 0.5", "0 0 0 0 4 3 0 1 2 0.5\n"),
+        ASCII.replace("1 0 0 0 2\n", "1 0 0\n0 2\n"),
+        ASCII.replace("1 0 0 0 2\n", "1 0 0 0 2\n\n"),
+        ASCII.replace("1 0 0 0 2\n", "1 0 0 0 2 6\n"),
+        ASCII.replace("1 0 0 0 2\n", "1 0 x 0 2\n"),
+        ASCII.replace("3 0 1 2 0.5", "3 0 1 9 0.5"),
+        ASCII.replace("\n3 1 2 3 7\n", "\n"),
+        {
+            let (head, data) = ASCII.split_at(ASCII.find("end_header\n").unwrap() + 11);
+            format!("{head}{}", data.replace('\n', "\r"))
+        },
+    ];
+    for (text, fits) in
+        (regular.iter().map(|t| (t, true))).chain(irregular.iter().map(|t| (t, false)))
+    {
+        let bytes = text.as_bytes();
+        let h = parse_header(bytes, Path::new("t.ply")).unwrap();
+        for block in [1, 7, 64, 1 << 20] {
+            let got = in_pool(2, || {
+                ascii_by_lines(bytes, &h, Path::new("t.ply"), (0, block))
+            });
+            assert_eq!(got.is_some(), fits, "{text:?}, blocks of {block}");
+            if let Some(got) = got {
+                let want = in_pool(1, || parse(bytes)).unwrap();
+                assert_eq!(got.positions, want.positions, "{text:?}");
+                assert_eq!(got.face_offsets, want.face_offsets, "{text:?}");
+                assert_eq!(got.face_indices, want.face_indices, "{text:?}");
+                assert_eq!(got.skipped, want.skipped, "{text:?}");
+            }
+        }
+        // Below the size where it pays, or on one thread, the serial reader reads it.
+        assert!(in_pool(2, || ascii_by_lines(
+            bytes,
+            &h,
+            Path::new("t.ply"),
+            (1 << 20, 64)
+        ))
+        .is_none());
+        assert!(in_pool(1, || ascii_by_lines(bytes, &h, Path::new("t.ply"), (0, 64))).is_none());
+    }
+}
+
+/// A mesh large enough for `parse_ply` to read it by lines on two threads loads as on
+/// one: the same positions and faces.
+#[test]
+fn large_ascii_reads_alike_on_one_thread_and_two() {
+    let n = 160u32;
+    let mut text = format!(
+        "ply\nformat ascii 1.0\nelement vertex {}\nproperty float x\nproperty float y\n\
+         property float z\nelement face {}\nproperty list uchar int vertex_indices\nend_header\n",
+        (n + 1) * (n + 1),
+        2 * n * n
+    );
+    for j in 0..=n {
+        for i in 0..=n {
+            text += &format!("{}.{} {}.25 -{}e-3\n", i, j % 10, j, (i * j) % 97);
+        }
+    }
+    for j in 0..n {
+        for i in 0..n {
+            let v = j * (n + 1) + i;
+            text += &format!(
+                "3 {} {} {}\n3 {} {} {}\n",
+                v,
+                v + 1,
+                v + n + 2,
+                v,
+                v + n + 2,
+                v + n + 1
+            );
+        }
+    }
+    assert!(text.len() > BY_LINES_MIN);
+    let bytes = text.as_bytes();
+    let h = parse_header(bytes, Path::new("t.ply")).unwrap();
+    let by_lines = in_pool(2, || {
+        ascii_by_lines(bytes, &h, Path::new("t.ply"), (0, 4096))
+    });
+    assert!(by_lines.is_some());
+    let (one, two) = (
+        in_pool(1, || parse(bytes)).unwrap(),
+        in_pool(2, || parse(bytes)).unwrap(),
+    );
+    assert_eq!(one.positions.len(), ((n + 1) * (n + 1)) as usize);
+    assert_eq!(one.face_count(), (2 * n * n) as usize);
+    assert_eq!(one.positions, two.positions);
+    assert_eq!(one.face_offsets, two.face_offsets);
+    assert_eq!(one.face_indices, two.face_indices);
+}

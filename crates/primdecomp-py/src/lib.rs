@@ -160,6 +160,12 @@ fn run_watched(
 /// Runs `work` on a worker thread while this (Python) thread, GIL released, wakes
 /// every [`POLL`] to check signals (Ctrl-C cancels the work) and call the progress
 /// callback with the stage, its fraction and the estimate of `params`' run.
+///
+/// The worker wakes this thread as it finishes, so a short run returns at once
+/// rather than at the next poll, and one last look follows its end: the callback
+/// gets the final progress (however short the run, every run that reports progress
+/// calls it at least once), and a Ctrl-C that came after the previous look still
+/// raises `KeyboardInterrupt` here, not in whatever Python runs next.
 pub(crate) fn watched<T: Send>(
     py: Python<'_>,
     params: &Params,
@@ -170,35 +176,46 @@ pub(crate) fn watched<T: Send>(
         cancel: AtomicBool::new(false),
         latest: Mutex::new(None),
     };
+    let done = AtomicBool::new(false);
+    let caller = std::thread::current();
     let mut raised: Option<PyErr> = None;
     let mut reported: Option<(Stage, f64)> = None;
     let start = std::time::Instant::now();
     let out = std::thread::scope(|s| {
-        let worker = s.spawn(|| catch_unwind(AssertUnwindSafe(|| work(&shared))));
-        while !worker.is_finished() {
-            py.allow_threads(|| std::thread::park_timeout(POLL));
-            if raised.is_some() {
-                continue;
-            }
-            let now = *shared.latest.lock().unwrap_or_else(|e| e.into_inner());
-            let step = || -> PyResult<()> {
-                py.check_signals()?;
-                if let (Some(cb), Some((stage, f))) = (callback, now) {
-                    if reported != now {
-                        // The Python side passes a callback of three arguments (it
-                        // wraps one of two): stage, its fraction, seconds left.
-                        let spent = start.elapsed().as_secs_f64();
-                        let left = stage.seconds_left(f, params, spent);
-                        cb.call1(py, (stage.name(), f, left))?;
+        let worker = s.spawn(|| {
+            let out = catch_unwind(AssertUnwindSafe(|| work(&shared)));
+            done.store(true, Ordering::Release);
+            caller.unpark();
+            out
+        });
+        loop {
+            // Read before the look, so that the last look sees the last update.
+            let finished = done.load(Ordering::Acquire);
+            if raised.is_none() {
+                let now = *shared.latest.lock().unwrap_or_else(|e| e.into_inner());
+                let step = || -> PyResult<()> {
+                    py.check_signals()?;
+                    if let (Some(cb), Some((stage, f))) = (callback, now) {
+                        if reported != now {
+                            // The Python side passes a callback of three arguments (it
+                            // wraps one of two): stage, its fraction, seconds left.
+                            let spent = start.elapsed().as_secs_f64();
+                            let left = stage.seconds_left(f, params, spent);
+                            cb.call1(py, (stage.name(), f, left))?;
+                        }
                     }
+                    Ok(())
+                };
+                if let Err(e) = step() {
+                    raised = Some(e);
+                    shared.cancel.store(true, Ordering::Relaxed);
                 }
-                Ok(())
-            };
-            if let Err(e) = step() {
-                raised = Some(e);
-                shared.cancel.store(true, Ordering::Relaxed);
+                reported = now;
             }
-            reported = now;
+            if finished {
+                break;
+            }
+            py.allow_threads(|| std::thread::park_timeout(POLL));
         }
         worker.join()
     });

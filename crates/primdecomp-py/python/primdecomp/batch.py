@@ -22,6 +22,8 @@ from pathlib import Path as _Path
 
 MESH_EXTENSIONS = (".obj", ".ply", ".stl", ".off", ".gltf", ".glb")
 SUMMARY = "summary.jsonl"
+# Seconds between the thread pool's looks at Ctrl-C (the native watcher's poll).
+_LOOK = 0.05
 
 __all__ = ["run", "inputs_of", "output_of", "MESH_EXTENSIONS", "SUMMARY"]
 
@@ -109,13 +111,19 @@ def _run_pool(jobs, settings, workers):
     pool = _cf.ThreadPoolExecutor(max_workers=workers)
     try:
         futs = {pool.submit(decompose_one, i, o, settings, stop): (i, o) for i, o in jobs}
-        for fut in _cf.as_completed(futs):
-            i, o = futs[fut]
-            try:
-                rows[i] = fut.result()
-            except Exception as e:  # decompose_one never raises; for safety
-                rows[i] = {"input": i, "output": o, "status": "error", "primitives": None,
-                           "faces": None, "seconds": None, "error": f"{type(e).__name__}: {e}"}
+        pending = set(futs)
+        while pending:
+            # A wait with a timeout: the kernel may hand Ctrl-C to one of the pool's
+            # threads, whose handler only flags it; this thread, blocked without a
+            # timeout, would raise it when an input finishes, not now.
+            done, pending = _cf.wait(pending, timeout=_LOOK, return_when=_cf.FIRST_COMPLETED)
+            for fut in done:
+                i, o = futs[fut]
+                try:
+                    rows[i] = fut.result()
+                except Exception as e:  # decompose_one never raises; for safety
+                    rows[i] = {"input": i, "output": o, "status": "error", "primitives": None,
+                               "faces": None, "seconds": None, "error": f"{type(e).__name__}: {e}"}
     except BaseException:
         # Ctrl-C raises here, on the main thread, and nowhere else: the inputs not
         # started are dropped and the running ones stopped at their next look (the

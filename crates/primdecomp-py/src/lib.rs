@@ -145,14 +145,16 @@ fn build_mesh(
 }
 
 /// Runs `decompose_with` on a worker thread while this (Python) thread, GIL
-/// released, wakes every [`POLL`] to check signals and call the progress callback.
+/// released, wakes every [`POLL`] to check signals and `stop` and call the progress
+/// callback.
 fn run_watched(
     py: Python<'_>,
     mesh: &Mesh,
     params: &Params,
     callback: Option<&PyObject>,
+    stop: Option<&PyObject>,
 ) -> PyResult<Decomposition> {
-    watched(py, params, callback, |shared| {
+    watched(py, params, callback, stop, |shared| {
         primdecomp::decompose_with(mesh, params, shared)
     })
 }
@@ -160,45 +162,73 @@ fn run_watched(
 /// Runs `work` on a worker thread while this (Python) thread, GIL released, wakes
 /// every [`POLL`] to check signals (Ctrl-C cancels the work) and call the progress
 /// callback with the stage, its fraction and the estimate of `params`' run.
+///
+/// Python runs signal handlers on its main thread only: on any other thread Ctrl-C
+/// reaches the main thread, which stops a run here through `stop` (an object with
+/// `is_set()`, such as a `threading.Event`): once set, the work is cancelled and the
+/// call raises `KeyboardInterrupt`, as Ctrl-C does on the main thread.
+///
+/// The worker wakes this thread as it finishes, so a short run returns at once
+/// rather than at the next poll, and one last look follows its end: the callback
+/// gets the final progress (however short the run, every run that reports progress
+/// calls it at least once), and a Ctrl-C that came after the previous look still
+/// raises `KeyboardInterrupt` here, not in whatever Python runs next.
 pub(crate) fn watched<T: Send>(
     py: Python<'_>,
     params: &Params,
     callback: Option<&PyObject>,
+    stop: Option<&PyObject>,
     work: impl FnOnce(&dyn Progress) -> Result<T, primdecomp::Error> + Send,
 ) -> PyResult<T> {
     let shared = Shared {
         cancel: AtomicBool::new(false),
         latest: Mutex::new(None),
     };
+    let done = AtomicBool::new(false);
+    let caller = std::thread::current();
     let mut raised: Option<PyErr> = None;
     let mut reported: Option<(Stage, f64)> = None;
     let start = std::time::Instant::now();
     let out = std::thread::scope(|s| {
-        let worker = s.spawn(|| catch_unwind(AssertUnwindSafe(|| work(&shared))));
-        while !worker.is_finished() {
-            py.allow_threads(|| std::thread::park_timeout(POLL));
-            if raised.is_some() {
-                continue;
-            }
-            let now = *shared.latest.lock().unwrap_or_else(|e| e.into_inner());
-            let step = || -> PyResult<()> {
-                py.check_signals()?;
-                if let (Some(cb), Some((stage, f))) = (callback, now) {
-                    if reported != now {
-                        // The Python side passes a callback of three arguments (it
-                        // wraps one of two): stage, its fraction, seconds left.
-                        let spent = start.elapsed().as_secs_f64();
-                        let left = stage.seconds_left(f, params, spent);
-                        cb.call1(py, (stage.name(), f, left))?;
+        let worker = s.spawn(|| {
+            let out = catch_unwind(AssertUnwindSafe(|| work(&shared)));
+            done.store(true, Ordering::Release);
+            caller.unpark();
+            out
+        });
+        loop {
+            // Read before the look, so that the last look sees the last update.
+            let finished = done.load(Ordering::Acquire);
+            if raised.is_none() {
+                let now = *shared.latest.lock().unwrap_or_else(|e| e.into_inner());
+                let step = || -> PyResult<()> {
+                    py.check_signals()?;
+                    if let Some(stop) = stop {
+                        if stop.bind(py).call_method0("is_set")?.is_truthy()? {
+                            return Err(PyKeyboardInterrupt::new_err("stopped"));
+                        }
                     }
+                    if let (Some(cb), Some((stage, f))) = (callback, now) {
+                        if reported != now {
+                            // The Python side passes a callback of three arguments (it
+                            // wraps one of two): stage, its fraction, seconds left.
+                            let spent = start.elapsed().as_secs_f64();
+                            let left = stage.seconds_left(f, params, spent);
+                            cb.call1(py, (stage.name(), f, left))?;
+                        }
+                    }
+                    Ok(())
+                };
+                if let Err(e) = step() {
+                    raised = Some(e);
+                    shared.cancel.store(true, Ordering::Relaxed);
                 }
-                Ok(())
-            };
-            if let Err(e) = step() {
-                raised = Some(e);
-                shared.cancel.store(true, Ordering::Relaxed);
+                reported = now;
             }
-            reported = now;
+            if finished {
+                break;
+            }
+            py.allow_threads(|| std::thread::park_timeout(POLL));
         }
         worker.join()
     });
@@ -243,19 +273,21 @@ fn decompose(
     let params =
         Params::from_json(&counted(settings_json, Some(mesh.face_count()))?).map_err(to_py_err)?;
     params.validate().map_err(to_py_err)?;
-    let dec = run_watched(py, &mesh, &params, progress.as_ref())?;
+    let dec = run_watched(py, &mesh, &params, progress.as_ref(), None)?;
     Ok(NativeResult { dec, params })
 }
 
 /// Decomposes the mesh in a file exactly as `primdecomp decompose` does (same
-/// loader, so the same primitives byte for byte).
+/// loader, so the same primitives byte for byte); `stop` as [`watched`] takes it (the
+/// batch's thread pool stops its running inputs with it).
 #[pyfunction]
-#[pyo3(signature = (path, settings_json, progress=None))]
+#[pyo3(signature = (path, settings_json, progress=None, stop=None))]
 fn decompose_path(
     py: Python<'_>,
     path: &str,
     settings_json: &str,
     progress: Option<PyObject>,
+    stop: Option<PyObject>,
 ) -> PyResult<NativeResult> {
     Params::from_json(&counted(settings_json, None)?).map_err(to_py_err)?;
     let mesh = py
@@ -265,7 +297,7 @@ fn decompose_path(
     let params =
         Params::from_json(&counted(settings_json, Some(mesh.face_count()))?).map_err(to_py_err)?;
     params.validate().map_err(to_py_err)?;
-    let mut dec = run_watched(py, &mesh, &params, progress.as_ref())?;
+    let mut dec = run_watched(py, &mesh, &params, progress.as_ref(), stop.as_ref())?;
     // As the CLI records them, so that to_json() is the CLI's file byte for byte.
     dec.input.record_file(Path::new(path));
     Ok(NativeResult { dec, params })

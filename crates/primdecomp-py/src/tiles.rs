@@ -42,7 +42,7 @@ fn tiles_plan<'py>(
         tiles: Some(tiles),
         ..LoadOptions::default()
     };
-    let bytes = watched(py, &params, progress.as_ref(), |_| {
+    let bytes = watched(py, &params, progress.as_ref(), None, |_| {
         Tiled::plan(Path::new(path), &params, &options).map(|t| t.to_bytes())
     })?;
     Ok(PyBytes::new(py, &bytes))
@@ -66,7 +66,7 @@ fn tiles_run<'py>(
 ) -> PyResult<Bound<'py, PyBytes>> {
     let tiled = Tiled::from_bytes(plan).map_err(to_py_err)?;
     let params = Params::default();
-    let bytes = watched(py, &params, progress.as_ref(), |p| {
+    let bytes = watched(py, &params, progress.as_ref(), None, |p| {
         tiled.run_tile(Path::new(path), tile, p)
     })?;
     Ok(PyBytes::new(py, &bytes))
@@ -94,7 +94,9 @@ fn tiles_merge(
     let tiled = Tiled::from_bytes(plan).map_err(to_py_err)?;
     let slices: Vec<&[u8]> = results.iter().map(|b| b.as_bytes()).collect();
     let params = tiled.params().clone();
-    let mut dec = watched(py, &params, progress.as_ref(), |p| tiled.merge(&slices, p))?;
+    let mut dec = watched(py, &params, progress.as_ref(), None, |p| {
+        tiled.merge(&slices, p)
+    })?;
     dec.input.record_file(Path::new(path));
     Ok(NativeResult { dec, params })
 }

@@ -339,7 +339,13 @@ def decompose_file(path, progress=None, **settings):
     """Decompose the mesh in a file with the CLI's own loader: the primitives equal
     `primdecomp decompose PATH` byte for byte in to_json(), as decompose(*load(path))
     does, without handing the arrays to Python."""
-    return Result(_native.decompose_path(_path(path), _settings(settings, "decompose_file"), _progress(progress)))
+    return _decompose_file(path, progress, settings)
+
+
+def _decompose_file(path, progress, settings, stop=None):
+    """decompose_file, stopped (KeyboardInterrupt) once `stop` (a threading.Event) is
+    set: Ctrl-C reaches only the main thread, which stops runs on other threads so."""
+    return Result(_native.decompose_path(_path(path), _settings(settings, "decompose_file"), _progress(progress), stop))
 
 
 def as_hulls(vertices, faces, progress=None, **settings):

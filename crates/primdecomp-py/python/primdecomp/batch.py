@@ -16,11 +16,14 @@ requested settings is skipped; a failed input is reported and the others continu
 import concurrent.futures as _cf
 import json as _json
 import os as _os
+import threading as _threading
 import time as _time
 from pathlib import Path as _Path
 
 MESH_EXTENSIONS = (".obj", ".ply", ".stl", ".off", ".gltf", ".glb")
 SUMMARY = "summary.jsonl"
+# Seconds between the thread pool's looks at Ctrl-C (the native watcher's poll).
+_LOOK = 0.05
 
 __all__ = ["run", "inputs_of", "output_of", "MESH_EXTENSIONS", "SUMMARY"]
 
@@ -57,15 +60,16 @@ def _complete(output, settings):
     return doc
 
 
-def decompose_one(input_path, output, settings):
-    """Decompose one file into `output` (atomically); never raises: a summary row."""
+def decompose_one(input_path, output, settings, stop=None):
+    """Decompose one file into `output` (atomically); never raises but
+    KeyboardInterrupt, once `stop` (a threading.Event) is set: a summary row."""
     row = {"input": input_path, "output": output, "status": "done", "primitives": None,
            "faces": None, "seconds": None, "error": None}
     t0 = _time.perf_counter()
     try:
         import primdecomp
 
-        res = primdecomp.decompose_file(input_path, **settings)
+        res = primdecomp._decompose_file(input_path, None, settings, stop)
         res.export(output)
         row["primitives"] = len(res.levels[0].primitives) if res.levels else 0
         row["faces"] = res.levels[0]._doc.get("input", {}).get("faces") if res.levels else None
@@ -103,15 +107,32 @@ def _run_pool(jobs, settings, workers):
     # Threads, not processes: the decomposition releases the GIL, so threads run in
     # parallel, and there is no fork of a threaded process (which can deadlock) nor
     # spawn's re-import of the caller's script (which needs a __main__ guard).
-    with _cf.ThreadPoolExecutor(max_workers=workers) as pool:
-        futs = {pool.submit(decompose_one, i, o, settings): (i, o) for i, o in jobs}
-        for fut in _cf.as_completed(futs):
-            i, o = futs[fut]
-            try:
-                rows[i] = fut.result()
-            except Exception as e:  # decompose_one never raises; for safety
-                rows[i] = {"input": i, "output": o, "status": "error", "primitives": None,
-                           "faces": None, "seconds": None, "error": f"{type(e).__name__}: {e}"}
+    stop = _threading.Event()
+    pool = _cf.ThreadPoolExecutor(max_workers=workers)
+    try:
+        futs = {pool.submit(decompose_one, i, o, settings, stop): (i, o) for i, o in jobs}
+        pending = set(futs)
+        while pending:
+            # A wait with a timeout: the kernel may hand Ctrl-C to one of the pool's
+            # threads, whose handler only flags it; this thread, blocked without a
+            # timeout, would raise it when an input finishes, not now.
+            done, pending = _cf.wait(pending, timeout=_LOOK, return_when=_cf.FIRST_COMPLETED)
+            for fut in done:
+                i, o = futs[fut]
+                try:
+                    rows[i] = fut.result()
+                except Exception as e:  # decompose_one never raises; for safety
+                    rows[i] = {"input": i, "output": o, "status": "error", "primitives": None,
+                               "faces": None, "seconds": None, "error": f"{type(e).__name__}: {e}"}
+    except BaseException:
+        # Ctrl-C raises here, on the main thread, and nowhere else: the inputs not
+        # started are dropped and the running ones stopped at their next look (the
+        # threads see no signal), so that KeyboardInterrupt reaches the caller now,
+        # not once every input is done; their outputs stay unwritten.
+        stop.set()
+        pool.shutdown(wait=True, cancel_futures=True)
+        raise
+    pool.shutdown(wait=True)
     return rows
 
 

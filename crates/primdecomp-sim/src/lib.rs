@@ -279,7 +279,7 @@ fn worlds_of(
     mesh: &Mesh,
     scene: &Scene,
     settings: &Settings,
-) -> Result<(Vec<World>, Vec<(usize, usize)>)> {
+) -> Result<(Vec<World>, Vec<ShapeCounts>)> {
     let perturbed = scene.perturbed_release(settings.seed);
     let mut worlds = Vec::with_capacity(entries.len());
     let mut parts = Vec::with_capacity(entries.len());
@@ -298,6 +298,9 @@ fn worlds_of(
     }
     Ok((worlds, parts))
 }
+
+/// A collider's count of shapes and of parts skipped for having no volume.
+type ShapeCounts = (usize, usize);
 
 /// Each world's wall and CPU milliseconds per frame.
 type FrameTimes = (Vec<Vec<f64>>, Vec<Vec<f64>>);
@@ -326,7 +329,7 @@ fn outcomes_of(
     entries: &[&Entry],
     worlds: &[World],
     (frame_ms, cpu_ms): FrameTimes,
-    parts: Vec<(usize, usize)>,
+    parts: Vec<ShapeCounts>,
 ) -> Vec<Outcome> {
     let ends: Vec<(Vec<V3>, Vec<f64>)> = worlds.iter().map(World::balls).collect();
     let profiles: Vec<Option<profile::Profile>> = worlds.iter().map(World::profile).collect();

@@ -252,7 +252,6 @@ pub fn run(
     ];
     let own = if settings.perturbed { 2 } else { 1 };
     let entries: Vec<&Entry> = reference[..own].iter().chain(colliders).collect();
-    let perturbed = scene.perturbed_release(settings.seed);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(settings.threads)
         .thread_name(|i| format!("sim-{i}"))
@@ -260,9 +259,31 @@ pub fn run(
         .map_err(|e| {
             Error::InvalidParams(format!("cannot start {} threads: {e}", settings.threads))
         })?;
+    let (mut worlds, parts) = worlds_of(&entries, mesh, &scene, settings)?;
+    // The whole loop runs on one of the pool's workers, so no step hands work over
+    // to another thread first, and Rapier's parallel parts use this pool.
+    let times = pool.install(|| step_all(&mut worlds, settings.frames, progress));
+    let outcomes = outcomes_of(&scene, &entries, &worlds, times, parts);
+    Ok(Run {
+        scene,
+        settings: settings.clone(),
+        outcomes,
+    })
+}
+
+/// One world per entry, each with its collider's shapes and its release (the
+/// perturbed one for the perturbed copy); and each collider's count of shapes and of
+/// parts skipped for having no volume. An error names the entry.
+fn worlds_of(
+    entries: &[&Entry],
+    mesh: &Mesh,
+    scene: &Scene,
+    settings: &Settings,
+) -> Result<(Vec<World>, Vec<ShapeCounts>)> {
+    let perturbed = scene.perturbed_release(settings.seed);
     let mut worlds = Vec::with_capacity(entries.len());
     let mut parts = Vec::with_capacity(entries.len());
-    for e in &entries {
+    for e in entries {
         let (shapes, skipped) =
             placed(&e.geometry, mesh, &scene.frame).map_err(|err| match err {
                 Error::InvalidParams(m) => Error::InvalidParams(format!("{}: {m}", e.label)),
@@ -273,27 +294,47 @@ pub fn run(
             Geometry::Perturbed => &perturbed,
             _ => &scene.release,
         };
-        worlds.push(World::new(&scene, shapes, release, settings));
+        worlds.push(World::new(scene, shapes, release, settings));
     }
-    let mut frame_ms = vec![Vec::with_capacity(settings.frames); worlds.len()];
+    Ok((worlds, parts))
+}
+
+/// A collider's count of shapes and of parts skipped for having no volume.
+type ShapeCounts = (usize, usize);
+
+/// Each world's wall and CPU milliseconds per frame.
+type FrameTimes = (Vec<Vec<f64>>, Vec<Vec<f64>>);
+
+/// Steps the worlds `frames` times, interleaved frame by frame (each frame starting
+/// one world further on), calling `progress` with the frames done after each.
+fn step_all(worlds: &mut [World], frames: usize, progress: &(dyn Fn(usize) + Sync)) -> FrameTimes {
+    let mut frame_ms = vec![Vec::with_capacity(frames); worlds.len()];
     let mut cpu_ms = frame_ms.clone();
-    // The whole loop runs on one of the pool's workers, so no step hands work over
-    // to another thread first, and Rapier's parallel parts use this pool.
-    pool.install(|| {
-        for frame in 0..settings.frames {
-            for k in 0..worlds.len() {
-                let w = (frame + k) % worlds.len();
-                let (wall, cpu) = worlds[w].step_timed();
-                frame_ms[w].push(wall);
-                cpu_ms[w].push(cpu);
-            }
-            progress(frame + 1);
+    for frame in 0..frames {
+        for k in 0..worlds.len() {
+            let w = (frame + k) % worlds.len();
+            let (wall, cpu) = worlds[w].step_timed();
+            frame_ms[w].push(wall);
+            cpu_ms[w].push(cpu);
         }
-    });
+        progress(frame + 1);
+    }
+    (frame_ms, cpu_ms)
+}
+
+/// Each entry's outcome: its shapes, frame times, and where its balls ended measured
+/// against the reference's (the first world's).
+fn outcomes_of(
+    scene: &Scene,
+    entries: &[&Entry],
+    worlds: &[World],
+    (frame_ms, cpu_ms): FrameTimes,
+    parts: Vec<ShapeCounts>,
+) -> Vec<Outcome> {
     let ends: Vec<(Vec<V3>, Vec<f64>)> = worlds.iter().map(World::balls).collect();
     let profiles: Vec<Option<profile::Profile>> = worlds.iter().map(World::profile).collect();
     let reference = &ends[0].0;
-    let outcomes = entries
+    entries
         .iter()
         .zip(frame_ms.into_iter().zip(cpu_ms))
         .zip(ends.iter().zip(parts))
@@ -308,18 +349,13 @@ pub fn run(
                 frame_ms: ms,
                 cpu_stats: FrameStats::of(&cpu),
                 cpu_ms: cpu,
-                behaviour: Behaviour::of(&scene, end, speed, reference),
+                behaviour: Behaviour::of(scene, end, speed, reference),
                 end: end.clone(),
                 speed: speed.clone(),
                 profile,
             },
         )
-        .collect();
-    Ok(Run {
-        scene,
-        settings: settings.clone(),
-        outcomes,
-    })
+        .collect()
 }
 
 /// The closed axis-aligned box `lo`–`hi` as six outward quads (tests).

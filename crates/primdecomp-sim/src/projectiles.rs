@@ -343,12 +343,7 @@ pub fn run(mesh: &Mesh, input: &str, colliders: &[Entry], settings: &Settings) -
     }
     let shapes = collider_shapes(mesh, &frame, colliders)?;
     let input_shape = &shapes[0][0];
-    let reach = shots.iter().fold(0.0f64, |m, s| m.max(s.t_out)) + 4.0 * radius;
-    let steps: Vec<f64> = SPEEDS.iter().map(|(_, k)| k * 2.0 * radius).collect();
-    let frames: Vec<usize> = steps
-        .iter()
-        .map(|st| (reach / st).ceil() as usize + SETTLE_FRAMES)
-        .collect();
+    let (steps, frames) = steps_and_frames(&shots, radius);
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(settings.threads)
         .build()
@@ -370,21 +365,7 @@ pub fn run(mesh: &Mesh, input: &str, colliders: &[Entry], settings: &Settings) -
             })
             .collect()
     });
-    let names = std::iter::once((input.to_string(), Geometry::Reference.kind())).chain(
-        colliders
-            .iter()
-            .map(|e| (e.label.clone(), e.geometry.kind())),
-    );
-    let outcomes = names
-        .zip(tallies)
-        .zip(&shapes)
-        .map(|(((label, kind), tallies), s)| Outcome {
-            label,
-            kind,
-            shapes: s.len(),
-            tallies,
-        })
-        .collect();
+    let outcomes = outcomes_of(input, colliders, tallies, &shapes);
     Ok(Run {
         settings: settings.clone(),
         radius,
@@ -392,6 +373,44 @@ pub fn run(mesh: &Mesh, input: &str, colliders: &[Entry], settings: &Settings) -
         frames,
         outcomes,
     })
+}
+
+/// Each speed of [`SPEEDS`] as the distance a ball moves in a frame, and the frames
+/// a shot is followed at it: until the farthest exit (plus two diameters) is passed,
+/// then [`SETTLE_FRAMES`] more.
+fn steps_and_frames(shots: &[Shot], radius: f64) -> (Vec<f64>, Vec<usize>) {
+    let reach = shots.iter().fold(0.0f64, |m, s| m.max(s.t_out)) + 4.0 * radius;
+    let steps: Vec<f64> = SPEEDS.iter().map(|(_, k)| k * 2.0 * radius).collect();
+    let frames: Vec<usize> = steps
+        .iter()
+        .map(|st| (reach / st).ceil() as usize + SETTLE_FRAMES)
+        .collect();
+    (steps, frames)
+}
+
+/// Each collider's outcome (the input's first, as a triangle mesh): its label, kind,
+/// shape count and tallies per speed.
+fn outcomes_of(
+    input: &str,
+    colliders: &[Entry],
+    tallies: Vec<Vec<Tally>>,
+    shapes: &[Vec<Placed>],
+) -> Vec<Outcome> {
+    let names = std::iter::once((input.to_string(), Geometry::Reference.kind())).chain(
+        colliders
+            .iter()
+            .map(|e| (e.label.clone(), e.geometry.kind())),
+    );
+    names
+        .zip(tallies)
+        .zip(shapes)
+        .map(|(((label, kind), tallies), s)| Outcome {
+            label,
+            kind,
+            shapes: s.len(),
+            tallies,
+        })
+        .collect()
 }
 
 #[derive(serde::Serialize)]

@@ -6,7 +6,7 @@
 use crate::camera;
 use crate::geometry::{Parts, FEATURE_ANGLE_DEG};
 use crate::palette;
-use crate::scene::{Collider, Detail, Scene};
+use crate::scene::{Collider, Detail, Input, Scene};
 use serde_json::{json, Value};
 
 const TEMPLATE: &str = include_str!("../assets/page.html");
@@ -186,18 +186,7 @@ pub fn data(scene: &Scene, title: &str) -> Value {
         },
     );
     let (_, _, back) = cam.basis();
-    let input = scene.input.as_ref().map(|i| {
-        let d = &i.display;
-        json!({
-            "file": i.file,
-            "faces": d.source_faces,
-            "source_triangles": d.source_triangles,
-            "triangles": d.triangles.len(),
-            "simplified": d.simplified,
-            "positions": f32s(origin, &d.positions),
-            "indices": u32s(d.triangles.iter().flatten().copied()),
-        })
-    });
+    let input = scene.input.as_ref().map(|i| input_json(origin, i));
     let eval: Vec<Value> = scene
         .eval
         .iter()
@@ -212,24 +201,7 @@ pub fn data(scene: &Scene, title: &str) -> Value {
         "format": "primdecomp-view",
         "version": 1,
         "title": title,
-        "palette": {
-            "kinds": primdecomp::Kind::ALL.iter().map(|k| json!({
-                "name": k.name(),
-                "rgb": palette::hex(palette::KIND_RGB[*k as usize]),
-            })).collect::<Vec<_>>(),
-            "hull": palette::hex(palette::HULL_RGB),
-            "input": palette::hex(palette::INPUT_RGB),
-            "background": palette::hex(palette::BACKGROUND_RGB),
-            "edge_factor": palette::EDGE_FACTOR,
-            "part_opacity": palette::PART_OPACITY,
-            "input_opacity": palette::INPUT_OPACITY,
-            "light": {
-                "key": palette::KEY_LIGHT,
-                "ambient": palette::AMBIENT,
-                "key_weight": palette::KEY,
-                "head_weight": palette::HEAD,
-            },
-        },
+        "palette": palette_json(),
         "feature_angle_deg": FEATURE_ANGLE_DEG,
         "camera": {
             "lo": rel(lo),
@@ -245,6 +217,42 @@ pub fn data(scene: &Scene, title: &str) -> Value {
         "levels": scene.levels.iter().map(|c| collider(origin, c)).collect::<Vec<_>>(),
         "peers": scene.peers.iter().map(|c| collider(origin, c)).collect::<Vec<_>>(),
         "eval": eval,
+    })
+}
+
+/// The input's display mesh as the page draws it, positions relative to `origin`.
+fn input_json(origin: [f64; 3], i: &Input) -> Value {
+    let d = &i.display;
+    json!({
+        "file": i.file,
+        "faces": d.source_faces,
+        "source_triangles": d.source_triangles,
+        "triangles": d.triangles.len(),
+        "simplified": d.simplified,
+        "positions": f32s(origin, &d.positions),
+        "indices": u32s(d.triangles.iter().flatten().copied()),
+    })
+}
+
+/// The colours and light the page shades with (the PNG renders' own, [`palette`]).
+fn palette_json() -> Value {
+    json!({
+        "kinds": primdecomp::Kind::ALL.iter().map(|k| json!({
+            "name": k.name(),
+            "rgb": palette::hex(palette::KIND_RGB[*k as usize]),
+        })).collect::<Vec<_>>(),
+        "hull": palette::hex(palette::HULL_RGB),
+        "input": palette::hex(palette::INPUT_RGB),
+        "background": palette::hex(palette::BACKGROUND_RGB),
+        "edge_factor": palette::EDGE_FACTOR,
+        "part_opacity": palette::PART_OPACITY,
+        "input_opacity": palette::INPUT_OPACITY,
+        "light": {
+            "key": palette::KEY_LIGHT,
+            "ambient": palette::AMBIENT,
+            "key_weight": palette::KEY,
+            "head_weight": palette::HEAD,
+        },
     })
 }
 

@@ -300,45 +300,79 @@ fn shade_band(
     row0: usize,
     n_rows: usize,
 ) -> Vec<[f32; 3]> {
-    let w = view.w;
-    let n = w * n_rows;
+    let n = view.w * n_rows;
     let mut input = Layer::new(n);
     view.draw(&mut input, input_tris, row0);
     let mut parts = Layer::new(n);
     view.draw(&mut parts, part_tris, row0);
-    let bg = unit_rgb(palette::BACKGROUND_RGB);
-    let (ai, ap) = (pane.input_opacity, pane.part_opacity);
-    // What is seen at each sample: its colour, the visible surface's id (0: the
-    // background) and the colour of its outline.
-    let mut colour = vec![bg; n];
-    let mut seen = vec![0u32; n];
-    let mut outline = vec![bg; n];
-    let input_edge = mix(
-        bg,
-        unit_rgb(palette::INPUT_RGB).map(|c| c * palette::EDGE_FACTOR),
-        ai,
-    );
-    for k in 0..n {
-        let under = if input.id[k] != 0 {
-            mix(bg, input.colour[k], ai)
-        } else {
-            bg
-        };
-        // Parts win ties with the input (flush plates lie on its faces), as the page
-        // pushes the input back with a polygon offset.
-        let part_on_top =
-            parts.id[k] != 0 && parts.inv_depth[k] >= input.inv_depth[k] * (1.0 - 1e-5);
-        if part_on_top {
-            colour[k] = mix(under, parts.colour[k], ap);
-            seen[k] = parts.id[k];
-            let b = part_base[(parts.id[k] - 1) as usize];
-            outline[k] = mix(under, b.map(|c| c * palette::EDGE_FACTOR), ap);
-        } else if input.id[k] != 0 {
-            colour[k] = under;
-            seen[k] = INPUT_ID;
-            outline[k] = input_edge;
+    let seen = Seen::of(pane, &input, &parts, part_base);
+    outlined(seen, (&input, &parts), view.w, n_rows)
+}
+
+/// What is seen at each sample: its colour, the visible surface's id (0: the
+/// background) and the colour of its outline.
+struct Seen {
+    colour: Vec<[f32; 3]>,
+    id: Vec<u32>,
+    outline: Vec<[f32; 3]>,
+}
+
+impl Seen {
+    /// The input's and the parts' layers seen through the pane's opacities.
+    fn of(pane: &Pane, input: &Layer, parts: &Layer, part_base: &[[f32; 3]]) -> Seen {
+        let n = input.id.len();
+        let bg = unit_rgb(palette::BACKGROUND_RGB);
+        let (ai, ap) = (pane.input_opacity, pane.part_opacity);
+        let mut colour = vec![bg; n];
+        let mut seen = vec![0u32; n];
+        let mut outline = vec![bg; n];
+        let input_edge = mix(
+            bg,
+            unit_rgb(palette::INPUT_RGB).map(|c| c * palette::EDGE_FACTOR),
+            ai,
+        );
+        for k in 0..n {
+            let under = if input.id[k] != 0 {
+                mix(bg, input.colour[k], ai)
+            } else {
+                bg
+            };
+            // Parts win ties with the input (flush plates lie on its faces), as the page
+            // pushes the input back with a polygon offset.
+            let part_on_top =
+                parts.id[k] != 0 && parts.inv_depth[k] >= input.inv_depth[k] * (1.0 - 1e-5);
+            if part_on_top {
+                colour[k] = mix(under, parts.colour[k], ap);
+                seen[k] = parts.id[k];
+                let b = part_base[(parts.id[k] - 1) as usize];
+                outline[k] = mix(under, b.map(|c| c * palette::EDGE_FACTOR), ap);
+            } else if input.id[k] != 0 {
+                colour[k] = under;
+                seen[k] = INPUT_ID;
+                outline[k] = input_edge;
+            }
+        }
+        Seen {
+            colour,
+            id: seen,
+            outline,
         }
     }
+}
+
+/// The seen colours of `n_rows` rows of `w` samples, outlined where the visible
+/// surface changes or turns.
+fn outlined(
+    seen: Seen,
+    (input, parts): (&Layer, &Layer),
+    w: usize,
+    n_rows: usize,
+) -> Vec<[f32; 3]> {
+    let Seen {
+        colour,
+        id: seen,
+        outline,
+    } = seen;
     let cos = (FEATURE_ANGLE_DEG.to_radians().cos()) as f32;
     let mut out = colour.clone();
     for y in 0..n_rows {
@@ -357,8 +391,8 @@ fn shade_band(
                 if seen[j] != seen[k] {
                     // Between two surfaces, the nearer one draws the line.
                     let (dk, dj) = (
-                        depth_of(&parts, &input, seen[k], k),
-                        depth_of(&parts, &input, seen[j], j),
+                        depth_of(parts, input, seen[k], k),
+                        depth_of(parts, input, seen[j], j),
                     );
                     return dk >= dj;
                 }

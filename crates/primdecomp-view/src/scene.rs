@@ -529,6 +529,33 @@ fn show(v: Option<&Value>) -> String {
 pub fn load_eval(path: &Path, levels: &[Collider], peers: &[Collider]) -> Result<Vec<EvalRow>> {
     let text = read_text(path)?;
     let doc = parse_json(path, &text)?;
+    check_eval_kind(path, &doc)?;
+    let rows = doc
+        .get("colliders")
+        .and_then(Value::as_array)
+        .ok_or_else(|| {
+            Error::format(
+                path,
+                "not an evaluation document: no `colliders` array (write one with `primdecomp eval ... --json FILE`)",
+            )
+        })?;
+    if rows.len() > MAX_EVAL_ROWS {
+        return Err(Error::format(
+            path,
+            format!(
+                "{} rows in `colliders`, more than the {MAX_EVAL_ROWS} a page shows",
+                rows.len()
+            ),
+        ));
+    }
+    (rows.iter().enumerate())
+        .map(|(i, r)| eval_row(path, (i, r), levels, peers))
+        .collect()
+}
+
+/// Refuses a document whose `format` is not an evaluation's or whose `version` is
+/// not the one this primdecomp reads.
+fn check_eval_kind(path: &Path, doc: &Value) -> Result<()> {
     let (format, version) = (doc.get("format"), doc.get("version"));
     let want = "(write one with `primdecomp eval ... --json FILE`)";
     if format.and_then(Value::as_str) != Some(primdecomp_eval::report::FORMAT) {
@@ -551,69 +578,58 @@ pub fn load_eval(path: &Path, levels: &[Collider], peers: &[Collider]) -> Result
             ),
         ));
     }
-    let rows = doc
-        .get("colliders")
-        .and_then(Value::as_array)
-        .ok_or_else(|| {
-            Error::format(
-                path,
-                "not an evaluation document: no `colliders` array (write one with `primdecomp eval ... --json FILE`)",
-            )
-        })?;
-    if rows.len() > MAX_EVAL_ROWS {
-        return Err(Error::format(
-            path,
-            format!(
-                "{} rows in `colliders`, more than the {MAX_EVAL_ROWS} a page shows",
-                rows.len()
-            ),
-        ));
+    Ok(())
+}
+
+/// Row `i` of `colliders` (`r`): only what the page shows, the collider's name and
+/// the metrics' numbers, matched to a level's or else a peer's collider by path.
+fn eval_row(
+    path: &Path,
+    (i, r): (usize, &Value),
+    levels: &[Collider],
+    peers: &[Collider],
+) -> Result<EvalRow> {
+    let row = r
+        .as_object()
+        .ok_or_else(|| Error::format(path, format!("colliders[{i}] is not an object")))?;
+    let mut metrics = serde_json::Map::new();
+    for (k, v) in row {
+        let keep = match k.as_str() {
+            "collider" => v.is_string(),
+            "counts" | "matches" => false,
+            _ => v.is_number(),
+        };
+        if keep {
+            metrics.insert(k.clone(), v.clone());
+        }
     }
-    let same = |a: &str, b: &str| {
-        a == b
-            || match (Path::new(a).canonicalize(), Path::new(b).canonicalize()) {
-                (Ok(x), Ok(y)) => x == y,
-                _ => false,
-            }
-    };
-    rows.iter()
-        .enumerate()
-        .map(|(i, r)| {
-            let row = r
-                .as_object()
-                .ok_or_else(|| Error::format(path, format!("colliders[{i}] is not an object")))?;
-            // Only what the page shows: the collider's name and the metrics' numbers.
-            let mut metrics = serde_json::Map::new();
-            for (k, v) in row {
-                let keep = match k.as_str() {
-                    "collider" => v.is_string(),
-                    "counts" | "matches" => false,
-                    _ => v.is_number(),
-                };
-                if keep {
-                    metrics.insert(k.clone(), v.clone());
-                }
-            }
-            let collider = metrics
-                .get("collider")
-                .and_then(Value::as_str)
-                .unwrap_or("")
-                .to_owned();
-            let matches = levels
+    let collider = metrics
+        .get("collider")
+        .and_then(Value::as_str)
+        .unwrap_or("")
+        .to_owned();
+    let matches = levels
+        .iter()
+        .position(|c| same_file(&c.file, &collider))
+        .map(|i| ("level", i))
+        .or_else(|| {
+            peers
                 .iter()
-                .position(|c| same(&c.file, &collider))
-                .map(|i| ("level", i))
-                .or_else(|| {
-                    peers
-                        .iter()
-                        .position(|c| same(&c.file, &collider))
-                        .map(|i| ("peer", i))
-                });
-            Ok(EvalRow {
-                collider,
-                metrics,
-                matches,
-            })
-        })
-        .collect()
+                .position(|c| same_file(&c.file, &collider))
+                .map(|i| ("peer", i))
+        });
+    Ok(EvalRow {
+        collider,
+        metrics,
+        matches,
+    })
+}
+
+/// Whether two paths name the same file: equal, or equal once canonical.
+fn same_file(a: &str, b: &str) -> bool {
+    a == b
+        || match (Path::new(a).canonicalize(), Path::new(b).canonicalize()) {
+            (Ok(x), Ok(y)) => x == y,
+            _ => false,
+        }
 }

@@ -184,6 +184,34 @@ fn bad_input_fails_with_the_usual_errors() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// Planned in 3 tiles (the plan's bytes the same twice), read back, run a tile at a
+/// time and merged: `Tiled::decompose`'s JSON at every level, byte for byte.
+fn apart_equals_whole(ply: &Path, params: &Params) {
+    let plan = Tiled::plan(ply, params, &tiles(3)).unwrap();
+    let bytes = plan.to_bytes();
+    assert_eq!(
+        bytes,
+        Tiled::plan(ply, params, &tiles(3)).unwrap().to_bytes()
+    );
+    let plan = Tiled::from_bytes(&bytes).unwrap();
+    assert_eq!(plan.tiles(), 3);
+    let results: Vec<Vec<u8>> = (0..3)
+        .map(|t| plan.run_tile(ply, t, &|_, _| {}).unwrap())
+        .collect();
+    let merged = plan.merge(&results, &|_, _| {}).unwrap();
+    let whole = Tiled::decompose(ply, params, &tiles(3), &|_, _| {}).unwrap();
+    for level in 0..whole.levels.len() {
+        assert_eq!(merged.to_json(level, params), whole.to_json(level, params));
+    }
+}
+
+/// `e` is a bad-input error (exit code 2) whose message holds `words`.
+fn refused(e: Error, words: &str) {
+    let text = e.to_string();
+    assert!(text.contains(words), "{text} (expected '{words}')");
+    assert_eq!(e.exit_code(), 2, "{text}");
+}
+
 /// The three steps apart (plan, each tile, merge), through their bytes, give
 /// `Tiled::decompose`'s JSON byte for byte; bytes altered, cut, of another version,
 /// another plan, another tile or another file are refused with an error naming what
@@ -199,25 +227,7 @@ fn plan_tiles_and_merge_apart_equal_the_tiled_run_and_refuse_bad_bytes() {
         },
         Params::default(),
     ] {
-        let plan = Tiled::plan(&ply, &params, &tiles(3)).unwrap();
-        let bytes = plan.to_bytes();
-        assert_eq!(
-            bytes,
-            Tiled::plan(&ply, &params, &tiles(3)).unwrap().to_bytes()
-        );
-        let plan = Tiled::from_bytes(&bytes).unwrap();
-        assert_eq!(plan.tiles(), 3);
-        let results: Vec<Vec<u8>> = (0..3)
-            .map(|t| plan.run_tile(&ply, t, &|_, _| {}).unwrap())
-            .collect();
-        let merged = plan.merge(&results, &|_, _| {}).unwrap();
-        let whole = Tiled::decompose(&ply, &params, &tiles(3), &|_, _| {}).unwrap();
-        for level in 0..whole.levels.len() {
-            assert_eq!(
-                merged.to_json(level, &params),
-                whole.to_json(level, &params)
-            );
-        }
+        apart_equals_whole(&ply, &params);
     }
     let params = Params {
         goal: Goal::counts([20]),
@@ -227,11 +237,6 @@ fn plan_tiles_and_merge_apart_equal_the_tiled_run_and_refuse_bad_bytes() {
     let bytes = plan.to_bytes();
     let tile = plan.run_tile(&ply, 1, &|_, _| {}).unwrap();
     plan.check_tile(1, &tile).unwrap();
-    let refused = |e: Error, words: &str| {
-        let text = e.to_string();
-        assert!(text.contains(words), "{text} (expected '{words}')");
-        assert_eq!(e.exit_code(), 2, "{text}");
-    };
     // Plans: cut, altered, of another version, not a plan at all.
     refused(
         Tiled::from_bytes(&bytes[..bytes.len() - 3]).unwrap_err(),

@@ -33,80 +33,133 @@ pub fn subdivided_ply(
     seed: u64,
     path: &Path,
 ) -> std::io::Result<(u64, u64)> {
-    let s = 1u32 << levels;
-    let tris = triangles(mesh);
-    let edges = edges(&tris);
-    let (nv, ne) = (mesh.vertex_count() as u64, edges.len() as u64);
-    let per_edge = u64::from(s - 1);
-    let inner = u64::from(s - 1) * u64::from(s.saturating_sub(2)) / 2;
-    let verts = nv + ne * per_edge + tris.len() as u64 * inner;
-    let faces = tris.len() as u64 * u64::from(s) * u64::from(s);
+    let g = Grid::new(mesh, levels);
+    let (verts, faces) = g.counts();
     assert!(
         verts < i32::MAX as u64,
         "{verts} vertices do not fit int32 indices"
     );
     let mut w = BufWriter::with_capacity(1 << 20, std::fs::File::create(path)?);
     header(&mut w, verts, faces)?;
-    let pos = |v: u32| mesh.world_pos(v);
-    for v in 0..nv as u32 {
-        point(&mut w, pos(v))?;
-    }
-    // Edge points from the lower vertex id towards the higher.
-    for (e, &key) in edges.iter().enumerate() {
-        let (a, b) = (pos((key >> 32) as u32), pos(key as u32));
-        let len = primdecomp_math::norm(primdecomp_math::sub(b, a));
-        for i in 1..s {
-            let id = nv + e as u64 * per_edge + u64::from(i - 1);
-            let t = f64::from(i) / f64::from(s);
-            let p = std::array::from_fn(|k| a[k] + t * (b[k] - a[k]));
-            point(&mut w, displaced(p, len / f64::from(s), seed, id))?;
+    g.write_points(&mut w, mesh, seed)?;
+    g.write_faces(&mut w)?;
+    w.flush()?;
+    Ok((faces, verts))
+}
+
+/// A mesh's triangles on their barycentric grid of `s` steps a side: the source's
+/// vertices first, then each edge's `s` − 1 points (edges sorted, `lo << 32 | hi`),
+/// then each triangle's `inner` points.
+struct Grid {
+    s: u32,
+    tris: Vec<[u32; 3]>,
+    edges: Vec<u64>,
+    nv: u64,
+    per_edge: u64,
+    inner: u64,
+}
+
+impl Grid {
+    fn new(mesh: &Mesh, levels: u32) -> Grid {
+        let s = 1u32 << levels;
+        let tris = triangles(mesh);
+        let edges = edges(&tris);
+        Grid {
+            s,
+            tris,
+            edges,
+            nv: mesh.vertex_count() as u64,
+            per_edge: u64::from(s - 1),
+            inner: u64::from(s - 1) * u64::from(s.saturating_sub(2)) / 2,
         }
     }
-    let first_inner = nv + ne * per_edge;
-    for (f, t) in tris.iter().enumerate() {
-        let [a, b, c] = t.map(pos);
-        let len = [(a, b), (b, c), (c, a)]
-            .map(|(p, q)| primdecomp_math::norm(primdecomp_math::sub(q, p)))
-            .into_iter()
-            .fold(0.0, f64::max);
-        for (id, (i, j)) in (first_inner + f as u64 * inner..).zip(inner_points(s)) {
-            let (u, v) = (f64::from(i) / f64::from(s), f64::from(j) / f64::from(s));
-            let p = std::array::from_fn(|k| a[k] + u * (b[k] - a[k]) + v * (c[k] - a[k]));
-            point(&mut w, displaced(p, len / f64::from(s), seed, id))?;
-        }
+
+    /// (vertices, faces) of the subdivided mesh.
+    fn counts(&self) -> (u64, u64) {
+        let ne = self.edges.len() as u64;
+        let verts = self.nv + ne * self.per_edge + self.tris.len() as u64 * self.inner;
+        let s = u64::from(self.s);
+        (verts, self.tris.len() as u64 * s * s)
     }
-    let edge_point = |x: u32, y: u32, k: u32| -> u64 {
-        let key = (u64::from(x.min(y)) << 32) | u64::from(x.max(y));
-        let e = edges.binary_search(&key).expect("every side is an edge") as u64;
-        let k = if x < y { k } else { s - k };
-        nv + e * per_edge + u64::from(k - 1)
-    };
-    for (f, t) in tris.iter().enumerate() {
-        let [a, b, c] = *t;
-        let base = first_inner + f as u64 * inner;
-        // Grid point (i, j): a + i/s (b − a) + j/s (c − a).
-        let id = |i: u32, j: u32| -> u64 {
-            match (i, j) {
-                (0, 0) => u64::from(a),
-                _ if i == s => u64::from(b),
-                _ if j == s => u64::from(c),
-                (_, 0) => edge_point(a, b, i),
-                (0, _) => edge_point(a, c, j),
-                _ if i + j == s => edge_point(b, c, j),
-                _ => base + inner_index(s, i, j),
+
+    /// The id of the first triangle's first inner point.
+    fn first_inner(&self) -> u64 {
+        self.nv + self.edges.len() as u64 * self.per_edge
+    }
+
+    /// Every vertex in id order, each new one displaced by a hash of `seed` and its id.
+    fn write_points(&self, w: &mut impl Write, mesh: &Mesh, seed: u64) -> std::io::Result<()> {
+        let (s, nv, per_edge, inner) = (self.s, self.nv, self.per_edge, self.inner);
+        let pos = |v: u32| mesh.world_pos(v);
+        for v in 0..nv as u32 {
+            point(w, pos(v))?;
+        }
+        // Edge points from the lower vertex id towards the higher.
+        for (e, &key) in self.edges.iter().enumerate() {
+            let (a, b) = (pos((key >> 32) as u32), pos(key as u32));
+            let len = primdecomp_math::norm(primdecomp_math::sub(b, a));
+            for i in 1..s {
+                let id = nv + e as u64 * per_edge + u64::from(i - 1);
+                let t = f64::from(i) / f64::from(s);
+                let p = std::array::from_fn(|k| a[k] + t * (b[k] - a[k]));
+                point(w, displaced(p, len / f64::from(s), seed, id))?;
             }
+        }
+        let first_inner = self.first_inner();
+        for (f, t) in self.tris.iter().enumerate() {
+            let [a, b, c] = t.map(pos);
+            let len = [(a, b), (b, c), (c, a)]
+                .map(|(p, q)| primdecomp_math::norm(primdecomp_math::sub(q, p)))
+                .into_iter()
+                .fold(0.0, f64::max);
+            for (id, (i, j)) in (first_inner + f as u64 * inner..).zip(inner_points(s)) {
+                let (u, v) = (f64::from(i) / f64::from(s), f64::from(j) / f64::from(s));
+                let p = std::array::from_fn(|k| a[k] + u * (b[k] - a[k]) + v * (c[k] - a[k]));
+                point(w, displaced(p, len / f64::from(s), seed, id))?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Every triangle's s² small triangles, row by row of its grid.
+    fn write_faces(&self, w: &mut impl Write) -> std::io::Result<()> {
+        let (s, nv, per_edge, inner) = (self.s, self.nv, self.per_edge, self.inner);
+        let first_inner = self.first_inner();
+        let edge_point = |x: u32, y: u32, k: u32| -> u64 {
+            let key = (u64::from(x.min(y)) << 32) | u64::from(x.max(y));
+            let e = self
+                .edges
+                .binary_search(&key)
+                .expect("every side is an edge") as u64;
+            let k = if x < y { k } else { s - k };
+            nv + e * per_edge + u64::from(k - 1)
         };
-        for j in 0..s {
-            for i in 0..s - j {
-                tri(&mut w, [id(i, j), id(i + 1, j), id(i, j + 1)])?;
-                if i + j + 1 < s {
-                    tri(&mut w, [id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)])?;
+        for (f, t) in self.tris.iter().enumerate() {
+            let [a, b, c] = *t;
+            let base = first_inner + f as u64 * inner;
+            // Grid point (i, j): a + i/s (b − a) + j/s (c − a).
+            let id = |i: u32, j: u32| -> u64 {
+                match (i, j) {
+                    (0, 0) => u64::from(a),
+                    _ if i == s => u64::from(b),
+                    _ if j == s => u64::from(c),
+                    (_, 0) => edge_point(a, b, i),
+                    (0, _) => edge_point(a, c, j),
+                    _ if i + j == s => edge_point(b, c, j),
+                    _ => base + inner_index(s, i, j),
+                }
+            };
+            for j in 0..s {
+                for i in 0..s - j {
+                    tri(w, [id(i, j), id(i + 1, j), id(i, j + 1)])?;
+                    if i + j + 1 < s {
+                        tri(w, [id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)])?;
+                    }
                 }
             }
         }
+        Ok(())
     }
-    w.flush()?;
-    Ok((faces, verts))
 }
 
 /// The source's triangles (polygons fanned from their first corner).

@@ -561,17 +561,7 @@ impl<'a> Cutter<'a> {
         known: &HashMap<u32, Entry>,
         order: Order,
     ) -> Explored {
-        let roots: Vec<Entry> = self
-            .tree
-            .roots
-            .par_iter()
-            .map_init(Scratch::default, |s, &r| self.entry(r, s, above, known))
-            .collect();
-        let mut ex = Explored {
-            roots: self.tree.roots.clone(),
-            fitted: roots.iter().map(|e| (e.node, e.clone())).collect(),
-            ..Explored::default()
-        };
+        let (roots, mut ex) = self.explore_roots(above, known);
         // Fitting ahead follows the worst-first order; a loose order's nodes are
         // mostly known.
         let mut ready = match order {
@@ -618,6 +608,23 @@ impl<'a> Cutter<'a> {
         self.refit_nearest(&mut ex, &leaves);
         ex.ids = ex.post_order();
         ex
+    }
+
+    /// The roots' entries (errors up to `above`, fits of the nodes in `known` kept),
+    /// and the exploration they start: the cut of the roots alone.
+    fn explore_roots(&self, above: f64, known: &HashMap<u32, Entry>) -> (Vec<Entry>, Explored) {
+        let roots: Vec<Entry> = self
+            .tree
+            .roots
+            .par_iter()
+            .map_init(Scratch::default, |s, &r| self.entry(r, s, above, known))
+            .collect();
+        let ex = Explored {
+            roots: self.tree.roots.clone(),
+            fitted: roots.iter().map(|e| (e.node, e.clone())).collect(),
+            ..Explored::default()
+        };
+        (roots, ex)
     }
 
     /// The children of nodes [`Cutter::explore`]'s worst-first splits will split,

@@ -57,6 +57,36 @@ pub(crate) fn snapshots(
     let mut searches: Vec<LevelRecut> = (first.into_iter().zip(&levels).zip(requests))
         .map(|((snap, level), r)| LevelRecut::first(r, snap, level))
         .collect();
+    raise_caps(&mut cutter, &mut searches, requests, postprocess)?;
+    // The short levels filled, then the counts' levels explored loosely; each step
+    // ends at once when told to stop.
+    for step in [fill_short, loosen] {
+        if cutter.stopped() {
+            return None;
+        }
+        step(
+            &mut cutter,
+            &mut searches,
+            requests,
+            (fitter, tris),
+            postprocess,
+        );
+    }
+    if cutter.stopped() {
+        return None;
+    }
+    Some(kept_at_requests(searches, requests))
+}
+
+/// The capped levels cut again with their caps raised by what post-processing freed
+/// (halfway back where that goes over), at most [`MAX_RECUTS`] times, until every
+/// search settles; `None` when `go_on` said stop.
+fn raise_caps(
+    cutter: &mut Cutter,
+    searches: &mut [LevelRecut],
+    requests: &[Request],
+    postprocess: &Postprocess<'_>,
+) -> Option<()> {
     for _ in 0..MAX_RECUTS {
         if searches.iter().all(|s| s.settled) {
             break;
@@ -75,25 +105,12 @@ pub(crate) fn snapshots(
             s.step(r, snap, level);
         }
     }
-    // The short levels filled, then the counts' levels explored loosely; each step
-    // ends at once when told to stop.
-    for step in [fill_short, loosen] {
-        if cutter.stopped() {
-            return None;
-        }
-        step(
-            &mut cutter,
-            &mut searches,
-            requests,
-            (fitter, tris),
-            postprocess,
-        );
-    }
-    if cutter.stopped() {
-        return None;
-    }
-    // Each kept cut's level as post-processing made it, for the request's own count
-    // (post-processing reads the count only to name the level).
+    Some(())
+}
+
+/// Each kept cut's level as post-processing made it, for the request's own count
+/// (post-processing reads the count only to name the level).
+fn kept_at_requests(searches: Vec<LevelRecut>, requests: &[Request]) -> Kept {
     let kept = (searches.into_iter().zip(requests)).map(|(s, r)| {
         let cut = LevelCut {
             snapshot: Snapshot {
@@ -110,7 +127,7 @@ pub(crate) fn snapshots(
         (cut, level)
     });
     let (cuts, levels) = kept.unzip();
-    Some((cuts, Some(levels)))
+    (cuts, Some(levels))
 }
 
 /// A level of a count alone that the raises left short of it (its worst node's

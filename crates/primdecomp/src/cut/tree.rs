@@ -71,42 +71,7 @@ impl MergeTree {
                 q,
             })
             .collect();
-        // Union-find over leaves; `top[r]` is the node a set rooted at leaf r is now.
-        let mut parent: Vec<u32> = (0..members.len() as u32).collect();
-        let mut top: Vec<u32> = parent.clone();
-        let TreeHulls { leaves, merges } = hulls;
-        let mut kept: HashMap<u32, Vec<u32>> = (0..).zip(leaves).collect();
-        let mut merges = merges.into_iter().peekable();
-        for (i, &(a, b)) in log.iter().enumerate() {
-            // A kept hull whose merge made no node (it joined no two) is dropped.
-            let hull = merges.next_if(|(at, _)| *at as usize == i).map(|(_, h)| h);
-            let (la, lb) = (leaf_of[a as usize], leaf_of[b as usize]);
-            if la == NONE || lb == NONE {
-                continue;
-            }
-            let (ra, rb) = (find(&mut parent, la), find(&mut parent, lb));
-            if ra == rb {
-                continue;
-            }
-            if let Some(hull) = hull {
-                kept.insert(nodes.len() as u32, hull);
-            }
-            let (na, nb) = (top[ra as usize], top[rb as usize]);
-            let q = nodes[na as usize].q.add(&nodes[nb as usize].q);
-            nodes.push(TreeNode {
-                children: [na.min(nb), na.max(nb)],
-                start: 0,
-                end: 0,
-                q,
-            });
-            let (r, o) = (ra.min(rb), ra.max(rb));
-            parent[o as usize] = r;
-            top[r as usize] = (nodes.len() - 1) as u32;
-        }
-        let roots: Vec<u32> = (0..members.len() as u32)
-            .filter(|&l| parent[l as usize] == l)
-            .map(|l| top[l as usize])
-            .collect();
+        let (roots, kept) = replay(&mut nodes, (&leaf_of, members.len()), log, hulls);
         let mut tree = MergeTree {
             nodes,
             roots,
@@ -143,6 +108,58 @@ impl MergeTree {
         let node = &self.nodes[n as usize];
         &self.order[node.start as usize..node.end as usize]
     }
+}
+
+/// Replays the merges `log` over the `leaves` first `nodes` (`leaf_of`: each face's
+/// leaf, or `NONE`): a node pushed per merge that joined two sets, with its operator the sum
+/// of theirs and its hull where the loop kept one. The roots, in the order of their
+/// lowest leaves, and the kept hulls by node.
+fn replay(
+    nodes: &mut Vec<TreeNode>,
+    (leaf_of, leaves): (&[u32], usize),
+    log: &[(u32, u32)],
+    hulls: TreeHulls,
+) -> (Vec<u32>, HashMap<u32, Vec<u32>>) {
+    // Union-find over leaves; `top[r]` is the node a set rooted at leaf r is now.
+    let mut parent: Vec<u32> = (0..leaves as u32).collect();
+    let mut top: Vec<u32> = parent.clone();
+    let TreeHulls {
+        leaves: leaf_hulls,
+        merges,
+    } = hulls;
+    let mut kept: HashMap<u32, Vec<u32>> = (0..).zip(leaf_hulls).collect();
+    let mut merges = merges.into_iter().peekable();
+    for (i, &(a, b)) in log.iter().enumerate() {
+        // A kept hull whose merge made no node (it joined no two) is dropped.
+        let hull = merges.next_if(|(at, _)| *at as usize == i).map(|(_, h)| h);
+        let (la, lb) = (leaf_of[a as usize], leaf_of[b as usize]);
+        if la == NONE || lb == NONE {
+            continue;
+        }
+        let (ra, rb) = (find(&mut parent, la), find(&mut parent, lb));
+        if ra == rb {
+            continue;
+        }
+        if let Some(hull) = hull {
+            kept.insert(nodes.len() as u32, hull);
+        }
+        let (na, nb) = (top[ra as usize], top[rb as usize]);
+        let q = nodes[na as usize].q.add(&nodes[nb as usize].q);
+        nodes.push(TreeNode {
+            children: [na.min(nb), na.max(nb)],
+            start: 0,
+            end: 0,
+            q,
+        });
+        let (r, o) = (ra.min(rb), ra.max(rb));
+        parent[o as usize] = r;
+        top[r as usize] = (nodes.len() - 1) as u32;
+    }
+    let roots: Vec<u32> = (0..leaves as u32)
+        .filter(|&l| parent[l as usize] == l)
+        .map(|l| top[l as usize])
+        .collect();
+    (roots, kept)
 }
 
 fn find(parent: &mut [u32], mut x: u32) -> u32 {

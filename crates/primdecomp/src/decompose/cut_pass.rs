@@ -3,14 +3,17 @@
 //! the cut of that tree its tolerance, byte budget or count asks for, post-processed
 //! (§3.4) with its distance to the input recorded.
 
-use super::stages::{self, fitter_of, merge_stage, Graph, Seeds};
-use crate::cut::{limits, recut, tree, LevelCut, LEAVES_PER_TARGET};
+use super::stages::{self, fitter_of, merge_stage, Around, Graph, Seeds};
+use crate::cut::tree::{self, MergeTree};
+use crate::cut::{limits, recut, LevelCut, LEAVES_PER_TARGET};
 use crate::error::{Error, Result};
 use crate::input::mesh::Mesh;
+use crate::input::triangles::Triangles;
 use crate::merge::stage::{merge_order, FirstPhase, ForTree};
-use crate::output::result::{Decomposition, Level};
+use crate::merge::Fitter;
+use crate::output::result::{Decomposition, Level, Stats};
 use crate::params::Params;
-use crate::postprocess;
+use crate::postprocess::{self, Prepared};
 use crate::progress::clock::Clock;
 use crate::progress::{Ask, Latch, Stage};
 
@@ -22,43 +25,12 @@ pub(crate) fn run(
     mut clock: Clock,
 ) -> Result<Decomposition> {
     let largest = params.goal.targets().into_iter().max().unwrap_or(1);
-    // The tree's leaves (a snapshot of a few times the largest target, needed only
-    // after spatial parts: below) up to its roots (docs/decisions/0032, 0034).
-    let leaves = largest.saturating_mul(LEAVES_PER_TARGET);
-    let mut targets = merge_order(&[leaves.min(mesh.face_count()).max(largest), 1]);
-    // Where the merge loop starts: spatial parts merge down to their share of the
-    // largest count's groups, the greedy's own, and the tree's leaves come from the
-    // global loop after them (docs/decisions/0042); or components, or the faces.
-    let first = FirstPhase::choose(mesh, params, &graph.pairs, targets[0], largest);
-    let from_faces = !matches!(first, FirstPhase::Parts { .. });
+    let (first, targets) = loop_plan(mesh, params, &graph, largest);
     // One operator per face (§3.1), the faces' surface and the input's interior.
     let (seeds, around) = Seeds::build(&mut clock, mesh, params, &mut graph, &first)?;
     let fitter = fitter_of(mesh, &graph, params, &around);
-    // One primitive per face seeds the volumes (Alg. 1, line 2).
-    let volumes = stages::seed(&mut clock, &fitter, seeds.quadrics(), &first)?;
-    // Without spatial parts every merge is logged and the tree's leaves are the faces:
-    // the leaf snapshot would be fitted for nothing. Those leaves keep their operators.
-    let mut face_q = Vec::new();
-    if from_faces {
-        targets = vec![1];
-        face_q = seeds.quadrics().to_vec();
-    }
-    let keep = ForTree {
-        hulls_over: tree::tree_hulls_over(mesh, params, largest),
-    };
-    let (input, mut stats) = seeds.merge_input(volumes, &around, params);
-    // Merging down to the roots, every merge logged: the merge tree (Alg. 1's loop).
-    let to_roots = (&targets[..], keep);
-    let (merged, log) = merge_stage(&mut clock, &fitter, (input, first), to_roots, &mut stats)?;
-    if merged.stopped {
-        return Err(Error::Cancelled);
-    }
-    // The merge tree, before the triangles are built: the loop's snapshots and the
-    // faces' operators are dead once it is.
-    let tree = clock.step(Stage::Postprocess, "tree", || {
-        tree::merge_tree(&fitter, &merged, log, &face_q)
-    })?;
-    drop((merged, face_q));
+    let plan = (first, &targets[..], largest);
+    let (tree, stats) = grow_tree(&mut clock, &fitter, params, (seeds, &around), plan)?;
     // What the merge stage freed goes back to the system before the largest
     // structure of the pass is built.
     crate::input::memory::release_freed();
@@ -66,50 +38,129 @@ pub(crate) fn run(
     // its interior for plates thickened inward (--min-thickness).
     let tris = stages::triangles(&mut clock, mesh, true)?.ok_or(Error::Cancelled)?;
     let reads = stages::interior(&mut clock, mesh, params, Some(&tris))?;
-    // Post-processing (§3.4) is the step each cut is measured after: plates joined
-    // within the cut's bound, duplicates absorbed, nested primitives removed.
-    // Asks `go_on` within each level (a level not to keep once it said stop). Each
-    // round's freed scratch goes back to the system before and after it: what glibc
-    // keeps of the cut's rounds otherwise adds to the pass's peak.
-    // Each cut's faces' lists are moved into post-processing, not copied.
-    let postprocess = |cuts: &mut [LevelCut], go_on: Ask| -> Vec<Level> {
-        crate::input::memory::release_freed();
-        let levels = (cuts.iter_mut())
-            .map(|c| Level {
-                shortfall: c.shortfall,
-                ..postprocess::level(
-                    &fitter,
-                    c.take_for_postprocess(),
-                    Some(c.bound),
-                    params,
-                    &reads,
-                    go_on,
-                )
-            })
-            .collect();
-        crate::input::memory::release_freed();
-        levels
+    let levels = cut_levels(&mut clock, &fitter, &tree, params, (&tris, &reads))?;
+    Ok(stages::decomposition(mesh, &graph, levels, clock, stats))
+}
+
+/// Where the merge loop starts and the counts it snapshots at on its way to the
+/// roots. The tree's leaves are a snapshot of a few times the largest target, needed
+/// only after spatial parts (docs/decisions/0032, 0034): spatial parts merge down to
+/// their share of the largest count's groups, the greedy's own, and the leaves come
+/// from the global loop after them (docs/decisions/0042). From components or the
+/// faces, every merge is logged and the leaves are the faces: no snapshot but the root.
+fn loop_plan(
+    mesh: &Mesh,
+    params: &Params,
+    graph: &Graph,
+    largest: usize,
+) -> (FirstPhase, Vec<usize>) {
+    let leaves = largest.saturating_mul(LEAVES_PER_TARGET);
+    let targets = merge_order(&[leaves.min(mesh.face_count()).max(largest), 1]);
+    let first = FirstPhase::choose(mesh, params, &graph.pairs, targets[0], largest);
+    match first {
+        FirstPhase::Parts { .. } => (first, targets),
+        _ => (first, vec![1]),
+    }
+}
+
+/// The merge tree: seeding, then merging down to the roots with every merge logged
+/// (Alg. 1's loop); and the run's counters.
+fn grow_tree(
+    clock: &mut Clock,
+    fitter: &Fitter,
+    params: &Params,
+    (seeds, around): (Seeds, &Around),
+    (first, targets, largest): (FirstPhase, &[usize], usize),
+) -> Result<(MergeTree, Stats)> {
+    let mesh = fitter.input.mesh;
+    // One primitive per face seeds the volumes (Alg. 1, line 2).
+    let volumes = stages::seed(clock, fitter, seeds.quadrics(), &first)?;
+    // Without spatial parts the tree's leaves are the faces: they keep their operators
+    // (the leaf snapshot would be fitted for nothing).
+    let face_q = match first {
+        FirstPhase::Parts { .. } => Vec::new(),
+        _ => seeds.quadrics().to_vec(),
     };
-    // The cut of the merge tree at each target where the error is (0032), its counts
-    // and bytes spent on what post-processing keeps (0044).
+    let keep = ForTree {
+        hulls_over: tree::tree_hulls_over(mesh, params, largest),
+    };
+    let (input, mut stats) = seeds.merge_input(volumes, around, params);
+    let (merged, log) = merge_stage(clock, fitter, (input, first), (targets, keep), &mut stats)?;
+    if merged.stopped {
+        return Err(Error::Cancelled);
+    }
+    // The merge tree, before the triangles are built: the loop's snapshots and the
+    // faces' operators are dead once it is.
+    let tree = clock.step(Stage::Postprocess, "tree", || {
+        tree::merge_tree(fitter, &merged, log, &face_q)
+    })?;
+    Ok((tree, stats))
+}
+
+/// The levels: the cut of the merge tree at each target where the error is (0032),
+/// its counts and bytes spent on what post-processing keeps (0044), post-processed,
+/// back to world coordinates, each with what it asked and how far its primitives
+/// stand from the input.
+fn cut_levels(
+    clock: &mut Clock,
+    fitter: &Fitter,
+    tree: &MergeTree,
+    params: &Params,
+    (tris, reads): (&Triangles, &Prepared),
+) -> Result<Vec<Level>> {
+    let mesh = fitter.input.mesh;
     let requests = limits::requests(params, mesh);
     let (mut cuts, done) = clock
         .stage(Stage::Postprocess, "cut", |go_on, _| {
             let latch = Latch::new(go_on, 0.0);
-            let postprocess = |cuts: &mut [LevelCut]| postprocess(cuts, &|| latch.goes_on());
-            recut::snapshots(&fitter, &tree, &requests, &tris, &postprocess, go_on)
+            let postprocess = |cuts: &mut [LevelCut]| {
+                postprocess_cuts(fitter, params, reads, cuts, &|| latch.goes_on())
+            };
+            recut::snapshots(fitter, tree, &requests, tris, &postprocess, go_on)
         })?
         .ok_or(Error::Cancelled)?;
-    // The kept cuts post-processed, back to world coordinates: the levels the cut's
-    // search made of them, or, where each was cut once, made now.
-    // (The cut was post-processing's stage, reported done: its fraction stays 1.)
+    // The kept cuts post-processed: the levels the cut's search made of them, or,
+    // where each was cut once, made now. (The cut was post-processing's stage,
+    // reported done: its fraction stays 1.)
     let mut levels = clock.stage(Stage::Postprocess, "postprocess", |go_on, _| {
         let latch = Latch::new(go_on, 1.0);
-        done.unwrap_or_else(|| postprocess(&mut cuts, &|| latch.goes_on()))
+        done.unwrap_or_else(|| {
+            postprocess_cuts(fitter, params, reads, &mut cuts, &|| latch.goes_on())
+        })
     })?;
-    // What each level asked and how far its primitives stand from the input.
     clock.stage(Stage::Postprocess, "distance", |_, _| {
-        limits::record_limits(&mut levels, &requests, &cuts, mesh, &tris)
+        limits::record_limits(&mut levels, &requests, &cuts, mesh, tris)
     })?;
-    Ok(stages::decomposition(mesh, &graph, levels, clock, stats))
+    Ok(levels)
+}
+
+/// Post-processing (§3.4), the step each cut is measured after: plates joined within
+/// the cut's bound, duplicates absorbed, nested primitives removed. Asks `go_on`
+/// within each level (a level not to keep once it said stop). Each round's freed
+/// scratch goes back to the system before and after it: what glibc keeps of the
+/// cut's rounds otherwise adds to the pass's peak. Each cut's faces' lists are moved
+/// into post-processing, not copied.
+fn postprocess_cuts(
+    fitter: &Fitter,
+    params: &Params,
+    reads: &Prepared,
+    cuts: &mut [LevelCut],
+    go_on: Ask,
+) -> Vec<Level> {
+    crate::input::memory::release_freed();
+    let levels = (cuts.iter_mut())
+        .map(|c| Level {
+            shortfall: c.shortfall,
+            ..postprocess::level(
+                fitter,
+                c.take_for_postprocess(),
+                Some(c.bound),
+                params,
+                reads,
+                go_on,
+            )
+        })
+        .collect();
+    crate::input::memory::release_freed();
+    levels
 }

@@ -221,6 +221,23 @@ pub fn face_pairs_checked(
             }
         }
     };
+    let (keys, lows, start) = bucketed_sides(&sides, faces, verts, go_on)?;
+    let lists = edge_pairs(&keys, &lows, &start, go_on)?;
+    drop((keys, lows));
+    sorted_pairs(lists, faces, go_on)
+}
+
+/// The first radix pass of [`face_pairs_checked`]: each of the `faces` faces'
+/// `sides` (lo, hi) as a record in its lower vertex's bucket (of `verts` vertices),
+/// each chunk of faces counted and placed in its own stretch, in parallel: the
+/// records (`keys`: other vertex `<< 32 |` face; `lows`: the lower vertex's low bits)
+/// and each bucket's start (the last entry the end). `None` when `go_on` said stop.
+fn bucketed_sides(
+    sides: &(impl Fn(usize, &mut dyn FnMut(u32, u32)) + Sync),
+    faces: usize,
+    verts: usize,
+    go_on: crate::progress::Checkpoint,
+) -> Option<(Vec<u64>, Vec<u16>, Vec<usize>)> {
     let chunks: Vec<std::ops::Range<usize>> = (0..faces)
         .step_by(CHUNK)
         .map(|f0| f0..(f0 + CHUNK).min(faces))
@@ -257,9 +274,7 @@ pub fn face_pairs_checked(
     }
     let keys: Vec<u64> = keys.into_iter().map(AtomicU64::into_inner).collect();
     let lows: Vec<u16> = lows.into_iter().map(AtomicU16::into_inner).collect();
-    let lists = edge_pairs(&keys, &lows, &start, go_on)?;
-    drop((keys, lows));
-    sorted_pairs(lists, faces, go_on)
+    Some((keys, lows, start))
 }
 
 /// Each vertex bucket's pairs of faces around its edges, from its sides (`keys`:
@@ -365,6 +380,25 @@ fn sorted_pairs(
     faces: usize,
     go_on: crate::progress::Checkpoint,
 ) -> Option<Vec<(u32, u32)>> {
+    let (mut keys, start) = bucketed_keys(lists, faces, go_on)?;
+    sort_buckets(&mut keys, &start, go_on)?;
+    let mut pairs: Vec<(u32, u32)> = keys
+        .into_iter()
+        .map(|k| ((k >> 32) as u32, k as u32))
+        .collect();
+    pairs.dedup();
+    pairs.shrink_to_fit();
+    Some(pairs)
+}
+
+/// The pairs of `lists` as keys `a << 32 | b` (ordered as the pairs are), partitioned
+/// by the first face's bucket, and each bucket's start (the last entry the end):
+/// counted and placed per list, in parallel. `None` when `go_on` said stop.
+fn bucketed_keys(
+    lists: Vec<Vec<(u32, u32)>>,
+    faces: usize,
+    go_on: crate::progress::Checkpoint,
+) -> Option<(Vec<u64>, Vec<usize>)> {
     let buckets = (faces >> FACE_BITS) + 1;
     let bucket = |a: u32| (a >> FACE_BITS) as usize;
     let counts: Vec<Vec<u32>> = lists
@@ -377,7 +411,6 @@ fn sorted_pairs(
         .collect();
     go_on(0.9).then_some(())?;
     let (start, cursors) = chunk_starts(counts, buckets);
-    // Each pair as `a << 32 | b`: ordered as the pairs are.
     let slots: Vec<AtomicU64> = zeroed(start[buckets]);
     lists.par_iter().zip(cursors).for_each(|(list, mut at)| {
         for &(a, b) in list {
@@ -388,10 +421,22 @@ fn sorted_pairs(
     });
     drop(lists);
     go_on(0.9).then_some(())?;
-    let mut keys: Vec<u64> = slots.into_iter().map(AtomicU64::into_inner).collect();
+    let keys: Vec<u64> = slots.into_iter().map(AtomicU64::into_inner).collect();
+    Some((keys, start))
+}
+
+/// Sorts each bucket of `keys` (from `start[b]` to `start[b + 1]`) on its own in
+/// cache, by the first face's low bits, then each face's few pairs; buckets in
+/// parallel, each asking `go_on`. `None` when it said stop.
+fn sort_buckets(
+    keys: &mut [u64],
+    start: &[usize],
+    go_on: crate::progress::Checkpoint,
+) -> Option<()> {
+    let buckets = start.len() - 1;
     // Buckets own disjoint stretches of the keys.
     let mut stretches = Vec::with_capacity(buckets);
-    let mut rest = &mut keys[..];
+    let mut rest = keys;
     for b in 0..buckets {
         let (head, tail) = rest.split_at_mut(start[b + 1] - start[b]);
         stretches.push(head);
@@ -415,14 +460,7 @@ fn sorted_pairs(
             },
         )
         .all(|going| going);
-    sorted.then_some(())?;
-    let mut pairs: Vec<(u32, u32)> = keys
-        .into_iter()
-        .map(|k| ((k >> 32) as u32, k as u32))
-        .collect();
-    pairs.dedup();
-    pairs.shrink_to_fit();
-    Some(pairs)
+    sorted.then_some(())
 }
 
 /// Pairs of the distinct faces around one edge (records `other vertex << 32 | face`

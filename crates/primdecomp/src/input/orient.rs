@@ -54,74 +54,128 @@ pub fn face_signs_checked(
     go_on: crate::progress::Checkpoint,
 ) -> Option<Vec<i8>> {
     let n = mesh.face_count();
-    let mut next_check = CHECK_EVERY;
     let face = |f: usize| weld.face(mesh, f);
     let neighbours = |f: usize| &adj[deg[f] as usize..deg[f + 1] as usize];
     // Most of the walk's work is finding each pair's shared edge: done first, for
     // every face at once (the walk below only reads it).
     let relations = relations_checked(n, &face, &neighbours, go_on)?;
-    let mut sign = vec![0i8; n];
-    // Face ids as u32 (the engine's), 4 bytes a face of a patch spanning the input.
-    let mut queue: VecDeque<u32> = VecDeque::new();
-    let mut members: Vec<u32> = Vec::new();
+    let mut walk = Walk {
+        face,
+        neighbours,
+        relations: &relations,
+        sign: vec![0i8; n],
+        queue: VecDeque::new(),
+        members: Vec::new(),
+        next_check: CHECK_EVERY,
+    };
     let mut grid: Option<RayTree> = None;
     for start in 0..n {
-        if sign[start] != 0 {
+        if walk.sign[start] != 0 {
             continue;
         }
-        sign[start] = 1;
-        queue.push_back(start as u32);
-        members.clear();
+        let open = walk.patch(start, go_on)?;
+        turn_outward(mesh, &walk.members, &mut walk.sign, open, &mut grid, go_on)?;
+    }
+    Some(walk.sign)
+}
+
+/// The breadth-first walk over the patches: each face's welded corners (`face`),
+/// neighbours (`neighbours`) and packed relations with them, and the signs so far.
+struct Walk<'r, F, N> {
+    face: F,
+    neighbours: N,
+    relations: &'r [u8],
+    sign: Vec<i8>,
+    /// Face ids as u32 (the engine's), 4 bytes a face of a patch spanning the input.
+    queue: VecDeque<u32>,
+    /// The faces of the last patch walked.
+    members: Vec<u32>,
+    /// Faces left before `go_on` is asked again.
+    next_check: usize,
+}
+
+impl<'a, F, N> Walk<'_, F, N>
+where
+    F: Fn(usize) -> Corners<'a>,
+    N: Fn(usize) -> &'a [u32],
+{
+    /// The patch of `start` (unsigned yet), its faces made to agree with it across
+    /// manifold edges, in `members`: whether it is open (a face with an edge crossed
+    /// to no neighbour); `None` when `go_on` said stop.
+    fn patch(&mut self, start: usize, go_on: crate::progress::Checkpoint) -> Option<bool> {
+        self.sign[start] = 1;
+        self.queue.push_back(start as u32);
+        self.members.clear();
         let mut open = false;
-        while let Some(f) = queue.pop_front() {
-            members.push(f);
+        while let Some(f) = self.queue.pop_front() {
+            self.members.push(f);
             let f = f as usize;
-            next_check -= 1;
-            if next_check == 0 {
-                next_check = CHECK_EVERY;
+            self.next_check -= 1;
+            if self.next_check == 0 {
+                self.next_check = CHECK_EVERY;
                 if !go_on(0.0) {
                     return None;
                 }
             }
-            let mut crossed = 0;
-            for (slot, &g) in neighbours(f).iter().enumerate() {
-                let rel = match Relations::packed(relations[f], slot) {
-                    Some(packed) => packed,
-                    None => manifold_relation(face(f), g, neighbours(f), &face),
-                };
-                let Some(rel) = rel else {
-                    continue;
-                };
-                crossed += 1;
-                if sign[g as usize] == 0 {
-                    // Opposed windings flip; agreeing keep.
-                    sign[g as usize] = rel * sign[f];
-                    queue.push_back(g);
-                }
-            }
-            open |= crossed < face(f).len();
+            open |= self.cross_from(f) < (self.face)(f).len();
         }
-        let quota = visibility::SAMPLED_FACES * members.len() / n.max(1);
-        let seen = if open && quota > 0 {
-            if grid.is_none() {
-                grid = Some(RayTree::build_checked(mesh, go_on)?);
-            }
-            let grid = grid.as_ref()?;
-            visibility::vote(grid, &members, &sign, quota)
-        } else {
-            None
-        };
-        let inward = match seen {
-            Some(v) if v.abs() >= MIN_VOTE => v < 0.0,
-            _ => signed_volume(mesh, &members, &sign) < 0.0,
-        };
-        if inward {
-            members
-                .iter()
-                .for_each(|&f| sign[f as usize] = -sign[f as usize]);
-        }
+        Some(open)
     }
-    Some(sign)
+
+    /// Signs and queues `f`'s unsigned neighbours across its manifold edges; the
+    /// number of edges crossed.
+    fn cross_from(&mut self, f: usize) -> usize {
+        let mut crossed = 0;
+        for (slot, &g) in (self.neighbours)(f).iter().enumerate() {
+            let rel = match Relations::packed(self.relations[f], slot) {
+                Some(packed) => packed,
+                None => manifold_relation((self.face)(f), g, (self.neighbours)(f), &self.face),
+            };
+            let Some(rel) = rel else {
+                continue;
+            };
+            crossed += 1;
+            if self.sign[g as usize] == 0 {
+                // Opposed windings flip; agreeing keep.
+                self.sign[g as usize] = rel * self.sign[f];
+                self.queue.push_back(g);
+            }
+        }
+        crossed
+    }
+}
+
+/// Turns the patch `members` outward: an open one by what rays from its faces see
+/// (the ray tree built on the first such patch, kept in `grid`), and by its signed
+/// volume when they cannot tell or it is closed. `None` when `go_on` said stop.
+fn turn_outward<'m>(
+    mesh: &'m Mesh,
+    members: &[u32],
+    sign: &mut [i8],
+    open: bool,
+    grid: &mut Option<RayTree<'m>>,
+    go_on: crate::progress::Checkpoint,
+) -> Option<()> {
+    let quota = visibility::SAMPLED_FACES * members.len() / mesh.face_count().max(1);
+    let seen = if open && quota > 0 {
+        if grid.is_none() {
+            *grid = Some(RayTree::build_checked(mesh, go_on)?);
+        }
+        let grid = grid.as_ref()?;
+        visibility::vote(grid, members, sign, quota)
+    } else {
+        None
+    };
+    let inward = match seen {
+        Some(v) if v.abs() >= MIN_VOTE => v < 0.0,
+        _ => signed_volume(mesh, members, sign) < 0.0,
+    };
+    if inward {
+        members
+            .iter()
+            .for_each(|&f| sign[f as usize] = -sign[f as usize]);
+    }
+    Some(())
 }
 
 /// Each face's [`manifold_relation`] with its first [`Relations::SLOTS`] neighbours,

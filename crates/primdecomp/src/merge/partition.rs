@@ -432,13 +432,24 @@ fn merge_one(
     }
     let (q, volume) = part_seeds(fitter, faces, part);
     let (sub, sub_weld, global) = sub_mesh(fitter.input.mesh, fitter.input.weld, part);
-    // Same fit settings, cost grid and hull tolerance as the whole input's.
-    let sub_ev = Fitter {
+    let sub_ev = part_fitter(fitter, InputView::new(&sub, &sub_weld), kind);
+    let cl = Clusters::new(q, volume, &pairs);
+    drop(pairs);
+    let traced = kind == Kind::Components { traced: true };
+    let (cl, mut out) = merge_part(&sub_ev, cl, target, traced, progress);
+    let trace = std::mem::take(&mut out.trace);
+    (part_groups(&cl, trace, part, &global, kind), out)
+}
+
+/// The fitter of a part (`sub`: its own mesh and weld): same fit settings, cost grid
+/// and hull tolerance as the whole input's `fitter`.
+fn part_fitter<'a>(fitter: &Fitter<'a>, sub: InputView<'a>, kind: Kind) -> Fitter<'a> {
+    Fitter {
         // No surface (indexed by the whole input's faces; a part fits no output
         // primitives), the same interior.
         input: InputView {
             solid: fitter.input.solid,
-            ..InputView::new(&sub, &sub_weld)
+            ..sub
         },
         pricing: Pricing {
             // Lazy greedy for every merge of a part unless re-pricing is exact: faster at
@@ -450,14 +461,21 @@ fn merge_one(
             },
             ..fitter.pricing
         },
-    };
-    let cl = Clusters::new(q, volume, &pairs);
-    drop(pairs);
-    let traced = kind == Kind::Components { traced: true };
-    let (cl, mut out) = merge_part(&sub_ev, cl, target, traced, progress);
-    // Face ids in the input's (increasing with the part's own, so the same order).
+    }
+}
+
+/// The groups a part's merge left (`cl`, and its `trace`), in the input's face and
+/// vertex ids: `part` maps the part's faces to the input's (increasing with the
+/// part's own, so the same order), `global` its vertices.
+fn part_groups(
+    cl: &Clusters,
+    trace: Vec<Traced>,
+    part: &[u32],
+    global: &[u32],
+    kind: Kind,
+) -> Groups {
     let global_id = |f: u32| part[f as usize];
-    let trace = std::mem::take(&mut out.trace).into_iter().map(|t| Traced {
+    let trace = trace.into_iter().map(|t| Traced {
         key_a: global_id(t.key_a),
         key_b: global_id(t.key_b),
         a: global_id(t.a),
@@ -484,7 +502,7 @@ fn merge_one(
                 .push((n.iter().map(|&f| global_id(f)).collect(), resolved));
         }
     }
-    (g, out)
+    g
 }
 
 /// Phase 2's starting clusters after spatial parts: one per group of phase 1, ids in

@@ -402,6 +402,39 @@ mod tests {
         assert!(out.is_empty());
     }
 
+    /// A random unit vector (none from a draw shorter than 0.1).
+    fn random_unit(rng: &mut rand_chacha::ChaCha8Rng) -> V3 {
+        use rand::Rng;
+        loop {
+            let v = [0, 1, 2].map(|_| rng.gen_range(-1.0..1.0));
+            if let Some(u) = crate::math::normalize(v).filter(|_| crate::math::norm(v) > 0.1) {
+                break u;
+            }
+        }
+    }
+
+    /// A random cloud of 4 to 39 points in a box, up to 29 rims each at most 0.3 in
+    /// from the cloud's reach along its direction, and a rim weight.
+    fn random_case(rng: &mut rand_chacha::ChaCha8Rng) -> (Vec<V3>, Vec<Rim>, f64) {
+        use rand::Rng;
+        let n = rng.gen_range(4..40);
+        let h: V3 = [0, 1, 2].map(|_| rng.gen_range(0.01..1.0));
+        let pts: Vec<V3> = (0..n).map(|_| h.map(|h| rng.gen_range(-h..h))).collect();
+        let rims: Vec<Rim> = (0..rng.gen_range(0..30))
+            .map(|_| {
+                let d = random_unit(rng);
+                let reach = (0..n).map(|i| dot(d, pts[i])).fold(f64::MIN, f64::max);
+                Rim {
+                    d,
+                    offset: reach - rng.gen_range(0.0..0.3),
+                    len: rng.gen_range(0.01..1.0),
+                }
+            })
+            .collect();
+        let w = [0.1, 1.0, 30.0][rng.gen_range(0..3)];
+        (pts, rims, w)
+    }
+
     /// A penalty that stops once its offer cannot win changes no fit: over random
     /// clouds, rims and bars, every frame's fit and score with `rim_penalty` stopping
     /// early are those with its whole sum, and a stopped sum is at most the whole and
@@ -410,7 +443,7 @@ mod tests {
     fn a_penalty_stopped_short_chooses_as_the_whole_one() {
         use crate::primitive::fit::{fit_frame_priced, FitConfig, FrameSearch};
         use crate::primitive::{Cloud, FitScratch};
-        use rand::{Rng, SeedableRng};
+        use rand::SeedableRng;
         let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(26);
         let cfg = FitConfig {
             weights: [1.0, 1.0, 1.0, 1.05, 2.1, 1.4],
@@ -418,17 +451,9 @@ mod tests {
             min_half: 1e-6,
             frames: FrameSearch::Degenerate,
         };
-        let unit = |rng: &mut rand_chacha::ChaCha8Rng| loop {
-            let v = [0, 1, 2].map(|_| rng.gen_range(-1.0..1.0));
-            if let Some(u) = crate::math::normalize(v).filter(|_| crate::math::norm(v) > 0.1) {
-                break u;
-            }
-        };
         let (stopped, mut s) = (std::cell::Cell::new(0), FitScratch::default());
         for _ in 0..300 {
-            let n = rng.gen_range(4..40);
-            let h: V3 = [0, 1, 2].map(|_| rng.gen_range(0.01..1.0));
-            let pts: Vec<V3> = (0..n).map(|_| h.map(|h| rng.gen_range(-h..h))).collect();
+            let (pts, rims, w) = random_case(&mut rng);
             let (x, y, z): (Vec<f64>, Vec<f64>, Vec<f64>) = (
                 pts.iter().map(|p| p[0]).collect(),
                 pts.iter().map(|p| p[1]).collect(),
@@ -439,18 +464,6 @@ mod tests {
                 y: &y,
                 z: &z,
             };
-            let rims: Vec<Rim> = (0..rng.gen_range(0..30))
-                .map(|_| {
-                    let d = unit(&mut rng);
-                    let reach = (0..n).map(|i| dot(d, pts[i])).fold(f64::MIN, f64::max);
-                    Rim {
-                        d,
-                        offset: reach - rng.gen_range(0.0..0.3),
-                        len: rng.gen_range(0.01..1.0),
-                    }
-                })
-                .collect();
-            let w = [0.1, 1.0, 30.0][rng.gen_range(0..3)];
             let whole =
                 |p: &Primitive, _: f64, _: f64| rim_penalty(p, &rims, w, 0.0, f64::INFINITY);
             let short = |p: &Primitive, cost: f64, limit: f64| {
@@ -460,8 +473,9 @@ mod tests {
                 stopped.set(stopped.get() + usize::from(got < all));
                 got
             };
-            let a = unit(&mut rng);
-            let b = crate::math::normalize(crate::math::cross(a, unit(&mut rng))).expect("apart");
+            let a = random_unit(&mut rng);
+            let b = crate::math::normalize(crate::math::cross(a, random_unit(&mut rng)))
+                .expect("apart");
             let axes = [a, b, crate::math::cross(a, b)];
             let free = fit_frame_priced(&cloud, axes, &cfg, &mut s, &whole, f64::INFINITY);
             let (_, score) = free.expect("no bar");

@@ -61,20 +61,9 @@ pub(crate) fn keep_mask_checked(
     let tol = TOL_REL * cleanup.diagonal.max(f64::MIN_POSITIVE);
     let boxes: Vec<(V3, V3)> = prims.iter().map(|p| inflate(p.aabb(), tol)).collect();
     let mut pinned = vec![false; n];
-    let mut order: Vec<usize> = (0..n).collect();
-    order.sort_by(|&i, &j| {
-        prims[i]
-            .volume()
-            .total_cmp(&prims[j].volume())
-            .then(i.cmp(&j))
-    });
+    let order = smallest_first(prims);
     if cleanup.remove_nested {
-        // Hosts are independent of what gets removed, so find them all in parallel.
-        let hosts: Option<Vec<Vec<usize>>> = (0..n)
-            .into_par_iter()
-            .map(|i| go_on().then(|| hosts_of(mesh, prims, &boxes, &verts[i], i, tol)))
-            .collect();
-        let hosts = hosts?;
+        let hosts = all_hosts(mesh, prims, &boxes, verts, tol, go_on)?;
         for &i in &order {
             if pinned[i] {
                 continue;
@@ -105,6 +94,35 @@ pub(crate) fn keep_mask_checked(
         }
     }
     Some(keep)
+}
+
+/// The primitives' indices by volume, smallest first (ties by index).
+fn smallest_first(prims: &[Primitive]) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..prims.len()).collect();
+    order.sort_by(|&i, &j| {
+        prims[i]
+            .volume()
+            .total_cmp(&prims[j].volume())
+            .then(i.cmp(&j))
+    });
+    order
+}
+
+/// Each primitive's hosts ([`hosts_of`]), asking `go_on` before each; `None` once it
+/// said stop. Hosts are independent of what gets removed, so all are found in
+/// parallel.
+fn all_hosts(
+    mesh: &Mesh,
+    prims: &[Primitive],
+    boxes: &[(V3, V3)],
+    verts: &[Vec<u32>],
+    tol: f64,
+    go_on: Ask,
+) -> Option<Vec<Vec<usize>>> {
+    (0..prims.len())
+        .into_par_iter()
+        .map(|i| go_on().then(|| hosts_of(mesh, prims, boxes, &verts[i], i, tol)))
+        .collect()
 }
 
 fn is_thin_box(p: &Primitive, t: f64) -> bool {

@@ -165,24 +165,7 @@ fn coplanar_pairs(
         .filter(|&i| alive[i])
         .filter_map(|i| plate(&snap.prims[i], floor).map(|p| (i, p)))
         .collect();
-    // Sweep along the axis the boxes overlap least on: a pair's boxes overlap there first.
-    let k = sweep_axis(plates.iter().map(|p| p.1.aabb));
-    let mut order: Vec<usize> = (0..plates.len()).collect();
-    order.sort_by(|&a, &b| plates[a].1.aabb.0[k].total_cmp(&plates[b].1.aabb.0[k]));
-    let mut pairs = Vec::new();
-    for (s, &a) in order.iter().enumerate() {
-        let (i, pa) = plates[a];
-        for &b in &order[s + 1..] {
-            let (j, pb) = plates[b];
-            if pb.aabb.0[k] > pa.aabb.1[k] + floor {
-                break;
-            }
-            if (dirty[i] || dirty[j]) && one_plane(&pa, &pb, floor) {
-                pairs.push((i.min(j), i.max(j)));
-            }
-        }
-    }
-    pairs.sort_unstable();
+    let pairs = touching_pairs(&plates, dirty, floor);
     let kv = |p: &Primitive| fitter.pricing.fit.weights[p.kind() as usize] * p.volume();
     let scratch = || (Workspace::default(), Vec::new(), Vec::new());
     pairs
@@ -213,6 +196,30 @@ fn coplanar_pairs(
         })
         .flatten()
         .collect()
+}
+
+/// The pairs (i < j, sorted) of `plates` (each with its primitive's index) with a
+/// `dirty` member, in one plane and whose bounding boxes touch within `floor`.
+fn touching_pairs(plates: &[(usize, Plate)], dirty: &[bool], floor: f64) -> Vec<(usize, usize)> {
+    // Sweep along the axis the boxes overlap least on: a pair's boxes overlap there first.
+    let k = sweep_axis(plates.iter().map(|p| p.1.aabb));
+    let mut order: Vec<usize> = (0..plates.len()).collect();
+    order.sort_by(|&a, &b| plates[a].1.aabb.0[k].total_cmp(&plates[b].1.aabb.0[k]));
+    let mut pairs = Vec::new();
+    for (s, &a) in order.iter().enumerate() {
+        let (i, pa) = plates[a];
+        for &b in &order[s + 1..] {
+            let (j, pb) = plates[b];
+            if pb.aabb.0[k] > pa.aabb.1[k] + floor {
+                break;
+            }
+            if (dirty[i] || dirty[j]) && one_plane(&pa, &pb, floor) {
+                pairs.push((i.min(j), i.max(j)));
+            }
+        }
+    }
+    pairs.sort_unstable();
+    pairs
 }
 
 /// The axis along which boxes cover the least of their common span, summed: sweeping

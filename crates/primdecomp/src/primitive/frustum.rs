@@ -152,6 +152,24 @@ mod tests {
         (norm(madd(d, b, -t)) - r, (-t).max(t - len))
     }
 
+    /// Points of the surface of the frustum of centre `c`, unit axis `a`, half-height
+    /// `h` and end radii `r0`, `r1`: 16 around it at five heights, its rims among them.
+    fn surface_points(c: V3, a: V3, h: f64, (r0, r1): (f64, f64)) -> Vec<V3> {
+        let u = normalize(cross(a, [a[1], a[2], -a[0]])).unwrap();
+        let v = cross(a, u);
+        let mut points = Vec::with_capacity(5 * 16);
+        for i in 0..5 {
+            let s = i as f64 / 4.0;
+            let r = r0 + (r1 - r0) * s;
+            let centre = madd(c, a, (2.0 * s - 1.0) * h);
+            for j in 0..16 {
+                let th = j as f64 / 16.0 * std::f64::consts::TAU;
+                points.push(madd(madd(centre, u, r * th.cos()), v, r * th.sin()));
+            }
+        }
+        points
+    }
+
     /// Frustums from long to 1e5 times shorter than their radius, with any taper, at
     /// offsets up to 5 times their size: every point of the fitted solid's surface (rims
     /// and side at five heights) lies within the slack of the stored solid radially, and
@@ -198,25 +216,16 @@ mod tests {
             let eps = f64::EPSILON;
             let radial_tol = SLOPE_SLACK * m + 64.0 * eps * m;
             let axial_tol = big * (64.0 * eps * m / (2.0 * h) + 4.0 * eps) + 64.0 * eps * m;
-            let u = normalize(cross(a, [a[1], a[2], -a[0]])).unwrap();
-            let v = cross(a, u);
-            for i in 0..5 {
-                let s = i as f64 / 4.0;
-                let r = r0 + (r1 - r0) * s;
-                let centre = madd(c, a, (2.0 * s - 1.0) * h);
-                for j in 0..16 {
-                    let th = j as f64 / 16.0 * std::f64::consts::TAU;
-                    let x = madd(madd(centre, u, r * th.cos()), v, r * th.sin());
-                    let (radial, axial) = misses(&f, x);
-                    assert!(
-                        radial <= radial_tol && axial <= axial_tol,
-                        "trial {trial}: {f:?} misses {x:?} by {radial} radially, {axial} axially"
-                    );
-                    let (radial, _) = misses(&plain, x);
-                    if radial > radial_tol {
-                        plain_missed += 1;
-                        worst_plain = worst_plain.max(radial / m);
-                    }
+            for x in surface_points(c, a, h, (r0, r1)) {
+                let (radial, axial) = misses(&f, x);
+                assert!(
+                    radial <= radial_tol && axial <= axial_tol,
+                    "trial {trial}: {f:?} misses {x:?} by {radial} radially, {axial} axially"
+                );
+                let (radial, _) = misses(&plain, x);
+                if radial > radial_tol {
+                    plain_missed += 1;
+                    worst_plain = worst_plain.max(radial / m);
                 }
             }
         }

@@ -213,50 +213,55 @@ impl Tiled {
         if flags & !3 != 0 {
             return Err(r.bad(format!("unknown load flags {flags:#x}")));
         }
-        let len = r.u32()? as u64;
-        r.holds(len, 1, "bytes of settings")?;
-        let at = r.at;
-        let text = std::str::from_utf8(r.take(len as usize)?)
-            .map_err(|e| r.bad_at(at, format!("the settings are not UTF-8: {e}")))?;
-        let params = Params::from_json(text)
-            .map_err(|e| r.bad_at(at, format!("the settings do not read: {e}")))?;
-        if serde_json::to_string(&params).ok().as_deref() != Some(text) {
-            return Err(r.bad_at(at, "the settings are not in their written form".into()));
-        }
-        let tiles = r.u32()? as u64;
-        let tiles = r.count(tiles, "tile count", 1, MAX_TILES as u64)?;
-        let axis = r.u8()? as u64;
-        let axis = r.count(axis, "axis", 0, 2)?;
-        let lo = r.f64("the slabs' lower bound")?;
-        let scale = r.f64("bins per unit")?;
-        if scale < 0.0 {
-            return Err(r.bad(format!("bins per unit {scale} is negative")));
-        }
-        let faces = r.u64()?;
-        let faces = r.count(faces, "face count", 1, u32::MAX as u64)?;
-        let vertices = r.u64()?;
-        let vertices = r.count(vertices, "vertex count", 1, u32::MAX as u64)?;
-        let groups = r.u64()?;
-        let groups = r.count(groups, "group count", 1, faces as u64)?;
-        r.holds(tiles as u64, 12, "tiles")?;
-        let mut bin_tile = vec![0u16; BINS];
-        let mut tile_faces = Vec::with_capacity(tiles);
-        let mut previous = 0;
-        for t in 0..tiles {
-            let first = r.u32()? as u64;
-            let lowest = if t == 0 { 0 } else { previous };
-            let high = if t == 0 { 0 } else { BINS as u64 };
-            let first = r.count(first, &format!("tile {t}'s first bin"), lowest, high)?;
-            bin_tile[first..].fill(t as u16);
-            previous = first as u64;
-            let n = r.u64()?;
-            tile_faces.push(r.count(n, &format!("tile {t}'s faces"), 0, faces as u64)?);
-        }
-        if tile_faces.iter().sum::<usize>() != faces {
-            return Err(r.bad(format!("the tiles' faces do not add up to {faces}")));
-        }
+        let params = r.settings()?;
+        let plan = r.plan()?;
         r.end()?;
-        let plan = Plan {
+        Ok(Tiled {
+            plan,
+            params,
+            input,
+            flags,
+            id: plan_id(bytes),
+        })
+    }
+}
+
+/// The plan's parts, in the order [`Tiled::encode`] writes them.
+impl Reader<'_> {
+    /// The settings, as JSON in their written form (length first).
+    fn settings(&mut self) -> Result<Params> {
+        let len = self.u32()? as u64;
+        self.holds(len, 1, "bytes of settings")?;
+        let at = self.at;
+        let text = std::str::from_utf8(self.take(len as usize)?)
+            .map_err(|e| self.bad_at(at, format!("the settings are not UTF-8: {e}")))?;
+        let params = Params::from_json(text)
+            .map_err(|e| self.bad_at(at, format!("the settings do not read: {e}")))?;
+        if serde_json::to_string(&params).ok().as_deref() != Some(text) {
+            return Err(self.bad_at(at, "the settings are not in their written form".into()));
+        }
+        Ok(params)
+    }
+
+    /// The slabs and the input's counts, then each tile's first bin and faces.
+    fn plan(&mut self) -> Result<Plan> {
+        let tiles = self.u32()? as u64;
+        let tiles = self.count(tiles, "tile count", 1, MAX_TILES as u64)?;
+        let axis = self.u8()? as u64;
+        let axis = self.count(axis, "axis", 0, 2)?;
+        let lo = self.f64("the slabs' lower bound")?;
+        let scale = self.f64("bins per unit")?;
+        if scale < 0.0 {
+            return Err(self.bad(format!("bins per unit {scale} is negative")));
+        }
+        let faces = self.u64()?;
+        let faces = self.count(faces, "face count", 1, u32::MAX as u64)?;
+        let vertices = self.u64()?;
+        let vertices = self.count(vertices, "vertex count", 1, u32::MAX as u64)?;
+        let groups = self.u64()?;
+        let groups = self.count(groups, "group count", 1, faces as u64)?;
+        let (bin_tile, tile_faces) = self.tiles(tiles, faces)?;
+        Ok(Plan {
             tiles,
             axis,
             lo,
@@ -266,14 +271,30 @@ impl Tiled {
             faces,
             vertices,
             groups,
-        };
-        Ok(Tiled {
-            plan,
-            params,
-            input,
-            flags,
-            id: plan_id(bytes),
         })
+    }
+
+    /// Each bin's tile (a tile's first bins rising from 0) and each tile's faces,
+    /// adding up to `faces`.
+    fn tiles(&mut self, tiles: usize, faces: usize) -> Result<(Vec<u16>, Vec<usize>)> {
+        self.holds(tiles as u64, 12, "tiles")?;
+        let mut bin_tile = vec![0u16; BINS];
+        let mut tile_faces = Vec::with_capacity(tiles);
+        let mut previous = 0;
+        for t in 0..tiles {
+            let first = self.u32()? as u64;
+            let lowest = if t == 0 { 0 } else { previous };
+            let high = if t == 0 { 0 } else { BINS as u64 };
+            let first = self.count(first, &format!("tile {t}'s first bin"), lowest, high)?;
+            bin_tile[first..].fill(t as u16);
+            previous = first as u64;
+            let n = self.u64()?;
+            tile_faces.push(self.count(n, &format!("tile {t}'s faces"), 0, faces as u64)?);
+        }
+        if tile_faces.iter().sum::<usize>() != faces {
+            return Err(self.bad(format!("the tiles' faces do not add up to {faces}")));
+        }
+        Ok((bin_tile, tile_faces))
     }
 }
 
@@ -303,32 +324,9 @@ impl TileResult {
     /// corners in range, and a tile holds no more faces than six per input face.
     pub(super) fn decode(bytes: &[u8], tiled: &Tiled, tile: usize) -> Result<TileResult> {
         let mut r = Reader::open(bytes, TILE_MAGIC, "result")?;
-        if r.u128()? != tiled.id {
-            return Err(r.bad_at(
-                12,
-                "made for another plan (another input, settings or tile count)".into(),
-            ));
-        }
-        let index = r.u32()?;
-        if index as usize != tile {
-            return Err(r.bad_at(28, format!("holds tile {index}, not tile {tile}")));
-        }
+        r.this_tile(tiled.id, tile)?;
         let input_faces = tiled.plan.tile_faces[tile] as u64;
-        let used = match r.u8()? {
-            0 => None,
-            1 => {
-                let mut b = [0.0; 6];
-                for v in &mut b {
-                    *v = r.f64("the tile's box")?;
-                }
-                let (lo, hi) = ([b[0], b[1], b[2]], [b[3], b[4], b[5]]);
-                if (0..3).any(|k| lo[k] > hi[k]) || input_faces == 0 {
-                    return Err(r.bad("the tile's box is empty or for a tile without faces".into()));
-                }
-                Some((lo, hi))
-            }
-            v => return Err(r.bad(format!("the box flag is {v}, not 0 or 1"))),
-        };
+        let used = r.used_box(input_faces)?;
         let (nv, nf, nc) = (r.u32()? as u64, r.u32()? as u64, r.u32()? as u64);
         r.count(nf, "face count", 0, 6 * input_faces)?;
         r.holds(nv, 24, "vertices")?;
@@ -350,25 +348,72 @@ impl TileResult {
                 r.f64("a position")?,
             ]);
         }
+        r.faces(&mut out, nv, nf, nc)?;
+        r.end()?;
+        Ok(out)
+    }
+}
+
+/// A tile result's parts, in the order [`TileResult::encode`] writes them.
+impl Reader<'_> {
+    /// Refuses a result of another plan than `plan_id` or another tile than `tile`.
+    fn this_tile(&mut self, plan_id: u128, tile: usize) -> Result<()> {
+        if self.u128()? != plan_id {
+            return Err(self.bad_at(
+                12,
+                "made for another plan (another input, settings or tile count)".into(),
+            ));
+        }
+        let index = self.u32()?;
+        if index as usize != tile {
+            return Err(self.bad_at(28, format!("holds tile {index}, not tile {tile}")));
+        }
+        Ok(())
+    }
+
+    /// The box the tile's output uses, if any: flagged, never empty, and only for a
+    /// tile of `input_faces` > 0.
+    fn used_box(&mut self, input_faces: u64) -> Result<Option<(V3, V3)>> {
+        match self.u8()? {
+            0 => Ok(None),
+            1 => {
+                let mut b = [0.0; 6];
+                for v in &mut b {
+                    *v = self.f64("the tile's box")?;
+                }
+                let (lo, hi) = ([b[0], b[1], b[2]], [b[3], b[4], b[5]]);
+                if (0..3).any(|k| lo[k] > hi[k]) || input_faces == 0 {
+                    return Err(
+                        self.bad("the tile's box is empty or for a tile without faces".into())
+                    );
+                }
+                Ok(Some((lo, hi)))
+            }
+            v => Err(self.bad(format!("the box flag is {v}, not 0 or 1"))),
+        }
+    }
+
+    /// The `nf` faces' sizes (three corners or more, `nc` in all) and their `nc`
+    /// corners, each one of the `nv` vertices.
+    fn faces(&mut self, out: &mut TileResult, nv: u64, nf: u64, nc: u64) -> Result<()> {
         let mut total = 0u64;
         for _ in 0..nf {
-            let n = r.u32()? as u64;
+            let n = self.u32()? as u64;
             out.sizes
-                .push(r.count(n, "corners of a face", 3, nc)? as u32);
+                .push(self.count(n, "corners of a face", 3, nc)? as u32);
             total += n;
         }
         if total != nc {
-            return Err(r.bad(format!("the faces hold {total} corners, not {nc}")));
+            return Err(self.bad(format!("the faces hold {total} corners, not {nc}")));
         }
         if nc > 0 && nv == 0 {
-            return Err(r.bad("corners without vertices".into()));
+            return Err(self.bad("corners without vertices".into()));
         }
         for _ in 0..nc {
-            let c = r.u32()? as u64;
+            let c = self.u32()? as u64;
             out.corners
-                .push(r.count(c, "corner", 0, nv.saturating_sub(1))? as u32);
+                .push(self.count(c, "corner", 0, nv.saturating_sub(1))? as u32);
         }
-        r.end()?;
-        Ok(out)
+        Ok(())
     }
 }

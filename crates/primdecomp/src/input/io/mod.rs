@@ -512,21 +512,7 @@ pub(crate) fn load_with(path: &Path, options: &LoadOptions) -> Result<Mesh> {
     } else {
         crate::input::memory::Run::Cut
     };
-    if let Some(limit) = max_memory.filter(|&l| meta.len() > l) {
-        // The mapped file becomes resident as it is read: a file larger than the limit
-        // (a sparse file of zeros, say) cannot be read within it.
-        return Err(Error::format(
-            path,
-            format!(
-                "the file holds {}, more than the memory limit of {} (default: the memory \
-                 available now), and reading it maps it into memory whole; raise the limit \
-                 with --max-memory SIZE (in the library: the max_memory of \
-                 primdecomp::LoadOptions)",
-                crate::error::show_bytes(meta.len()),
-                crate::error::show_bytes(limit)
-            ),
-        ));
-    }
+    file_within(path, meta.len(), max_memory)?;
     let builder = if meta.len() == 0 {
         parse_bytes_with(&[], format, path, options)?
     } else {
@@ -564,4 +550,24 @@ pub(crate) fn load_with(path: &Path, options: &LoadOptions) -> Result<Mesh> {
         mesh.set_world_coordinates(&world);
     }
     Ok(mesh)
+}
+
+/// Refuses a file of `size` bytes over the memory limit: the mapped file becomes
+/// resident as it is read, so a file larger than the limit (a sparse file of zeros,
+/// say) cannot be read within it.
+fn file_within(path: &Path, size: u64, max_memory: Option<u64>) -> Result<()> {
+    match max_memory.filter(|&l| size > l) {
+        None => Ok(()),
+        Some(limit) => Err(Error::format(
+            path,
+            format!(
+                "the file holds {}, more than the memory limit of {} (default: the memory \
+                 available now), and reading it maps it into memory whole; raise the limit \
+                 with --max-memory SIZE (in the library: the max_memory of \
+                 primdecomp::LoadOptions)",
+                crate::error::show_bytes(size),
+                crate::error::show_bytes(limit)
+            ),
+        )),
+    }
 }

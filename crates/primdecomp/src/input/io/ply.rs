@@ -246,21 +246,10 @@ impl PlyLayout {
                         return Ok(None);
                     };
                     if el.role == ElRole::Vertex {
-                        let mut coords = [(0, Ty::F32); 3];
-                        let mut off = 0;
-                        for p in &el.props {
-                            if let (Role::Coord(k), Kind::Scalar(t)) = (p.role, p.kind) {
-                                coords[k] = (off, t);
-                            }
-                            off += match p.kind {
-                                Kind::Scalar(t) => t.size(),
-                                Kind::List(..) => 0,
-                            };
-                        }
                         let Ok(start) = usize::try_from(at) else {
                             return Ok(None);
                         };
-                        vertex = Some((start, size, coords));
+                        vertex = Some((start, size, coord_offsets(el)));
                     }
                     at = at.saturating_add(el.count.saturating_mul(size as u64));
                 }
@@ -268,7 +257,25 @@ impl PlyLayout {
         }
         Ok(None)
     }
+}
 
+/// The offset in a record of element `el` (of fixed size) and the type of x, y and z.
+fn coord_offsets(el: &Element) -> [(usize, Ty); 3] {
+    let mut coords = [(0, Ty::F32); 3];
+    let mut off = 0;
+    for p in &el.props {
+        if let (Role::Coord(k), Kind::Scalar(t)) = (p.role, p.kind) {
+            coords[k] = (off, t);
+        }
+        off += match p.kind {
+            Kind::Scalar(t) => t.size(),
+            Kind::List(..) => 0,
+        };
+    }
+    coords
+}
+
+impl PlyLayout {
     /// Checks that `bytes` hold every vertex record and that every vertex is finite,
     /// visiting each world position in order; the error is the whole parse's.
     pub(crate) fn vertices(

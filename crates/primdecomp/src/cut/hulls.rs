@@ -129,25 +129,57 @@ impl<'a> NodeHulls<'a> {
     }
 
     /// The sets of the nodes above the subtrees of `grain` faces ([`Self::splits`])
-    /// from `n` down, children before parents, the two halves of each on their own
-    /// threads; the nodes below them are in `stored`.
+    /// from `n` down, children before parents: by height above those subtrees, the
+    /// nodes of one height on their own threads; the nodes below them are in
+    /// `stored`. No recursion and no search through what is found: a merge tree can
+    /// be a chain as deep as it has faces (a plate taking one face after another).
     fn above(&self, n: u32, grain: usize, stored: &HashMap<u32, NodeSets>) -> Vec<(u32, NodeSets)> {
-        if !self.splits(n, grain) {
-            return Vec::new();
+        let mut found: HashMap<u32, NodeSets> = HashMap::new();
+        for level in self.heights_above(n, grain) {
+            let done: Vec<(u32, NodeSets)> = level
+                .par_iter()
+                .map_init(HullScratch::default, |s, &m| {
+                    let kid = |c: u32| found.get(&c).or_else(|| stored.get(&c));
+                    let [a, b] = self.tree.nodes[m as usize].children;
+                    (m, self.joined(m, [kid(a), kid(b)], s))
+                })
+                .collect();
+            found.extend(done);
         }
-        let [a, b] = self.tree.nodes[n as usize].children;
-        let (mut found, more) = rayon::join(
-            || self.above(a, grain, stored),
-            || self.above(b, grain, stored),
-        );
-        found.extend(more);
-        let kid = |c: u32| {
-            let here = found.iter().rev().find(|(m, _)| *m == c).map(|(_, s)| s);
-            here.or_else(|| stored.get(&c))
-        };
-        let out = self.joined(n, [kid(a), kid(b)], &mut HullScratch::default());
-        found.push((n, out));
+        let mut found: Vec<(u32, NodeSets)> = found.into_iter().collect();
+        found.sort_unstable_by_key(|(m, _)| *m);
         found
+    }
+
+    /// The nodes that split from `n` down, by their height above the nodes that do
+    /// not (0: both children below `grain` faces or leaves): each node's children
+    /// come in a lower entry.
+    fn heights_above(&self, n: u32, grain: usize) -> Vec<Vec<u32>> {
+        // Parents before children; reversed, children before parents.
+        let (mut order, mut stack) = (Vec::new(), vec![n]);
+        while let Some(m) = stack.pop() {
+            if self.splits(m, grain) {
+                order.push(m);
+                stack.extend(self.tree.nodes[m as usize].children);
+            }
+        }
+        let mut height: HashMap<u32, usize> = HashMap::with_capacity(order.len());
+        let mut levels: Vec<Vec<u32>> = Vec::new();
+        for &m in order.iter().rev() {
+            let kids = self.tree.nodes[m as usize].children;
+            let h = kids
+                .iter()
+                .filter_map(|c| height.get(c))
+                .map(|h| h + 1)
+                .max()
+                .unwrap_or(0);
+            height.insert(m, h);
+            if levels.len() <= h {
+                levels.resize(h + 1, Vec::new());
+            }
+            levels[h].push(m);
+        }
+        levels
     }
 
     /// The subtrees below the nodes that [split](Self::splits), each of at most
@@ -308,6 +340,7 @@ mod tests {
     use super::*;
     use crate::input::adjacency::{face_pairs, neighbour_lists};
     use crate::math::Sym3;
+    use crate::merge::TreeHulls;
 
     /// On the demo scene, faces merged into a tree: every stored node's hull reaches
     /// as far in every direction as the points of its faces found directly (the same
@@ -321,7 +354,7 @@ mod tests {
         let members: Vec<Vec<u32>> = (0..faces).map(|f| vec![f]).collect();
         let q = vec![Sym3::ZERO; members.len()];
         let log: Vec<(u32, u32)> = (1..faces).map(|f| (f / 2, f)).collect();
-        let hulls = crate::merge::TreeHulls::default();
+        let hulls = TreeHulls::default();
         let tree = MergeTree::build(&members, &q, &log, hulls, faces as usize);
         let pairs = face_pairs(&mesh.face_offsets, &mesh.face_indices);
         let (offsets, adj) = neighbour_lists(mesh.face_count(), &pairs);
@@ -379,5 +412,52 @@ mod tests {
                 .collect();
             assert_eq!(stored.boundary, expected, "node {n}'s boundary");
         }
+    }
+
+    /// A merge tree that is one chain as deep as the mesh has faces (a plate taking
+    /// one face after another: the greedy loop's cheapest merges on a flat floor)
+    /// builds its sets without recursing once per level, and the root's hull is the
+    /// floor's. The recursive build overflowed the stack on such chains.
+    #[test]
+    fn a_chain_as_deep_as_the_faces_builds() {
+        let n = 100u32;
+        let positions: Vec<[f64; 3]> = (0..=n)
+            .flat_map(|i| (0..=n).map(move |j| [f64::from(i), f64::from(j), 0.0]))
+            .collect();
+        let triangles: Vec<[u32; 3]> = (0..n)
+            .flat_map(|i| (0..n).map(move |j| (i, j)))
+            .flat_map(|(i, j)| {
+                let a = i * (n + 1) + j;
+                [[a, a + n + 1, a + 1], [a + 1, a + n + 1, a + n + 2]]
+            })
+            .collect();
+        let mesh = Mesh::from_triangles(&positions, &triangles).expect("a grid");
+        let faces = mesh.face_count() as u32;
+        let members: Vec<Vec<u32>> = (0..faces).map(|f| vec![f]).collect();
+        let q = vec![Sym3::ZERO; members.len()];
+        let log: Vec<(u32, u32)> = (1..faces).map(|f| (0, f)).collect();
+        let tree = MergeTree::build(&members, &q, &log, TreeHulls::default(), faces as usize);
+        let pairs = face_pairs(&mesh.face_offsets, &mesh.face_indices);
+        let (offsets, adj) = neighbour_lists(mesh.face_count(), &pairs);
+        let adj = FaceAdjacency {
+            offsets: &offsets,
+            adj: &adj,
+        };
+        let sets = NodeHulls::build(&tree, &mesh, adj, 1e-12 * mesh.diagonal(), 0);
+        let root = tree.roots[0];
+        assert_eq!(tree.faces(root).len(), faces as usize);
+        let mut hull = sets.stored[&root].hull.clone();
+        hull.sort_unstable();
+        // The root's hull as gathering every face finds it: the grid's four corners.
+        let mut direct = NodeSets::default();
+        sets.gather(root, &mut HullScratch::default(), &mut direct);
+        direct.hull.sort_unstable();
+        assert_eq!(hull, direct.hull);
+        assert_eq!(hull.len(), 4, "{:?}", hull.iter().map(|&v| mesh.pos(v)));
+        assert!(
+            sets.stored.len() >= faces as usize / 2,
+            "{} stored",
+            sets.stored.len()
+        );
     }
 }

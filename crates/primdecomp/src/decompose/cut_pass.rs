@@ -30,7 +30,10 @@ pub(crate) fn run(
     let (seeds, around) = Seeds::build(&mut clock, mesh, params, &mut graph, &first)?;
     let fitter = fitter_of(mesh, &graph, params, &around);
     let plan = (first, &targets[..], largest);
-    let (tree, stats) = grow_tree(&mut clock, &fitter, params, (seeds, &around), plan)?;
+    let (tree, stats, signs) = grow_tree(&mut clock, &fitter, params, (seeds, &around), plan)?;
+    // The cut's fits read the faces' outer sides, found by the merge stage after parts.
+    let around = around.with_signs(signs);
+    let fitter = fitter_of(mesh, &graph, params, &around);
     // What the merge stage freed goes back to the system before the largest
     // structure of the pass is built.
     crate::input::memory::release_freed();
@@ -64,14 +67,15 @@ fn loop_plan(
 }
 
 /// The merge tree: seeding, then merging down to the roots with every merge logged
-/// (Alg. 1's loop); and the run's counters.
+/// (Alg. 1's loop); the run's counters, and the faces' outer sides where the merge
+/// stage found them (`Around::with_signs`).
 fn grow_tree(
     clock: &mut Clock,
     fitter: &Fitter,
     params: &Params,
     (seeds, around): (Seeds, &Around),
     (first, targets, largest): (FirstPhase, &[usize], usize),
-) -> Result<(MergeTree, Stats)> {
+) -> Result<(MergeTree, Stats, Option<Vec<i8>>)> {
     let mesh = fitter.input.mesh;
     // One primitive per face seeds the volumes (Alg. 1, line 2).
     let volumes = stages::seed(clock, fitter, seeds.quadrics(), &first)?;
@@ -85,7 +89,8 @@ fn grow_tree(
         hulls_over: tree::tree_hulls_over(mesh, params, largest),
     };
     let (input, mut stats) = seeds.merge_input(volumes, around, params);
-    let (merged, log) = merge_stage(clock, fitter, (input, first), (targets, keep), &mut stats)?;
+    let (merged, log, signs) =
+        merge_stage(clock, fitter, (input, first), (targets, keep), &mut stats)?;
     if merged.stopped {
         return Err(Error::Cancelled);
     }
@@ -94,7 +99,7 @@ fn grow_tree(
     let tree = clock.step(Stage::Postprocess, "tree", || {
         tree::merge_tree(fitter, &merged, log, &face_q)
     })?;
-    Ok((tree, stats))
+    Ok((tree, stats, signs))
 }
 
 /// The levels: the cut of the merge tree at each target where the error is (0032),

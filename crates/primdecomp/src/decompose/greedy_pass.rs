@@ -34,7 +34,10 @@ pub(crate) fn run(
     // Greedy merging down through every target in one pass (Alg. 1's loop), keeping
     // the clusters at each.
     let at = (&targets[..], AtTargets);
-    let (merged, ()) = merge_stage(&mut clock, &fitter, (input, first), at, &mut stats)?;
+    let (merged, (), signs) = merge_stage(&mut clock, &fitter, (input, first), at, &mut stats)?;
+    // Output fits read the faces' outer sides, found by the merge stage after parts.
+    let around = around.with_signs(signs);
+    let fitter = fitter_of(mesh, &graph, params, &around);
     // The input's triangles, once, for thickened plates (--min-thickness), and its
     // interior for plates thickened inward.
     let tris = stages::triangles(&mut clock, mesh, params.plates.min_thickness > 0.0)?;

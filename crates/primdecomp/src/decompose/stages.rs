@@ -14,8 +14,8 @@ use crate::input::triangles::Triangles;
 use crate::math::{Sym3, V3};
 use crate::merge::cost::InputView;
 use crate::merge::setup::{pricing, seed_volumes};
-use crate::merge::stage::{merge, FirstPhase, Keep, MergeInput, Surface};
-use crate::merge::{components, Fitter, MergeOutput};
+use crate::merge::stage::{merge, FirstPhase, Keep, MergeInput, Merged, Surface};
+use crate::merge::{components, Fitter};
 use crate::output::result::{Decomposition, InputInfo, Level, Stats};
 use crate::params::Params;
 use crate::postprocess;
@@ -85,6 +85,18 @@ pub(crate) struct Around {
     solid: Option<Solid>,
 }
 
+impl Around {
+    /// With the faces' outer sides the merge stage found, where they were left to it
+    /// ([`merge_stage`]): a fitter of the input before then prices merges but must
+    /// not fit output.
+    pub(crate) fn with_signs(self, signs: Option<Vec<i8>>) -> Around {
+        Around {
+            surface: self.surface.with_signs(signs),
+            ..self
+        }
+    }
+}
+
 impl Seeds {
     /// The stages from the quadrics to the interior, for a loop that starts at `first`.
     pub(crate) fn build(
@@ -121,7 +133,9 @@ impl Seeds {
                 if per_part {
                     pairs = None;
                 }
-                Surface::build(mesh, &graph.weld, lists, params, go_on)
+                // After spatial parts, which side of each face is outside is found
+                // beside the parts' last ones (`MergeInput::late_signs`).
+                Surface::build(mesh, &graph.weld, lists, params, per_part, go_on)
             })?
             .ok_or(Error::Cancelled)?;
         // The input's interior, where merges are priced by the air they add (--solid).
@@ -158,6 +172,7 @@ impl Seeds {
             pairs: self.pairs,
             lists: (around.surface.offsets.clone(), around.surface.adj.clone()),
             tangent_eps: params.fit.tangent_eps,
+            late_signs: around.surface.signs_late(),
         };
         (input, self.stats)
     }
@@ -200,14 +215,15 @@ pub(crate) fn seed(
 
 /// The merge stage: the loop from `first` through `targets` on `input`, keeping what
 /// the pass asks besides the snapshots (`keep`: nothing, or the merge tree), its counts
-/// added to `stats`.
+/// added to `stats`; and the faces' outer sides if they were left to it (for
+/// [`Around::with_signs`]).
 pub(crate) fn merge_stage<K: Keep>(
     clock: &mut Clock,
     fitter: &Fitter,
     (input, first): (MergeInput, FirstPhase),
     (targets, keep): (&[usize], K),
     stats: &mut Stats,
-) -> Result<(MergeOutput, K::Log)> {
+) -> Result<Merged<K::Log>> {
     clock.stage(Stage::Merge, "merge", |go_on, laps| {
         merge(fitter, input, first, targets, keep, stats, go_on, laps)
     })

@@ -161,7 +161,7 @@ pub fn merge_components(
     let (parts, targets) = groups(comps);
     let kind = Kind::Components { traced };
     let faces = partition::FaceData::Given { q, volume, pairs };
-    partition::merge_groups(fitter, faces, &parts, targets, kind, merged)
+    partition::merge_groups(fitter, faces, &parts, (targets, kind), merged, &|_| {})
 }
 
 /// The global loop's snapshots at every target of `targets` (decreasing) that is at

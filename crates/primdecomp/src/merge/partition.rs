@@ -28,7 +28,7 @@ use crate::input::mesh::Mesh;
 use crate::math::Sym3;
 use crate::progress::Checkpoint;
 use rayon::prelude::*;
-use std::sync::atomic::{AtomicUsize, Ordering::Relaxed};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering::Relaxed};
 
 /// The input's adjacency as shared CSR neighbour lists (offsets, neighbours).
 pub type Lists = (std::sync::Arc<[u32]>, std::sync::Arc<[u32]>);
@@ -177,18 +177,22 @@ pub fn phase1_size(largest_target: usize) -> usize {
 }
 
 /// Phase 1: splits the faces into `k` parts and merges each (in parallel, one task per
-/// part) down to its share of [`phase1_size`], in proportion to its faces (at least
-/// one cluster). `q` and `volume` are the faces' operators and seed volumes, `pairs`
-/// the input's adjacent face pairs; `merged` is told, now and then, how many merges
-/// all parts have done so far (progress only).
+/// part) down to its share of [`phase1_size`] of `largest_target`, in proportion to
+/// its faces (at least one cluster). `q` and `volume` are the faces' operators and
+/// seed volumes, `pairs` the input's adjacent face pairs; `merged` is told, now and
+/// then, how many merges all parts have done so far (progress only). `then` runs once,
+/// on the first thread to find no part left, while the others finish theirs (work the
+/// parts do not need, which would otherwise leave a thread idle: [`in_turn`]); it gets
+/// whether to go on.
 pub fn merge_parts(
     fitter: &Fitter,
     faces: FaceData,
-    largest_target: usize,
-    k: usize,
+    (largest_target, k): (usize, usize),
     merged: &(dyn Fn(usize) -> bool + Sync),
+    then: &(dyn Fn(Checkpoint) + Sync),
 ) -> Phase1 {
     let Some(parts) = split_checked(fitter.input.mesh, k, &|_| merged(0)) else {
+        then(&|_| false);
         return Phase1 {
             stopped: true,
             ..Phase1::default()
@@ -200,7 +204,14 @@ pub fn merge_parts(
         .iter()
         .map(|part| (size * part.len() as u128).div_ceil(all.max(1)).max(1) as usize)
         .collect();
-    merge_groups(fitter, faces, &parts, targets, Kind::Spatial, merged)
+    merge_groups(
+        fitter,
+        faces,
+        &parts,
+        (targets, Kind::Spatial),
+        merged,
+        then,
+    )
 }
 
 /// What phase 1 reads of each face: its operator, seed volume and adjacent pairs.
@@ -233,15 +244,15 @@ pub(super) enum Kind {
 }
 
 /// Merges each of `parts` (faces increasing within a part) down to its target, in
-/// parallel, one task per part, as `kind` says.
-#[allow(clippy::too_many_arguments)]
+/// parallel, one task per part, as `kind` says; `then` runs once meanwhile, on the
+/// first thread out of parts ([`merge_parts`]).
 pub(super) fn merge_groups(
     fitter: &Fitter,
     faces: FaceData,
     parts: &[Vec<u32>],
-    targets: Vec<usize>,
-    kind: Kind,
+    (targets, kind): (Vec<usize>, Kind),
     merged: &(dyn Fn(usize) -> bool + Sync),
+    then: &(dyn Fn(Checkpoint) + Sync),
 ) -> Phase1 {
     let local_pairs = match faces {
         FaceData::Given { pairs, .. } => {
@@ -267,7 +278,9 @@ pub(super) fn merge_groups(
         let lp = std::mem::take(&mut *local_pairs[i].lock().unwrap_or_else(|e| e.into_inner()));
         merge_one(fitter, faces, part, lp, target, kind, &report)
     };
-    let mut results: Vec<(usize, (Groups, MergeOutput))> = in_turn(parts.len(), run);
+    let go_on = |_: f64| merged(done.iter().map(|d| d.load(Relaxed)).sum());
+    let mut results: Vec<(usize, (Groups, MergeOutput))> =
+        in_turn(parts.len(), run, || then(&go_on));
     // Each part's result in its place: what follows never depends on which thread
     // merged which part, or when.
     results.sort_unstable_by_key(|r| r.0);
@@ -288,10 +301,18 @@ pub(super) fn merge_groups(
 /// halves, each run through in order unless the other thread idles while a half's
 /// later items wait), which left one thread idle for the difference between the
 /// halves' sums: 0.23 of 3.48 CPU seconds on the dragon
-/// (docs/decisions/perf-partitions.md, "Parts taken in turn"). Returns each index with
-/// its result, in no particular order.
-fn in_turn<R: Send>(n: usize, run: impl Fn(usize) -> R + Sync) -> Vec<(usize, R)> {
+/// (docs/decisions/perf-partitions.md, "Parts taken in turn"). `then` runs once, on
+/// the first thread to find no index left, while the others finish their last run:
+/// the last part otherwise ran alone (docs/decisions/perf-partitions.md, "Work
+/// beside the last parts"); what it runs in parallel itself the others join as they
+/// finish. Returns each index with its result, in no particular order.
+fn in_turn<R: Send>(
+    n: usize,
+    run: impl Fn(usize) -> R + Sync,
+    then: impl Fn() + Sync,
+) -> Vec<(usize, R)> {
     let next = AtomicUsize::new(0);
+    let taken = AtomicBool::new(false);
     let threads = rayon::current_num_threads().clamp(1, n.max(1));
     (0..threads)
         .into_par_iter()
@@ -301,6 +322,9 @@ fn in_turn<R: Send>(n: usize, run: impl Fn(usize) -> R + Sync) -> Vec<(usize, R)
             loop {
                 let i = next.fetch_add(1, Relaxed);
                 if i >= n {
+                    if !taken.swap(true, Relaxed) {
+                        then();
+                    }
                     break mine;
                 }
                 mine.push((i, run(i)));

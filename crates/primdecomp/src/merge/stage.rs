@@ -31,20 +31,26 @@ pub(crate) struct Surface {
     pub(crate) signs: Vec<i8>,
     /// Whether an output fit reads the surface (else only the clusters do).
     used: bool,
+    /// `signs` are still to come: left to the merge stage, which finds them beside
+    /// the spatial parts ([`MergeInput::late_signs`]).
+    late: bool,
 }
 
 impl Surface {
     /// From the faces' neighbour lists (`adjacency::neighbour_lists`); `None` when
-    /// `go_on` said stop.
+    /// `go_on` said stop. With `late`, which side of each face is outside is left to
+    /// the merge stage ([`MergeInput::late_signs`]); the surface then waits for
+    /// [`Surface::with_signs`].
     pub(crate) fn build(
         mesh: &Mesh,
         weld: &Weld,
         (offsets, adj): (Vec<u32>, Vec<u32>),
         params: &Params,
+        late: bool,
         go_on: Checkpoint,
     ) -> Option<Surface> {
         let used = params.plates.rim_weight != 0.0 || params.plates.flush_plates;
-        let signs = match used {
+        let signs = match used && !late {
             true => orient::face_signs_checked(mesh, weld, &offsets, &adj, go_on)?,
             false => Vec::new(),
         };
@@ -53,7 +59,26 @@ impl Surface {
             adj: adj.into(),
             signs,
             used,
+            late: used && late,
         })
+    }
+
+    /// Whether the faces' outer sides are still to come from the merge stage.
+    pub(crate) fn signs_late(&self) -> bool {
+        self.late
+    }
+
+    /// The surface with the outer sides the merge stage found (`None`: it had them
+    /// already).
+    pub(crate) fn with_signs(self, signs: Option<Vec<i8>>) -> Surface {
+        match signs {
+            Some(signs) => Surface {
+                signs,
+                late: false,
+                ..self
+            },
+            None => self,
+        }
     }
 
     pub(crate) fn adjacency(&self) -> FaceAdjacency<'_> {
@@ -77,6 +102,12 @@ pub(crate) struct MergeInput {
     pub(crate) lists: partition::Lists,
     /// `Fit::tangent_eps`, for spatial parts' own operators.
     pub(crate) tangent_eps: f64,
+    /// Which side of each face is outside is found here, not before: only output
+    /// fits read it, and the merge loop fits none until its first target. After
+    /// spatial parts it is found on the first of rayon's threads that runs out of
+    /// parts, while the others finish theirs ([`partition::merge_parts`]'s `then`):
+    /// the orientation walk is serial, and the parts' last one ran alone.
+    pub(crate) late_signs: bool,
 }
 
 /// What a pass keeps of the merge loop besides the clusters at its targets: nothing
@@ -219,6 +250,11 @@ impl FirstPhase {
     }
 }
 
+/// What the merge stage returns: the loop's output, what the pass keeps besides
+/// ([`Keep::Log`]), and the faces' outer sides where they were left to it
+/// ([`MergeInput::late_signs`]; `None` otherwise, or when told to stop).
+pub(crate) type Merged<L> = (MergeOutput, L, Option<Vec<i8>>);
+
 /// The merge stage: the first phase, then the global loop through the targets it did
 /// not reach, and what `keep` asks besides ([`Keep`]). Progress is the fraction of the
 /// merges down to the last target.
@@ -232,18 +268,33 @@ pub(crate) fn merge<K: Keep>(
     stats: &mut Stats,
     go_on: Checkpoint,
     laps: &mut PhaseTimes,
-) -> (MergeOutput, K::Log) {
+) -> Merged<K::Log> {
     let last = *targets.last().expect("validated: one target or more");
     let total = fitter.input.mesh.face_count().saturating_sub(last).max(1) as f64;
     let merged_so_far = |m: usize| go_on(m as f64 / total);
     let from_faces = !matches!(first, FirstPhase::Parts { .. });
+    // The faces' outer sides where they were left to the stage: beside spatial parts
+    // (`after_parts`), else now.
+    let mut signs = None;
+    if input.late_signs && !matches!(first, FirstPhase::Parts { .. }) {
+        signs = late_signs(fitter, &input.lists, go_on);
+        if signs.is_none() {
+            return (MergeOutput::stopped(), K::Log::default(), None);
+        }
+    }
     // Where the global loop starts: one cluster per face, or after spatial parts or
     // whole components were merged first.
     let started = match first {
         FirstPhase::Faces => Some(one_per_face(input)),
-        FirstPhase::Parts { parts, target } => {
-            after_parts(fitter, input, parts, target, stats, laps, &merged_so_far)
-        }
+        FirstPhase::Parts { parts, target } => after_parts(
+            fitter,
+            input,
+            (parts, target),
+            &mut signs,
+            stats,
+            laps,
+            &merged_so_far,
+        ),
         FirstPhase::Components(comps) => {
             // The merge tree needs every merge traced, whatever the targets (`Keep`).
             let every = keep.traces_every_merge();
@@ -260,7 +311,7 @@ pub(crate) fn merge<K: Keep>(
         }
     };
     let Some((clusters, early, replayed)) = started else {
-        return (MergeOutput::stopped(), K::Log::default());
+        return (MergeOutput::stopped(), K::Log::default(), None);
     };
     let Some(clusters) = clusters else {
         // Every target reached: the output holds the replayed merges only.
@@ -268,7 +319,16 @@ pub(crate) fn merge<K: Keep>(
             snapshots: early,
             ..MergeOutput::default()
         };
-        return (out, K::join(replayed, K::Log::default(), true));
+        return (out, K::join(replayed, K::Log::default(), true), signs);
+    };
+    // The loop's output fits read the faces' outer sides.
+    let full;
+    let fitter = match &signs {
+        Some(s) => {
+            full = with_signs(fitter, s);
+            &full
+        }
+        None => fitter,
     };
     // The global loop through the targets left, its progress counted on from the first
     // phase's merges.
@@ -279,7 +339,29 @@ pub(crate) fn merge<K: Keep>(
     let log = K::join(replayed, log, from_faces);
     out.snapshots.splice(0..0, early);
     add_loop(stats, &out);
-    (out, log)
+    (out, log, signs)
+}
+
+/// `fitter` reading `signs` as the faces' outer sides.
+fn with_signs<'s>(fitter: &Fitter<'s>, signs: &'s [i8]) -> Fitter<'s> {
+    Fitter {
+        input: super::cost::InputView {
+            face_sign: signs,
+            ..fitter.input
+        },
+        pricing: fitter.pricing,
+    }
+}
+
+/// The faces' outer sides (`orient`), from the input's neighbour lists; `None` when
+/// `go_on` said stop.
+fn late_signs(
+    fitter: &Fitter,
+    (offsets, adj): &partition::Lists,
+    go_on: Checkpoint,
+) -> Option<Vec<i8>> {
+    let (mesh, weld) = (fitter.input.mesh, fitter.input.weld);
+    orient::face_signs_checked(mesh, weld, offsets, adj, go_on)
 }
 
 /// Where the first phase leaves the merge stage: the clusters the global loop goes on
@@ -304,8 +386,8 @@ fn one_per_face(input: MergeInput) -> Started {
 fn after_parts(
     fitter: &Fitter,
     input: MergeInput,
-    parts: usize,
-    target: usize,
+    (parts, target): (usize, usize),
+    signs: &mut Option<Vec<i8>>,
     stats: &mut Stats,
     laps: &mut PhaseTimes,
     merged_so_far: &(dyn Fn(usize) -> bool + Sync),
@@ -316,18 +398,31 @@ fn after_parts(
         pairs,
         lists,
         tangent_eps,
+        late_signs: late,
     } = input;
+    // The faces' outer sides, if left to the stage, on the first thread out of parts.
+    let found = std::sync::Mutex::new(None);
+    let then = |go_on: Checkpoint| {
+        if late {
+            let s = late_signs(fitter, &lists, go_on);
+            *found.lock().unwrap_or_else(|e| e.into_inner()) = Some(s);
+        }
+    };
     let p1 = laps.time("partitions", || {
         let faces = partition::FaceData::PerPart {
             tangent_eps,
             lists: &lists,
         };
-        partition::merge_parts(fitter, faces, target, parts, merged_so_far)
+        partition::merge_parts(fitter, faces, (target, parts), merged_so_far, &then)
     });
     stats.merges = p1.merges;
     add_fits(stats, p1.fits);
     if p1.stopped {
         return None;
+    }
+    if late {
+        // `None` inside: the walk was told to stop.
+        *signs = Some(found.into_inner().unwrap_or_else(|e| e.into_inner())??);
     }
     // Phase 2 starts from one cluster per group (linear in the faces). The
     // faces' pairs, operators and volumes are done with: the groups hold theirs.
@@ -400,3 +495,6 @@ pub(crate) fn add_fits(stats: &mut Stats, fits: crate::merge::FitCounts) {
     stats.fits_at_once += fits.eager;
     stats.fits_when_popped += fits.lazy;
 }
+
+#[cfg(test)]
+mod tests;

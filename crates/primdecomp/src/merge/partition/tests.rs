@@ -85,18 +85,22 @@ fn split_is_deterministic_and_spatial() {
 
 /// Every index is run once and its result comes back with it, whether the pool
 /// has one thread, two or three and whatever the runs cost (uneven work, more
-/// threads than indices, none at all).
+/// threads than indices, none at all); the work after them runs once.
 #[test]
 fn in_turn_runs_each_index_once() {
     use crate::merge::driver::tests::in_pool;
     for threads in [1, 2, 3] {
         for n in [0, 1, 2, 7, 16] {
             let runs: Vec<AtomicUsize> = (0..n).map(|_| AtomicUsize::new(0)).collect();
+            let thens = AtomicUsize::new(0);
             let mut got = in_pool(threads, || {
-                in_turn(n, |i| {
+                let run = |i: usize| {
                     runs[i].fetch_add(1, Relaxed);
                     // Uneven work: later indices cost more.
                     (0..(i as u64 + 1) * 20_000).fold(i as u64, |a, x| a.wrapping_mul(31) ^ x)
+                };
+                in_turn(n, run, || {
+                    thens.fetch_add(1, Relaxed);
                 })
             });
             got.sort_unstable_by_key(|r| r.0);
@@ -109,6 +113,7 @@ fn in_turn_runs_each_index_once() {
                 .collect();
             assert_eq!(got, want, "{threads} threads, {n} indices");
             assert!(runs.iter().all(|r| r.load(Relaxed) == 1));
+            assert_eq!(thens.load(Relaxed), 1, "{threads} threads, {n} indices");
         }
     }
 }
@@ -130,7 +135,7 @@ fn parts_merge_alike_on_any_thread_count() {
         };
         let run = |threads| {
             in_pool(threads, || {
-                let p1 = merge_parts(fitter, own, 6, 7, &|_| true);
+                let p1 = merge_parts(fitter, own, (6, 7), &|_| true, &|_| {});
                 let summary: Vec<_> = p1
                     .parts
                     .iter()
@@ -180,7 +185,7 @@ fn phase_two_lists_name_adjacent_groups() {
                 volume: vols,
                 pairs,
             };
-            let p1 = merge_parts(fitter, given, 4, 4, &|_| true);
+            let p1 = merge_parts(fitter, given, (4, 4), &|_| true, &|_| {});
             (
                 {
                     let (o, a) = crate::input::adjacency::neighbour_lists(q.len(), pairs);
@@ -228,10 +233,10 @@ fn groups_start_phase_two_as_faces_do() {
             tangent_eps: p.fit.tangent_eps,
             lists: &lists,
         };
-        let p1 = merge_parts(fitter, given, 4, 4, &|_| true);
+        let p1 = merge_parts(fitter, given, (4, 4), &|_| true, &|_| {});
         let old = clusters(p1, q.to_vec(), vols.to_vec(), lists.clone(), &|_| true);
         let mut old = old.expect("not stopped");
-        let p1 = merge_parts(fitter, own, 4, 4, &|_| true);
+        let p1 = merge_parts(fitter, own, (4, 4), &|_| true, &|_| {});
         let mut new = group_clusters(p1, q.len(), &lists, &|_| true).expect("not stopped");
         let (ro, rn) = (old.roots(), new.roots());
         assert!(ro.len() > 4);

@@ -34,20 +34,24 @@ else if (!fs.existsSync(bin)) skip = missing(`no primdecomp binary at ${bin} (ca
 
 const work = fs.mkdtempSync(path.join(os.tmpdir(), 'primdecomp-hostile-view-'));
 // File names cannot hold '/': the closing tags come through JSON strings instead.
-const MESH = '<!--<script>mesh & "q\'.obj';
+// The mesh's name also holds U+2028, U+2029 and ESC, and is long (190 bytes); its
+// objects' names (`o`, `g`) are 300 characters of the same, decomposed per object.
+const MESH = '<!--<script>mesh & "q\'\u2028\u2029\u001b[31m' + 'x'.repeat(150) + '.obj';
 const RESULT = 'r<!--<script>\u0007.json';
 const HULLS = 'hulls<script>.obj';
+const OBJECT = '</script><!--<script>\u2028\u2029\u001b\u0007&"\''.repeat(20).slice(0, 300);
 const COLLIDERS = ['</script><script>window.pwned = 1</script>', '<!--<script>', '\u2028</SCRIPT\u001b[31m'];
 
 function run(args) {
   return execFileSync(bin, args, { cwd: work, encoding: 'utf8', stdio: ['ignore', 'pipe', 'pipe'] });
 }
 
-/** Two boxes side by side, as OBJ. */
+/** Two boxes side by side, as OBJ: two objects with hostile names. */
 function twoBoxes() {
   let s = '';
   const quads = [[0, 2, 3, 1], [4, 5, 7, 6], [0, 1, 5, 4], [2, 6, 7, 3], [0, 4, 6, 2], [1, 3, 7, 5]];
   for (let b = 0; b < 2; b++) {
+    s += b === 0 ? `o ${OBJECT}\n` : `g ${OBJECT.slice(0, 40)}B\n`;
     for (let i = 0; i < 8; i++) s += `v ${3 * b + (i & 1)} ${(i >> 1) & 1} ${(i >> 2) & 1}\n`;
     for (const q of quads) s += 'f ' + q.map((i) => 8 * b + i + 1).join(' ') + '\n';
   }
@@ -61,7 +65,9 @@ const requests = [];
 before(async () => {
   if (skip) return;
   fs.writeFileSync(path.join(work, MESH), twoBoxes());
-  run(['decompose', MESH, '-n', '4', '-o', RESULT, '--obj', HULLS, '--quiet']);
+  run(['decompose', MESH, '--per-object', '-n', '4', '-o', RESULT, '--obj', HULLS, '--quiet']);
+  const objects = JSON.parse(fs.readFileSync(path.join(work, RESULT), 'utf8')).objects.map((o) => o.name);
+  assert.deepEqual(objects, [OBJECT, OBJECT.slice(0, 40) + 'B'], 'the objects keep their names');
   // An evaluation of the result and the hulls, its collider names then made hostile.
   run(['eval', '--input', MESH, RESULT, HULLS, '--samples', '2000', '--json', 'e.json']);
   const ev = JSON.parse(fs.readFileSync(path.join(work, 'e.json'), 'utf8'));

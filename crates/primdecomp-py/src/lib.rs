@@ -186,9 +186,14 @@ pub(crate) fn watched<T: Send>(
     };
     let done = AtomicBool::new(false);
     let caller = std::thread::current();
-    let mut raised: Option<PyErr> = None;
-    let mut reported: Option<(Stage, f64)> = None;
-    let start = std::time::Instant::now();
+    let mut watch = Watch {
+        params,
+        callback,
+        stop,
+        start: std::time::Instant::now(),
+        reported: None,
+        raised: None,
+    };
     let out = std::thread::scope(|s| {
         let worker = s.spawn(|| {
             let out = catch_unwind(AssertUnwindSafe(|| work(&shared)));
@@ -199,32 +204,7 @@ pub(crate) fn watched<T: Send>(
         loop {
             // Read before the look, so that the last look sees the last update.
             let finished = done.load(Ordering::Acquire);
-            if raised.is_none() {
-                let now = *shared.latest.lock().unwrap_or_else(|e| e.into_inner());
-                let step = || -> PyResult<()> {
-                    py.check_signals()?;
-                    if let Some(stop) = stop {
-                        if stop.bind(py).call_method0("is_set")?.is_truthy()? {
-                            return Err(PyKeyboardInterrupt::new_err("stopped"));
-                        }
-                    }
-                    if let (Some(cb), Some((stage, f))) = (callback, now) {
-                        if reported != now {
-                            // The Python side passes a callback of three arguments (it
-                            // wraps one of two): stage, its fraction, seconds left.
-                            let spent = start.elapsed().as_secs_f64();
-                            let left = stage.seconds_left(f, params, spent);
-                            cb.call1(py, (stage.name(), f, left))?;
-                        }
-                    }
-                    Ok(())
-                };
-                if let Err(e) = step() {
-                    raised = Some(e);
-                    shared.cancel.store(true, Ordering::Relaxed);
-                }
-                reported = now;
-            }
+            watch.look(py, &shared);
             if finished {
                 break;
             }
@@ -232,7 +212,7 @@ pub(crate) fn watched<T: Send>(
         }
         worker.join()
     });
-    if let Some(e) = raised {
+    if let Some(e) = watch.raised {
         return Err(e);
     }
     match out {
@@ -241,6 +221,53 @@ pub(crate) fn watched<T: Send>(
             "primdecomp panicked (a bug, please report it): {}",
             panic_message(p)
         ))),
+    }
+}
+
+/// What [`watched`]'s thread keeps between its looks at the run.
+struct Watch<'a> {
+    params: &'a Params,
+    callback: Option<&'a PyObject>,
+    stop: Option<&'a PyObject>,
+    start: std::time::Instant,
+    /// The progress the callback was last called with.
+    reported: Option<(Stage, f64)>,
+    /// The first error a look raised (Ctrl-C, `stop` set, the callback's own).
+    raised: Option<PyErr>,
+}
+
+impl Watch<'_> {
+    /// One look: until an error was raised, checks signals and `stop` and reports
+    /// new progress; an error cancels the work and is kept for the caller.
+    fn look(&mut self, py: Python<'_>, shared: &Shared) {
+        if self.raised.is_some() {
+            return;
+        }
+        let now = *shared.latest.lock().unwrap_or_else(|e| e.into_inner());
+        if let Err(e) = self.step(py, now) {
+            self.raised = Some(e);
+            shared.cancel.store(true, Ordering::Relaxed);
+        }
+        self.reported = now;
+    }
+
+    fn step(&self, py: Python<'_>, now: Option<(Stage, f64)>) -> PyResult<()> {
+        py.check_signals()?;
+        if let Some(stop) = self.stop {
+            if stop.bind(py).call_method0("is_set")?.is_truthy()? {
+                return Err(PyKeyboardInterrupt::new_err("stopped"));
+            }
+        }
+        if let (Some(cb), Some((stage, f))) = (self.callback, now) {
+            if self.reported != now {
+                // The Python side passes a callback of three arguments (it wraps
+                // one of two): stage, its fraction, seconds left.
+                let spent = self.start.elapsed().as_secs_f64();
+                let left = stage.seconds_left(f, self.params, spent);
+                cb.call1(py, (stage.name(), f, left))?;
+            }
+        }
+        Ok(())
     }
 }
 

@@ -183,6 +183,86 @@ def test_batch_on_local_ray(cli, tmp_path):
         ray.shutdown()
 
 
+def test_batch_on_ray_cancels_its_tasks_on_ctrl_c(tmp_path, monkeypatch):
+    """Ctrl-C during a Ray batch raises KeyboardInterrupt soon after and cancels every
+    task not finished: one not started never runs, a running one stops at its native
+    watcher's next look (Ray raises KeyboardInterrupt in it). The signal goes once two
+    Ray workers run the task (their process title says so) and a tenth of one input's
+    uninterrupted run (timed just before on the same machine) has passed: each
+    cancelled task's ray.get must raise TaskCancelledError (a running task that went
+    on would give its row) and none may write its output. All are settled within one
+    input's run: Ray's own latency under load (0.3 to 0.6 of that run, seen on two
+    loaded cores) rules out a tighter bound. Without the cancel, the two running tasks
+    and two more wrote their outputs after the KeyboardInterrupt."""
+    ray = pytest.importorskip("ray") if not os.environ.get("CI") else __import__("ray")
+    if not Path("/proc/self/cmdline").exists():
+        pytest.skip("no /proc to see which processes run a task")
+    src = made_up("lumpy.ply")
+    (tmp_path / "in").mkdir()
+    inputs = [shutil.copy(src, tmp_path / "in" / f"lumpy{k}.ply") for k in range(6)]
+    t0 = time.perf_counter()
+    primdecomp.decompose_file(src, targets=[1])
+    whole = time.perf_counter() - t0
+
+    ray.init(num_cpus=2, include_dashboard=False, log_to_driver=False)
+    cancelled = []
+    cancel = ray.cancel
+
+    def recorded(ref, **kw):
+        cancelled.append(ref)
+        return cancel(ref, **kw)
+
+    monkeypatch.setattr(ray, "cancel", recorded)
+    done = threading.Event()
+    sent = []
+
+    def running():
+        """Processes running the batch's task: Ray titles them `ray::TASK`."""
+        n = 0
+        for p in Path("/proc").iterdir():
+            try:
+                n += p.name.isdigit() and (p / "cmdline").read_bytes().startswith(b"ray::decompose_one")
+            except OSError:
+                pass
+        return n
+
+    def ctrl_c():
+        while not done.is_set() and running() < 2:
+            time.sleep(0.02)
+        time.sleep(whole / 10)
+        if not done.is_set():
+            sent.append(time.perf_counter())
+            os.kill(os.getpid(), signal.SIGINT)
+
+    sender = threading.Thread(target=ctrl_c)
+    sender.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            primdecomp.batch.run(inputs, tmp_path / "out", use_ray=True, targets=[1])
+        outcomes = []
+        for ref in cancelled:
+            try:
+                outcomes.append(ray.get(ref)["status"])
+            except ray.exceptions.TaskCancelledError:
+                outcomes.append("cancelled")
+        settled = time.perf_counter()
+    finally:
+        done.set()
+        sender.join()
+        ray.shutdown()
+    assert sent
+    assert settled - sent[0] < whole, (settled - sent[0], whole)
+    # Six tasks on two CPUs: at least four were not finished, and every one of them
+    # was cancelled.
+    assert len(cancelled) >= 4, cancelled
+    assert outcomes == ["cancelled"] * len(cancelled), outcomes
+    out = tmp_path / "out"
+    written = [p for p in out.iterdir() if p.name.endswith(".primdecomp.json")]
+    assert len(written) == 6 - outcomes.count("cancelled"), (written, outcomes)
+    assert not (out / primdecomp.batch.SUMMARY).exists()
+    assert all(p.name.endswith(".primdecomp.json") for p in out.iterdir())
+
+
 def test_batch_thread_pool_fallback_and_folder(cli, tmp_path):
     folder = tmp_path / "meshes"
     folder.mkdir()

@@ -561,23 +561,61 @@ fn cell_size(ext: P3, target: f64) -> f64 {
 /// of its vertices within `tol` (equivalently, the whole face: shapes are
 /// convex).  Uses a uniform grid over the shapes' AABBs; parallel over faces.
 pub fn faces_enclosed(shapes: &[Shape], faces: &[Vec<[f64; 3]>], tol: f64) -> Vec<bool> {
+    faces_enclosed_with_work(shapes, faces, tol).0
+}
+
+/// The work [`faces_enclosed`] does, counted: what grows with the input when
+/// the grid stops pruning, and what a timed test would only see through a
+/// clock.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct EnclosureWork {
+    /// The grid's cells plus its (shape, cell) registrations.
+    pub grid: usize,
+    /// Shapes whose box a face was tested against, over all faces.
+    pub candidates: usize,
+}
+
+impl EnclosureWork {
+    pub fn total(&self) -> usize {
+        self.grid + self.candidates
+    }
+}
+
+/// [`faces_enclosed`] and the work it did.
+pub fn faces_enclosed_with_work(
+    shapes: &[Shape],
+    faces: &[Vec<[f64; 3]>],
+    tol: f64,
+) -> (Vec<bool>, EnclosureWork) {
     let boxes: Vec<(P3, P3)> = shapes
         .iter()
         .map(|s| (s.lo.map(|x| x - tol), s.hi.map(|x| x + tol)))
         .collect();
     if boxes.is_empty() {
-        return vec![false; faces.len()];
+        return (vec![false; faces.len()], EnclosureWork::default());
     }
     let grid = Grid::build(&boxes);
-    faces
+    let (inside, tried): (Vec<bool>, Vec<usize>) = faces
         .par_iter()
         .map(|f| face_enclosed(shapes, &boxes, &grid, f, tol))
-        .collect()
+        .unzip();
+    let work = EnclosureWork {
+        grid: grid.starts.len() - 1 + grid.items.len(),
+        candidates: tried.iter().sum(),
+    };
+    (inside, work)
 }
 
-fn face_enclosed(shapes: &[Shape], boxes: &[(P3, P3)], grid: &Grid, f: &[P3], tol: f64) -> bool {
+/// Whether some shape encloses the face, and how many candidate shapes were tried.
+fn face_enclosed(
+    shapes: &[Shape],
+    boxes: &[(P3, P3)],
+    grid: &Grid,
+    f: &[P3],
+    tol: f64,
+) -> (bool, usize) {
     let Some(&first) = f.first() else {
-        return true; // no vertices: trivially inside any shape (shapes non-empty)
+        return (true, 0); // no vertices: trivially inside any shape (shapes non-empty)
     };
     let (mut lo, mut hi) = (first, first);
     for v in f {
@@ -586,10 +624,13 @@ fn face_enclosed(shapes: &[Shape], boxes: &[(P3, P3)], grid: &Grid, f: &[P3], to
             hi[i] = hi[i].max(v[i]);
         }
     }
-    grid.candidates(first).iter().any(|&k| {
+    let mut tried = 0;
+    let inside = grid.candidates(first).iter().any(|&k| {
+        tried += 1;
         let (bl, bh) = boxes[k as usize];
         (0..3).all(|i| bl[i] <= lo[i] && hi[i] <= bh[i])
             && f.iter()
                 .all(|&v| shape_contains(&shapes[k as usize], v, tol))
-    })
+    });
+    (inside, tried)
 }

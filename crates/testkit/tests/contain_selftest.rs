@@ -7,7 +7,9 @@
 //! a point `D` inside and `D` outside along the outward normal, and the
 //! tolerance behaviour at `D/2` and `2D`.
 
-use primdecomp_testkit::contain::{faces_enclosed, parse_primitive, shape_contains, Shape};
+use primdecomp_testkit::contain::{
+    faces_enclosed, faces_enclosed_with_work, parse_primitive, shape_contains, Shape,
+};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use serde_json::{json, Value};
@@ -621,14 +623,20 @@ fn aabb_is_conservative_and_tight() {
     }
 }
 
+/// The grid keeps the work linear: eight times the shapes and the faces at the
+/// same density cost about eight times the work (all pairs would cost 64), and a
+/// face tries a few shapes, not all 2,000. Counted, not timed.
 #[test]
 fn scale_200k_faces_2000_shapes() {
+    let (small_shapes, small_faces) = random_scene(19, 250, 25_000);
+    let (_, small) = faces_enclosed_with_work(&small_shapes, &small_faces, 1e-6);
     let (shapes, faces) = random_scene(18, 2_000, 200_000);
-    let start = std::time::Instant::now();
-    let fast = faces_enclosed(&shapes, &faces, 1e-6);
-    let secs = start.elapsed().as_secs_f64();
-    println!("faces_enclosed: 200k faces × 2000 shapes in {secs:.3} s");
-    assert!(secs < 30.0, "too slow: {secs} s");
+    let (fast, large) = faces_enclosed_with_work(&shapes, &faces, 1e-6);
+    let ratio = large.total() as f64 / small.total() as f64;
+    let per_face = large.candidates as f64 / faces.len() as f64;
+    println!("work: {small:?} → {large:?}, ratio {ratio:.2}, {per_face:.2} candidates a face");
+    assert!(ratio < 12.0, "8× the input costs {ratio:.1}× the work");
+    assert!(per_face < 20.0, "{per_face:.1} candidate shapes a face");
     let sample: Vec<usize> = (0..faces.len()).step_by(40).collect();
     let subset: Vec<Vec<P3>> = sample.iter().map(|&i| faces[i].clone()).collect();
     let want = brute_force(&shapes, &subset, 1e-6);

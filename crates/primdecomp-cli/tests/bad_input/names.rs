@@ -12,12 +12,13 @@ use std::path::Path;
 use std::process::Command;
 
 /// The names, and what each tests.
-const NAMES: [(&str, &str); 13] = [
+const NAMES: [(&str, &str); 14] = [
     ("world", "MuJoCo's world body"),
     ("a\u{0}b", "a NUL"),
     ("\u{1b}[31mred\u{7}", "ESC and BEL"),
     ("tab\tnl\ncr\r", "tab, line feed, carriage return"),
     ("a\u{fffe}b\u{ffff}", "the non-characters U+FFFE, U+FFFF"),
+    ("a\u{2028}b\u{2029}c", "U+2028 and U+2029"),
     ("<!--<script>", "markup"),
     ("q\"'&<>", "quotes and XML's specials"),
     ("\u{202e}txt.exe", "a right-to-left override"),

@@ -30,6 +30,8 @@ pub struct Case {
 }
 
 const SPHERE: &str = r#"{"kind":"sphere","center":[0,0,0],"radius":1}"#;
+const BOX: &str =
+    r#"{"kind":"box","center":[0,0,0],"rotation":[0,0,0,1],"half_extents":[0.5,0.5,0.5]}"#;
 const PRISM: &str = r#"{"kind":"prism","center":[0,0,0],"rotation":[0,0,0,1],"half_x":0.5,"half_y":0.5,"half_z_top":0.25,"half_z_bottom":0.5}"#;
 
 /// A result document of these primitives.
@@ -124,6 +126,13 @@ pub fn cases() -> Vec<Case> {
         case("export r.json -o o.glb", "`version` 1e400", |d| write(d, "r.json", result(SPHERE).replace("\"version\":1", "\"version\":1e400")), r(&["number out of range"])),
         // Numbers that cannot be written as finite, loadable numbers.
         case("export r.json -o o.glb", "a coordinate of 1e308", |d| write(d, "r.json", result(&SPHERE.replace("[0,0,0]", "[1e308,0,0]"))), r(&["primitive 0 (sphere): it reaches 1e308", "±1e70"])),
+        case("export r.json -o o.glb", "a half-extent of 1e308", |d| write(d, "r.json", result(&BOX.replace("[0.5,", "[1e308,"))), r(&["r.json: primitive 0 (box): a radius or half-extent of 1e308 is beyond 1e60"])),
+        case("export r.json -o o.gltf", "the same to glTF (text)", |d| write(d, "r.json", result(&BOX.replace("[0.5,", "[1e308,"))), r(&["r.json: primitive 0 (box): a radius or half-extent of 1e308"])),
+        case("export r.json -o o.urdf", "the same to URDF", |d| write(d, "r.json", result(&BOX.replace("[0.5,", "[1e308,"))), r(&["r.json: primitive 0 (box): a radius or half-extent of 1e308"])),
+        case("export r.json -o o.usda", "the same to USD", |d| write(d, "r.json", result(&BOX.replace("[0.5,", "[1e308,"))), r(&["r.json: primitive 0 (box): a radius or half-extent of 1e308"])),
+        case("export r.json -o o.tscn", "the same to Godot", |d| write(d, "r.json", result(&BOX.replace("[0.5,", "[1e308,"))), r(&["r.json: primitive 0 (box): a radius or half-extent of 1e308"])),
+        case("export r.json -o o.xml --format mjcf", "the same to MuJoCo", |d| write(d, "r.json", result(&BOX.replace("[0.5,", "[1e308,"))), r(&["r.json: primitive 0 (box): a radius or half-extent of 1e308"])),
+        case("export r.json -o o.glb", "a half-extent NaN (not JSON)", |d| write(d, "r.json", result(&BOX.replace("[0.5,", "[NaN,"))), r(&["r.json: invalid primdecomp JSON"])),
         case("export r.json -o o.usda", "an object scale of 1e308", |d| write(d, "r.json", result(SPHERE).replace("]}", &format!(r#"],"objects":[{{"name":"a","translation":[0,0,0],"rotation":[0,0,0,1],"scale":1e308,"primitives":[{SPHERE}]}}]}}"#))), r(&["object 0 (\"a\"): primitive 0 (sphere)"])),
         case("export r.json -o o.glb", "a sphere at 1e60 (readable, not writable in f32)", |d| write(d, "r.json", result(&SPHERE.replace("[0,0,0]", "[1e60,0,0]"))), r(&["o.glb: cannot be written as glb", "beyond the ±1e18"])),
         case("export r.json -o o.glb --scale 1e-45", "the same, scaled into range", |d| write(d, "r.json", result(&SPHERE.replace("[0,0,0]", "[1e60,0,0]"))), done(|d, _| {
@@ -145,6 +154,8 @@ pub fn cases() -> Vec<Case> {
             write(d, "r.json", result(&SPHERE.replace("[0,0,0]", "[1e308,0,0]")));
         }, r(&["r.json: primitive 0 (sphere): it reaches 1e308"])),
         case("view r.json --no-input -o v.html", "view of a result at 1e308", |d| write(d, "r.json", result(&SPHERE.replace("[0,0,0]", "[1e308,0,0]"))), r(&["r.json: primitive 0 (sphere): it reaches 1e308"])),
+        case("view r.json --no-input -o v.html", "view of a box of half-extent 1e308", |d| write(d, "r.json", result(&BOX.replace("[0.5,", "[1e308,"))), r(&["r.json: primitive 0 (box): a radius or half-extent of 1e308 is beyond 1e60"])),
+        case("view r.json --no-input -o v.html", "view of a half-extent NaN (not JSON)", |d| write(d, "r.json", result(&BOX.replace("[0.5,", "[NaN,"))), r(&["r.json: invalid JSON"])),
         case("view r.json --no-input --eval e.json -o v.html", "an evaluation file without `format`", |d| {
             sphere(d);
             write(d, "e.json", r#"{"colliders":[{"collider":"r.json","hausdorff":0.1}]}"#);

@@ -85,20 +85,41 @@ def _skipped(input_path, output, doc):
             "seconds": 0.0, "error": None}
 
 
+def _ray_results(ray, refs, keep):
+    """Calls keep(ref) for each of the Ray tasks `refs` as it finishes. On Ctrl-C
+    (or any exception, keep's own included) every task not yet finished is cancelled
+    before the exception goes on: one not started never starts, and a running one
+    gets a KeyboardInterrupt, which the native watcher sees at its next look, so the
+    cluster stops working for a run nobody waits for."""
+    pending = list(refs)
+    try:
+        while pending:
+            done, pending = ray.wait(pending, num_returns=1)
+            for ref in done:
+                keep(ref)
+    except BaseException:
+        for ref in pending:
+            try:
+                ray.cancel(ref)
+            except Exception:  # finished meanwhile, or the cluster is gone
+                pass
+        raise
+
+
 def _run_ray(jobs, settings, ray):
     task = ray.remote(num_cpus=1, max_retries=0)(decompose_one)
     refs = {task.remote(i, o, settings): (i, o) for i, o in jobs}
     rows = {}
-    pending = list(refs)
-    while pending:
-        done, pending = ray.wait(pending, num_returns=1)
-        for ref in done:
-            i, o = refs[ref]
-            try:
-                rows[i] = ray.get(ref)
-            except Exception as e:  # the worker died (a crash, OOM kill): report it
-                rows[i] = {"input": i, "output": o, "status": "error", "primitives": None,
-                           "faces": None, "seconds": None, "error": f"{type(e).__name__}: {e}"}
+
+    def keep(ref):
+        i, o = refs[ref]
+        try:
+            rows[i] = ray.get(ref)
+        except Exception as e:  # the worker died (a crash, OOM kill): report it
+            rows[i] = {"input": i, "output": o, "status": "error", "primitives": None,
+                       "faces": None, "seconds": None, "error": f"{type(e).__name__}: {e}"}
+
+    _ray_results(ray, refs, keep)
     return rows
 
 

@@ -33,7 +33,7 @@ from pathlib import Path as _Path
 
 from . import _native
 from . import Result, _path, _progress, _settings
-from .batch import _ray_or_none
+from .batch import _ray_or_none, _ray_results
 
 __all__ = ["decompose", "tile_file"]
 
@@ -127,11 +127,7 @@ def decompose(path, tiles, cache_dir=None, *, use_ray=None, progress=None, **set
     if ray is not None:
         task = ray.remote(num_cpus=1, max_retries=1)(_run_tile)
         refs = {task.options(scheduling_strategy="SPREAD").remote(path, plan, t): t for t in todo}
-        pending = list(refs)
-        while pending:
-            done, pending = ray.wait(pending, num_returns=1)
-            for ref in done:
-                keep(refs[ref], *ray.get(ref))
+        _ray_results(ray, refs, lambda ref: keep(refs[ref], *ray.get(ref)))
     else:
         for t in todo:
             keep(t, _native.tiles_run(path, plan, t), None)

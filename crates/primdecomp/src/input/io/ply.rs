@@ -80,28 +80,10 @@ fn ascii_by_lines(
     if body.len() < min_bytes || rayon::current_num_threads() < 2 {
         return None;
     }
-    // Elements with data, each with the index of its first line.
     let els: Vec<&Element> = h.elements.iter().filter(|e| !e.props.is_empty()).collect();
-    let mut first = Vec::with_capacity(els.len() + 1);
-    let mut lines = 0u64;
-    for el in &els {
-        first.push(lines);
-        lines = lines.checked_add(el.count)?;
-    }
-    first.push(lines);
-    // Blocks of whole lines: each but the last ends just after a newline.
-    let mut ends = Vec::new();
-    let mut at = 0;
-    while at < body.len() {
-        let want = (at + block.max(1)).min(body.len());
-        let end = body[want..]
-            .iter()
-            .position(|&c| c == b'\n')
-            .map_or(body.len(), |i| want + i + 1);
-        ends.push(end);
-        at = end;
-    }
-    let starts: Vec<usize> = std::iter::once(0).chain(ends.iter().copied()).collect();
+    let first = first_lines(&els)?;
+    let lines = *first.last()?;
+    let (starts, ends) = line_blocks(body, block);
     let newlines: Vec<u64> = (starts.par_iter().zip(&ends))
         .map(|(&a, &b)| body[a..b].iter().filter(|&&c| c == b'\n').count() as u64)
         .collect();
@@ -117,6 +99,43 @@ fn ascii_by_lines(
     if blocks.iter().map(|b| b.1).sum::<u64>() != lines {
         return None;
     }
+    Some(joined(blocks, &els))
+}
+
+/// The index of each element's first line, then the number of lines in all;
+/// `None` if that overflows.
+fn first_lines(els: &[&Element]) -> Option<Vec<u64>> {
+    let mut first = Vec::with_capacity(els.len() + 1);
+    let mut lines = 0u64;
+    for el in els {
+        first.push(lines);
+        lines = lines.checked_add(el.count)?;
+    }
+    first.push(lines);
+    Some(first)
+}
+
+/// Blocks of whole lines of about `block` bytes, as (starts, ends): each block
+/// but the last ends just after a newline.
+fn line_blocks(body: &[u8], block: usize) -> (Vec<usize>, Vec<usize>) {
+    let mut ends = Vec::new();
+    let mut at = 0;
+    while at < body.len() {
+        let want = (at + block.max(1)).min(body.len());
+        let end = body[want..]
+            .iter()
+            .position(|&c| c == b'\n')
+            .map_or(body.len(), |i| want + i + 1);
+        ends.push(end);
+        at = end;
+    }
+    let starts = std::iter::once(0).chain(ends.iter().copied()).collect();
+    (starts, ends)
+}
+
+/// The blocks' meshes joined in order, face offsets shifted past the faces before
+/// them, and the strips' elements counted as skipped, as the serial reader does.
+fn joined(blocks: Vec<(MeshBuilder, u64)>, els: &[&Element]) -> MeshBuilder {
     let mut out = MeshBuilder::new();
     for (b, _) in blocks {
         out.positions.extend(b.positions);
@@ -129,7 +148,7 @@ fn ascii_by_lines(
     for el in els.iter().filter(|el| el.role == ElRole::Strips) {
         out.skipped.other += el.count;
     }
-    Some(out)
+    out
 }
 
 /// The elements of `els` (each starting at its line in `first`) on the lines of

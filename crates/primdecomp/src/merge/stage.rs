@@ -276,7 +276,7 @@ pub(crate) fn merge<K: Keep>(
     // The faces' outer sides where they were left to the stage: beside spatial parts
     // (`after_parts`), else now.
     let mut signs = None;
-    if input.late_signs && !matches!(first, FirstPhase::Parts { .. }) {
+    if input.late_signs && from_faces {
         signs = late_signs(fitter, &input.lists, go_on);
         if signs.is_none() {
             return (MergeOutput::stopped(), K::Log::default(), None);

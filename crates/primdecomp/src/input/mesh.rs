@@ -353,16 +353,28 @@ impl Mesh {
     /// The first vertex (0-based) farther than [`MAX_EXTENT`] from the re-centring
     /// origin on some axis (or not finite), with that distance.
     pub(crate) fn vertex_out_of_range(&self) -> Option<(usize, f64)> {
-        let far = |i: usize| {
-            let d = self.x[i].abs().max(self.y[i].abs()).max(self.z[i].abs());
-            // A NaN distance (from an infinite offset) counts as out of range.
-            (d.is_nan() || d > MAX_EXTENT).then_some((i, d))
-        };
-        (0..self.vertex_count()).find_map(far)
+        let reach = |i: usize| self.x[i].abs().max(self.y[i].abs()).max(self.z[i].abs());
+        // A NaN distance (from an infinite offset) counts as out of range.
+        let out = |d: f64| d.is_nan() || d > MAX_EXTENT;
+        // One pass without an early exit first (it vectorises): almost every mesh has
+        // no such vertex, and the search below finds the same first one when it has.
+        if !(0..self.vertex_count()).fold(false, |any, i| any | out(reach(i))) {
+            return None;
+        }
+        (0..self.vertex_count()).find_map(|i| out(reach(i)).then(|| (i, reach(i))))
     }
     /// The first vertex (0-based) with a world coordinate beyond ±[`MAX_POSITION`],
     /// with that coordinate.
     pub(crate) fn vertex_beyond_position_limit(&self) -> Option<(usize, f64)> {
+        // The largest magnitude is over the limit iff some coordinate's is (a NaN's
+        // never is): one pass without an early exit first, as above.
+        let beyond = |i: usize| {
+            let p = self.world_pos(i as u32);
+            (p[0].abs() > MAX_POSITION) | (p[1].abs() > MAX_POSITION) | (p[2].abs() > MAX_POSITION)
+        };
+        if !(0..self.vertex_count()).fold(false, |any, i| any | beyond(i)) {
+            return None;
+        }
         (0..self.vertex_count()).find_map(|i| {
             let p = self.world_pos(i as u32);
             let c = p
@@ -393,7 +405,38 @@ impl Mesh {
         }
     }
     /// Bounding box (min, max) of the vertices faces use, relative to [`Mesh::centre`].
+    ///
+    /// The vertices the faces use are marked first, then each axis' bounds taken over
+    /// the marked ones in vertex order: a bound that is not zero is the one value
+    /// below (above) every other, so the order it was found in cannot change its bits,
+    /// and it is the bound of the corners in face order ([`Self::aabb_by_corners`]). A
+    /// zero bound may be +0 or −0 depending on that order: then the corners are
+    /// walked in face order after all.
     pub fn aabb(&self) -> (V3, V3) {
+        let mut used = vec![false; self.vertex_count()];
+        for &v in &self.face_indices {
+            used[v as usize] = true;
+        }
+        let mut lo = [f64::INFINITY; 3];
+        let mut hi = [f64::NEG_INFINITY; 3];
+        for (k, c) in [&self.x, &self.y, &self.z].into_iter().enumerate() {
+            for (&v, &u) in c.iter().zip(&used) {
+                if u {
+                    lo[k] = lo[k].min(v);
+                    hi[k] = hi[k].max(v);
+                }
+            }
+        }
+        if lo.iter().chain(&hi).any(|&b| b == 0.0) {
+            return self.aabb_by_corners();
+        }
+        if lo[0] > hi[0] {
+            return ([0.0; 3], [0.0; 3]);
+        }
+        (lo, hi)
+    }
+    /// [`Self::aabb`] as every corner of every face in order gives it.
+    pub(crate) fn aabb_by_corners(&self) -> (V3, V3) {
         aabb_of(self.face_indices.iter().map(|&v| self.pos(v)))
     }
     /// Length of the bounding box's diagonal: the scale every relative setting
@@ -458,5 +501,117 @@ fn check_indices(indices: &[u32], vertices: usize) -> crate::error::Result<()> {
             path: "<mesh>".into(),
             msg: format!("face index {v} is out of range ({vertices} vertices)"),
         }),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+
+    /// A mesh over `x`, `y`, `z` as given (no re-centring), of triangles `tris`.
+    fn raw(x: Vec<f64>, y: Vec<f64>, z: Vec<f64>, tris: &[[u32; 3]]) -> Mesh {
+        Mesh {
+            x,
+            y,
+            z,
+            offset: [0.0; 3],
+            face_offsets: (0..=tris.len() as u32).map(|f| 3 * f).collect(),
+            face_indices: tris.iter().flatten().copied().collect(),
+            skipped: SkipCounts::default(),
+            object_starts: Vec::new(),
+            object_transforms: Vec::new(),
+        }
+    }
+
+    fn bits((lo, hi): (V3, V3)) -> [u64; 6] {
+        let b = |v: f64| v.to_bits();
+        [b(lo[0]), b(lo[1]), b(lo[2]), b(hi[0]), b(hi[1]), b(hi[2])]
+    }
+
+    /// A coordinate drawn from few values, signed zeros, NaN and infinities among
+    /// them, so that bounds tie, are zero of either sign, or are not finite.
+    fn coordinate(r: &mut impl Rng, zeros: bool) -> f64 {
+        match r.gen_range(0..12) {
+            0 if zeros => 0.0,
+            1 if zeros => -0.0,
+            2 => f64::NAN,
+            3 => f64::INFINITY,
+            4 => f64::NEG_INFINITY,
+            5 => 1e65,
+            6 => -1e75,
+            k => f64::from(k) * r.gen_range(-2.0..2.0),
+        }
+    }
+
+    /// The bounds from the used vertices are bit for bit those of the corners in face
+    /// order, on meshes with unused vertices, repeated values, signed zeros, NaN and
+    /// infinite coordinates, flat axes and no faces at all.
+    #[test]
+    fn aabb_is_the_corners_bounds_bit_for_bit() {
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(7);
+        for case in 0..4000 {
+            let n = r.gen_range(1..40);
+            let zeros = case % 2 == 0;
+            let mut axis = |flat: bool| -> Vec<f64> {
+                (0..n)
+                    .map(|_| match flat {
+                        true => [0.0, -0.0][r.gen_range(0..2)],
+                        false => coordinate(&mut r, zeros),
+                    })
+                    .collect()
+            };
+            let (x, y, z) = (axis(case % 7 == 0), axis(case % 5 == 0), axis(false));
+            let faces = r.gen_range(0..6);
+            let tris: Vec<[u32; 3]> = (0..faces)
+                .map(|_| [0; 3].map(|_| r.gen_range(0..n as u32)))
+                .collect();
+            let m = raw(x, y, z, &tris);
+            assert_eq!(bits(m.aabb()), bits(m.aabb_by_corners()), "case {case}");
+        }
+    }
+
+    /// The checks of the coordinates' reach find the same first vertex and value as a
+    /// search alone (the old form), with and without vertices beyond the limits.
+    #[test]
+    fn extent_checks_find_the_first_vertex_beyond_the_limits() {
+        let first_far = |m: &Mesh| {
+            (0..m.vertex_count()).find_map(|i| {
+                let d = m.x[i].abs().max(m.y[i].abs()).max(m.z[i].abs());
+                (d.is_nan() || d > MAX_EXTENT).then_some((i, d))
+            })
+        };
+        let first_beyond = |m: &Mesh| {
+            (0..m.vertex_count()).find_map(|i| {
+                let p = m.world_pos(i as u32);
+                let c = p
+                    .into_iter()
+                    .fold(0.0f64, |m, c| if c.abs() > m.abs() { c } else { m });
+                (c.abs() > MAX_POSITION).then_some((i, c))
+            })
+        };
+        let same = |a: Option<(usize, f64)>, b: Option<(usize, f64)>| {
+            a.map(|(i, v)| (i, v.to_bits())) == b.map(|(i, v)| (i, v.to_bits()))
+        };
+        let mut r = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+        for case in 0..4000 {
+            let n = r.gen_range(0..30);
+            let mut axis = || -> Vec<f64> {
+                (0..n)
+                    .map(|_| match r.gen_range(0..40) {
+                        0 => coordinate(&mut r, true),
+                        _ => r.gen_range(-1e3..1e3),
+                    })
+                    .collect()
+            };
+            let (x, y, z) = (axis(), axis(), axis());
+            let mut m = raw(x, y, z, &[]);
+            m.offset = [[0.0; 3], [1e69, 0.0, -1e69], [-1e50, 1e60, 0.0]][case % 3];
+            assert!(same(m.vertex_out_of_range(), first_far(&m)), "case {case}");
+            assert!(
+                same(m.vertex_beyond_position_limit(), first_beyond(&m)),
+                "case {case}"
+            );
+        }
     }
 }

@@ -75,15 +75,55 @@ impl Solid {
 
     /// Whether the cell holding `p` is inside (false outside the grid).
     pub fn contains(&self, p: V3) -> bool {
+        self.cell_of(p)
+            .is_some_and(|idx| self.inside[self.index(idx)])
+    }
+
+    /// The cell holding `p` (`None` outside the grid).
+    fn cell_of(&self, p: V3) -> Option<[usize; 3]> {
         let mut idx = [0usize; 3];
         for k in 0..3 {
             let t = (p[k] - self.lo[k]) / self.cell;
             if !(t >= 0.0 && t < self.dims[k] as f64) {
-                return false;
+                return None;
             }
             idx[k] = t as usize;
         }
-        self.inside[self.index(idx)]
+        Some(idx)
+    }
+
+    /// The centre nearest `p` of an inside cell among the cell holding `p` and its 26
+    /// neighbours (`None` outside the grid or where none is inside): a point the rays'
+    /// vote put inside, from which any point reached without crossing a face is inside
+    /// too (`Triangles::inside`). The cell's own centre when it is inside.
+    pub fn inside_centre(&self, p: V3) -> Option<V3> {
+        let idx = self.cell_of(p)?;
+        let centre = |c: [usize; 3]| [0, 1, 2].map(|k| self.centre(k, c[k]));
+        if self.inside[self.index(idx)] {
+            return Some(centre(idx));
+        }
+        let span = |k: usize| idx[k].saturating_sub(1)..(idx[k] + 2).min(self.dims[k]);
+        let mut best: Option<(f64, V3)> = None;
+        for k in span(2) {
+            for j in span(1) {
+                for i in span(0) {
+                    if !self.inside[self.index([i, j, k])] {
+                        continue;
+                    }
+                    let c = centre([i, j, k]);
+                    let d2 = (0..3).map(|a| (c[a] - p[a]).powi(2)).sum::<f64>();
+                    if best.is_none_or(|(b, _)| d2 < b) {
+                        best = Some((d2, c));
+                    }
+                }
+            }
+        }
+        best.map(|(_, c)| c)
+    }
+
+    /// Whether any cell is inside (an empty, flat or two-sided input has none).
+    pub fn has_inside(&self) -> bool {
+        self.prefix.last().is_some_and(|&n| n > 0)
     }
 
     /// The fraction of `prim` inside the input, from a regular sample of its bounding

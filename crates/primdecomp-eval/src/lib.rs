@@ -392,6 +392,30 @@ mod tests {
         assert!(m.chamfer_all > 0.0 && m.enclosure == 1.0, "{m:?}");
     }
 
+    /// The three rays' parity tells inside from outside of a closed cube (points not
+    /// within a hair of its faces); measured to the solid, a collider inside the cube
+    /// stands at 0 where to the surface it stands off.
+    #[test]
+    fn inside_by_parity_and_distances_to_the_solid() {
+        let input = Input::new(&box_mesh(&cube(1.0)));
+        let mut rng = <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(3);
+        for _ in 0..5000 {
+            let p: V3 = std::array::from_fn(|_| rand::Rng::gen_range(&mut rng, -1.5..1.5));
+            let far = p.iter().map(|c| c.abs()).fold(0.0, f64::max);
+            if (far - 1.0).abs() > 1e-9 {
+                assert_eq!(input.inside(p), far < 1.0, "{p:?}");
+            }
+        }
+        let inner = Collider::Primitives(vec![cube(0.5)]);
+        let m = evaluate(&input, &inner, 5000, 1);
+        assert!(!m.to_solid && m.hausdorff_all > 0.1, "{m:?}");
+        let m = evaluate(&input.to_solid(true), &inner, 5000, 1);
+        assert!(
+            m.to_solid && m.hausdorff_all == 0.0 && m.chamfer_all == 0.0,
+            "{m:?}"
+        );
+    }
+
     #[test]
     fn flat_hull_planes_have_both_sides() {
         let t = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];

@@ -103,10 +103,11 @@ impl<'m> Triangles<'m> {
     /// These triangles measuring distances to the input's solid, the interior
     /// `solid` (built on the same mesh) holds, where it has an inside: a point of a
     /// primitive inside the input is at 0, not at its distance to the surface
-    /// (`--solid`, docs/decisions/0056). Without an inside, as before: to the surface.
+    /// (`--solid`, docs/decisions/0056). Without an inside, or where the input is open
+    /// (`Solid::is_open`), as before: to the surface.
     pub(crate) fn with_solid(self, solid: Option<&'m Solid>) -> Triangles<'m> {
         Triangles {
-            solid: solid.filter(|s| s.has_inside()),
+            solid: solid.filter(|s| s.has_inside() && !s.is_open()),
             ..self
         }
     }

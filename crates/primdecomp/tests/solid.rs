@@ -255,3 +255,32 @@ fn a_bracket_with_a_hole_is_a_few_solid_boxes() {
     let eval = primdecomp_eval::evaluate(&input, &collider, 50_000, 1);
     assert!(eval.hausdorff_all * input.diagonal() <= level.distance.unwrap() + 1e-9);
 }
+
+/// The bracket with one quad left out is open: through the hole, the grid's vote and
+/// another test of inside may disagree, so under `--solid` its tolerance is still
+/// measured to the surface (docs/decisions/0056), and every face stays enclosed.
+#[test]
+fn an_open_bracket_is_measured_to_its_surface() {
+    let text = bracket_obj();
+    let lines: Vec<&str> = text.lines().collect();
+    let open = lines[..lines.len() - 2].join("\n");
+    let m = primdecomp::Mesh::parse(
+        open.as_bytes(),
+        primdecomp::MeshFormat::Obj,
+        "open_bracket.obj".as_ref(),
+    )
+    .unwrap();
+    assert_eq!(m.face_count(), 94);
+    let p = Params {
+        plates: Plates {
+            solid: true,
+            ..Default::default()
+        },
+        ..Default::default()
+    };
+    let dec = decompose(&m, &p).unwrap();
+    assert_valid(&m, &dec, &p);
+    let level = &dec.levels[0];
+    assert!(!level.distance_to_solid, "{level:?}");
+    assert!(level.distance.unwrap() <= level.tolerance.unwrap());
+}

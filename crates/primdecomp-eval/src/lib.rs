@@ -11,6 +11,14 @@
 //! - `enclosure`: the fraction of input-surface samples inside some part, with a
 //!   tolerance of 1e-6 of the diagonal.
 //!
+//! With [`Input::to_solid`] (`primdecomp eval --solid`) the forward distances are to
+//! the input's solid, what `decompose --solid` bounds (docs/decisions/0056): a
+//! collider sample inside the input stands at 0. Inside is decided here on its own,
+//! not by the core's grid: the parity of the input's triangles crossed by rays from
+//! the sample in three fixed skew directions, the majority of the three (a closed
+//! input; a ray through an edge or a vertex, where the count may be off, is rare and
+//! outvoted).
+//!
 //! Distances are exact point-to-surface distances (triangles through a BVH, the
 //! primitives in closed form). Everything runs in the input's re-centred frame, in
 //! parallel, and is the same for a seed whatever the thread count: samples come from
@@ -23,7 +31,7 @@ pub mod sample;
 pub mod shape;
 
 use crate::collider::{Collider, Hull};
-use bvh::{point_tri_dist2, tri_box, Bvh};
+use bvh::{point_tri_dist2, ray_tri, tri_box, Bvh};
 use primdecomp::Mesh;
 use primdecomp::Primitive;
 use primdecomp_math::{cross, dot, norm, normalize, scale, sub, V3};
@@ -51,6 +59,8 @@ pub struct Metrics {
     pub bytes: usize,
     /// Parts by kind: box … prism, then hull.
     pub counts: Vec<(&'static str, usize)>,
+    /// Whether the forward distances are to the input's solid ([`Input::to_solid`]).
+    pub to_solid: bool,
 }
 
 /// The input surface, ready for distance queries and sampling.
@@ -60,7 +70,14 @@ pub struct Input {
     surface: Surface,
     offset: V3,
     diag: f64,
+    /// Forward distances to the solid ([`Input::to_solid`]).
+    solid: bool,
 }
+
+/// The directions of the rays whose crossings' parity decides inside
+/// ([`Input::inside`]): skew to the axes and to each other, so that a ray runs
+/// along no face of a mesh built on a grid nor through its edges but by chance.
+const RAYS: [V3; 3] = [[1.0, 2.0, 3.0], [-3.31, 1.0, 3.85], [3.0, -6.0, 2.0]];
 
 impl Input {
     /// Fan-triangulates the mesh's polygons (re-centred frame).
@@ -83,7 +100,29 @@ impl Input {
             surface,
             offset: mesh.centre(),
             diag: mesh.diagonal(),
+            solid: false,
         }
+    }
+
+    /// This input with the forward distances measured to its solid (`on`), not its
+    /// surface: a collider sample inside the input ([`Input::inside`]) stands at 0.
+    pub fn to_solid(self, on: bool) -> Input {
+        Input { solid: on, ..self }
+    }
+
+    /// Whether `p` is inside the input: for at least two of three rays from `p`
+    /// ([`RAYS`]), the number of triangles crossed is odd.
+    pub fn inside(&self, p: V3) -> bool {
+        let mut stack = Vec::new();
+        let odd = |d: V3, stack: &mut Vec<u32>| {
+            let mut crossed = false;
+            self.bvh.ray_any(p, d, f64::INFINITY, stack, |i| {
+                crossed ^= ray_tri(p, d, &self.tris[i as usize], 0.0).is_some();
+                false
+            });
+            crossed
+        };
+        RAYS.iter().filter(|&&d| odd(d, &mut stack)).count() >= 2
     }
 
     /// The input's AABB diagonal, the unit of every distance.
@@ -97,6 +136,16 @@ impl Input {
             .nearest(p, |i| point_tri_dist2(p, &tris[i as usize]))
             .0
             .sqrt()
+    }
+
+    /// A collider sample's distance: to the surface, or to the solid
+    /// ([`Input::to_solid`]).
+    fn forward_dist(&self, p: V3) -> f64 {
+        let d = self.dist(p);
+        match self.solid && d > 0.0 && self.inside(p) {
+            true => 0.0,
+            false => d,
+        }
     }
 }
 
@@ -263,7 +312,7 @@ pub fn evaluate(input: &Input, collider: &Collider, samples: usize, seed: u64) -
         .par_iter()
         .map(|s| {
             let buried = parts.inside_any(s.p, -tol, s.part);
-            (input.dist(s.p) / diag, buried)
+            (input.forward_dist(s.p) / diag, buried)
         })
         .collect();
     let d: Vec<f64> = fwd.iter().map(|x| x.0).collect();
@@ -294,6 +343,7 @@ pub fn evaluate(input: &Input, collider: &Collider, samples: usize, seed: u64) -
         },
         bytes: collider.bytes(),
         counts: collider.counts(),
+        to_solid: input.solid,
     }
 }
 
@@ -340,6 +390,30 @@ mod tests {
             "{m:?}"
         );
         assert!(m.chamfer_all > 0.0 && m.enclosure == 1.0, "{m:?}");
+    }
+
+    /// The three rays' parity tells inside from outside of a closed cube (points not
+    /// within a hair of its faces); measured to the solid, a collider inside the cube
+    /// stands at 0 where to the surface it stands off.
+    #[test]
+    fn inside_by_parity_and_distances_to_the_solid() {
+        let input = Input::new(&box_mesh(&cube(1.0)));
+        let mut rng = <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(3);
+        for _ in 0..5000 {
+            let p: V3 = std::array::from_fn(|_| rand::Rng::gen_range(&mut rng, -1.5..1.5));
+            let far = p.iter().map(|c| c.abs()).fold(0.0, f64::max);
+            if (far - 1.0).abs() > 1e-9 {
+                assert_eq!(input.inside(p), far < 1.0, "{p:?}");
+            }
+        }
+        let inner = Collider::Primitives(vec![cube(0.5)]);
+        let m = evaluate(&input, &inner, 5000, 1);
+        assert!(!m.to_solid && m.hausdorff_all > 0.1, "{m:?}");
+        let m = evaluate(&input.to_solid(true), &inner, 5000, 1);
+        assert!(
+            m.to_solid && m.hausdorff_all == 0.0 && m.chamfer_all == 0.0,
+            "{m:?}"
+        );
     }
 
     #[test]

@@ -28,6 +28,10 @@ struct Row<'a> {
     enclosure: f64,
     bytes: usize,
     counts: Counts,
+    /// `"solid"` where `hausdorff` … `chamfer_all` are to the input's solid
+    /// (`eval --solid`); absent for its surface.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    measured_to: Option<&'static str>,
 }
 
 /// The `format` of an evaluation document (`primdecomp view --eval` checks it).
@@ -75,6 +79,7 @@ pub fn to_json(input: &str, rows: &[(String, Metrics)]) -> String {
                 prism: count(m, "prism"),
                 hull: count(m, "hull"),
             },
+            measured_to: m.to_solid.then_some("solid"),
         })
         .collect();
     let doc = Doc {
@@ -119,6 +124,11 @@ pub fn table(rows: &[(String, Metrics)]) -> String {
             m.enclosure
         ));
     }
+    if rows.iter().any(|(_, m)| m.to_solid) {
+        out.push_str(
+            "hausdorff … cham_all: to the input's solid (--solid), a sample inside it at 0\n",
+        );
+    }
     out
 }
 
@@ -138,8 +148,9 @@ mod tests {
             enclosure: 1.0,
             bytes: 40,
             counts: vec![("box", 1), ("hull", 0)],
+            to_solid: false,
         };
-        let s = to_json("in.obj", &[("c.json".into(), m)]);
+        let s = to_json("in.obj", &[("c.json".into(), m.clone())]);
         let v: serde_json::Value = serde_json::from_str(&s).unwrap();
         assert_eq!(v["input"], "in.obj");
         let c = &v["colliders"][0];
@@ -162,5 +173,14 @@ mod tests {
         assert_eq!(c["counts"]["prism"], 0);
         assert!(s.find("\"collider\"").unwrap() < s.find("\"hausdorff\"").unwrap());
         assert!(table(&[]).starts_with("collider"));
+        // Measured to the solid, the row says so (and only then).
+        let solid = Metrics {
+            to_solid: true,
+            ..m
+        };
+        let s = to_json("in.obj", &[("c.json".into(), solid.clone())]);
+        let v: serde_json::Value = serde_json::from_str(&s).unwrap();
+        assert_eq!(v["colliders"][0]["measured_to"], "solid");
+        assert!(table(&[("c.json".into(), solid)]).contains("solid"));
     }
 }

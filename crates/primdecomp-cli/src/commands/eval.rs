@@ -31,6 +31,10 @@ pub struct EvalArgs {
     /// Also write the metrics as JSON here (atomically).
     #[arg(long)]
     json: Option<PathBuf>,
+    /// Measure the colliders' distances to the input's solid, not its surface: a
+    /// sample inside the (closed) input stands at 0, as `decompose --solid` bounds it.
+    #[arg(long)]
+    solid: bool,
     /// Worker threads (default: all cores); results do not depend on it.
     #[arg(long)]
     threads: Option<usize>,
@@ -61,7 +65,7 @@ pub fn run(a: EvalArgs) -> anyhow::Result<()> {
         .iter()
         .map(|p| primdecomp_eval::collider::load(p))
         .collect::<Result<Vec<_>, primdecomp::Error>>()?;
-    let input = primdecomp_eval::Input::new(&mesh);
+    let input = primdecomp_eval::Input::new(&mesh).to_solid(a.solid);
     let rows: Vec<(String, primdecomp_eval::Metrics)> = a
         .colliders
         .iter()

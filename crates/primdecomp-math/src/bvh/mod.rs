@@ -9,7 +9,7 @@
 //! node exactly as far is visited, so the nearest item of least id is found whatever
 //! the visiting order or the starting guess).
 
-use crate::vec3::{add, cross, dot, norm2, scale, sub, V3};
+use crate::vec3::{add, cross, dot, norm, norm2, scale, sub, V3};
 use rayon::prelude::*;
 use std::sync::atomic::AtomicBool;
 
@@ -588,6 +588,35 @@ pub fn point_tri_dist2(p: V3, t: &[V3; 3]) -> f64 {
     }
     let (v, w) = (vb / denom, vc / denom);
     norm2(sub(ap, add(scale(ab, v), scale(ac, w))))
+}
+
+/// Whether triangles `a` and `b` are certainly apart: some axis of the separating-axis
+/// test (either normal, the cross product of an edge of each, or an edge's normal in
+/// its triangle's plane, for triangles in one plane) leaves a gap of more than
+/// `margin` between their projections (measured along the unit axis). False for
+/// triangles that meet, and perhaps for some a little more than `margin` apart (an
+/// axis too short to normalise is skipped): a proof of a gap, never of contact.
+pub fn tris_apart(a: &[V3; 3], b: &[V3; 3], margin: f64) -> bool {
+    let edges = |t: &[V3; 3]| [sub(t[1], t[0]), sub(t[2], t[1]), sub(t[0], t[2])];
+    let (ea, eb) = (edges(a), edges(b));
+    let (na, nb) = (cross(ea[0], ea[1]), cross(eb[0], eb[1]));
+    let gap = |axis: V3| {
+        let len = norm(axis);
+        if !(len > 1e-300 && len.is_finite()) {
+            return false;
+        }
+        let span = |t: &[V3; 3]| {
+            let d = t.map(|v| dot(v, axis));
+            (d[0].min(d[1]).min(d[2]), d[0].max(d[1]).max(d[2]))
+        };
+        let ((lo_a, hi_a), (lo_b, hi_b)) = (span(a), span(b));
+        lo_b - hi_a > margin * len || lo_a - hi_b > margin * len
+    };
+    gap(na)
+        || gap(nb)
+        || ea.iter().any(|&u| eb.iter().any(|&v| gap(cross(u, v))))
+        || ea.iter().any(|&u| gap(cross(na, u)))
+        || eb.iter().any(|&v| gap(cross(nb, v)))
 }
 
 /// Squared distance from `p` to the segment `a`–`b`.

@@ -482,3 +482,58 @@ fn f32_centres_with_exact_ties_build_the_f64_tree_on_triangles() {
     let tied = Bvh::build_by_checked(tris.len(), LEAF, &bbox, &|_| true).expect("built");
     assert_eq!(format!("{exact:?}"), format!("{tied:?}"));
 }
+
+/// Triangles said to be apart are: every point of one (on a barycentric grid) stands
+/// farther than the margin from the other. Triangles that share a point, or cross,
+/// are never said to be apart; and most pairs with a clear gap are found apart.
+#[test]
+fn triangles_said_apart_are_apart() {
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    let tri = |rng: &mut ChaCha8Rng, at: f64| -> [V3; 3] {
+        std::array::from_fn(|_| {
+            std::array::from_fn(|k| rng.gen_range(-1.0..1.0) + at * (k == 0) as u8 as f64)
+        })
+    };
+    let margin = 1e-6;
+    let (mut apart, mut clear) = (0, 0);
+    for i in 0..4000 {
+        let a = tri(&mut rng, 0.0);
+        let b = tri(&mut rng, (i % 4) as f64);
+        let near = (0..=10)
+            .flat_map(|i| (0..=10 - i).map(move |j| (i, j)))
+            .map(|(i, j)| {
+                let (u, v) = (i as f64 / 10.0, j as f64 / 10.0);
+                let p = add(
+                    a[0],
+                    add(scale(sub(a[1], a[0]), u), scale(sub(a[2], a[0]), v)),
+                );
+                point_tri_dist2(p, &b).sqrt()
+            })
+            .fold(f64::INFINITY, f64::min);
+        let said = tris_apart(&a, &b, margin);
+        assert!(
+            !said || near > margin,
+            "{a:?} {b:?} said apart, {near} near"
+        );
+        if near > 0.1 {
+            clear += 1;
+            apart += usize::from(said);
+        }
+        // In one plane, apart by a clear gap: found.
+        let flat = |t: [V3; 3]| t.map(|v| [v[0], v[1], 0.0]);
+        let (fa, fb) = (flat(a), flat(b.map(|v| add(v, [2.5, 0.0, 0.0]))));
+        let spans = |t: &[V3; 3]| {
+            t.iter()
+                .fold((f64::INFINITY, f64::NEG_INFINITY), |(l, h), v| {
+                    (l.min(v[0]), h.max(v[0]))
+                })
+        };
+        if spans(&fb).0 - spans(&fa).1 > 0.1 {
+            assert!(tris_apart(&fa, &fb, margin), "{fa:?} {fb:?}");
+        }
+        // Sharing a corner, they meet.
+        let touching = [a[0], b[1], b[2]];
+        assert!(!tris_apart(&a, &touching, margin));
+    }
+    assert!(clear > 1000 && apart * 10 > clear * 9, "{apart} of {clear}");
+}

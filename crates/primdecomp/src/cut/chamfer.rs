@@ -2,7 +2,8 @@
 //! `primdecomp eval` reports as Chamfer (there sampled), estimated by the midpoint
 //! rule: each primitive's tessellation (`output::tessellate`) cut into cells of at
 //! most an equal share of the level's area, each cell weighed by its area at its
-//! centroid's distance to the nearest input triangle (`input::triangles`). As eval's,
+//! centroid's distance to the nearest input triangle (`input::triangles`; under
+//! `--solid` to the input's solid, as `cut::error` measures). As eval's,
 //! over the boundary of the union: a cell whose centroid lies inside another
 //! primitive is buried, nothing a ball can touch, and left out. A cut of counts alone
 //! may spend its count on this mean instead of on the worst distance
@@ -87,6 +88,8 @@ fn weighed(
                 continue;
             }
             let (d, k) = surface.nearest_from(c, near, stack);
+            // Under `--solid`, a centroid proven inside the input stands at 0.
+            let d = if surface.inside(c, d, stack) { 0.0 } else { d };
             if d.is_finite() {
                 (sum, weight, near) = (sum + a * d, weight + a, k);
             }

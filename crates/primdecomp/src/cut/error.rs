@@ -15,6 +15,14 @@
 //! nearest input triangle anywhere in the mesh (`input::triangles`): the whole mesh, as
 //! eval measures, not only the node's faces, so a primitive lying on another part's
 //! surface is not charged for it, and one hierarchy serves every node.
+//!
+//! Under `--solid` (`Triangles::with_solid`, docs/decisions/0056) the distance is to
+//! the input's solid, what merges are priced against: a solid part's faces that lie
+//! inside the input (where two parts meet) stand at 0, not at their distance to the
+//! surface. That distance is 1-Lipschitz too and never above the surface's, so every
+//! bound above still bounds it; besides, a point proven inside (`Triangles::inside`)
+//! measures 0, and so does the ball around it that meets no face: a cell whose
+//! centroid is proven inside is bounded by how far it reaches beyond that ball.
 
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
@@ -24,7 +32,7 @@ use rayon::prelude::*;
 use super::cell_shadow;
 use crate::input::triangles::Triangles;
 use crate::math::bvh::point_segment_dist2;
-use crate::math::{add, norm, scale, sub, V3};
+use crate::math::{add, madd, norm, scale, sub, V3};
 use crate::output::tessellate;
 use crate::primitive::Primitive;
 
@@ -52,6 +60,13 @@ const SHADED: u8 = u8::MAX;
 const RETRY: u8 = 2;
 /// Shadows are tried this many times in a search before [`SHADOW_RATE`] may stop them.
 const SHADOW_TRIAL: u32 = 64;
+/// Under `--solid`, a cell whose centroid is inside is tested against at most this
+/// many input triangles near it for lying wholly inside (`Triangles::apart`),
+const APART_MOST: usize = 32;
+/// shrunk towards its centroid by this share: a face may touch it (a solid box's
+/// face meets the surface along its edges), and the cell stands within this share of
+/// its size of the shrunk cell.
+const SHRINK: f64 = 1e-4;
 /// A level's search settles its primitives together in at most this many rounds
 /// ([`worst_error`]); then the bounds found stand.
 const ROUNDS: usize = 64;
@@ -239,6 +254,14 @@ impl Shadows {
 struct Scratch {
     stack: Vec<(f64, u32)>,
     shadow: cell_shadow::Scratch,
+    /// For `Triangles::apart`.
+    boxes: (Vec<u32>, Vec<u32>),
+}
+
+impl Scratch {
+    fn boxes(&mut self) -> (&mut Vec<u32>, &mut Vec<u32>) {
+        (&mut self.boxes.0, &mut self.boxes.1)
+    }
 }
 
 /// A primitive's cells and the largest distance measured on them.
@@ -254,7 +277,13 @@ impl Start {
         let (tess, gap) = tessellation(prim, surface.diagonal);
         let mut low = 0.0f64;
         for &p in &tess.vertices {
-            low = low.max(surface.distance_beyond(p, low - gap, &mut scratch.stack) + gap);
+            // Over `low - gap` it is exact, and may prove `p` inside the solid (at 0).
+            let d = surface.distance_beyond(p, low - gap, &mut scratch.stack);
+            let d = match d > low - gap && surface.inside(p, d, &mut scratch.stack) {
+                true => 0.0,
+                false => d,
+            };
+            low = low.max(d + gap);
             if low > above {
                 return Start {
                     cells: Vec::new(),
@@ -386,6 +415,11 @@ impl Cell {
     /// `t` with its bound (at most its parent's, `parent`) and its centroid's
     /// distance to the input, each plus `gap`; the nearest triangle searched from
     /// `start` (a triangle near a point close by, or none), the same whatever it is.
+    /// Under `--solid` (`Triangles::with_solid`) a centroid proven inside is at 0, and
+    /// so is the ball around it of radius its distance to the surface (it meets no
+    /// face), and so is the whole cell where, shrunk by [`SHRINK`] towards it, it meets
+    /// no input triangle (`Triangles::apart`): the cell's bound is then that share of
+    /// its size, else how far its farthest vertex reaches beyond the ball; plus `gap`.
     fn measure(
         t: [V3; 3],
         (parent, gap, start, shade): (f64, f64, u32, u8),
@@ -399,15 +433,27 @@ impl Cell {
             .iter()
             .map(|&v| surface.distance_to(v, nearest))
             .fold(0.0, f64::max);
-        let bound = ((d + reach).min(flush) + gap).min(parent);
+        // Proven inside, the ball of radius `d` around `c` is: a point of the cell
+        // stands no farther outside than its distance to `c` less `d`. Where the cell
+        // shrunk towards `c` meets no face, that is all on the side of `c`, and the
+        // rest (a face may touch the cell's border) within the shrink of it.
+        let (at_c, over) = match surface.inside(c, d, &mut scratch.stack) {
+            true if reach <= d => (0.0, 0.0),
+            true if surface.apart(&shrunk(&t, c), APART_MOST, scratch.boxes()) => {
+                (0.0, SHRINK * reach)
+            }
+            true => (0.0, (reach - d).min(flush)),
+            false => (d, (d + reach).min(flush)),
+        };
+        let bound = (over + gap).min(parent);
         let cell = Cell {
             bound,
             tri: t,
             gap,
             near: nearest,
-            shade: if bound <= d + gap { SHADED } else { shade },
+            shade: if bound <= at_c + gap { SHADED } else { shade },
         };
-        (cell, d + gap)
+        (cell, at_c + gap)
     }
 }
 
@@ -427,6 +473,11 @@ impl Ord for Cell {
     fn cmp(&self, o: &Self) -> Ordering {
         self.bound.total_cmp(&o.bound)
     }
+}
+
+/// `t` shrunk towards `c` by [`SHRINK`].
+fn shrunk(t: &[V3; 3], c: V3) -> [V3; 3] {
+    t.map(|v| madd(c, sub(v, c), 1.0 - SHRINK))
 }
 
 /// `prim`'s tessellation fine enough that its [`rounding`] is at most [`GAP`] of the

@@ -12,7 +12,7 @@ use std::collections::HashMap;
 
 /// Records on each level what its request asked (tolerance, bytes) and the estimated
 /// farthest its primitives stand from the input ([`worst_error`], in the input's
-/// frame), `cuts[i].known` holding the primitives level `i`'s cut made with their bounds
+/// frame; to its solid where `surface` measures to it), `cuts[i].known` holding the primitives level `i`'s cut made with their bounds
 /// (those post-processing left as they were need no search past them).
 pub(crate) fn record_limits(
     levels: &mut [Level],
@@ -37,6 +37,7 @@ pub(crate) fn record_limits(
             .unzip();
         let worst = worst_error(&prims, &bounds, surface, r.tolerance.unwrap_or(0.0));
         level.distance = Some(worst);
+        level.distance_to_solid = surface.to_solid();
         if r.tolerance.is_some_and(|t| worst <= t) {
             level.shortfall = None;
         }

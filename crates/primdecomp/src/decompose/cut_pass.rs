@@ -38,8 +38,10 @@ pub(crate) fn run(
     // structure of the pass is built.
     crate::input::memory::release_freed();
     // The input's triangles, once, for the cut's distances and thickened plates, and
-    // its interior for plates thickened inward (--min-thickness).
+    // its interior for plates thickened inward (--min-thickness). Under --solid the
+    // cut's distances are to the input's solid (docs/decisions/0056).
     let tris = stages::triangles(&mut clock, mesh, true)?.ok_or(Error::Cancelled)?;
+    let tris = tris.with_solid(fitter.input.solid);
     let reads = stages::interior(&mut clock, mesh, params, Some(&tris))?;
     let levels = cut_levels(&mut clock, &fitter, &tree, params, (&tris, &reads))?;
     Ok(stages::decomposition(mesh, &graph, levels, clock, stats))

@@ -138,12 +138,13 @@ impl Seeds {
                 Surface::build(mesh, &graph.weld, lists, params, per_part, go_on)
             })?
             .ok_or(Error::Cancelled)?;
-        // The input's interior, where merges are priced by the air they add (--solid).
+        // The input's interior, where merges are priced by the air they add (--solid),
+        // and whether it is closed: only then does the cut measure to its solid.
         let solid = clock.step(Stage::Seed, "solid", || {
-            params
-                .plates
-                .solid
-                .then(|| Solid::build(mesh, solid::CELLS, solid::VOTES))
+            params.plates.solid.then(|| {
+                let open = !solid::closed(mesh, &graph.weld);
+                Solid::build(mesh, solid::CELLS, solid::VOTES).with_open(open)
+            })
         })?;
         let seeds = Seeds {
             q,

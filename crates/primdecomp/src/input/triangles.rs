@@ -1,11 +1,24 @@
 //! The input's surface as triangles under the hierarchy of [`crate::math::bvh`] (the
 //! one `primdecomp eval` measures with), built once per run for whatever needs it:
 //! the merge tree's node errors (`cut::error`, nearest triangle) and plates thickened
-//! inward (`postprocess::thicken`, first triangle along a ray).
+//! inward (`postprocess::thicken`, first triangle along a ray). Under `--solid` it
+//! also holds the input's interior ([`Triangles::with_solid`]): the cut's distances
+//! are then to the input's solid, a point proven inside it at 0 ([`Triangles::inside`],
+//! docs/decisions/0056).
 
 use crate::input::mesh::Mesh;
-use crate::math::bvh::{point_tri_dist2, ray_tri, tri_box, Bvh, Compact};
-use crate::math::V3;
+use crate::input::solid::Solid;
+use crate::math::bvh::{point_tri_dist2, ray_tri, tri_box, tris_apart, Bvh, Compact};
+use crate::math::{madd, norm, sub, V3};
+
+/// A point is proven inside only when its distance to the surface exceeds its
+/// distance to an inside cell's centre by this fraction of the diagonal: far above
+/// the rounding of either distance.
+const INSIDE_MARGIN: f64 = 1e-9;
+/// Most balls a proof of a point inside ([`Triangles::inside`]) is made of,
+const MARCH_STEPS: usize = 12;
+/// and the least share of the way left the next may reach (1/this).
+const MARCH_STALL: f64 = 32.0;
 
 /// The input's surface as triangles (fan-triangulated polygons, re-centred frame)
 /// with a hierarchy over them. A triangle's index here is its place in the
@@ -24,6 +37,8 @@ pub(crate) struct Triangles<'m> {
     bvh: Bvh<Compact>,
     /// The mesh's bounding-box diagonal.
     pub diagonal: f64,
+    /// The input's interior where distances are to its solid ([`Triangles::with_solid`]).
+    solid: Option<&'m Solid>,
 }
 
 impl<'m> Triangles<'m> {
@@ -81,7 +96,72 @@ impl<'m> Triangles<'m> {
             fans: ordered,
             mesh,
             diagonal: mesh.diagonal(),
+            solid: None,
         })
+    }
+
+    /// These triangles measuring distances to the input's solid, the interior
+    /// `solid` (built on the same mesh) holds, where it has an inside: a point of a
+    /// primitive inside the input is at 0, not at its distance to the surface
+    /// (`--solid`, docs/decisions/0056). Without an inside, or where the input is open
+    /// (`Solid::is_open`), as before: to the surface.
+    pub(crate) fn with_solid(self, solid: Option<&'m Solid>) -> Triangles<'m> {
+        Triangles {
+            solid: solid.filter(|s| s.has_inside() && !s.is_open()),
+            ..self
+        }
+    }
+
+    /// Whether distances are to the input's solid ([`Triangles::with_solid`]).
+    pub(crate) fn to_solid(&self) -> bool {
+        self.solid.is_some()
+    }
+
+    /// Whether `p`, `d` from the surface (its exact distance, or a lower bound of it,
+    /// which proves less), is proven inside the input's solid: a path from `p` to the
+    /// centre of the grid's cell holding it, which the rays' vote put inside, crosses
+    /// no face. The path is straight, covered by balls that meet no face (sphere
+    /// tracing): the first of radius `d` around `p`, each next around a point within
+    /// the last, of radius its distance to the surface, until one holds the centre;
+    /// at most [`MARCH_STEPS`] of them, given up where they shrink below
+    /// 1/[`MARCH_STALL`] of the way left (the path nears a face). Always false
+    /// without a solid; `stack` is scratch.
+    pub(crate) fn inside(&self, p: V3, d: f64, stack: &mut Vec<(f64, u32)>) -> bool {
+        let Some(centre) = self.solid.and_then(|s| s.inside_centre(p)) else {
+            return false;
+        };
+        let margin = INSIDE_MARGIN * self.diagonal;
+        let (mut q, mut r, mut near) = (p, d, u32::MAX);
+        for step in 0..MARCH_STEPS {
+            let left = norm(sub(centre, q));
+            if r > left + margin {
+                return true;
+            }
+            if step + 1 == MARCH_STEPS || r * MARCH_STALL < left || r <= 2.0 * margin {
+                return false;
+            }
+            // Within the ball around `q`, by a margin: the balls overlap.
+            q = madd(q, sub(centre, q), (r - margin) / left);
+            (r, near) = self.nearest_from(q, near, stack);
+        }
+        false
+    }
+
+    /// Whether triangle `t` certainly meets none of these triangles: each of those
+    /// whose box meets its box is apart from it ([`tris_apart`], by the margin a
+    /// proof inside takes); false where more than `most` boxes meet. `stack` and
+    /// `slots` are scratch.
+    pub(crate) fn apart(
+        &self,
+        t: &[V3; 3],
+        most: usize,
+        (stack, slots): (&mut Vec<u32>, &mut Vec<u32>),
+    ) -> bool {
+        let margin = INSIDE_MARGIN * self.diagonal;
+        let (lo, hi) = tri_box(t);
+        let grown = (lo.map(|c| c - margin), hi.map(|c| c + margin));
+        self.meeting(grown, most, stack, slots)
+            && slots.iter().all(|&k| tris_apart(t, &self.tri(k), margin))
     }
 
     /// Triangle `k`'s corners (`k` in the hierarchy's order).
@@ -217,6 +297,79 @@ mod tests {
                 assert_eq!(bound.max(d), bound.max(brute), "point {p:?}, bound {bound}");
             }
         }
+    }
+
+    /// An L-shaped prism: the L of [0, 2]² less (1, 2]², from z = 0 to 1; closed,
+    /// outward windings (each polygon fanned from its first vertex, the L from its
+    /// reflex corner, so that every fan triangle lies in the L).
+    pub(crate) fn l_prism() -> Mesh {
+        let l = [
+            [1.0, 1.0],
+            [1.0, 2.0],
+            [0.0, 2.0],
+            [0.0, 0.0],
+            [2.0, 0.0],
+            [2.0, 1.0],
+        ];
+        let mut b = crate::input::mesh::MeshBuilder::new();
+        for z in [0.0, 1.0] {
+            b.positions.extend(l.iter().map(|&[x, y]| [x, y, z]));
+        }
+        b.push_face(&[0, 5, 4, 3, 2, 1]);
+        b.push_face(&[6, 7, 8, 9, 10, 11]);
+        for i in 0..6u32 {
+            let j = (i + 1) % 6;
+            b.push_face(&[i, j, j + 6, i + 6]);
+        }
+        Mesh::from_builder(b)
+    }
+
+    /// Whether the world point `w` is strictly inside [`l_prism`].
+    fn in_l(w: V3) -> bool {
+        let [x, y, z] = w;
+        let square = |a: f64, b: f64, lo: f64, hi: f64| a > lo && a < hi && b > lo && b < hi;
+        z > 0.0 && z < 1.0 && square(x, y, 0.0, 2.0) && !(x >= 1.0 && y >= 1.0)
+    }
+
+    /// A point proven inside the solid is inside (never one in the L's notch or
+    /// beyond a face, however near), and every point inside deeper than a grid cell's
+    /// half-diagonal is proven (its cell's centre is inside). Nothing is inside
+    /// without a solid.
+    #[test]
+    fn points_proven_inside_are_inside() {
+        use crate::input::solid::{self, Solid};
+        let mesh = l_prism();
+        let solid = Solid::build(&mesh, solid::CELLS, solid::VOTES);
+        let plain = Triangles::new(&mesh);
+        let s = Triangles::new(&mesh).with_solid(Some(&solid));
+        assert!(s.to_solid() && !plain.to_solid());
+        let half_diagonal = 0.5 * 3f64.sqrt() * 2.0 / solid::CELLS as f64;
+        let mut rng = <rand_chacha::ChaCha8Rng as rand::SeedableRng>::seed_from_u64(7);
+        let (mut deep, mut near, mut near_proven) = (0, 0, 0);
+        let mut stack = Vec::new();
+        for _ in 0..20_000 {
+            let w: V3 = std::array::from_fn(|k| {
+                rand::Rng::gen_range(&mut rng, -0.2..if k == 2 { 1.2 } else { 2.2 })
+            });
+            let p = sub(w, mesh.offset);
+            let d = s.distance(p, &mut stack);
+            let proven = s.inside(p, d, &mut stack);
+            assert!(
+                !proven || in_l(w),
+                "{w:?} proven inside, {d} from the surface"
+            );
+            assert!(!plain.inside(p, d, &mut stack));
+            if in_l(w) && d > half_diagonal {
+                deep += 1;
+                assert!(proven, "{w:?} inside, {d} deep, not proven");
+            } else if in_l(w) {
+                near += 1;
+                near_proven += usize::from(proven);
+            }
+        }
+        assert!(deep > 1000 && near > 200, "{deep} {near}");
+        // Near the surface the balls' march proves most (the centre alone a few).
+        assert!(near_proven * 4 > near * 3, "{near_proven} of {near}");
     }
 
     /// Slot `k` is the fan triangle the hierarchy put there, whether read from the

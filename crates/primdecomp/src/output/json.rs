@@ -195,6 +195,10 @@ struct Distance {
     /// Over the tolerance: what stopped the cut nearer (`count`, `bytes` or `faces`).
     #[serde(skip_serializing_if = "Option::is_none")]
     limited_by: Option<crate::output::result::Shortfall>,
+    /// `"solid"` where `worst` is measured to the input's solid, not its surface
+    /// (`Level::distance_to_solid`); absent for the surface.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    measured_to: Option<&'static str>,
     method: &'static str,
 }
 
@@ -210,10 +214,21 @@ const DISTANCE_METHOD: &str = "an upper bound of the one-way distance from each 
      side of the tolerance; the largest over all primitives (at least `primdecomp eval`'s \
      sampled Hausdorff)";
 
+/// How [`Distance::worst`] is measured under `--solid` on an input with an inside
+/// (`cut::error`, docs/decisions/0056).
+const DISTANCE_METHOD_SOLID: &str = "an upper bound of the one-way distance from each \
+     primitive's surface to the input's solid (--solid, docs/decisions/0056): as to the \
+     surface (docs/decisions/0040), but a point proven inside the input stands at 0 (the \
+     --solid grid's cell holding it is inside by the vote of its six axis rays, and the \
+     point is nearer that cell's centre than the surface is), and a cell of the \
+     tessellation within its centroid's distance to the surface of a centroid proven \
+     inside lies wholly inside; at least `primdecomp eval --solid`'s sampled Hausdorff";
+
 impl Distance {
     /// A per-object level's: the farthest object's distance, without the tolerance or
-    /// byte budget (each object's is its own share).
-    fn farthest(worst: f64, input: &InputInfo) -> Distance {
+    /// byte budget (each object's is its own share); measured to the solid where some
+    /// object's was (`to_solid`).
+    fn farthest(worst: f64, to_solid: bool, input: &InputInfo) -> Distance {
         let diagonal = input.diagonal();
         Distance {
             worst,
@@ -225,7 +240,11 @@ impl Distance {
             tolerance: None,
             max_bytes: None,
             limited_by: None,
-            method: DISTANCE_METHOD,
+            measured_to: to_solid.then_some("solid"),
+            method: match to_solid {
+                true => DISTANCE_METHOD_SOLID,
+                false => DISTANCE_METHOD,
+            },
         }
     }
 
@@ -234,7 +253,7 @@ impl Distance {
             tolerance: lv.tolerance,
             max_bytes: lv.max_bytes,
             limited_by: lv.shortfall,
-            ..Distance::farthest(lv.distance?, input)
+            ..Distance::farthest(lv.distance?, lv.distance_to_solid, input)
         })
     }
 }
@@ -439,6 +458,7 @@ pub(crate) fn to_json_objects(objs: &Objects, level: usize, params: &Params) -> 
         counts[c] += n;
     }
     let bytes = levels().map(|lv| lv.bytes()).sum();
+    let to_solid = levels().any(|lv| lv.distance_to_solid);
     let faces_of: Vec<u32> = levels()
         .flat_map(|lv| (0..lv.primitives.len()).map(|i| lv.faces.get(i).copied().unwrap_or(0)))
         .collect();
@@ -470,7 +490,7 @@ pub(crate) fn to_json_objects(objs: &Objects, level: usize, params: &Params) -> 
             seconds: None,
             distance: objs
                 .distance(level)
-                .map(|worst| Distance::farthest(worst, &objs.input)),
+                .map(|worst| Distance::farthest(worst, to_solid, &objs.input)),
         },
         primitives,
         objects: Some(objects),

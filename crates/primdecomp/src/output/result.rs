@@ -106,6 +106,11 @@ pub struct Level {
     /// 2% of it (docs/decisions/0040): at most the tolerance whenever the level says
     /// it is within it.
     pub distance: Option<f64>,
+    /// Whether `distance` (and the tolerance it is held to) is measured to the input's
+    /// solid rather than its surface: with [`crate::Plates::solid`] on an input that
+    /// has an inside, a point of a primitive inside the input stands at 0
+    /// (docs/decisions/0056).
+    pub distance_to_solid: bool,
     /// For a cut that stands farther than its tolerance: what stopped it nearer.
     pub shortfall: Option<Shortfall>,
 }

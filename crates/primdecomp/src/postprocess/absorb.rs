@@ -15,8 +15,11 @@
 use rayon::prelude::*;
 
 use super::plates::{in_rounds, Candidate};
+use crate::cut::error::is_within;
+use crate::input::triangles::Triangles;
 use crate::math::{Sym3, V3};
 use crate::merge::{Fitter, Snapshot, Workspace};
+use crate::primitive::Primitive;
 
 /// How much larger than the larger of two primitives their union's fit may be, as a
 /// share of the smaller one's volume: a near duplicate adds almost nothing, while a
@@ -31,10 +34,22 @@ const NESTED_TOL_REL: f64 = 1e-9;
 
 /// Replaces near-duplicate pairs of `snap`'s primitives by their union's fit, in rounds
 /// until none is left, the least growth first (`plates::in_rounds`); `q` holds each
-/// primitive's operator and is compacted with the snapshot.
-pub fn absorb(fitter: &Fitter, snap: &mut Snapshot, q: &mut Vec<Sym3>) {
+/// primitive's operator and is compacted with the snapshot. A cut's snapshot keeps its
+/// bound, as joined plates do (docs/decisions/0038): a union standing farther from
+/// `surface` than `bound` is refused (docs/decisions/0056).
+pub fn absorb(
+    fitter: &Fitter,
+    snap: &mut Snapshot,
+    q: &mut Vec<Sym3>,
+    (surface, bound): (Option<&Triangles>, Option<f64>),
+) {
+    let keeps = |p: &Primitive| match (bound, surface) {
+        (Some(bound), Some(s)) => is_within(p, s, bound),
+        _ => true,
+    };
     in_rounds(snap, q, |snap, q, alive, dirty| {
-        near_duplicates(fitter, snap, q, alive, dirty)
+        let found = near_duplicates(fitter, snap, q, alive, dirty);
+        found.into_par_iter().filter(|c| keeps(&c.3)).collect()
     });
 }
 

@@ -77,7 +77,7 @@ pub(crate) fn level(
     let mut q = std::mem::take(&mut snap.q);
     // Solid pricing: near-duplicate primitives become one (docs/decisions/0023).
     if fitter.input.solid.is_some() && go_on() {
-        absorb::absorb(fitter, &mut snap, &mut q);
+        absorb::absorb(fitter, &mut snap, &mut q, (tris, bound));
     }
     // Plates in one plane the merge left apart become one where that adds no
     // area (docs/decisions/0028).

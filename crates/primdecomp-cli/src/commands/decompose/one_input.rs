@@ -334,8 +334,11 @@ fn world_level(
             Goal::Within { max_bytes, .. } => max_bytes.first().copied(),
             _ => None,
         },
-        // The farthest object's distance, and what stopped that object nearer.
+        // The farthest object's distance, and what stopped that object nearer;
+        // to the solid where an object's was (one without an inside is its surface).
         distance: objs.distance(i),
+        distance_to_solid: (objs.objects.iter())
+            .any(|o| o.decomposition.levels[i].distance_to_solid),
         shortfall: objs
             .objects
             .iter()

@@ -109,7 +109,8 @@ fn reach(l: &primdecomp::Level, diagonal: f64) -> String {
     };
     let pct = |x: f64| 100.0 * x / diagonal.max(f64::MIN_POSITIVE);
     let mut s = format!(
-        "; farthest {d:.4} from the mesh ({:.2}% of the diagonal",
+        "; farthest {d:.4} {} ({:.2}% of the diagonal",
+        measured_to(l),
         pct(d)
     );
     if let Some(t) = l.tolerance {
@@ -125,6 +126,16 @@ fn reach(l: &primdecomp::Level, diagonal: f64) -> String {
         };
     }
     s + ")"
+}
+
+/// What a level's distance is measured to: the mesh's surface, or with `--solid` on
+/// a mesh with an inside its solid (a primitive's points inside it stand at 0,
+/// docs/decisions/0056).
+fn measured_to(l: &primdecomp::Level) -> &'static str {
+    match l.distance_to_solid {
+        true => "outside the solid",
+        false => "from the mesh",
+    }
 }
 
 /// [`reach`] for a level of a `--per-object` run: each object is held to its own
@@ -149,8 +160,9 @@ fn reach_of_objects(
         .collect();
     let n = objects.objects.len();
     let mut s = format!(
-        "; farthest {d:.4} from the mesh ({:.2}% of the whole mesh's diagonal); {} of {n} \
+        "; farthest {d:.4} {} ({:.2}% of the whole mesh's diagonal); {} of {n} \
          objects within their own tolerance",
+        measured_to(l),
         100.0 * d / diagonal.max(f64::MIN_POSITIVE),
         n - over.len()
     );

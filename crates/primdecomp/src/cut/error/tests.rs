@@ -321,3 +321,90 @@ fn surface_point(prim: &Primitive, p: V3) -> V3 {
         Primitive::Box(_) | Primitive::Prism(_) => p,
     }
 }
+
+/// Under `--solid` (docs/decisions/0056) the error is the distance to the input's
+/// solid: half of the cube as a box has its face across the middle a whole half-side
+/// from the surface, and inside the solid (0); a ball inside the cube stands only its
+/// tessellation's gap off; a box reaching out of the cube stands as far as its
+/// outermost face, whichever is measured.
+#[test]
+fn to_the_solid_what_lies_inside_stands_at_zero() {
+    use crate::input::solid::{self, Solid};
+    let cube = cube_mesh(1.0);
+    let grid = Solid::build(&cube, solid::CELLS, solid::VOTES);
+    let (surface, solid) = (
+        Triangles::new(&cube),
+        Triangles::new(&cube).with_solid(Some(&grid)),
+    );
+    let half = Primitive::Box(crate::primitive::obb::Obb {
+        center: [-0.5, 0.0, 0.0],
+        ..match unit_box([0.5, 1.0, 1.0]) {
+            Primitive::Box(b) => b,
+            _ => unreachable!(),
+        }
+    });
+    let e = error_of(&half, &surface);
+    assert!(e >= 1.0 - 1e-12 && e <= loose(1.0, &surface), "{e}");
+    let e = error_of(&half, &solid);
+    assert!(e <= loose(0.0, &solid), "{e}");
+    let ball = Primitive::Sphere(crate::primitive::Sphere {
+        center: [0.1, 0.0, -0.2],
+        radius: 0.6,
+    });
+    let gap = GAP * solid.diagonal;
+    assert!(error_of(&ball, &surface) >= 0.3);
+    let e = error_of(&ball, &solid);
+    assert!(e <= gap + loose(0.0, &solid), "{e}");
+    let out = unit_box([1.5, 1.0, 1.0]);
+    for s in [&surface, &solid] {
+        let e = error_of(&out, s);
+        assert!(e >= 0.5 - 1e-12 && e <= loose(0.5, s), "{e}");
+    }
+}
+
+proptest::proptest! {
+    /// Boxes anywhere around the cube: the bound to the solid is at least the true
+    /// distance of every point of the box's surface to the solid cube (sampled: the
+    /// farthest of its corners and face points), at most the bound to the surface
+    /// (within the refinement's precision), and near that distance.
+    #[test]
+    fn the_bound_to_the_solid_holds_over_sampled_points(
+        centre in proptest::array::uniform3(-1.5f64..1.5),
+        half in proptest::array::uniform3(0.05f64..1.2),
+    ) {
+        use crate::input::solid::{self, Solid};
+        let cube = cube_mesh(1.0);
+        let grid = Solid::build(&cube, solid::CELLS, solid::VOTES);
+        let solid = Triangles::new(&cube).with_solid(Some(&grid));
+        let surface = Triangles::new(&cube);
+        let prim = Primitive::Box(crate::primitive::obb::Obb {
+            center: centre,
+            axes: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+            half,
+        });
+        // The solid cube's distance, exact; over a grid of each face's points.
+        let outside = |p: V3| norm(p.map(|c| (c.abs() - 1.0).max(0.0)));
+        let mut truth = 0.0f64;
+        for axis in 0..3 {
+            for side in [-1.0, 1.0] {
+                for i in 0..=8 {
+                    for j in 0..=8 {
+                        let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
+                        let mut p = centre;
+                        p[axis] += side * half[axis];
+                        p[u] += (i as f64 / 4.0 - 1.0) * half[u];
+                        p[v] += (j as f64 / 4.0 - 1.0) * half[v];
+                        truth = truth.max(outside(p));
+                    }
+                }
+            }
+        }
+        let e = error_of(&prim, &solid);
+        proptest::prop_assert!(e >= truth - 1e-12, "{e} under {truth}");
+        proptest::prop_assert!(e <= loose(error_of(&prim, &surface), &solid), "{e}");
+        // Unproven points near the surface (a march stalled within 1/32 of a cell's
+        // half-diagonal) may stand a little above the truth.
+        let cell = 2.0 / solid::CELLS as f64;
+        proptest::prop_assert!(e <= loose(truth, &solid) + 0.05 * cell, "{e} over {truth}");
+    }
+}

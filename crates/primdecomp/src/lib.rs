@@ -122,7 +122,7 @@ pub mod internals {
     pub fn face_pairs(mesh: &Mesh, weld: &Weld) -> Vec<(u32, u32)> {
         let (offsets, indices) = (&mesh.face_offsets, &mesh.face_indices);
         crate::input::adjacency::face_pairs_checked(offsets, indices, weld, &|_| true)
-            .unwrap_or_default()
+            .map_or_else(Vec::new, |(pairs, _)| pairs)
     }
     pub use crate::input::adjacency::neighbour_lists;
 

@@ -32,6 +32,9 @@ pub(crate) struct Graph {
     /// Distinct vertices after welding.
     pub(crate) distinct: usize,
     pub(crate) pairs: Vec<(u32, u32)>,
+    /// Edges (between welded vertices) only one face holds: 0 where the input is
+    /// closed.
+    pub(crate) open_edges: u64,
 }
 
 impl Graph {
@@ -44,7 +47,7 @@ impl Graph {
             })?
             .ok_or(Error::Cancelled)?;
         // Faces sharing an edge form the merge graph (§3.3).
-        let pairs = clock
+        let (pairs, open_edges) = clock
             .stage(Stage::Adjacency, "adjacency", |go_on, _| {
                 let (offsets, indices) = (&mesh.face_offsets, &mesh.face_indices);
                 adjacency::face_pairs_checked(offsets, indices, &weld, go_on)
@@ -55,6 +58,7 @@ impl Graph {
             weld,
             distinct,
             pairs,
+            open_edges,
         })
     }
 
@@ -142,7 +146,7 @@ impl Seeds {
         // and whether it is closed: only then does the cut measure to its solid.
         let solid = clock.step(Stage::Seed, "solid", || {
             params.plates.solid.then(|| {
-                let open = !solid::closed(mesh, &graph.weld);
+                let open = graph.open_edges > 0;
                 Solid::build(mesh, solid::CELLS, solid::VOTES).with_open(open)
             })
         })?;

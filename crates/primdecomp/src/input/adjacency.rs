@@ -168,7 +168,7 @@ fn sort_runs<T: Ord + Send>(
 #[cfg(test)]
 pub fn face_pairs(offsets: &[u32], indices: &[u32]) -> Vec<(u32, u32)> {
     let unwelded = super::dedup::Weld::none();
-    face_pairs_checked(offsets, indices, &unwelded, &|_| true).unwrap_or_default()
+    face_pairs_checked(offsets, indices, &unwelded, &|_| true).map_or_else(Vec::new, |(p, _)| p)
 }
 
 /// Faces per block of the passes over the neighbour lists' pairs (a check of `go_on`
@@ -186,9 +186,10 @@ const VERTEX_BITS: u32 = 13;
 /// 25k pairs of 8 bytes).
 const FACE_BITS: u32 = 14;
 
-/// [`face_pairs`] of `indices` read through `weld`, that reports the fraction done
-/// to `go_on` between chunks of faces and buckets of vertices, and stops (`None`)
-/// when it says so.
+/// [`face_pairs`] of `indices` read through `weld`, with the number of edges only
+/// one face holds (0: the input is closed), that reports the fraction done to `go_on`
+/// between chunks of faces and buckets of vertices, and stops (`None`) when it says
+/// so.
 ///
 /// Two radix passes, each partitioning by a coarse key first and finishing each
 /// bucket on its own (in cache, buckets in parallel): the sides by their lower
@@ -204,7 +205,7 @@ pub fn face_pairs_checked(
     indices: &[u32],
     weld: &super::dedup::Weld,
     go_on: crate::progress::Checkpoint,
-) -> Option<Vec<(u32, u32)>> {
+) -> Option<(Vec<(u32, u32)>, u64)> {
     let faces = offsets.len().saturating_sub(1);
     debug_assert!(
         offsets.first().is_none_or(|&o| o == 0),
@@ -222,9 +223,9 @@ pub fn face_pairs_checked(
         }
     };
     let (keys, lows, start) = bucketed_sides(&sides, faces, verts, go_on)?;
-    let lists = edge_pairs(&keys, &lows, &start, go_on)?;
+    let (lists, open) = edge_pairs(&keys, &lows, &start, go_on)?;
     drop((keys, lows));
-    sorted_pairs(lists, faces, go_on)
+    Some((sorted_pairs(lists, faces, go_on)?, open))
 }
 
 /// The first radix pass of [`face_pairs_checked`]: each of the `faces` faces'
@@ -280,32 +281,39 @@ fn bucketed_sides(
 /// Each vertex bucket's pairs of faces around its edges, from its sides (`keys`:
 /// other vertex `<< 32 |` face, `lows`: the lower vertex's low bits) at
 /// `start[b]..start[b + 1]`: each vertex's records sorted, each edge's faces paired
-/// ([`push_edge_pairs`]); buckets in parallel, each asking `go_on`.
+/// ([`push_edge_pairs`]); buckets in parallel, each asking `go_on`. Also the number
+/// of edges one face alone holds.
 fn edge_pairs(
     keys: &[u64],
     lows: &[u16],
     start: &[usize],
     go_on: crate::progress::Checkpoint,
-) -> Option<Vec<Vec<(u32, u32)>>> {
+) -> Option<(Vec<Pairs>, u64)> {
     let buckets = start.len() - 1;
     let done = AtomicU32::new(0);
-    let lists: Vec<Option<Vec<(u32, u32)>>> = (0..buckets)
+    let lists: Vec<Option<(Pairs, u64)>> = (0..buckets)
         .into_par_iter()
         .map_init(Finish::default, |scratch, b| {
             let (keys, lows) = (&keys[start[b]..start[b + 1]], &lows[start[b]..start[b + 1]]);
-            let mut pairs = Vec::new();
+            let (mut pairs, mut open) = (Vec::new(), 0u64);
             for run in scratch.runs(keys, lows, 1 << VERTEX_BITS) {
                 run.sort_unstable();
                 for edge in run.chunk_by(|x, y| x >> 32 == y >> 32) {
+                    open += u64::from(edge.len() == 1);
                     push_edge_pairs(edge, &mut pairs);
                 }
             }
             let k = done.fetch_add(1, Relaxed) + 1;
-            go_on(0.5 + 0.4 * f64::from(k) / buckets as f64).then_some(pairs)
+            go_on(0.5 + 0.4 * f64::from(k) / buckets as f64).then_some((pairs, open))
         })
         .collect();
-    lists.into_iter().collect()
+    let lists: Vec<(Pairs, u64)> = lists.into_iter().collect::<Option<_>>()?;
+    let open = lists.iter().map(|l| l.1).sum();
+    Some((lists.into_iter().map(|l| l.0).collect(), open))
 }
+
+/// One bucket's pairs of faces sharing an edge.
+type Pairs = Vec<(u32, u32)>;
 
 /// From each chunk's count of items per bucket: each bucket's start (one more entry
 /// than buckets), and each chunk's cursor per bucket: the chunks' items in a bucket
@@ -632,6 +640,31 @@ mod tests {
         }
         let unwelded = crate::input::dedup::Weld::none();
         assert!(face_pairs_checked(&offsets, &indices, &unwelded, &|_| false).is_none());
+    }
+
+    /// Edges one face alone holds, counted by the same pass: none on a closed box of
+    /// quads, the lid's four once the lid is left out, every edge where the quads
+    /// share no vertex.
+    #[test]
+    fn open_edges_are_those_one_face_holds() {
+        let quads: [[u32; 4]; 6] = [
+            [0, 2, 3, 1],
+            [4, 5, 7, 6],
+            [0, 1, 5, 4],
+            [2, 6, 7, 3],
+            [0, 4, 6, 2],
+            [1, 3, 7, 5],
+        ];
+        let open = |quads: &[[u32; 4]]| {
+            let indices: Vec<u32> = quads.iter().flatten().copied().collect();
+            let offsets: Vec<u32> = (0..=quads.len() as u32).map(|i| 4 * i).collect();
+            let unwelded = crate::input::dedup::Weld::none();
+            face_pairs_checked(&offsets, &indices, &unwelded, &|_| true).map(|(_, open)| open)
+        };
+        assert_eq!(open(&quads), Some(0));
+        assert_eq!(open(&quads[..5]), Some(4));
+        let apart: Vec<[u32; 4]> = (0..6u32).map(|f| [0, 1, 2, 3].map(|c| 4 * f + c)).collect();
+        assert_eq!(open(&apart), Some(24));
     }
 
     #[test]

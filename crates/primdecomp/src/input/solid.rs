@@ -19,11 +19,9 @@
 //! parities are kept, so a face given twice (two-sided) cancels itself: such a part
 //! has no inside and is priced as in the paper, never filled by mistake.
 
-use super::dedup::Weld;
 use super::mesh::Mesh;
 use crate::math::V3;
 use crate::primitive::Primitive;
-use rayon::prelude::*;
 
 /// Cells along the input's longest side.
 pub const CELLS: usize = 64;
@@ -45,8 +43,8 @@ pub struct Solid {
     /// box of cells is counted in O(1), so a primitive over no inside cell (or only
     /// inside cells) needs no sampling.
     prefix: Vec<u32>,
-    /// Whether the input has an edge only one face holds ([`closed`]): its inside is
-    /// then the vote's alone, and the cut measures to its surface (docs/decisions/0056).
+    /// Whether the input has an edge only one face holds (the adjacency's count,
+    /// `adjacency::face_pairs_checked`): its inside is then the vote's alone, and the cut measures to its surface (docs/decisions/0056).
     open: bool,
 }
 
@@ -127,7 +125,7 @@ impl Solid {
         best.map(|(_, c)| c)
     }
 
-    /// This interior, of an input that is `open` ([`closed`] says not) or not.
+    /// This interior, of an input that is `open` (an edge one face holds) or not.
     pub(crate) fn with_open(self, open: bool) -> Solid {
         Solid { open, ..self }
     }
@@ -360,29 +358,6 @@ fn for_each_triangle(mesh: &Mesh, mut f: impl FnMut([V3; 3])) {
     }
 }
 
-/// Whether every edge of `mesh` (between welded vertices, `weld`) is held by at
-/// least two faces. Only then is the input's solid the same whichever way one looks:
-/// through an edge one face holds, the grid's six-ray vote and another test of
-/// inside (`primdecomp eval --solid`'s three skew rays) disagree (kenney_character,
-/// open along 34 edges: a level bounded at 1.91% of the diagonal outside the vote's
-/// solid stood 9.6% outside eval's), so the cut measures an open input to its surface
-/// (docs/decisions/0056). Eight bytes a corner, for the pass.
-pub(crate) fn closed(mesh: &Mesh, weld: &Weld) -> bool {
-    let mut edges: Vec<u64> = Vec::with_capacity(mesh.face_indices.len());
-    for f in 0..mesh.face_count() {
-        let c = weld.face(mesh, f);
-        let n = c.len();
-        for i in 0..n {
-            let (a, b) = (c.get(i), c.get((i + 1) % n));
-            if a != b {
-                edges.push((u64::from(a.min(b)) << 32) | u64::from(a.max(b)));
-            }
-        }
-    }
-    edges.par_sort_unstable();
-    edges.chunk_by(|a, b| a == b).all(|run| run.len() >= 2)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -421,18 +396,6 @@ mod tests {
 
     fn cube(skip: &[usize]) -> Mesh {
         mesh_of(&box_quads([0.0; 3], [1.0, 0.5, 2.0], skip))
-    }
-
-    /// Closed exactly where every welded edge is held by two faces or more: a box is,
-    /// a box without its top is not, and neither is a box whose quads share no vertex.
-    #[test]
-    fn closed_is_every_edge_held_twice() {
-        let weld = |m: &Mesh| crate::input::dedup::weld(m, crate::params::Dedup::Exact).0;
-        let whole = cube(&[]);
-        assert!(closed(&whole, &weld(&whole)));
-        let lidless = cube(&[5]);
-        assert!(!closed(&lidless, &weld(&lidless)));
-        assert!(!closed(&whole, &Weld::none()));
     }
 
     proptest::proptest! {

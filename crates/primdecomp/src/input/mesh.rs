@@ -409,7 +409,7 @@ impl Mesh {
     /// The vertices the faces use are marked first, then each axis' bounds taken over
     /// the marked ones in vertex order: a bound that is not zero is the one value
     /// below (above) every other, so the order it was found in cannot change its bits,
-    /// and it is the bound of the corners in face order ([`Self::aabb_by_corners`]). A
+    /// and it is the bound of the corners in face order (`aabb_by_corners`). A
     /// zero bound may be +0 or −0 depending on that order: then the corners are
     /// walked in face order after all.
     pub fn aabb(&self) -> (V3, V3) {

@@ -288,9 +288,11 @@ def _numbers(v):
 
 def parse_tscn(path):
     """[(section kind, header attrs, properties)] of a text scene; raises on lines it
-    does not understand."""
+    does not understand. Lines end at a line feed only, as Godot's tokenizer reads them
+    (core/variant/variant_parser.cpp): U+2028 and U+2029, where str.splitlines() would
+    also cut, are characters of a string there."""
     sections = []
-    for ln, line in enumerate(Path(path).read_text().splitlines(), 1):
+    for ln, line in enumerate(Path(path).read_text().split("\n"), 1):
         if not line.strip():
             continue
         if line.startswith("["):

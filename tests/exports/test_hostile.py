@@ -1,7 +1,8 @@
 """Hostile names and numbers through the real consumers (made here, not in the
 corpus): a per-object result whose objects carry names that broke the writers (a
-NUL, ESC and BEL, characters XML 1.0 forbids, markup, MuJoCo's `world`, duplicates,
-a 240-character name) and an output file name with control characters, exported in
+NUL, ESC and BEL, characters XML 1.0 forbids, the line and paragraph separators
+U+2028 and U+2029 (written raw: every reader takes them inside a name or string),
+markup, MuJoCo's `world`, duplicates, a 240-character name) and an output file name with control characters, exported in
 every format: MuJoCo compiles the MJCF, yourdfpy loads the URDF and its meshes,
 usd-core opens the stage, the Khronos glTF Validator finds no error, the .tscn
 parses back; every object keeps a unique, readable name. Numbers no format can hold
@@ -13,9 +14,9 @@ import subprocess
 import pytest
 
 from conftest import BIN, run
-from readers import parse_tscn
+from readers import _unquote, parse_tscn
 
-NAMES = ["world", "a\x00b", "\x1b[31mred\x07", "tab\tnl\ncr\r", "a\ufffeb\uffff",
+NAMES = ["world", "a\x00b", "\x1b[31mred\x07", "tab\tnl\ncr\r", "a\ufffeb\uffff", "a\u2028b\u2029c",
          "<!--<script>", "q\"'&<>", "\u202etxt.exe", "dup", "dup", "", "日本語 ok", "x" * 240]
 
 PRISM = {"kind": "prism", "center": [0, 0, 0], "rotation": [0, 0, 0, 1], "half_x": 0.5,
@@ -125,8 +126,11 @@ def test_tscn_parses_back(exported):
     text = exported["tscn"].read_text()
     assert not any(ord(c) < 32 and c not in "\n\t" for c in text), "raw control character"
     secs = parse_tscn(exported["tscn"])
-    bodies = [a["name"] for k, a, p in secs if k == "node" and a.get("type") == "StaticBody3D"]
-    assert len(bodies) == len(set(bodies)) == len(NAMES)
+    bodies = [(a["name"], p) for k, a, p in secs if k == "node" and a.get("type") == "StaticBody3D"]
+    assert len(bodies) == len({n for n, _ in bodies}) == len(NAMES)
+    # Each body's metadata keeps the object's name whole, U+2028 and U+2029 included.
+    kept = [_unquote(p["metadata/primdecomp_name"]) for _, p in bodies]
+    assert kept == expected()
 
 
 @pytest.mark.parametrize("fmt", ["g.glb", "x.xml", "u.urdf", "s.usda", "t.tscn"])

@@ -328,3 +328,19 @@ test('typed arrays in, typed primitives out; toGltf; errors', () => {
   const again = primdecomp.loadMesh(fs.readFileSync(path.join(root, 'datasets', 'demo_scene.obj')), 'demo.obj');
   assert.ok(primdecomp.decompose(again).count > 0);
 });
+
+test('a level says what its distance is measured to: the solid of a closed box under solid, else the surface', () => {
+  // A 2 x 1 x 0.5 box; opened, it lacks its last side's two triangles.
+  const corners = [];
+  for (let c = 0; c < 8; c++) corners.push(2 * (c & 1), (c >> 1) & 1, 0.5 * ((c >> 2) & 1));
+  const tris = BOX_QUADS.flatMap((q) => [q[0], q[1], q[2], q[0], q[2], q[3]]);
+  const run = (faces, settings) => primdecomp.decompose(new Float64Array(corners), new Uint32Array(tris.slice(0, 3 * faces)), settings);
+  const measured = (r) => [r.measuredTo, r.levels[0].measuredTo, JSON.parse(r.toJSON()).stats.distance?.measured_to];
+  assert.deepEqual(measured(run(12, { solid: true })), ['solid', 'solid', 'solid'], 'closed, solid');
+  assert.deepEqual(measured(run(10, { solid: true })), ['mesh', 'mesh', undefined], 'open, solid');
+  assert.deepEqual(measured(run(12, {})), ['mesh', 'mesh', undefined], 'closed, without solid');
+  assert.deepEqual(measured(run(12, { targets: [2], solid: true })), [null, null, undefined], 'greedy: nothing measured');
+  // Levels of one run each say their own.
+  const two = run(12, { solid: true, tolerance: [{ diagonal: 0.02 }, { diagonal: 0.01 }] });
+  assert.deepEqual(two.levels.map((l) => l.measuredTo), ['solid', 'solid']);
+});

@@ -73,7 +73,13 @@ int main(int argc, char **argv) {
   primdecomp_level_info info;
   primdecomp_result_level(result, 0, &info);
   printf("%zu primitives, %zu bytes", info.primitives, info.bytes);
-  if (info.distance == info.distance) printf(", all within %g of the mesh", info.distance);
+  if (info.distance == info.distance) {
+    /* Under "solid": true on a closed mesh, a primitive's points inside it count as 0. */
+    primdecomp_measured_to to = PRIMDECOMP_MEASURED_TO_MESH;
+    primdecomp_result_level_measured_to(result, 0, &to);
+    printf(", all within %g of the %s", info.distance,
+           to == PRIMDECOMP_MEASURED_TO_SOLID ? "mesh's solid" : "mesh");
+  }
   printf("\n");
 
   static const char *names[6] = {"box", "sphere", "capsule", "cylinder", "frustum", "prism"};

@@ -78,6 +78,29 @@ typedef int32_t primdecomp_shortfall;
 #endif // __STDC_VERSION__ >= 202311L
 #endif // __cplusplus
 
+// What a level's `distance` is measured to (the JSON's `stats.distance.measured_to`).
+enum primdecomp_measured_to
+#if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+  : int32_t
+#endif // defined(__cplusplus) || __STDC_VERSION__ >= 202311L
+ {
+  // Nothing was measured: a greedy level, whose `distance` is NaN.
+  PRIMDECOMP_MEASURED_TO_NONE = 0,
+  // The input's surface: every point of a primitive counts by its distance to the
+  // nearest input face.
+  PRIMDECOMP_MEASURED_TO_MESH = 1,
+  // The input's solid (`"solid": true` on a closed input with an inside): a point
+  // of a primitive inside the input stands at 0 (docs/decisions/0056).
+  PRIMDECOMP_MEASURED_TO_SOLID = 2,
+};
+#ifndef __cplusplus
+#if __STDC_VERSION__ >= 202311L
+typedef enum primdecomp_measured_to primdecomp_measured_to;
+#else
+typedef int32_t primdecomp_measured_to;
+#endif // __STDC_VERSION__ >= 202311L
+#endif // __cplusplus
+
 // A primitive's kind, in the order every count and weight uses.
 enum primdecomp_kind
 #if defined(__cplusplus) || __STDC_VERSION__ >= 202311L
@@ -134,8 +157,9 @@ typedef struct {
   // The byte target asked for; 0 when none was.
   size_t max_bytes;
   // For a cut of the merge tree (a tolerance, byte target or `"cut": true`): an
-  // upper bound of the farthest any primitive stands from the input, in its units;
-  // NaN for a greedy level.
+  // upper bound of the farthest any primitive stands from the input, in its units
+  // (from its surface or its solid: `primdecomp_result_level_measured_to`); NaN for
+  // a greedy level.
   double distance;
   // What kept the level from its tolerance.
   primdecomp_shortfall shortfall;
@@ -367,6 +391,18 @@ size_t primdecomp_result_level_count(const primdecomp_result *result);
 primdecomp_status primdecomp_result_level(const primdecomp_result *result,
                                           size_t level,
                                           primdecomp_level_info *out);
+
+// What a level's `distance` is measured to into `*out`: the input's solid under
+// `"solid": true` on a closed input, else its surface; `PRIMDECOMP_MEASURED_TO_NONE`
+// for a greedy level. (A function rather than a field of `primdecomp_level_info`, so
+// that a caller built against an older header, whose struct is smaller, stays safe.)
+//
+// # Safety
+// `result` is a live result of this library; `out` points to a writable
+// `primdecomp_measured_to`.
+primdecomp_status primdecomp_result_level_measured_to(const primdecomp_result *result,
+                                                      size_t level,
+                                                      primdecomp_measured_to *out);
 
 // A level's primitives: `*out` points to `*count` structs owned by the result
 // (valid until `primdecomp_result_free`; do not free them).

@@ -243,6 +243,20 @@ pub enum PrimdecompShortfall {
     Faces = 3,
 }
 
+/// What a level's `distance` is measured to (the JSON's `stats.distance.measured_to`).
+#[repr(i32)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PrimdecompMeasuredTo {
+    /// Nothing was measured: a greedy level, whose `distance` is NaN.
+    None = 0,
+    /// The input's surface: every point of a primitive counts by its distance to the
+    /// nearest input face.
+    Mesh = 1,
+    /// The input's solid (`"solid": true` on a closed input with an inside): a point
+    /// of a primitive inside the input stands at 0 (docs/decisions/0056).
+    Solid = 2,
+}
+
 /// A level's summary (the JSON's `stats`).
 #[repr(C)]
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -260,8 +274,9 @@ pub struct PrimdecompLevelInfo {
     /// The byte target asked for; 0 when none was.
     pub max_bytes: usize,
     /// For a cut of the merge tree (a tolerance, byte target or `"cut": true`): an
-    /// upper bound of the farthest any primitive stands from the input, in its units;
-    /// NaN for a greedy level.
+    /// upper bound of the farthest any primitive stands from the input, in its units
+    /// (from its surface or its solid: `primdecomp_result_level_measured_to`); NaN for
+    /// a greedy level.
     pub distance: f64,
     /// What kept the level from its tolerance.
     pub shortfall: PrimdecompShortfall,
@@ -335,6 +350,33 @@ pub unsafe extern "C" fn primdecomp_result_level(
             },
         };
         put(out, info, "out")
+    })
+}
+
+/// What a level's `distance` is measured to into `*out`: the input's solid under
+/// `"solid": true` on a closed input, else its surface; `PRIMDECOMP_MEASURED_TO_NONE`
+/// for a greedy level. (A function rather than a field of `primdecomp_level_info`, so
+/// that a caller built against an older header, whose struct is smaller, stays safe.)
+///
+/// # Safety
+/// `result` is a live result of this library; `out` points to a writable
+/// `primdecomp_measured_to`.
+#[no_mangle]
+pub unsafe extern "C" fn primdecomp_result_level_measured_to(
+    result: *const PrimdecompResult,
+    level: usize,
+    out: *mut PrimdecompMeasuredTo,
+) -> PrimdecompStatus {
+    guard(|| {
+        writable(out, "out")?;
+        let r = handle(result, "result")?;
+        let l = r.level(level)?;
+        let to = match (l.distance, l.distance_to_solid) {
+            (None, _) => PrimdecompMeasuredTo::None,
+            (Some(_), false) => PrimdecompMeasuredTo::Mesh,
+            (Some(_), true) => PrimdecompMeasuredTo::Solid,
+        };
+        put(out, to, "out")
     })
 }
 

@@ -538,6 +538,59 @@ static void errors() {
   primdecomp_bytes_free(nullptr, 0);
 }
 
+/// What a level's distance is measured to: the solid for a closed box under
+/// "solid", the surface for the same box with one side left open (or without
+/// "solid"), nothing for a greedy level; always what the JSON says.
+static void measured_to() {
+  // A 2 x 1 x 0.5 box, two triangles a side, outward; the open box lacks the last side.
+  const double corners[8 * 3] = {0, 0, 0, 2, 0, 0, 2, 1, 0, 0, 1, 0, 0, 0, 0.5, 2, 0, 0.5, 2, 1, 0.5, 0, 1, 0.5};
+  const uint32_t tris[12 * 3] = {0, 2, 1, 0, 3, 2, 4, 5, 6, 4, 6, 7, 0, 1, 5, 0, 5, 4,
+                                 1, 2, 6, 1, 6, 5, 2, 3, 7, 2, 7, 6, 3, 0, 4, 3, 4, 7};
+  struct Run {
+    const char *what;
+    size_t faces;
+    const char *settings;
+    primdecomp_measured_to expect;
+    const char *in_json;  // stats.distance.measured_to, or nullptr when absent
+  };
+  const Run runs[] = {
+      {"closed box, solid", 12, "{\"solid\": true}", PRIMDECOMP_MEASURED_TO_SOLID, "solid"},
+      {"open box, solid", 10, "{\"solid\": true}", PRIMDECOMP_MEASURED_TO_MESH, nullptr},
+      {"closed box, no solid", 12, "{}", PRIMDECOMP_MEASURED_TO_MESH, nullptr},
+      {"closed box, greedy", 12, "{\"targets\": [2], \"solid\": true}", PRIMDECOMP_MEASURED_TO_NONE, nullptr},
+  };
+  for (const Run &c : runs) {
+    primdecomp_mesh *m = nullptr;
+    CHECK(primdecomp_mesh_from_doubles(corners, 8, tris, c.faces * 3, nullptr, 0, &m) == PRIMDECOMP_STATUS_OK,
+          "%s: %s", c.what, last_error().c_str());
+    primdecomp_result *r = run(m, c.settings);
+    primdecomp_measured_to to = PRIMDECOMP_MEASURED_TO_NONE;
+    if (c.expect == PRIMDECOMP_MEASURED_TO_NONE) to = PRIMDECOMP_MEASURED_TO_SOLID;  // must be overwritten
+    CHECK(primdecomp_result_level_measured_to(r, 0, &to) == PRIMDECOMP_STATUS_OK, "%s: %s", c.what,
+          last_error().c_str());
+    CHECK(to == c.expect, "%s: measured to %d, expected %d", c.what, (int)to, (int)c.expect);
+    Json doc = parse_json(json_of(r));
+    const Json *d = doc.get("stats") ? doc.get("stats")->get("distance") : nullptr;
+    const Json *j = d ? d->get("measured_to") : nullptr;
+    CHECK((d != nullptr) == (c.expect != PRIMDECOMP_MEASURED_TO_NONE), "%s: stats.distance", c.what);
+    CHECK(c.in_json ? j && j->text == c.in_json : j == nullptr, "%s: the JSON's measured_to", c.what);
+    primdecomp_level_info info;
+    primdecomp_result_level(r, 0, &info);
+    std::printf("  %s: %zu primitives, distance %g, measured to %s\n", c.what, info.primitives, info.distance,
+                to == PRIMDECOMP_MEASURED_TO_SOLID ? "the solid" : to == PRIMDECOMP_MEASURED_TO_MESH ? "the mesh" : "nothing");
+    if (&c == &runs[0]) {
+      CHECK(primdecomp_result_level_measured_to(r, 1, &to) == PRIMDECOMP_STATUS_OUT_OF_RANGE, "level out of range");
+      CHECK(primdecomp_result_level_measured_to(r, 0, nullptr) == PRIMDECOMP_STATUS_INVALID_ARGUMENT &&
+                last_error().find("out") != std::string::npos,
+            "NULL out: %s", last_error().c_str());
+      CHECK(primdecomp_result_level_measured_to(nullptr, 0, &to) == PRIMDECOMP_STATUS_INVALID_ARGUMENT,
+            "NULL result");
+    }
+    primdecomp_result_free(r);
+    primdecomp_mesh_free(m);
+  }
+}
+
 struct Seen {
   std::thread::id thread;
   bool other_thread = false;
@@ -653,6 +706,7 @@ int main(int argc, char **argv) {
   exports_as_cli(cases[0]);
   std::printf("errors, progress, cancellation, threads:\n");
   errors();
+  measured_to();
   // A finer knot (11,520 quads), so that the slow run's progress is seen going.
   progress_and_cancel({"knot_fine", g_work + "/knot_fine.obj", {}, "{\"targets\": [40]}", false});
 

@@ -20,21 +20,36 @@ pub fn code(e: &anyhow::Error) -> i32 {
     }
 }
 
-/// Prints `e` and gives the process's exit code for it.
+/// Prints `e` and gives the process's exit code for it (the library's messages make
+/// names visible themselves; a path's line and paragraph separators are escaped here).
 pub fn report(e: &anyhow::Error) -> i32 {
-    eprintln!("error: {e:#}");
+    eprintln!("{}", one_line(&format!("error: {e:#}")));
     code(e)
 }
 
 /// Text as the terminal is shown it: control characters (ESC, BEL, a carriage
 /// return…) in file and object names, or in a file's bytes quoted by a message, are
 /// written as visible escapes (`\u{1b}`, `primdecomp_files::visible`) instead of
-/// acting on the terminal; line ends between lines stay.
+/// acting on the terminal, and so are U+2028 and U+2029 ([`one_line`]); line ends
+/// between lines stay.
 pub fn terminal(text: &str) -> String {
     text.split('\n')
-        .map(primdecomp_files::visible)
+        .map(|line| one_line(&primdecomp_files::visible(line)))
         .collect::<Vec<_>>()
         .join("\n")
+}
+
+/// `text` with the line and paragraph separators U+2028 and U+2029 written as
+/// `\u{2028}` and `\u{2029}`. A terminal does not break a line there, but what reads a
+/// captured log by lines does (Python's `str.splitlines`, editors): a file name
+/// holding one would cut a message in two. (In the exports they stay: every format's
+/// reader takes them inside a string or name, `primdecomp_export::names`.)
+fn one_line(text: &str) -> String {
+    if !text.contains(['\u{2028}', '\u{2029}']) {
+        return text.to_string();
+    }
+    text.replace('\u{2028}', "\\u{2028}")
+        .replace('\u{2029}', "\\u{2029}")
 }
 
 // `println!`, `print!` and `eprintln!` through [`terminal`]: a module that prints
@@ -62,5 +77,16 @@ mod tests {
             super::terminal(text),
             "error: a\\u{1b}[31mb\\u{7}.obj: bad\nsecond line\\u{d}"
         );
+    }
+
+    #[test]
+    fn line_and_paragraph_separators_stay_on_their_line() {
+        let text = "input     a\u{2028}b\u{2029}c.obj: 12 faces\nwrote     d\u{2028}.json";
+        let shown = super::terminal(text);
+        assert_eq!(
+            shown,
+            "input     a\\u{2028}b\\u{2029}c.obj: 12 faces\nwrote     d\\u{2028}.json"
+        );
+        assert_eq!(super::one_line("plain 日本"), "plain 日本");
     }
 }

@@ -7,7 +7,13 @@
 //!    make text display in another order than it is stored) are written as the
 //!    visible escape `\u{1b}`. Every name a writer puts in a file goes through it; XML
 //!    1.0 forbids most of these characters outright, attribute normalization turns tab
-//!    and line ends into spaces, and Godot and USD strings end at a NUL.
+//!    and line ends into spaces, and Godot and USD strings end at a NUL. The line and
+//!    paragraph separators U+2028 and U+2029 stay: XML 1.0 allows them, a `.usda`
+//!    string holds them (usd-core reads them back, and writes them raw itself), and
+//!    Godot's tokenizer ends a string only at `"` or a NUL
+//!    (`core/variant/variant_parser.cpp`); `tests/exports/test_hostile.py` reads such
+//!    a name back from every format. (The terminal and the viewer's script, where a
+//!    reader does break a line there, escape them.)
 //! 2. Each format's syntax is then escaped by its writer (quick-xml for MJCF and URDF
 //!    attributes, serde for glTF JSON, `usd::quote`, `godot::quote`).
 //! 3. Where a format takes identifiers (USD prim names, Godot node names, file

@@ -3,6 +3,7 @@ present), the coacd-style hulls against an independent containment check (trimes
 other input formats, zero-copy input, and the batch runner on a local Ray instance
 and on the thread-pool fallback (Ctrl-C included)."""
 
+import contextlib
 import json
 import os
 import shutil
@@ -38,6 +39,32 @@ def cli():
 def cli_json(cli, mesh, out, n=16):
     subprocess.run([cli, "decompose", mesh, "-n", str(n), "-o", out], check=True, capture_output=True)
     return Path(out).read_bytes()
+
+
+@contextlib.contextmanager
+def ctrl_c_once(ready, delay=0.0):
+    """Ctrl-C from another thread: SIGINT to this process once `ready()` holds and
+    `delay` seconds more have passed, unless the block has ended by then (Python runs
+    the handler on the main thread, as for a user's Ctrl-C). Yields a list that holds
+    the moment it was sent (`time.perf_counter()`), empty if it was not; the sender is
+    joined when the block ends."""
+    done = threading.Event()
+    sent = []
+
+    def send():
+        while not done.is_set() and not ready():
+            time.sleep(0.01)
+        if not done.wait(delay):
+            sent.append(time.perf_counter())
+            os.kill(os.getpid(), signal.SIGINT)
+
+    sender = threading.Thread(target=send)
+    sender.start()
+    try:
+        yield sent
+    finally:
+        done.set()
+        sender.join()
 
 
 def prims(text):
@@ -213,8 +240,6 @@ def test_batch_on_ray_cancels_its_tasks_on_ctrl_c(tmp_path, monkeypatch):
         return cancel(ref, **kw)
 
     monkeypatch.setattr(ray, "cancel", recorded)
-    done = threading.Event()
-    sent = []
 
     def running():
         """Processes running the batch's task: Ray titles them `ray::TASK`."""
@@ -226,29 +251,18 @@ def test_batch_on_ray_cancels_its_tasks_on_ctrl_c(tmp_path, monkeypatch):
                 pass
         return n
 
-    def ctrl_c():
-        while not done.is_set() and running() < 2:
-            time.sleep(0.02)
-        time.sleep(whole / 10)
-        if not done.is_set():
-            sent.append(time.perf_counter())
-            os.kill(os.getpid(), signal.SIGINT)
-
-    sender = threading.Thread(target=ctrl_c)
-    sender.start()
     try:
-        with pytest.raises(KeyboardInterrupt):
-            primdecomp.batch.run(inputs, tmp_path / "out", use_ray=True, targets=[1])
-        outcomes = []
-        for ref in cancelled:
-            try:
-                outcomes.append(ray.get(ref)["status"])
-            except ray.exceptions.TaskCancelledError:
-                outcomes.append("cancelled")
-        settled = time.perf_counter()
+        with ctrl_c_once(lambda: running() >= 2, delay=whole / 10) as sent:
+            with pytest.raises(KeyboardInterrupt):
+                primdecomp.batch.run(inputs, tmp_path / "out", use_ray=True, targets=[1])
+            outcomes = []
+            for ref in cancelled:
+                try:
+                    outcomes.append(ray.get(ref)["status"])
+                except ray.exceptions.TaskCancelledError:
+                    outcomes.append("cancelled")
+            settled = time.perf_counter()
     finally:
-        done.set()
-        sender.join()
         ray.shutdown()
     assert sent
     assert settled - sent[0] < whole, (settled - sent[0], whole)
@@ -295,28 +309,13 @@ def test_batch_thread_pool_stops_on_ctrl_c(tmp_path):
     primdecomp.decompose_file(src, targets=[1])
     whole = time.perf_counter() - t0
 
-    done = threading.Event()
-    sent = []
-
     def pool_threads():
         return sum(t.name.startswith("ThreadPoolExecutor") for t in threading.enumerate())
 
-    def ctrl_c():
-        while not done.is_set() and pool_threads() < 2:
-            time.sleep(0.01)
-        if not done.is_set():
-            sent.append(time.perf_counter())
-            os.kill(os.getpid(), signal.SIGINT)
-
-    sender = threading.Thread(target=ctrl_c)
-    sender.start()
-    try:
+    with ctrl_c_once(lambda: pool_threads() >= 2) as sent:
         with pytest.raises(KeyboardInterrupt):
             primdecomp.batch.run(inputs, tmp_path / "out", use_ray=False, workers=2, targets=[1])
         raised = time.perf_counter()
-    finally:
-        done.set()
-        sender.join()
     assert sent
     assert raised - sent[0] < whole / 2, (raised - sent[0], whole)
     # No summary (the batch did not finish), and no temporary file left: only outputs

@@ -296,6 +296,29 @@ def test_tolerance_and_bytes(tmp_path):
     assert json.dumps(cli) == json.dumps(json.loads(chain.to_json(1))["primitives"])
 
 
+def test_measured_to_the_solid_of_a_closed_box_only():
+    """Under solid=True a closed box's distance is measured to its solid, the box with
+    one side left open to its surface (docs/decisions/0056), as the JSON says; a greedy
+    level measures nothing."""
+    v = np.array([[2 * x, y, 0.5 * z] for x in (0, 1) for y in (0, 1) for z in (0, 1)], dtype=np.float64)
+    _, q = cube()
+    t = np.array([[a, b, c] for p in q for a, b, c in ((p[0], p[1], p[2]), (p[0], p[2], p[3]))], dtype=np.uint32)
+
+    closed = primdecomp.decompose(v, t, solid=True)
+    opened = primdecomp.decompose(v, t[:-2], solid=True)
+    plain = primdecomp.decompose(v, t)
+    greedy = primdecomp.decompose(v, t, targets=2, solid=True)
+    for res, to in ((closed, "solid"), (opened, "mesh"), (plain, "mesh"), (greedy, None)):
+        level = res.levels[0]
+        assert level.measured_to == to, (to, level)
+        dist = json.loads(res.to_json())["stats"].get("distance")
+        assert (dist is None) == (to is None)
+        assert dist is None or dist.get("measured_to") == ("solid" if to == "solid" else None)
+    assert "outside the solid" in repr(closed) and "from the mesh" in repr(opened)
+    chain = primdecomp.decompose(v, t, solid=True, tolerance=["2%", "1%"])
+    assert [l.measured_to for l in chain.levels] == ["solid", "solid"]
+
+
 def test_tolerance_without_count_matches_cli(tmp_path):
     """`tolerance="1%"` alone is capped as `primdecomp decompose --tolerance 1%` is."""
     need(CLI)

@@ -107,6 +107,10 @@ export interface Level {
   bytes: number;
   /** For a cut of the merge tree: an upper bound of the farthest any primitive stands from the input (input units); null for a greedy level. */
   distance: number | null;
+  /** What `distance` is measured to: 'solid' with `solid: true` on a closed mesh (a
+   * primitive's points inside the mesh stand at 0), else 'mesh' (its surface); null
+   * for a greedy level. The JSON's `stats.distance.measured_to`. */
+  measuredTo: 'solid' | 'mesh' | null;
   /** The tolerance asked for, input units. */
   tolerance: number | null;
   maxBytes: number | null;
@@ -163,11 +167,12 @@ export class Result {
   readonly levels: Level[];
   readonly input: { path: string | null; faces: number; vertices: number; aabb_min: Vec3; aabb_max: Vec3 };
   readonly settings: Settings;
-  /** The first level's primitives, count, bytes and distance. */
+  /** The first level's primitives, count, bytes, distance and what it is measured to. */
   readonly primitives: Primitive[];
   readonly count: number;
   readonly bytes: number;
   readonly distance: number | null;
+  readonly measuredTo: 'solid' | 'mesh' | null;
   /** A level's JSON document: the CLI's file for the same input and settings, byte for byte. */
   toJSON(level?: number): string;
   /** GLB bytes, or the .gltf text with `binary: false`. */

@@ -183,6 +183,8 @@ function level(doc) {
     counts: doc.stats.counts,
     bytes: doc.stats.bytes,
     distance: d ? d.worst : null,
+    // The JSON says "solid" under `solid: true` on a closed mesh; absent: the surface.
+    measuredTo: d ? (d.measured_to === 'solid' ? 'solid' : 'mesh') : null,
     tolerance: d && d.tolerance !== undefined ? d.tolerance : null,
     maxBytes: d && d.max_bytes !== undefined ? d.max_bytes : null,
     limitedBy: d && d.limited_by !== undefined ? d.limited_by : null
@@ -219,6 +221,9 @@ export class Result {
   }
   get distance() {
     return this.levels[0].distance;
+  }
+  get measuredTo() {
+    return this.levels[0].measuredTo;
   }
   /**
    * A level's JSON document as a string: byte for byte the file

@@ -304,10 +304,24 @@ pub fn cases() -> Vec<Case> {
             c.show = c.show.replace("NAME", "$'bell\\a\\e[31m.obj'");
             c
         },
+        // U+2028 and U+2029 too: a terminal shows them, but a log read by lines
+        // (Python's splitlines, editors) would break the message there.
+        {
+            let mut c = case("decompose NAME -o r.json --quiet", "a file name with U+2028 and U+2029", |d| write(d, "line\u{2028}para\u{2029}.obj", "v 0 0 0\n"), r(&["line\\u{2028}para\\u{2029}.obj: the mesh has no polygon faces"]));
+            c.args[1] = "line\u{2028}para\u{2029}.obj".into();
+            c.show = c.show.replace("NAME", "$'line\\u2028para\\u2029.obj'");
+            c
+        },
         {
             let mut c = case("export r.json -o NAME", "an output name with ESC", sphere, done(|_, out| format!("exit 0, stdout: `{}`", out.trim())));
             c.args[3] = "o\u{1b}[2J.glb".into();
             c.show = c.show.replace("NAME", "$'o\\e[2J.glb'");
+            c
+        },
+        {
+            let mut c = case("export r.json -o NAME", "an output name with U+2028", sphere, done(|_, out| format!("exit 0, stdout: `{}`", out.trim())));
+            c.args[3] = "o\u{2028}.glb".into();
+            c.show = c.show.replace("NAME", "$'o\\u2028.glb'");
             c
         },
     ]

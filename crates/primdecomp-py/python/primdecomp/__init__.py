@@ -120,7 +120,10 @@ class Level:
     """One level of a result: `target` (the count asked, or the cap of a tolerance or
     byte target), `primitives`, `counts` by kind, `bytes` (the paper's Table 2) and,
     for a cut of the merge tree, `distance` (the farthest a primitive stands from the
-    mesh, input units, with what was asked: the JSON's `stats.distance`, else None)."""
+    mesh, input units, with what was asked: the JSON's `stats.distance`, else None)
+    and `measured_to`: "solid" when that distance is to the mesh's solid (`solid=True`
+    on a closed mesh: a primitive's points inside the mesh stand at 0), "mesh" when to
+    its surface, None for a greedy level."""
 
     def __init__(self, native, level):
         self._doc = _json.loads(native.to_json(level))
@@ -132,6 +135,8 @@ class Level:
         self.counts = {k: n for k, n in stats["counts"].items() if n}
         self.bytes = stats["bytes"]
         self.distance = stats.get("distance")
+        # The JSON names the solid; the surface is its absence.
+        self.measured_to = None if self.distance is None else self.distance.get("measured_to", "mesh")
 
     def _asked(self):
         """What the level asked for, in the user's words."""
@@ -147,7 +152,8 @@ class Level:
         kinds = ", ".join(f"{n} {k}" for k, n in self.counts.items())
         s = f"{self._asked()}: {len(self.primitives)} primitives ({kinds}), {self.bytes} bytes"
         if self.distance:
-            s += f", farthest {_pct(self.distance['worst'], _diagonal(self._doc))} from the mesh"
+            where = "outside the solid" if self.measured_to == "solid" else "from the mesh"
+            s += f", farthest {_pct(self.distance['worst'], _diagonal(self._doc))} {where}"
         return s
 
     def __len__(self):

@@ -1,5 +1,5 @@
 from os import PathLike
-from typing import Any, Callable, Optional, Sequence, Union
+from typing import Any, Callable, Literal, Optional, Sequence, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -21,6 +21,7 @@ class Level:
     counts: dict[str, int]
     bytes: int
     distance: Optional[dict]
+    measured_to: Optional[Literal["solid", "mesh"]]
     def __len__(self) -> int: ...
 
 class Result:

@@ -176,6 +176,15 @@ def test_reprs_say_what_they_hold():
     assert "tolerance 1% of the diagonal" in repr(t.levels[0]) and "farthest" in repr(t.levels[0])
 
 
+def test_repr_of_a_path_holding_line_breaks_is_one_line(tmp_path):
+    # A file name may hold U+2028, U+2029 or a line feed: the repr stays one line.
+    path = tmp_path / "a\u2028b\u2029c\nd.obj"
+    path.write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n")
+    text = repr(primdecomp.decompose_file(path, targets=[1]))
+    assert len(text.splitlines()) == 1, text
+    assert "a\\u2028b\\u2029c\\nd.obj" in text
+
+
 def test_as_hulls_and_export(tmp_path):
     v, q = cube()
     hulls = primdecomp.as_hulls(v, q, targets=[3])

@@ -174,7 +174,9 @@ class Result:
 
     def __repr__(self):
         inp = self.input
-        name = inp.get("path") or "arrays"
+        # A path's line and paragraph separators and control characters would break
+        # the line the repr is printed on: shown escaped, as repr() shows them.
+        name = "".join(c if c.isprintable() else repr(c)[1:-1] for c in inp.get("path") or "arrays")
         head = f"<primdecomp.Result of {name} ({inp.get('faces')} faces), {len(self.levels)} level"
         head += "s" if len(self.levels) != 1 else ""
         return head + ": " + "; ".join(l._summary() for l in self.levels) + ">"

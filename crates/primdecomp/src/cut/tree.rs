@@ -172,13 +172,16 @@ fn find(parent: &mut [u32], mut x: u32) -> u32 {
 }
 
 /// The tree of `log`'s merges (leaves: `merged`'s first snapshot's clusters, or the
-/// faces, of operators `face_q`, when every merge was logged), with the points the loop
-/// kept for its nodes.
+/// faces, of operators `face_q`, when every merge was logged from them), with the
+/// points the loop kept for its nodes. After spatial parts (`log.from_faces` false)
+/// `log` holds every merge too, the parts' first, but the leaves stay the snapshot's
+/// clusters but for the largest, taken apart down to their faces ([`Split`]).
 pub(crate) fn merge_tree(
     fitter: &Fitter,
     merged: &MergeOutput,
     log: MergeLog,
     face_q: &[Sym3],
+    split: Split,
 ) -> MergeTree {
     let faces = fitter.input.mesh.face_count();
     let hulls = log.hulls;
@@ -192,10 +195,81 @@ pub(crate) fn merge_tree(
         };
         MergeTree::build(&singles, face_q, &log.merges, merges, faces)
     } else {
-        let leaves = &merged.snapshots[0];
-        let hulls = hulls.after(log.at_first);
-        let merges = &log.merges[log.at_first..];
-        MergeTree::build(&leaves.members, &leaves.q, merges, hulls, faces)
+        let snap = &merged.snapshots[0];
+        let taken = split.leaves(&snap.members, faces);
+        let (mut members, mut q, mut leaf_hulls) = (Vec::new(), Vec::new(), Vec::new());
+        let mut kept = hulls.leaves.into_iter();
+        for (i, m) in snap.members.iter().enumerate() {
+            let hull = kept.next();
+            if !taken[i] {
+                members.push(m.clone());
+                q.push(snap.q[i]);
+                leaf_hulls.extend(hull);
+            }
+        }
+        // The leaves taken apart come after the others (a leaf's kept hull is its
+        // place's): one per face, their operators as the parts' loops seeded them.
+        let mesh = fitter.input.mesh;
+        for (m, _) in snap.members.iter().zip(&taken).filter(|(_, &t)| t) {
+            let mut fs = m.clone();
+            fs.sort_unstable();
+            for f in fs {
+                let pos = |v: u32| mesh.pos(v);
+                q.push(crate::seed::quadric::face_quadric(
+                    mesh.face(f as usize),
+                    pos,
+                    split.tangent_eps,
+                ));
+                members.push(vec![f]);
+            }
+        }
+        // Every merge: those within a leaf kept whole join no two leaves and make no
+        // node; those within a leaf taken apart make its subtree.
+        let hulls = crate::merge::TreeHulls {
+            leaves: leaf_hulls,
+            merges: hulls.merges,
+        };
+        MergeTree::build(&members, &q, &log.merges, hulls, faces)
+    }
+}
+
+/// Which leaves of the merge tree after spatial parts are taken apart down to their
+/// faces (the parts' and the global loop's merges logged rebuild them): those of more
+/// than `over` faces (a primitive's mean at the largest count), the largest first
+/// (ties: the lower leaf), while the faces taken apart stay within
+/// 1/[`SPLIT_SHARE`] of the input. A face taken apart costs the tree two nodes (its
+/// leaf and a merge, 128 bytes) where its leaf cost one for all its faces: taking
+/// every leaf apart would hold 128 bytes a face through the cut, against a whole
+/// run's 150 asked at 14M faces (docs/decisions/perf-scale-ladder.md).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Split {
+    pub over: usize,
+    /// `Fit::tangent_eps`: the faces' operators (`seed::quadric::face_quadric`).
+    pub tangent_eps: f64,
+}
+
+/// The faces taken apart after spatial parts stay within this share of the input
+/// (1/8: at most 16 bytes a face in the tree's nodes).
+pub(crate) const SPLIT_SHARE: usize = 8;
+
+impl Split {
+    /// For each of `leaves` (the faces of each), whether it is taken apart; `faces`:
+    /// the input's face count.
+    fn leaves(&self, leaves: &[Vec<u32>], faces: usize) -> Vec<bool> {
+        let mut order: Vec<usize> = (0..leaves.len())
+            .filter(|&i| leaves[i].len() > self.over)
+            .collect();
+        order.sort_by(|&a, &b| leaves[b].len().cmp(&leaves[a].len()).then(a.cmp(&b)));
+        let mut taken = vec![false; leaves.len()];
+        let mut left = faces / SPLIT_SHARE;
+        for i in order {
+            if leaves[i].len() > left {
+                break;
+            }
+            left -= leaves[i].len();
+            taken[i] = true;
+        }
+        taken
     }
 }
 

@@ -47,9 +47,10 @@ use std::cmp::Ordering;
 use std::collections::{BinaryHeap, HashMap};
 pub(crate) use tree::MergeTree;
 
-/// With spatial parts merged first (their merges are not logged), the tree's leaves
-/// are the clusters of the snapshot at this many times the largest target: deep
-/// enough that a cut of N rarely reaches them. Otherwise the leaves are the faces.
+/// With spatial parts merged first, the tree's leaves are the clusters of the
+/// snapshot at this many times the largest target (deep enough that a cut of N rarely
+/// reaches them), but for the large ones, taken apart down to their faces
+/// (`tree::Split`). Otherwise the leaves are the faces.
 pub(crate) const LEAVES_PER_TARGET: usize = 4;
 
 /// Nodes whose error is at most this many minimum half-extents are not split: a

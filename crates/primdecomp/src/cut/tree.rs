@@ -51,8 +51,8 @@ impl MergeTree {
     /// merges are `log`, in order: each a pair of faces, one in each merged cluster (the
     /// merge loop names clusters by a face of theirs), with the `hulls` the loop kept
     /// (its merges' indices into `log`). `faces` is the input's face count.
-    pub(crate) fn build(
-        members: &[Vec<u32>],
+    pub(crate) fn build<M: AsRef<[u32]>>(
+        members: &[M],
         q: &[Sym3],
         log: &[(u32, u32)],
         hulls: TreeHulls,
@@ -60,7 +60,7 @@ impl MergeTree {
     ) -> Self {
         let mut leaf_of = vec![NONE; faces];
         for (i, m) in members.iter().enumerate() {
-            m.iter().for_each(|&f| leaf_of[f as usize] = i as u32);
+            (m.as_ref().iter()).for_each(|&f| leaf_of[f as usize] = i as u32);
         }
         let mut nodes: Vec<TreeNode> = q
             .iter()
@@ -83,7 +83,7 @@ impl MergeTree {
     }
 
     /// Assigns each node its range of [`Self::order`], depth-first from each root.
-    fn lay_out(&mut self, members: &[Vec<u32>]) {
+    fn lay_out<M: AsRef<[u32]>>(&mut self, members: &[M]) {
         let mut stack: Vec<(u32, bool)> = self.roots.iter().rev().map(|&r| (r, false)).collect();
         while let Some((n, done)) = stack.pop() {
             let node = self.nodes[n as usize];
@@ -93,7 +93,7 @@ impl MergeTree {
             }
             self.nodes[n as usize].start = self.order.len() as u32;
             if node.is_leaf() {
-                self.order.extend_from_slice(&members[n as usize]);
+                self.order.extend_from_slice(members[n as usize].as_ref());
                 self.nodes[n as usize].end = self.order.len() as u32;
                 continue;
             }
@@ -172,30 +172,119 @@ fn find(parent: &mut [u32], mut x: u32) -> u32 {
 }
 
 /// The tree of `log`'s merges (leaves: `merged`'s first snapshot's clusters, or the
-/// faces, of operators `face_q`, when every merge was logged), with the points the loop
-/// kept for its nodes.
+/// faces, of operators `face_q`, when every merge was logged from them), with the
+/// points the loop kept for its nodes. After spatial parts (`log.from_faces` false)
+/// `log` holds every merge too, the parts' first, but the leaves stay the snapshot's
+/// clusters but for the largest, taken apart down to their faces ([`Split`]).
 pub(crate) fn merge_tree(
     fitter: &Fitter,
     merged: &MergeOutput,
     log: MergeLog,
     face_q: &[Sym3],
+    split: Split,
 ) -> MergeTree {
     let faces = fitter.input.mesh.face_count();
     let hulls = log.hulls;
     if log.from_faces {
         // Every merge is known: the leaves are single faces, so any cluster can be
         // taken apart down to its faces (the loop's first snapshot is not the leaves).
-        let singles: Vec<Vec<u32>> = (0..faces as u32).map(|f| vec![f]).collect();
-        let merges = crate::merge::TreeHulls {
+        let ids: Vec<u32> = (0..faces as u32).collect();
+        let singles: Vec<&[u32]> = ids.chunks(1).collect();
+        let merges = TreeHulls {
             leaves: Vec::new(),
             ..hulls
         };
         MergeTree::build(&singles, face_q, &log.merges, merges, faces)
     } else {
-        let leaves = &merged.snapshots[0];
-        let hulls = hulls.after(log.at_first);
-        let merges = &log.merges[log.at_first..];
-        MergeTree::build(&leaves.members, &leaves.q, merges, hulls, faces)
+        after_parts(fitter, &merged.snapshots[0], (&log.merges, hulls), split)
+    }
+}
+
+/// The tree after spatial parts: the leaves are `snap`'s clusters, those `split` takes
+/// apart replaced by their faces (after the others, each leaf's in increasing order;
+/// a leaf's kept hull is its place's), over every merge of `merges` (with the `hulls`
+/// the loop kept): those within a leaf kept whole join no two leaves and make no
+/// node, those within a leaf taken apart make its subtree.
+fn after_parts(
+    fitter: &Fitter,
+    snap: &crate::merge::Snapshot,
+    (merges, hulls): (&[(u32, u32)], TreeHulls),
+    split: Split,
+) -> MergeTree {
+    let mesh = fitter.input.mesh;
+    let faces = mesh.face_count();
+    let taken = split.leaves(&snap.members, faces);
+    let mut apart: Vec<u32> = Vec::new();
+    let (mut members, mut q, mut leaf_hulls) = (Vec::new(), Vec::new(), Vec::new());
+    let mut kept = hulls.leaves.into_iter();
+    for ((m, &t), &mq) in snap.members.iter().zip(&taken).zip(&snap.q) {
+        let hull = kept.next();
+        if t {
+            let from = apart.len();
+            apart.extend(m);
+            apart[from..].sort_unstable();
+        } else {
+            members.push(m.as_slice());
+            q.push(mq);
+            leaf_hulls.extend(hull);
+        }
+    }
+    q.extend(split.face_ops(mesh, &apart));
+    members.extend(apart.chunks(1));
+    let hulls = TreeHulls {
+        leaves: leaf_hulls,
+        merges: hulls.merges,
+    };
+    MergeTree::build(&members, &q, merges, hulls, faces)
+}
+
+/// Which leaves of the merge tree after spatial parts are taken apart down to their
+/// faces (the parts' and the global loop's merges logged rebuild them): those of more
+/// than `over` faces (a primitive's mean at the largest count), the largest first
+/// (ties: the lower leaf), while the faces taken apart stay within
+/// 1/[`SPLIT_SHARE`] of the input. A face taken apart costs the tree two nodes (its
+/// leaf and a merge, 128 bytes) where its leaf cost one for all its faces: taking
+/// every leaf apart would hold 128 bytes a face through the cut, against a whole
+/// run's 150 asked at 14M faces (docs/decisions/perf-scale-ladder.md).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Split {
+    pub over: usize,
+    /// `Fit::tangent_eps`: the faces' operators (`seed::quadric::face_quadric`).
+    pub tangent_eps: f64,
+}
+
+/// The faces taken apart after spatial parts stay within this share of the input
+/// (1/8: at most 16 bytes a face in the tree's nodes).
+pub(crate) const SPLIT_SHARE: usize = 8;
+
+impl Split {
+    /// The operators of `faces`, as the parts' loops seeded them.
+    fn face_ops(&self, mesh: &Mesh, faces: &[u32]) -> Vec<Sym3> {
+        let pos = |v: u32| mesh.pos(v);
+        (faces.iter())
+            .map(|&f| {
+                crate::seed::quadric::face_quadric(mesh.face(f as usize), pos, self.tangent_eps)
+            })
+            .collect()
+    }
+
+    /// For each of `leaves` (the faces of each), whether it is taken apart; `faces`:
+    /// the input's face count.
+    fn leaves(&self, leaves: &[Vec<u32>], faces: usize) -> Vec<bool> {
+        let mut order: Vec<usize> = (0..leaves.len())
+            .filter(|&i| leaves[i].len() > self.over)
+            .collect();
+        order.sort_by(|&a, &b| leaves[b].len().cmp(&leaves[a].len()).then(a.cmp(&b)));
+        let mut taken = vec![false; leaves.len()];
+        let mut left = faces / SPLIT_SHARE;
+        for i in order {
+            if leaves[i].len() > left {
+                break;
+            }
+            left -= leaves[i].len();
+            taken[i] = true;
+        }
+        taken
     }
 }
 
@@ -243,5 +332,32 @@ mod tests {
         assert_eq!(t.faces(4), &[2, 4, 3]);
         assert_eq!(t.faces(3), &[5]);
         assert_eq!(t.order.len(), 6);
+    }
+
+    /// Leaves over `over` faces are taken apart largest first (ties: the lower leaf)
+    /// while their faces fit in an eighth of the input's; one that does not fit stops
+    /// the rest, however small.
+    #[test]
+    fn the_largest_leaves_are_taken_apart_within_an_eighth() {
+        let sizes = [3, 40, 10, 40, 30, 5, 12];
+        let mut next = 0u32;
+        let leaves: Vec<Vec<u32>> = (sizes.iter())
+            .map(|&n| {
+                next += n;
+                (next - n..next).collect()
+            })
+            .collect();
+        let split = Split {
+            over: 8,
+            tangent_eps: 0.0,
+        };
+        // 720 faces: an eighth is 90, so the two leaves of 40 and none after them.
+        let taken = split.leaves(&leaves, 720);
+        assert_eq!(taken, [false, true, false, true, false, false, false]);
+        // 960: 120, so the leaf of 30 too; those of 8 faces or fewer never.
+        let taken = split.leaves(&leaves, 960);
+        assert_eq!(taken, [false, true, false, true, true, false, false]);
+        let taken = split.leaves(&leaves, 8 * 10_000);
+        assert_eq!(taken, [false, true, true, true, true, false, true]);
     }
 }

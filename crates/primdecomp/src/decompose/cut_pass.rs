@@ -51,8 +51,10 @@ pub(crate) fn run(
 /// roots. The tree's leaves are a snapshot of a few times the largest target, needed
 /// only after spatial parts (docs/decisions/0032, 0034): spatial parts merge down to
 /// their share of the largest count's groups, the greedy's own, and the leaves come
-/// from the global loop after them (docs/decisions/0042). From components or the
-/// faces, every merge is logged and the leaves are the faces: no snapshot but the root.
+/// from the global loop after them (docs/decisions/0042), the large ones taken apart
+/// down to their faces by the parts' logged merges (docs/decisions/0057). From
+/// components or the faces, every merge is logged and the leaves are the faces: no
+/// snapshot but the root.
 fn loop_plan(
     mesh: &Mesh,
     params: &Params,
@@ -82,13 +84,20 @@ fn grow_tree(
     // One primitive per face seeds the volumes (Alg. 1, line 2).
     let volumes = stages::seed(clock, fitter, seeds.quadrics(), &first)?;
     // Without spatial parts the tree's leaves are the faces: they keep their operators
-    // (the leaf snapshot would be fitted for nothing).
+    // (the leaf snapshot would be fitted for nothing). After them, the faces of the
+    // leaves taken apart have theirs computed again (`tree::Split`).
     let face_q = match first {
         FirstPhase::Parts { .. } => Vec::new(),
         _ => seeds.quadrics().to_vec(),
     };
     let keep = ForTree {
         hulls_over: tree::tree_hulls_over(mesh, params, largest),
+    };
+    // After spatial parts, the leaves larger than a primitive's mean at the largest
+    // count are taken apart.
+    let split = tree::Split {
+        over: mesh.face_count() / largest.max(1),
+        tangent_eps: params.fit.tangent_eps,
     };
     let (input, mut stats) = seeds.merge_input(volumes, around, params);
     let (merged, log, signs) =
@@ -99,7 +108,7 @@ fn grow_tree(
     // The merge tree, before the triangles are built: the loop's snapshots and the
     // faces' operators are dead once it is.
     let tree = clock.step(Stage::Postprocess, "tree", || {
-        tree::merge_tree(fitter, &merged, log, &face_q)
+        tree::merge_tree(fitter, &merged, log, &face_q, split)
     })?;
     Ok((tree, stats, signs))
 }

@@ -65,12 +65,14 @@ pub struct MergeOutput {
 #[derive(Clone, Debug, Default)]
 pub struct MergeLog {
     /// Every merge of the whole input's loop in order, as a face of each merged
-    /// cluster: the merge tree's nodes. 8 bytes a merge.
+    /// cluster: the merge tree's nodes; after the first phase's (the components' or
+    /// the spatial parts', `merge::stage::Keep::join`). 8 bytes a merge.
     pub merges: Vec<(u32, u32)>,
     /// How many of `merges` came before the loop's first snapshot.
     pub at_first: usize,
-    /// `merges` holds every merge from one cluster per face (no spatial parts first):
-    /// the merge tree's leaves are the faces.
+    /// No spatial parts ran first: the merge tree's leaves are the faces (after
+    /// parts, the first snapshot's clusters, the large ones taken apart:
+    /// `cut::tree::Split`).
     pub from_faces: bool,
     /// The points clusters were priced by, kept for the merge tree.
     pub hulls: TreeHulls,
@@ -89,6 +91,7 @@ pub struct TreeHulls {
 
 impl TreeHulls {
     /// Those of the merges from `merges[first]` on, their indices counted from there.
+    #[cfg(test)]
     pub fn after(self, first: usize) -> TreeHulls {
         let merges = self.merges.into_iter();
         TreeHulls {

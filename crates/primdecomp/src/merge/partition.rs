@@ -55,6 +55,9 @@ struct Groups {
     neighbors: Vec<(Vec<u32>, u32)>,
     /// Every merge of the group's loop in order, in input ids (whole components only).
     trace: Vec<Traced>,
+    /// Every merge of a traced spatial part's loop in order, as a face of each merged
+    /// cluster in input ids (the merge tree's, `cut::tree`); empty otherwise.
+    merges: Vec<(u32, u32)>,
 }
 
 /// Phase 1's result: every part's groups, and the merges it did.
@@ -71,6 +74,22 @@ impl Phase1 {
     /// Each group's merges in order (traced [`Kind::Components`], else empty).
     pub(super) fn traces(&self) -> Vec<&[Traced]> {
         self.parts.iter().map(|g| g.trace.as_slice()).collect()
+    }
+
+    /// Every merge of the traced spatial parts ([`Kind::Spatial`]), part after part,
+    /// each part's in its own order, as a face of each merged cluster in input ids.
+    /// Parts share no face, so any order of the parts is one the merge tree can replay.
+    /// Room is made for the global loop's merges after them (fewer than the groups):
+    /// they are appended without moving these (8 bytes a face).
+    pub(super) fn take_merges(&mut self) -> Vec<(u32, u32)> {
+        let parts: usize = self.parts.iter().map(|g| g.merges.len()).sum();
+        let mut out = Vec::with_capacity(parts + self.groups());
+        for g in &mut self.parts {
+            out.append(&mut g.merges);
+            // Each part's freed as it is copied: the two are never both held whole.
+            g.merges = Vec::new();
+        }
+        out
     }
 
     /// Number of groups phase 2 starts from.
@@ -183,11 +202,12 @@ pub fn phase1_size(largest_target: usize) -> usize {
 /// then, how many merges all parts have done so far (progress only). `then` runs once,
 /// on the first thread to find no part left, while the others finish theirs (work the
 /// parts do not need, which would otherwise leave a thread idle: [`in_turn`]); it gets
-/// whether to go on.
+/// whether to go on. With `traced`, each part's merges are kept
+/// ([`Phase1::take_merges`]).
 pub fn merge_parts(
     fitter: &Fitter,
     faces: FaceData,
-    (largest_target, k): (usize, usize),
+    (largest_target, k, traced): (usize, usize, bool),
     merged: &(dyn Fn(usize) -> bool + Sync),
     then: &(dyn Fn(Checkpoint) + Sync),
 ) -> Phase1 {
@@ -208,7 +228,7 @@ pub fn merge_parts(
         fitter,
         faces,
         &parts,
-        (targets, Kind::Spatial),
+        (targets, Kind::Spatial { traced }),
         merged,
         then,
     )
@@ -236,8 +256,8 @@ pub enum FaceData<'a> {
 pub(super) enum Kind {
     /// Spatial parts ([`split`]): merged lazily (every merge deferred,
     /// docs/decisions/0019-large-inputs-merged-in-parts.md)
-    /// unless the run re-prices exactly.
-    Spatial,
+    /// unless the run re-prices exactly; each part's merges kept if `traced`.
+    Spatial { traced: bool },
     /// Whole connected components (`merge::components`): merged with the run's own
     /// settings, each group's neighbour lists kept, and its merges traced if `traced`.
     Components { traced: bool },
@@ -459,7 +479,10 @@ fn merge_one(
     let sub_ev = part_fitter(fitter, InputView::new(&sub, &sub_weld), kind);
     let cl = Clusters::new(q, volume, &pairs);
     drop(pairs);
-    let traced = kind == Kind::Components { traced: true };
+    let traced = matches!(
+        kind,
+        Kind::Components { traced: true } | Kind::Spatial { traced: true }
+    );
     let (cl, mut out) = merge_part(&sub_ev, cl, target, traced, progress);
     let trace = std::mem::take(&mut out.trace);
     (part_groups(&cl, trace, part, &global, kind), out)
@@ -478,7 +501,9 @@ fn part_fitter<'a>(fitter: &Fitter<'a>, sub: InputView<'a>, kind: Kind) -> Fitte
         pricing: Pricing {
             // Lazy greedy for every merge of a part unless re-pricing is exact: faster at
             // about the same quality (docs/decisions/0019-large-inputs-merged-in-parts.md).
-            defer_degree: if kind == Kind::Spatial && fitter.pricing.defer_degree != u32::MAX {
+            defer_degree: if matches!(kind, Kind::Spatial { .. })
+                && fitter.pricing.defer_degree != u32::MAX
+            {
                 0
             } else {
                 fitter.pricing.defer_degree
@@ -499,18 +524,26 @@ fn part_groups(
     kind: Kind,
 ) -> Groups {
     let global_id = |f: u32| part[f as usize];
-    let trace = trace.into_iter().map(|t| Traced {
-        key_a: global_id(t.key_a),
-        key_b: global_id(t.key_b),
-        a: global_id(t.a),
-        b: global_id(t.b),
-        ..t
-    });
+    let spatial = matches!(kind, Kind::Spatial { .. });
     let mut g = Groups {
         offsets: vec![0],
-        trace: trace.collect(),
         ..Groups::default()
     };
+    if spatial {
+        // The tree needs only which clusters merged, by a face of each.
+        g.merges = (trace.iter())
+            .map(|t| (global_id(t.a), global_id(t.b)))
+            .collect();
+    } else {
+        let trace = trace.into_iter().map(|t| Traced {
+            key_a: global_id(t.key_a),
+            key_b: global_id(t.key_b),
+            a: global_id(t.a),
+            b: global_id(t.b),
+            ..t
+        });
+        g.trace = trace.collect();
+    }
     for r in cl.roots() {
         let start = g.faces.len();
         g.faces.extend(cl.faces(r).map(global_id));
@@ -520,7 +553,7 @@ fn part_groups(
         g.volume.push(cl.volume[r as usize]);
         g.verts
             .push(cl.verts(r).iter().map(|&v| global[v as usize]).collect());
-        if kind != Kind::Spatial {
+        if !spatial {
             let (n, resolved) = cl.neighbor_list(r);
             g.neighbors
                 .push((n.iter().map(|&f| global_id(f)).collect(), resolved));

@@ -117,7 +117,8 @@ pub(crate) trait Keep {
     /// What the merge stage returns besides its output.
     type Log: Default;
     /// Whether the components phase traces every merge (the tree needs every one
-    /// whatever the targets), not only those from the first target on.
+    /// whatever the targets), not only those from the first target on, and spatial
+    /// parts keep theirs.
     fn traces_every_merge(&self) -> bool;
     /// The global loop from `cl` through `targets` (decreasing).
     fn run(
@@ -127,8 +128,9 @@ pub(crate) trait Keep {
         targets: &[usize],
         go_on: Checkpoint,
     ) -> (MergeOutput, Self::Log);
-    /// The stage's log: the components phase's merges `replayed` (in the global
-    /// order) before the global loop's `log`; `from_faces`: no spatial parts ran first.
+    /// The stage's log: the first phase's merges `replayed` (the components' in the
+    /// global order, or the spatial parts' part after part) before the global loop's
+    /// `log`; `from_faces`: no spatial parts ran first.
     fn join(replayed: Vec<(u32, u32)>, log: Self::Log, from_faces: bool) -> Self::Log;
 }
 
@@ -181,13 +183,18 @@ impl Keep for ForTree {
     }
 
     fn join(replayed: Vec<(u32, u32)>, mut log: MergeLog, from_faces: bool) -> MergeLog {
-        // The components' merges come first in the global order.
+        // The first phase's merges come first: the components' in the global order,
+        // the spatial parts' before any of the global loop's (which join parts).
         let before = replayed.len() as u32;
         log.hulls
             .merges
             .iter_mut()
             .for_each(|(at, _)| *at += before);
-        log.merges.splice(0..0, replayed);
+        log.at_first += before as usize;
+        // The global loop's (the fewer) appended to the first phase's, which made room.
+        let mut merges = replayed;
+        merges.extend_from_slice(&log.merges);
+        log.merges = merges;
         log.from_faces = from_faces;
         log
     }
@@ -289,7 +296,7 @@ pub(crate) fn merge<K: Keep>(
         FirstPhase::Parts { parts, target } => after_parts(
             fitter,
             input,
-            (parts, target),
+            (parts, target, keep.traces_every_merge()),
             &mut signs,
             stats,
             laps,
@@ -366,7 +373,8 @@ fn late_signs(
 
 /// Where the first phase leaves the merge stage: the clusters the global loop goes on
 /// from (`None`: every target was reached), the snapshots of the targets it reached,
-/// and every merge the replayed components did after them, in the global order.
+/// and every merge the replayed components did after them, in the global order (or
+/// the traced spatial parts' merges, part after part).
 type Started = (Option<Clusters>, Vec<Snapshot>, Vec<(u32, u32)>);
 
 /// Alg. 1 as is: one cluster per face.
@@ -382,11 +390,12 @@ fn one_per_face(input: MergeInput) -> Started {
 }
 
 /// Spatial parts merged in parallel down to their share of `target` first, then one
-/// cluster per group; `None` when told to stop.
+/// cluster per group, with the parts' merges part after part when `traced` (else
+/// none); `None` when told to stop.
 fn after_parts(
     fitter: &Fitter,
     input: MergeInput,
-    (parts, target): (usize, usize),
+    (parts, target, traced): (usize, usize, bool),
     signs: &mut Option<Vec<i8>>,
     stats: &mut Stats,
     laps: &mut PhaseTimes,
@@ -408,12 +417,13 @@ fn after_parts(
             *found.lock().unwrap_or_else(|e| e.into_inner()) = Some(s);
         }
     };
-    let p1 = laps.time("partitions", || {
+    let mut p1 = laps.time("partitions", || {
         let faces = partition::FaceData::PerPart {
             tangent_eps,
             lists: &lists,
         };
-        partition::merge_parts(fitter, faces, (target, parts), merged_so_far, &then)
+        let plan = (target, parts, traced);
+        partition::merge_parts(fitter, faces, plan, merged_so_far, &then)
     });
     stats.merges = p1.merges;
     add_fits(stats, p1.fits);
@@ -429,10 +439,11 @@ fn after_parts(
     drop((pairs, q, volumes));
     let so_far = stats.merges;
     let faces = fitter.input.mesh.face_count();
+    let merges = p1.take_merges();
     let clusters = laps.time("regroup", || {
         partition::group_clusters(p1, faces, &lists, &|_| merged_so_far(so_far))
     })?;
-    Some((Some(clusters), Vec::new(), Vec::new()))
+    Some((Some(clusters), Vec::new(), merges))
 }
 
 /// Each connected component merged whole first (every merge traced when

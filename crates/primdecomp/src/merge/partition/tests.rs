@@ -135,7 +135,7 @@ fn parts_merge_alike_on_any_thread_count() {
         };
         let run = |threads| {
             in_pool(threads, || {
-                let p1 = merge_parts(fitter, own, (6, 7), &|_| true, &|_| {});
+                let p1 = merge_parts(fitter, own, (6, 7, false), &|_| true, &|_| {});
                 let summary: Vec<_> = p1
                     .parts
                     .iter()
@@ -185,7 +185,7 @@ fn phase_two_lists_name_adjacent_groups() {
                 volume: vols,
                 pairs,
             };
-            let p1 = merge_parts(fitter, given, (4, 4), &|_| true, &|_| {});
+            let p1 = merge_parts(fitter, given, (4, 4, false), &|_| true, &|_| {});
             (
                 {
                     let (o, a) = crate::input::adjacency::neighbour_lists(q.len(), pairs);
@@ -233,10 +233,10 @@ fn groups_start_phase_two_as_faces_do() {
             tangent_eps: p.fit.tangent_eps,
             lists: &lists,
         };
-        let p1 = merge_parts(fitter, given, (4, 4), &|_| true, &|_| {});
+        let p1 = merge_parts(fitter, given, (4, 4, false), &|_| true, &|_| {});
         let old = clusters(p1, q.to_vec(), vols.to_vec(), lists.clone(), &|_| true);
         let mut old = old.expect("not stopped");
-        let p1 = merge_parts(fitter, own, (4, 4), &|_| true, &|_| {});
+        let p1 = merge_parts(fitter, own, (4, 4, false), &|_| true, &|_| {});
         let mut new = group_clusters(p1, q.len(), &lists, &|_| true).expect("not stopped");
         let (ro, rn) = (old.roots(), new.roots());
         assert!(ro.len() > 4);

@@ -241,8 +241,8 @@ fn after_parts(
 /// Which leaves of the merge tree after spatial parts are taken apart down to their
 /// faces (the parts' and the global loop's merges logged rebuild them): those of more
 /// than `over` faces (a primitive's mean at the largest count), the largest first
-/// (ties: the lower leaf), while the faces taken apart stay within
-/// 1/[`SPLIT_SHARE`] of the input. A face taken apart costs the tree two nodes (its
+/// (ties: the lower leaf), each that fits in what is left of 1/[`SPLIT_SHARE`] of the
+/// input's faces. A face taken apart costs the tree two nodes (its
 /// leaf and a merge, 128 bytes) where its leaf cost one for all its faces: taking
 /// every leaf apart would hold 128 bytes a face through the cut, against a whole
 /// run's 150 asked at 14M faces (docs/decisions/perf-scale-ladder.md).
@@ -278,8 +278,9 @@ impl Split {
         let mut taken = vec![false; leaves.len()];
         let mut left = faces / SPLIT_SHARE;
         for i in order {
+            // A leaf too large for what is left stays whole; smaller ones may fit.
             if leaves[i].len() > left {
-                break;
+                continue;
             }
             left -= leaves[i].len();
             taken[i] = true;
@@ -351,13 +352,21 @@ mod tests {
             over: 8,
             tangent_eps: 0.0,
         };
-        // 720 faces: an eighth is 90, so the two leaves of 40 and none after them.
+        // 720 faces: an eighth is 90, so the two leaves of 40; 10 left, too few
+        // for the 30 and the 12, enough for the 10.
         let taken = split.leaves(&leaves, 720);
-        assert_eq!(taken, [false, true, false, true, false, false, false]);
-        // 960: 120, so the leaf of 30 too; those of 8 faces or fewer never.
+        assert_eq!(taken, [false, true, true, true, false, false, false]);
+        // 960: 120, so the leaf of 30 too, and the 10 in the last 10; those of 8
+        // faces or fewer never.
         let taken = split.leaves(&leaves, 960);
-        assert_eq!(taken, [false, true, false, true, true, false, false]);
+        assert_eq!(taken, [false, true, true, true, true, false, false]);
         let taken = split.leaves(&leaves, 8 * 10_000);
         assert_eq!(taken, [false, true, true, true, true, false, true]);
+        // A leaf larger than the whole eighth stays whole, and the others are
+        // still taken apart.
+        let mut big = leaves.clone();
+        big.push((1000..1100).collect());
+        let taken = split.leaves(&big, 720);
+        assert_eq!(taken, [false, true, true, true, false, false, false, false]);
     }
 }

@@ -19,6 +19,12 @@ static COUNTER: AtomicU64 = AtomicU64::new(0);
 /// naming `path`. A symlink at `path` is replaced by a regular file; the new file
 /// gets default permissions, not the old file's.
 ///
+/// A character device or a pipe at `path` (`-o /dev/null`, a FIFO a reader waits on)
+/// is written to as a shell's redirect would: a rename would put a regular file in
+/// its place (as root, in place of `/dev/null` itself). A link to one, a block device
+/// and a socket are refused ([`Error::Write`]): a link planted where an output goes
+/// must not steer the write to a device.
+///
 /// ```
 /// let path = std::env::temp_dir().join(format!("primdecomp-doc-{}.txt", std::process::id()));
 /// primdecomp_files::write_atomic(&path, b"first")?;
@@ -38,6 +44,17 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Error> {
             "the output path has no file name",
         )));
     };
+    match target(path) {
+        Target::File => {}
+        Target::Stream => {
+            let mut stream = OpenOptions::new().write(true).open(path).map_err(fail)?;
+            return stream
+                .write_all(bytes)
+                .and_then(|()| stream.flush())
+                .map_err(fail);
+        }
+        Target::Refused(why) => return Err(fail(io::Error::new(io::ErrorKind::InvalidInput, why))),
+    }
     let dir = match path.parent() {
         Some(d) if !d.as_os_str().is_empty() => d,
         _ => Path::new("."),
@@ -68,6 +85,48 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Error> {
     }
     sync_dir(dir);
     Ok(())
+}
+
+/// What stands at an output path, for [`write_atomic`].
+enum Target {
+    /// Nothing, a regular file, a directory (the rename fails on it) or a link to
+    /// one of those (replaced, never written through): the temporary file and the
+    /// rename.
+    File,
+    /// A character device or a pipe, named itself: written to in place.
+    Stream,
+    /// Anything else that is not a file: why it is refused.
+    Refused(&'static str),
+}
+
+#[cfg(unix)]
+fn target(path: &Path) -> Target {
+    use std::os::unix::fs::FileTypeExt;
+    let Ok(own) = fs::symlink_metadata(path) else {
+        return Target::File;
+    };
+    let special =
+        |t: fs::FileType| t.is_char_device() || t.is_fifo() || t.is_block_device() || t.is_socket();
+    let t = own.file_type();
+    if t.is_symlink() {
+        match fs::metadata(path) {
+            Ok(m) if special(m.file_type()) => Target::Refused(
+                "the output path is a link to a device, a pipe or a socket: name the device or pipe itself, or a file",
+            ),
+            _ => Target::File,
+        }
+    } else if t.is_char_device() || t.is_fifo() {
+        Target::Stream
+    } else if special(t) {
+        Target::Refused("the output path is a block device or a socket, not a file")
+    } else {
+        Target::File
+    }
+}
+
+#[cfg(not(unix))]
+fn target(_: &Path) -> Target {
+    Target::File
 }
 
 /// The most bytes of the target's name a temporary name keeps: with the
@@ -172,6 +231,49 @@ mod tests {
         assert!(err.to_string().contains("out.obj"));
         assert_eq!(fs::read(p.join("keep")).unwrap(), b"old");
         assert_eq!(entries(&d), vec!["out.obj".to_string()]);
+        fs::remove_dir_all(&d).unwrap();
+    }
+
+    /// A pipe named as the output is written to and stays a pipe: renaming a file
+    /// over it would do to it what it did to `/dev/null` (a regular file in its place).
+    #[cfg(target_os = "linux")]
+    #[test]
+    fn a_pipe_is_written_to_in_place() {
+        use std::io::Read;
+        use std::os::unix::fs::{FileTypeExt, OpenOptionsExt};
+        let d = scratch_dir("fifo");
+        let p = d.join("out.json");
+        let made = std::process::Command::new("mkfifo").arg(&p).status();
+        assert!(made.map(|s| s.success()).unwrap_or(false), "mkfifo");
+        // The reader opens first, without blocking (Linux's O_NONBLOCK), so the
+        // writer's open returns and a file renamed over the pipe fails the test
+        // instead of leaving a reader waiting.
+        let mut reader = OpenOptions::new()
+            .read(true)
+            .custom_flags(0o4000)
+            .open(&p)
+            .unwrap();
+        write_atomic(&p, b"through the pipe").unwrap();
+        assert!(fs::symlink_metadata(&p).unwrap().file_type().is_fifo());
+        let mut got = Vec::new();
+        reader.read_to_end(&mut got).unwrap();
+        assert_eq!(got, b"through the pipe");
+        assert_eq!(entries(&d), vec!["out.json".to_string()]);
+        fs::remove_dir_all(&d).unwrap();
+    }
+
+    /// A link to a device where an output goes is refused and left as it is: it is
+    /// neither written through nor replaced.
+    #[cfg(unix)]
+    #[test]
+    fn a_link_to_a_device_is_refused() {
+        let d = scratch_dir("devlink");
+        let p = d.join("out.json");
+        std::os::unix::fs::symlink("/dev/null", &p).unwrap();
+        let err = write_atomic(&p, b"x").unwrap_err();
+        assert!(err.to_string().contains("out.json"), "{err}");
+        assert!(fs::symlink_metadata(&p).unwrap().file_type().is_symlink());
+        assert_eq!(entries(&d), vec!["out.json".to_string()]);
         fs::remove_dir_all(&d).unwrap();
     }
 

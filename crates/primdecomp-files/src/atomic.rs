@@ -87,7 +87,9 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> Result<(), Error> {
     Ok(())
 }
 
-/// What stands at an output path, for [`write_atomic`].
+/// What stands at an output path, for [`write_atomic`]. Without Unix's file types
+/// (WebAssembly, Windows) every path is a `File`.
+#[cfg_attr(not(unix), allow(dead_code))]
 enum Target {
     /// Nothing, a regular file, a directory (the rename fails on it) or a link to
     /// one of those (replaced, never written through): the temporary file and the

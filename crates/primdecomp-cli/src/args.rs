@@ -120,7 +120,8 @@ pub(crate) struct DecomposeArgs {
     /// With several inputs, or when it ends in / or is a directory: the output
     /// directory, where each input writes NAME.primdecomp.json. No output may be an
     /// input or another output of the run (refused before anything is written), and
-    /// every file is written whole or not at all.
+    /// every file is written whole or not at all. `-o -` (or /dev/stdout) writes the
+    /// result to standard output and what the run says to standard error.
     #[arg(short, long, help_heading = "Output")]
     pub out: Option<PathBuf>,
     /// Also write the primitives as an OBJ mesh (each a closed convex mesh around it).

@@ -52,15 +52,48 @@ fn one_line(text: &str) -> String {
         .replace('\u{2029}', "\\u{2029}")
 }
 
+/// Set once standard output carries a result (`decompose -o -`): from then on what
+/// the CLI says goes to standard error, so the output stays the result alone.
+static STDOUT_CARRIES_RESULT: std::sync::atomic::AtomicBool =
+    std::sync::atomic::AtomicBool::new(false);
+
+/// Keeps standard output for a result: [`println`] and [`print`] write to standard
+/// error from now on.
+pub fn keep_stdout_for_result() {
+    STDOUT_CARRIES_RESULT.store(true, std::sync::atomic::Ordering::Relaxed);
+}
+
+/// Whether standard output carries a result ([`keep_stdout_for_result`]).
+pub fn stdout_carries_result() -> bool {
+    STDOUT_CARRIES_RESULT.load(std::sync::atomic::Ordering::Relaxed)
+}
+
 // `println!`, `print!` and `eprintln!` through [`terminal`]: a module that prints
 // names or paths imports these (`use crate::exit::{eprintln, print, println};`),
-// which shadow the standard ones, so every line it prints is escaped.
+// which shadow the standard ones, so every line it prints is escaped. Where standard
+// output carries a result, `println!` and `print!` write to standard error.
 macro_rules! println {
-    () => { std::println!() };
-    ($($t:tt)*) => { std::println!("{}", $crate::exit::terminal(&format!($($t)*))) };
+    () => {
+        if $crate::exit::stdout_carries_result() { std::eprintln!() } else { std::println!() }
+    };
+    ($($t:tt)*) => {{
+        let line = $crate::exit::terminal(&format!($($t)*));
+        if $crate::exit::stdout_carries_result() {
+            std::eprintln!("{line}")
+        } else {
+            std::println!("{line}")
+        }
+    }};
 }
 macro_rules! print {
-    ($($t:tt)*) => { std::print!("{}", $crate::exit::terminal(&format!($($t)*))) };
+    ($($t:tt)*) => {{
+        let text = $crate::exit::terminal(&format!($($t)*));
+        if $crate::exit::stdout_carries_result() {
+            std::eprint!("{text}")
+        } else {
+            std::print!("{text}")
+        }
+    }};
 }
 macro_rules! eprintln {
     () => { std::eprintln!() };

@@ -7,6 +7,7 @@
 //! depend on a percentage target are known only then).
 
 use crate::exit::BadArgs;
+use anyhow::anyhow;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
@@ -98,6 +99,13 @@ impl Guard {
         let mut seen: HashMap<PathBuf, &str> = HashMap::with_capacity(outs.len());
         let written = self.written.lock().unwrap_or_else(|e| e.into_inner());
         for o in outs {
+            if is_stdout(&o.path) {
+                // Not a file: only a second output to standard output can clash with it.
+                if let Some(what) = seen.insert(o.path.clone(), &o.what) {
+                    return Err(same_file(what, &o.what));
+                }
+                continue;
+            }
             // A name the file system cannot hold fails only when written: refuse it now.
             let name = o.path.file_name().map_or(0, |n| n.len());
             if name > 255 {
@@ -131,11 +139,33 @@ impl Guard {
     /// file (a second spelling that `check` could not tell apart before the file
     /// existed, e.g. on a case-insensitive file system).
     pub fn wrote(&self, out: &Out) {
+        if is_stdout(&out.path) {
+            return;
+        }
         if let Some(id) = FileId::of(&out.path) {
             let mut w = self.written.lock().unwrap_or_else(|e| e.into_inner());
             w.entry(id).or_insert_with(|| out.what.clone());
         }
     }
+}
+
+/// `-` (and `/dev/stdout`, its usual spelling) as `decompose -o`: the result goes to
+/// standard output, not to a file.
+pub fn is_stdout(path: &Path) -> bool {
+    path == Path::new("-") || path == Path::new("/dev/stdout")
+}
+
+/// Writes `bytes` to standard output when `path` names it ([`is_stdout`]), else to
+/// the file `path`, whole or not at all (`primdecomp_files::write_atomic`).
+pub fn write_out(path: &Path, bytes: &[u8]) -> anyhow::Result<()> {
+    if !is_stdout(path) {
+        return Ok(primdecomp_files::write_atomic(path, bytes)?);
+    }
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    out.write_all(bytes)
+        .and_then(|()| out.flush())
+        .map_err(|e| anyhow!("cannot write the result to standard output: {e}"))
 }
 
 fn same_file(a: &str, b: &str) -> BadArgs {

@@ -475,6 +475,11 @@ fn clashes() -> Vec<Clash> {
         c(&["decompose", "m.obj", "-n", "4", "--quiet", "--export", "link.obj", "--format", "mjcf"], "--export is a link to the input", &["--export link.obj", SAME], &[]),
         c(&["decompose", "m.obj", "-n", "4", "--quiet", "--png", "hard.obj"], "--png is a hard link to the input", &["--png hard.obj", SAME], &[]),
         c(&["decompose", "a/x.obj", "b/y.obj", "-n", "4", "--quiet", "-o", "out/", "--export", "x.glb"], "--export with several inputs", &["--export writes one file per level of one input"], &[]),
+        // Standard output holds one result: what would be several, or another output, is refused.
+        c(&["decompose", "m.obj", "-n", "4,8", "--quiet", "-o", "-"], "-o - with two levels", &["-o -: these settings make several levels, a file each: give -o a file name"], &[]),
+        c(&["decompose", "a/x.obj", "b/y.obj", "-n", "4", "--quiet", "-o", "-"], "-o - with two inputs", &["-o -: several inputs write a result each: give -o a directory"], &[]),
+        c(&["decompose", "m.obj", "-n", "4", "--quiet", "-o", "-", "--png", "m.png"], "-o - with --png (drawn from -o's file)", &["-o -: --png draws the result read back from -o's file"], &[]),
+        c(&["decompose", "m.obj", "-n", "4", "--quiet", "-o", "r.json", "--obj", "-"], "--obj -", &["--obj -: only the result (-o -) can go to standard output"], &[]),
         // Refused before the run: no level's JSON or first export written.
         c(&["decompose", "m.obj", "--tolerance", "1%,0.3%", "--quiet", "-o", "r.json", "--export", "r.glb", "--export", "r.xml"], "a second --export of no known format", &["r.xml: cannot tell the export format"], &[]),
         // The library's coupling, said in the flags' words (the library refuses it too).

@@ -17,7 +17,7 @@ use crate::commands::set_threads;
 use crate::exit::BadArgs;
 use crate::exit::{eprintln, println};
 use crate::manifest::{self, Manifest, Stamp};
-use crate::outputs::{check_batch_dir, check_stems, names_dir, Guard, Out};
+use crate::outputs::{check_batch_dir, check_stems, is_stdout, names_dir, Guard, Out};
 use anyhow::{anyhow, bail};
 use dest::{default_obj, default_out, default_png, Chain, Dest};
 use one_input::{run_one, PRINT};
@@ -44,13 +44,51 @@ pub fn run(a: DecomposeArgs) -> anyhow::Result<()> {
             a.obj_detail
         )));
     }
+    if result_to_stdout(&a, &base, &targets)? {
+        // What the run says goes to standard error from here on.
+        crate::exit::keep_stdout_for_result();
+    }
     let guard = Guard::new(a.inputs.iter().map(PathBuf::as_path));
     let dir = match &a.out {
-        Some(o) if a.inputs.len() > 1 || names_dir(o) => o.clone(),
+        Some(o) if !is_stdout(o) && (a.inputs.len() > 1 || names_dir(o)) => o.clone(),
         None if a.inputs.len() > 1 => PathBuf::from("."),
         _ => return decompose_one(&a, &base, &targets, &guard),
     };
     decompose_batch(&a, &base, &targets, &guard, &dir)
+}
+
+/// Whether the result goes to standard output (`-o -`); refuses (exit 2) what cannot
+/// go there: another output than -o, several inputs or levels (each is a file of its
+/// own), and `--png`, which draws the result read back from -o's file.
+fn result_to_stdout(a: &DecomposeArgs, base: &Params, targets: &[Target]) -> anyhow::Result<bool> {
+    let others = [("--obj", a.obj.as_ref()), ("--png", a.png.as_ref())]
+        .into_iter()
+        .chain(a.export.iter().map(|e| ("--export", Some(e))));
+    for (flag, path) in others {
+        if path.is_some_and(|p| is_stdout(p)) {
+            bail!(BadArgs(format!(
+                "{flag} {}: only the result (-o -) can go to standard output; give {flag} \
+                 a file name",
+                path.map_or(String::new(), |p| p.display().to_string())
+            )));
+        }
+    }
+    let Some(out) = a.out.as_ref().filter(|o| is_stdout(o)) else {
+        return Ok(false);
+    };
+    let why = if a.inputs.len() > 1 {
+        "several inputs write a result each: give -o a directory (e.g. -o out/)"
+    } else if targets.len() > 1 || Chain::of(base).names_levels() {
+        "these settings make several levels, a file each: give -o a file name \
+         (-o NAME.json writes NAME_LABEL.json per level)"
+    } else if a.png.is_some() {
+        "--png draws the result read back from -o's file: give -o a file name"
+    } else if a.resume {
+        "--resume finishes a batch: give -o a directory (e.g. -o out/)"
+    } else {
+        return Ok(true);
+    };
+    bail!(BadArgs(format!("-o {}: {why}", out.display())))
 }
 
 /// One input, written to -o (or the default name) and --obj as files.

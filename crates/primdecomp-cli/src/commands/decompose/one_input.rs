@@ -10,7 +10,7 @@ use crate::args::DecomposeArgs;
 use crate::commands::export::{whole, write_level_exports, Source};
 use crate::exit::println;
 use crate::exit::BadArgs;
-use crate::outputs::Guard;
+use crate::outputs::{write_out, Guard};
 use crate::paths::output_path_for;
 use anyhow::{anyhow, bail};
 use primdecomp::Stage;
@@ -272,7 +272,7 @@ fn write_object_level(
             0 => json.to_owned(),
             _ => level.to_obj(detail),
         };
-        write_atomic(&out.path, bytes.as_bytes())?;
+        write_out(&out.path, bytes.as_bytes())?;
         guard.wrote(out);
         written.push(out.path.clone());
     }
@@ -409,7 +409,7 @@ fn write_outputs(
         } else {
             dec.to_json(i, params)
         };
-        write_atomic(&out.path, bytes.as_bytes())?;
+        write_out(&out.path, bytes.as_bytes())?;
         guard.wrote(out);
         written.push(out.path.clone());
     }

@@ -4,6 +4,7 @@
 
 use crate::commands::export::wrote_lines;
 use crate::exit::println;
+use crate::outputs::is_stdout;
 use primdecomp::{Decomposition, Kind};
 use std::path::{Path, PathBuf};
 
@@ -45,7 +46,13 @@ pub(super) fn print_summary(
             few(l, dec.input.faces)
         );
     }
-    for line in wrote_lines(written) {
+    let (to_stdout, files): (Vec<&PathBuf>, Vec<&PathBuf>) =
+        written.iter().partition(|f| is_stdout(f));
+    if !to_stdout.is_empty() {
+        println!("wrote     the result to standard output");
+    }
+    let files: Vec<PathBuf> = files.into_iter().cloned().collect();
+    for line in wrote_lines(&files) {
         println!("{line}");
     }
 }

@@ -214,3 +214,29 @@ fn parts_leave_no_leaf_the_cut_cannot_split() {
     assert!(d <= t, "{d} over {t}: {:?}", level.shortfall);
     assert!(level.shortfall.is_none(), "{:?}", level.shortfall);
 }
+
+/// A leaf too large for the faces the tree may take apart (an eighth of the input's)
+/// is taken apart into pieces, the clusters its own merges made, instead of staying
+/// whole: the half cylinder of 1,024 triangles beside the cubes, more than an eighth of
+/// the faces, is cut into arcs within 2% of the diagonal.
+#[test]
+fn a_leaf_past_the_budget_is_taken_apart_into_pieces() {
+    let m = mesh(&sheet_and_cubes(256));
+    assert!(1024 > m.face_count() / 8, "{} faces", m.face_count());
+    let p = Params {
+        goal: Goal::Within {
+            caps: vec![16],
+            tolerance: vec![primdecomp::Tolerance::Diagonal(0.02)],
+            max_bytes: vec![],
+        },
+        partitions: Partitions::Fixed(4),
+        ..Default::default()
+    };
+    let dec = decompose(&m, &p).unwrap();
+    assert_eq!(dec.stats.partitions, 4, "spatial parts ran");
+    assert_valid(&m, &dec, &p);
+    let level = &dec.levels[0];
+    let (d, t) = (level.distance.unwrap(), level.tolerance.unwrap());
+    assert!(d <= t, "{d} over {t}: {:?}", level.shortfall);
+    assert!(level.shortfall.is_none(), "{:?}", level.shortfall);
+}

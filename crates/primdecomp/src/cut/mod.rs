@@ -24,6 +24,7 @@ pub(crate) mod limits;
 mod nearest;
 mod next_splits;
 mod past_worst;
+mod pieces;
 pub(crate) mod recut;
 mod short_count;
 pub(crate) mod tree;

@@ -5,6 +5,7 @@
 //! (children's ranges side by side), with the node's operator Q — enough to refit any
 //! node's primitive (`Fitter::fit_output` on the range's faces and Q).
 
+use super::pieces;
 use crate::input::mesh::Mesh;
 use crate::math::Sym3;
 use crate::merge::{Fitter, MergeLog, MergeOutput, TreeHulls};
@@ -162,7 +163,7 @@ fn replay(
     (roots, kept)
 }
 
-fn find(parent: &mut [u32], mut x: u32) -> u32 {
+pub(super) fn find(parent: &mut [u32], mut x: u32) -> u32 {
     while parent[x as usize] != x {
         let g = parent[parent[x as usize] as usize];
         parent[x as usize] = g;
@@ -213,17 +214,29 @@ fn after_parts(
 ) -> MergeTree {
     let mesh = fitter.input.mesh;
     let faces = mesh.face_count();
-    let taken = split.leaves(&snap.members, faces);
+    let (taken, _) = split.leaves(&snap.members, faces);
+    // Where a large leaf stays whole, the largest are taken apart into pieces first.
+    let Retaken {
+        to_faces: taken,
+        in_pieces,
+        pieces,
+    } = split
+        .pieces(&snap.members, &taken, merges, faces)
+        .unwrap_or_else(|| Retaken {
+            to_faces: taken,
+            in_pieces: vec![false; snap.members.len()],
+            pieces: Vec::new(),
+        });
     let mut apart: Vec<u32> = Vec::new();
     let (mut members, mut q, mut leaf_hulls) = (Vec::new(), Vec::new(), Vec::new());
     let mut kept = hulls.leaves.into_iter();
-    for ((m, &t), &mq) in snap.members.iter().zip(&taken).zip(&snap.q) {
+    for (((m, &t), &p), &mq) in (snap.members.iter().zip(&taken).zip(&in_pieces)).zip(&snap.q) {
         let hull = kept.next();
         if t {
             let from = apart.len();
             apart.extend(m);
             apart[from..].sort_unstable();
-        } else {
+        } else if !p {
             members.push(m.as_slice());
             q.push(mq);
             leaf_hulls.extend(hull);
@@ -231,6 +244,11 @@ fn after_parts(
     }
     q.extend(split.face_ops(mesh, &apart));
     members.extend(apart.chunks(1));
+    for piece in &pieces {
+        let ops = split.face_ops(mesh, piece);
+        q.push(ops.iter().fold(Sym3::ZERO, |s, o| s.add(o)));
+        members.push(piece.as_slice());
+    }
     let hulls = TreeHulls {
         leaves: leaf_hulls,
         merges: hulls.merges,
@@ -253,6 +271,15 @@ pub(crate) struct Split {
     pub tangent_eps: f64,
 }
 
+/// Which large leaves [`Split::pieces`] takes apart, when it decides again: per leaf,
+/// whether down to its faces and whether into pieces; the pieces, leaf after leaf.
+#[derive(Debug)]
+struct Retaken {
+    to_faces: Vec<bool>,
+    in_pieces: Vec<bool>,
+    pieces: Vec<Vec<u32>>,
+}
+
 /// The faces taken apart after spatial parts stay within this share of the input
 /// (1/8: at most 16 bytes a face in the tree's nodes).
 pub(crate) const SPLIT_SHARE: usize = 8;
@@ -268,9 +295,9 @@ impl Split {
             .collect()
     }
 
-    /// For each of `leaves` (the faces of each), whether it is taken apart; `faces`:
-    /// the input's face count.
-    fn leaves(&self, leaves: &[Vec<u32>], faces: usize) -> Vec<bool> {
+    /// For each of `leaves` (the faces of each), whether it is taken apart, and what
+    /// is left of the budget; `faces`: the input's face count.
+    fn leaves(&self, leaves: &[Vec<u32>], faces: usize) -> (Vec<bool>, usize) {
         let mut order: Vec<usize> = (0..leaves.len())
             .filter(|&i| leaves[i].len() > self.over)
             .collect();
@@ -285,7 +312,55 @@ impl Split {
             left -= leaves[i].len();
             taken[i] = true;
         }
-        taken
+        (taken, left)
+    }
+
+    /// Where [`Self::leaves`] leaves a leaf of more than `over` faces whole, the
+    /// budget is shared out again among all of them, in proportion to their faces:
+    /// largest first (ties: the lower leaf), each leaf's share of what is left (of the
+    /// faces of the leaves still to come) takes it apart down to its faces if they
+    /// fit, else into the finest [`pieces::pieces`] that fit (a piece costs the tree
+    /// two nodes, as a face taken apart does), else keeps it whole. Whether each leaf
+    /// is taken apart to its faces, whether into pieces, and the pieces, leaf after
+    /// leaf; `None` where every large leaf was taken apart to its faces (then nothing
+    /// changes). `log`: every merge, as the tree replays them.
+    fn pieces(
+        &self,
+        leaves: &[Vec<u32>],
+        taken: &[bool],
+        log: &[(u32, u32)],
+        faces: usize,
+    ) -> Option<Retaken> {
+        let mut order: Vec<usize> = (0..leaves.len())
+            .filter(|&i| leaves[i].len() > self.over)
+            .collect();
+        if order.iter().all(|&i| taken[i]) {
+            return None;
+        }
+        order.sort_by(|&a, &b| leaves[b].len().cmp(&leaves[a].len()).then(a.cmp(&b)));
+        let big: Vec<&[u32]> = order.iter().map(|&i| leaves[i].as_slice()).collect();
+        let inside = pieces::merges_inside(&big, log, faces);
+        let (mut to_faces, mut in_pieces) = (vec![false; leaves.len()], vec![false; leaves.len()]);
+        let mut out = Vec::new();
+        let mut left = faces / SPLIT_SHARE;
+        let mut to_come: usize = big.iter().map(|l| l.len()).sum();
+        for ((&i, leaf), merges) in order.iter().zip(&big).zip(&inside) {
+            let share = (left as u128 * leaf.len() as u128 / to_come as u128) as usize;
+            to_come -= leaf.len();
+            if leaf.len() <= share {
+                left -= leaf.len();
+                to_faces[i] = true;
+            } else if let Some(p) = pieces::pieces(leaf, merges, share) {
+                left -= p.len();
+                in_pieces[i] = true;
+                out.extend(p);
+            }
+        }
+        Some(Retaken {
+            to_faces,
+            in_pieces,
+            pieces: out,
+        })
     }
 }
 
@@ -354,19 +429,56 @@ mod tests {
         };
         // 720 faces: an eighth is 90, so the two leaves of 40; 10 left, too few
         // for the 30 and the 12, enough for the 10.
-        let taken = split.leaves(&leaves, 720);
+        let (taken, _) = split.leaves(&leaves, 720);
         assert_eq!(taken, [false, true, true, true, false, false, false]);
         // 960: 120, so the leaf of 30 too, and the 10 in the last 10; those of 8
         // faces or fewer never.
-        let taken = split.leaves(&leaves, 960);
+        let (taken, _) = split.leaves(&leaves, 960);
         assert_eq!(taken, [false, true, true, true, true, false, false]);
-        let taken = split.leaves(&leaves, 8 * 10_000);
+        let (taken, _) = split.leaves(&leaves, 8 * 10_000);
         assert_eq!(taken, [false, true, true, true, true, false, true]);
         // A leaf larger than the whole eighth stays whole, and the others are
         // still taken apart.
         let mut big = leaves.clone();
         big.push((1000..1100).collect());
-        let taken = split.leaves(&big, 720);
+        let (taken, left) = split.leaves(&big, 720);
         assert_eq!(taken, [false, true, true, true, false, false, false, false]);
+        assert_eq!(left, 0);
+    }
+
+    /// A leaf not taken apart for want of budget is taken apart into pieces that fit
+    /// in what is left: the largest clusters its merges made under `over` faces, or
+    /// under twice that, …; leaves at or under `over`, or taken apart, are left alone.
+    #[test]
+    fn a_leaf_too_large_for_the_budget_is_taken_apart_into_pieces() {
+        let leaves: Vec<Vec<u32>> = vec![(0..64).collect(), (64..70).collect(), (70..80).collect()];
+        // The first leaf merged as a balanced tree, pairs first (faces name clusters).
+        let mut log: Vec<(u32, u32)> = Vec::new();
+        let mut step = 1u32;
+        while step < 64 {
+            log.extend((0..64u32).step_by(2 * step as usize).map(|f| (f, f + step)));
+            step *= 2;
+        }
+        let split = Split {
+            over: 8,
+            tangent_eps: 0.0,
+        };
+        // An eighth of 720 faces is 90: the 64 and the 10 fit as faces, and nothing
+        // changes.
+        let (taken, _) = split.leaves(&leaves, 720);
+        assert_eq!(taken, [true, false, true]);
+        assert!(split.pieces(&leaves, &taken, &log, 720).is_none());
+        // Of 80 faces, 10: the 10 fit but not the 64, so all is decided again,
+        // largest first: the 64 in pieces of 8 (8 pieces, the largest clusters under
+        // 8 that its merges made), then the 10 no longer fit in the 2 left, nor do
+        // its pieces (it has no merges: 10 of one face).
+        let (taken, _) = split.leaves(&leaves, 80);
+        assert_eq!(taken, [false, false, true]);
+        let r = split.pieces(&leaves, &taken, &log, 80).unwrap();
+        assert_eq!(r.to_faces, vec![false; 3]);
+        assert_eq!(r.in_pieces, vec![true, false, false]);
+        assert_eq!(r.pieces.len(), 8);
+        assert!(r.pieces.iter().all(|p| p.len() == 8));
+        assert_eq!(r.pieces[1], (8..16).collect::<Vec<u32>>());
     }
 }

@@ -7,6 +7,7 @@
 //! (docs/decisions/0058-the-largest-leaves-taken-apart-into-pieces.md).
 
 use super::tree::find;
+use crate::merge::components::components;
 
 /// The merges of `log` inside each of `leaves` (each leaf's faces, increasing), in
 /// order, as pairs of indices into that leaf; `faces`: the input's face count.
@@ -61,14 +62,14 @@ pub(super) fn pieces(leaf: &[u32], merges: &[(u32, u32)], left: usize) -> Option
 }
 
 /// The largest clusters of at most `size` of `n` items that `merges` (pairs of items,
-/// one in each of two clusters, in order) made: a merge joins two pieces only while
-/// the cluster it makes holds at most `size` items, since a cluster of at most `size`
-/// was made by merges of at most `size` alone. Items of each piece increasing, the
-/// pieces ordered by their first item.
+/// one in each of two clusters, in order) made: the components of the merges whose
+/// cluster holds at most `size` items, since a cluster of at most `size` was made by
+/// merges of at most `size` alone. Items of each piece increasing, the pieces ordered
+/// by their first item.
 fn pieces_under(n: usize, merges: &[(u32, u32)], size: usize) -> Vec<Vec<u32>> {
     let mut whole: Vec<u32> = (0..n as u32).collect();
     let mut count = vec![1usize; n];
-    let mut piece = whole.clone();
+    let mut within = Vec::new();
     for &(a, b) in merges {
         let (ra, rb) = (find(&mut whole, a), find(&mut whole, b));
         if ra == rb {
@@ -76,23 +77,12 @@ fn pieces_under(n: usize, merges: &[(u32, u32)], size: usize) -> Vec<Vec<u32>> {
         }
         let joined = count[ra as usize] + count[rb as usize];
         if joined <= size {
-            let (pa, pb) = (find(&mut piece, a), find(&mut piece, b));
-            piece[pa.max(pb) as usize] = pa.min(pb);
+            within.push((a, b));
         }
         whole[ra.max(rb) as usize] = ra.min(rb);
         count[ra.min(rb) as usize] = joined;
     }
-    let mut index = vec![u32::MAX; n];
-    let mut out: Vec<Vec<u32>> = Vec::new();
-    for i in 0..n as u32 {
-        let r = find(&mut piece, i) as usize;
-        if index[r] == u32::MAX {
-            index[r] = out.len() as u32;
-            out.push(Vec::new());
-        }
-        out[index[r] as usize].push(i);
-    }
-    out
+    components(n, &within)
 }
 
 #[cfg(test)]

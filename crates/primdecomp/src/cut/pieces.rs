@@ -6,8 +6,7 @@
 //! two faces until the pieces fit the leaf's share of the budget
 //! (docs/decisions/0058-the-largest-leaves-taken-apart-into-pieces.md).
 
-use super::tree::find;
-use crate::merge::components::components;
+use crate::merge::components::{components, root};
 
 /// The merges of `log` inside each of `leaves` (each leaf's faces, increasing), in
 /// order, as pairs of indices into that leaf; `faces`: the input's face count.
@@ -71,7 +70,7 @@ fn pieces_under(n: usize, merges: &[(u32, u32)], size: usize) -> Vec<Vec<u32>> {
     let mut count = vec![1usize; n];
     let mut within = Vec::new();
     for &(a, b) in merges {
-        let (ra, rb) = (find(&mut whole, a), find(&mut whole, b));
+        let (ra, rb) = (root(&mut whole, a), root(&mut whole, b));
         if ra == rb {
             continue;
         }

@@ -163,7 +163,7 @@ fn replay(
     (roots, kept)
 }
 
-pub(super) fn find(parent: &mut [u32], mut x: u32) -> u32 {
+fn find(parent: &mut [u32], mut x: u32) -> u32 {
     while parent[x as usize] != x {
         let g = parent[parent[x as usize] as usize];
         parent[x as usize] = g;

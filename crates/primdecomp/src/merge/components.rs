@@ -77,7 +77,7 @@ pub(crate) fn several(
 }
 
 /// The root of `x` in a union-find forest, halving the path on the way.
-fn root(p: &mut [u32], mut x: u32) -> u32 {
+pub(crate) fn root(p: &mut [u32], mut x: u32) -> u32 {
     while p[x as usize] != x {
         let up = p[p[x as usize] as usize];
         p[x as usize] = up;

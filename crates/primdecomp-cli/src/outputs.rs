@@ -101,8 +101,12 @@ impl Guard {
         for o in outs {
             if is_stdout(&o.path) {
                 // Not a file: only a second output to standard output can clash with it.
-                if let Some(what) = seen.insert(o.path.clone(), &o.what) {
-                    return Err(same_file(what, &o.what));
+                if let Some(what) = seen.insert(PathBuf::from("-"), &o.what) {
+                    return Err(BadArgs(format!(
+                        "{what} and {} both go to standard output, which holds one: give \
+                         one of them a file name",
+                        o.what
+                    )));
                 }
                 continue;
             }
@@ -149,8 +153,8 @@ impl Guard {
     }
 }
 
-/// `-` (and `/dev/stdout`, its usual spelling) as `decompose -o`: the result goes to
-/// standard output, not to a file.
+/// `-` (and `/dev/stdout`, its usual spelling) as an output (`decompose -o`, `export
+/// -o`, `view -o`/`--png`, `eval --json`): it goes to standard output, not to a file.
 pub fn is_stdout(path: &Path) -> bool {
     path == Path::new("-") || path == Path::new("/dev/stdout")
 }

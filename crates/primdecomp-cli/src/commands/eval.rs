@@ -5,10 +5,9 @@ use crate::args::LoadArgs;
 use crate::commands::set_threads;
 use crate::exit::BadArgs;
 use crate::exit::{print, println};
-use crate::outputs::{Guard, Out};
+use crate::outputs::{is_stdout, write_out, Guard, Out};
 use anyhow::bail;
 use clap::Args;
-use primdecomp_files::write_atomic;
 use std::path::PathBuf;
 
 /// `primdecomp eval`. The sampling-error figures in the help come from
@@ -28,7 +27,8 @@ pub struct EvalArgs {
     /// Seed of the samples; results are the same for a seed on any thread count.
     #[arg(long, default_value_t = 0)]
     seed: u64,
-    /// Also write the metrics as JSON here (atomically).
+    /// Also write the metrics as JSON here (atomically); `-` writes them to standard
+    /// output and the table to standard error.
     #[arg(long)]
     json: Option<PathBuf>,
     /// Measure the colliders' distances to the input's solid, not its surface: a
@@ -57,6 +57,10 @@ pub fn run(a: EvalArgs) -> anyhow::Result<()> {
     );
     if let Some(out) = &a.json {
         guard.check(&[Out::flag("--json", out, out.clone())])?;
+        if is_stdout(out) {
+            // The JSON alone on standard output; the table goes to standard error.
+            crate::exit::keep_stdout_for_result();
+        }
     }
     set_threads(a.threads)?;
     let mesh = primdecomp::Mesh::load_with(&a.input, &a.load.options())?;
@@ -78,8 +82,11 @@ pub fn run(a: EvalArgs) -> anyhow::Result<()> {
     print!("{}", primdecomp_eval::report::table(&rows));
     if let Some(out) = &a.json {
         let doc = primdecomp_eval::report::to_json(&a.input.display().to_string(), &rows);
-        write_atomic(out, doc.as_bytes())?;
-        println!("wrote {}", out.display());
+        write_out(out, doc.as_bytes())?;
+        match is_stdout(out) {
+            true => println!("wrote the metrics to standard output"),
+            false => println!("wrote {}", out.display()),
+        }
     }
     Ok(())
 }

@@ -3,12 +3,12 @@
 use anyhow::bail;
 use clap::Args;
 use primdecomp::{Body, Frame, Level, ResultFile, Up};
-use primdecomp_export::{write_export, ExportOptions, Format, Physics};
+use primdecomp_export::{render, write_export, ExportOptions, Format, Physics};
 use std::path::{Path, PathBuf};
 
 use crate::exit::println;
 use crate::exit::BadArgs;
-use crate::outputs::{Guard, Out};
+use crate::outputs::{is_stdout, write_out, Guard, Out};
 
 /// The options every export takes (`export` and `decompose --export`).
 #[derive(Args, Debug, Clone)]
@@ -62,7 +62,8 @@ pub struct ExportArgs {
 pub struct ExportCmd {
     /// A primdecomp JSON result (from `decompose`, with or without --per-object).
     pub result: PathBuf,
-    /// Output file; the format follows its extension (or --format).
+    /// Output file; the format follows its extension (or --format). `-` writes the
+    /// export to standard output (with --format; not a URDF that needs mesh files).
     #[arg(short, long)]
     pub out: PathBuf,
     /// glTF: include this input mesh (OBJ, PLY, STL, OFF, glTF/GLB) beside the
@@ -136,6 +137,17 @@ fn model_name(out: &Path) -> String {
         .unwrap_or_else(|| "primdecomp".into())
 }
 
+/// The model name of an export to standard output, which has no name: the result's
+/// stem, without the `.primdecomp` of a result's default name (`bolt.primdecomp.json`
+/// → `bolt`).
+fn result_model(result: &Path) -> String {
+    let stem = model_name(result);
+    match stem.strip_suffix(".primdecomp") {
+        Some(s) if !s.is_empty() => s.to_string(),
+        _ => stem,
+    }
+}
+
 /// Refuses an output that is one of the inputs (never overwrite an input): the
 /// files compared by identity, as every output of the CLI (`outputs.rs`).
 pub fn not_an_input(flag: &str, out: &Path, inputs: &[&Path]) -> anyhow::Result<()> {
@@ -162,6 +174,18 @@ pub fn run(a: ExportCmd) -> anyhow::Result<()> {
         .chain(a.input.as_deref())
         .collect();
     not_an_input("-o", &a.out, &inputs)?;
+    let to_stdout = is_stdout(&a.out);
+    if to_stdout {
+        if a.opts.format.is_none() {
+            bail!(BadArgs(format!(
+                "-o {}: standard output has no extension to name the format: give \
+                 --format (gltf, glb, mjcf, urdf, usda or tscn)",
+                a.out.display()
+            )));
+        }
+        // The export alone on standard output; what the run says goes to standard error.
+        crate::exit::keep_stdout_for_result();
+    }
     let text = crate::paths::read_result(&a.result)?;
     let objects = ResultFile::read(&text, &a.result)
         .map_err(|e| BadArgs(e.to_string()))?
@@ -171,13 +195,21 @@ pub fn run(a: ExportCmd) -> anyhow::Result<()> {
         .ok()
         .and_then(|d| Up::from_axis(d.get("input")?.get("up")?.as_str()?));
     let up = recorded.unwrap_or(Up::Y);
-    let (format, mut opts) = a.opts.resolve(&a.out, &model_name(&a.out), up)?;
+    let model = match to_stdout {
+        true => result_model(&a.result),
+        false => model_name(&a.out),
+    };
+    let (format, mut opts) = a.opts.resolve(&a.out, &model, up)?;
     if let Some(input) = &a.input {
         let mesh = primdecomp::Mesh::load(input)?;
         opts.input_mesh = Some(mesh_polygons(&mesh));
     }
-    for line in wrote_lines(&write_export(&a.out, &objects, format, &opts)?) {
-        println!("{line}");
+    if to_stdout {
+        export_to_stdout(&a.out, &objects, format, &opts)?;
+    } else {
+        for line in wrote_lines(&write_export(&a.out, &objects, format, &opts)?) {
+            println!("{line}");
+        }
     }
     if let Some(native) = format.up().filter(|&n| n != opts.up) {
         println!(
@@ -195,6 +227,30 @@ pub fn run(a: ExportCmd) -> anyhow::Result<()> {
             }
         );
     }
+    Ok(())
+}
+
+/// `export -o -`: the export's one file to standard output; refuses (exit 2) a URDF
+/// whose frustums or prisms need mesh files beside it, which a stream cannot carry.
+fn export_to_stdout(
+    out: &Path,
+    objects: &[Body],
+    format: Format,
+    opts: &ExportOptions,
+) -> anyhow::Result<()> {
+    let files = render(objects, format, opts, Path::new(&opts.model))?;
+    if !files.beside.is_empty() {
+        bail!(BadArgs(format!(
+            "-o {}: this {} export needs {} mesh file{} beside it (for its frustums and \
+             prisms), which standard output cannot carry: give -o a file name",
+            out.display(),
+            format.name(),
+            files.beside.len(),
+            if files.beside.len() == 1 { "" } else { "s" }
+        )));
+    }
+    write_out(out, &files.main)?;
+    println!("wrote     the {} export to standard output", format.name());
     Ok(())
 }
 

@@ -4,12 +4,11 @@
 use crate::args::LoadArgs;
 use crate::exit::println;
 use crate::exit::BadArgs;
-use crate::outputs::{Guard, Out};
+use crate::outputs::{is_stdout, write_out, Guard, Out};
 use crate::paths::memory_limit;
 use anyhow::bail;
 use clap::Args;
 use primdecomp::LoadOptions;
-use primdecomp_files::write_atomic;
 use primdecomp_view::scene;
 use std::path::{Path, PathBuf};
 
@@ -36,10 +35,12 @@ pub struct ViewArgs {
     /// distances go into the panel.
     #[arg(long, value_name = "E.json")]
     eval: Option<PathBuf>,
-    /// Write the viewer page here: one HTML file that works offline from disk.
+    /// Write the viewer page here: one HTML file that works offline from disk (`-`:
+    /// to standard output).
     #[arg(short, long, value_name = "view.html")]
     out: Option<PathBuf>,
-    /// Write a PNG of the page's default view here (software-rendered, no browser).
+    /// Write a PNG of the page's default view here (software-rendered, no browser;
+    /// `-`: to standard output).
     #[arg(long, value_name = "OUT.png")]
     png: Option<PathBuf>,
     /// Width and height in pixels of each pane of the PNG (side by side when peers are
@@ -85,6 +86,11 @@ pub fn run(a: ViewArgs) -> anyhow::Result<()> {
         .filter_map(|(flag, p)| p.as_ref().map(|p| Out::flag(flag, p, p.clone())))
         .collect();
     guard.check(&outs)?;
+    if outs.iter().any(|o| is_stdout(&o.path)) {
+        // The page or the picture alone on standard output; what the run says goes
+        // to standard error.
+        crate::exit::keep_stdout_for_result();
+    }
     let (s, title) = scene_of(&a)?;
     check_extent(&s)?;
     if let Some(i) = &s.input {
@@ -98,16 +104,24 @@ pub fn run(a: ViewArgs) -> anyhow::Result<()> {
         }
     }
     if let Some(out) = &a.out {
-        write_atomic(out, primdecomp_view::html::page(&s, &title).as_bytes())?;
-        println!("wrote     {}", out.display());
+        write_out(out, primdecomp_view::html::page(&s, &title).as_bytes())?;
+        println!("wrote     {}", shown(out, "the page"));
     }
     if let Some(png) = &a.png {
         let bytes =
             primdecomp_view::render_png(&s, a.png_size).expect("checked: the scene has triangles");
-        write_atomic(png, &bytes)?;
-        println!("wrote     {}", png.display());
+        write_out(png, &bytes)?;
+        println!("wrote     {}", shown(png, "the picture"));
     }
     Ok(())
+}
+
+/// How the summary names an output: its path, or `what` went to standard output.
+fn shown(path: &Path, what: &str) -> String {
+    match is_stdout(path) {
+        true => format!("{what} to standard output"),
+        false => path.display().to_string(),
+    }
 }
 
 /// The flags' own checks: something to write, something to show, sizes in range.

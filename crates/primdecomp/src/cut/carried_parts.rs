@@ -401,7 +401,7 @@ impl Cutter<'_> {
 
     /// Node `n`'s operator with those of the nodes it carries.
     pub(super) fn q_of(&self, ex: &Explored, n: u32) -> Sym3 {
-        let q = |c: u32| self.tree.nodes[c as usize].q;
+        let q = |c: u32| self.tree.q(c, self.fitter.input.mesh);
         let mut nodes = self.covered(ex, n).into_iter();
         let first = q(nodes.next().unwrap_or(n));
         nodes.fold(first, |acc, c| acc.add(&q(c)))

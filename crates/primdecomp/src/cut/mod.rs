@@ -303,7 +303,7 @@ impl<'a> Cutter<'a> {
         }
         let sets = self.hulls.of(n, &mut s.hull);
         let faces = self.tree.faces(n).iter().copied();
-        let q = &self.tree.nodes[n as usize].q;
+        let q = &self.tree.q(n, self.fitter.input.mesh);
         let outside = |g| self.hulls.outside(n, g);
         (self.fitter)
             .fit_on_vertices(faces, sets.hull, sets.boundary, outside, q, &mut s.ws)

@@ -11,6 +11,7 @@ use crate::math::Sym3;
 use crate::merge::{Fitter, MergeLog, MergeOutput, TreeHulls};
 use crate::params::Params;
 use std::collections::HashMap;
+use std::ops::Range;
 
 /// No child: the node is a leaf (a cluster of the fine snapshot).
 const NONE: u32 = u32::MAX;
@@ -23,8 +24,6 @@ pub(crate) struct TreeNode {
     /// The node's faces: `order[start..end]` of [`MergeTree::order`].
     pub start: u32,
     pub end: u32,
-    /// The sum of its faces' quadrics.
-    pub q: Sym3,
 }
 
 impl TreeNode {
@@ -40,6 +39,8 @@ impl TreeNode {
 #[derive(Clone, Debug, Default)]
 pub(crate) struct MergeTree {
     pub nodes: Vec<TreeNode>,
+    /// Each node's operator Q, the sum of its faces' quadrics ([`MergeTree::q`]).
+    ops: NodeOps,
     pub roots: Vec<u32>,
     pub order: Vec<u32>,
     /// Nodes' hull vertices as the merge loop priced them: vertex ids whose positions
@@ -52,9 +53,22 @@ impl MergeTree {
     /// merges are `log`, in order: each a pair of faces, one in each merged cluster (the
     /// merge loop names clusters by a face of theirs), with the `hulls` the loop kept
     /// (its merges' indices into `log`). `faces` is the input's face count.
+    #[cfg(test)]
     pub(crate) fn build<M: AsRef<[u32]>>(
         members: &[M],
         q: &[Sym3],
+        log: &[(u32, u32)],
+        hulls: TreeHulls,
+        faces: usize,
+    ) -> Self {
+        Self::build_with(members, (q.to_vec(), Singles::NONE), log, hulls, faces)
+    }
+
+    /// [`Self::build`], with the operators of the leaves `singles` names (leaves of one
+    /// face) found again from the mesh rather than kept: `q` holds every other leaf's.
+    fn build_with<M: AsRef<[u32]>>(
+        members: &[M],
+        (q, singles): (Vec<Sym3>, Singles),
         log: &[(u32, u32)],
         hulls: TreeHulls,
         faces: usize,
@@ -63,24 +77,40 @@ impl MergeTree {
         for (i, m) in members.iter().enumerate() {
             (m.as_ref().iter()).for_each(|&f| leaf_of[f as usize] = i as u32);
         }
-        let mut nodes: Vec<TreeNode> = q
-            .iter()
-            .map(|&q| TreeNode {
-                children: [NONE; 2],
-                start: 0,
-                end: 0,
-                q,
-            })
-            .collect();
-        let (roots, kept) = replay(&mut nodes, (&leaf_of, members.len()), log, hulls);
+        let leaf = TreeNode {
+            children: [NONE; 2],
+            start: 0,
+            end: 0,
+        };
+        let mut nodes = vec![leaf; members.len()];
+        let mut ops = NodeOps {
+            singles: singles.nodes.clone(),
+            kept: q,
+            tangent_eps: singles.tangent_eps,
+        };
+        // A single face's operator while the faces have no place in `order` yet.
+        let face_op = |n: u32| match singles.mesh {
+            Some(mesh) => face_op(mesh, members[n as usize].as_ref()[0], singles.tangent_eps),
+            None => unreachable!("leaves of one face found again name their mesh"),
+        };
+        let leaves = (&leaf_of[..], members.len());
+        let (roots, kept) = replay(&mut nodes, &mut ops, &face_op, leaves, log, hulls);
         let mut tree = MergeTree {
             nodes,
+            ops,
             roots,
             order: Vec::with_capacity(faces),
             hulls: kept,
         };
         tree.lay_out(members);
         tree
+    }
+
+    /// Node `n`'s operator Q (the sum of its faces' quadrics, in the order the merges
+    /// added them); `mesh`: the input, whose faces' quadrics a leaf of one face has.
+    pub(crate) fn q(&self, n: u32, mesh: &Mesh) -> Sym3 {
+        let face = || face_op(mesh, self.faces(n)[0], self.ops.tangent_eps);
+        self.ops.at(n, face)
     }
 
     /// Assigns each node its range of [`Self::order`], depth-first from each root.
@@ -111,12 +141,63 @@ impl MergeTree {
     }
 }
 
+/// The nodes' operators ([`MergeTree::q`]): a leaf of one face has its face's
+/// quadric, found again from the mesh when asked rather than kept (48 bytes less for
+/// every face the tree holds alone: all of them without spatial parts, those of the
+/// leaves taken apart after them); every other node's is kept, in node order.
+#[derive(Clone, Debug, Default)]
+struct NodeOps {
+    /// The leaves of one face whose operators are found again.
+    singles: Range<u32>,
+    /// Every other node's operator, in node order.
+    kept: Vec<Sym3>,
+    /// `Fit::tangent_eps`, with which the faces' quadrics were made.
+    tangent_eps: f64,
+}
+
+impl NodeOps {
+    /// Node `n`'s operator; `face` finds a single face's.
+    fn at(&self, n: u32, face: impl FnOnce() -> Sym3) -> Sym3 {
+        let singles = &self.singles;
+        match n {
+            _ if singles.contains(&n) => face(),
+            _ if n < singles.start => self.kept[n as usize],
+            _ => self.kept[(n - singles.len() as u32) as usize],
+        }
+    }
+}
+
+/// Which leaves of a tree being built are single faces whose operators are found again
+/// ([`NodeOps`]), from which mesh and with which `tangent_eps`.
+struct Singles<'a> {
+    nodes: Range<u32>,
+    mesh: Option<&'a Mesh>,
+    tangent_eps: f64,
+}
+
+#[cfg(test)]
+impl Singles<'_> {
+    /// Every leaf's operator is kept.
+    const NONE: Singles<'static> = Singles {
+        nodes: 0..0,
+        mesh: None,
+        tangent_eps: 0.0,
+    };
+}
+
+/// Face `f`'s quadric, as the merge loop seeded it (`seed::quadric::face_quadrics`).
+fn face_op(mesh: &Mesh, f: u32, tangent_eps: f64) -> Sym3 {
+    crate::seed::quadric::face_quadric(mesh.face(f as usize), |v| mesh.pos(v), tangent_eps)
+}
+
 /// Replays the merges `log` over the `leaves` first `nodes` (`leaf_of`: each face's
 /// leaf, or `NONE`): a node pushed per merge that joined two sets, with its operator the sum
 /// of theirs and its hull where the loop kept one. The roots, in the order of their
 /// lowest leaves, and the kept hulls by node.
 fn replay(
     nodes: &mut Vec<TreeNode>,
+    ops: &mut NodeOps,
+    face_op: &dyn Fn(u32) -> Sym3,
     (leaf_of, leaves): (&[u32], usize),
     log: &[(u32, u32)],
     hulls: TreeHulls,
@@ -145,12 +226,12 @@ fn replay(
             kept.insert(nodes.len() as u32, hull);
         }
         let (na, nb) = (top[ra as usize], top[rb as usize]);
-        let q = nodes[na as usize].q.add(&nodes[nb as usize].q);
+        let q = ops.at(na, || face_op(na)).add(&ops.at(nb, || face_op(nb)));
+        ops.kept.push(q);
         nodes.push(TreeNode {
             children: [na.min(nb), na.max(nb)],
             start: 0,
             end: 0,
-            q,
         });
         let (r, o) = (ra.min(rb), ra.max(rb));
         parent[o as usize] = r;
@@ -181,21 +262,27 @@ pub(crate) fn merge_tree(
     fitter: &Fitter,
     merged: &MergeOutput,
     log: MergeLog,
-    face_q: &[Sym3],
     split: Split,
 ) -> MergeTree {
-    let faces = fitter.input.mesh.face_count();
+    let mesh = fitter.input.mesh;
+    let faces = mesh.face_count();
     let hulls = log.hulls;
     if log.from_faces {
         // Every merge is known: the leaves are single faces, so any cluster can be
         // taken apart down to its faces (the loop's first snapshot is not the leaves).
         let ids: Vec<u32> = (0..faces as u32).collect();
-        let singles: Vec<&[u32]> = ids.chunks(1).collect();
+        let leaves: Vec<&[u32]> = ids.chunks(1).collect();
         let merges = TreeHulls {
             leaves: Vec::new(),
             ..hulls
         };
-        MergeTree::build(&singles, face_q, &log.merges, merges, faces)
+        let singles = Singles {
+            nodes: 0..faces as u32,
+            mesh: Some(mesh),
+            tangent_eps: split.tangent_eps,
+        };
+        let ops = (Vec::new(), singles);
+        MergeTree::build_with(&leaves, ops, &log.merges, merges, faces)
     } else {
         after_parts(fitter, &merged.snapshots[0], (&log.merges, hulls), split)
     }
@@ -242,7 +329,12 @@ fn after_parts(
             leaf_hulls.extend(hull);
         }
     }
-    q.extend(split.face_ops(mesh, &apart));
+    // The faces taken apart are leaves of one face, whose operators are found again.
+    let singles = Singles {
+        nodes: members.len() as u32..(members.len() + apart.len()) as u32,
+        mesh: Some(mesh),
+        tangent_eps: split.tangent_eps,
+    };
     members.extend(apart.chunks(1));
     for piece in &pieces {
         let ops = split.face_ops(mesh, piece);
@@ -253,17 +345,18 @@ fn after_parts(
         leaves: leaf_hulls,
         merges: hulls.merges,
     };
-    MergeTree::build(&members, &q, merges, hulls, faces)
+    MergeTree::build_with(&members, (q, singles), merges, hulls, faces)
 }
 
 /// Which leaves of the merge tree after spatial parts are taken apart down to their
 /// faces (the parts' and the global loop's merges logged rebuild them): those of more
 /// than `over` faces (a primitive's mean at the largest count), the largest first
 /// (ties: the lower leaf), each that fits in what is left of 1/[`SPLIT_SHARE`] of the
-/// input's faces. A face taken apart costs the tree two nodes (its
-/// leaf and a merge, 128 bytes) where its leaf cost one for all its faces: taking
-/// every leaf apart would hold 128 bytes a face through the cut, against a whole
-/// run's 150 asked at 14M faces (docs/decisions/perf-scale-ladder.md).
+/// input's faces. A face taken apart costs the tree two nodes (its leaf, 16 bytes,
+/// whose operator is found again ([`NodeOps`]), and a merge, 16 bytes and its
+/// operator's 48) where its leaf cost one for all its faces: taking every leaf apart
+/// would hold 80 bytes a face through the cut, against 100 asked of a count's run
+/// and 150 of a tolerance's from 14M faces (docs/decisions/perf-scale-ladder.md).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Split {
     pub over: usize,
@@ -281,17 +374,14 @@ struct Retaken {
 }
 
 /// The faces taken apart after spatial parts stay within this share of the input
-/// (1/8: at most 16 bytes a face in the tree's nodes).
+/// (1/8: at most 10 bytes a face in the tree's nodes).
 pub(crate) const SPLIT_SHARE: usize = 8;
 
 impl Split {
     /// The operators of `faces`, as the parts' loops seeded them.
     fn face_ops(&self, mesh: &Mesh, faces: &[u32]) -> Vec<Sym3> {
-        let pos = |v: u32| mesh.pos(v);
         (faces.iter())
-            .map(|&f| {
-                crate::seed::quadric::face_quadric(mesh.face(f as usize), pos, self.tangent_eps)
-            })
+            .map(|&f| face_op(mesh, f, self.tangent_eps))
             .collect()
     }
 
@@ -403,11 +493,51 @@ mod tests {
         let mut all: Vec<u32> = t.faces(5).to_vec();
         all.sort();
         assert_eq!(all, vec![0, 1, 2, 3, 4]);
-        assert_eq!(t.nodes[5].q.xx, 7.0);
+        assert_eq!(t.ops.at(5, || unreachable!()).xx, 7.0);
         assert_eq!(t.nodes[5].children, [0, 4]);
         assert_eq!(t.faces(4), &[2, 4, 3]);
         assert_eq!(t.faces(3), &[5]);
         assert_eq!(t.order.len(), 6);
+    }
+
+    /// A tree whose leaves of one face find their operators again from the mesh gives
+    /// every node the bits of the tree that keeps them all: leaves kept before and
+    /// after the single faces, and merges over both.
+    #[test]
+    fn single_faces_found_again_give_the_kept_operators() {
+        let p: Vec<[f64; 3]> = (0..8)
+            .map(|i| {
+                let t = f64::from(i);
+                [t, (t * 0.7).sin(), 0.3 * t * t]
+            })
+            .collect();
+        let tris: Vec<Vec<u32>> = (0..6).map(|i| vec![i, i + 1, i + 2]).collect();
+        let mesh = Mesh::from_polygons(&p, &tris).unwrap();
+        let eps = 0.01;
+        let members: Vec<Vec<u32>> = vec![vec![0, 1], vec![2], vec![3], vec![4], vec![5]];
+        let log = [(2, 3), (0, 3), (4, 5), (5, 2)];
+        let all: Vec<Sym3> = (members.iter())
+            .map(|m| {
+                m.iter()
+                    .fold(Sym3::ZERO, |s, &f| s.add(&face_op(&mesh, f, eps)))
+            })
+            .collect();
+        let kept = MergeTree::build(&members, &all, &log, TreeHulls::default(), 6);
+        // Leaves 1..4 (faces 2, 3, 4) found again: leaves 0 and 4 keep theirs.
+        let singles = Singles {
+            nodes: 1..4,
+            mesh: Some(&mesh),
+            tangent_eps: eps,
+        };
+        let q = vec![all[0], all[4]];
+        let found = MergeTree::build_with(&members, (q, singles), &log, TreeHulls::default(), 6);
+        assert_eq!(found.nodes.len(), kept.nodes.len());
+        assert_eq!(found.order, kept.order);
+        for n in 0..kept.nodes.len() as u32 {
+            let (a, b) = (found.q(n, &mesh), kept.q(n, &mesh));
+            let bits = |q: Sym3| [q.xx, q.xy, q.xz, q.yy, q.yz, q.zz].map(f64::to_bits);
+            assert_eq!(bits(a), bits(b), "node {n}");
+        }
     }
 
     /// Leaves over `over` faces are taken apart largest first (ties: the lower leaf)

@@ -83,13 +83,6 @@ fn grow_tree(
     let mesh = fitter.input.mesh;
     // One primitive per face seeds the volumes (Alg. 1, line 2).
     let volumes = stages::seed(clock, fitter, seeds.quadrics(), &first)?;
-    // Without spatial parts the tree's leaves are the faces: they keep their operators
-    // (the leaf snapshot would be fitted for nothing). After them, the faces of the
-    // leaves taken apart have theirs computed again (`tree::Split`).
-    let face_q = match first {
-        FirstPhase::Parts { .. } => Vec::new(),
-        _ => seeds.quadrics().to_vec(),
-    };
     let keep = ForTree {
         hulls_over: tree::tree_hulls_over(mesh, params, largest),
     };
@@ -105,10 +98,10 @@ fn grow_tree(
     if merged.stopped {
         return Err(Error::Cancelled);
     }
-    // The merge tree, before the triangles are built: the loop's snapshots and the
-    // faces' operators are dead once it is.
+    // The merge tree, before the triangles are built: the loop's snapshots and its
+    // log are dead once it is.
     let tree = clock.step(Stage::Postprocess, "tree", || {
-        tree::merge_tree(fitter, &merged, log, &face_q, split)
+        tree::merge_tree(fitter, &merged, log, split)
     })?;
     Ok((tree, stats, signs))
 }

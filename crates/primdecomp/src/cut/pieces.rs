@@ -3,8 +3,9 @@
 //! pieces instead: the largest clusters of at most a size that the leaf's own logged
 //! merges made (§3.3, Alg. 1: every merge joins two clusters, so a leaf's merges form
 //! a binary tree, and its subtrees are clusters the loop held), the size doubled from
-//! two faces until the pieces fit the leaf's share of the budget
-//! (docs/decisions/0058-the-largest-leaves-taken-apart-into-pieces.md).
+//! a floor until the pieces fit the leaf's share of the budget
+//! (docs/decisions/0058-the-largest-leaves-taken-apart-into-pieces.md,
+//! docs/decisions/0059-pieces-no-finer-than-an-eighth-of-the-mean.md).
 
 use crate::merge::components::{components, root};
 
@@ -43,12 +44,18 @@ pub(super) fn merges_inside(
 }
 
 /// The pieces of `leaf` (its faces, increasing) whose merges inside are `merges`
-/// ([`merges_inside`]): the largest clusters of at most 2 faces its merges made, or of
-/// at most 4, and so on: the finest whose pieces number at most `left`. Each piece's
-/// faces increasing, the pieces ordered by their first face; `None` where no size
-/// below the leaf's own gives at most `left` pieces.
-pub(super) fn pieces(leaf: &[u32], merges: &[(u32, u32)], left: usize) -> Option<Vec<Vec<u32>>> {
-    let mut size = 2usize;
+/// ([`merges_inside`]): the largest clusters of at most `floor` faces (rounded up to a
+/// power of two, at least 2) its merges made, or of twice that, and so on: the finest
+/// whose pieces number at most `left`. Each piece's faces increasing, the pieces
+/// ordered by their first face; `None` where no size below the leaf's own gives at
+/// most `left` pieces.
+pub(super) fn pieces(
+    leaf: &[u32],
+    merges: &[(u32, u32)],
+    left: usize,
+    floor: usize,
+) -> Option<Vec<Vec<u32>>> {
+    let mut size = floor.next_power_of_two().max(2);
     while size < leaf.len() {
         let parts = pieces_under(leaf.len(), merges, size);
         if parts.len() <= left {
@@ -111,21 +118,24 @@ mod tests {
         );
     }
 
-    /// The size doubles from two until the pieces fit in `left`; the pieces name the
-    /// leaf's faces; none fit where even the coarsest size below the leaf's gives more.
+    /// The size doubles from the floor until the pieces fit in `left`; the pieces name
+    /// the leaf's faces; none fit where even the coarsest size below the leaf's gives
+    /// more.
     #[test]
     fn the_size_doubles_until_the_pieces_fit() {
         let leaf: Vec<u32> = (100..108).collect();
         let m = [(0, 1), (2, 3), (4, 5), (6, 7), (0, 2), (4, 6), (0, 4)];
-        let two = pieces(&leaf, &m, 4).unwrap();
+        let two = pieces(&leaf, &m, 4, 2).unwrap();
         assert_eq!(two.len(), 4);
         assert_eq!(two[0], vec![100, 101]);
-        let halves = pieces(&leaf, &m, 3).unwrap();
+        let halves = pieces(&leaf, &m, 3, 2).unwrap();
         assert_eq!(
             halves,
             vec![(100..104).collect::<Vec<u32>>(), (104..108).collect()]
         );
-        assert_eq!(pieces(&leaf, &m, 1), None);
+        assert_eq!(pieces(&leaf, &m, 1, 2), None);
+        // A floor of 3 (rounded up to 4) skips the pairs, though 4 of them would fit.
+        assert_eq!(pieces(&leaf, &m, 4, 3), Some(halves));
     }
 
     /// Only merges with both faces in one leaf count, as indices into it.

@@ -302,18 +302,12 @@ fn after_parts(
     let mesh = fitter.input.mesh;
     let faces = mesh.face_count();
     let (taken, _) = split.leaves(&snap.members, faces);
-    // Where a large leaf stays whole, the largest are taken apart into pieces first.
-    let Retaken {
-        to_faces: taken,
-        in_pieces,
-        pieces,
-    } = split
-        .pieces(&snap.members, &taken, merges, faces)
-        .unwrap_or_else(|| Retaken {
-            to_faces: taken,
-            in_pieces: vec![false; snap.members.len()],
-            pieces: Vec::new(),
-        });
+    // Where a large leaf stays whole, the leaves are taken apart into pieces instead.
+    let n = snap.members.len();
+    let (taken, in_pieces, pieces) = match split.pieces(&snap.members, &taken, merges, faces) {
+        Some(r) => (vec![false; n], r.in_pieces, r.pieces),
+        None => (taken, vec![false; n], Vec::new()),
+    };
     let mut apart: Vec<u32> = Vec::new();
     let (mut members, mut q, mut leaf_hulls) = (Vec::new(), Vec::new(), Vec::new());
     let mut kept = hulls.leaves.into_iter();
@@ -364,14 +358,19 @@ pub(crate) struct Split {
     pub tangent_eps: f64,
 }
 
-/// Which large leaves [`Split::pieces`] takes apart, when it decides again: per leaf,
-/// whether down to its faces and whether into pieces; the pieces, leaf after leaf.
+/// Which leaves [`Split::pieces`] takes apart, when it decides again: per leaf,
+/// whether into pieces; the pieces, leaf after leaf.
 #[derive(Debug)]
 struct Retaken {
-    to_faces: Vec<bool>,
     in_pieces: Vec<bool>,
     pieces: Vec<Vec<u32>>,
 }
+
+/// Pieces are no finer than this share of a primitive's mean at the largest count
+/// (`Split::over`): finer ones spent the budget on the largest leaves and left none
+/// for a bent leaf under the mean
+/// (docs/decisions/0059-pieces-no-finer-than-an-eighth-of-the-mean.md).
+const PIECES_PER_MEAN: usize = 8;
 
 /// The faces taken apart after spatial parts stay within this share of the input
 /// (1/8: at most 10 bytes a face in the tree's nodes).
@@ -406,14 +405,15 @@ impl Split {
     }
 
     /// Where [`Self::leaves`] leaves a leaf of more than `over` faces whole, the
-    /// budget is shared out again among all of them, in proportion to their faces:
-    /// largest first (ties: the lower leaf), each leaf's share of what is left (of the
-    /// faces of the leaves still to come) takes it apart down to its faces if they
-    /// fit, else into the finest [`pieces::pieces`] that fit (a piece costs the tree
+    /// budget is shared out again among every leaf of more than a [`PIECES_PER_MEAN`]th
+    /// of `over` faces (those under the mean too: one may be bent), in proportion to
+    /// their faces: largest first (ties: the lower leaf), each leaf's share of what is
+    /// left (of the faces of the leaves still to come) takes it apart into the finest
+    /// [`pieces::pieces`] that fit, no finer than that floor (a piece costs the tree
     /// two nodes, as a face taken apart does), else keeps it whole. Whether each leaf
-    /// is taken apart to its faces, whether into pieces, and the pieces, leaf after
-    /// leaf; `None` where every large leaf was taken apart to its faces (then nothing
-    /// changes). `log`: every merge, as the tree replays them.
+    /// is taken apart into pieces, and the pieces, leaf after leaf; `None` where every
+    /// large leaf was taken apart to its faces (then nothing changes). `log`: every
+    /// merge, as the tree replays them.
     fn pieces(
         &self,
         leaves: &[Vec<u32>],
@@ -421,33 +421,31 @@ impl Split {
         log: &[(u32, u32)],
         faces: usize,
     ) -> Option<Retaken> {
-        let mut order: Vec<usize> = (0..leaves.len())
-            .filter(|&i| leaves[i].len() > self.over)
-            .collect();
-        if order.iter().all(|&i| taken[i]) {
+        let large = (0..leaves.len()).filter(|&i| leaves[i].len() > self.over);
+        if large.into_iter().all(|i| taken[i]) {
             return None;
         }
+        let floor = (self.over / PIECES_PER_MEAN).max(2);
+        let mut order: Vec<usize> = (0..leaves.len())
+            .filter(|&i| leaves[i].len() > floor)
+            .collect();
         order.sort_by(|&a, &b| leaves[b].len().cmp(&leaves[a].len()).then(a.cmp(&b)));
-        let big: Vec<&[u32]> = order.iter().map(|&i| leaves[i].as_slice()).collect();
-        let inside = pieces::merges_inside(&big, log, faces);
-        let (mut to_faces, mut in_pieces) = (vec![false; leaves.len()], vec![false; leaves.len()]);
+        let shared: Vec<&[u32]> = order.iter().map(|&i| leaves[i].as_slice()).collect();
+        let inside = pieces::merges_inside(&shared, log, faces);
+        let mut in_pieces = vec![false; leaves.len()];
         let mut out = Vec::new();
         let mut left = faces / SPLIT_SHARE;
-        let mut to_come: usize = big.iter().map(|l| l.len()).sum();
-        for ((&i, leaf), merges) in order.iter().zip(&big).zip(&inside) {
+        let mut to_come: usize = shared.iter().map(|l| l.len()).sum();
+        for ((&i, leaf), merges) in order.iter().zip(&shared).zip(&inside) {
             let share = (left as u128 * leaf.len() as u128 / to_come as u128) as usize;
             to_come -= leaf.len();
-            if leaf.len() <= share {
-                left -= leaf.len();
-                to_faces[i] = true;
-            } else if let Some(p) = pieces::pieces(leaf, merges, share) {
+            if let Some(p) = pieces::pieces(leaf, merges, share, floor) {
                 left -= p.len();
                 in_pieces[i] = true;
                 out.extend(p);
             }
         }
         Some(Retaken {
-            to_faces,
             in_pieces,
             pieces: out,
         })
@@ -576,6 +574,43 @@ mod tests {
         assert_eq!(left, 0);
     }
 
+    /// Pieces stop at an eighth of a primitive's mean, though finer ones would fit, and
+    /// what that leaves of the budget takes apart a leaf under the mean too (it may be
+    /// bent); a leaf under the floor stays whole.
+    #[test]
+    fn pieces_stop_at_an_eighth_of_the_mean_and_the_rest_goes_to_smaller_leaves() {
+        // Leaves of 512, 48 and 6 faces, each merged as a balanced tree, pairs first.
+        let sizes = [512u32, 48, 6];
+        let mut leaves: Vec<Vec<u32>> = Vec::new();
+        let mut log: Vec<(u32, u32)> = Vec::new();
+        let mut next = 0u32;
+        for n in sizes {
+            let mut step = 1u32;
+            while step < n {
+                let pairs = (next..next + n).step_by(2 * step as usize);
+                log.extend(pairs.filter(|f| f + step < next + n).map(|f| (f, f + step)));
+                step *= 2;
+            }
+            leaves.push((next..next + n).collect());
+            next += n;
+        }
+        let split = Split {
+            over: 64,
+            tangent_eps: 0.0,
+        };
+        // 1,600 faces: an eighth is 200, too few for the 512, which stays whole.
+        let (taken, _) = split.leaves(&leaves, 1600);
+        assert_eq!(taken, [false; 3]);
+        let r = split.pieces(&leaves, &taken, &log, 1600).unwrap();
+        // The 512 gets 182 of the 200 (512 of the 560 faces over the floor of 8):
+        // pieces of 8 (64 of them), not of 4 (128, which would fit too); the 48,
+        // under the mean, gets what is left, in pieces of 8; the 6 stays whole.
+        assert_eq!(r.in_pieces, [true, true, false]);
+        assert_eq!(r.pieces.len(), 64 + 6);
+        assert!(r.pieces.iter().all(|p| p.len() == 8));
+        assert_eq!(r.pieces[64], (512..520).collect::<Vec<u32>>());
+    }
+
     /// A leaf not taken apart for want of budget is taken apart into pieces that fit
     /// in what is left: the largest clusters its merges made under `over` faces, or
     /// under twice that, …; leaves at or under `over`, or taken apart, are left alone.
@@ -605,7 +640,6 @@ mod tests {
         let (taken, _) = split.leaves(&leaves, 80);
         assert_eq!(taken, [false, false, true]);
         let r = split.pieces(&leaves, &taken, &log, 80).unwrap();
-        assert_eq!(r.to_faces, vec![false; 3]);
         assert_eq!(r.in_pieces, vec![true, false, false]);
         assert_eq!(r.pieces.len(), 8);
         assert!(r.pieces.iter().all(|p| p.len() == 8));

@@ -151,22 +151,23 @@ impl Bvh {
     ) -> Bvh {
         Bvh::build_with::<V3>(count, leaf, bbox, &|_| true).unwrap_or_default()
     }
+}
 
+impl Bvh<Compact> {
     /// [`Bvh::build_by`] with the items' centres rounded to f32 for the splits and
-    /// nothing decided on the exact ones: a tree as good for queries whose answers
-    /// do not depend on its shape (whether any item meets a ray), not the same tree.
-    /// It asks `go_on` whether to go on as [`Bvh::build_by_checked`] does.
+    /// nothing decided on the exact ones, and the nodes' boxes [`Compact`]: a tree as
+    /// good for queries whose answers do not depend on its shape (whether any item
+    /// meets a ray), not the same tree, at 16 bytes an item while it is built and 32
+    /// a node. It asks `go_on` whether to go on as [`Bvh::build_by_checked`] does.
     pub fn build_coarse(
         count: usize,
         leaf: usize,
         bbox: &(dyn Fn(u32) -> (V3, V3) + Sync),
         go_on: &(dyn Fn(f64) -> bool + Sync),
-    ) -> Option<Bvh> {
+    ) -> Option<Bvh<Compact>> {
         Bvh::build_with::<Coarse>(count, leaf, bbox, go_on)
     }
-}
 
-impl Bvh<Compact> {
     /// [`Bvh::build_by_checked`] (the same tree, items in the same order) with the
     /// nodes' boxes stored [`Compact`]: 32 bytes a node instead of 56, for a large
     /// hierarchy kept through a run.

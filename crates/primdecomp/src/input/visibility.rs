@@ -14,13 +14,14 @@
 //! 14M faces took minutes per ray batch.
 
 use super::mesh::Mesh;
-use crate::math::bvh::Bvh;
+use crate::math::bvh::{Bvh, Compact};
 use crate::math::{cross, dot, norm, sub, V3};
 
 /// Faces per leaf of the hierarchy: few rays are cast (at most 10 ×
-/// [`SAMPLED_FACES`]), so larger leaves than the cut's trade little time for an
-/// eighth of its nodes (7 bytes a face).
-const LEAF: usize = 16;
+/// [`SAMPLED_FACES`]), so leaves four times the cut's trade little time for a
+/// sixteenth of its nodes (one byte a face, with [`Compact`] boxes). The walk builds
+/// this hierarchy beside the spatial parts' groups, where a run's memory peaks.
+const LEAF: usize = 64;
 /// Faces sampled over the whole input, at most: a patch of p of the n faces gets
 /// ⌊SAMPLED_FACES·p/n⌋ of them (all when fewer), evenly spread, so rays stay bounded;
 /// a patch too small for one keeps its signed volume.
@@ -30,7 +31,7 @@ pub const SAMPLED_FACES: usize = 1_024;
 #[derive(Debug)]
 pub struct RayTree<'a> {
     mesh: &'a Mesh,
-    bvh: Bvh,
+    bvh: Bvh<Compact>,
     /// Hits nearer than this are the ray's own surface (1e-9 of the diagonal).
     eps: f64,
 }
@@ -56,7 +57,8 @@ impl<'a> RayTree<'a> {
         Some(RayTree {
             mesh,
             // Whether any face blocks a ray does not depend on the tree: centres in
-            // f32 halve the build's table (16 bytes a face).
+            // f32 halve the build's table (16 bytes a face), and boxes rounded out
+            // to f32 only let a ray visit a few more leaves.
             bvh: Bvh::build_coarse(mesh.face_count(), LEAF, &bbox, go_on)?,
             eps: 1e-9 * norm(sub(hi, lo)).max(f64::MIN_POSITIVE),
         })

@@ -18,7 +18,7 @@ use crate::math::bvh::{Bvh, Compact};
 use crate::math::{cross, dot, norm, sub, V3};
 
 /// Faces per leaf of the hierarchy: few rays are cast (at most 10 ×
-/// [`SAMPLED_FACES`]), so leaves four times the cut's trade little time for a
+/// [`SAMPLED_FACES`]), so leaves sixteen times the cut's trade little time for a
 /// sixteenth of its nodes (one byte a face, with [`Compact`] boxes). The walk builds
 /// this hierarchy beside the spatial parts' groups, where a run's memory peaks.
 const LEAF: usize = 64;

@@ -421,8 +421,8 @@ impl Split {
         log: &[(u32, u32)],
         faces: usize,
     ) -> Option<Retaken> {
-        let large = (0..leaves.len()).filter(|&i| leaves[i].len() > self.over);
-        if large.into_iter().all(|i| taken[i]) {
+        let mut large = (0..leaves.len()).filter(|&i| leaves[i].len() > self.over);
+        if large.all(|i| taken[i]) {
             return None;
         }
         let floor = (self.over / PIECES_PER_MEAN).max(2);

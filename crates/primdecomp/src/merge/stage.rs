@@ -280,44 +280,12 @@ pub(crate) fn merge<K: Keep>(
     let total = fitter.input.mesh.face_count().saturating_sub(last).max(1) as f64;
     let merged_so_far = |m: usize| go_on(m as f64 / total);
     let from_faces = !matches!(first, FirstPhase::Parts { .. });
-    // The faces' outer sides where they were left to the stage: beside spatial parts
-    // (`after_parts`), else now.
-    let mut signs = None;
-    if input.late_signs && from_faces {
-        signs = late_signs(fitter, &input.lists, go_on);
-        if signs.is_none() {
-            return (MergeOutput::stopped(), K::Log::default(), None);
-        }
-    }
-    // Where the global loop starts: one cluster per face, or after spatial parts or
-    // whole components were merged first.
-    let started = match first {
-        FirstPhase::Faces => Some(one_per_face(input)),
-        FirstPhase::Parts { parts, target } => after_parts(
-            fitter,
-            input,
-            (parts, target, keep.traces_every_merge()),
-            &mut signs,
-            stats,
-            laps,
-            &merged_so_far,
-        ),
-        FirstPhase::Components(comps) => {
-            // The merge tree needs every merge traced, whatever the targets (`Keep`).
-            let every = keep.traces_every_merge();
-            after_components(
-                fitter,
-                input,
-                comps,
-                targets,
-                every,
-                stats,
-                laps,
-                &merged_so_far,
-            )
-        }
-    };
-    let Some((clusters, early, replayed)) = started else {
+    // The merge tree needs every merge traced, whatever the targets (`Keep`).
+    let every = keep.traces_every_merge();
+    let run = (&mut *stats, &mut *laps, go_on);
+    let Some(((clusters, early, replayed), signs)) =
+        start(fitter, input, first, targets, every, run, &merged_so_far)
+    else {
         return (MergeOutput::stopped(), K::Log::default(), None);
     };
     let Some(clusters) = clusters else {
@@ -347,6 +315,48 @@ pub(crate) fn merge<K: Keep>(
     out.snapshots.splice(0..0, early);
     add_loop(stats, &out);
     (out, log, signs)
+}
+
+/// The faces' outer sides where they were left to the stage (beside spatial parts, in
+/// `after_parts`, else here), and where the global loop starts: one cluster per face,
+/// or after spatial parts or whole components were merged first (every merge traced
+/// when `every`). `None` when told to stop.
+fn start(
+    fitter: &Fitter,
+    input: MergeInput,
+    first: FirstPhase,
+    targets: &[usize],
+    every: bool,
+    (stats, laps, go_on): (&mut Stats, &mut PhaseTimes, Checkpoint),
+    merged_so_far: &(dyn Fn(usize) -> bool + Sync),
+) -> Option<(Started, Option<Vec<i8>>)> {
+    let mut signs = None;
+    if input.late_signs && !matches!(first, FirstPhase::Parts { .. }) {
+        signs = Some(late_signs(fitter, &input.lists, go_on)?);
+    }
+    let started = match first {
+        FirstPhase::Faces => Some(one_per_face(input)),
+        FirstPhase::Parts { parts, target } => after_parts(
+            fitter,
+            input,
+            (parts, target, every),
+            &mut signs,
+            stats,
+            laps,
+            merged_so_far,
+        ),
+        FirstPhase::Components(comps) => after_components(
+            fitter,
+            input,
+            comps,
+            targets,
+            every,
+            stats,
+            laps,
+            merged_so_far,
+        ),
+    }?;
+    Some((started, signs))
 }
 
 /// `fitter` reading `signs` as the faces' outer sides.

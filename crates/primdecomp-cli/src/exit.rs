@@ -68,32 +68,41 @@ pub fn stdout_carries_result() -> bool {
     STDOUT_CARRIES_RESULT.load(std::sync::atomic::Ordering::Relaxed)
 }
 
+/// Set by `export`, `view`, `eval` and `demo-scene` under `--quiet`: from then on
+/// [`println`] and [`print`] print nothing, since all they say there is what was
+/// written (errors go to standard error through [`report`] as ever). `decompose` and
+/// `sim` decide line by line instead: `decompose --timings` prints even when quiet.
+static QUIET: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+
+/// Prints nothing more through [`println`] and [`print`] ([`QUIET`]).
+pub fn quiet_from_now() {
+    QUIET.store(true, std::sync::atomic::Ordering::Relaxed);
+}
+
+/// What [`println`] and [`print`] print: `text` through [`terminal`], then `end`, on
+/// standard output, or on standard error where standard output carries a result;
+/// nothing after [`quiet_from_now`].
+pub fn say(text: &str, end: &str) {
+    if QUIET.load(std::sync::atomic::Ordering::Relaxed) {
+        return;
+    }
+    let text = terminal(text);
+    match stdout_carries_result() {
+        true => std::eprint!("{text}{end}"),
+        false => std::print!("{text}{end}"),
+    }
+}
+
 // `println!`, `print!` and `eprintln!` through [`terminal`]: a module that prints
 // names or paths imports these (`use crate::exit::{eprintln, print, println};`),
-// which shadow the standard ones, so every line it prints is escaped. Where standard
-// output carries a result, `println!` and `print!` write to standard error.
+// which shadow the standard ones, so every line it prints is escaped. `println!` and
+// `print!` go through [`say`].
 macro_rules! println {
-    () => {
-        if $crate::exit::stdout_carries_result() { std::eprintln!() } else { std::println!() }
-    };
-    ($($t:tt)*) => {{
-        let line = $crate::exit::terminal(&format!($($t)*));
-        if $crate::exit::stdout_carries_result() {
-            std::eprintln!("{line}")
-        } else {
-            std::println!("{line}")
-        }
-    }};
+    () => { $crate::exit::say("", "\n") };
+    ($($t:tt)*) => { $crate::exit::say(&format!($($t)*), "\n") };
 }
 macro_rules! print {
-    ($($t:tt)*) => {{
-        let text = $crate::exit::terminal(&format!($($t)*));
-        if $crate::exit::stdout_carries_result() {
-            std::eprint!("{text}")
-        } else {
-            std::print!("{text}")
-        }
-    }};
+    ($($t:tt)*) => { $crate::exit::say(&format!($($t)*), "") };
 }
 macro_rules! eprintln {
     () => { std::eprintln!() };

@@ -1,7 +1,7 @@
 //! `decompose -o -` (and `export -o -`, `view -o -`/`--png -`, `eval --json -`): the
 //! output goes to standard output, byte for byte what `-o FILE`
 //! writes, and everything the run says goes to standard error, so a pipe reads the
-//! result alone (`primdecomp decompose m.obj -o - | jq …`).
+//! result alone (`primdecomp decompose m.obj -o - | jq …`); with `-q` it says nothing.
 
 use primdecomp_testkit::shapes::{demo_polys, obj_text};
 use std::path::{Path, PathBuf};
@@ -61,13 +61,18 @@ fn the_result_on_standard_output_is_the_files_bytes_and_nothing_else() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// Runs the CLI in `dir` with `args`; asserts it succeeded.
-fn run(dir: &Path, args: &[&str]) -> Output {
-    let out = Command::new(env!("CARGO_BIN_EXE_primdecomp"))
+/// Runs the CLI in `dir` with `args`.
+fn cli(dir: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_primdecomp"))
         .current_dir(dir)
         .args(args)
         .output()
-        .unwrap();
+        .unwrap()
+}
+
+/// Runs the CLI in `dir` with `args`; asserts it succeeded.
+fn run(dir: &Path, args: &[&str]) -> Output {
+    let out = cli(dir, args);
     let said = String::from_utf8_lossy(&out.stderr);
     assert!(out.status.success(), "{args:?}: {said}");
     out
@@ -111,6 +116,62 @@ fn export_view_and_eval_write_to_standard_output_what_a_file_would_hold() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+/// `-q` on every command that writes a file: nothing on standard output or standard
+/// error, the same bytes written (to a file or to standard output), and an error still
+/// said. `eval -q` without `--json` would keep no metrics at all, so it is refused.
+#[test]
+fn quiet_runs_say_nothing_and_write_the_same_bytes() {
+    let dir = scratch("quiet");
+    decompose(&dir, &["-o", "r.json", "-q"]);
+    std::fs::create_dir(dir.join("q")).unwrap();
+    #[rustfmt::skip]
+    let cases: [(&[&str], &str); 5] = [
+        (&["export", "r.json", "--format", "mjcf", "-o"], "r.xml"),
+        (&["export", "r.json", "-o"], "r.urdf"),
+        (&["view", "r.json", "--input", "scene.obj", "--png-size", "64", "--png"], "v.png"),
+        (&["eval", "--input", "scene.obj", "r.json", "--samples", "2000", "--json"], "e.json"),
+        (&["demo-scene", "-o"], "demo.obj"),
+    ];
+    for (args, file) in cases {
+        let loud: Vec<&str> = args.iter().copied().chain([file]).collect();
+        // The same name in another folder: an export names its model after its file.
+        let quiet_file = format!("q/{file}");
+        let quiet: Vec<&str> = args
+            .iter()
+            .copied()
+            .chain([quiet_file.as_str(), "-q"])
+            .collect();
+        let said = run(&dir, &loud);
+        assert!(!said.stdout.is_empty(), "{loud:?}: said nothing");
+        let hushed = run(&dir, &quiet);
+        assert!(
+            hushed.stdout.is_empty() && hushed.stderr.is_empty(),
+            "{quiet:?} said {:?} {:?}",
+            String::from_utf8_lossy(&hushed.stdout),
+            String::from_utf8_lossy(&hushed.stderr)
+        );
+        let bytes = std::fs::read(dir.join(file)).unwrap();
+        assert!(
+            std::fs::read(dir.join(&quiet_file)).unwrap() == bytes,
+            "{quiet:?}"
+        );
+        if args[0] != "demo-scene" && file != "r.urdf" {
+            let piped: Vec<&str> = args.iter().copied().chain(["-", "-q"]).collect();
+            let out = run(&dir, &piped);
+            assert!(out.stdout == bytes && out.stderr.is_empty(), "{piped:?}");
+        }
+    }
+    #[rustfmt::skip]
+    let refused: [(&[&str], &str); 2] = [
+        (&["eval", "--input", "scene.obj", "r.json", "-q"], "--quiet prints no table"),
+        (&["export", "missing.json", "-o", "m.xml", "--format", "mjcf", "-q"], "missing.json"),
+    ];
+    for (args, want) in refused {
+        refuses(&dir, args, want);
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// What standard output cannot carry is refused before anything is written (exit 2):
 /// an export without --format (a stream has no extension), a URDF whose prisms need
 /// mesh files beside it, and two outputs of one run both to standard output.
@@ -125,16 +186,18 @@ fn what_standard_output_cannot_carry_is_refused() {
         (&["view", "p.json", "--input", "scene.obj", "-o", "-", "--png", "/dev/stdout"], "-o - and --png /dev/stdout both go to standard output"),
     ];
     for (args, want) in cases {
-        let out = Command::new(env!("CARGO_BIN_EXE_primdecomp"))
-            .current_dir(&dir)
-            .args(args)
-            .output()
-            .unwrap();
-        let said = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(2), "{args:?}: {said}");
-        assert!(said.contains(want), "{args:?}: {said}");
-        assert!(out.stdout.is_empty(), "{args:?}: wrote to standard output");
+        refuses(&dir, args, want);
     }
     assert!(!dir.join("-").exists() && !dir.join("p_meshes").exists());
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// Runs the CLI in `dir` with `args`; asserts it exited 2 saying `want` on standard
+/// error and nothing on standard output.
+fn refuses(dir: &Path, args: &[&str], want: &str) {
+    let out = cli(dir, args);
+    let said = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {said}");
+    assert!(said.contains(want), "{args:?}: {said}");
+    assert!(out.stdout.is_empty(), "{args:?}: wrote to standard output");
 }

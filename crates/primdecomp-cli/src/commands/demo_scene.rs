@@ -18,10 +18,16 @@ pub struct DemoSceneArgs {
     /// Output file.
     #[arg(short, long, default_value = "datasets/demo_scene.obj")]
     out: PathBuf,
+    /// Print nothing but errors.
+    #[arg(short, long)]
+    quiet: bool,
 }
 
 /// Writes the scene to `--out` atomically.
 pub fn run(a: DemoSceneArgs) -> anyhow::Result<()> {
+    if a.quiet {
+        crate::exit::quiet_from_now();
+    }
     let out = a.out;
     write_atomic(&out, DEMO_SCENE_OBJ.as_bytes())
         .map_err(anyhow::Error::from)

@@ -38,6 +38,9 @@ pub struct EvalArgs {
     /// Worker threads (default: all cores); results do not depend on it.
     #[arg(long)]
     threads: Option<usize>,
+    /// Print nothing but errors (the table too: needs --json).
+    #[arg(short, long)]
+    quiet: bool,
     #[command(flatten)]
     load: LoadArgs,
 }
@@ -49,6 +52,16 @@ const EVAL_HELP: &str = include_str!("eval_help.txt");
 pub fn run(a: EvalArgs) -> anyhow::Result<()> {
     if a.samples == 0 {
         bail!(BadArgs("--samples must be at least 1".into()));
+    }
+    if a.quiet {
+        if a.json.is_none() {
+            bail!(BadArgs(
+                "--quiet prints no table, and without --json nothing else keeps the \
+                 metrics: give --json FILE (or --json - for standard output)"
+                    .into()
+            ));
+        }
+        crate::exit::quiet_from_now();
     }
     let guard = Guard::new(
         std::iter::once(&a.input)

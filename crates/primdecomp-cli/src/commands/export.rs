@@ -70,6 +70,9 @@ pub struct ExportCmd {
     /// colliders, so the file is both the import and a preview.
     #[arg(long)]
     pub input: Option<PathBuf>,
+    /// Print nothing but errors.
+    #[arg(short, long)]
+    pub quiet: bool,
     #[command(flatten)]
     pub opts: ExportArgs,
 }
@@ -170,6 +173,9 @@ pub fn mesh_polygons(mesh: &primdecomp::Mesh) -> (Vec<[f64; 3]>, Vec<Vec<u32>>) 
 /// `primdecomp export`: reads a result and writes its colliders in the format `-o`
 /// names, turned to the format's up axis.
 pub fn run(a: ExportCmd) -> anyhow::Result<()> {
+    if a.quiet {
+        crate::exit::quiet_from_now();
+    }
     let inputs: Vec<&Path> = std::iter::once(a.result.as_path())
         .chain(a.input.as_deref())
         .collect();
@@ -212,22 +218,28 @@ pub fn run(a: ExportCmd) -> anyhow::Result<()> {
         }
     }
     if let Some(native) = format.up().filter(|&n| n != opts.up) {
-        println!(
-            "up        {} in the result{}, turned to the format's {}{}",
-            opts.up.axis(),
-            match (a.opts.up.is_some(), recorded) {
-                (true, _) => " (--up)",
-                (false, Some(_)) => "",
-                (false, None) => " (assumed: the result records none)",
-            },
-            native.axis(),
-            match opts.up {
-                Up::Y => " (--up z if the mesh stands on z)",
-                Up::Z => " (--up y if the mesh stands on y)",
-            }
-        );
+        say_turned(opts.up, native, a.opts.up.is_some(), recorded.is_some());
     }
     Ok(())
+}
+
+/// Says that the mesh's `up` (given by `--up`, else `recorded` in the result, else
+/// assumed) was turned to the format's `native` axis, and how to say otherwise.
+fn say_turned(up: Up, native: Up, given: bool, recorded: bool) {
+    println!(
+        "up        {} in the result{}, turned to the format's {}{}",
+        up.axis(),
+        match (given, recorded) {
+            (true, _) => " (--up)",
+            (false, true) => "",
+            (false, false) => " (assumed: the result records none)",
+        },
+        native.axis(),
+        match up {
+            Up::Y => " (--up z if the mesh stands on z)",
+            Up::Z => " (--up y if the mesh stands on y)",
+        }
+    );
 }
 
 /// `export -o -`: the export's one file to standard output; refuses (exit 2) a URDF

@@ -65,6 +65,9 @@ pub struct ViewArgs {
     /// (the memory available now) or 'none'.
     #[arg(long, default_value = "available")]
     max_memory: String,
+    /// Print nothing but errors.
+    #[arg(short, long)]
+    quiet: bool,
     #[command(flatten)]
     load: LoadArgs,
 }
@@ -73,6 +76,9 @@ pub struct ViewArgs {
 /// writes the page and the PNG atomically.
 pub fn run(a: ViewArgs) -> anyhow::Result<()> {
     check_args(&a)?;
+    if a.quiet {
+        crate::exit::quiet_from_now();
+    }
     // Nothing the page or the PNG is made from may be overwritten by them.
     let read: Vec<PathBuf> = a
         .results

@@ -268,16 +268,34 @@ impl Cutter<'_> {
         }
         let prim = match ex.groups.contains_key(&n) {
             true if !self.goes_on() => super::STAND_IN,
-            true => {
-                let q = self.q_of(ex, n);
-                let ask = || self.goes_on();
-                let fit =
-                    (self.fitter).fit_output_checked(self.faces_of(ex, n), &q, &mut s.ws, &ask);
-                fit.map_or(super::STAND_IN, |f| f.prim)
-            }
+            true => self.group_fit(ex, n, s),
             false => self.fit(n, s),
         };
         self.measured(n, prim, above)
+    }
+
+    /// Group `n`'s fit on all its points: kept from an earlier exploration that
+    /// covered the same nodes, or made and kept ([`Cutter::group_fits`]).
+    fn group_fit(&self, ex: &Explored, n: u32, s: &mut Scratch) -> Primitive {
+        let covered = self.covered(ex, n);
+        let lock = || self.group_fits.lock().unwrap_or_else(|e| e.into_inner());
+        let kept = (!super::group_fits_off()).then(|| lock().get(&covered).copied());
+        if let Some(prim) = kept.flatten() {
+            #[cfg(test)]
+            super::GROUP_FITS_REUSED.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+            return prim;
+        }
+        let q = self.q_of(ex, n);
+        let ask = || self.goes_on();
+        let fit = (self.fitter).fit_output_checked(self.faces_of(ex, n), &q, &mut s.ws, &ask);
+        match fit {
+            Some(f) => {
+                lock().insert(covered, f.prim);
+                f.prim
+            }
+            // Told to stop: nothing kept.
+            None => super::STAND_IN,
+        }
     }
 
     /// Group `g`'s two halves, each a node or a group ([`Cutter::part`]), fitted

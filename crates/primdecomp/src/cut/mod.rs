@@ -79,6 +79,20 @@ fn ahead_off() -> bool {
     false
 }
 
+/// The tests compare the cuts with [`Cutter::group_fits`] keeping nothing, and count
+/// the fits it gave back.
+#[cfg(test)]
+static GROUP_FITS_OFF: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+#[cfg(test)]
+static GROUP_FITS_REUSED: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
+
+fn group_fits_off() -> bool {
+    #[cfg(test)]
+    return GROUP_FITS_OFF.load(std::sync::atomic::Ordering::Relaxed);
+    #[cfg(not(test))]
+    false
+}
+
 /// Nodes' fits by node id.
 type Fits = HashMap<u32, Entry>;
 /// Each request's cut: its nodes.
@@ -211,6 +225,10 @@ pub(crate) struct Cutter<'a> {
     boxes: Vec<(V3, V3)>,
     /// The errors measured so far ([`error_memo`]).
     measures: error_memo::Measures,
+    /// Each group's fit on all its points so far, by the nodes it covers
+    /// ([`Cutter::covered`]), which decide it: explorations number groups anew, and a
+    /// run's several explorations halve the same groups again.
+    group_fits: std::sync::Mutex<HashMap<Vec<u32>, Primitive>>,
     /// Asked whether to go on before each split and each round of fits ahead.
     go_on: crate::progress::Checkpoint<'a>,
     /// `go_on` said stop: what the cutter returns since is not a cut to keep.
@@ -265,6 +283,7 @@ impl<'a> Cutter<'a> {
             loose: false,
             boxes: carried_parts::node_boxes(tree, fitter.input.mesh),
             measures: error_memo::Measures::default(),
+            group_fits: Default::default(),
             go_on,
             stopped: std::sync::atomic::AtomicBool::new(!whole),
         }

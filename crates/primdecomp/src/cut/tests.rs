@@ -253,7 +253,6 @@ fn fitting_ahead_changes_no_cut() {
 }
 
 fn same_cuts_fitting_ahead(count: usize, tolerance: f64) {
-    use std::sync::atomic::Ordering::Relaxed;
     let mesh = crate::input::demo::demo_scene();
     let p = Params {
         goal: Goal::Within {
@@ -267,16 +266,7 @@ fn same_cuts_fitting_ahead(count: usize, tolerance: f64) {
         },
         ..Params::default()
     };
-    let run = |threads: usize, off: bool| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .expect("pool");
-        AHEAD_OFF.store(off, Relaxed);
-        let d = pool.install(|| decompose(&mesh, &p)).expect("decomposes");
-        AHEAD_OFF.store(false, Relaxed);
-        d.levels
-    };
+    let run = |threads: usize, off: bool| levels_with(&mesh, &p, threads, (&AHEAD_OFF, off));
     let serial = run(1, true);
     let capped = (count < 400).then_some(crate::output::result::Shortfall::Count);
     assert_eq!(serial[2].shortfall, capped, "{count}");
@@ -324,4 +314,57 @@ fn caps_are_spent_on_what_post_processing_keeps() {
     let n = l.primitives.len();
     assert!((36..=40).contains(&n), "{n}");
     assert_eq!(l.target, 40);
+}
+
+/// A group's fit kept from an earlier exploration ([`Cutter::group_fits`]) is the fit
+/// that would be made again: on a city block of 400 separate parts at 20 primitives,
+/// whose cuts halve the same groups of parts in each exploration, the levels are the
+/// same with nothing kept, on one thread and two, and kept fits were given back.
+#[test]
+fn groups_fits_kept_change_no_cut() {
+    use std::sync::atomic::Ordering::Relaxed;
+    let dir = std::env::temp_dir().join(format!("primdecomp-group-fits-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temporary folder");
+    let path = dir.join("city.ply");
+    primdecomp_testkit::ladder::city_block_ply(400, 1, &path).expect("writes the block");
+    let mesh = crate::input::mesh::Mesh::load(&path).expect("loads the block");
+    std::fs::remove_dir_all(&dir).expect("removes the folder");
+    let p = Params {
+        goal: Goal::Counts { counts: vec![20] },
+        ..Params::default()
+    };
+    let run = |threads: usize, off: bool| levels_with(&mesh, &p, threads, (&GROUP_FITS_OFF, off));
+    let fresh = run(2, true);
+    let before = GROUP_FITS_REUSED.load(Relaxed);
+    for threads in [1, 2] {
+        let levels = run(threads, false);
+        assert_eq!(
+            fresh[0].primitives, levels[0].primitives,
+            "{threads} threads"
+        );
+        assert_eq!(fresh[0].distance, levels[0].distance, "{threads} threads");
+    }
+    assert!(
+        GROUP_FITS_REUSED.load(Relaxed) > before,
+        "no group's fit was kept"
+    );
+}
+
+/// The levels of `mesh` with `p` on `threads` threads, with a test switch of the
+/// cutter's set to `off` during the run.
+fn levels_with(
+    mesh: &crate::input::mesh::Mesh,
+    p: &Params,
+    threads: usize,
+    (switch, off): (&std::sync::atomic::AtomicBool, bool),
+) -> Vec<crate::output::result::Level> {
+    use std::sync::atomic::Ordering::Relaxed;
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("pool");
+    switch.store(off, Relaxed);
+    let d = pool.install(|| decompose(mesh, p)).expect("decomposes");
+    switch.store(false, Relaxed);
+    d.levels
 }

@@ -20,6 +20,8 @@ use super::{Cutter, Entry, Explored, Scratch};
 use crate::input::mesh::Mesh;
 use crate::math::aabb_of;
 use crate::math::{Sym3, V3};
+use crate::merge::cost::Workspace;
+use crate::primitive::fit::Fit;
 use crate::primitive::Primitive;
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -279,16 +281,13 @@ impl Cutter<'_> {
     fn group_fit(&self, ex: &Explored, n: u32, s: &mut Scratch) -> Primitive {
         let covered = self.covered(ex, n);
         let lock = || self.group_fits.lock().unwrap_or_else(|e| e.into_inner());
-        let kept = (!super::group_fits_off()).then(|| lock().get(&covered).copied());
+        let kept = (!super::off(&super::GROUP_FITS_OFF)).then(|| lock().get(&covered).copied());
         if let Some(prim) = kept.flatten() {
             #[cfg(test)]
             super::GROUP_FITS_REUSED.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
             return prim;
         }
-        let q = self.q_of(ex, n);
-        let ask = || self.goes_on();
-        let fit = (self.fitter).fit_output_checked(self.faces_of(ex, n), &q, &mut s.ws, &ask);
-        match fit {
+        match self.fit_over(&covered, &mut s.ws) {
             Some(f) => {
                 lock().insert(covered, f.prim);
                 f.prim
@@ -419,10 +418,26 @@ impl Cutter<'_> {
 
     /// Node `n`'s operator with those of the nodes it carries.
     pub(super) fn q_of(&self, ex: &Explored, n: u32) -> Sym3 {
+        self.q_over(&self.covered(ex, n))
+    }
+
+    /// The summed operators of `nodes`, in their order (a [`Cutter::covered`] list,
+    /// never empty: it holds the node or its group's members).
+    fn q_over(&self, nodes: &[u32]) -> Sym3 {
         let q = |c: u32| self.tree.q(c, self.fitter.input.mesh);
-        let mut nodes = self.covered(ex, n).into_iter();
-        let first = q(nodes.next().unwrap_or(n));
-        nodes.fold(first, |acc, c| acc.add(&q(c)))
+        let Some((&first, rest)) = nodes.split_first() else {
+            return Sym3::default();
+        };
+        rest.iter().fold(q(first), |acc, &c| acc.add(&q(c)))
+    }
+
+    /// The output fit on every point of `nodes` (a [`Cutter::covered`] list) with
+    /// their summed operators: what `faces_of` and `q_of` give for the node they
+    /// cover, without finding the list again. `None` once told to stop.
+    pub(super) fn fit_over(&self, nodes: &[u32], ws: &mut Workspace) -> Option<Fit> {
+        let faces = nodes.iter().flat_map(|&c| self.tree.faces(c)).copied();
+        let ask = || self.goes_on();
+        (self.fitter).fit_output_checked(faces, &self.q_over(nodes), ws, &ask)
     }
 
     /// Where node `n`'s faces start in the tree's order (a group's first member's).

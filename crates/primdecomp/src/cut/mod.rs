@@ -46,6 +46,7 @@ use past_worst::{Order, Queued};
 use rayon::prelude::*;
 use std::cmp::Ordering;
 use std::collections::{BinaryHeap, HashMap};
+use std::sync::atomic::AtomicBool;
 pub(crate) use tree::MergeTree;
 
 /// With spatial parts merged first, the tree's leaves are the clusters of the
@@ -68,29 +69,19 @@ const AHEAD_STEP: f64 = 0.85;
 const SPLITS_PER_COUNT: usize = 8;
 
 /// The tests compare the cuts with [`Cutter::ahead`] and `Cutter::fit_next` fitting
-/// nothing.
-#[cfg(test)]
-static AHEAD_OFF: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+/// nothing ([`off`]).
+static AHEAD_OFF: AtomicBool = AtomicBool::new(false);
 
-fn ahead_off() -> bool {
-    #[cfg(test)]
-    return AHEAD_OFF.load(std::sync::atomic::Ordering::Relaxed);
-    #[cfg(not(test))]
-    false
-}
-
-/// The tests compare the cuts with [`Cutter::group_fits`] keeping nothing, and count
-/// the fits it gave back.
-#[cfg(test)]
-static GROUP_FITS_OFF: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+/// The tests compare the cuts with [`Cutter::group_fits`] keeping nothing ([`off`]),
+/// and count the fits it gave back.
+static GROUP_FITS_OFF: AtomicBool = AtomicBool::new(false);
 #[cfg(test)]
 static GROUP_FITS_REUSED: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
 
-fn group_fits_off() -> bool {
-    #[cfg(test)]
-    return GROUP_FITS_OFF.load(std::sync::atomic::Ordering::Relaxed);
-    #[cfg(not(test))]
-    false
+/// Whether a test turned `switch` off: never outside the tests, where this is a
+/// constant `false`.
+fn off(switch: &AtomicBool) -> bool {
+    cfg!(test) && switch.load(std::sync::atomic::Ordering::Relaxed)
 }
 
 /// Nodes' fits by node id.
@@ -232,7 +223,7 @@ pub(crate) struct Cutter<'a> {
     /// Asked whether to go on before each split and each round of fits ahead.
     go_on: crate::progress::Checkpoint<'a>,
     /// `go_on` said stop: what the cutter returns since is not a cut to keep.
-    stopped: std::sync::atomic::AtomicBool,
+    stopped: AtomicBool,
 }
 
 /// One thread's buffers for fitting nodes.
@@ -285,7 +276,7 @@ impl<'a> Cutter<'a> {
             measures: error_memo::Measures::default(),
             group_fits: Default::default(),
             go_on,
-            stopped: std::sync::atomic::AtomicBool::new(!whole),
+            stopped: AtomicBool::new(!whole),
         }
     }
 
@@ -355,10 +346,7 @@ impl<'a> Cutter<'a> {
         if !self.goes_on() || (e.closest || within(own)) && within(carried) || self.stopped() {
             return e.prim;
         }
-        let q = self.q_of(ex, e.node);
-        let ask = || self.goes_on();
-        let fit = (self.fitter).fit_output_checked(self.faces_of(ex, e.node), &q, ws, &ask);
-        fit.map_or(STAND_IN, |f| f.prim)
+        self.fit_over(&nodes, ws).map_or(STAND_IN, |f| f.prim)
     }
 
     /// `e` with its error measured up to `above`, unless it is already exact.
@@ -686,7 +674,7 @@ impl<'a> Cutter<'a> {
                 threshold = (threshold * AHEAD_STEP).max(enough);
                 continue;
             }
-            if count + batch.len() > largest || ahead_off() {
+            if count + batch.len() > largest || off(&AHEAD_OFF) {
                 break;
             }
             let kids: Vec<([Entry; 2], bool)> = batch

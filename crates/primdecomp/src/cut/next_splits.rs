@@ -32,7 +32,7 @@ impl Cutter<'_> {
         (enough, above, known): (f64, f64, &HashMap<u32, Entry>),
     ) {
         let threads = rayon::current_num_threads();
-        if threads < 2 || super::ahead_off() || !self.unfitted(ex, ready, e.node) {
+        if threads < 2 || super::off(&super::AHEAD_OFF) || !self.unfitted(ex, ready, e.node) {
             return;
         }
         let mut next = vec![e.node];
